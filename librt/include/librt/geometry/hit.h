@@ -1,0 +1,34 @@
+#pragma once
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <limits>
+
+namespace librt {
+
+/// Sentinel for "no primitive / no object".
+inline constexpr std::uint32_t kInvalidId = std::numeric_limits<std::uint32_t>::max();
+
+/// What traversal knows about a hit: cheap to produce, enough to finish later.
+struct PrimitiveHit {
+    float t = std::numeric_limits<float>::infinity();
+    float u = 0.0f;  ///< barycentric weight of vertex 1 (triangles) or unused
+    float v = 0.0f;  ///< barycentric weight of vertex 2 (triangles) or unused
+    std::uint32_t primitive_id = kInvalidId;
+    [[nodiscard]] bool valid() const { return primitive_id != kInvalidId; }
+};
+
+/// The full surface record a shader needs, filled in once for the nearest hit.
+struct Hit {
+    float t = std::numeric_limits<float>::infinity();
+    glm::vec3 point{0.0f};
+    glm::vec3 geometric_normal{0.0f};  ///< unit, from the primitive's shape
+    glm::vec3 shading_normal{0.0f};    ///< unit, interpolated when the mesh has normals
+    glm::vec2 uv{0.0f};                ///< surface parameterisation or texture coordinates
+    std::uint32_t primitive_id = kInvalidId;  ///< triangle index within its mesh, or 0
+    std::uint32_t object_id = kInvalidId;     ///< index of the object in its scene
+};
+
+}  // namespace librt

@@ -1,0 +1,36 @@
+#pragma once
+
+#include <librt/geometry/bbox.h>
+#include <librt/geometry/ray.h>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <optional>
+
+namespace librt {
+
+/// A sphere; the report's walls are spheres too (radius ~1000).
+struct Sphere {
+    glm::vec3 center{0.0f};
+    float radius = 1.0f;
+};
+
+/// Nearest t in (ray.t_min, ray.t_max) where the ray meets the sphere, or nothing.
+/// Both roots are considered, so a ray starting inside hits the far side.
+/// Solved in double with the cancellation-free quadratic: the report's walls are
+/// huge, and float loses the root's digits there.
+[[nodiscard]] std::optional<float> intersect(const Sphere& sphere, const Ray& ray);
+
+/// Bounding box of a sphere.
+[[nodiscard]] inline BBox bounds(const Sphere& s) {
+    return {s.center - glm::vec3(s.radius), s.center + glm::vec3(s.radius)};
+}
+
+/// Outward unit normal at a point on the sphere.
+[[nodiscard]] glm::vec3 normal_at(const Sphere& sphere, const glm::vec3& point);
+
+/// Spherical (u, v) in [0,1]^2 of a point on the sphere: u = azimuth around +y, v = polar from +y.
+[[nodiscard]] glm::vec2 sphere_uv(const Sphere& sphere, const glm::vec3& point);
+
+}  // namespace librt
