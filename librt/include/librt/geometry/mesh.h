@@ -1,0 +1,61 @@
+#pragma once
+
+#include <librt/geometry/bbox.h>
+#include <librt/geometry/triangle.h>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace librt {
+
+/// A material as read from an OBJ's MTL file; the renderer maps it to its own materials.
+struct MeshMaterial {
+    std::string name;
+    glm::vec3 diffuse{0.8f};        ///< Kd
+    glm::vec3 specular{0.0f};       ///< Ks
+    glm::vec3 emission{0.0f};       ///< Ke
+    float ior = 1.0f;               ///< Ni
+    float dissolve = 1.0f;          ///< d (1 = opaque)
+    int illum = 2;                  ///< MTL illumination model
+    std::string diffuse_texture;    ///< map_Kd, resolved to a path relative to the working directory; empty if none
+};
+
+/// An indexed triangle mesh. Per-vertex attributes share the positions' indexing;
+/// optional arrays are either empty or exactly as long as the array they annotate.
+struct TriangleMesh {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::uvec3> triangles;        ///< three indices into positions per triangle
+    std::vector<glm::vec3> normals;           ///< optional, one per position
+    std::vector<glm::vec2> uvs;               ///< optional, one per position
+    std::vector<std::uint32_t> material_ids;  ///< optional, one per triangle, into materials
+    std::vector<MeshMaterial> materials;      ///< from the MTL file, may be empty
+
+    [[nodiscard]] std::size_t triangle_count() const { return triangles.size(); }
+    [[nodiscard]] std::size_t vertex_count() const { return positions.size(); }
+    /// The corners of triangle i.
+    [[nodiscard]] Triangle triangle(std::size_t i) const {
+        const glm::uvec3& t = triangles[i];
+        return {positions[t.x], positions[t.y], positions[t.z]};
+    }
+    /// Bounding box of all positions.
+    [[nodiscard]] BBox bounds() const;
+};
+
+/// Applies an affine transform to positions (and the inverse transpose to normals, renormalised).
+void transform(TriangleMesh& mesh, const glm::mat4& matrix);
+
+/// Scale, then rotate (angles in degrees about x, then y, then z), then translate:
+/// the report's "scaled by 20 and moved by (0, -10, 0)".
+[[nodiscard]] glm::mat4 make_transform(const glm::vec3& scale, const glm::vec3& rotation_degrees,
+                                       const glm::vec3& translation);
+
+/// Throws librt::Error naming the problem when indices are out of range or optional
+/// arrays have the wrong length.
+void validate(const TriangleMesh& mesh);
+
+}  // namespace librt
