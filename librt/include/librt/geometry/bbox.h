@@ -55,7 +55,8 @@ struct BBox {
 /// value of the same sign instead of inf, so (lo - o) * inv never computes 0 * inf = NaN
 /// for a ray parallel to a slab; the slab then spans +-huge, i.e. all or nothing.
 /// A zero component acts as an infinitesimal of its sign, so a ray lying in a box face
-/// is inside one of the two boxes sharing that face, never outside both.
+/// is inside one of the two boxes sharing that face, never outside both (the price: such
+/// a ray lying in the hi face of a lone box, moving with +0 there, counts as outside).
 [[nodiscard]] inline glm::vec3 safe_inverse(const glm::vec3& d) {
     constexpr float tiny = 1e-30f;
     auto inv = [](float x) { return 1.0f / (std::fabs(x) < tiny ? std::copysign(tiny, x) : x); };

@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 
 #include <optional>
+#include <utility>
 
 namespace librt {
 
@@ -22,10 +23,75 @@ struct TriangleHit {
     float v;
 };
 
-/// Watertight ray-triangle test (Woop, Benthin and Wald, JCGT 2013): both faces,
-/// no epsilon, scale independent, and a ray through an edge or vertex shared by two
-/// triangles hits at least one of them. Returns the hit when t is in (t_min, t_max).
-[[nodiscard]] std::optional<TriangleHit> intersect(const Triangle& tri, const Ray& ray);
+/// Per-ray constants of the watertight test: the axis permutation that makes the
+/// direction's largest component z, and the shear that maps the direction onto +z.
+/// Computed once per ray, reused for every triangle it meets.
+struct WatertightRay {
+    glm::vec3 origin{0.0f};
+    int kx = 0, ky = 1, kz = 2;
+    float sx = 0.0f, sy = 0.0f, sz = 0.0f;
+    bool valid = false;  ///< false for a zero or NaN direction, which hits nothing
+};
+
+/// Prepares a ray for the watertight triangle test.
+[[nodiscard]] inline WatertightRay prepare_watertight(const Ray& ray) {
+    WatertightRay w;
+    w.origin = ray.origin;
+    const glm::vec3& d = ray.direction;
+    const glm::vec3 ad = glm::abs(d);
+    w.kz = (ad.x > ad.y) ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
+    if (!(ad[w.kz] > 0.0f)) return w;
+    w.kx = (w.kz + 1) % 3;
+    w.ky = (w.kx + 1) % 3;
+    if (d[w.kz] < 0.0f) std::swap(w.kx, w.ky);  // keep the winding
+    w.sx = d[w.kx] / d[w.kz];
+    w.sy = d[w.ky] / d[w.kz];
+    w.sz = 1.0f / d[w.kz];
+    w.valid = true;
+    return w;
+}
+
+/// Watertight ray-triangle test (Woop, Benthin and Wald, JCGT 2013): both faces, no
+/// epsilon, scale independent; a ray through an edge or vertex shared by two triangles
+/// hits at least one of them. Returns the hit when t is in (t_min, t_max).
+[[nodiscard]] inline std::optional<TriangleHit> intersect(const Triangle& tri,
+                                                          const WatertightRay& w, float t_min,
+                                                          float t_max) {
+    if (!w.valid) return std::nullopt;
+    const glm::vec3 a = tri.p0 - w.origin;
+    const glm::vec3 b = tri.p1 - w.origin;
+    const glm::vec3 c = tri.p2 - w.origin;
+    const float ax = a[w.kx] - w.sx * a[w.kz], ay = a[w.ky] - w.sy * a[w.kz];
+    const float bx = b[w.kx] - w.sx * b[w.kz], by = b[w.ky] - w.sy * b[w.kz];
+    const float cx = c[w.kx] - w.sx * c[w.kz], cy = c[w.ky] - w.sy * c[w.kz];
+
+    // 2D edge functions; a shared edge gives exactly the negated value in its neighbour.
+    float e0 = cx * by - cy * bx;  // weight of p0 (edge p1-p2)
+    float e1 = ax * cy - ay * cx;  // weight of p1
+    float e2 = bx * ay - by * ax;  // weight of p2
+    if (e0 == 0.0f || e1 == 0.0f || e2 == 0.0f) {
+        // On an edge in float: recompute in double so the sign is exact.
+        e0 = static_cast<float>(double(cx) * double(by) - double(cy) * double(bx));
+        e1 = static_cast<float>(double(ax) * double(cy) - double(ay) * double(cx));
+        e2 = static_cast<float>(double(bx) * double(ay) - double(by) * double(ax));
+    }
+    if ((e0 < 0.0f || e1 < 0.0f || e2 < 0.0f) && (e0 > 0.0f || e1 > 0.0f || e2 > 0.0f))
+        return std::nullopt;
+    const float det = e0 + e1 + e2;
+    if (det == 0.0f) return std::nullopt;  // degenerate, or the ray lies in its plane
+
+    // Distance: barycentric interpolation of the sheared z coordinates.
+    const float t_scaled = w.sz * (e0 * a[w.kz] + e1 * b[w.kz] + e2 * c[w.kz]);
+    const float inv_det = 1.0f / det;
+    const float t = t_scaled * inv_det;
+    if (!(t > t_min && t < t_max)) return std::nullopt;
+    return TriangleHit{t, e1 * inv_det, e2 * inv_det};
+}
+
+/// Watertight test for a single ray (prepares it first).
+[[nodiscard]] inline std::optional<TriangleHit> intersect(const Triangle& tri, const Ray& ray) {
+    return intersect(tri, prepare_watertight(ray), ray.t_min, ray.t_max);
+}
 
 /// Bounding box of a triangle.
 [[nodiscard]] inline BBox bounds(const Triangle& t) {

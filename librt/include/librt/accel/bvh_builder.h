@@ -1,0 +1,45 @@
+#pragma once
+
+#include <librt/accel/bvh.h>
+#include <librt/geometry/bbox.h>
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <span>
+
+namespace librt {
+
+/// The report's builder: split the node's box at its centre along its longest axis,
+/// primitives going left or right by centroid; stop at max_leaf_size primitives or
+/// when every centroid falls on one side.
+struct MedianSplitConfig {
+    std::uint32_t max_leaf_size = 5;  ///< the report's "fin - debut > 5"
+};
+
+/// Binned surface area heuristic (Wald 2007): for each axis, centroids are binned and
+/// the split minimising traversal_cost + (A_L N_L + A_R N_R) / A * intersection_cost is
+/// taken when it beats making a leaf.
+struct SahConfig {
+    std::uint32_t bin_count = 32;
+    std::uint32_t max_leaf_size = 8;   ///< larger nodes are always split
+    float traversal_cost = 1.0f;       ///< cost of visiting a node, relative to...
+    float intersection_cost = 1.0f;    ///< ...the cost of one primitive test
+};
+
+/// Which builder a caller wants.
+enum class BvhBuilder { Median, Sah };
+
+/// Builds with the report's median split. boxes[i] and centers[i] describe primitive i.
+[[nodiscard]] Bvh build_median_bvh(std::span<const BBox> boxes, std::span<const glm::vec3> centers,
+                                   const MedianSplitConfig& config = {});
+
+/// Builds with binned SAH. boxes[i] and centers[i] describe primitive i.
+[[nodiscard]] Bvh build_sah_bvh(std::span<const BBox> boxes, std::span<const glm::vec3> centers,
+                                const SahConfig& config = {});
+
+/// Builds with the chosen builder and its default settings.
+[[nodiscard]] Bvh build_bvh(BvhBuilder builder, std::span<const BBox> boxes,
+                            std::span<const glm::vec3> centers);
+
+}  // namespace librt

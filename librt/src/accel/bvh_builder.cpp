@@ -1,0 +1,195 @@
+#include <librt/accel/bvh_builder.h>
+#include <librt/core/error.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+#include <vector>
+
+namespace librt {
+namespace {
+
+/// A node waiting to be split: its slot range [begin, end) and depth.
+struct BuildTask {
+    std::uint32_t node;
+    std::uint32_t begin;
+    std::uint32_t end;
+    std::uint32_t depth;
+};
+
+void check_input(std::span<const BBox> boxes, std::span<const glm::vec3> centers) {
+    if (boxes.size() != centers.size())
+        throw Error("BVH build: " + std::to_string(boxes.size()) + " boxes but " +
+                    std::to_string(centers.size()) + " centres");
+    if (boxes.size() >= std::numeric_limits<std::uint32_t>::max())
+        throw Error("BVH build: too many primitives (" + std::to_string(boxes.size()) + ")");
+    // Bins are indexed from centroids: a NaN would become an out-of-range bin.
+    for (std::size_t i = 0; i < centers.size(); ++i) {
+        const glm::vec3& c = centers[i];
+        if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z))
+            throw Error("BVH build: primitive " + std::to_string(i) + " has a non-finite centre");
+    }
+}
+
+BBox range_bounds(std::span<const BBox> boxes, const std::vector<std::uint32_t>& ids,
+                  std::uint32_t begin, std::uint32_t end) {
+    BBox b;
+    for (std::uint32_t i = begin; i < end; ++i) b.extend(boxes[ids[i]]);
+    return b;
+}
+
+/// Shared skeleton of both builders: a work stack of nodes; `choose_split` returns the
+/// slot where the range is partitioned (begin or end meaning "make a leaf").
+template <class ChooseSplit>
+Bvh build_top_down(std::span<const BBox> boxes, ChooseSplit&& choose_split) {
+    Bvh bvh;
+    const auto count = static_cast<std::uint32_t>(boxes.size());
+    if (count == 0) return bvh;
+    bvh.prim_indices.resize(count);
+    std::iota(bvh.prim_indices.begin(), bvh.prim_indices.end(), 0u);
+    bvh.nodes.reserve(2 * std::size_t{count});
+    bvh.nodes.push_back({range_bounds(boxes, bvh.prim_indices, 0, count), 0, 0});
+
+    std::vector<BuildTask> tasks{{0, 0, count, 0}};
+    while (!tasks.empty()) {
+        const BuildTask task = tasks.back();
+        tasks.pop_back();
+        bvh.depth = std::max(bvh.depth, task.depth);
+        const BBox node_bounds = bvh.nodes[task.node].bounds;
+        std::uint32_t mid = task.begin;
+        if (task.depth < kMaxBvhDepth)
+            mid = choose_split(bvh.prim_indices, task.begin, task.end, node_bounds);
+        if (mid <= task.begin || mid >= task.end) {
+            bvh.nodes[task.node].index = task.begin;
+            bvh.nodes[task.node].prim_count = task.end - task.begin;
+            continue;
+        }
+        const auto left = static_cast<std::uint32_t>(bvh.nodes.size());
+        bvh.nodes[task.node].index = left;
+        bvh.nodes[task.node].prim_count = 0;
+        bvh.nodes.push_back({range_bounds(boxes, bvh.prim_indices, task.begin, mid), 0, 0});
+        bvh.nodes.push_back({range_bounds(boxes, bvh.prim_indices, mid, task.end), 0, 0});
+        tasks.push_back({left, task.begin, mid, task.depth + 1});
+        tasks.push_back({left + 1, mid, task.end, task.depth + 1});
+    }
+    bvh.nodes.shrink_to_fit();
+    return bvh;
+}
+
+}  // namespace
+
+Bvh build_median_bvh(std::span<const BBox> boxes, std::span<const glm::vec3> centers,
+                     const MedianSplitConfig& config) {
+    check_input(boxes, centers);
+    const std::uint32_t max_leaf = std::max(config.max_leaf_size, 1u);
+    return build_top_down(boxes, [&](std::vector<std::uint32_t>& ids, std::uint32_t begin,
+                                     std::uint32_t end, const BBox& node_bounds) {
+        if (end - begin <= max_leaf) return begin;
+        // The report's plane: the middle of the node box's longest side.
+        const int axis = node_bounds.largest_axis();
+        const float split = node_bounds.center()[axis];
+        const auto it = std::partition(ids.begin() + begin, ids.begin() + end,
+                                       [&](std::uint32_t id) { return centers[id][axis] < split; });
+        return static_cast<std::uint32_t>(it - ids.begin());
+    });
+}
+
+Bvh build_sah_bvh(std::span<const BBox> boxes, std::span<const glm::vec3> centers,
+                  const SahConfig& config) {
+    check_input(boxes, centers);
+    const std::uint32_t bin_count = std::clamp(config.bin_count, 2u, 256u);
+    const std::uint32_t max_leaf = std::max(config.max_leaf_size, 1u);
+    struct Bin {
+        BBox bounds;
+        std::uint32_t count = 0;
+    };
+    std::vector<Bin> bins(bin_count);
+    std::vector<float> right_area(bin_count);
+    std::vector<std::uint32_t> right_count(bin_count);
+
+    return build_top_down(boxes, [&](std::vector<std::uint32_t>& ids, std::uint32_t begin,
+                                     std::uint32_t end, const BBox& node_bounds) {
+        const std::uint32_t n = end - begin;
+        if (n <= 1) return begin;
+        BBox centroid_bounds;
+        for (std::uint32_t i = begin; i < end; ++i) centroid_bounds.extend(centers[ids[i]]);
+
+        float best_cost = std::numeric_limits<float>::infinity();
+        int best_axis = -1;
+        std::uint32_t best_bin = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            const float lo = centroid_bounds.lo[axis];
+            const float extent = centroid_bounds.hi[axis] - lo;
+            if (!(extent > 0.0f)) continue;
+            const float scale = static_cast<float>(bin_count) / extent;
+            std::fill(bins.begin(), bins.end(), Bin{});
+            for (std::uint32_t i = begin; i < end; ++i) {
+                const std::uint32_t id = ids[i];
+                const auto b = std::min(
+                    static_cast<std::uint32_t>((centers[id][axis] - lo) * scale), bin_count - 1);
+                bins[b].bounds.extend(boxes[id]);
+                bins[b].count++;
+            }
+            // Sweep from the right to know area and count on the right of each plane.
+            BBox acc;
+            std::uint32_t acc_count = 0;
+            for (std::uint32_t b = bin_count - 1; b > 0; --b) {
+                acc.extend(bins[b].bounds);
+                acc_count += bins[b].count;
+                right_area[b] = acc.surface_area();
+                right_count[b] = acc_count;
+            }
+            acc = BBox{};
+            acc_count = 0;
+            for (std::uint32_t b = 0; b + 1 < bin_count; ++b) {
+                acc.extend(bins[b].bounds);
+                acc_count += bins[b].count;
+                if (acc_count == 0 || right_count[b + 1] == 0) continue;
+                // Partial SAH: A_L N_L + A_R N_R (constant factors applied below).
+                const float cost = acc.surface_area() * static_cast<float>(acc_count) +
+                                   right_area[b + 1] * static_cast<float>(right_count[b + 1]);
+                if (cost < best_cost) {
+                    best_cost = cost;
+                    best_axis = axis;
+                    best_bin = b + 1;
+                }
+            }
+        }
+
+        const float node_area = node_bounds.surface_area();
+        if (best_axis >= 0 && node_area > 0.0f) {
+            // Full SAH cost of splitting against the cost of a leaf.
+            const float split_cost =
+                config.traversal_cost + config.intersection_cost * best_cost / node_area;
+            const float leaf_cost = config.intersection_cost * static_cast<float>(n);
+            if (split_cost >= leaf_cost && n <= max_leaf) return begin;
+        } else if (best_axis >= 0) {
+            // Flat node (zero area): any valid split will do.
+        } else if (n <= max_leaf) {
+            return begin;
+        }
+
+        if (best_axis < 0) {
+            // All centroids coincide: split the range in half so leaves stay small.
+            return begin + n / 2;
+        }
+        const float lo = centroid_bounds.lo[best_axis];
+        const float scale =
+            static_cast<float>(bin_count) / (centroid_bounds.hi[best_axis] - lo);
+        const auto it = std::partition(ids.begin() + begin, ids.begin() + end, [&](std::uint32_t id) {
+            const auto b = std::min(
+                static_cast<std::uint32_t>((centers[id][best_axis] - lo) * scale), bin_count - 1);
+            return b < best_bin;
+        });
+        return static_cast<std::uint32_t>(it - ids.begin());
+    });
+}
+
+Bvh build_bvh(BvhBuilder builder, std::span<const BBox> boxes, std::span<const glm::vec3> centers) {
+    return builder == BvhBuilder::Median ? build_median_bvh(boxes, centers)
+                                         : build_sah_bvh(boxes, centers);
+}
+
+}  // namespace librt
