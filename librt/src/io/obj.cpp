@@ -160,7 +160,7 @@ bool triangulate_polygon(const std::vector<glm::vec3>& positions,
     const double len = glm::length(normal);
     if (!(len > 1e-12 * extent2)) return false;  // zero (or NaN) area
 
-    // An orthonormal frame (u, v, n), right handed, so the polygon runs counter-clockwise in (u, v).
+    // A right-handed orthonormal frame (u, v, n): the polygon runs counter-clockwise in (u, v).
     const glm::dvec3 nz = normal / len;
     const glm::dvec3 helper = std::abs(nz.x) > 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
     const glm::dvec3 u = glm::normalize(glm::cross(helper, nz));
