@@ -238,6 +238,20 @@ TEST(Renderer, InvalidSettingsNameTheParameter) {
     EXPECT_EQ(integrator.preprocess_calls, 0);  // validated before anything runs
 }
 
+TEST(Renderer, OversizedFilmIsRejectedBeforeAllocating) {
+    const Scene scene = empty_scene();
+    CameraSettings cs;
+    cs.width = 65536;
+    cs.height = 65536;  // 48 GiB of float RGB
+    HashIntegrator integrator;
+    try {
+        (void)render(scene, Camera(cs), integrator, RenderSettings{});
+        ADD_FAILURE();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("65536 x 65536"), std::string::npos) << e.what();
+    }
+}
+
 TEST(Renderer, RendersARealSceneWithoutNaN) {
     Scene scene;
     const std::uint32_t white = scene.add_material(Material::diffuse(glm::vec3(0.8f)));
