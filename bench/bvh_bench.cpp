@@ -259,32 +259,31 @@ private:
     std::unique_ptr<Engine> engine_;
 };
 
-/// Registers the trace rows of one engine on one workload.
+/// Which rays a row traces, and how.
+struct RowKind {
+    const char* rays;  ///< "incoherent", "anyhit" or "primary"
+    Query query;
+    bool parallel;
+};
+
+/// Registers one trace row of one engine on one workload.
 template <class Engine>
-void register_traces(const std::shared_ptr<Workload>& w, const std::string& engine_name,
-                     std::shared_ptr<Lazy<Engine>> engine, bool full_matrix, std::size_t incoherent_count) {
+void register_trace(const std::shared_ptr<Workload>& w, const std::string& engine_name,
+                    std::shared_ptr<Lazy<Engine>> engine, const RowKind& kind, std::size_t count) {
     const double tris = static_cast<double>(w->mesh.triangle_count());
-    const std::string prefix = w->name + "/" + engine_name + "/";
-    const std::string mt = std::to_string(thread_count()) + "t";
-    benchmark::RegisterBenchmark((prefix + "incoherent/1t").c_str(), [=](benchmark::State& s) {
-        trace_single(s, **engine, w->incoherent, incoherent_count, Query::Closest, tris);
-    })->Unit(benchmark::kMillisecond);
-    if (!full_matrix) return;
-    benchmark::RegisterBenchmark((prefix + "incoherent/" + mt).c_str(), [=](benchmark::State& s) {
-        trace_parallel(s, **engine, w->incoherent, Query::Closest, tris);
-    })->Unit(benchmark::kMillisecond)->UseManualTime();
-    benchmark::RegisterBenchmark((prefix + "anyhit/1t").c_str(), [=](benchmark::State& s) {
-        trace_single(s, **engine, w->incoherent, w->incoherent.size(), Query::Any, tris);
-    })->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark((prefix + "anyhit/" + mt).c_str(), [=](benchmark::State& s) {
-        trace_parallel(s, **engine, w->incoherent, Query::Any, tris);
-    })->Unit(benchmark::kMillisecond)->UseManualTime();
-    benchmark::RegisterBenchmark((prefix + "primary/1t").c_str(), [=](benchmark::State& s) {
-        trace_single(s, **engine, w->primary, w->primary.size(), Query::Closest, tris);
-    })->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark((prefix + "primary/" + mt).c_str(), [=](benchmark::State& s) {
-        trace_parallel(s, **engine, w->primary, Query::Closest, tris);
-    })->Unit(benchmark::kMillisecond)->UseManualTime();
+    const std::vector<Ray>* rays = std::string(kind.rays) == "primary" ? &w->primary : &w->incoherent;
+    const std::string threads = kind.parallel ? std::to_string(thread_count()) + "t" : "1t";
+    const std::string name = w->name + "/" + engine_name + "/" + kind.rays + "/" + threads;
+    const Query query = kind.query;
+    if (kind.parallel) {
+        benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) {
+            trace_parallel(s, **engine, *rays, query, tris);
+        })->Unit(benchmark::kMillisecond)->UseManualTime();
+    } else {
+        benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) {
+            trace_single(s, **engine, *rays, count, query, tris);
+        })->Unit(benchmark::kMillisecond);
+    }
 }
 
 /// Registers a build row: `make` builds the engine and returns its memory in bytes.
@@ -308,7 +307,8 @@ void register_build(const std::shared_ptr<Workload>& w, const std::string& engin
 
 void register_all(const std::vector<std::shared_ptr<Workload>>& workloads) {
     for (const auto& w : workloads) {
-        // Builders first, so the trace rows of a mesh follow its build rows.
+        // Rows that are compared sit next to each other, so they run close in time on a
+        // machine whose load drifts: the builds, then each ray set engine by engine.
         const TriangleMesh* mesh = &w->mesh;
         register_build(w, "median", [mesh] { return BinaryTriangleBvh(*mesh, BvhBuilder::Median).memory_bytes(); });
         register_build(w, "sah", [mesh] { return BinaryTriangleBvh(*mesh, BvhBuilder::Sah).memory_bytes(); });
@@ -316,17 +316,26 @@ void register_all(const std::vector<std::shared_ptr<Workload>>& workloads) {
         if (bench::embree_available())
             register_build(w, "embree", [mesh] { return bench::EmbreeScene(*mesh).memory_bytes(); });
 
-        if (w->mesh.triangle_count() <= 100'000)
-            register_traces(w, "naive", std::make_shared<Lazy<TriangleList>>(mesh), false, kNaiveRays);
-        register_traces(w, "median", std::make_shared<Lazy<BinaryTriangleBvh>>(mesh, BvhBuilder::Median),
-                        false, kBinaryRays);
-        register_traces(w, "sah", std::make_shared<Lazy<BinaryTriangleBvh>>(mesh, BvhBuilder::Sah),
-                        false, kBinaryRays);
-        register_traces(w, "librt", std::make_shared<Lazy<TriangleBvh>>(mesh, BvhBuilder::Sah),
-                        w->headline, kIncoherentRays);
-        if (bench::embree_available())
-            register_traces(w, "embree", std::make_shared<Lazy<bench::EmbreeScene>>(mesh),
-                            w->headline, kIncoherentRays);
+        auto naive = std::make_shared<Lazy<TriangleList>>(mesh);
+        auto median = std::make_shared<Lazy<BinaryTriangleBvh>>(mesh, BvhBuilder::Median);
+        auto sah = std::make_shared<Lazy<BinaryTriangleBvh>>(mesh, BvhBuilder::Sah);
+        auto librt = std::make_shared<Lazy<TriangleBvh>>(mesh, BvhBuilder::Sah);
+        auto embree = std::make_shared<Lazy<bench::EmbreeScene>>(mesh);
+        const RowKind kinds[] = {{"incoherent", Query::Closest, false}, {"incoherent", Query::Closest, true},
+                                 {"anyhit", Query::Any, false},         {"anyhit", Query::Any, true},
+                                 {"primary", Query::Closest, false},    {"primary", Query::Closest, true}};
+        for (const RowKind& kind : kinds) {
+            const bool first = &kind == &kinds[0];
+            if (!first && !w->headline) break;
+            if (first) {
+                // The slow engines only on incoherent rays, single thread, on a prefix.
+                if (w->mesh.triangle_count() <= 100'000) register_trace(w, "naive", naive, kind, kNaiveRays);
+                register_trace(w, "median", median, kind, kBinaryRays);
+                register_trace(w, "sah", sah, kind, kBinaryRays);
+            }
+            register_trace(w, "librt", librt, kind, kIncoherentRays);
+            if (bench::embree_available()) register_trace(w, "embree", embree, kind, kIncoherentRays);
+        }
     }
 }
 

@@ -33,8 +33,19 @@ public:
         : bvh_(bvh), triangles_(triangles), out_(out) {}
 
     void run() {
-        out_.nodes.reserve(bvh_.nodes.size() / 4 + 1);
-        out_.blocks.reserve(bvh_.prim_indices.size() / 2 + 1);
+        // Reserve once (exact for blocks, a bound for nodes: each wide node but the
+        // root and the leaf-splitting ones consumes a binary interior node), so the big
+        // arrays are not copied while growing.
+        std::size_t blocks = 0, split_nodes = 0, interior = 0;
+        for (const BvhNode& n : bvh_.nodes) {
+            if (n.is_leaf())
+                count_leaf(n.prim_count, blocks, split_nodes);
+            else
+                ++interior;
+        }
+        out_.nodes.reserve(interior + split_nodes + 1);
+        out_.shapes.reserve(interior + split_nodes + 1);
+        out_.blocks.reserve(blocks);
         out_.nodes.push_back(empty_node());
         out_.shapes.push_back(0);
         fill(0, 0, 0);
@@ -93,6 +104,17 @@ private:
             set_child(out_.nodes[wide], i, n.bounds, ref);
         }
         for (std::uint32_t k = 0; k < pending; ++k) fill(pending_wide[k], pending_binary[k], depth + 1);
+    }
+
+    /// Blocks and extra nodes leaf() will make for a leaf of `count` triangles.
+    static void count_leaf(std::uint32_t count, std::size_t& blocks, std::size_t& nodes) {
+        if (count <= kMaxLeafBlocks * kTriangleBlockSize) {
+            blocks += (count + kTriangleBlockSize - 1) / kTriangleBlockSize;
+            return;
+        }
+        ++nodes;
+        const std::uint32_t chunk = (count + kWideBvhWidth - 1) / kWideBvhWidth;
+        for (std::uint32_t s = 0; s < count; s += chunk) count_leaf(std::min(chunk, count - s), blocks, nodes);
     }
 
     /// A leaf reference for slots [begin, begin + count), or a node splitting them when

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <librt/accel/bvh.h>
+#include <librt/core/large_page_allocator.h>
 #include <librt/geometry/bbox.h>
 #include <librt/geometry/hit.h>
 #include <librt/geometry/triangle.h>
@@ -78,8 +79,8 @@ static_assert(sizeof(TriangleBlock) == 160, "TriangleBlock must stay 160 bytes")
 /// is nodes[0] (a non-empty tree always has a root node, even over one triangle); leaves
 /// hold copies of their triangles in blocks, in traversal order.
 struct WideBvh {
-    std::vector<WideBvhNode> nodes;
-    std::vector<TriangleBlock> blocks;
+    std::vector<WideBvhNode, LargePageAllocator<WideBvhNode>> nodes;
+    std::vector<TriangleBlock, LargePageAllocator<TriangleBlock>> blocks;
     /// Per node, how collapse_to_wide opened it from one binary node, so expand_to_binary
     /// can give back that binary tree: bits 0..2 = number k of openings, bits 3j+3..3j+5 =
     /// the child slot opened at step j (it keeps the left half, the right half goes to
