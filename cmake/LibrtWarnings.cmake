@@ -4,3 +4,10 @@ function(librt_set_warnings target)
     $<$<CXX_COMPILER_ID:GNU,Clang>:-Wall -Wextra -Wpedantic -Wshadow -Wconversion
       -Wno-sign-conversion>)
 endfunction()
+
+# Floating point as written: no contraction of a * b + c into an FMA. The wide-BVH kernels
+# for each instruction set must compute bit-identical hits, and an FMA the compiler inserts
+# in one of them (but not in the scalar reference) would break that.
+function(librt_set_float_model target)
+  target_compile_options(${target} PRIVATE $<$<CXX_COMPILER_ID:GNU,Clang>:-ffp-contract=off>)
+endfunction()

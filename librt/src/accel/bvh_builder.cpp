@@ -2,14 +2,21 @@
 #include <librt/core/error.h>
 
 #include <algorithm>
+#include <atomic>
+#include <condition_variable>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <numeric>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace librt {
 namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
 
 /// A node waiting to be split: its slot range [begin, end) and depth.
 struct BuildTask {
@@ -78,6 +85,347 @@ Bvh build_top_down(std::span<const BBox> boxes, ChooseSplit&& choose_split) {
     return bvh;
 }
 
+/// Four floats handled as one SIMD register where the compiler can (GCC/Clang vector
+/// extension: SSE on x86-64, NEON on aarch64); lane 3 is unused padding.
+using V4 = float __attribute__((vector_size(16)));
+using V4i = std::int32_t __attribute__((vector_size(16)));
+
+inline V4 vmin(V4 a, V4 b) { return a < b ? a : b; }
+inline V4 vmax(V4 a, V4 b) { return a > b ? a : b; }
+inline V4 splat(float x) { return V4{x, x, x, x}; }
+inline V4 load3(const glm::vec3& v) { return V4{v.x, v.y, v.z, 0.0f}; }
+
+/// An axis-aligned box as two V4s (lane 3 unused).
+struct Box4 {
+    V4 lo = splat(kInf);
+    V4 hi = splat(-kInf);
+
+    void grow(V4 l, V4 h) {
+        lo = vmin(lo, l);
+        hi = vmax(hi, h);
+    }
+    void grow(const Box4& b) { grow(b.lo, b.hi); }
+    /// Half the surface area, dx dy + dy dz + dz dx: the SAH only uses ratios of areas.
+    [[nodiscard]] float half_area() const {
+        const V4 d = hi - lo;
+        if (d[0] < 0.0f || d[1] < 0.0f || d[2] < 0.0f) return 0.0f;
+        return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
+    }
+    [[nodiscard]] BBox to_bbox() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
+};
+
+/// A primitive as the SAH builder sees it; the array of them is partitioned in place,
+/// so each level streams contiguous memory:
+///   bytes  0..15  box lo.xyz, padding
+///   bytes 16..31  box hi.xyz, padding
+///   bytes 32..47  centre.xyz (what is binned), padding
+/// (the primitive index lives in a parallel array, swapped along).
+struct BuildRef {
+    Box4 box;
+    V4 c;
+};
+static_assert(sizeof(BuildRef) == 48, "BuildRef must stay 48 bytes");
+
+/// A node under construction: bounds, then first slot and count (leaf) or first child.
+struct RawNode {
+    Box4 box;
+    std::uint32_t index;
+    std::uint32_t count;
+};
+
+/// A node whose primitives are refs_[begin, end), with the bounds of their centres.
+struct SahTask {
+    std::uint32_t node = 0;
+    std::uint32_t begin = 0;
+    std::uint32_t end = 0;
+    std::uint32_t depth = 0;
+    Box4 centroid_bounds;
+};
+
+/// Parallel binned SAH builder. Workers take subtrees from a shared queue; a subtree
+/// of at least kGrain primitives is offered back to the queue, smaller ones are built
+/// on the worker's own stack. Node slots come from an atomic counter and are renumbered
+/// depth first at the end, so the result does not depend on scheduling.
+class SahBuilder {
+public:
+    SahBuilder(std::span<const BBox> boxes, std::span<const glm::vec3> centers, const SahConfig& config)
+        : boxes_(boxes), centers_(centers), config_(config) {
+        bin_count_ = std::clamp(config.bin_count, 2u, 256u);
+        max_leaf_ = std::max(config.max_leaf_size, 1u);
+        block_ = std::max(config.leaf_block_size, 1u);
+        threads_ = config.thread_count ? config.thread_count
+                                       : std::max(1u, std::thread::hardware_concurrency());
+        // B(n) for every n a node can hold is looked up, not divided, in the sweep.
+        blocks_.resize(boxes.size() + 1);
+        for (std::size_t k = 0; k < blocks_.size(); ++k)
+            blocks_[k] = static_cast<float>((k + block_ - 1) / block_);
+    }
+
+    Bvh run() {
+        const auto n = static_cast<std::uint32_t>(boxes_.size());
+        if (n == 0) return {};
+        refs_.reset(new BuildRef[n]);
+        ids_.reset(new std::uint32_t[n]);
+        nodes_.reset(new RawNode[2 * std::size_t{n} - 1]);
+        SahTask root{0, 0, n, 0, {}};
+        Box4 root_box;
+        for (std::uint32_t i = 0; i < n; ++i) {
+            BuildRef& r = refs_[i];
+            r.box.lo = load3(boxes_[i].lo);
+            r.box.hi = load3(boxes_[i].hi);
+            r.c = load3(centers_[i]);
+            ids_[i] = i;
+            root_box.grow(r.box);
+            root.centroid_bounds.grow(r.c, r.c);
+        }
+        nodes_[0].box = root_box;
+        next_node_ = 1;
+        queue_.push_back(root);
+        pending_ = 1;
+
+        const unsigned threads = n >= 2 * kGrain ? threads_ : 1u;
+        std::vector<std::thread> helpers;
+        for (unsigned t = 1; t < threads; ++t) helpers.emplace_back([this] { worker(); });
+        worker();
+        for (std::thread& t : helpers) t.join();
+        return finish(n);
+    }
+
+private:
+    static constexpr std::uint32_t kGrain = 4096;
+
+    /// Per-worker scratch space.
+    struct Scratch {
+        std::vector<Box4> bins;             // 3 axes x bin_count_
+        std::vector<std::uint32_t> counts;  // 3 axes x bin_count_
+        std::vector<float> right_cost;      // per bin: A_R B(N_R) right of its left plane
+        std::vector<SahTask> stack;
+    };
+
+    void worker() {
+        Scratch s;
+        s.bins.resize(3 * std::size_t{bin_count_});
+        s.counts.resize(3 * std::size_t{bin_count_});
+        s.right_cost.resize(bin_count_);
+        for (;;) {
+            SahTask task;
+            {
+                std::unique_lock lock(mutex_);
+                ready_.wait(lock, [&] { return !queue_.empty() || pending_ == 0; });
+                if (queue_.empty()) return;
+                task = queue_.back();
+                queue_.pop_back();
+            }
+            run_subtree(task, s);
+            const std::lock_guard lock(mutex_);
+            if (--pending_ == 0) ready_.notify_all();
+        }
+    }
+
+    void run_subtree(const SahTask& root, Scratch& s) {
+        s.stack.clear();
+        s.stack.push_back(root);
+        while (!s.stack.empty()) {
+            const SahTask task = s.stack.back();
+            s.stack.pop_back();
+            SahTask children[2];
+            if (!split(task, s, children)) continue;
+            for (const SahTask& child : children) {
+                if (threads_ > 1 && child.end - child.begin >= kGrain) {
+                    const std::lock_guard lock(mutex_);
+                    queue_.push_back(child);
+                    ++pending_;
+                    ready_.notify_one();
+                } else {
+                    s.stack.push_back(child);
+                }
+            }
+        }
+    }
+
+    /// Splits one node, or makes it a leaf (returns false).
+    bool split(const SahTask& task, Scratch& s, SahTask children[2]) {
+        RawNode& node = nodes_[task.node];
+        const std::uint32_t n = task.end - task.begin;
+        auto make_leaf = [&] {
+            node.index = task.begin;
+            node.count = n;
+            return false;
+        };
+        if (n <= 1 || task.depth >= kMaxBvhDepth) return make_leaf();
+
+        // Fewer bins for small nodes: binning a few primitives into 32 bins mostly
+        // sweeps empty ones.
+        const std::uint32_t bin_count = std::min(bin_count_, std::max(4u, n));
+        const Box4& cb = task.centroid_bounds;
+        const V4 extent = cb.hi - cb.lo;
+        bool usable[3];
+        V4 scale = splat(0.0f);
+        for (int a = 0; a < 3; ++a) {
+            usable[a] = extent[a] > 0.0f;
+            if (usable[a]) scale[a] = static_cast<float>(bin_count) / extent[a];
+        }
+        const V4i last = {std::int32_t(bin_count - 1), std::int32_t(bin_count - 1),
+                          std::int32_t(bin_count - 1), 0};
+        // Bin of a centre on every axis: (c - lo) * bins / extent, clamped to the last bin.
+        auto bins_of = [&](const BuildRef& r) {
+            const V4i b = __builtin_convertvector((r.c - cb.lo) * scale, V4i);
+            return b < last ? b : last;
+        };
+        auto bin_on = [&](const BuildRef& r, int a) {
+            return std::min(static_cast<std::int32_t>((r.c[a] - cb.lo[a]) * scale[a]),
+                            std::int32_t(bin_count - 1));
+        };
+
+        float best_cost = kInf;
+        int best_axis = -1;
+        std::int32_t best_bin = 0;
+        if (usable[0] || usable[1] || usable[2]) {
+            Box4* bins = s.bins.data();
+            std::uint32_t* counts = s.counts.data();
+            std::fill(bins, bins + 3 * bin_count, Box4{});
+            std::fill(counts, counts + 3 * bin_count, 0u);
+            for (std::uint32_t i = task.begin; i < task.end; ++i) {
+                const BuildRef& r = refs_[i];
+                const V4i b = bins_of(r);
+                for (int a = 0; a < 3; ++a) {
+                    const std::uint32_t k = a * bin_count + static_cast<std::uint32_t>(b[a]);
+                    bins[k].grow(r.box);
+                    counts[k]++;
+                }
+            }
+            for (int a = 0; a < 3; ++a) {
+                if (!usable[a]) continue;
+                const Box4* axis_bins = bins + a * bin_count;
+                const std::uint32_t* axis_counts = counts + a * bin_count;
+                // Sweep from the right for A_R B(N_R) right of each plane...
+                Box4 acc;
+                std::uint32_t acc_count = 0;
+                for (std::uint32_t b = bin_count - 1; b > 0; --b) {
+                    acc.grow(axis_bins[b]);
+                    acc_count += axis_counts[b];
+                    s.right_cost[b] = acc_count ? acc.half_area() * blocks_[acc_count] : kInf;
+                }
+                // ...then from the left, evaluating A_L B(N_L) + A_R B(N_R) at each plane.
+                acc = Box4{};
+                acc_count = 0;
+                for (std::uint32_t b = 0; b + 1 < bin_count; ++b) {
+                    acc.grow(axis_bins[b]);
+                    acc_count += axis_counts[b];
+                    if (acc_count == 0 || acc_count == n) continue;
+                    const float cost = acc.half_area() * blocks_[acc_count] + s.right_cost[b + 1];
+                    if (cost < best_cost) {
+                        best_cost = cost;
+                        best_axis = a;
+                        best_bin = static_cast<std::int32_t>(b + 1);
+                    }
+                }
+            }
+        }
+
+        const float node_area = node.box.half_area();
+        if (best_axis >= 0 && node_area > 0.0f) {
+            // Full SAH cost of splitting against the cost of a leaf.
+            const float split_cost =
+                config_.traversal_cost + config_.intersection_cost * best_cost / node_area;
+            const float leaf_cost = config_.intersection_cost * blocks_[n];
+            if (split_cost >= leaf_cost && n <= max_leaf_) return make_leaf();
+        } else if (best_axis < 0 && n <= max_leaf_) {
+            return make_leaf();
+        }
+        // (A flat node, of zero area, takes any valid split.)
+
+        std::uint32_t mid;
+        Box4 left_box, right_box, left_cb, right_cb;
+        if (best_axis < 0) {
+            // All centroids coincide: split the range in half so leaves stay small.
+            mid = task.begin + n / 2;
+            for (std::uint32_t i = task.begin; i < task.end; ++i) {
+                const BuildRef& r = refs_[i];
+                (i < mid ? left_box : right_box).grow(r.box);
+                (i < mid ? left_cb : right_cb).grow(r.c, r.c);
+            }
+        } else {
+            const Box4* axis_bins = s.bins.data() + best_axis * bin_count;
+            for (std::int32_t b = 0; b < std::int32_t(bin_count); ++b)
+                (b < best_bin ? left_box : right_box).grow(axis_bins[b]);
+            // Two-pointer partition by bin, gathering each side's centroid bounds.
+            std::uint32_t i = task.begin, j = task.end;
+            for (;;) {
+                while (i < j && bin_on(refs_[i], best_axis) < best_bin) {
+                    left_cb.grow(refs_[i].c, refs_[i].c);
+                    ++i;
+                }
+                while (i < j && bin_on(refs_[j - 1], best_axis) >= best_bin) {
+                    --j;
+                    right_cb.grow(refs_[j].c, refs_[j].c);
+                }
+                if (i >= j) break;
+                std::swap(refs_[i], refs_[j - 1]);
+                std::swap(ids_[i], ids_[j - 1]);
+            }
+            mid = i;
+        }
+
+        const std::uint32_t left = next_node_.fetch_add(2, std::memory_order_relaxed);
+        nodes_[left].box = left_box;
+        nodes_[left + 1].box = right_box;
+        node.index = left;
+        node.count = 0;
+        children[0] = {left, task.begin, mid, task.depth + 1, left_cb};
+        children[1] = {left + 1, mid, task.end, task.depth + 1, right_cb};
+        return true;
+    }
+
+    /// Renumbers the nodes depth first (siblings stay adjacent) into a Bvh.
+    Bvh finish(std::uint32_t n) {
+        Bvh bvh;
+        bvh.nodes.resize(next_node_.load());
+        bvh.prim_indices.assign(ids_.get(), ids_.get() + n);
+        struct Item {
+            std::uint32_t raw, out, depth;
+        };
+        std::vector<Item> stack{{0, 0, 0}};
+        std::uint32_t next = 1;
+        while (!stack.empty()) {
+            const Item item = stack.back();
+            stack.pop_back();
+            const RawNode& raw = nodes_[item.raw];
+            BvhNode& out = bvh.nodes[item.out];
+            out.bounds = raw.box.to_bbox();
+            bvh.depth = std::max(bvh.depth, item.depth);
+            if (raw.count != 0) {
+                out.index = raw.index;
+                out.prim_count = raw.count;
+                continue;
+            }
+            out.index = next;
+            out.prim_count = 0;
+            next += 2;
+            stack.push_back({raw.index + 1, out.index + 1, item.depth + 1});
+            stack.push_back({raw.index, out.index, item.depth + 1});
+        }
+        return bvh;
+    }
+
+    std::span<const BBox> boxes_;
+    std::span<const glm::vec3> centers_;
+    SahConfig config_;
+    std::uint32_t bin_count_, max_leaf_, block_;
+    unsigned threads_;
+    std::vector<float> blocks_;  // B(n) = ceil(n / block_)
+
+    std::unique_ptr<BuildRef[]> refs_;
+    std::unique_ptr<std::uint32_t[]> ids_;  // primitive index of each ref
+    std::unique_ptr<RawNode[]> nodes_;
+    std::atomic<std::uint32_t> next_node_{0};
+
+    std::mutex mutex_;  // guards queue_ and pending_
+    std::condition_variable ready_;
+    std::vector<SahTask> queue_;
+    std::size_t pending_ = 0;  // tasks queued or running
+};
+
 }  // namespace
 
 Bvh build_median_bvh(std::span<const BBox> boxes, std::span<const glm::vec3> centers,
@@ -99,92 +447,8 @@ Bvh build_median_bvh(std::span<const BBox> boxes, std::span<const glm::vec3> cen
 Bvh build_sah_bvh(std::span<const BBox> boxes, std::span<const glm::vec3> centers,
                   const SahConfig& config) {
     check_input(boxes, centers);
-    const std::uint32_t bin_count = std::clamp(config.bin_count, 2u, 256u);
-    const std::uint32_t max_leaf = std::max(config.max_leaf_size, 1u);
-    struct Bin {
-        BBox bounds;
-        std::uint32_t count = 0;
-    };
-    std::vector<Bin> bins(bin_count);
-    std::vector<float> right_area(bin_count);
-    std::vector<std::uint32_t> right_count(bin_count);
-
-    return build_top_down(boxes, [&](std::vector<std::uint32_t>& ids, std::uint32_t begin,
-                                     std::uint32_t end, const BBox& node_bounds) {
-        const std::uint32_t n = end - begin;
-        if (n <= 1) return begin;
-        BBox centroid_bounds;
-        for (std::uint32_t i = begin; i < end; ++i) centroid_bounds.extend(centers[ids[i]]);
-
-        float best_cost = std::numeric_limits<float>::infinity();
-        int best_axis = -1;
-        std::uint32_t best_bin = 0;
-        for (int axis = 0; axis < 3; ++axis) {
-            const float lo = centroid_bounds.lo[axis];
-            const float extent = centroid_bounds.hi[axis] - lo;
-            if (!(extent > 0.0f)) continue;
-            const float scale = static_cast<float>(bin_count) / extent;
-            std::fill(bins.begin(), bins.end(), Bin{});
-            for (std::uint32_t i = begin; i < end; ++i) {
-                const std::uint32_t id = ids[i];
-                const auto b = std::min(
-                    static_cast<std::uint32_t>((centers[id][axis] - lo) * scale), bin_count - 1);
-                bins[b].bounds.extend(boxes[id]);
-                bins[b].count++;
-            }
-            // Sweep from the right to know area and count on the right of each plane.
-            BBox acc;
-            std::uint32_t acc_count = 0;
-            for (std::uint32_t b = bin_count - 1; b > 0; --b) {
-                acc.extend(bins[b].bounds);
-                acc_count += bins[b].count;
-                right_area[b] = acc.surface_area();
-                right_count[b] = acc_count;
-            }
-            acc = BBox{};
-            acc_count = 0;
-            for (std::uint32_t b = 0; b + 1 < bin_count; ++b) {
-                acc.extend(bins[b].bounds);
-                acc_count += bins[b].count;
-                if (acc_count == 0 || right_count[b + 1] == 0) continue;
-                // Partial SAH: A_L N_L + A_R N_R (constant factors applied below).
-                const float cost = acc.surface_area() * static_cast<float>(acc_count) +
-                                   right_area[b + 1] * static_cast<float>(right_count[b + 1]);
-                if (cost < best_cost) {
-                    best_cost = cost;
-                    best_axis = axis;
-                    best_bin = b + 1;
-                }
-            }
-        }
-
-        const float node_area = node_bounds.surface_area();
-        if (best_axis >= 0 && node_area > 0.0f) {
-            // Full SAH cost of splitting against the cost of a leaf.
-            const float split_cost =
-                config.traversal_cost + config.intersection_cost * best_cost / node_area;
-            const float leaf_cost = config.intersection_cost * static_cast<float>(n);
-            if (split_cost >= leaf_cost && n <= max_leaf) return begin;
-        } else if (best_axis >= 0) {
-            // Flat node (zero area): any valid split will do.
-        } else if (n <= max_leaf) {
-            return begin;
-        }
-
-        if (best_axis < 0) {
-            // All centroids coincide: split the range in half so leaves stay small.
-            return begin + n / 2;
-        }
-        const float lo = centroid_bounds.lo[best_axis];
-        const float scale =
-            static_cast<float>(bin_count) / (centroid_bounds.hi[best_axis] - lo);
-        const auto it = std::partition(ids.begin() + begin, ids.begin() + end, [&](std::uint32_t id) {
-            const auto b = std::min(
-                static_cast<std::uint32_t>((centers[id][best_axis] - lo) * scale), bin_count - 1);
-            return b < best_bin;
-        });
-        return static_cast<std::uint32_t>(it - ids.begin());
-    });
+    SahBuilder builder(boxes, centers, config);
+    return builder.run();
 }
 
 Bvh build_bvh(BvhBuilder builder, std::span<const BBox> boxes, std::span<const glm::vec3> centers) {

@@ -1,5 +1,12 @@
 #include <librt/accel/bvh_traversal.h>
 #include <librt/accel/triangle_bvh.h>
+#include <librt/core/error.h>
+
+#include "wide_kernels.h"
+
+#include <atomic>
+#include <mutex>
+#include <string>
 
 namespace librt {
 namespace {
@@ -29,6 +36,24 @@ struct NearestTriangle {
 
 }  // namespace
 
+// Leaves are tested four triangles at a time: the leaf cost counts blocks of four
+// (B(n) = ceil(n / 4)), and a block test costs about as much as a wide node's box test.
+SahConfig triangle_sah_config() {
+    SahConfig config;
+    config.leaf_block_size = kTriangleBlockSize;
+    config.max_leaf_size = 2 * kTriangleBlockSize;
+    config.traversal_cost = 1.0f;
+    config.intersection_cost = 1.0f;
+    return config;
+}
+
+/// The binary view behind bvh(), made on first use.
+struct TriangleBvh::BinaryView {
+    std::once_flag once;
+    std::atomic<bool> built{false};
+    Bvh bvh;
+};
+
 TriangleBvh::TriangleBvh(const TriangleMesh& mesh, BvhBuilder builder) {
     build(mesh_triangles(mesh), builder);
 }
@@ -44,27 +69,47 @@ void TriangleBvh::build(std::span<const Triangle> triangles, BvhBuilder builder)
         boxes[i] = librt::bounds(triangles[i]);
         centers[i] = boxes[i].center();
     }
-    bvh_ = build_bvh(builder, boxes, centers);
-    triangles_.resize(triangles.size());
-    for (std::size_t slot = 0; slot < triangles.size(); ++slot)
-        triangles_[slot] = triangles[bvh_.prim_indices[slot]];
+    const Bvh binary = builder == BvhBuilder::Median ? build_median_bvh(boxes, centers)
+                                                     : build_sah_bvh(boxes, centers, triangle_sah_config());
+    wide_ = collapse_to_wide(binary, triangles);
+    builder_ = builder;
+    view_ = std::make_shared<BinaryView>();
+    set_simd_path(default_simd_path());
+}
+
+void TriangleBvh::set_simd_path(SimdPath path) {
+    if (!simd_path_supported(path))
+        throw Error(std::string("TriangleBvh: SIMD path ") + to_string(path) + " is not supported here");
+    const detail::WideKernels k = detail::wide_kernels(path);
+    path_ = path;
+    intersect_fn_ = k.intersect;
+    occluded_fn_ = k.occluded;
 }
 
 PrimitiveHit TriangleBvh::intersect(const Ray& ray) const {
-    Ray r = ray;
-    NearestTriangle nearest{triangles_.data(), bvh_.prim_indices.data(), prepare_watertight(ray), {}};
-    traverse<false>(bvh_, r, nearest);
-    return nearest.hit;
+    if (wide_.empty()) return {};
+    return intersect_fn_(wide_, ray);
 }
 
 bool TriangleBvh::occluded(const Ray& ray) const {
-    Ray r = ray;
-    NearestTriangle any{triangles_.data(), nullptr, prepare_watertight(ray), {}};
-    return traverse<true>(bvh_, r, any);
+    if (wide_.empty()) return false;
+    return occluded_fn_(wide_, ray);
+}
+
+const Bvh& TriangleBvh::bvh() const {
+    static const Bvh empty;
+    if (!view_) return empty;
+    std::call_once(view_->once, [this] {
+        view_->bvh = expand_to_binary(wide_);
+        view_->built = true;
+    });
+    return view_->bvh;
 }
 
 std::size_t TriangleBvh::memory_bytes() const {
-    return bvh_.memory_bytes() + triangles_.size() * sizeof(Triangle);
+    std::size_t bytes = wide_.memory_bytes();
+    if (view_ && view_->built) bytes += view_->bvh.memory_bytes();
+    return bytes;
 }
 
 TriangleList::TriangleList(const TriangleMesh& mesh) : triangles_(mesh_triangles(mesh)) {}

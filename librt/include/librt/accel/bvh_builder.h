@@ -18,13 +18,18 @@ struct MedianSplitConfig {
 };
 
 /// Binned surface area heuristic (Wald 2007): for each axis, centroids are binned and
-/// the split minimising traversal_cost + (A_L N_L + A_R N_R) / A * intersection_cost is
-/// taken when it beats making a leaf.
+/// the split minimising traversal_cost + (A_L B(N_L) + A_R B(N_R)) / A * intersection_cost
+/// is taken when it beats a leaf's intersection_cost * B(N), where B(n) = ceil(n / leaf_block_size)
+/// counts the SIMD blocks a leaf of n primitives is tested in (Embree's block SAH; B(n) = n
+/// for blocks of one). Subtrees are built in parallel; the tree does not depend on the
+/// number of threads.
 struct SahConfig {
-    std::uint32_t bin_count = 32;
+    std::uint32_t bin_count = 32;      ///< bins per axis for large nodes (fewer for small ones)
     std::uint32_t max_leaf_size = 8;   ///< larger nodes are always split
     float traversal_cost = 1.0f;       ///< cost of visiting a node, relative to...
-    float intersection_cost = 1.0f;    ///< ...the cost of one primitive test
+    float intersection_cost = 1.0f;    ///< ...the cost of testing one block of primitives
+    std::uint32_t leaf_block_size = 1;  ///< primitives tested together in a leaf (4 for TriangleBvh)
+    std::uint32_t thread_count = 0;     ///< build threads; 0 = std::thread::hardware_concurrency()
 };
 
 /// Which builder a caller wants.

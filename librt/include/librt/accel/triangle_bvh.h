@@ -2,19 +2,29 @@
 
 #include <librt/accel/bvh.h>
 #include <librt/accel/bvh_builder.h>
+#include <librt/accel/simd.h>
+#include <librt/accel/wide_bvh.h>
 #include <librt/geometry/hit.h>
 #include <librt/geometry/mesh.h>
 #include <librt/geometry/ray.h>
 #include <librt/geometry/triangle.h>
 
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <vector>
 
 namespace librt {
 
-/// Closest-hit and any-hit queries over a triangle mesh through a BVH. The triangles
-/// are copied in leaf order, so a leaf reads contiguous memory; hits report the
-/// mesh's own triangle index.
+/// The binned-SAH settings TriangleBvh builds with (BvhBuilder::Sah): leaves are costed
+/// in blocks of kTriangleBlockSize triangles and hold at most two blocks.
+[[nodiscard]] SahConfig triangle_sah_config();
+
+/// Closest-hit and any-hit queries over a triangle mesh through an 8-wide BVH (collapsed
+/// from the chosen binary builder's tree) whose leaves hold the triangles in blocks of four,
+/// tested with SIMD kernels picked at run time (see simd.h). Hits report the mesh's own
+/// triangle index and the exact t of triangle.h's watertight test, whatever the path.
+/// Immutable after construction: queries may run concurrently from any number of threads.
 class TriangleBvh {
 public:
     TriangleBvh() = default;
@@ -28,17 +38,34 @@ public:
     /// True when anything lies in (ray.t_min, ray.t_max): for shadow rays.
     [[nodiscard]] bool occluded(const Ray& ray) const;
 
-    [[nodiscard]] const Bvh& bvh() const { return bvh_; }
-    [[nodiscard]] BBox bounds() const { return bvh_.bounds(); }
-    [[nodiscard]] std::size_t triangle_count() const { return triangles_.size(); }
-    /// Bytes of the BVH plus its leaf-ordered triangle copy.
+    /// The binary BVH the wide one was collapsed from (same builder, same tree; slots index
+    /// the mesh's triangles). Not kept by the fast path: rebuilt on the first call (thread
+    /// safe) and kept from then on, for inspection and statistics.
+    [[nodiscard]] const Bvh& bvh() const;
+    /// The structure intersect() and occluded() traverse.
+    [[nodiscard]] const WideBvh& wide_bvh() const { return wide_; }
+    [[nodiscard]] BBox bounds() const { return wide_.bounds; }
+    [[nodiscard]] std::size_t triangle_count() const { return wide_.triangle_count; }
+    /// Bytes of the wide BVH and its triangle blocks (plus the binary view once bvh() has
+    /// built it).
     [[nodiscard]] std::size_t memory_bytes() const;
+
+    /// The instruction set intersect() and occluded() use; default_simd_path() at first.
+    [[nodiscard]] SimdPath simd_path() const { return path_; }
+    /// Switches instruction set (every path gives the same results); throws librt::Error
+    /// when simd_path_supported(path) is false.
+    void set_simd_path(SimdPath path);
 
 private:
     void build(std::span<const Triangle> triangles, BvhBuilder builder);
 
-    Bvh bvh_;
-    std::vector<Triangle> triangles_;  ///< in slot order
+    struct BinaryView;
+    WideBvh wide_;
+    BvhBuilder builder_ = BvhBuilder::Sah;
+    SimdPath path_ = SimdPath::Scalar;
+    PrimitiveHit (*intersect_fn_)(const WideBvh&, const Ray&) = nullptr;
+    bool (*occluded_fn_)(const WideBvh&, const Ray&) = nullptr;
+    std::shared_ptr<BinaryView> view_;  ///< shared by copies: the tree is immutable
 };
 
 /// The naive alternative with the same interface: tests every triangle for every ray.

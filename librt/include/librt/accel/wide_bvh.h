@@ -1,0 +1,117 @@
+#pragma once
+
+#include <librt/accel/bvh.h>
+#include <librt/core/large_page_allocator.h>
+#include <librt/geometry/bbox.h>
+#include <librt/geometry/hit.h>
+#include <librt/geometry/triangle.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace librt {
+
+/// Children per wide node.
+inline constexpr std::uint32_t kWideBvhWidth = 8;
+/// Triangles per leaf block (tested together by one 4-lane SIMD test).
+inline constexpr std::uint32_t kTriangleBlockSize = 4;
+/// Most blocks one leaf child refers to; bigger leaves get a node of their own.
+inline constexpr std::uint32_t kMaxLeafBlocks = 16;
+/// Deepest wide tree collapse_to_wide produces: the binary tree's kMaxBvhDepth plus the
+/// levels that split oversized leaves. Traversal stacks are sized by it.
+inline constexpr std::uint32_t kMaxWideBvhDepth = kMaxBvhDepth + 16;
+
+/// One node of an 8-wide BVH, 224 bytes (seven 32-byte rows, so AVX loads are aligned).
+/// The children's boxes are stored as structure of arrays, so one instruction tests one
+/// slab plane of all eight children:
+///   bytes   0..191  bounds[plane][child] floats; planes lo.x, hi.x, lo.y, hi.y, lo.z, hi.z
+///   bytes 192..223  child[8] references, see below
+/// A child reference is
+///   - an interior node: its index in WideBvh::nodes (bit 31 clear);
+///   - a leaf: bit 31 set, bits 27..30 = block count - 1, bits 0..26 = first block in
+///     WideBvh::blocks;
+///   - unused: kEmptyChild, with an empty box (lo = +inf, hi = -inf) that no ray enters.
+struct alignas(32) WideBvhNode {
+    float bounds[6][kWideBvhWidth];
+    std::uint32_t child[kWideBvhWidth];
+
+    static constexpr std::uint32_t kLeafBit = 0x80000000u;
+    static constexpr std::uint32_t kEmptyChild = 0xffffffffu;
+    static constexpr std::uint32_t kMaxFirstBlock = (1u << 27) - 1;
+
+    /// True for a leaf (or unused) reference.
+    [[nodiscard]] static constexpr bool is_leaf(std::uint32_t ref) { return (ref & kLeafBit) != 0; }
+    /// First block of a leaf reference.
+    [[nodiscard]] static constexpr std::uint32_t first_block(std::uint32_t ref) { return ref & kMaxFirstBlock; }
+    /// Number of blocks (1..kMaxLeafBlocks) of a leaf reference.
+    [[nodiscard]] static constexpr std::uint32_t block_count(std::uint32_t ref) { return ((ref >> 27) & 15u) + 1; }
+    /// The reference of a leaf of `count` blocks starting at block `first`.
+    [[nodiscard]] static constexpr std::uint32_t make_leaf(std::uint32_t first, std::uint32_t count) {
+        return kLeafBit | ((count - 1) << 27) | first;
+    }
+    /// Child i's box.
+    [[nodiscard]] BBox child_bounds(std::uint32_t i) const {
+        return {{bounds[0][i], bounds[2][i], bounds[4][i]}, {bounds[1][i], bounds[3][i], bounds[5][i]}};
+    }
+};
+static_assert(sizeof(WideBvhNode) == 224, "WideBvhNode must stay 224 bytes");
+
+/// Four triangles as structure of arrays, 160 bytes, tested together:
+///   bytes   0..143  p[corner][axis][lane] floats: corners p0, p1, p2; axes x, y, z; 4 lanes
+///   bytes 144..159  id[lane]: the caller's triangle index, kInvalidId for padding
+/// Padding lanes have NaN corners, which the watertight test rejects.
+struct alignas(16) TriangleBlock {
+    float p[3][3][kTriangleBlockSize];
+    std::uint32_t id[kTriangleBlockSize];
+
+    /// The triangle in a lane.
+    [[nodiscard]] Triangle triangle(std::uint32_t lane) const {
+        return {{p[0][0][lane], p[0][1][lane], p[0][2][lane]},
+                {p[1][0][lane], p[1][1][lane], p[1][2][lane]},
+                {p[2][0][lane], p[2][1][lane], p[2][2][lane]}};
+    }
+};
+static_assert(sizeof(TriangleBlock) == 160, "TriangleBlock must stay 160 bytes");
+
+/// An 8-wide BVH over triangles as plain data, the layout TriangleBvh traverses. The root
+/// is nodes[0] (a non-empty tree always has a root node, even over one triangle); leaves
+/// hold copies of their triangles in blocks, in traversal order.
+struct WideBvh {
+    std::vector<WideBvhNode, LargePageAllocator<WideBvhNode>> nodes;
+    std::vector<TriangleBlock, LargePageAllocator<TriangleBlock>> blocks;
+    /// Per node, how collapse_to_wide opened it from one binary node, so expand_to_binary
+    /// can give back that binary tree: bits 0..2 = number k of openings, bits 3j+3..3j+5 =
+    /// the child slot opened at step j (it keeps the left half, the right half goes to
+    /// slot 2 + j); or kSplitLeaf (the node splits one oversized binary leaf) or
+    /// kSingleLeaf (the root over a binary tree that is one leaf).
+    std::vector<std::uint32_t> shapes;
+    BBox bounds;                      ///< of all triangles
+    std::size_t triangle_count = 0;   ///< triangles held (padding lanes aside)
+    std::uint32_t depth = 0;          ///< wide levels below the root, at most kMaxWideBvhDepth
+
+    static constexpr std::uint32_t kSplitLeaf = 0xffffffffu;
+    static constexpr std::uint32_t kSingleLeaf = 0xfffffffeu;
+
+    [[nodiscard]] bool empty() const { return nodes.empty(); }
+    /// Bytes held by nodes, blocks and shapes.
+    [[nodiscard]] std::size_t memory_bytes() const {
+        return nodes.size() * sizeof(WideBvhNode) + blocks.size() * sizeof(TriangleBlock) +
+               shapes.size() * sizeof(std::uint32_t);
+    }
+};
+
+/// Collapses a binary BVH over triangles into an 8-wide one: each wide node takes a
+/// binary node's children and keeps opening the one with the largest surface area until
+/// it has eight (the usual greedy collapse, as in Embree's and Ylitie et al.'s wide BVHs).
+/// triangles[i] is primitive i of the binary BVH. Leaves larger than kMaxLeafBlocks
+/// blocks (the median builder's degenerate leaves) are split into extra nodes.
+[[nodiscard]] WideBvh collapse_to_wide(const Bvh& bvh, std::span<const Triangle> triangles);
+
+/// The binary BVH a wide one was collapsed from, rebuilt from WideBvh::shapes: the same
+/// nodes, bounds and leaves (a leaf's slots index prim_indices, which lists the triangle ids
+/// in block order), in O(nodes) time.
+[[nodiscard]] Bvh expand_to_binary(const WideBvh& wide);
+
+}  // namespace librt

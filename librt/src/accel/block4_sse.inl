@@ -1,0 +1,137 @@
+// Private, no include guard: the 4-lane watertight triangle test shared by the SSE, AVX2
+// and AVX-512 kernels (each includes it inside its own namespace, under its own target,
+// so the same intrinsics get that instruction set's encoding). Needs <immintrin.h>,
+// librt/geometry/triangle.h and wide_bvh.h.
+//
+// Lane by lane it performs the float operations of triangle.h's intersect() in the same
+// order (the library is built with -ffp-contract=off, so no product is fused into an
+// FMA behind our back): the t, u and v it returns are bit-identical to the scalar test's.
+
+/// Per-ray constants of the 4-lane test: triangle.h's permutation and shear, broadcast.
+struct TriRay4 {
+    WatertightRay w;  ///< for the double-precision fallback on edges
+    __m128 o_kx, o_ky, o_kz;  ///< origin components along the permuted axes
+    __m128 sx, sy, sz;
+    std::uint32_t kx, ky, kz;
+};
+
+inline TriRay4 prepare_triangles4(const Ray& ray) {
+    TriRay4 r;
+    r.w = prepare_watertight(ray);
+    r.kx = static_cast<std::uint32_t>(r.w.kx);
+    r.ky = static_cast<std::uint32_t>(r.w.ky);
+    r.kz = static_cast<std::uint32_t>(r.w.kz);
+    const float* o = &ray.origin.x;
+    r.o_kx = _mm_set1_ps(o[r.kx]);
+    r.o_ky = _mm_set1_ps(o[r.ky]);
+    r.o_kz = _mm_set1_ps(o[r.kz]);
+    r.sx = _mm_set1_ps(r.w.sx);
+    r.sy = _mm_set1_ps(r.w.sy);
+    r.sz = _mm_set1_ps(r.w.sz);
+    return r;
+}
+
+/// Recomputes the edge functions of the lanes in `lanes` in double, as triangle.h does
+/// when one of them is exactly zero in float (a ray through an edge or vertex).
+[[gnu::noinline]] inline void exact_edges4(int lanes, __m128 ax, __m128 ay, __m128 bx, __m128 by,
+                                           __m128 cx, __m128 cy, __m128& e0, __m128& e1, __m128& e2) {
+    alignas(16) float AX[4], AY[4], BX[4], BY[4], CX[4], CY[4], E0[4], E1[4], E2[4];
+    _mm_store_ps(AX, ax);
+    _mm_store_ps(AY, ay);
+    _mm_store_ps(BX, bx);
+    _mm_store_ps(BY, by);
+    _mm_store_ps(CX, cx);
+    _mm_store_ps(CY, cy);
+    _mm_store_ps(E0, e0);
+    _mm_store_ps(E1, e1);
+    _mm_store_ps(E2, e2);
+    for (int k = 0; k < 4; ++k) {
+        if (!(lanes & (1 << k))) continue;
+        E0[k] = static_cast<float>(double(CX[k]) * double(BY[k]) - double(CY[k]) * double(BX[k]));
+        E1[k] = static_cast<float>(double(AX[k]) * double(CY[k]) - double(AY[k]) * double(CX[k]));
+        E2[k] = static_cast<float>(double(BX[k]) * double(AY[k]) - double(BY[k]) * double(AX[k]));
+    }
+    e0 = _mm_load_ps(E0);
+    e1 = _mm_load_ps(E1);
+    e2 = _mm_load_ps(E2);
+}
+
+/// Watertight ray-triangle test (Woop, Benthin and Wald, JCGT 2013) of a block's four
+/// triangles. Returns the mask of lanes hit with t in (t_min, t_max), and their t, u, v.
+inline int test_block4(const TriangleBlock& b, const TriRay4& r, __m128 t_min, __m128 t_max,
+                       __m128& t, __m128& u, __m128& v) {
+    // Corners relative to the origin; z along the permuted axis kz...
+    const __m128 az = _mm_sub_ps(_mm_load_ps(b.p[0][r.kz]), r.o_kz);
+    const __m128 bz = _mm_sub_ps(_mm_load_ps(b.p[1][r.kz]), r.o_kz);
+    const __m128 cz = _mm_sub_ps(_mm_load_ps(b.p[2][r.kz]), r.o_kz);
+    // ...and x, y sheared so the ray runs along +z: x' = x - s_x z, y' = y - s_y z.
+    const __m128 ax = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[0][r.kx]), r.o_kx), _mm_mul_ps(r.sx, az));
+    const __m128 ay = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[0][r.ky]), r.o_ky), _mm_mul_ps(r.sy, az));
+    const __m128 bx = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[1][r.kx]), r.o_kx), _mm_mul_ps(r.sx, bz));
+    const __m128 by = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[1][r.ky]), r.o_ky), _mm_mul_ps(r.sy, bz));
+    const __m128 cx = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[2][r.kx]), r.o_kx), _mm_mul_ps(r.sx, cz));
+    const __m128 cy = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[2][r.ky]), r.o_ky), _mm_mul_ps(r.sy, cz));
+
+    // 2D edge functions (scaled barycentrics): e0 = cx by - cy bx, e1 = ax cy - ay cx, e2 = bx ay - by ax.
+    __m128 e0 = _mm_sub_ps(_mm_mul_ps(cx, by), _mm_mul_ps(cy, bx));
+    __m128 e1 = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
+    __m128 e2 = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
+    const __m128 zero = _mm_setzero_ps();
+    const int on_edge = _mm_movemask_ps(
+        _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(e0, zero), _mm_cmpeq_ps(e1, zero)), _mm_cmpeq_ps(e2, zero)));
+    if (on_edge) exact_edges4(on_edge, ax, ay, bx, by, cx, cy, e0, e1, e2);
+
+    // Inside when the three signs agree (either winding).
+    const __m128 any_neg =
+        _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)), _mm_cmplt_ps(e2, zero));
+    const __m128 any_pos =
+        _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)), _mm_cmpgt_ps(e2, zero));
+    const __m128 det = _mm_add_ps(_mm_add_ps(e0, e1), e2);
+    // cmpneq is true for NaN: a padding lane is rejected below by its NaN t.
+    __m128 ok = _mm_andnot_ps(_mm_and_ps(any_neg, any_pos), _mm_cmpneq_ps(det, zero));
+    if (_mm_movemask_ps(ok) == 0) return 0;
+
+    // t = s_z (e0 az + e1 bz + e2 cz) / det, barycentrics u = e1 / det, v = e2 / det.
+    const __m128 t_scaled = _mm_mul_ps(
+        r.sz, _mm_add_ps(_mm_add_ps(_mm_mul_ps(e0, az), _mm_mul_ps(e1, bz)), _mm_mul_ps(e2, cz)));
+    const __m128 inv_det = _mm_div_ps(_mm_set1_ps(1.0f), det);
+    t = _mm_mul_ps(t_scaled, inv_det);
+    ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpgt_ps(t, t_min), _mm_cmplt_ps(t, t_max)));
+    u = _mm_mul_ps(e1, inv_det);
+    v = _mm_mul_ps(e2, inv_det);
+    return _mm_movemask_ps(ok);
+}
+
+/// The triangle half of a kernel policy (see wide_traversal.inl).
+struct Block4Kernel {
+    using TriRay = TriRay4;
+
+    static TriRay prepare_triangles(const Ray& ray) { return prepare_triangles4(ray); }
+
+    static bool intersect_block(const TriangleBlock& block, const TriRay& r, float t_min, float& t_max,
+                                std::uint32_t& lane, float& u, float& v) {
+        __m128 t4, u4, v4;
+        int mask = test_block4(block, r, _mm_set1_ps(t_min), _mm_set1_ps(t_max), t4, u4, v4);
+        if (mask == 0) return false;
+        alignas(16) float ts[4], us[4], vs[4];
+        _mm_store_ps(ts, t4);
+        _mm_store_ps(us, u4);
+        _mm_store_ps(vs, v4);
+        // The nearest lane; the lowest among equals, as the scalar loop keeps the first.
+        auto k = static_cast<std::uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+        for (mask &= mask - 1; mask != 0; mask &= mask - 1) {
+            const auto j = static_cast<std::uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+            if (ts[j] < ts[k]) k = j;
+        }
+        t_max = ts[k];
+        lane = k;
+        u = us[k];
+        v = vs[k];
+        return true;
+    }
+
+    static bool occluded_block(const TriangleBlock& block, const TriRay& r, float t_min, float t_max) {
+        __m128 t4, u4, v4;
+        return test_block4(block, r, _mm_set1_ps(t_min), _mm_set1_ps(t_max), t4, u4, v4) != 0;
+    }
+};

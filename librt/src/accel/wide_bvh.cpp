@@ -1,0 +1,290 @@
+#include <librt/accel/wide_bvh.h>
+#include <librt/core/error.h>
+
+#include <algorithm>
+#include <limits>
+#include <string>
+
+namespace librt {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+/// Writes child slot i of a wide node.
+void set_child(WideBvhNode& node, std::uint32_t i, const BBox& box, std::uint32_t ref) {
+    node.bounds[0][i] = box.lo.x;
+    node.bounds[1][i] = box.hi.x;
+    node.bounds[2][i] = box.lo.y;
+    node.bounds[3][i] = box.hi.y;
+    node.bounds[4][i] = box.lo.z;
+    node.bounds[5][i] = box.hi.z;
+    node.child[i] = ref;
+}
+
+WideBvhNode empty_node() {
+    WideBvhNode node;
+    for (std::uint32_t i = 0; i < kWideBvhWidth; ++i) set_child(node, i, BBox{}, WideBvhNode::kEmptyChild);
+    return node;
+}
+
+class Collapser {
+public:
+    Collapser(const Bvh& bvh, std::span<const Triangle> triangles, WideBvh& out)
+        : bvh_(bvh), triangles_(triangles), out_(out) {}
+
+    void run() {
+        // Reserve once (exact for blocks, a bound for nodes: each wide node but the
+        // root and the leaf-splitting ones consumes a binary interior node), so the big
+        // arrays are not copied while growing.
+        std::size_t blocks = 0, split_nodes = 0, interior = 0;
+        for (const BvhNode& n : bvh_.nodes) {
+            if (n.is_leaf())
+                count_leaf(n.prim_count, blocks, split_nodes);
+            else
+                ++interior;
+        }
+        out_.nodes.reserve(interior + split_nodes + 1);
+        out_.shapes.reserve(interior + split_nodes + 1);
+        out_.blocks.reserve(blocks);
+        out_.nodes.push_back(empty_node());
+        out_.shapes.push_back(0);
+        fill(0, 0, 0);
+    }
+
+private:
+    /// Fills wide node `wide` with the children reached by opening binary node `binary`.
+    void fill(std::uint32_t wide, std::uint32_t binary, std::uint32_t depth) {
+        check_depth(depth);
+        std::uint32_t open[kWideBvhWidth];
+        std::uint32_t count = 0;
+        const BvhNode& root = bvh_.nodes[binary];
+        std::uint32_t shape = 0, steps = 0;
+        if (root.is_leaf()) {
+            open[count++] = binary;
+            shape = WideBvh::kSingleLeaf;
+        } else {
+            open[count++] = root.index;
+            open[count++] = root.index + 1;
+        }
+        // Greedy: open the interior child of largest area until there are eight.
+        while (count < kWideBvhWidth) {
+            int best = -1;
+            float best_area = -1.0f;
+            for (std::uint32_t i = 0; i < count; ++i) {
+                const BvhNode& n = bvh_.nodes[open[i]];
+                if (n.is_leaf()) continue;
+                const float area = n.bounds.surface_area();
+                if (area > best_area) {
+                    best_area = area;
+                    best = static_cast<int>(i);
+                }
+            }
+            if (best < 0) break;
+            const BvhNode& n = bvh_.nodes[open[best]];
+            open[best] = n.index;
+            open[count++] = n.index + 1;
+            shape |= static_cast<std::uint32_t>(best) << (3 + 3 * steps);
+            shape = (shape & ~7u) | ++steps;
+        }
+        out_.shapes[wide] = shape;
+        // Leaves first, so a node's blocks sit together; then the interior children.
+        std::uint32_t pending_binary[kWideBvhWidth];
+        std::uint32_t pending_wide[kWideBvhWidth];
+        std::uint32_t pending = 0;
+        for (std::uint32_t i = 0; i < count; ++i) {
+            const BvhNode& n = bvh_.nodes[open[i]];
+            std::uint32_t ref;
+            if (n.is_leaf()) {
+                ref = leaf(n.index, n.prim_count, depth);
+            } else {
+                ref = new_node();
+                pending_binary[pending] = open[i];
+                pending_wide[pending++] = ref;
+            }
+            set_child(out_.nodes[wide], i, n.bounds, ref);
+        }
+        for (std::uint32_t k = 0; k < pending; ++k) fill(pending_wide[k], pending_binary[k], depth + 1);
+    }
+
+    /// Blocks and extra nodes leaf() will make for a leaf of `count` triangles.
+    static void count_leaf(std::uint32_t count, std::size_t& blocks, std::size_t& nodes) {
+        if (count <= kMaxLeafBlocks * kTriangleBlockSize) {
+            blocks += (count + kTriangleBlockSize - 1) / kTriangleBlockSize;
+            return;
+        }
+        ++nodes;
+        const std::uint32_t chunk = (count + kWideBvhWidth - 1) / kWideBvhWidth;
+        for (std::uint32_t s = 0; s < count; s += chunk) count_leaf(std::min(chunk, count - s), blocks, nodes);
+    }
+
+    /// A leaf reference for slots [begin, begin + count), or a node splitting them when
+    /// they need more than kMaxLeafBlocks blocks.
+    std::uint32_t leaf(std::uint32_t begin, std::uint32_t count, std::uint32_t depth) {
+        if (count <= kMaxLeafBlocks * kTriangleBlockSize) return emit_blocks(begin, count);
+        check_depth(depth + 1);
+        const std::uint32_t node = new_node();
+        out_.shapes[node] = WideBvh::kSplitLeaf;
+        const std::uint32_t chunk = (count + kWideBvhWidth - 1) / kWideBvhWidth;
+        std::uint32_t i = 0;
+        for (std::uint32_t s = begin; s < begin + count; s += chunk, ++i) {
+            const std::uint32_t n = std::min(chunk, begin + count - s);
+            BBox box;
+            for (std::uint32_t k = s; k < s + n; ++k) box.extend(bounds(triangle_at(k)));
+            const std::uint32_t ref = leaf(s, n, depth + 1);
+            set_child(out_.nodes[node], i, box, ref);
+        }
+        return node;
+    }
+
+    std::uint32_t emit_blocks(std::uint32_t begin, std::uint32_t count) {
+        const auto first = static_cast<std::uint32_t>(out_.blocks.size());
+        const std::uint32_t block_count = (count + kTriangleBlockSize - 1) / kTriangleBlockSize;
+        if (first + block_count - 1 > WideBvhNode::kMaxFirstBlock)
+            throw Error("wide BVH: too many triangle blocks (" + std::to_string(first + block_count) + ")");
+        for (std::uint32_t b = 0; b < block_count; ++b) {
+            TriangleBlock block;
+            for (std::uint32_t lane = 0; lane < kTriangleBlockSize; ++lane) {
+                const std::uint32_t slot = begin + b * kTriangleBlockSize + lane;
+                const bool real = slot < begin + count;
+                const Triangle t = real ? triangle_at(slot) : Triangle{glm::vec3(kNaN), glm::vec3(kNaN), glm::vec3(kNaN)};
+                const glm::vec3* corners[3] = {&t.p0, &t.p1, &t.p2};
+                for (int c = 0; c < 3; ++c)
+                    for (int a = 0; a < 3; ++a) block.p[c][a][lane] = (*corners[c])[a];
+                block.id[lane] = real ? bvh_.prim_indices[slot] : kInvalidId;
+            }
+            out_.blocks.push_back(block);
+        }
+        return WideBvhNode::make_leaf(first, block_count);
+    }
+
+    [[nodiscard]] const Triangle& triangle_at(std::uint32_t slot) const {
+        return triangles_[bvh_.prim_indices[slot]];
+    }
+
+    std::uint32_t new_node() {
+        const auto index = static_cast<std::uint32_t>(out_.nodes.size());
+        if (index >= WideBvhNode::kLeafBit) throw Error("wide BVH: too many nodes");
+        out_.nodes.push_back(empty_node());
+        out_.shapes.push_back(0);
+        return index;
+    }
+
+    void check_depth(std::uint32_t depth) {
+        if (depth > kMaxWideBvhDepth) throw Error("wide BVH: deeper than kMaxWideBvhDepth");
+        out_.depth = std::max(out_.depth, depth);
+    }
+
+    static constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+    const Bvh& bvh_;
+    std::span<const Triangle> triangles_;
+    WideBvh& out_;
+};
+
+}  // namespace
+
+WideBvh collapse_to_wide(const Bvh& bvh, std::span<const Triangle> triangles) {
+    WideBvh out;
+    out.triangle_count = bvh.prim_indices.size();
+    if (bvh.empty()) return out;
+    for (const std::uint32_t id : bvh.prim_indices)
+        if (id >= triangles.size())
+            throw Error("collapse_to_wide: primitive " + std::to_string(id) + " but only " +
+                        std::to_string(triangles.size()) + " triangles");
+    out.bounds = bvh.bounds();
+    Collapser(bvh, triangles, out).run();
+    return out;
+}
+
+Bvh expand_to_binary(const WideBvh& wide) {
+    Bvh out;
+    if (wide.empty()) return out;
+    // Slots: the real lanes of the blocks, in block order.
+    std::vector<std::uint32_t> first_slot(wide.blocks.size() + 1, 0);
+    out.prim_indices.reserve(wide.triangle_count);
+    for (std::size_t b = 0; b < wide.blocks.size(); ++b) {
+        std::uint32_t real = 0;
+        for (const std::uint32_t id : wide.blocks[b].id)
+            if (id != kInvalidId) {
+                out.prim_indices.push_back(id);
+                ++real;
+            }
+        first_slot[b + 1] = first_slot[b] + real;
+    }
+    // The block range under a reference: a leaf's own, or all of a split-leaf node's.
+    auto block_range = [&](auto&& self, std::uint32_t ref, std::uint32_t& lo, std::uint32_t& hi) -> void {
+        if (WideBvhNode::is_leaf(ref)) {
+            lo = std::min(lo, WideBvhNode::first_block(ref));
+            hi = std::max(hi, WideBvhNode::first_block(ref) + WideBvhNode::block_count(ref));
+            return;
+        }
+        for (const std::uint32_t c : wide.nodes[ref].child)
+            if (c != WideBvhNode::kEmptyChild) self(self, c, lo, hi);
+    };
+
+    // The small binary tree a node's opening steps describe: entries 0..count-1 are the
+    // node's child slots, later ones interior nodes over two entries.
+    struct Local {
+        bool interior;
+        std::uint32_t a, b;  // slot (a) or children (a, b)
+    };
+    auto emit_ref = [&](auto&& self, std::uint32_t ref, const BBox& box, std::uint32_t at,
+                        std::uint32_t depth) -> void {
+        out.depth = std::max(out.depth, depth);
+        const bool leaf = WideBvhNode::is_leaf(ref) || wide.shapes[ref] == WideBvh::kSplitLeaf ||
+                          wide.shapes[ref] == WideBvh::kSingleLeaf;
+        if (leaf) {
+            std::uint32_t lo = ~0u, hi = 0;
+            block_range(block_range, ref, lo, hi);
+            out.nodes[at] = {box, first_slot[lo], first_slot[hi] - first_slot[lo]};
+            return;
+        }
+        const WideBvhNode& node = wide.nodes[ref];
+        const std::uint32_t shape = wide.shapes[ref];
+        // Replay the openings: slot s is local leaf `slot_of[s]`.
+        Local local[2 * kWideBvhWidth];
+        std::uint32_t slot_of[kWideBvhWidth];
+        std::uint32_t n = 0;
+        const std::uint32_t root = n++;
+        slot_of[0] = n;
+        local[n++] = {false, 0, 0};
+        slot_of[1] = n;
+        local[n++] = {false, 1, 0};
+        local[root] = {true, slot_of[0], slot_of[1]};
+        const std::uint32_t steps = shape & 7u;
+        for (std::uint32_t j = 0; j < steps; ++j) {
+            const std::uint32_t s = (shape >> (3 + 3 * j)) & 7u;
+            const std::uint32_t parent = slot_of[s];
+            slot_of[s] = n;
+            local[n++] = {false, s, 0};
+            slot_of[2 + j] = n;
+            local[n++] = {false, 2 + j, 0};
+            local[parent] = {true, slot_of[s], slot_of[2 + j]};
+        }
+        auto bounds_of = [&](auto&& me, std::uint32_t l) -> BBox {
+            if (!local[l].interior) return node.child_bounds(local[l].a);
+            BBox b = me(me, local[l].a);
+            b.extend(me(me, local[l].b));
+            return b;
+        };
+        auto emit_local = [&](auto&& me, std::uint32_t l, std::uint32_t where, std::uint32_t d) -> void {
+            if (!local[l].interior) {
+                const std::uint32_t s = local[l].a;
+                self(self, node.child[s], node.child_bounds(s), where, d);
+                return;
+            }
+            out.depth = std::max(out.depth, d);
+            const auto left = static_cast<std::uint32_t>(out.nodes.size());
+            out.nodes.resize(out.nodes.size() + 2);
+            out.nodes[where] = {bounds_of(bounds_of, l), left, 0};
+            me(me, local[l].a, left, d + 1);
+            me(me, local[l].b, left + 1, d + 1);
+        };
+        (void)box;
+        emit_local(emit_local, root, at, depth);
+    };
+    out.nodes.resize(1);
+    emit_ref(emit_ref, 0, wide.bounds, 0, 0);
+    return out;
+}
+
+}  // namespace librt

@@ -1,0 +1,374 @@
+// The wide BVH behind TriangleBvh: every SIMD path this machine supports is forced in turn
+// and must return exactly what the linear scan returns (the same t, bit for bit, and the
+// same triangle unless two tie at that t); the structure keeps its invariants; the binary
+// view gives back the builder's tree; the parallel SAH builder does not depend on threads.
+
+#include <librt/accel/bvh_builder.h>
+#include <librt/accel/simd.h>
+#include <librt/accel/triangle_bvh.h>
+#include <librt/accel/wide_bvh.h>
+#include <librt/core/error.h>
+#include <librt/geometry/procedural.h>
+#include <librt/io/obj.h>
+
+#include <gtest/gtest.h>
+
+#include "ray_sets.h"
+#include "test_support.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <thread>
+#include <vector>
+
+using namespace librt;
+
+namespace {
+
+std::vector<Triangle> random_soup(std::size_t count, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> U(0.0f, 1.0f);
+    std::vector<Triangle> tris(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        const glm::vec3 c{U(rng), U(rng), U(rng)};
+        const float s = (i % 97 == 0) ? 0.5f : 0.03f;
+        auto corner = [&] { return c + s * glm::vec3(U(rng) - 0.5f, U(rng) - 0.5f, U(rng) - 0.5f); };
+        tris[i] = {corner(), corner(), corner()};
+    }
+    return tris;
+}
+
+std::vector<Triangle> triangles_of(const TriangleMesh& mesh) {
+    std::vector<Triangle> tris(mesh.triangle_count());
+    for (std::size_t i = 0; i < tris.size(); ++i) tris[i] = mesh.triangle(i);
+    return tris;
+}
+
+/// Linear-scan answers, spread over two threads.
+std::vector<PrimitiveHit> scan(std::span<const Triangle> tris, const std::vector<Ray>& rays) {
+    const TriangleList naive(tris);
+    std::vector<PrimitiveHit> hits(rays.size());
+    auto work = [&](std::size_t begin) {
+        for (std::size_t i = begin; i < rays.size(); i += 2) hits[i] = naive.intersect(rays[i]);
+    };
+    std::thread other(work, 1);
+    work(0);
+    other.join();
+    return hits;
+}
+
+/// Runs every supported path of `accel` against the scan's answers.
+void expect_every_path_matches(TriangleBvh& accel, std::span<const Triangle> tris,
+                               const std::vector<Ray>& rays, const std::vector<PrimitiveHit>& want) {
+    for (const SimdPath path : supported_simd_paths()) {
+        SCOPED_TRACE(to_string(path));
+        accel.set_simd_path(path);
+        ASSERT_EQ(accel.simd_path(), path);
+        std::size_t closest_wrong = 0, any_wrong = 0, uv_wrong = 0, hits = 0;
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            const PrimitiveHit got = accel.intersect(rays[i]);
+            hits += want[i].valid();
+            bool same = got.valid() == want[i].valid() && (!got.valid() || got.t == want[i].t);
+            if (same && got.valid() && got.primitive_id != want[i].primitive_id) {
+                const auto tie = intersect(tris[got.primitive_id], rays[i]);
+                same = tie && tie->t == want[i].t;
+            } else if (same && got.valid()) {
+                uv_wrong += got.u != want[i].u || got.v != want[i].v;
+            }
+            closest_wrong += !same;
+            any_wrong += accel.occluded(rays[i]) != want[i].valid();
+        }
+        EXPECT_EQ(closest_wrong, 0u) << "closest-hit disagreements out of " << rays.size();
+        EXPECT_EQ(uv_wrong, 0u) << "barycentric disagreements";
+        EXPECT_EQ(any_wrong, 0u) << "any-hit disagreements out of " << rays.size();
+        EXPECT_GT(hits, rays.size() / 10);
+        EXPECT_LT(hits, rays.size());
+    }
+}
+
+void expect_every_path_matches(std::span<const Triangle> tris, const std::vector<Ray>& rays) {
+    const auto want = scan(tris, rays);
+    for (const BvhBuilder builder : {BvhBuilder::Median, BvhBuilder::Sah}) {
+        SCOPED_TRACE(builder == BvhBuilder::Median ? "median" : "sah");
+        TriangleBvh accel(tris, builder);
+        expect_every_path_matches(accel, tris, rays, want);
+    }
+}
+
+/// Structural invariants of a wide BVH over `tris`.
+void check_wide_structure(const WideBvh& wide, std::span<const Triangle> tris) {
+    ASSERT_FALSE(wide.empty());
+    ASSERT_EQ(wide.shapes.size(), wide.nodes.size());
+    ASSERT_LE(wide.depth, kMaxWideBvhDepth);
+    EXPECT_EQ(wide.triangle_count, tris.size());
+    std::vector<int> seen(tris.size(), 0);
+    std::vector<int> block_refs(wide.blocks.size(), 0);
+    std::vector<int> node_refs(wide.nodes.size(), 0);
+    for (const WideBvhNode& node : wide.nodes) {
+        int used = 0;
+        for (std::uint32_t i = 0; i < kWideBvhWidth; ++i) {
+            const std::uint32_t ref = node.child[i];
+            const BBox box = node.child_bounds(i);
+            if (ref == WideBvhNode::kEmptyChild) {
+                EXPECT_TRUE(box.empty());
+                continue;
+            }
+            ++used;
+            if (!WideBvhNode::is_leaf(ref)) {
+                ASSERT_LT(ref, wide.nodes.size());
+                node_refs[ref]++;
+                const WideBvhNode& child = wide.nodes[ref];
+                for (std::uint32_t k = 0; k < kWideBvhWidth; ++k)
+                    if (child.child[k] != WideBvhNode::kEmptyChild) {
+                        const BBox cb = child.child_bounds(k);
+                        EXPECT_TRUE(box.contains(cb.lo) && box.contains(cb.hi));
+                    }
+                continue;
+            }
+            const std::uint32_t first = WideBvhNode::first_block(ref);
+            ASSERT_LE(first + WideBvhNode::block_count(ref), wide.blocks.size());
+            for (std::uint32_t b = first; b < first + WideBvhNode::block_count(ref); ++b) {
+                block_refs[b]++;
+                for (std::uint32_t lane = 0; lane < kTriangleBlockSize; ++lane) {
+                    const std::uint32_t id = wide.blocks[b].id[lane];
+                    if (id == kInvalidId) {
+                        EXPECT_TRUE(std::isnan(wide.blocks[b].p[0][0][lane]));
+                        continue;
+                    }
+                    ASSERT_LT(id, tris.size());
+                    seen[id]++;
+                    const Triangle t = wide.blocks[b].triangle(lane);
+                    EXPECT_EQ(t.p0, tris[id].p0);
+                    EXPECT_EQ(t.p1, tris[id].p1);
+                    EXPECT_EQ(t.p2, tris[id].p2);
+                    const BBox tb = bounds(t);
+                    EXPECT_TRUE(box.contains(tb.lo) && box.contains(tb.hi));
+                }
+            }
+        }
+        EXPECT_GE(used, 1);
+    }
+    for (const int s : seen) ASSERT_EQ(s, 1) << "every triangle must sit in exactly one lane";
+    for (const int r : block_refs) ASSERT_EQ(r, 1) << "every block belongs to one leaf";
+    for (std::size_t n = 1; n < node_refs.size(); ++n) ASSERT_EQ(node_refs[n], 1) << "node " << n;
+}
+
+/// Same tree: same bounds, same leaves (as sets of primitives), same shape.
+void expect_same_tree(const Bvh& a, std::uint32_t na, const Bvh& b, std::uint32_t nb) {
+    const BvhNode& x = a.nodes[na];
+    const BvhNode& y = b.nodes[nb];
+    ASSERT_EQ(x.bounds.lo, y.bounds.lo);
+    ASSERT_EQ(x.bounds.hi, y.bounds.hi);
+    ASSERT_EQ(x.is_leaf(), y.is_leaf());
+    if (x.is_leaf()) {
+        ASSERT_EQ(x.prim_count, y.prim_count);
+        std::vector<std::uint32_t> px(a.prim_indices.begin() + x.index,
+                                      a.prim_indices.begin() + x.index + x.prim_count);
+        std::vector<std::uint32_t> py(b.prim_indices.begin() + y.index,
+                                      b.prim_indices.begin() + y.index + y.prim_count);
+        std::sort(px.begin(), px.end());
+        std::sort(py.begin(), py.end());
+        ASSERT_EQ(px, py);
+        return;
+    }
+    expect_same_tree(a, x.index, b, y.index);
+    expect_same_tree(a, x.index + 1, b, y.index + 1);
+}
+
+void boxes_and_centers(std::span<const Triangle> tris, std::vector<BBox>& boxes,
+                       std::vector<glm::vec3>& centers) {
+    boxes.resize(tris.size());
+    centers.resize(tris.size());
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+        boxes[i] = bounds(tris[i]);
+        centers[i] = boxes[i].center();
+    }
+}
+
+}  // namespace
+
+TEST(SimdPath, ScalarAlwaysSupportedAndDefaultIsSupported) {
+    const auto paths = supported_simd_paths();
+    ASSERT_FALSE(paths.empty());
+    EXPECT_EQ(paths.front(), SimdPath::Scalar);
+    EXPECT_TRUE(simd_path_supported(default_simd_path()));
+    for (const SimdPath p : {SimdPath::Scalar, SimdPath::Sse, SimdPath::Avx2, SimdPath::Avx512}) {
+        const bool listed = std::find(paths.begin(), paths.end(), p) != paths.end();
+        EXPECT_EQ(listed, simd_path_supported(p)) << to_string(p);
+        if (!listed) {
+            TriangleBvh accel(random_soup(10, 1));
+            EXPECT_THROW(accel.set_simd_path(p), Error);
+        }
+    }
+    std::printf("SIMD paths here:");
+    for (const SimdPath p : paths) std::printf(" %s", to_string(p));
+    std::printf(" (default %s)\n", to_string(default_simd_path()));
+}
+
+TEST(WideBvh, EveryPathAgreesWithLinearScanOnRandomSoup) {
+    const auto tris = random_soup(1000, 2);
+    expect_every_path_matches(tris, librt::testing::incoherent_rays(BBox{glm::vec3(0.0f), glm::vec3(1.0f)}, 50000, 3));
+}
+
+TEST(WideBvh, EveryPathAgreesWithLinearScanOnTeapotAndIcosphere) {
+    const auto teapot = triangles_of(make_teapot(4));
+    expect_every_path_matches(teapot, librt::testing::incoherent_rays(make_teapot(4).bounds(), 30000, 21));
+    const TriangleMesh sphere = make_icosphere(glm::vec3(0.0f), 1.0f, 3);
+    expect_every_path_matches(triangles_of(sphere), librt::testing::incoherent_rays(sphere.bounds(), 30000, 22));
+}
+
+TEST(WideBvh, EveryPathAgreesWithLinearScanOnBunnyAtOriginalScale) {
+    LIBRT_REQUIRE_DATA_FILE(path, "stanford-bunny.obj");
+    const TriangleMesh bunny = load_obj(path);
+    const auto tris = triangles_of(bunny);
+    const auto rays = librt::testing::incoherent_rays(bunny.bounds(), 2000, 23);
+    const auto want = scan(tris, rays);
+    TriangleBvh accel(bunny);
+    expect_every_path_matches(accel, tris, rays, want);
+    // Primary rays too: coherent, many grazing the silhouette.
+    const auto primary = librt::testing::primary_rays(bunny.bounds(), 40, 40, 40.0f);
+    expect_every_path_matches(accel, tris, primary, scan(tris, primary));
+}
+
+TEST(WideBvh, EveryPathHasNoHolesForAxisParallelRaysThroughAGrid) {
+    std::vector<Triangle> tris;
+    const int n = 16;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const glm::vec3 a{float(i), float(j), 0}, b{float(i + 1), float(j), 0},
+                c{float(i + 1), float(j + 1), 0}, d{float(i), float(j + 1), 0};
+            tris.push_back({a, b, c});
+            tris.push_back({a, c, d});
+        }
+    for (const BvhBuilder builder : {BvhBuilder::Median, BvhBuilder::Sah}) {
+        TriangleBvh accel(tris, builder);
+        for (const SimdPath path : supported_simd_paths()) {
+            SCOPED_TRACE(to_string(path));
+            accel.set_simd_path(path);
+            int holes = 0;
+            for (int i = 0; i < 4 * n; ++i)
+                for (int j = 0; j < 4 * n; ++j)
+                    for (const float dz : {-1.0f, 1.0f}) {
+                        Ray r;
+                        r.origin = {float(i) * 0.25f, float(j) * 0.25f, -5.0f * dz};
+                        r.direction = {0.0f, 0.0f, dz};
+                        holes += !accel.intersect(r).valid();
+                        holes += !accel.occluded(r);
+                    }
+            EXPECT_EQ(holes, 0);
+        }
+    }
+}
+
+TEST(WideBvh, EveryPathMissesNanAndZeroDirectionRaysAndRespectsTheInterval) {
+    const auto tris = random_soup(200, 4);
+    TriangleBvh accel(tris);
+    for (const SimdPath path : supported_simd_paths()) {
+        SCOPED_TRACE(to_string(path));
+        accel.set_simd_path(path);
+        Ray r;
+        r.origin = {0.5f, 0.5f, 0.5f};
+        r.direction = {0.0f, 0.0f, 0.0f};
+        EXPECT_FALSE(accel.intersect(r).valid());
+        EXPECT_FALSE(accel.occluded(r));
+        r.direction = {NAN, 0.0f, 1.0f};
+        EXPECT_FALSE(accel.intersect(r).valid());
+        EXPECT_FALSE(accel.occluded(r));
+        r.direction = {0.0f, 0.0f, 1.0f};
+        r.origin = {NAN, 0.5f, 0.5f};
+        EXPECT_FALSE(accel.occluded(r));
+        // Aimed at triangle 0's centroid, so a hit exists; the interval then excludes it
+        // from either side.
+        r.origin = centroid(tris[0]) - glm::vec3(0.0f, 0.0f, 2.0f);
+        const PrimitiveHit h = accel.intersect(r);
+        ASSERT_TRUE(h.valid());
+        r.t_max = h.t;
+        EXPECT_TRUE(!accel.intersect(r).valid() || accel.intersect(r).t < h.t);
+        r.t_max = INFINITY;
+        r.t_min = h.t;
+        const PrimitiveHit after = accel.intersect(r);
+        EXPECT_TRUE(!after.valid() || after.t > h.t);
+    }
+}
+
+TEST(WideBvh, OversizedMedianLeavesAreSplitAndStillHit) {
+    // 1000 copies of one triangle: the report's median split cannot separate them and
+    // makes one leaf of 1000, more than one wide leaf reference can hold.
+    std::vector<Triangle> tris(1000, Triangle{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    tris.push_back({{2, 2, 2}, {3, 2, 2}, {2, 3, 2}});
+    TriangleBvh accel(tris, BvhBuilder::Median);
+    check_wide_structure(accel.wide_bvh(), tris);
+    std::vector<BBox> boxes;
+    std::vector<glm::vec3> centers;
+    boxes_and_centers(tris, boxes, centers);
+    expect_same_tree(accel.bvh(), 0, build_median_bvh(boxes, centers), 0);
+    for (const SimdPath path : supported_simd_paths()) {
+        accel.set_simd_path(path);
+        Ray r;
+        r.origin = {0.2f, 0.2f, 1.0f};
+        const PrimitiveHit h = accel.intersect(r);
+        ASSERT_TRUE(h.valid()) << to_string(path);
+        EXPECT_LT(h.primitive_id, 1000u);
+        EXPECT_FLOAT_EQ(h.t, 1.0f);
+        EXPECT_TRUE(accel.occluded(r));
+    }
+}
+
+TEST(WideBvh, StructureAndBinaryViewMatchTheBuilders) {
+    const auto tris = random_soup(5000, 5);
+    std::vector<BBox> boxes;
+    std::vector<glm::vec3> centers;
+    boxes_and_centers(tris, boxes, centers);
+    for (const BvhBuilder builder : {BvhBuilder::Median, BvhBuilder::Sah}) {
+        SCOPED_TRACE(builder == BvhBuilder::Median ? "median" : "sah");
+        const TriangleBvh accel(tris, builder);
+        check_wide_structure(accel.wide_bvh(), tris);
+        const std::size_t fast_bytes = accel.memory_bytes();
+        const Bvh reference = builder == BvhBuilder::Median
+                                  ? build_median_bvh(boxes, centers)
+                                  : build_sah_bvh(boxes, centers, triangle_sah_config());
+        const Bvh& view = accel.bvh();
+        EXPECT_EQ(view.nodes.size(), reference.nodes.size());
+        EXPECT_EQ(view.depth, reference.depth);
+        expect_same_tree(view, 0, reference, 0);
+        EXPECT_EQ(&view, &accel.bvh());  // built once
+        EXPECT_EQ(accel.memory_bytes(), fast_bytes + view.memory_bytes());
+    }
+}
+
+TEST(WideBvh, SingleTriangleAndCopiesWork) {
+    const std::vector<Triangle> one{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}};
+    const TriangleBvh accel(one);
+    Ray r;
+    r.origin = {0.25f, 0.25f, 2.0f};
+    EXPECT_EQ(accel.intersect(r).primitive_id, 0u);
+    EXPECT_EQ(accel.bvh().nodes.size(), 1u);
+    TriangleBvh copy = accel;  // shares the immutable tree
+    EXPECT_EQ(copy.intersect(r).t, accel.intersect(r).t);
+    const TriangleBvh moved = std::move(copy);
+    EXPECT_TRUE(moved.occluded(r));
+}
+
+TEST(SahBuilder, ParallelBuildDoesNotDependOnThreadCount) {
+    const auto tris = random_soup(40000, 6);
+    std::vector<BBox> boxes;
+    std::vector<glm::vec3> centers;
+    boxes_and_centers(tris, boxes, centers);
+    SahConfig config = triangle_sah_config();
+    config.thread_count = 1;
+    const Bvh serial = build_sah_bvh(boxes, centers, config);
+    for (const std::uint32_t threads : {2u, 3u, 8u}) {
+        config.thread_count = threads;
+        const Bvh parallel = build_sah_bvh(boxes, centers, config);
+        ASSERT_EQ(parallel.nodes.size(), serial.nodes.size());
+        EXPECT_EQ(parallel.prim_indices, serial.prim_indices);
+        EXPECT_EQ(parallel.depth, serial.depth);
+        for (std::size_t i = 0; i < serial.nodes.size(); ++i) {
+            ASSERT_EQ(parallel.nodes[i].bounds.lo, serial.nodes[i].bounds.lo);
+            ASSERT_EQ(parallel.nodes[i].bounds.hi, serial.nodes[i].bounds.hi);
+            ASSERT_EQ(parallel.nodes[i].index, serial.nodes[i].index);
+            ASSERT_EQ(parallel.nodes[i].prim_count, serial.nodes[i].prim_count);
+        }
+    }
+}
