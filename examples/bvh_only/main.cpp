@@ -53,17 +53,16 @@ int main() {
     const librt::TriangleList brute_force(torus);
     const librt::BBox box = bvh.bounds();
     std::printf("torus: %zu triangles, BVH of %zu nodes, depth %u, %zu bytes\n",
-                bvh.triangle_count(), bvh.bvh().nodes.size(), bvh.bvh().depth,
-                bvh.memory_bytes());
-    std::printf("bounds: (%.3f, %.3f, %.3f) .. (%.3f, %.3f, %.3f)\n", box.lo.x, box.lo.y,
-                box.lo.z, box.hi.x, box.hi.y, box.hi.z);
+                bvh.triangle_count(), bvh.bvh().nodes.size(), bvh.bvh().depth, bvh.memory_bytes());
+    std::printf("bounds: (%.3f, %.3f, %.3f) .. (%.3f, %.3f, %.3f)\n", box.lo.x, box.lo.y, box.lo.z,
+                box.hi.x, box.hi.y, box.hi.z);
 
     // From a point above and in front, aim at points of the torus's plane: the middle of
     // the tube, the hole in the middle, the outer rim, and far outside.
     const glm::vec3 eye{0.0f, 3.0f, 6.0f};
     const glm::vec3 targets[] = {
-        {0.0f, 0.0f, 2.0f}, {0.0f, 0.0f, 0.0f}, {2.45f, 0.0f, 0.0f}, {-2.0f, 0.0f, -2.0f},
-        {5.0f, 0.0f, 0.0f}, {0.0f, -4.0f, 0.0f},
+        {0.0f, 0.0f, 2.0f},   {0.0f, 0.0f, 0.0f}, {2.45f, 0.0f, 0.0f},
+        {-2.0f, 0.0f, -2.0f}, {5.0f, 0.0f, 0.0f}, {0.0f, -4.0f, 0.0f},
     };
     int mismatches = 0;
     for (const glm::vec3& target : targets) {
