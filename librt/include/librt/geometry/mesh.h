@@ -47,6 +47,9 @@ struct TriangleMesh {
 };
 
 /// Applies an affine transform to positions (and the inverse transpose to normals, renormalised).
+/// A mirroring matrix (negative determinant) also swaps two corners of every triangle, so the
+/// winding's normal keeps agreeing with the shading normals. Throws librt::Error if the bottom
+/// row is not (0 0 0 1), or if the mesh has normals and the matrix is singular.
 void transform(TriangleMesh& mesh, const glm::mat4& matrix);
 
 /// Scale, then rotate (angles in degrees about x, then y, then z), then translate:
@@ -54,8 +57,9 @@ void transform(TriangleMesh& mesh, const glm::mat4& matrix);
 [[nodiscard]] glm::mat4 make_transform(const glm::vec3& scale, const glm::vec3& rotation_degrees,
                                        const glm::vec3& translation);
 
-/// Throws librt::Error naming the problem when indices are out of range or optional
-/// arrays have the wrong length.
+/// Throws librt::Error naming the problem (and the offending index) when triangle or material
+/// indices are out of range, optional arrays have the wrong length, or positions, normals or
+/// uvs are not finite.
 void validate(const TriangleMesh& mesh);
 
 }  // namespace librt

@@ -58,9 +58,13 @@ struct WatertightRay {
                                                           const WatertightRay& w, float t_min,
                                                           float t_max) {
     if (!w.valid) return std::nullopt;
-    const glm::vec3 a = tri.p0 - w.origin;
-    const glm::vec3 b = tri.p1 - w.origin;
-    const glm::vec3 c = tri.p2 - w.origin;
+    const glm::vec3 a3 = tri.p0 - w.origin;
+    const glm::vec3 b3 = tri.p1 - w.origin;
+    const glm::vec3 c3 = tri.p2 - w.origin;
+    // glm's operator[] branches on the index; glm::vec3 is three contiguous floats.
+    const float* a = &a3.x;
+    const float* b = &b3.x;
+    const float* c = &c3.x;
     const float ax = a[w.kx] - w.sx * a[w.kz], ay = a[w.ky] - w.sy * a[w.kz];
     const float bx = b[w.kx] - w.sx * b[w.kz], by = b[w.ky] - w.sy * b[w.kz];
     const float cx = c[w.kx] - w.sx * c[w.kz], cy = c[w.ky] - w.sy * c[w.kz];

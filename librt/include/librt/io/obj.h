@@ -1,0 +1,53 @@
+#pragma once
+
+#include <librt/geometry/mesh.h>
+
+#include <glm/mat4x4.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace librt {
+
+/// How load_obj reads a file.
+struct ObjLoadOptions {
+    glm::mat4 transform{1.0f};  ///< applied on load, as librt::transform (e.g. make_transform)
+    bool load_normals = true;   ///< read vn; if false the mesh has no normals
+    bool load_uvs = true;       ///< read vt; if false the mesh has no uvs
+    /// Where warnings go (a missing MTL, an unknown material, skipped faces), one line each,
+    /// prefixed by the file name; if null they are printed to stderr.
+    std::vector<std::string>* warnings = nullptr;
+};
+
+/// Reads a Wavefront OBJ (and its MTL, looked up in the OBJ's directory) into one mesh.
+///
+/// - All groups and objects are merged. OBJ's separate (v, vt, vn) indices are unified into
+///   single vertices: vertex i is OBJ position i, with the first (vt, vn) pair a face uses it
+///   with; each further distinct pair adds a vertex after the OBJ's positions (deduplicated
+///   with a hash map). So a positions-only file keeps its vertices and their order, unused
+///   ones included.
+/// - Triangles keep their corners as written, degenerate ones too. Polygons are triangulated
+///   by ear clipping in their plane; polygons of zero area (which triangulate to nothing) are
+///   skipped with a warning. Points and lines are ignored.
+/// - uvs are present when any face corner has a vt (others get (0, 0)); normals when any has
+///   a vn (others get the area-weighted normal of their faces, or zero for unused vertices).
+/// - material_ids is always filled. materials holds the MTL's materials in file order; if any
+///   face has no (known) material, a default MeshMaterial named "default" is appended and those
+///   faces use it. map_Kd is resolved against the OBJ's directory.
+/// - Throws librt::Error naming the path when it is missing, a directory or unreadable, or
+///   when tinyobjloader fails (its message names the line); naming the path and face (counted
+///   from 1 in file order, not counting faces of under 3 corners, which tinyobjloader drops
+///   with a warning) for an index out of range. A relative (negative) vt/vn index that
+///   resolves to exactly one before the first entry cannot be told from "absent".
+/// - A missing MTL file is a warning, not an error: the faces get the default material.
+[[nodiscard]] TriangleMesh load_obj(const std::filesystem::path& path,
+                                    const ObjLoadOptions& options = {});
+
+/// Writes a mesh as OBJ (v, vt, vn, f with 1-based v/vt/vn triplets, exact float round trip),
+/// plus an MTL named after it (same stem, ".mtl") when the mesh has materials. Each file is
+/// written to a temporary name beside it and renamed, so readers never see half a file.
+/// Throws librt::Error naming the path when the mesh is invalid or a file cannot be written.
+void save_obj(const TriangleMesh& mesh, const std::filesystem::path& path);
+
+}  // namespace librt

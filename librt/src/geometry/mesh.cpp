@@ -1,0 +1,128 @@
+#include <librt/geometry/mesh.h>
+
+#include <librt/core/error.h>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+namespace librt {
+
+namespace {
+
+bool is_finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+bool is_finite(const glm::vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+
+std::string to_string(const glm::vec3& v) {
+    return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) +
+           ")";
+}
+
+}  // namespace
+
+BBox TriangleMesh::bounds() const {
+    BBox b;
+    for (const glm::vec3& p : positions) b.extend(p);
+    return b;
+}
+
+void transform(TriangleMesh& mesh, const glm::mat4& matrix) {
+    // GLM is column-major: matrix[c][r]; the bottom row is matrix[c][3].
+    if (matrix[0][3] != 0.0f || matrix[1][3] != 0.0f || matrix[2][3] != 0.0f ||
+        matrix[3][3] != 1.0f) {
+        throw Error("transform: matrix is not affine (bottom row must be 0 0 0 1)");
+    }
+    const glm::mat3 linear(matrix);
+    const glm::vec3 translation(matrix[3]);
+    for (glm::vec3& p : mesh.positions) p = linear * p + translation;
+
+    const float det = glm::determinant(linear);
+    if (!mesh.normals.empty()) {
+        if (!(det != 0.0f) || !std::isfinite(det)) {
+            throw Error("transform: matrix is singular (det = " + std::to_string(det) +
+                        "), normals cannot be transformed");
+        }
+        // Normals transform by the inverse transpose so they stay perpendicular to tangents.
+        const glm::mat3 normal_matrix = glm::transpose(glm::inverse(linear));
+        for (glm::vec3& n : mesh.normals) {
+            const glm::vec3 m = normal_matrix * n;
+            const float len = glm::length(m);
+            n = len > 0.0f ? m / len : m;  // a zero normal stays zero rather than NaN
+        }
+    }
+    // A mirror reverses the winding; swap two corners so the geometric normal
+    // (p1 - p0) x (p2 - p0) keeps agreeing with the shading normals.
+    if (det < 0.0f) {
+        for (glm::uvec3& t : mesh.triangles) std::swap(t.y, t.z);
+    }
+}
+
+glm::mat4 make_transform(const glm::vec3& scale, const glm::vec3& rotation_degrees,
+                         const glm::vec3& translation) {
+    // M = T * Rz * Ry * Rx * S: applied right to left to a point.
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), translation);
+    m = glm::rotate(m, glm::radians(rotation_degrees.z), glm::vec3(0, 0, 1));
+    m = glm::rotate(m, glm::radians(rotation_degrees.y), glm::vec3(0, 1, 0));
+    m = glm::rotate(m, glm::radians(rotation_degrees.x), glm::vec3(1, 0, 0));
+    return glm::scale(m, scale);
+}
+
+void validate(const TriangleMesh& mesh) {
+    const std::size_t n = mesh.positions.size();
+    if (!mesh.normals.empty() && mesh.normals.size() != n) {
+        throw Error("mesh: " + std::to_string(mesh.normals.size()) + " normals for " +
+                    std::to_string(n) + " positions (must be 0 or equal)");
+    }
+    if (!mesh.uvs.empty() && mesh.uvs.size() != n) {
+        throw Error("mesh: " + std::to_string(mesh.uvs.size()) + " uvs for " +
+                    std::to_string(n) + " positions (must be 0 or equal)");
+    }
+    if (!mesh.material_ids.empty() && mesh.material_ids.size() != mesh.triangles.size()) {
+        throw Error("mesh: " + std::to_string(mesh.material_ids.size()) + " material ids for " +
+                    std::to_string(mesh.triangles.size()) + " triangles (must be 0 or equal)");
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!is_finite(mesh.positions[i])) {
+            throw Error("mesh: position " + std::to_string(i) + " is not finite " +
+                        to_string(mesh.positions[i]));
+        }
+    }
+    for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
+        if (!is_finite(mesh.normals[i])) {
+            throw Error("mesh: normal " + std::to_string(i) + " is not finite " +
+                        to_string(mesh.normals[i]));
+        }
+    }
+    for (std::size_t i = 0; i < mesh.uvs.size(); ++i) {
+        if (!is_finite(mesh.uvs[i])) {
+            throw Error("mesh: uv " + std::to_string(i) + " is not finite");
+        }
+    }
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+        const glm::uvec3& t = mesh.triangles[i];
+        for (int k = 0; k < 3; ++k) {
+            if (t[k] >= n) {
+                throw Error("mesh: triangle " + std::to_string(i) + " index " +
+                            std::to_string(t[k]) + " is out of range (" + std::to_string(n) +
+                            " positions)");
+            }
+        }
+    }
+    for (std::size_t i = 0; i < mesh.material_ids.size(); ++i) {
+        if (mesh.material_ids[i] >= mesh.materials.size()) {
+            throw Error("mesh: triangle " + std::to_string(i) + " material id " +
+                        std::to_string(mesh.material_ids[i]) + " is out of range (" +
+                        std::to_string(mesh.materials.size()) + " materials)");
+        }
+    }
+}
+
+}  // namespace librt

@@ -1,0 +1,566 @@
+#include <librt/io/obj.h>
+
+#include <librt/core/error.h>
+
+#include <tiny_obj_loader.h>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <random>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <unordered_map>
+#include <vector>
+
+namespace librt {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::int32_t kAbsent = -1;  // tinyobjloader's "no vt / vn" index
+
+// ---------------------------------------------------------------------------------------------
+// Loading
+
+/// Throws unless path names a file we can open.
+void check_readable(const fs::path& path) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (status.type() == fs::file_type::not_found) throw Error(path.string() + ": no such file");
+    if (ec) throw Error(path.string() + ": cannot access: " + ec.message());
+    if (fs::is_directory(status)) throw Error(path.string() + ": is a directory, not an OBJ file");
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) throw Error(path.string() + ": cannot open for reading");
+}
+
+/// tinyobjloader's newline-separated messages as trimmed, non-empty lines.
+std::vector<std::string> split_lines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::size_t start = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        std::string line = text.substr(start, end - start);
+        const auto first = line.find_first_not_of(" \t\r.");
+        const auto last = line.find_last_not_of(" \t\r");
+        if (first != std::string::npos) lines.push_back(line.substr(first, last - first + 1));
+        start = end + 1;
+    }
+    return lines;
+}
+
+/// One face corner as OBJ indexes it, after tinyobjloader made the indices 0-based.
+struct Corner {
+    std::int32_t v, vt, vn;
+    bool operator==(const Corner&) const = default;
+};
+
+struct CornerHash {
+    std::size_t operator()(const Corner& c) const noexcept {
+        // splitmix64 finaliser over the packed indices: cheap and well mixed.
+        std::uint64_t h = (std::uint64_t(std::uint32_t(c.v)) << 32) ^ std::uint32_t(c.vt);
+        h ^= std::uint64_t(std::uint32_t(c.vn)) * 0x9E3779B97F4A7C15ull;
+        h ^= h >> 30;
+        h *= 0xBF58476D1CE4E5B9ull;
+        h ^= h >> 27;
+        h *= 0x94D049BB133111EBull;
+        h ^= h >> 31;
+        return static_cast<std::size_t>(h);
+    }
+};
+
+/// Maps (v, vt, vn) corners to mesh vertices. Vertex i is OBJ position i with the first
+/// (vt, vn) it is used with, so positions-only files need no hashing and keep their order;
+/// every further distinct pair for a position gets a new vertex, found again by hash.
+class VertexUnifier {
+public:
+    /// positions holds the OBJ's positions; vertices for further (vt, vn) pairs are appended.
+    explicit VertexUnifier(std::vector<glm::vec3>& positions)
+        : positions_(positions),
+          vt_(positions.size(), kAbsent),
+          vn_(positions.size(), kAbsent),
+          claimed_(positions.size(), 0) {}
+
+    /// The vertex for a corner whose indices were checked.
+    std::uint32_t vertex(const Corner& c) {
+        const auto v = static_cast<std::size_t>(c.v);
+        if (!claimed_[v]) {
+            claimed_[v] = 1;
+            vt_[v] = c.vt;
+            vn_[v] = c.vn;
+            return static_cast<std::uint32_t>(v);
+        }
+        if (vt_[v] == c.vt && vn_[v] == c.vn) return static_cast<std::uint32_t>(v);
+        const auto [it, inserted] =
+            extra_.try_emplace(c, static_cast<std::uint32_t>(positions_.size()));
+        if (inserted) {
+            if (positions_.size() >= std::numeric_limits<std::uint32_t>::max()) {
+                throw Error("more than 2^32 - 1 vertices");
+            }
+            positions_.push_back(positions_[v]);
+            vt_.push_back(c.vt);
+            vn_.push_back(c.vn);
+        }
+        return it->second;
+    }
+
+    /// Per vertex: the vt index, or kAbsent.
+    [[nodiscard]] const std::vector<std::int32_t>& vt() const { return vt_; }
+    /// Per vertex: the vn index, or kAbsent.
+    [[nodiscard]] const std::vector<std::int32_t>& vn() const { return vn_; }
+
+private:
+    std::vector<glm::vec3>& positions_;
+    std::vector<std::int32_t> vt_, vn_;
+    std::vector<std::uint8_t> claimed_;
+    std::unordered_map<Corner, std::uint32_t, CornerHash> extra_;
+};
+
+/// Reusable buffers for triangulate_polygon, so faces allocate nothing once warmed up.
+struct PolygonScratch {
+    std::vector<glm::dvec2> points;
+    std::vector<std::size_t> remaining;
+};
+
+/// Twice the signed area of the 2D triangle (a, b, c): positive when counter-clockwise.
+double orient2d(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
+    return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+/// Ear clipping (Meisters' two-ears theorem: a simple polygon always has an ear to cut) in the
+/// polygon's own plane, appending triangles with the polygon's winding. A polygon that is not
+/// simple may run out of ears; the rest is then fanned. Returns false, appending nothing, when
+/// the polygon has zero area.
+bool triangulate_polygon(const std::vector<glm::vec3>& positions,
+                         const std::vector<std::uint32_t>& corners, PolygonScratch& scratch,
+                         std::vector<glm::uvec3>& out) {
+    const std::size_t n = corners.size();
+    const glm::dvec3 p0(positions[corners[0]]);
+    // Newell's normal: the sum of (p_i - p0) x (p_i+1 - p0) is twice the vector area.
+    glm::dvec3 normal(0.0);
+    double extent2 = 0.0;
+    for (std::size_t i = 1; i + 1 < n; ++i) {
+        const glm::dvec3 a = glm::dvec3(positions[corners[i]]) - p0;
+        const glm::dvec3 b = glm::dvec3(positions[corners[i + 1]]) - p0;
+        normal += glm::cross(a, b);
+        extent2 = std::max(extent2, glm::dot(a, a));
+    }
+    const double len = glm::length(normal);
+    if (!(len > 1e-12 * extent2)) return false;  // zero (or NaN) area
+
+    // A right-handed orthonormal frame (u, v, n): the polygon runs counter-clockwise in (u, v).
+    const glm::dvec3 nz = normal / len;
+    const glm::dvec3 helper = std::abs(nz.x) > 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+    const glm::dvec3 u = glm::normalize(glm::cross(helper, nz));
+    const glm::dvec3 v = glm::cross(nz, u);
+    auto& pts = scratch.points;
+    auto& rem = scratch.remaining;
+    pts.resize(n);
+    rem.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::dvec3 d = glm::dvec3(positions[corners[i]]) - p0;
+        pts[i] = {glm::dot(d, u), glm::dot(d, v)};
+        rem[i] = i;
+    }
+
+    auto emit = [&](std::size_t a, std::size_t b, std::size_t c) {
+        out.emplace_back(corners[a], corners[b], corners[c]);
+    };
+    while (rem.size() > 3) {
+        const std::size_t m = rem.size();
+        bool clipped = false;
+        for (std::size_t k = 0; k < m && !clipped; ++k) {
+            const std::size_t a = rem[(k + m - 1) % m], b = rem[k], c = rem[(k + 1) % m];
+            if (orient2d(pts[a], pts[b], pts[c]) <= 0.0) continue;  // reflex or flat corner
+            // An ear: no other corner inside or on the triangle (copies of its corners aside).
+            bool empty = true;
+            for (const std::size_t j : rem) {
+                const glm::dvec2& q = pts[j];
+                if (q == pts[a] || q == pts[b] || q == pts[c]) continue;
+                if (orient2d(pts[a], pts[b], q) >= 0.0 && orient2d(pts[b], pts[c], q) >= 0.0 &&
+                    orient2d(pts[c], pts[a], q) >= 0.0) {
+                    empty = false;
+                    break;
+                }
+            }
+            if (!empty) continue;
+            emit(a, b, c);
+            rem.erase(rem.begin() + static_cast<std::ptrdiff_t>(k));
+            clipped = true;
+        }
+        if (!clipped) break;
+    }
+    for (std::size_t i = 1; i + 1 < rem.size(); ++i) emit(rem[0], rem[i], rem[i + 1]);
+    return true;
+}
+
+/// "" when the corner's indices are in range, else what is wrong with them.
+std::string check_corner(const Corner& c, std::size_t nv, std::size_t nvt, std::size_t nvn) {
+    // tinyobjloader made indices 0-based (relative ones resolved), so +1 is the file's value.
+    if (c.v < 0) return "a relative position index points before the first position";
+    if (static_cast<std::size_t>(c.v) >= nv) {
+        return "position index " + std::to_string(c.v + 1) + " is out of range (" +
+               std::to_string(nv) + " positions)";
+    }
+    if (c.vt < kAbsent || (c.vt >= 0 && static_cast<std::size_t>(c.vt) >= nvt)) {
+        return "texture coordinate index " + std::to_string(c.vt + 1) + " is out of range (" +
+               std::to_string(nvt) + " texture coordinates)";
+    }
+    if (c.vn < kAbsent || (c.vn >= 0 && static_cast<std::size_t>(c.vn) >= nvn)) {
+        return "normal index " + std::to_string(c.vn + 1) + " is out of range (" +
+               std::to_string(nvn) + " normals)";
+    }
+    return "";
+}
+
+glm::vec3 to_vec3(const tinyobj::real_t* v) { return {v[0], v[1], v[2]}; }
+
+MeshMaterial to_mesh_material(const tinyobj::material_t& m, const fs::path& dir) {
+    MeshMaterial out;
+    out.name = m.name;
+    out.diffuse = to_vec3(m.diffuse);
+    out.specular = to_vec3(m.specular);
+    out.emission = to_vec3(m.emission);
+    out.ior = m.ior;
+    out.dissolve = m.dissolve;
+    out.illum = m.illum;
+    if (!m.diffuse_texname.empty()) {
+        out.diffuse_texture = (dir / m.diffuse_texname).lexically_normal().string();
+    }
+    return out;
+}
+
+/// Fills normals of vertices without a vn with the area-weighted normal of their triangles.
+void fill_missing_normals(TriangleMesh& mesh, const std::vector<std::int32_t>& vn) {
+    for (const glm::uvec3& t : mesh.triangles) {
+        const glm::vec3 n = area_normal(Triangle{mesh.positions[t.x], mesh.positions[t.y],
+                                                 mesh.positions[t.z]});
+        for (int k = 0; k < 3; ++k) {
+            if (vn[t[k]] == kAbsent) mesh.normals[t[k]] += n;
+        }
+    }
+    for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
+        const float len = glm::length(mesh.normals[i]);
+        if (vn[i] == kAbsent && len > 0.0f) mesh.normals[i] /= len;
+    }
+}
+
+void report(const fs::path& path, const std::vector<std::string>& lines,
+            const ObjLoadOptions& options) {
+    for (const std::string& line : lines) {
+        std::string message = path.string() + ": " + line;
+        if (options.warnings) {
+            options.warnings->push_back(std::move(message));
+        } else {
+            std::fprintf(stderr, "librt: warning: %s\n", message.c_str());
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Saving
+
+/// Appends text and numbers to a buffer flushed to a stream in large blocks.
+class Writer {
+public:
+    explicit Writer(std::ofstream& out) : out_(out) { buffer_.reserve(kBlock + 256); }
+    ~Writer() = default;
+    Writer(const Writer&) = delete;
+    Writer& operator=(const Writer&) = delete;
+
+    Writer& operator<<(std::string_view s) {
+        buffer_.append(s);
+        if (buffer_.size() >= kBlock) flush();
+        return *this;
+    }
+    Writer& operator<<(char c) {
+        buffer_.push_back(c);
+        return *this;
+    }
+    /// Shortest decimal that reads back as the same float.
+    Writer& operator<<(float x) { return put(x); }
+    Writer& operator<<(std::uint64_t x) { return put(x); }
+    Writer& operator<<(int x) { return put(x); }
+    void flush() {
+        out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+        buffer_.clear();
+    }
+
+private:
+    static constexpr std::size_t kBlock = std::size_t{1} << 20;
+
+    template <class T>
+    Writer& put(T x) {
+        char tmp[32];
+        const auto result = std::to_chars(tmp, tmp + sizeof(tmp), x);
+        return *this << std::string_view(tmp, static_cast<std::size_t>(result.ptr - tmp));
+    }
+
+    std::ofstream& out_;
+    std::string buffer_;
+};
+
+/// Runs body on a temporary file beside path, then renames it over path.
+void write_atomically(const fs::path& path, const std::function<void(Writer&)>& body) {
+    std::random_device rd;
+    fs::path tmp = path;
+    tmp += ".tmp" + std::to_string(rd());
+    try {
+        std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
+        if (!file) throw Error(path.string() + ": cannot open for writing");
+        Writer w(file);
+        body(w);
+        w.flush();
+        file.close();
+        if (!file) throw Error(path.string() + ": write failed");
+        std::error_code ec;
+        fs::rename(tmp, path, ec);
+        if (ec) throw Error(path.string() + ": cannot replace: " + ec.message());
+    } catch (...) {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+        throw;
+    }
+}
+
+std::string material_name(const TriangleMesh& mesh, std::size_t i) {
+    const std::string& name = mesh.materials[i].name;
+    return name.empty() ? "material_" + std::to_string(i) : name;
+}
+
+void write_mtl(const TriangleMesh& mesh, const fs::path& path) {
+    const fs::path dir = fs::absolute(path).parent_path();
+    write_atomically(path, [&](Writer& w) {
+        w << "# written by librt save_obj\n";
+        auto rgb = [&](std::string_view key, const glm::vec3& c) {
+            w << key << ' ' << c.x << ' ' << c.y << ' ' << c.z << '\n';
+        };
+        for (std::size_t i = 0; i < mesh.materials.size(); ++i) {
+            const MeshMaterial& m = mesh.materials[i];
+            w << "newmtl " << material_name(mesh, i) << '\n';
+            rgb("Kd", m.diffuse);
+            rgb("Ks", m.specular);
+            rgb("Ke", m.emission);
+            w << "Ni " << m.ior << "\nd " << m.dissolve << "\nillum " << m.illum << '\n';
+            if (!m.diffuse_texture.empty()) {
+                // The texture is stored relative to the working directory; MTL wants it
+                // relative to the MTL's own directory.
+                const fs::path tex = fs::absolute(m.diffuse_texture).lexically_proximate(dir);
+                w << "map_Kd " << tex.generic_string() << '\n';
+            }
+            w << '\n';
+        }
+    });
+}
+
+}  // namespace
+
+TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
+    check_readable(path);
+    const fs::path dir = path.parent_path();
+
+    tinyobj::ObjReaderConfig config;
+    // We triangulate ourselves: tinyobjloader's triangulation reads positions through
+    // unchecked indices (n-gons) or silently drops faces with bad ones (quads), before we
+    // could check them.
+    config.triangulate = false;
+    config.vertex_color = false;
+    // An empty search path makes tinyobjloader look beside the OBJ too. (It splits the path at
+    // ':', so a directory containing ':' loses its MTL, with a warning.)
+    config.mtl_search_path = dir.string();
+    tinyobj::ObjReader reader;
+    if (!reader.ParseFromFile(path.string(), config)) {
+        const std::vector<std::string> lines = split_lines(reader.Error());
+        std::string message = path.string() + ":";
+        for (const std::string& line : lines) message += " " + line;
+        if (lines.empty()) message += " cannot parse";
+        throw Error(message);
+    }
+    std::vector<std::string> warnings = split_lines(reader.Warning());
+    for (std::string& line : split_lines(reader.Error())) warnings.push_back(std::move(line));
+
+    const tinyobj::attrib_t& attrib = reader.GetAttrib();
+    const std::size_t nv = attrib.vertices.size() / 3;
+    const std::size_t nvt = attrib.texcoords.size() / 2;
+    const std::size_t nvn = attrib.normals.size() / 3;
+    if (nv >= std::numeric_limits<std::uint32_t>::max()) {
+        throw Error(path.string() + ": too many positions (" + std::to_string(nv) + ")");
+    }
+
+
+    // Reserve the exact triangle count: a polygon of n corners makes n - 2 triangles.
+    std::size_t triangle_estimate = 0;
+    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+        std::size_t corner_count = 0;
+        for (const unsigned char n : shape.mesh.num_face_vertices) {
+            corner_count += n;
+            triangle_estimate += n >= 3 ? n - 2u : 0u;
+        }
+        // num_face_vertices is a byte: a face of 256+ corners has wrapped around.
+        if (corner_count != shape.mesh.indices.size()) {
+            throw Error(path.string() + ": a face in '" + shape.name +
+                        "' has more than 255 corners (not supported)");
+        }
+    }
+
+    TriangleMesh mesh;
+    mesh.triangles.reserve(triangle_estimate);
+    mesh.material_ids.reserve(triangle_estimate);
+    mesh.positions.resize(nv);
+    for (std::size_t i = 0; i < nv; ++i) mesh.positions[i] = to_vec3(&attrib.vertices[3 * i]);
+    VertexUnifier unifier(mesh.positions);
+
+    const std::vector<tinyobj::material_t>& obj_materials = reader.GetMaterials();
+    const auto default_material = static_cast<std::uint32_t>(obj_materials.size());
+    bool uses_default = false;
+    std::size_t skipped = 0;
+    std::size_t face_number = 0;  // 1-based in file order, for messages
+    std::vector<std::uint32_t> corners;
+    PolygonScratch scratch;
+
+    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+        const tinyobj::mesh_t& m = shape.mesh;
+        std::size_t offset = 0;
+        for (std::size_t f = 0; f < m.num_face_vertices.size(); ++f) {
+            ++face_number;
+            const std::size_t n = m.num_face_vertices[f];
+            corners.clear();
+            for (std::size_t k = 0; k < n; ++k) {
+                const tinyobj::index_t& idx = m.indices[offset + k];
+                const Corner c{idx.vertex_index, options.load_uvs ? idx.texcoord_index : kAbsent,
+                               options.load_normals ? idx.normal_index : kAbsent};
+                if (const std::string problem = check_corner(c, nv, nvt, nvn); !problem.empty()) {
+                    throw Error(path.string() + ": face " + std::to_string(face_number) + ": " +
+                                problem);
+                }
+                corners.push_back(unifier.vertex(c));
+            }
+            offset += n;
+            if (n < 3) continue;  // tinyobjloader already warned
+
+            std::uint32_t material = default_material;
+            if (f < m.material_ids.size() && m.material_ids[f] >= 0 &&
+                static_cast<std::size_t>(m.material_ids[f]) < obj_materials.size()) {
+                material = static_cast<std::uint32_t>(m.material_ids[f]);
+            }
+
+            const std::size_t before = mesh.triangles.size();
+            if (n == 3) {
+                mesh.triangles.emplace_back(corners[0], corners[1], corners[2]);
+            } else if (!triangulate_polygon(mesh.positions, corners, scratch, mesh.triangles)) {
+                ++skipped;
+                continue;
+            }
+            uses_default = uses_default || material == default_material;
+            mesh.material_ids.insert(mesh.material_ids.end(), mesh.triangles.size() - before,
+                                     material);
+        }
+    }
+    if (skipped > 0) {
+        warnings.push_back(std::to_string(skipped) +
+                           " polygon(s) of zero area triangulate to nothing and were skipped");
+    }
+
+    mesh.materials.reserve(obj_materials.size() + 1);
+    for (const tinyobj::material_t& m : obj_materials) {
+        mesh.materials.push_back(to_mesh_material(m, dir));
+    }
+    if (uses_default) {
+        MeshMaterial fallback;
+        fallback.name = "default";
+        mesh.materials.push_back(fallback);
+    }
+
+    const std::vector<std::int32_t>& vt = unifier.vt();
+    const std::vector<std::int32_t>& vn = unifier.vn();
+    const bool any_vt = std::any_of(vt.begin(), vt.end(), [](std::int32_t i) { return i >= 0; });
+    const bool any_vn = std::any_of(vn.begin(), vn.end(), [](std::int32_t i) { return i >= 0; });
+    if (any_vt) {
+        mesh.uvs.assign(mesh.positions.size(), glm::vec2(0.0f));
+        for (std::size_t i = 0; i < vt.size(); ++i) {
+            if (vt[i] >= 0) {
+                const auto j = static_cast<std::size_t>(vt[i]);
+                mesh.uvs[i] = {attrib.texcoords[2 * j], attrib.texcoords[2 * j + 1]};
+            }
+        }
+    }
+    if (any_vn) {
+        mesh.normals.assign(mesh.positions.size(), glm::vec3(0.0f));
+        bool missing = false;
+        for (std::size_t i = 0; i < vn.size(); ++i) {
+            if (vn[i] >= 0) {
+                mesh.normals[i] = to_vec3(&attrib.normals[3 * static_cast<std::size_t>(vn[i])]);
+            } else {
+                missing = true;
+            }
+        }
+        if (missing) fill_missing_normals(mesh, vn);
+    }
+
+    report(path, warnings, options);
+
+    try {
+        if (options.transform != glm::mat4(1.0f)) transform(mesh, options.transform);
+        validate(mesh);
+    } catch (const Error& e) {
+        throw Error(path.string() + ": " + e.what());
+    }
+    return mesh;
+}
+
+void save_obj(const TriangleMesh& mesh, const fs::path& path) {
+    try {
+        validate(mesh);
+    } catch (const Error& e) {
+        throw Error(path.string() + ": cannot save: " + e.what());
+    }
+    const bool with_materials = !mesh.materials.empty();
+    fs::path mtl_path = path;
+    mtl_path.replace_extension(".mtl");
+    if (with_materials) write_mtl(mesh, mtl_path);
+
+    write_atomically(path, [&](Writer& w) {
+        w << "# written by librt save_obj: " << std::uint64_t{mesh.vertex_count()}
+          << " vertices, " << std::uint64_t{mesh.triangle_count()} << " triangles\n";
+        if (with_materials) w << "mtllib " << mtl_path.filename().string() << '\n';
+        for (const glm::vec3& p : mesh.positions) {
+            w << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+        }
+        for (const glm::vec2& t : mesh.uvs) w << "vt " << t.x << ' ' << t.y << '\n';
+        for (const glm::vec3& n : mesh.normals) {
+            w << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
+        }
+        const bool uvs = !mesh.uvs.empty(), normals = !mesh.normals.empty();
+        const bool ids = with_materials && !mesh.material_ids.empty();
+        std::size_t current = std::numeric_limits<std::size_t>::max();
+        for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+            if (ids && mesh.material_ids[i] != current) {
+                current = mesh.material_ids[i];
+                w << "usemtl " << material_name(mesh, current) << '\n';
+            }
+            w << 'f';
+            for (int k = 0; k < 3; ++k) {
+                const std::uint64_t index = std::uint64_t{mesh.triangles[i][k]} + 1;
+                w << ' ' << index;
+                if (uvs || normals) w << '/';
+                if (uvs) w << index;
+                if (normals) w << '/' << index;
+            }
+            w << '\n';
+        }
+    });
+}
+
+}  // namespace librt
