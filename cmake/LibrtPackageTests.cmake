@@ -1,6 +1,7 @@
 # ctest tests of the installed package: one fixture installs librt into a scratch prefix
 # under the build directory, then each examples/<name>/ project is configured, built and
-# run against that prefix alone, with the same generator, compiler and build type. A
+# run against that prefix alone, with the same generator, compiler, build type, compiler
+# and linker flags (so sanitizer presets build the examples with sanitizers too). A
 # broken install rule, export or config file fails here, not in a user's project.
 #   ctest --preset release -R package
 # Included from tests/CMakeLists.txt when librt is top level and LIBRT_INSTALL is on.
@@ -13,7 +14,7 @@ else()
   set(_librt_example_flags "")
 endif()
 set(LIBRT_EXAMPLE_CXX_FLAGS "${_librt_example_flags}" CACHE STRING
-    "CMAKE_CXX_FLAGS for the examples built by the package tests")
+    "Flags added to CMAKE_CXX_FLAGS for the examples built by the package tests")
 mark_as_advanced(LIBRT_EXAMPLE_CXX_FLAGS)
 
 set(_librt_package_script "${PROJECT_SOURCE_DIR}/cmake/RunPackageTest.cmake")
@@ -43,7 +44,8 @@ foreach(_list IN LISTS _librt_example_lists)
       -D GENERATOR=${CMAKE_GENERATOR}
       -D MAKE_PROGRAM=${CMAKE_MAKE_PROGRAM}
       -D CXX_COMPILER=${CMAKE_CXX_COMPILER}
-      -D CXX_FLAGS=${LIBRT_EXAMPLE_CXX_FLAGS}
+      "-DCXX_FLAGS=${CMAKE_CXX_FLAGS} ${LIBRT_EXAMPLE_CXX_FLAGS}"
+      "-DEXE_LINKER_FLAGS=${CMAKE_EXE_LINKER_FLAGS}"
       -P "${_librt_package_script}")
   set_tests_properties(package.example.${_name} PROPERTIES
     FIXTURES_REQUIRED librt_package_install

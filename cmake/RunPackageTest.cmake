@@ -1,8 +1,9 @@
 # Script (cmake -P) behind the package tests of cmake/LibrtPackageTests.cmake.
 #   MODE=install: BUILD_DIR, PREFIX, CONFIG. Installs the build into an emptied PREFIX.
 #   MODE=example: NAME, SOURCE_DIR, BINARY_DIR, PREFIX, CONFIG, GENERATOR, MAKE_PROGRAM,
-#                 CXX_COMPILER, CXX_FLAGS. Configures SOURCE_DIR afresh against PREFIX
-#                 only, builds it, checks that librt came from PREFIX, runs NAME.
+#                 CXX_COMPILER, CXX_FLAGS, EXE_LINKER_FLAGS. Configures SOURCE_DIR afresh
+#                 against PREFIX only, builds it, checks that librt came from PREFIX, runs
+#                 NAME.
 cmake_minimum_required(VERSION 3.22)
 
 function(run_step what)
@@ -35,6 +36,7 @@ elseif(MODE STREQUAL "example")
       "-DCMAKE_PREFIX_PATH=${PREFIX}"
       "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}"
       "-DCMAKE_CXX_FLAGS=${CXX_FLAGS}"
+      "-DCMAKE_EXE_LINKER_FLAGS=${EXE_LINKER_FLAGS}"
       # Only the scratch prefix: never a librt found through the package registries.
       -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF
       -DCMAKE_FIND_USE_SYSTEM_PACKAGE_REGISTRY=OFF)

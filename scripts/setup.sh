@@ -8,6 +8,7 @@ packages=(
   libglm-dev libtinyobjloader-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libembree-dev
+  clang libclang-rt-14-dev clang-format
   doxygen
 )
 

@@ -1,12 +1,63 @@
 #!/usr/bin/env bash
-# Sets up a fresh Debian 12 machine, builds librt and runs the whole test suite with
-# ctest, including the package tests (install + examples). Used as-is by CI (.ci/run).
-# Usage: scripts/test.sh [preset]   (default: release; e.g. release-shared, debug)
+# Sets up a fresh Debian 12 machine, then builds and runs the whole test suite:
+#   1. release build, every ctest test (unit, statistical, app smoke tests, package tests:
+#      install into a scratch prefix, then build and run examples/* against it)
+#   2. the same with librt as a shared library (preset release-shared)
+#   3. AddressSanitizer + UndefinedBehaviorSanitizer build, every unit test
+#   4. ThreadSanitizer build, the multithreaded renderer tests
+#   5. the OBJ fuzzer (libFuzzer, clang) for a bounded time (LIBRT_FUZZ_SECONDS, default 60)
+# CI runs exactly this (.ci/run). `--quick` runs stage 1 only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-preset="${1:-release}"
+quick=0
+[ "${1:-}" = "--quick" ] && quick=1
+
 bash scripts/setup.sh
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake --preset "$preset"
-cmake --build --preset "$preset" -j "$jobs"
-ctest --preset "$preset" -j "$jobs"
+stage() { printf '\n==== %s ====\n' "$*"; }
+logs=$(mktemp -d)
+trap 'rm -rf "$logs"' EXIT
+# Runs one ctest preset, keeping its output to total the counts at the end.
+run_ctest() { ctest --preset "$1" -j "$jobs" 2>&1 | tee "$logs/$1.log"; }
+# "N passed, N failed" over every ctest run so far (ctest prints "x tests failed out of y").
+summary() {
+  local total=0 failed=0 t f
+  for log in "$logs"/*.log; do
+    read -r f t < <(sed -nE 's/.* ([0-9]+) tests? failed out of ([0-9]+).*/\1 \2/p' "$log" | tail -n 1)
+    total=$((total + ${t:-0})); failed=$((failed + ${f:-0}))
+  done
+  echo "ctest: $((total - failed)) passed, $failed failed"
+}
+
+stage "release build and tests"
+cmake --preset release
+cmake --build --preset release -j "$jobs"
+run_ctest release
+if [ "$quick" = 1 ]; then summary; exit 0; fi
+
+stage "shared library build and tests"
+cmake --preset release-shared
+cmake --build --preset release-shared -j "$jobs"
+run_ctest release-shared
+
+stage "AddressSanitizer + UndefinedBehaviorSanitizer"
+cmake --preset asan
+cmake --build --preset asan -j "$jobs"
+run_ctest asan
+
+stage "ThreadSanitizer (renderer)"
+cmake --preset tsan
+cmake --build --preset tsan -j "$jobs" --target librt_tests
+run_ctest tsan
+
+stage "fuzzing load_obj + BVH build for ${LIBRT_FUZZ_SECONDS:-60} s"
+cmake --preset fuzz
+cmake --build --preset fuzz -j "$jobs"
+corpus="$logs/corpus"
+mkdir -p "$corpus"
+cp tests/fuzz/corpus/obj/* "$corpus"/
+./build/fuzz/tests/fuzz/obj_fuzz -max_total_time="${LIBRT_FUZZ_SECONDS:-60}" -max_len=4096 \
+    -rss_limit_mb=2048 -print_final_stats=1 "$corpus" 2>&1 | tail -n 12
+
+stage "all stages passed"
+summary
