@@ -1,0 +1,163 @@
+#include "cli.h"
+
+#include <librt/core/error.h>
+#include <librt/io/image_io.h>
+#include <librt/render/integrators.h>
+#include <librt/render/renderer.h>
+#include <librt/render/tone_map.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <thread>
+
+namespace librt::apps {
+
+namespace {
+
+std::atomic<bool> g_cancel{false};
+
+extern "C" void on_interrupt(int /*signal*/) { g_cancel.store(true); }
+
+}  // namespace
+
+void add_common_options(CLI::App& app, AppOptions& o) {
+    app.add_option("--width", o.width, "Image width in pixels")->capture_default_str();
+    app.add_option("--height", o.height, "Image height in pixels")->capture_default_str();
+    app.add_option("--size", o.size, "Sets both width and height");
+    app.add_option("--spp", o.spp, "Samples per pixel")->capture_default_str();
+    app.add_option("--bounces", o.bounces, "Scattering events per path (mirror/glass bounces for direct lighting)")
+        ->capture_default_str();
+    app.add_option("--threads", o.threads, "Worker threads, 0 = all cores")->capture_default_str();
+    app.add_option("--seed", o.seed, "Random seed (the image is the same for any thread count)")
+        ->capture_default_str();
+    app.add_option("-o,--output", o.output, "Output image: .png (tone-mapped), .pfm or .hdr (linear)")
+        ->capture_default_str();
+    app.add_option("--exposure", o.exposure,
+                   "Multiplies the report's exposure 255^(-1/0.45) before gamma 0.45")
+        ->capture_default_str();
+    app.add_option("--power", o.power, "Total light power (the report's 2.14e8 times its 80 summed samples)")
+        ->capture_default_str();
+    app.add_flag("--check", o.check, "Exit with code 2 if the image is all black or has NaN/Inf pixels");
+    app.add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
+}
+
+void add_mesh_options(CLI::App& app, MeshOptions& o) {
+    app.add_option("--mesh", o.path, "OBJ file (with its MTL); default: a procedural Utah teapot of ~5.5k triangles");
+    app.add_option("--mesh-fit", o.placement.fit,
+                   "Fit the mesh first: bottom centre to the origin, largest side to this many units (0 = as in the file)")
+        ->capture_default_str();
+    app.add_option("--mesh-scale", o.placement.scale, "The report's scale, applied after fitting")
+        ->capture_default_str();
+    app.add_option("--mesh-offset", o.offset, "The report's offset x y z, applied after scaling")
+        ->expected(3)
+        ->capture_default_str();
+    app.add_option("--mesh-rotate", o.placement.rotate_y_degrees, "Turn about +y in degrees, before scaling")
+        ->capture_default_str();
+}
+
+MeshPlacement placement_of(const MeshOptions& o) {
+    MeshPlacement p = o.placement;
+    if (o.offset.size() == 3) p.offset = {o.offset[0], o.offset[1], o.offset[2]};
+    return p;
+}
+
+CameraSettings camera_of(const AppOptions& o) {
+    return o.size > 0 ? report_camera(o.size, o.size) : report_camera(o.width, o.height);
+}
+
+int run(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+    try {
+        return body();
+    } catch (const librt::Error& e) {
+        std::cerr << app.get_name() << ": " << e.what() << '\n';
+    } catch (const std::exception& e) {
+        std::cerr << app.get_name() << ": internal error: " << e.what() << '\n';
+    }
+    return 1;
+}
+
+int render_and_write(const Scene& scene, const CameraSettings& camera_settings,
+                     Integrator& integrator, const AppOptions& o,
+                     const std::function<void(const Image&)>& after_write) {
+    const Camera camera(camera_settings);
+    const ToneMap tone_map{o.exposure * kReportExposure, 0.45f};
+    validate(tone_map);  // fail before a long render, not after
+
+    RenderSettings settings;
+    settings.samples_per_pixel = o.spp;
+    settings.threads = o.threads;
+    settings.seed = o.seed;
+    settings.progress = !o.quiet;
+    settings.cancel = &g_cancel;
+    auto* const previous = std::signal(SIGINT, on_interrupt);
+    RenderStats stats;
+    Image image;
+    try {
+        image = render(scene, camera, integrator, settings, &stats);
+    } catch (...) {
+        std::signal(SIGINT, previous);
+        throw;
+    }
+    std::signal(SIGINT, previous);
+    if (stats.cancelled) {
+        std::cerr << "interrupted: nothing written\n";
+        return 130;
+    }
+
+    std::uint64_t guarded = 0;
+    if (const auto* g = dynamic_cast<const GuardedIntegrator*>(&integrator)) guarded = g->nonfinite_count();
+    if (!o.quiet) {
+        const double rate = stats.seconds > 0.0 ? static_cast<double>(stats.samples) / stats.seconds : 0.0;
+        std::printf("%dx%d, %d spp, %u threads: %.2f s (%.2f M samples/s)\n", image.width,
+                    image.height, o.spp,
+                    o.threads > 0 ? static_cast<unsigned>(o.threads) : std::max(1u, std::thread::hardware_concurrency()),
+                    stats.seconds, rate * 1e-6);
+    }
+    if (stats.nonfinite_samples + guarded > 0) {
+        std::fprintf(stderr, "warning: %llu non-finite samples dropped\n",
+                     static_cast<unsigned long long>(stats.nonfinite_samples + guarded));
+    }
+
+    write_image(o.output, image, tone_map);
+    if (!o.quiet) std::printf("wrote %s\n", o.output.c_str());
+    if (after_write) after_write(image);
+
+    if (o.check) {
+        const bool finite = std::all_of(image.pixels.begin(), image.pixels.end(), [](const glm::vec3& p) {
+            return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+        });
+        const std::vector<std::uint8_t> rgb = to_rgb8(image, tone_map);
+        const bool black = std::all_of(rgb.begin(), rgb.end(), [](std::uint8_t v) { return v == 0; });
+        if (!finite || black) {
+            std::fprintf(stderr, "check failed: the image %s\n",
+                         !finite ? "has non-finite pixels" : "is all black");
+            return 2;
+        }
+    }
+    return 0;
+}
+
+void write_zoomed_crop(const std::string& path, const Image& image, int cx, int cy, int side,
+                       int zoom, float exposure) {
+    side = std::clamp(side, 1, std::min(image.width, image.height));
+    zoom = std::clamp(zoom, 1, 64);
+    const int x0 = std::clamp(cx - side / 2, 0, image.width - side);
+    const int y0 = std::clamp(cy - side / 2, 0, image.height - side);
+    Image crop(side * zoom, side * zoom);
+    for (int y = 0; y < crop.height; ++y) {
+        for (int x = 0; x < crop.width; ++x) crop.at(x, y) = image.at(x0 + x / zoom, y0 + y / zoom);
+    }
+    write_image(path, crop, ToneMap{exposure * kReportExposure, 0.45f});
+}
+
+}  // namespace librt::apps

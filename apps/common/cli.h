@@ -1,0 +1,76 @@
+#pragma once
+
+#include "report_scene.h"
+
+#include <librt/render/camera.h>
+#include <librt/render/image.h>
+#include <librt/render/integrator.h>
+#include <librt/render/scene.h>
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+// Command-line plumbing shared by the rt_* apps: common options, error handling, and
+// "render, check, write".
+
+namespace librt::apps {
+
+/// Options every app has.
+struct AppOptions {
+    int width = 512;           ///< --width
+    int height = 512;          ///< --height
+    int size = 0;              ///< --size: sets width and height when > 0
+    int spp = 1;               ///< --spp, samples per pixel
+    int bounces = 5;           ///< --bounces, scattering events per path
+    int threads = 0;           ///< --threads, 0 = all cores
+    std::uint64_t seed = 0;    ///< --seed
+    std::string output;        ///< -o/--output: .png, .pfm or .hdr
+    float exposure = 1.0f;     ///< --exposure: multiplies kReportExposure
+    float power = kDefaultPower;  ///< --power: total light power
+    bool check = false;        ///< --check: exit 2 if the image is black or has NaN/Inf
+    bool quiet = false;        ///< --quiet: no progress bar, no summary
+};
+
+/// Options of the apps that show a mesh.
+struct MeshOptions {
+    std::string path;                               ///< --mesh; empty = procedural teapot
+    MeshPlacement placement;                        ///< from --mesh-fit/-scale/-offset/-rotate
+    std::vector<float> offset{0.0f, -10.0f, 0.0f};  ///< --mesh-offset x y z
+};
+
+/// Registers the common options on `app`, with `options`' current values as defaults.
+void add_common_options(CLI::App& app, AppOptions& options);
+
+/// Registers --mesh, --mesh-fit, --mesh-scale, --mesh-offset and --mesh-rotate.
+void add_mesh_options(CLI::App& app, MeshOptions& options);
+
+/// The placement from the parsed mesh options.
+[[nodiscard]] MeshPlacement placement_of(const MeshOptions& options);
+
+/// The report's camera at the size given on the command line.
+[[nodiscard]] CameraSettings camera_of(const AppOptions& options);
+
+/// Parses the command line and runs `body`. A librt::Error (or any other exception) is
+/// printed on stderr and gives exit code 1; command-line errors give CLI11's code.
+/// Returns body's exit code otherwise.
+[[nodiscard]] int run(CLI::App& app, int argc, char** argv, const std::function<int()>& body);
+
+/// Renders with the options' sample count, threads and seed (Ctrl-C cancels: nothing is
+/// written, exit 130), prints a summary, writes options.output tone-mapped with the
+/// report's gamma and exposure, and with --check returns 2 when the image is all black
+/// or has a non-finite pixel. `after_write`, when set, gets the linear image once it is
+/// written (e.g. to write a zoomed crop). `scene` must be committed.
+[[nodiscard]] int render_and_write(const Scene& scene, const CameraSettings& camera,
+                                   Integrator& integrator, const AppOptions& options,
+                                   const std::function<void(const Image&)>& after_write = {});
+
+/// Writes a nearest-neighbour `zoom`x enlargement of the square crop of side `side`
+/// pixels centred at (cx, cy) (clamped into the image), tone-mapped like the main image.
+void write_zoomed_crop(const std::string& path, const Image& image, int cx, int cy, int side,
+                       int zoom, float exposure);
+
+}  // namespace librt::apps

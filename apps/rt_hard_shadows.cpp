@@ -1,0 +1,24 @@
+// The report's hard-shadow figure: the room and its four spheres lit by a point light,
+// direct light only (one shadow ray per hit), one sample per pixel.
+#include "common/cli.h"
+
+#include <librt/render/integrators.h>
+
+using namespace librt;
+
+int main(int argc, char** argv) {
+    CLI::App app{"The report's hard shadows: point light, direct lighting only", "rt_hard_shadows"};
+    apps::AppOptions options;
+    options.spp = 1;
+    options.output = "hard_shadows.png";
+    apps::add_common_options(app, options);
+    return apps::run(app, argc, argv, [&] {
+        Scene scene;
+        apps::add_room(scene);
+        apps::add_report_spheres(scene);
+        apps::add_report_light(scene, apps::LightKind::Point, options.power);
+        scene.commit();
+        DirectLighting integrator(DirectLightingSettings{options.bounces});
+        return apps::render_and_write(scene, apps::camera_of(options), integrator, options);
+    });
+}

@@ -1,0 +1,26 @@
+// The report's indirect-light figure: the point light plus cosine-weighted diffuse
+// bounces (5 bounces, 30 samples per pixel).
+#include "common/cli.h"
+
+#include <librt/render/integrators.h>
+
+using namespace librt;
+
+int main(int argc, char** argv) {
+    CLI::App app{"The report's indirect lighting: point light, path tracing", "rt_indirect"};
+    apps::AppOptions options;
+    options.spp = 30;
+    options.output = "indirect.png";
+    apps::add_common_options(app, options);
+    return apps::run(app, argc, argv, [&] {
+        Scene scene;
+        apps::add_room(scene);
+        apps::add_report_spheres(scene);
+        apps::add_report_light(scene, apps::LightKind::Point, options.power);
+        scene.commit();
+        PathTracerSettings settings;
+        settings.max_depth = options.bounces;
+        PathTracer integrator(settings);
+        return apps::render_and_write(scene, apps::camera_of(options), integrator, options);
+    });
+}

@@ -1,0 +1,26 @@
+// The report's soft-shadow figure: the point light replaced by a light sphere of radius
+// 10, sampled at a random point per shadow ray (5 bounces, 30 samples per pixel).
+#include "common/cli.h"
+
+#include <librt/render/integrators.h>
+
+using namespace librt;
+
+int main(int argc, char** argv) {
+    CLI::App app{"The report's soft shadows: a light sphere of radius 10, path tracing", "rt_soft_shadows"};
+    apps::AppOptions options;
+    options.spp = 30;
+    options.output = "soft_shadows.png";
+    apps::add_common_options(app, options);
+    return apps::run(app, argc, argv, [&] {
+        Scene scene;
+        apps::add_room(scene);
+        apps::add_report_spheres(scene);
+        apps::add_report_light(scene, apps::LightKind::Sphere, options.power);
+        scene.commit();
+        PathTracerSettings settings;
+        settings.max_depth = options.bounces;
+        PathTracer integrator(settings);
+        return apps::render_and_write(scene, apps::camera_of(options), integrator, options);
+    });
+}

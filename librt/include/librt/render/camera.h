@@ -1,0 +1,78 @@
+#pragma once
+
+#include <librt/geometry/ray.h>
+#include <librt/render/sampler.h>
+
+#include <glm/vec3.hpp>
+
+namespace librt {
+
+/// Where in a pixel a camera ray starts.
+enum class PixelJitter {
+    None,      ///< always the pixel centre (aliased edges, as the report's first figures)
+    Gaussian,  ///< centre plus a Box-Muller Gaussian offset (the report's anti-aliasing)
+};
+
+/// How the camera origin is spread for depth of field.
+enum class LensModel {
+    Pinhole,   ///< every ray starts at the camera position: everything sharp
+    Gaussian,  ///< origin offset by a Gaussian in the camera's x-y plane (the report)
+    Disk,      ///< origin uniform on a disk in the camera's x-y plane (a thin lens)
+};
+
+/// Everything that defines a camera. Defaults are the report's camera: at (0, 0, 55)
+/// looking down -z, 60 degree vertical field of view, 512x512, no jitter, pinhole.
+struct CameraSettings {
+    glm::vec3 position{0.0f, 0.0f, 55.0f};  ///< centre of projection (the report's C)
+    glm::vec3 look_at{0.0f, 0.0f, 0.0f};    ///< a point the optical axis passes through
+    glm::vec3 up{0.0f, 1.0f, 0.0f};         ///< world "up"; must not be parallel to the view
+    float vertical_fov_degrees = 60.0f;     ///< full vertical field of view, in (0, 180)
+    int width = 512;                        ///< image width in pixels, in [1, 65536]
+    int height = 512;                       ///< image height in pixels, in [1, 65536]
+    PixelJitter pixel_jitter = PixelJitter::None;  ///< sub-pixel position of the rays
+    float pixel_sigma = 0.5f;               ///< Gaussian pixel jitter's sigma in pixels (>= 0)
+    LensModel lens = LensModel::Pinhole;    ///< depth-of-field model
+    float lens_sigma = 1.0f;                ///< Gaussian lens's sigma in scene units (>= 0)
+    float lens_radius = 1.0f;               ///< disk lens's radius in scene units (>= 0)
+    float focal_distance = 55.0f;           ///< distance along each ray that stays sharp (> 0)
+};
+
+/// The report's perspective camera. Pixel (x, y) = (column j, row i), rows top to
+/// bottom; the camera-space direction through it is
+/// (j - W/2 + 0.5 + dx, -i + H/2 - 0.5 + dy, -H / (2 tan(fov/2))), rotated into the
+/// world by the look-at basis. Immutable after construction; safe to share across
+/// threads.
+class Camera {
+public:
+    /// Validates the settings; throws librt::Error naming the first bad parameter and
+    /// its value.
+    explicit Camera(const CameraSettings& settings);
+
+    /// The primary ray for one sample of pixel (px, py). Always draws exactly two 2D
+    /// samples from `sampler` (pixel jitter, then lens), used or not, so an integrator's
+    /// random numbers do not change when jitter or depth of field is switched off.
+    /// The direction is unit length; t_min = 0.
+    [[nodiscard]] Ray generate_ray(int px, int py, Sampler& sampler) const;
+
+    /// The settings the camera was built from.
+    [[nodiscard]] const CameraSettings& settings() const { return settings_; }
+    /// Image width in pixels.
+    [[nodiscard]] int width() const { return settings_.width; }
+    /// Image height in pixels.
+    [[nodiscard]] int height() const { return settings_.height; }
+    /// Unit camera-space +x (image right) in world space.
+    [[nodiscard]] const glm::vec3& right() const { return right_; }
+    /// Unit camera-space +y (image up) in world space.
+    [[nodiscard]] const glm::vec3& true_up() const { return up_; }
+    /// Unit viewing direction (camera-space -z) in world space.
+    [[nodiscard]] const glm::vec3& forward() const { return forward_; }
+
+private:
+    CameraSettings settings_;
+    glm::vec3 right_{1.0f, 0.0f, 0.0f};
+    glm::vec3 up_{0.0f, 1.0f, 0.0f};
+    glm::vec3 forward_{0.0f, 0.0f, -1.0f};
+    float image_plane_distance_ = 1.0f;  // H / (2 tan(fov/2)), in pixels
+};
+
+}  // namespace librt

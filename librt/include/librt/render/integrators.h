@@ -1,0 +1,127 @@
+#pragma once
+
+#include <librt/render/integrator.h>
+
+#include <atomic>
+#include <cstdint>
+
+// The report's rendering algorithms, from its hard-shadow figure to its full getColor, plus
+// a brute-force reference and a debug view. All iterate the path in a loop (no recursion),
+// allocate nothing per ray, and never return NaN or Inf.
+//
+// Depth convention, shared by all: max_depth counts scattering events (diffuse, mirror or
+// glass bounces) along the path. Emission seen by the camera counts at depth 0, so
+// max_depth = 0 shows only emitters and max_depth = 1 gives direct lighting at the first
+// surface; light sampling at a diffuse hit is part of that hit's scattering event.
+
+namespace librt {
+
+/// Common base: guards every estimate against NaN and Inf. A non-finite sample is
+/// replaced by 0 and counted (atomically, as li() runs on many threads); a debug build
+/// also asserts, since it means a bug or a degenerate scene.
+class GuardedIntegrator : public Integrator {
+public:
+    /// How many samples were non-finite and replaced by 0 since construction.
+    [[nodiscard]] std::uint64_t nonfinite_count() const {
+        return nonfinite_.load(std::memory_order_relaxed);
+    }
+
+protected:
+    /// Returns radiance, or 0 (counted) when any component is NaN or infinite.
+    [[nodiscard]] glm::vec3 guard(const glm::vec3& radiance) const;
+
+private:
+    mutable std::atomic<std::uint64_t> nonfinite_{0};
+};
+
+/// Settings of DirectLighting.
+struct DirectLightingSettings {
+    int max_depth = 5;  ///< mirror and glass bounces followed, in [0, 1000]
+};
+
+/// The report's first figure: at a diffuse hit, the light of every point light (hard
+/// shadow ray, I cos(theta) / d^2 * albedo / pi) plus one cone sample of every sphere
+/// light; no indirect diffuse light. Mirrors and glass are followed up to max_depth;
+/// emitters seen directly or through mirrors and glass show their radiance.
+class DirectLighting final : public GuardedIntegrator {
+public:
+    /// Throws librt::Error naming max_depth when it is outside [0, 1000].
+    explicit DirectLighting(const DirectLightingSettings& settings = {});
+    /// One sample of the direct radiance along ray.
+    [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray, Sampler& sampler) const override;
+    /// The settings in use.
+    [[nodiscard]] const DirectLightingSettings& settings() const { return settings_; }
+
+private:
+    DirectLightingSettings settings_;
+};
+
+/// Settings of PathTracer and BruteForcePathTracer.
+struct PathTracerSettings {
+    int max_depth = 5;               ///< scattering events per path, in [0, 1000] (report: 5)
+    bool russian_roulette = false;   ///< randomly end paths after russian_roulette_depth
+    int russian_roulette_depth = 3;  ///< bounces before roulette starts, >= 0
+};
+
+/// The report's full getColor as a loop: at a diffuse hit, next-event estimation of every
+/// point light and of each sphere light (one sample of the cone it subtends, where the
+/// report picked a point on its surface: lower variance, same expectation), then a
+/// cosine-weighted bounce (weight albedo); mirrors reflect, glass refracts (Snell, total
+/// internal reflection, Schlick reflection chosen with probability F when the material
+/// asks for it). Emission is never counted twice: a sphere light hit right after a
+/// diffuse bounce adds nothing (light sampling at that bounce already counted it), while
+/// one seen by the camera or through mirrors and glass adds its radiance; emitters that
+/// are not sphere lights (emissive meshes, glowing diffuse surfaces) are not sampled, so
+/// they always count when hit.
+class PathTracer final : public GuardedIntegrator {
+public:
+    /// Throws librt::Error naming max_depth or russian_roulette_depth when out of range.
+    explicit PathTracer(const PathTracerSettings& settings = {});
+    /// One sample of the radiance along ray.
+    [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray, Sampler& sampler) const override;
+    /// The settings in use.
+    [[nodiscard]] const PathTracerSettings& settings() const { return settings_; }
+
+private:
+    PathTracerSettings settings_;
+};
+
+/// The reference: the same paths as PathTracer with no light sampling at all; emission
+/// counts whenever a path hits an emitter. It converges to the same image for sphere
+/// lights and emissive surfaces, only more slowly. Point lights contribute NOTHING: a
+/// point has no area, so no sampled direction ever hits it (with point lights only it
+/// renders black), which is why it is the ground truth only for area lights.
+class BruteForcePathTracer final : public GuardedIntegrator {
+public:
+    /// Throws librt::Error naming max_depth or russian_roulette_depth when out of range.
+    explicit BruteForcePathTracer(const PathTracerSettings& settings = {});
+    /// One sample of the radiance along ray.
+    [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray, Sampler& sampler) const override;
+    /// The settings in use.
+    [[nodiscard]] const PathTracerSettings& settings() const { return settings_; }
+
+private:
+    PathTracerSettings settings_;
+};
+
+/// What AlbedoNormalIntegrator shows.
+enum class DebugView : std::uint8_t {
+    Albedo,  ///< diffuse albedo (texture applied), tint of mirrors and glass, emission of lights
+    Normal,  ///< shading normal mapped from [-1, 1] to [0, 1] per axis
+};
+
+/// Debug view of the first surface hit; black where nothing is hit.
+class AlbedoNormalIntegrator final : public GuardedIntegrator {
+public:
+    /// Shows the given view.
+    explicit AlbedoNormalIntegrator(DebugView view = DebugView::Albedo) : view_(view) {}
+    /// The albedo or normal at the first hit.
+    [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray, Sampler& sampler) const override;
+    /// The view in use.
+    [[nodiscard]] DebugView view() const { return view_; }
+
+private:
+    DebugView view_;
+};
+
+}  // namespace librt

@@ -1,0 +1,276 @@
+#include <librt/io/image_io.h>
+
+#include <librt/core/error.h>
+
+#include <stb/stb_image_write.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <charconv>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#if defined(__unix__) || defined(__APPLE__)
+#include <unistd.h>
+#define LIBRT_HAVE_FSYNC 1
+#endif
+
+namespace librt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Bytes = std::vector<unsigned char>;
+
+// The writers hand stb a film as a flat float array: three packed floats per pixel.
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+
+// Built by appending: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string.
+std::string quoted(const fs::path& path) {
+    std::string out(1, '\'');
+    out += path.string();
+    out += '\'';
+    return out;
+}
+
+// A name no other writer (thread or process) picks: per-process random bits plus a counter.
+std::string unique_suffix() {
+    static const std::uint64_t process_bits = [] {
+        std::random_device device;
+        return (std::uint64_t{device()} << 32u) ^ std::uint64_t{device()};
+    }();
+    static std::atomic<std::uint64_t> counter{0};
+    const std::uint64_t n = counter.fetch_add(1, std::memory_order_relaxed);
+    char buffer[48];
+    std::snprintf(buffer, sizeof buffer, "%016llx-%llu",
+                  static_cast<unsigned long long>(process_bits),
+                  static_cast<unsigned long long>(n));
+    return buffer;
+}
+
+// Writes `bytes` to a temporary file beside `path`, flushes it to disk, then renames it
+// over `path` (atomic on POSIX): readers see the old file or the complete new one.
+void write_file_atomically(const fs::path& path, const Bytes& bytes) {
+    if (path.filename().empty()) throw Error("cannot write " + quoted(path) + ": no file name");
+    std::string temp_name(1, '.');
+    temp_name += path.filename().string();
+    temp_name += ".tmp-";
+    temp_name += unique_suffix();
+    const fs::path temp = path.parent_path() / temp_name;
+    // "x": fail rather than reuse an existing file of that name.
+    std::FILE* file = std::fopen(temp.string().c_str(), "wbx");
+    if (file == nullptr) {
+        throw Error("cannot write " + quoted(path) + ": " + std::strerror(errno));
+    }
+    bool ok = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
+    ok = std::fflush(file) == 0 && ok;
+    int saved_errno = ok ? 0 : errno;
+#ifdef LIBRT_HAVE_FSYNC
+    if (ok && ::fsync(::fileno(file)) != 0) {
+        ok = false;
+        saved_errno = errno;
+    }
+#endif
+    if (std::fclose(file) != 0 && ok) {
+        ok = false;
+        saved_errno = errno;
+    }
+    if (!ok) {
+        std::error_code ignored;
+        fs::remove(temp, ignored);
+        throw Error("cannot write " + quoted(path) + ": " +
+                    (saved_errno != 0 ? std::strerror(saved_errno) : "write failed"));
+    }
+    std::error_code ec;
+    fs::rename(temp, path, ec);
+    if (ec) {
+        std::error_code ignored;
+        fs::remove(temp, ignored);
+        throw Error("cannot write " + quoted(path) + ": " + ec.message());
+    }
+}
+
+void check_writable_image(const fs::path& path, const Image& image) {
+    if (image.width < 1 || image.height < 1 ||
+        image.pixels.size() != static_cast<std::size_t>(image.width) *
+                                   static_cast<std::size_t>(image.height)) {
+        throw Error("cannot write " + quoted(path) + ": image is " +
+                    std::to_string(image.width) + " x " + std::to_string(image.height) +
+                    " with " + std::to_string(image.pixels.size()) + " pixels");
+    }
+}
+
+// stb_image_write's output callback: appends to a byte vector.
+void append_bytes(void* context, void* data, int size) {
+    auto* out = static_cast<Bytes*>(context);
+    const auto* p = static_cast<const unsigned char*>(data);
+    out->insert(out->end(), p, p + size);
+}
+
+void put_u32_le(Bytes& out, std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) out.push_back(static_cast<unsigned char>(v >> (8 * i)));
+}
+
+std::uint32_t get_u32(const unsigned char* p, bool little_endian) {
+    std::uint32_t v = 0;
+    for (int i = 0; i < 4; ++i) {
+        const int shift = little_endian ? 8 * i : 8 * (3 - i);
+        v |= std::uint32_t{p[i]} << shift;
+    }
+    return v;
+}
+
+// Reads the next whitespace-delimited token of a PFM header starting at `pos`.
+std::string_view next_token(const Bytes& data, std::size_t& pos) {
+    while (pos < data.size() && std::isspace(data[pos])) ++pos;
+    const std::size_t start = pos;
+    while (pos < data.size() && !std::isspace(data[pos])) ++pos;
+    return {reinterpret_cast<const char*>(data.data()) + start, pos - start};
+}
+
+Image scaled(const Image& image, float factor) {
+    Image out = image;
+    for (glm::vec3& p : out.pixels) p *= factor;
+    return out;
+}
+
+}  // namespace
+
+void write_png(const fs::path& path, const Image& image, const ToneMap& tone_map) {
+    check_writable_image(path, image);
+    const std::vector<std::uint8_t> rgb = to_rgb8(image, tone_map);
+    Bytes encoded;
+    if (stbi_write_png_to_func(append_bytes, &encoded, image.width, image.height, 3,
+                               rgb.data(), image.width * 3) == 0) {
+        throw Error("cannot write " + quoted(path) + ": PNG encoding failed");
+    }
+    write_file_atomically(path, encoded);
+}
+
+void write_pfm(const fs::path& path, const Image& image) {
+    check_writable_image(path, image);
+    const std::string header =
+        "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
+    Bytes out(header.begin(), header.end());
+    out.reserve(header.size() + image.pixels.size() * 12);
+    // PFM stores rows bottom to top; scale -1 means little-endian floats.
+    for (int y = image.height - 1; y >= 0; --y) {
+        for (int x = 0; x < image.width; ++x) {
+            const glm::vec3& p = image.at(x, y);
+            for (int c = 0; c < 3; ++c) {
+                std::uint32_t bits = 0;
+                std::memcpy(&bits, &p[c], sizeof bits);
+                put_u32_le(out, bits);
+            }
+        }
+    }
+    write_file_atomically(path, out);
+}
+
+Image read_pfm(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error("cannot read " + quoted(path) + ": " + std::strerror(errno));
+    const Bytes data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw Error("cannot read " + quoted(path) + ": read error");
+    const auto malformed = [&](const std::string& what) {
+        return Error(quoted(path) + ": not a valid PFM file: " + what);
+    };
+
+    std::size_t pos = 0;
+    const std::string_view magic = next_token(data, pos);
+    int channels = 0;
+    if (magic == "PF") {
+        channels = 3;
+    } else if (magic == "Pf") {
+        channels = 1;
+    } else {
+        throw malformed("it does not start with PF or Pf");
+    }
+    long long size[2] = {0, 0};
+    for (long long& v : size) {
+        const std::string_view token = next_token(data, pos);
+        const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
+        if (ec != std::errc() || end != token.data() + token.size() || v < 1) {
+            throw malformed("bad size '" + std::string(token) + "'");
+        }
+    }
+    const std::string_view scale_token = next_token(data, pos);
+    double scale = 0.0;
+    {
+        const auto [end, ec] = std::from_chars(
+            scale_token.data(), scale_token.data() + scale_token.size(), scale);
+        if (ec != std::errc() || end != scale_token.data() + scale_token.size() ||
+            scale == 0.0 || !std::isfinite(scale)) {
+            throw malformed("bad scale '" + std::string(scale_token) + "'");
+        }
+    }
+    // Exactly one whitespace character separates the header from the raster.
+    if (pos >= data.size() || !std::isspace(data[pos])) throw malformed("truncated header");
+    ++pos;
+
+    check_image_size(size[0], size[1]);
+    Image image(static_cast<int>(size[0]), static_cast<int>(size[1]));
+    const std::size_t needed = image.pixels.size() * static_cast<std::size_t>(channels) * 4;
+    if (data.size() - pos < needed) {
+        throw malformed("truncated raster: " + std::to_string(data.size() - pos) +
+                        " bytes for " + std::to_string(needed));
+    }
+    const bool little_endian = scale < 0.0;
+    const unsigned char* p = data.data() + pos;
+    for (int y = image.height - 1; y >= 0; --y) {
+        for (int x = 0; x < image.width; ++x) {
+            glm::vec3& out = image.at(x, y);
+            for (int c = 0; c < channels; ++c) {
+                const std::uint32_t bits = get_u32(p, little_endian);
+                p += 4;
+                std::memcpy(&out[c], &bits, sizeof bits);
+            }
+            if (channels == 1) out = glm::vec3(out[0]);
+        }
+    }
+    return image;
+}
+
+void write_hdr(const fs::path& path, const Image& image) {
+    check_writable_image(path, image);
+    Bytes encoded;
+    if (stbi_write_hdr_to_func(append_bytes, &encoded, image.width, image.height, 3,
+                               &image.pixels[0].x) == 0) {
+        throw Error("cannot write " + quoted(path) + ": HDR encoding failed");
+    }
+    write_file_atomically(path, encoded);
+}
+
+void write_image(const fs::path& path, const Image& image, const ToneMap& tone_map) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ext == ".png") {
+        write_png(path, image, tone_map);
+    } else if (ext == ".pfm" || ext == ".hdr") {
+        validate(tone_map);
+        const Image out = tone_map.exposure == 1.0f ? image : scaled(image, tone_map.exposure);
+        if (ext == ".pfm") {
+            write_pfm(path, out);
+        } else {
+            write_hdr(path, out);
+        }
+    } else {
+        throw Error("cannot write " + quoted(path) +
+                    ": unknown image format (use .png, .pfm or .hdr)");
+    }
+}
+
+}  // namespace librt

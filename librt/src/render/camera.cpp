@@ -1,0 +1,123 @@
+#include <librt/render/camera.h>
+
+#include <librt/core/error.h>
+#include <librt/sampling/jitter.h>
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace librt {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& name, const std::string& value, const char* rule) {
+    throw Error("camera " + name + " = " + value + ": " + rule);
+}
+
+std::string to_text(float v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+}
+
+std::string to_text(const glm::vec3& v) {
+    std::ostringstream out;
+    out << '(' << v.x << ", " << v.y << ", " << v.z << ')';
+    return out.str();
+}
+
+bool is_finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+void validate(const CameraSettings& s) {
+    constexpr int k_max_size = 65536;
+    if (s.width < 1 || s.width > k_max_size) {
+        fail("width", std::to_string(s.width), "must be in [1, 65536]");
+    }
+    if (s.height < 1 || s.height > k_max_size) {
+        fail("height", std::to_string(s.height), "must be in [1, 65536]");
+    }
+    if (!(s.vertical_fov_degrees > 0.0f && s.vertical_fov_degrees < 180.0f)) {
+        fail("vertical_fov_degrees", to_text(s.vertical_fov_degrees), "must be in (0, 180)");
+    }
+    if (!is_finite(s.position)) fail("position", to_text(s.position), "must be finite");
+    if (!is_finite(s.look_at)) fail("look_at", to_text(s.look_at), "must be finite");
+    if (!is_finite(s.up)) fail("up", to_text(s.up), "must be finite");
+    const glm::vec3 view = s.look_at - s.position;
+    if (!(glm::length(view) > 0.0f) || !std::isfinite(glm::length(view))) {
+        fail("look_at", to_text(s.look_at), "must differ from position");
+    }
+    if (!(glm::length(s.up) > 0.0f)) fail("up", to_text(s.up), "must not be zero");
+    // |sin| of the angle between up and the view direction; below ~1e-4 rad the
+    // basis would be numerically meaningless.
+    const float sin_angle =
+        glm::length(glm::cross(glm::normalize(view), glm::normalize(s.up)));
+    if (!(sin_angle > 1e-4f)) {
+        fail("up", to_text(s.up), "must not be parallel to the view direction");
+    }
+    if (!(s.pixel_sigma >= 0.0f) || !std::isfinite(s.pixel_sigma)) {
+        fail("pixel_sigma", to_text(s.pixel_sigma), "must be finite and >= 0");
+    }
+    if (!(s.lens_sigma >= 0.0f) || !std::isfinite(s.lens_sigma)) {
+        fail("lens_sigma", to_text(s.lens_sigma), "must be finite and >= 0");
+    }
+    if (!(s.lens_radius >= 0.0f) || !std::isfinite(s.lens_radius)) {
+        fail("lens_radius", to_text(s.lens_radius), "must be finite and >= 0");
+    }
+    if (!(s.focal_distance > 0.0f) || !std::isfinite(s.focal_distance)) {
+        fail("focal_distance", to_text(s.focal_distance), "must be finite and > 0");
+    }
+}
+
+}  // namespace
+
+Camera::Camera(const CameraSettings& settings) : settings_(settings) {
+    validate(settings_);
+    // Look-at basis: forward, right = forward x up, true up = right x forward.
+    forward_ = glm::normalize(settings_.look_at - settings_.position);
+    right_ = glm::normalize(glm::cross(forward_, settings_.up));
+    up_ = glm::cross(right_, forward_);
+    const double half_fov = 0.5 * static_cast<double>(settings_.vertical_fov_degrees) *
+                            3.14159265358979323846 / 180.0;
+    // The report's image-plane distance: H / (2 tan(fov/2)) pixels.
+    image_plane_distance_ =
+        static_cast<float>(static_cast<double>(settings_.height) / (2.0 * std::tan(half_fov)));
+}
+
+Ray Camera::generate_ray(int px, int py, Sampler& sampler) const {
+    const glm::vec2 pixel_u = sampler.next_2d();
+    const glm::vec2 lens_u = sampler.next_2d();
+
+    glm::vec2 offset{0.0f};
+    if (settings_.pixel_jitter == PixelJitter::Gaussian) {
+        offset = gaussian_pixel_jitter(pixel_u, settings_.pixel_sigma);
+    }
+    const float half_w = 0.5f * static_cast<float>(settings_.width);
+    const float half_h = 0.5f * static_cast<float>(settings_.height);
+    // The report's camera-space direction: (j - W/2 + 0.5 + dx, -i + H/2 - 0.5 + dy, -d).
+    const float cx = static_cast<float>(px) - half_w + 0.5f + offset.x;
+    const float cy = -static_cast<float>(py) + half_h - 0.5f + offset.y;
+    const glm::vec3 u =
+        glm::normalize(cx * right_ + cy * up_ + image_plane_distance_ * forward_);
+
+    Ray ray;
+    ray.origin = settings_.position;
+    ray.direction = u;
+    if (settings_.lens == LensModel::Pinhole) return ray;
+
+    const glm::vec2 lens = settings_.lens == LensModel::Gaussian
+                               ? gaussian_lens_jitter(lens_u, settings_.lens_sigma)
+                               : disk_lens_jitter(lens_u, settings_.lens_radius);
+    // The report's depth of field: C' = C + lens offset in the camera's x-y plane,
+    // aimed at the focal point C + focal_distance * u.
+    const glm::vec3 focal_point = settings_.position + settings_.focal_distance * u;
+    ray.origin = settings_.position + lens.x * right_ + lens.y * up_;
+    ray.direction = glm::normalize(focal_point - ray.origin);
+    return ray;
+}
+
+}  // namespace librt

@@ -1,0 +1,187 @@
+#include <librt/core/error.h>
+#include <librt/render/camera.h>
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <cmath>
+#include <string>
+
+using namespace librt;
+
+namespace {
+
+// The report's primary direction for pixel (i = row, j = column), straight from scenes.md.
+glm::vec3 report_direction(int i, int j, int w, int h, float fov_degrees) {
+    const double fov = fov_degrees * 3.14159265358979323846 / 180.0;
+    const glm::dvec3 d(j - w / 2.0 + 0.5, -i + h / 2.0 - 0.5, -h / (2.0 * std::tan(fov / 2.0)));
+    return glm::vec3(glm::normalize(d));
+}
+
+void expect_near(const glm::vec3& a, const glm::vec3& b, float tol = 1e-6f) {
+    EXPECT_NEAR(a.x, b.x, tol);
+    EXPECT_NEAR(a.y, b.y, tol);
+    EXPECT_NEAR(a.z, b.z, tol);
+}
+
+// Expects Camera(s) to throw an Error whose message names `parameter`.
+void expect_rejects(const CameraSettings& s, const std::string& parameter) {
+    try {
+        const Camera camera(s);
+        ADD_FAILURE() << "accepted a bad " << parameter;
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(parameter), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+
+TEST(Camera, CentreAndCornerDirectionsFollowTheReport) {
+    const Camera camera(CameraSettings{});  // the report's camera, 512x512, 60 degrees
+    for (const auto& [i, j] : {std::pair{255, 255}, {256, 256}, {0, 0}, {0, 511}, {511, 0},
+                              {511, 511}, {100, 400}}) {
+        Sampler sampler(0, 0, 0, 0);
+        const Ray ray = camera.generate_ray(j, i, sampler);
+        EXPECT_EQ(ray.origin, glm::vec3(0.0f, 0.0f, 55.0f));
+        expect_near(ray.direction, report_direction(i, j, 512, 512, 60.0f));
+        EXPECT_NEAR(glm::length(ray.direction), 1.0f, 1e-6f);
+    }
+    // The two centre pixels straddle the optical axis symmetrically.
+    Sampler sampler(0, 0, 0, 0);
+    const Ray a = camera.generate_ray(255, 255, sampler);
+    const Ray b = camera.generate_ray(256, 256, sampler);
+    EXPECT_FLOAT_EQ(a.direction.x, -b.direction.x);
+    EXPECT_FLOAT_EQ(a.direction.y, -b.direction.y);
+}
+
+TEST(Camera, NonSquareImageUsesVerticalFov) {
+    CameraSettings s;
+    s.width = 320;
+    s.height = 200;
+    s.vertical_fov_degrees = 45.0f;
+    const Camera camera(s);
+    Sampler sampler(1, 2, 3, 4);
+    const Ray top = camera.generate_ray(160, 0, sampler);
+    expect_near(top.direction, report_direction(0, 160, 320, 200, 45.0f));
+    // The top edge of the image (row -0.5) is half the vertical fov above the axis.
+    const float slope = (100.0f) / (100.0f / std::tan(glm::radians(22.5f)));
+    const Ray row0 = camera.generate_ray(159, 0, sampler);
+    EXPECT_NEAR(row0.direction.y / -row0.direction.z, slope * 99.5f / 100.0f, 1e-5f);
+}
+
+TEST(Camera, LookAtBasisRotatesTheReportFrame) {
+    CameraSettings s;
+    s.position = {10.0f, 0.0f, 0.0f};
+    s.look_at = {0.0f, 0.0f, 0.0f};  // looking down -x: image right is -z
+    const Camera camera(s);
+    expect_near(camera.forward(), {-1.0f, 0.0f, 0.0f});
+    expect_near(camera.right(), {0.0f, 0.0f, -1.0f});
+    expect_near(camera.true_up(), {0.0f, 1.0f, 0.0f});
+    Sampler sampler(0, 0, 0, 0);
+    const Ray ray = camera.generate_ray(0, 0, sampler);
+    const glm::vec3 local = report_direction(0, 0, 512, 512, 60.0f);  // camera space
+    expect_near(ray.direction, {-(-local.z), local.y, -local.x});
+}
+
+TEST(Camera, WithoutJitterEverySampleGivesTheSameRay) {
+    const Camera camera(CameraSettings{});
+    Sampler first(7, 9, 0, 0);
+    const Ray reference = camera.generate_ray(7, 9, first);
+    for (std::uint32_t s = 1; s < 50; ++s) {
+        Sampler sampler(7, 9, s, 123);
+        const Ray ray = camera.generate_ray(7, 9, sampler);
+        EXPECT_EQ(ray.origin, reference.origin);
+        EXPECT_EQ(ray.direction, reference.direction);
+    }
+}
+
+TEST(Camera, DrawsTheSameSamplesWithOrWithoutJitter) {
+    CameraSettings plain;
+    CameraSettings jittered;
+    jittered.pixel_jitter = PixelJitter::Gaussian;
+    jittered.lens = LensModel::Disk;
+    Sampler a(3, 4, 5, 6);
+    Sampler b(3, 4, 5, 6);
+    (void)Camera(plain).generate_ray(3, 4, a);
+    (void)Camera(jittered).generate_ray(3, 4, b);
+    EXPECT_EQ(a.next_1d(), b.next_1d());
+}
+
+TEST(Camera, GaussianPixelJitterSpreadsAroundThePixelCentre) {
+    CameraSettings s;
+    s.pixel_jitter = PixelJitter::Gaussian;
+    const Camera camera(s);
+    const float d = 512.0f / (2.0f * std::tan(glm::radians(30.0f)));
+    double sum_x = 0, sum_xx = 0;
+    constexpr int n = 20000;
+    for (int k = 0; k < n; ++k) {
+        Sampler sampler(256, 256, static_cast<std::uint32_t>(k), 1);
+        const Ray ray = camera.generate_ray(256, 256, sampler);
+        // Back to the image plane (pixels): x = -d * dir.x / dir.z.
+        const double x = -d * ray.direction.x / ray.direction.z - 0.5;  // offset from centre
+        sum_x += x;
+        sum_xx += x * x;
+    }
+    const double mean = sum_x / n;
+    const double sigma = std::sqrt(sum_xx / n - mean * mean);
+    EXPECT_NEAR(mean, 0.0, 0.02);
+    EXPECT_NEAR(sigma, 0.5, 0.02);
+}
+
+TEST(Camera, LensJitterKeepsTheFocalPointFixed) {
+    for (const LensModel lens : {LensModel::Gaussian, LensModel::Disk}) {
+        CameraSettings s;
+        s.lens = lens;
+        s.lens_sigma = 1.0f;
+        s.lens_radius = 2.0f;
+        s.focal_distance = 55.0f;
+        const Camera camera(s);
+        CameraSettings pinhole_settings = s;
+        pinhole_settings.lens = LensModel::Pinhole;
+        const Camera pinhole(pinhole_settings);
+        for (const auto& [x, y] : {std::pair{256, 256}, {0, 0}, {511, 100}}) {
+            Sampler p(0, 0, 0, 0);
+            const Ray axis = pinhole.generate_ray(x, y, p);
+            const glm::vec3 focal_point = axis.at(55.0f);
+            float spread = 0.0f;
+            for (std::uint32_t k = 0; k < 64; ++k) {
+                Sampler sampler(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y), k, 9);
+                const Ray ray = camera.generate_ray(x, y, sampler);
+                spread = std::max(spread, glm::length(ray.origin - axis.origin));
+                // The origin stays in the camera's x-y plane.
+                EXPECT_NEAR(glm::dot(ray.origin - axis.origin, camera.forward()), 0.0f, 1e-5f);
+                // The ray passes through the focal point: distance from it to the line.
+                const glm::vec3 to_focal = focal_point - ray.origin;
+                const float off_line = glm::length(glm::cross(to_focal, ray.direction));
+                EXPECT_LT(off_line, 1e-4f) << "pixel " << x << "," << y;
+                EXPECT_GT(glm::dot(to_focal, ray.direction), 0.0f);
+            }
+            EXPECT_GT(spread, 0.1f);  // the origins really moved
+        }
+    }
+}
+
+TEST(Camera, InvalidSettingsNameTheParameter) {
+    const auto with = [](auto change) {
+        CameraSettings s;
+        change(s);
+        return s;
+    };
+    expect_rejects(with([](CameraSettings& s) { s.width = 0; }), "width = 0");
+    expect_rejects(with([](CameraSettings& s) { s.width = 65537; }), "width = 65537");
+    expect_rejects(with([](CameraSettings& s) { s.height = -3; }), "height = -3");
+    expect_rejects(with([](CameraSettings& s) { s.vertical_fov_degrees = 0.0f; }), "vertical_fov_degrees");
+    expect_rejects(with([](CameraSettings& s) { s.vertical_fov_degrees = 180.0f; }), "vertical_fov_degrees = 180");
+    expect_rejects(with([](CameraSettings& s) { s.vertical_fov_degrees = NAN; }), "vertical_fov_degrees");
+    expect_rejects(with([](CameraSettings& s) { s.position.x = INFINITY; }), "position");
+    expect_rejects(with([](CameraSettings& s) { s.look_at = s.position; }), "look_at");
+    expect_rejects(with([](CameraSettings& s) { s.up = {0.0f, 0.0f, 1.0f}; }), "up");
+    expect_rejects(with([](CameraSettings& s) { s.up = {0.0f, 0.0f, 0.0f}; }), "up");
+    expect_rejects(with([](CameraSettings& s) { s.pixel_sigma = -0.5f; }), "pixel_sigma = -0.5");
+    expect_rejects(with([](CameraSettings& s) { s.lens_sigma = -1.0f; }), "lens_sigma = -1");
+    expect_rejects(with([](CameraSettings& s) { s.lens_radius = NAN; }), "lens_radius");
+    expect_rejects(with([](CameraSettings& s) { s.focal_distance = 0.0f; }), "focal_distance = 0");
+    EXPECT_NO_THROW(Camera(with([](CameraSettings& s) { s.width = 1; s.height = 65536; })));
+}

@@ -1,0 +1,272 @@
+#include <librt/core/error.h>
+#include <librt/render/renderer.h>
+#include <librt/render/integrators.h>
+#include <librt/render/scene.h>
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+using namespace librt;
+
+namespace {
+
+// A colour that depends on every random number the camera and the integrator draw, so
+// any change in how samplers are seeded or consumed changes the image.
+class HashIntegrator final : public Integrator {
+public:
+    void preprocess(const Scene& /*scene*/) override { ++preprocess_calls; }
+    [[nodiscard]] glm::vec3 li(const Scene& /*scene*/, const Ray& ray, Sampler& sampler) const override {
+        const float a = sampler.next_1d();
+        const glm::vec2 b = sampler.next_2d();
+        return {a + ray.direction.x, b.x * ray.origin.y, b.y - ray.direction.y};
+    }
+    int preprocess_calls = 0;
+};
+
+// NaN on a random half of the left-hand samples, 1 elsewhere.
+class SometimesNan final : public Integrator {
+public:
+    [[nodiscard]] glm::vec3 li(const Scene& /*scene*/, const Ray& ray, Sampler& sampler) const override {
+        if (ray.direction.x < 0.0f && sampler.next_1d() < 0.5f) {
+            return {std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f};
+        }
+        return glm::vec3(1.0f);
+    }
+};
+
+// Slow: ~0.2 ms per sample.
+class Slow final : public Integrator {
+public:
+    [[nodiscard]] glm::vec3 li(const Scene& /*scene*/, const Ray& /*ray*/, Sampler& /*sampler*/) const override {
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+        return glm::vec3(1.0f);
+    }
+};
+
+class Throwing final : public Integrator {
+public:
+    [[nodiscard]] glm::vec3 li(const Scene& /*scene*/, const Ray& ray, Sampler& /*sampler*/) const override {
+        if (ray.direction.x > 0.2f) throw std::runtime_error("integrator failure");
+        return glm::vec3(0.5f);
+    }
+};
+
+Camera small_camera(int w, int h, bool jitter = true) {
+    CameraSettings s;
+    s.width = w;
+    s.height = h;
+    s.position = {0.0f, 1.0f, 5.0f};
+    if (jitter) {
+        s.pixel_jitter = PixelJitter::Gaussian;
+        s.lens = LensModel::Gaussian;
+        s.lens_sigma = 0.3f;
+    }
+    return Camera(s);
+}
+
+Scene empty_scene() {
+    Scene scene;
+    scene.commit();
+    return scene;
+}
+
+bool same_bytes(const Image& a, const Image& b) {
+    return a.width == b.width && a.height == b.height &&
+           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec3)) == 0;
+}
+
+}  // namespace
+
+TEST(Renderer, ImageIsIdenticalForAnyThreadCountAndTileSize) {
+    const Scene scene = empty_scene();
+    const Camera camera = small_camera(37, 23);
+    HashIntegrator integrator;
+    RenderSettings settings;
+    settings.samples_per_pixel = 5;
+    settings.seed = 42;
+    settings.progress = false;
+    settings.threads = 1;
+    RenderStats stats;
+    const Image reference = render(scene, camera, integrator, settings, &stats);
+    EXPECT_EQ(stats.samples, 37u * 23u * 5u);
+    EXPECT_EQ(stats.nonfinite_samples, 0u);
+    EXPECT_FALSE(stats.cancelled);
+    for (const int threads : {2, 3, 0}) {
+        for (const int tile : {1, 7, 16, 64}) {
+            settings.threads = threads;
+            settings.tile_size = tile;
+            const Image image = render(scene, camera, integrator, settings);
+            EXPECT_TRUE(same_bytes(image, reference)) << threads << " threads, tile " << tile;
+        }
+    }
+    EXPECT_EQ(integrator.preprocess_calls, 13);
+    // A different seed gives a different image.
+    settings.seed = 43;
+    EXPECT_FALSE(same_bytes(render(scene, camera, integrator, settings), reference));
+}
+
+TEST(Renderer, PixelIsTheMeanOfItsSamples) {
+    const Scene scene = empty_scene();
+    const Camera camera = small_camera(4, 3);
+    HashIntegrator integrator;
+    RenderSettings settings;
+    settings.samples_per_pixel = 6;
+    settings.seed = 7;
+    settings.progress = false;
+    const Image image = render(scene, camera, integrator, settings);
+    for (int y = 0; y < 3; ++y) {
+        for (int x = 0; x < 4; ++x) {
+            glm::dvec3 sum(0.0);
+            for (std::uint32_t s = 0; s < 6; ++s) {
+                Sampler sampler(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y), s, 7);
+                const Ray ray = camera.generate_ray(x, y, sampler);
+                sum += glm::dvec3(integrator.li(scene, ray, sampler));
+            }
+            const glm::vec3 expected(sum / 6.0);
+            EXPECT_EQ(image.at(x, y), expected) << x << "," << y;
+        }
+    }
+}
+
+TEST(Renderer, NonFiniteSamplesAreDroppedAndCounted) {
+    const Scene scene = empty_scene();
+    const Camera camera = small_camera(16, 8, false);
+    const SometimesNan integrator_const;
+    SometimesNan integrator;
+    RenderSettings settings;
+    settings.samples_per_pixel = 8;
+    settings.progress = false;
+    settings.threads = 2;
+    RenderStats stats;
+    const Image image = render(scene, camera, integrator, settings, &stats);
+    std::uint64_t expected_nonfinite = 0;
+    for (int y = 0; y < 8; ++y) {
+        for (int x = 0; x < 16; ++x) {
+            int finite = 0;
+            for (std::uint32_t s = 0; s < 8; ++s) {
+                Sampler sampler(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y), s, 0);
+                const glm::vec3 l = integrator_const.li(scene, camera.generate_ray(x, y, sampler), sampler);
+                std::isfinite(l.x) ? ++finite : ++expected_nonfinite;
+            }
+            // The mean of the finite samples, which are all 1; black when none is left.
+            EXPECT_EQ(image.at(x, y), glm::vec3(finite > 0 ? 1.0f : 0.0f));
+        }
+    }
+    EXPECT_GT(expected_nonfinite, 0u);
+    EXPECT_EQ(stats.nonfinite_samples, expected_nonfinite);
+    EXPECT_EQ(stats.samples, 16u * 8u * 8u);
+}
+
+TEST(Renderer, CancellationReturnsPromptly) {
+    const Scene scene = empty_scene();
+    const Camera camera = small_camera(256, 256, false);  // ~13 s of sleeping on one thread
+    Slow integrator;
+    std::atomic<bool> cancel{false};
+    RenderSettings settings;
+    settings.threads = 2;
+    settings.progress = false;
+    settings.cancel = &cancel;
+    std::thread canceller([&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        cancel = true;
+    });
+    RenderStats stats;
+    const auto start = std::chrono::steady_clock::now();
+    const Image image = render(scene, camera, integrator, settings, &stats);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    canceller.join();
+    EXPECT_TRUE(stats.cancelled);
+    EXPECT_LT(seconds, 1.0);
+    EXPECT_GT(stats.samples, 0u);
+    EXPECT_LT(stats.samples, 256u * 256u);
+    EXPECT_EQ(image.width, 256);
+
+    // Cancelled before it starts: nothing rendered.
+    settings.progress = true;
+    RenderStats none;
+    const Image black = render(scene, camera, integrator, settings, &none);
+    EXPECT_TRUE(none.cancelled);
+    EXPECT_EQ(none.samples, 0u);
+    EXPECT_EQ(black.at(128, 128), glm::vec3(0.0f));
+}
+
+TEST(Renderer, IntegratorExceptionIsRethrown) {
+    const Scene scene = empty_scene();
+    const Camera camera = small_camera(32, 32, false);
+    Throwing integrator;
+    RenderSettings settings;
+    settings.threads = 2;
+    settings.progress = false;
+    EXPECT_THROW((void)render(scene, camera, integrator, settings), std::runtime_error);
+}
+
+TEST(Renderer, InvalidSettingsNameTheParameter) {
+    const Scene scene = empty_scene();
+    const Camera camera = small_camera(2, 2, false);
+    HashIntegrator integrator;
+    const auto expect_error = [&](RenderSettings s, const std::string& name) {
+        try {
+            (void)render(scene, camera, integrator, s);
+            ADD_FAILURE() << name;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+        }
+    };
+    RenderSettings s;
+    s.samples_per_pixel = 0;
+    expect_error(s, "samples_per_pixel = 0");
+    s = {};
+    s.samples_per_pixel = (1 << 20) + 1;
+    expect_error(s, "samples_per_pixel = 1048577");
+    s = {};
+    s.threads = -1;
+    expect_error(s, "threads = -1");
+    s = {};
+    s.threads = 1025;
+    expect_error(s, "threads = 1025");
+    s = {};
+    s.tile_size = 0;
+    expect_error(s, "tile_size = 0");
+    EXPECT_EQ(integrator.preprocess_calls, 0);  // validated before anything runs
+}
+
+TEST(Renderer, OversizedFilmIsRejectedBeforeAllocating) {
+    const Scene scene = empty_scene();
+    CameraSettings cs;
+    cs.width = 65536;
+    cs.height = 65536;  // 48 GiB of float RGB
+    HashIntegrator integrator;
+    try {
+        (void)render(scene, Camera(cs), integrator, RenderSettings{});
+        ADD_FAILURE();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("65536 x 65536"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Renderer, RendersARealSceneWithoutNaN) {
+    Scene scene;
+    const std::uint32_t white = scene.add_material(Material::diffuse(glm::vec3(0.8f)));
+    (void)scene.add_sphere(Sphere{{0.0f, 0.0f, 0.0f}, 1.0f}, white);
+    scene.add_point_light(PointLight::from_power({0.0f, 5.0f, 5.0f}, 1000.0f));
+    scene.commit();
+    CameraSettings cs;
+    cs.position = {0.0f, 0.0f, 5.0f};
+    cs.width = 24;
+    cs.height = 24;
+    const Camera camera(cs);
+    DirectLighting integrator;
+    RenderSettings settings;
+    settings.progress = false;
+    const Image image = render(scene, camera, integrator, settings);
+    EXPECT_GT(image.at(12, 10).x, 0.0f);   // lit sphere in the middle
+    EXPECT_EQ(image.at(0, 0), glm::vec3(0.0f));  // background
+}
