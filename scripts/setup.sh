@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libembree-dev
   clang libclang-rt-14-dev clang-format
+  doxygen
 )
 
 missing=()

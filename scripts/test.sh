@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Sets up a fresh Debian 12 machine, then builds and runs the whole test suite:
-#   1. release build, every ctest test (unit, statistical, app smoke tests, install test)
-#   2. AddressSanitizer + UndefinedBehaviorSanitizer build, every unit test
-#   3. ThreadSanitizer build, the multithreaded renderer tests
-#   4. the OBJ fuzzer (libFuzzer, clang) for a bounded time (LIBRT_FUZZ_SECONDS, default 60)
+#   1. release build, every ctest test (unit, statistical, app smoke tests, package tests:
+#      install into a scratch prefix, then build and run examples/* against it)
+#   2. the same with librt as a shared library (preset release-shared)
+#   3. AddressSanitizer + UndefinedBehaviorSanitizer build, every unit test
+#   4. ThreadSanitizer build, the multithreaded renderer tests
+#   5. the OBJ fuzzer (libFuzzer, clang) for a bounded time (LIBRT_FUZZ_SECONDS, default 60)
 # CI runs exactly this (.ci/run). `--quick` runs stage 1 only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -32,6 +34,11 @@ cmake --preset release
 cmake --build --preset release -j "$jobs"
 run_ctest release
 if [ "$quick" = 1 ]; then summary; exit 0; fi
+
+stage "shared library build and tests"
+cmake --preset release-shared
+cmake --build --preset release-shared -j "$jobs"
+run_ctest release-shared
 
 stage "AddressSanitizer + UndefinedBehaviorSanitizer"
 cmake --preset asan

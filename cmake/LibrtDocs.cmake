@@ -1,0 +1,25 @@
+# The `docs` target: Doxygen HTML of the public headers' `///` comments, written to
+# <build>/docs/html, with the warnings (undocumented public members first of all) in
+# <build>/docs/doxygen-warnings.log and counted on the console. Defined only when
+# Doxygen is found (Debian: doxygen). LIBRT_DOCS_STRICT=ON makes any warning an error.
+find_package(Doxygen QUIET)
+if(NOT DOXYGEN_FOUND)
+  message(STATUS "librt: doxygen not found, no docs target")
+  return()
+endif()
+
+option(LIBRT_DOCS_STRICT "Make the docs target fail on any Doxygen warning" OFF)
+set(LIBRT_DOCS_OUTPUT_DIR "${PROJECT_BINARY_DIR}/docs")
+set(LIBRT_DOCS_WARNINGS_LOG "${LIBRT_DOCS_OUTPUT_DIR}/doxygen-warnings.log")
+configure_file("${PROJECT_SOURCE_DIR}/docs/Doxyfile.in" "${LIBRT_DOCS_OUTPUT_DIR}/Doxyfile" @ONLY)
+
+add_custom_target(docs
+  COMMAND "${CMAKE_COMMAND}"
+    -D "DOXYGEN=$<TARGET_FILE:Doxygen::doxygen>"
+    -D "DOXYFILE=${LIBRT_DOCS_OUTPUT_DIR}/Doxyfile"
+    -D "LOG=${LIBRT_DOCS_WARNINGS_LOG}"
+    -D "STRICT=${LIBRT_DOCS_STRICT}"
+    -P "${PROJECT_SOURCE_DIR}/cmake/RunDoxygen.cmake"
+  WORKING_DIRECTORY "${PROJECT_SOURCE_DIR}"
+  COMMENT "Doxygen: API reference in ${LIBRT_DOCS_OUTPUT_DIR}/html"
+  VERBATIM)

@@ -1,0 +1,26 @@
+# Script (cmake -P) behind the docs target: runs Doxygen, then summarises its warning log.
+#   DOXYGEN, DOXYFILE, LOG, STRICT
+file(REMOVE "${LOG}")
+execute_process(COMMAND "${DOXYGEN}" "${DOXYFILE}" RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "doxygen failed (${rc})")
+endif()
+
+set(lines "")
+if(EXISTS "${LOG}")
+  file(STRINGS "${LOG}" lines REGEX "warning:")
+endif()
+list(LENGTH lines total)
+set(undocumented "")
+foreach(line IN LISTS lines)
+  if(line MATCHES "is not documented|not documented")
+    list(APPEND undocumented "${line}")
+  endif()
+endforeach()
+list(LENGTH undocumented undocumented_count)
+math(EXPR other_count "${total} - ${undocumented_count}")
+message(STATUS "doxygen: ${undocumented_count} undocumented public members, "
+               "${other_count} other warnings (all in ${LOG})")
+if(STRICT AND total GREATER 0)
+  message(FATAL_ERROR "LIBRT_DOCS_STRICT: ${total} Doxygen warnings")
+endif()
