@@ -157,6 +157,47 @@ TEST(Scene, ClosestHitAmongOverlappingSpheresAndMeshAgreesWithBruteForce) {
     EXPECT_GT(mesh_hits, 50);
 }
 
+// Past 16 objects the top level is the SAH Bvh instead of a flat list: same answers.
+TEST(Scene, ManyObjectsThroughTheTopLevelBvhAgreeWithBruteForce) {
+    Scene scene;
+    Reference ref;
+    const auto m = scene.add_material(Material::diffuse(glm::vec3(0.5f)));
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<float> U(-5.0f, 5.0f);
+    for (int i = 0; i < 60; ++i) {
+        const Sphere s{{U(rng), U(rng), U(rng)}, 0.2f + 0.1f * std::fabs(U(rng))};
+        scene.add_sphere(s, m);
+        ref.spheres.push_back(s);
+    }
+    scene.add_sphere({{0, -1000, 0}, 994.0f}, m);  // a huge one, as in the room
+    ref.spheres.push_back({{0, -1000, 0}, 994.0f});
+    for (int k = 0; k < 3; ++k) {
+        TriangleMesh mesh = quad_z(U(rng), U(rng), 6.0f, 6.0f, U(rng));
+        const auto id = scene.add_mesh(mesh, m);
+        for (std::size_t i = 0; i < mesh.triangle_count(); ++i)
+            ref.triangles.emplace_back(mesh.triangle(i), id);
+    }
+    scene.commit();
+    int hits = 0;
+    for (int i = 0; i < 4000; ++i) {
+        Ray ray;
+        ray.origin = {U(rng), U(rng), U(rng)};
+        ray.direction = glm::normalize(glm::vec3(U(rng), U(rng), U(rng)));
+        if (i % 3 == 0) ray.t_max = std::fabs(U(rng));
+        float t_ref;
+        std::uint32_t obj_ref;
+        const bool ref_hit = ref.closest(ray, t_ref, obj_ref);
+        Hit hit;
+        ASSERT_EQ(scene.intersect(ray, hit), ref_hit) << "ray " << i;
+        ASSERT_EQ(scene.occluded(ray), ref_hit) << "ray " << i;
+        if (!ref_hit) continue;
+        ++hits;
+        EXPECT_EQ(hit.object_id, obj_ref) << "ray " << i;
+        EXPECT_NEAR(hit.t, t_ref, 1e-5f * std::max(1.0f, t_ref)) << "ray " << i;
+    }
+    EXPECT_GT(hits, 1000);
+}
+
 TEST(Scene, OccludedAgreesWithIntersectOnRandomRays) {
     Scene scene;
     const auto m = scene.add_material(Material::diffuse(glm::vec3(0.5f)));

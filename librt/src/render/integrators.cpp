@@ -101,7 +101,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler, int
     bool emission_counts = true;  // at the camera and after mirrors and glass
     for (int depth = 0;;) {
         Hit hit;
-        if (!scene.intersect(ray, hit)) break;
+        if (!scene.intersect_for_shading(ray, hit)) break;
         const Material& m = scene.material(hit);
         if (m.emits() && (S == Strategy::Brute || emission_counts ||
                           !scene.is_sphere_light(hit.object_id)))
