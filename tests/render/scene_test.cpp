@@ -6,6 +6,8 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -306,11 +308,19 @@ TEST(Scene, PerTriangleMtlMaterials) {
     chrome.specular = glm::vec3(1.0f);
     mesh.materials = {red, lamp, glass, chrome};
     mesh.material_ids = {0, 1, 2, 3, 99};
+    EXPECT_NE(error_of([&] { scene.add_mesh_with_mtl(mesh, fallback); }).find("material id 99"),
+              std::string::npos);
+    mesh.material_ids.back() = 0;
     const auto obj = scene.add_mesh_with_mtl(mesh, fallback);
     // The same mesh with one material: its MTL ignored.
     TriangleMesh moved = mesh;
     for (glm::vec3& p : moved.positions) p.y += 5.0f;
     const auto uniform = scene.add_mesh(moved, fallback);
+    // Without material ids: the fallback throughout.
+    TriangleMesh bare = moved;
+    for (glm::vec3& p : bare.positions) p.y += 5.0f;
+    bare.material_ids.clear();
+    const auto bare_id = scene.add_mesh_with_mtl(bare, fallback);
     scene.commit();
 
     auto material_at = [&](float x, float y) {
@@ -332,11 +342,42 @@ TEST(Scene, PerTriangleMtlMaterials) {
     auto [o3, m3] = material_at(6.25f, 0.25f);
     EXPECT_EQ(m3.kind, MaterialKind::Mirror);
     auto [o4, m4] = material_at(8.25f, 0.25f);
-    EXPECT_EQ(m4.albedo, glm::vec3(0.1f, 0.2f, 0.3f));  // fallback
+    EXPECT_EQ(m4.albedo, red.diffuse);
     auto [o5, m5] = material_at(4.25f, 5.25f);
     EXPECT_EQ(o5, uniform);
     EXPECT_EQ(m5.kind, MaterialKind::Diffuse);
     EXPECT_EQ(m5.albedo, glm::vec3(0.1f, 0.2f, 0.3f));
+    auto [o6, m6] = material_at(2.25f, 10.25f);
+    EXPECT_EQ(o6, bare_id);
+    EXPECT_EQ(m6.kind, MaterialKind::Diffuse);
+    EXPECT_EQ(m6.albedo, glm::vec3(0.1f, 0.2f, 0.3f));
+}
+
+TEST(Scene, MtlTexturesAreLoadedOncePerPath) {
+    const auto path = std::filesystem::temp_directory_path() / "librt_scene_mtl_texture.ppm";
+    {
+        std::ofstream out(path, std::ios::binary);
+        out << "P6\n1 1\n255\n";
+        const unsigned char px[3] = {255, 255, 255};
+        out.write(reinterpret_cast<const char*>(px), 3);
+    }
+    Scene scene;
+    const auto fallback = scene.add_material(Material::diffuse(glm::vec3(0.5f)));
+    TriangleMesh mesh = quad_z(0, 0, 1, 1, 0);
+    MeshMaterial a, b;
+    a.name = "a";
+    b.name = "b";
+    a.diffuse_texture = b.diffuse_texture = path.string();
+    mesh.materials = {a, b};
+    mesh.material_ids = {0, 1};
+    scene.add_mesh_with_mtl(mesh, fallback);
+    std::filesystem::remove(path);
+    EXPECT_EQ(scene.texture_count(), 1u);
+    scene.commit();
+    Hit hit;
+    ASSERT_TRUE(scene.intersect(Ray{{0.7f, 0.2f, 1}, {0, 0, -1}}, hit));
+    EXPECT_EQ(scene.material(hit).albedo_texture, 0);
+    EXPECT_NEAR(scene.albedo(hit).x, 1.0f, 1e-6f);
 }
 
 TEST(Scene, TexturedAlbedo) {

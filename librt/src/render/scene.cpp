@@ -15,38 +15,6 @@ bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-// Checks what queries rely on: indices in range, optional arrays of the right length,
-// finite positions. (librt::validate(TriangleMesh) says more once it is available.)
-void check_mesh(const TriangleMesh& mesh) {
-    const std::size_t n = mesh.positions.size();
-    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-        const glm::uvec3& t = mesh.triangles[i];
-        if (t.x >= n || t.y >= n || t.z >= n) {
-            std::ostringstream msg;
-            msg << "mesh triangle " << i << " = (" << t.x << ", " << t.y << ", " << t.z
-                << "): index out of range (" << n << " positions)";
-            throw Error(msg.str());
-        }
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-        if (!finite(mesh.positions[i])) {
-            std::ostringstream msg;
-            msg << "mesh position " << i << " is not finite";
-            throw Error(msg.str());
-        }
-    }
-    auto check_size = [](const char* what, std::size_t got, std::size_t want) {
-        if (got != 0 && got != want) {
-            std::ostringstream msg;
-            msg << "mesh " << what << " has " << got << " entries, expected 0 or " << want;
-            throw Error(msg.str());
-        }
-    };
-    check_size("normals", mesh.normals.size(), n);
-    check_size("uvs", mesh.uvs.size(), n);
-    check_size("material_ids", mesh.material_ids.size(), mesh.triangles.size());
-}
-
 /// A ray in double precision, prepared once per query for the sphere tests.
 struct DoubleRay {
     glm::dvec3 origin;
@@ -163,7 +131,7 @@ std::uint32_t Scene::add_triangle(const Triangle& triangle, std::uint32_t materi
 
 std::uint32_t Scene::add_mesh(TriangleMesh mesh, std::uint32_t material) {
     check_material_id(material);
-    check_mesh(mesh);
+    validate(mesh);
     meshes_.push_back({std::move(mesh), {}, {}});
     return add_object(ObjectKind::Mesh, std::uint32_t(meshes_.size() - 1), material);
 }
@@ -206,15 +174,13 @@ std::uint32_t Scene::mtl_to_material(const MeshMaterial& mtl) {
 
 std::uint32_t Scene::add_mesh_with_mtl(TriangleMesh mesh, std::uint32_t fallback_material) {
     check_material_id(fallback_material);
-    check_mesh(mesh);
+    validate(mesh);
     std::vector<std::uint32_t> mapped(mesh.materials.size());
     for (std::size_t i = 0; i < mesh.materials.size(); ++i)
         mapped[i] = mtl_to_material(mesh.materials[i]);
     std::vector<std::uint32_t> per_triangle(mesh.triangles.size(), fallback_material);
-    for (std::size_t i = 0; i < mesh.material_ids.size(); ++i) {
-        const std::uint32_t id = mesh.material_ids[i];
-        if (id < mapped.size()) per_triangle[i] = mapped[id];
-    }
+    for (std::size_t i = 0; i < mesh.material_ids.size(); ++i)
+        per_triangle[i] = mapped[mesh.material_ids[i]];  // in range: validated
     meshes_.push_back({std::move(mesh), {}, std::move(per_triangle)});
     return add_object(ObjectKind::Mesh, std::uint32_t(meshes_.size() - 1), kInvalidId);
 }
@@ -342,7 +308,8 @@ bool Scene::intersect_impl(const Ray& ray, Hit& hit, bool sphere_uv_always) cons
             const double t = hit_sphere(s.center, s.radius2, dray, current.t_min, current.t_max);
             if (!(t >= 0.0)) return false;
             // Rounding to float may land on t_max itself; keep the interval open.
-            const float tf = std::min(static_cast<float>(t), std::nextafter(current.t_max, 0.0f));
+            float tf = static_cast<float>(t);
+            if (!(tf < current.t_max)) tf = std::nextafter(current.t_max, 0.0f);
             current.t_max = tf;
             best = {tf, 0.0f, 0.0f, 0};
         } else {

@@ -97,14 +97,16 @@ public:
     /// returned (the triangle's primitive id is its rank among loose triangles).
     std::uint32_t add_triangle(const Triangle& triangle, std::uint32_t material);
     /// Adds a mesh whose triangles all use `material` (its own materials are ignored);
-    /// returns its object id. Throws librt::Error for an invalid mesh or material id.
+    /// returns its object id. Throws librt::Error for an invalid mesh (librt::validate) or
+    /// an unknown material id.
     std::uint32_t add_mesh(TriangleMesh mesh, std::uint32_t material);
     /// Adds a mesh whose triangles use its MTL materials, mapped to scene materials:
     /// Ke != 0 -> emissive; illum 4, 6, 7 or d < 1 -> dielectric of index Ni; illum 3, 5
     /// or Ks = 1 -> mirror; otherwise diffuse Kd, with map_Kd as albedo texture (loaded once
     /// per path; a texture that fails to load is reported on stderr and Kd kept).
-    /// Triangles without a (valid) material id use `fallback_material`. Returns the
-    /// object id.
+    /// A mesh without material_ids uses `fallback_material` throughout. Returns the object
+    /// id. Throws librt::Error for an invalid mesh (librt::validate: e.g. a material id out
+    /// of range), an unknown fallback id, or an MTL value no Material accepts.
     std::uint32_t add_mesh_with_mtl(TriangleMesh mesh, std::uint32_t fallback_material);
     /// Adds a point light (validated). Point lights are not geometry.
     void add_point_light(const PointLight& light);
