@@ -61,10 +61,14 @@ TEST(Scene, EmptySceneHitsNothing) {
 
 TEST(Scene, RejectsBadInput) {
     Scene scene;
-    EXPECT_NE(error_of([&] { scene.add_sphere({{0, 0, 0}, 1}, 0); }).find("material id 0"),
+    EXPECT_NE(error_of([&] {
+                  scene.add_sphere({{0, 0, 0}, 1}, 0);
+              }).find("material id 0"),
               std::string::npos);
     const auto m = scene.add_material(Material::diffuse(glm::vec3(0.5f)));
-    EXPECT_NE(error_of([&] { scene.add_sphere({{0, 0, 0}, -2}, m); }).find("radius = -2"),
+    EXPECT_NE(error_of([&] {
+                  scene.add_sphere({{0, 0, 0}, -2}, m);
+              }).find("radius = -2"),
               std::string::npos);
     EXPECT_THROW(scene.add_sphere({{NAN, 0, 0}, 1}, m), Error);
     TriangleMesh bad = quad_z(0, 0, 1, 1, 0);
@@ -81,7 +85,7 @@ TEST(Scene, RejectsBadInput) {
 
 // Brute-force closest hit over the scene's raw primitives, for comparison.
 struct Reference {
-    std::vector<Sphere> spheres;  // object ids 0..n-1
+    std::vector<Sphere> spheres;                                // object ids 0..n-1
     std::vector<std::pair<Triangle, std::uint32_t>> triangles;  // with object ids
 
     bool closest(const Ray& ray, float& t, std::uint32_t& object) const {
@@ -111,8 +115,10 @@ TEST(Scene, ClosestHitAmongOverlappingSpheresAndMeshAgreesWithBruteForce) {
     Scene scene;
     Reference ref;
     const auto m = scene.add_material(Material::diffuse(glm::vec3(0.5f)));
-    const std::vector<Sphere> spheres = {
-        {{0, 0, 0}, 1.0f}, {{0.5f, 0, -0.5f}, 1.0f}, {{-0.3f, 0.4f, 0.2f}, 0.5f}, {{0, -1000, 0}, 998.5f}};
+    const std::vector<Sphere> spheres = {{{0, 0, 0}, 1.0f},
+                                         {{0.5f, 0, -0.5f}, 1.0f},
+                                         {{-0.3f, 0.4f, 0.2f}, 0.5f},
+                                         {{0, -1000, 0}, 998.5f}};
     for (const Sphere& s : spheres) {
         scene.add_sphere(s, m);
         ref.spheres.push_back(s);
@@ -124,12 +130,13 @@ TEST(Scene, ClosestHitAmongOverlappingSpheresAndMeshAgreesWithBruteForce) {
     for (int i = 0; i < 40; ++i) {
         const glm::vec3 c(U(rng), U(rng), U(rng));
         const auto base = std::uint32_t(mesh.positions.size());
-        mesh.positions.insert(mesh.positions.end(),
-                              {c, c + glm::vec3(0.4f, U(rng) * 0.2f, 0.1f), c + glm::vec3(0.1f, 0.3f, U(rng) * 0.3f)});
+        mesh.positions.insert(mesh.positions.end(), {c, c + glm::vec3(0.4f, U(rng) * 0.2f, 0.1f),
+                                                     c + glm::vec3(0.1f, 0.3f, U(rng) * 0.3f)});
         mesh.triangles.emplace_back(base, base + 1, base + 2);
     }
     const auto mesh_id = scene.add_mesh(mesh, m);
-    for (std::size_t i = 0; i < mesh.triangle_count(); ++i) ref.triangles.emplace_back(mesh.triangle(i), mesh_id);
+    for (std::size_t i = 0; i < mesh.triangle_count(); ++i)
+        ref.triangles.emplace_back(mesh.triangle(i), mesh_id);
     scene.commit();
     EXPECT_EQ(scene.object_count(), 5u);
 
@@ -231,7 +238,8 @@ TEST(Scene, OccludedAgreesWithIntersectOnRandomRays) {
                     other = true;
                     break;
                 }
-                probe.t_min = std::nextafter(h2.t, INFINITY);  // past this hit of the ignored object
+                probe.t_min =
+                    std::nextafter(h2.t, INFINITY);  // past this hit of the ignored object
             }
             EXPECT_EQ(scene.occluded(ray, hit.object_id), other) << "ray " << i;
         }
@@ -424,7 +432,8 @@ TEST(Scene, OffsetScalesWithPositionAndFollowsDirection) {
     EXPECT_GT(up.y, 0.0f);
     EXPECT_LT(down.y, 0.0f);
     EXPECT_FLOAT_EQ(offset_ray_origin(p1, n, n).y, kRayOffsetAbsolute + kRayOffsetRelative);
-    EXPECT_FLOAT_EQ(offset_ray_origin(p1000, n, n).y, kRayOffsetAbsolute + 1000.0f * kRayOffsetRelative);
+    EXPECT_FLOAT_EQ(offset_ray_origin(p1000, n, n).y,
+                    kRayOffsetAbsolute + 1000.0f * kRayOffsetRelative);
     EXPECT_GT(ray_offset_scale(glm::vec3(0.0f)), 0.0f);
 }
 
@@ -466,11 +475,12 @@ TEST(Scene, SpawnedRaysDoNotSelfIntersect) {
         if (scene.intersect(out, next)) {
             // Spheres seen from outside and a plane cannot be re-hit by a leaving ray.
             ASSERT_NE(next.object_id, hit.object_id)
-                << "ray " << i << " o " << ray.origin.x << "," << ray.origin.y << "," << ray.origin.z
-                << " d " << ray.direction.x << "," << ray.direction.y << "," << ray.direction.z
-                << " p " << hit.point.x << "," << hit.point.y << "," << hit.point.z
-                << " ng " << hit.geometric_normal.x << "," << hit.geometric_normal.y << "," << hit.geometric_normal.z
-                << " w " << w.x << "," << w.y << "," << w.z << " t " << hit.t << " self-hit object " << hit.object_id << " at t = " << next.t;
+                << "ray " << i << " o " << ray.origin.x << "," << ray.origin.y << ","
+                << ray.origin.z << " d " << ray.direction.x << "," << ray.direction.y << ","
+                << ray.direction.z << " p " << hit.point.x << "," << hit.point.y << ","
+                << hit.point.z << " ng " << hit.geometric_normal.x << "," << hit.geometric_normal.y
+                << "," << hit.geometric_normal.z << " w " << w.x << "," << w.y << "," << w.z
+                << " t " << hit.t << " self-hit object " << hit.object_id << " at t = " << next.t;
         }
     }
     EXPECT_GT(tested, 10000);

@@ -63,7 +63,8 @@ glm::vec3 light_irradiance(const Scene& scene, const glm::vec3& p, const glm::ve
         const SphereLight& light = lights[i];
         // Drawn even when unused, so later decisions of the path keep their numbers.
         const glm::vec2 u = sampler.next_2d();
-        const SphereSample s = sample_sphere_visible(light.sphere.center, light.sphere.radius, p, u);
+        const SphereSample s =
+            sample_sphere_visible(light.sphere.center, light.sphere.radius, p, u);
         if (!(s.pdf > 0.0f)) continue;
         const glm::vec3 to_light = s.point - p;
         const float d2 = glm::dot(to_light, to_light);
@@ -103,8 +104,8 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler, int
         Hit hit;
         if (!scene.intersect_for_shading(ray, hit)) break;
         const Material& m = scene.material(hit);
-        if (m.emits() && (S == Strategy::Brute || emission_counts ||
-                          !scene.is_sphere_light(hit.object_id)))
+        if (m.emits() &&
+            (S == Strategy::Brute || emission_counts || !scene.is_sphere_light(hit.object_id)))
             radiance += throughput * m.emission;
         if (depth >= max_depth || m.kind == MaterialKind::Emissive) break;
         ++depth;
@@ -216,9 +217,12 @@ glm::vec3 AlbedoNormalIntegrator::li(const Scene& scene, const Ray& ray,
     if (view_ == DebugView::Normal) return guard(0.5f * hit.shading_normal + 0.5f);
     const Material& m = scene.material(hit);
     switch (m.kind) {
-        case MaterialKind::Diffuse: return guard(scene.albedo(hit));
-        case MaterialKind::Emissive: return guard(m.emission);
-        default: return guard(m.albedo);
+        case MaterialKind::Diffuse:
+            return guard(scene.albedo(hit));
+        case MaterialKind::Emissive:
+            return guard(m.emission);
+        default:
+            return guard(m.albedo);
     }
 }
 

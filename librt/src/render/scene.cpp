@@ -107,8 +107,8 @@ std::uint32_t Scene::add_sphere(const Sphere& sphere, std::uint32_t material) {
         msg << "sphere radius = " << sphere.radius << ": must be finite and > 0";
         throw Error(msg.str());
     }
-    spheres_.push_back({sphere, glm::dvec3(sphere.center),
-                        double(sphere.radius) * double(sphere.radius)});
+    spheres_.push_back(
+        {sphere, glm::dvec3(sphere.center), double(sphere.radius) * double(sphere.radius)});
     return add_object(ObjectKind::Sphere, std::uint32_t(spheres_.size() - 1), material);
 }
 
@@ -242,7 +242,8 @@ void Scene::commit() {
 }
 
 void Scene::require_committed() const {
-    if (!committed_) throw Error("Scene queried before commit(): call commit() after adding objects");
+    if (!committed_)
+        throw Error("Scene queried before commit(): call commit() after adding objects");
 }
 
 bool Scene::intersect(const Ray& ray, Hit& hit) const { return intersect_impl(ray, hit, true); }
@@ -378,9 +379,8 @@ void Scene::finish_hit(const Ray& ray, std::uint32_t object_id, const PrimitiveH
         const glm::vec3 ns = unit_or(n, hit.geometric_normal);
         hit.shading_normal = glm::dot(ns, hit.geometric_normal) < 0.0f ? -ns : ns;
     }
-    hit.uv = mesh.uvs.empty()
-                 ? glm::vec2(b1, b2)
-                 : b0 * mesh.uvs[idx.x] + b1 * mesh.uvs[idx.y] + b2 * mesh.uvs[idx.z];
+    hit.uv = mesh.uvs.empty() ? glm::vec2(b1, b2)
+                              : b0 * mesh.uvs[idx.x] + b1 * mesh.uvs[idx.y] + b2 * mesh.uvs[idx.z];
     hit.primitive_id = prim.primitive_id;
 }
 

@@ -227,10 +227,10 @@ private:
     struct FlatBoxes {
         std::array<float, kFlatObjectLimit> lo_x{}, lo_y{}, lo_z{}, hi_x{}, hi_y{}, hi_z{};
         std::array<std::uint32_t, kFlatObjectLimit> object{};  ///< box i -> object id
-        std::uint32_t count = 0;  ///< 0: use top_
+        std::uint32_t count = 0;                               ///< 0: use top_
     };
 
-    Bvh top_;                                ///< over objects_' boxes
+    Bvh top_;  ///< over objects_' boxes
     FlatBoxes flat_;
     std::vector<std::uint32_t> slot_object_;  ///< top_ slot -> object id
     bool committed_ = false;
