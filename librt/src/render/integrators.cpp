@@ -138,11 +138,15 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler, int
                 break;
             }
             case MaterialKind::Diffuse: {
-                const glm::vec3 a = scene.albedo(hit);
+                // Everything this vertex adds or passes on is scaled by throughput * albedo:
+                // when that is 0 (the blue floor's path meeting the red wall), stop without
+                // spending shadow rays on it.
+                const glm::vec3 weight = throughput * scene.albedo(hit);
+                if (!(max_component(weight) > 0.0f)) return radiance;
                 if constexpr (S != Strategy::Brute) {
                     // Lambert: outgoing radiance = albedo / pi * irradiance.
-                    radiance += throughput * a * k_inv_pi *
-                                light_irradiance(scene, hit.point, ng, ns, sampler);
+                    radiance +=
+                        weight * k_inv_pi * light_irradiance(scene, hit.point, ng, ns, sampler);
                 }
                 if constexpr (S == Strategy::Direct) {
                     return radiance;
@@ -151,7 +155,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler, int
                     // Below the true surface (a bent shading normal): the path ends there.
                     if (glm::dot(wi, ng) <= 0.0f) return radiance;
                     // Cosine sampling: (albedo / pi) cos / (cos / pi) = albedo.
-                    throughput *= a;
+                    throughput = weight;
                     emission_counts = false;
                     break;
                 }
