@@ -56,8 +56,8 @@ void expect_same(const testing::RegionEstimate& a, const testing::RegionEstimate
         const double tol = k * std::sqrt(a.se2[c] + b.se2[c]) +
                            rel * std::max(std::fabs(a.mean[c]), std::fabs(b.mean[c]));
         EXPECT_LE(std::fabs(a.mean[c] - b.mean[c]), tol)
-            << where << " channel " << c << ": " << a.mean[c] << " vs " << b.mean[c]
-            << " (se " << std::sqrt(a.se2[c]) << ", " << std::sqrt(b.se2[c]) << ")";
+            << where << " channel " << c << ": " << a.mean[c] << " vs " << b.mean[c] << " (se "
+            << std::sqrt(a.se2[c]) << ", " << std::sqrt(b.se2[c]) << ")";
     }
 }
 
@@ -71,9 +71,12 @@ TEST(Integrators, SettingsAreValidated) {
         return std::string();
     };
     EXPECT_NE(message([] { PathTracer({-1}); }).find("max_depth = -1"), std::string::npos);
-    EXPECT_NE(message([] { BruteForcePathTracer({1001}); }).find("max_depth = 1001"), std::string::npos);
+    EXPECT_NE(message([] { BruteForcePathTracer({1001}); }).find("max_depth = 1001"),
+              std::string::npos);
     EXPECT_NE(message([] { DirectLighting({-3}); }).find("max_depth = -3"), std::string::npos);
-    EXPECT_NE(message([] { PathTracer({5, true, -1}); }).find("russian_roulette_depth"),
+    EXPECT_NE(message([] {
+                  PathTracer({5, true, -1});
+              }).find("russian_roulette_depth"),
               std::string::npos);
     EXPECT_NO_THROW(PathTracer({1000}));
     EXPECT_EQ(PathTracer().settings().max_depth, 5);
@@ -100,7 +103,8 @@ TEST(Integrators, WhiteFurnace) {
         const double expected = le * (1.0 - std::pow(double(a), depth + 1)) / (1.0 - a);
         BruteForcePathTracer brute({depth});
         PathTracer path({depth});
-        for (Integrator* integrator : {static_cast<Integrator*>(&brute), static_cast<Integrator*>(&path)}) {
+        for (Integrator* integrator :
+             {static_cast<Integrator*>(&brute), static_cast<Integrator*>(&path)}) {
             const StatImage img = render_stats(scene, *integrator, cam, 4, 1);
             for (const auto& p : img.pixels)
                 for (int c = 0; c < 3; ++c) ASSERT_NEAR(p.mean()[c], expected, 1e-5 * expected);
@@ -142,9 +146,11 @@ TEST(Integrators, DirectLightingMatchesClosedForms) {
             EXPECT_NEAR(l[c], expected, 1e-5f * expected);
         }
         // A shadowing sphere in between: exactly black (hard shadow).
-        scene.add_sphere({{0.5f, 2, 0.25f}, 0.5f}, scene.add_material(Material::diffuse(glm::vec3(1))));
+        scene.add_sphere({{0.5f, 2, 0.25f}, 0.5f},
+                         scene.add_material(Material::diffuse(glm::vec3(1))));
         scene.commit();
-        EXPECT_EQ(direct.li(scene, Ray{p + glm::vec3(0, 0.5f, 0), {0, -1, 0}}, sampler), glm::vec3(0.0f));
+        EXPECT_EQ(direct.li(scene, Ray{p + glm::vec3(0, 0.5f, 0), {0, -1, 0}}, sampler),
+                  glm::vec3(0.0f));
     }
     {
         Scene scene;
@@ -182,7 +188,8 @@ TEST(Integrators, EmissionSeenThroughMirrorIsTinted) {
     for (Integrator* integ : {static_cast<Integrator*>(&path), static_cast<Integrator*>(&direct),
                               static_cast<Integrator*>(&brute)}) {
         Sampler sampler(1, 2, 3, 4);
-        const glm::vec3 l = integ->li(scene, Ray{{0, 1, 0}, glm::normalize(glm::vec3(0.3f, -1, 0))}, sampler);
+        const glm::vec3 l =
+            integ->li(scene, Ray{{0, 1, 0}, glm::normalize(glm::vec3(0.3f, -1, 0))}, sampler);
         EXPECT_NEAR(l.x, 1.0f, 1e-6f);
         EXPECT_NEAR(l.y, 0.5f, 1e-6f);
         EXPECT_NEAR(l.z, 2.0f, 1e-6f);
@@ -228,7 +235,8 @@ TEST(Integrators, TinySphereLightMatchesPointLightOfTheSamePower) {
         add_floor(scene, 20.0f, scene.add_material(Material::diffuse({0.8f, 0.6f, 0.4f})));
         scene.add_sphere({{0, 1, 0}, 1}, scene.add_material(Material::diffuse({0.3f, 0.7f, 0.5f})));
         if (sphere)
-            scene.add_sphere_light({{light_pos, 1e-2f}, SphereLight::radiance_for_power(power, 1e-2f)});
+            scene.add_sphere_light(
+                {{light_pos, 1e-2f}, SphereLight::radiance_for_power(power, 1e-2f)});
         else
             scene.add_point_light(PointLight::from_power(light_pos, power));
         scene.commit();
@@ -269,13 +277,13 @@ TEST(Integrators, FiniteOnHostileScenes) {
     const auto white = scene.add_material(Material::diffuse(glm::vec3(0.9f)));
     const auto chrome = scene.add_material(Material::mirror());
     add_floor(scene, 10.0f, white);
-    scene.add_sphere({{0, 2, 0}, 1.5f}, glass);                  // holds a sphere light
+    scene.add_sphere({{0, 2, 0}, 1.5f}, glass);  // holds a sphere light
     scene.add_sphere_light({{{0, 2, 0}, 0.4f}, glm::vec3(20.0f)});
-    scene.add_sphere({{4, 2, 0}, 1.0f}, glass_nf);               // holds a point light
+    scene.add_sphere({{4, 2, 0}, 1.0f}, glass_nf);  // holds a point light
     scene.add_point_light({{4, 2, 0}, glm::vec3(50.0f)});
-    scene.add_sphere({{-4, 2, 0}, 1.2f}, glass);                 // holds the camera
+    scene.add_sphere({{-4, 2, 0}, 1.2f}, glass);  // holds the camera
     scene.add_sphere({{0, 2, -4}, 1.0f}, chrome);
-    scene.add_sphere({{0, 0.5f, 4}, 0.5f}, white);               // touches the floor
+    scene.add_sphere({{0, 0.5f, 4}, 0.5f}, white);                  // touches the floor
     scene.add_triangle({{-2, 0, 2}, {2, 0, 2}, {0, 3, 2}}, glass);  // a glass sheet, open mesh
     scene.add_sphere_light({{{3, 6, 3}, 0.5f}, glm::vec3(10.0f)});
     scene.commit();
@@ -285,23 +293,24 @@ TEST(Integrators, FiniteOnHostileScenes) {
     DirectLighting direct;
     BruteForcePathTracer brute({8});
     AlbedoNormalIntegrator albedo(DebugView::Albedo), normal(DebugView::Normal);
-    const std::vector<GuardedIntegrator*> integrators = {&path, &roulette, &direct, &brute, &albedo, &normal};
+    const std::vector<GuardedIntegrator*> integrators = {&path,  &roulette, &direct,
+                                                         &brute, &albedo,   &normal};
 
     // Special rays: tangent to spheres, in the floor's plane, along a triangle edge, from a
     // surface point, inside glass at steep angles (TIR), zero and NaN directions.
     std::vector<Ray> rays = {
-        {{-10, 3.5f, 0}, {1, 0, 0}},          // tangent to the top of the light's glass ball
-        {{4, 3, -5}, {0, 0, 1}},              // tangent to the point light's ball
-        {{-10, 0, 0.3f}, {1, 0, 0}},          // in the floor's plane
-        {{-2, 0, 2}, {1, 0, 0}},              // along the glass sheet's edge
-        {{0, 0, 0}, {0, 1, 0}},               // from the floor, up into the glass ball
-        {{0, 3.5f, 0}, {0, -1, 0}},           // from the glass ball's surface, inward
-        {{0, 2, 0}, {0.99f, 0.141f, 0}},      // from the light's centre
-        {{4, 2, 0}, {0, 0.6f, 0.8f}},         // from the point light's position, in glass
-        {{-4, 2, 0}, {0, 0, -1}},             // from inside the camera ball
-        {{0, 1, 0}, {0, 0, 0}},               // zero direction
-        {{0, 1, 0}, {NAN, 0, 1}},             // NaN direction
-        {{0, 1, 0}, {INFINITY, 0, 1}},        // infinite direction
+        {{-10, 3.5f, 0}, {1, 0, 0}},      // tangent to the top of the light's glass ball
+        {{4, 3, -5}, {0, 0, 1}},          // tangent to the point light's ball
+        {{-10, 0, 0.3f}, {1, 0, 0}},      // in the floor's plane
+        {{-2, 0, 2}, {1, 0, 0}},          // along the glass sheet's edge
+        {{0, 0, 0}, {0, 1, 0}},           // from the floor, up into the glass ball
+        {{0, 3.5f, 0}, {0, -1, 0}},       // from the glass ball's surface, inward
+        {{0, 2, 0}, {0.99f, 0.141f, 0}},  // from the light's centre
+        {{4, 2, 0}, {0, 0.6f, 0.8f}},     // from the point light's position, in glass
+        {{-4, 2, 0}, {0, 0, -1}},         // from inside the camera ball
+        {{0, 1, 0}, {0, 0, 0}},           // zero direction
+        {{0, 1, 0}, {NAN, 0, 1}},         // NaN direction
+        {{0, 1, 0}, {INFINITY, 0, 1}},    // infinite direction
     };
     for (const Ray& ray : rays)
         for (GuardedIntegrator* integ : integrators)

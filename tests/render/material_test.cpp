@@ -49,11 +49,17 @@ TEST(Material, FactoriesSetKindAndDefaults) {
 }
 
 TEST(Material, ValidationNamesParameterAndValue) {
-    EXPECT_NE(error_of([] { (void)Material::diffuse({0.5f, -0.1f, 0.5f}); }).find("albedo = (0.5, -0.1, 0.5)"),
+    EXPECT_NE(error_of([] {
+                  (void)Material::diffuse({0.5f, -0.1f, 0.5f});
+              }).find("albedo = (0.5, -0.1, 0.5)"),
               std::string::npos);
-    EXPECT_NE(error_of([] { (void)Material::dielectric(-1.0f); }).find("ior = -1"), std::string::npos);
-    EXPECT_NE(error_of([] { (void)Material::dielectric(NAN); }).find("ior = nan"), std::string::npos);
-    EXPECT_NE(error_of([] { (void)Material::emissive({INFINITY, 0, 0}); }).find("emission = (inf"),
+    EXPECT_NE(error_of([] { (void)Material::dielectric(-1.0f); }).find("ior = -1"),
+              std::string::npos);
+    EXPECT_NE(error_of([] { (void)Material::dielectric(NAN); }).find("ior = nan"),
+              std::string::npos);
+    EXPECT_NE(error_of([] {
+                  (void)Material::emissive({INFINITY, 0, 0});
+              }).find("emission = (inf"),
               std::string::npos);
     Material glowing = Material::diffuse(glm::vec3(0.5f));
     glowing.emission = glm::vec3(2.0f);  // emission on any kind is allowed
@@ -76,11 +82,17 @@ TEST(Light, PointLightFromPowerAndSphereLightOfTheSamePowerAgreeFarAway) {
 }
 
 TEST(Light, ValidationNamesParameter) {
-    EXPECT_NE(error_of([] { validate(PointLight{{0, NAN, 0}, {1, 1, 1}}); }).find("position"),
+    EXPECT_NE(error_of([] {
+                  validate(PointLight{{0, NAN, 0}, {1, 1, 1}});
+              }).find("position"),
               std::string::npos);
-    EXPECT_NE(error_of([] { validate(SphereLight{{{0, 0, 0}, -1.0f}, {1, 1, 1}}); }).find("radius = -1"),
+    EXPECT_NE(error_of([] {
+                  validate(SphereLight{{{0, 0, 0}, -1.0f}, {1, 1, 1}});
+              }).find("radius = -1"),
               std::string::npos);
-    EXPECT_NE(error_of([] { validate(SphereLight{{{0, 0, 0}, 1.0f}, {-1, 1, 1}}); }).find("radiance"),
+    EXPECT_NE(error_of([] {
+                  validate(SphereLight{{{0, 0, 0}, 1.0f}, {-1, 1, 1}});
+              }).find("radiance"),
               std::string::npos);
 }
 
@@ -135,7 +147,8 @@ TEST(Texture, LoadsAnImageAndNamesTheMissingPath) {
     EXPECT_NEAR(tex.texel(0, 0).x, 1.0f, 1e-6f);
     EXPECT_NEAR(tex.texel(1, 0).y, srgb_to_linear(128.0f / 255.0f), 1e-6f);
     const std::string missing = "/nonexistent/librt/albedo.png";
-    EXPECT_NE(error_of([&] { (void)ImageTexture::load(missing); }).find(missing), std::string::npos);
+    EXPECT_NE(error_of([&] { (void)ImageTexture::load(missing); }).find(missing),
+              std::string::npos);
 }
 
 TEST(Scatter, ReflectAndSchlick) {
@@ -181,7 +194,8 @@ TEST(Scatter, FresnelReflectsWithProbabilitySchlick) {
     const int count = 100000;
     int reflected = 0;
     for (int i = 0; i < count; ++i)
-        reflected += !scatter_dielectric(d, n, 1.5f, true, (float(i) + 0.5f) / float(count)).transmitted;
+        reflected +=
+            !scatter_dielectric(d, n, 1.5f, true, (float(i) + 0.5f) / float(count)).transmitted;
     EXPECT_NEAR(double(reflected) / count, f, 2.0 / count);
 }
 

@@ -6,6 +6,8 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -59,10 +61,14 @@ TEST(Scene, EmptySceneHitsNothing) {
 
 TEST(Scene, RejectsBadInput) {
     Scene scene;
-    EXPECT_NE(error_of([&] { scene.add_sphere({{0, 0, 0}, 1}, 0); }).find("material id 0"),
+    EXPECT_NE(error_of([&] {
+                  scene.add_sphere({{0, 0, 0}, 1}, 0);
+              }).find("material id 0"),
               std::string::npos);
     const auto m = scene.add_material(Material::diffuse(glm::vec3(0.5f)));
-    EXPECT_NE(error_of([&] { scene.add_sphere({{0, 0, 0}, -2}, m); }).find("radius = -2"),
+    EXPECT_NE(error_of([&] {
+                  scene.add_sphere({{0, 0, 0}, -2}, m);
+              }).find("radius = -2"),
               std::string::npos);
     EXPECT_THROW(scene.add_sphere({{NAN, 0, 0}, 1}, m), Error);
     TriangleMesh bad = quad_z(0, 0, 1, 1, 0);
@@ -79,7 +85,7 @@ TEST(Scene, RejectsBadInput) {
 
 // Brute-force closest hit over the scene's raw primitives, for comparison.
 struct Reference {
-    std::vector<Sphere> spheres;  // object ids 0..n-1
+    std::vector<Sphere> spheres;                                // object ids 0..n-1
     std::vector<std::pair<Triangle, std::uint32_t>> triangles;  // with object ids
 
     bool closest(const Ray& ray, float& t, std::uint32_t& object) const {
@@ -109,8 +115,10 @@ TEST(Scene, ClosestHitAmongOverlappingSpheresAndMeshAgreesWithBruteForce) {
     Scene scene;
     Reference ref;
     const auto m = scene.add_material(Material::diffuse(glm::vec3(0.5f)));
-    const std::vector<Sphere> spheres = {
-        {{0, 0, 0}, 1.0f}, {{0.5f, 0, -0.5f}, 1.0f}, {{-0.3f, 0.4f, 0.2f}, 0.5f}, {{0, -1000, 0}, 998.5f}};
+    const std::vector<Sphere> spheres = {{{0, 0, 0}, 1.0f},
+                                         {{0.5f, 0, -0.5f}, 1.0f},
+                                         {{-0.3f, 0.4f, 0.2f}, 0.5f},
+                                         {{0, -1000, 0}, 998.5f}};
     for (const Sphere& s : spheres) {
         scene.add_sphere(s, m);
         ref.spheres.push_back(s);
@@ -122,12 +130,13 @@ TEST(Scene, ClosestHitAmongOverlappingSpheresAndMeshAgreesWithBruteForce) {
     for (int i = 0; i < 40; ++i) {
         const glm::vec3 c(U(rng), U(rng), U(rng));
         const auto base = std::uint32_t(mesh.positions.size());
-        mesh.positions.insert(mesh.positions.end(),
-                              {c, c + glm::vec3(0.4f, U(rng) * 0.2f, 0.1f), c + glm::vec3(0.1f, 0.3f, U(rng) * 0.3f)});
+        mesh.positions.insert(mesh.positions.end(), {c, c + glm::vec3(0.4f, U(rng) * 0.2f, 0.1f),
+                                                     c + glm::vec3(0.1f, 0.3f, U(rng) * 0.3f)});
         mesh.triangles.emplace_back(base, base + 1, base + 2);
     }
     const auto mesh_id = scene.add_mesh(mesh, m);
-    for (std::size_t i = 0; i < mesh.triangle_count(); ++i) ref.triangles.emplace_back(mesh.triangle(i), mesh_id);
+    for (std::size_t i = 0; i < mesh.triangle_count(); ++i)
+        ref.triangles.emplace_back(mesh.triangle(i), mesh_id);
     scene.commit();
     EXPECT_EQ(scene.object_count(), 5u);
 
@@ -155,6 +164,47 @@ TEST(Scene, ClosestHitAmongOverlappingSpheresAndMeshAgreesWithBruteForce) {
     }
     EXPECT_GT(hits, 1000);
     EXPECT_GT(mesh_hits, 50);
+}
+
+// Past 16 objects the top level is the SAH Bvh instead of a flat list: same answers.
+TEST(Scene, ManyObjectsThroughTheTopLevelBvhAgreeWithBruteForce) {
+    Scene scene;
+    Reference ref;
+    const auto m = scene.add_material(Material::diffuse(glm::vec3(0.5f)));
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<float> U(-5.0f, 5.0f);
+    for (int i = 0; i < 60; ++i) {
+        const Sphere s{{U(rng), U(rng), U(rng)}, 0.2f + 0.1f * std::fabs(U(rng))};
+        scene.add_sphere(s, m);
+        ref.spheres.push_back(s);
+    }
+    scene.add_sphere({{0, -1000, 0}, 994.0f}, m);  // a huge one, as in the room
+    ref.spheres.push_back({{0, -1000, 0}, 994.0f});
+    for (int k = 0; k < 3; ++k) {
+        TriangleMesh mesh = quad_z(U(rng), U(rng), 6.0f, 6.0f, U(rng));
+        const auto id = scene.add_mesh(mesh, m);
+        for (std::size_t i = 0; i < mesh.triangle_count(); ++i)
+            ref.triangles.emplace_back(mesh.triangle(i), id);
+    }
+    scene.commit();
+    int hits = 0;
+    for (int i = 0; i < 4000; ++i) {
+        Ray ray;
+        ray.origin = {U(rng), U(rng), U(rng)};
+        ray.direction = glm::normalize(glm::vec3(U(rng), U(rng), U(rng)));
+        if (i % 3 == 0) ray.t_max = std::fabs(U(rng));
+        float t_ref;
+        std::uint32_t obj_ref;
+        const bool ref_hit = ref.closest(ray, t_ref, obj_ref);
+        Hit hit;
+        ASSERT_EQ(scene.intersect(ray, hit), ref_hit) << "ray " << i;
+        ASSERT_EQ(scene.occluded(ray), ref_hit) << "ray " << i;
+        if (!ref_hit) continue;
+        ++hits;
+        EXPECT_EQ(hit.object_id, obj_ref) << "ray " << i;
+        EXPECT_NEAR(hit.t, t_ref, 1e-5f * std::max(1.0f, t_ref)) << "ray " << i;
+    }
+    EXPECT_GT(hits, 1000);
 }
 
 TEST(Scene, OccludedAgreesWithIntersectOnRandomRays) {
@@ -188,7 +238,8 @@ TEST(Scene, OccludedAgreesWithIntersectOnRandomRays) {
                     other = true;
                     break;
                 }
-                probe.t_min = std::nextafter(h2.t, INFINITY);  // past this hit of the ignored object
+                probe.t_min =
+                    std::nextafter(h2.t, INFINITY);  // past this hit of the ignored object
             }
             EXPECT_EQ(scene.occluded(ray, hit.object_id), other) << "ray " << i;
         }
@@ -265,11 +316,19 @@ TEST(Scene, PerTriangleMtlMaterials) {
     chrome.specular = glm::vec3(1.0f);
     mesh.materials = {red, lamp, glass, chrome};
     mesh.material_ids = {0, 1, 2, 3, 99};
+    EXPECT_NE(error_of([&] { scene.add_mesh_with_mtl(mesh, fallback); }).find("material id 99"),
+              std::string::npos);
+    mesh.material_ids.back() = 0;
     const auto obj = scene.add_mesh_with_mtl(mesh, fallback);
     // The same mesh with one material: its MTL ignored.
     TriangleMesh moved = mesh;
     for (glm::vec3& p : moved.positions) p.y += 5.0f;
     const auto uniform = scene.add_mesh(moved, fallback);
+    // Without material ids: the fallback throughout.
+    TriangleMesh bare = moved;
+    for (glm::vec3& p : bare.positions) p.y += 5.0f;
+    bare.material_ids.clear();
+    const auto bare_id = scene.add_mesh_with_mtl(bare, fallback);
     scene.commit();
 
     auto material_at = [&](float x, float y) {
@@ -291,11 +350,42 @@ TEST(Scene, PerTriangleMtlMaterials) {
     auto [o3, m3] = material_at(6.25f, 0.25f);
     EXPECT_EQ(m3.kind, MaterialKind::Mirror);
     auto [o4, m4] = material_at(8.25f, 0.25f);
-    EXPECT_EQ(m4.albedo, glm::vec3(0.1f, 0.2f, 0.3f));  // fallback
+    EXPECT_EQ(m4.albedo, red.diffuse);
     auto [o5, m5] = material_at(4.25f, 5.25f);
     EXPECT_EQ(o5, uniform);
     EXPECT_EQ(m5.kind, MaterialKind::Diffuse);
     EXPECT_EQ(m5.albedo, glm::vec3(0.1f, 0.2f, 0.3f));
+    auto [o6, m6] = material_at(2.25f, 10.25f);
+    EXPECT_EQ(o6, bare_id);
+    EXPECT_EQ(m6.kind, MaterialKind::Diffuse);
+    EXPECT_EQ(m6.albedo, glm::vec3(0.1f, 0.2f, 0.3f));
+}
+
+TEST(Scene, MtlTexturesAreLoadedOncePerPath) {
+    const auto path = std::filesystem::temp_directory_path() / "librt_scene_mtl_texture.ppm";
+    {
+        std::ofstream out(path, std::ios::binary);
+        out << "P6\n1 1\n255\n";
+        const unsigned char px[3] = {255, 255, 255};
+        out.write(reinterpret_cast<const char*>(px), 3);
+    }
+    Scene scene;
+    const auto fallback = scene.add_material(Material::diffuse(glm::vec3(0.5f)));
+    TriangleMesh mesh = quad_z(0, 0, 1, 1, 0);
+    MeshMaterial a, b;
+    a.name = "a";
+    b.name = "b";
+    a.diffuse_texture = b.diffuse_texture = path.string();
+    mesh.materials = {a, b};
+    mesh.material_ids = {0, 1};
+    scene.add_mesh_with_mtl(mesh, fallback);
+    std::filesystem::remove(path);
+    EXPECT_EQ(scene.texture_count(), 1u);
+    scene.commit();
+    Hit hit;
+    ASSERT_TRUE(scene.intersect(Ray{{0.7f, 0.2f, 1}, {0, 0, -1}}, hit));
+    EXPECT_EQ(scene.material(hit).albedo_texture, 0);
+    EXPECT_NEAR(scene.albedo(hit).x, 1.0f, 1e-6f);
 }
 
 TEST(Scene, TexturedAlbedo) {
@@ -342,7 +432,8 @@ TEST(Scene, OffsetScalesWithPositionAndFollowsDirection) {
     EXPECT_GT(up.y, 0.0f);
     EXPECT_LT(down.y, 0.0f);
     EXPECT_FLOAT_EQ(offset_ray_origin(p1, n, n).y, kRayOffsetAbsolute + kRayOffsetRelative);
-    EXPECT_FLOAT_EQ(offset_ray_origin(p1000, n, n).y, kRayOffsetAbsolute + 1000.0f * kRayOffsetRelative);
+    EXPECT_FLOAT_EQ(offset_ray_origin(p1000, n, n).y,
+                    kRayOffsetAbsolute + 1000.0f * kRayOffsetRelative);
     EXPECT_GT(ray_offset_scale(glm::vec3(0.0f)), 0.0f);
 }
 
@@ -384,11 +475,12 @@ TEST(Scene, SpawnedRaysDoNotSelfIntersect) {
         if (scene.intersect(out, next)) {
             // Spheres seen from outside and a plane cannot be re-hit by a leaving ray.
             ASSERT_NE(next.object_id, hit.object_id)
-                << "ray " << i << " o " << ray.origin.x << "," << ray.origin.y << "," << ray.origin.z
-                << " d " << ray.direction.x << "," << ray.direction.y << "," << ray.direction.z
-                << " p " << hit.point.x << "," << hit.point.y << "," << hit.point.z
-                << " ng " << hit.geometric_normal.x << "," << hit.geometric_normal.y << "," << hit.geometric_normal.z
-                << " w " << w.x << "," << w.y << "," << w.z << " t " << hit.t << " self-hit object " << hit.object_id << " at t = " << next.t;
+                << "ray " << i << " o " << ray.origin.x << "," << ray.origin.y << ","
+                << ray.origin.z << " d " << ray.direction.x << "," << ray.direction.y << ","
+                << ray.direction.z << " p " << hit.point.x << "," << hit.point.y << ","
+                << hit.point.z << " ng " << hit.geometric_normal.x << "," << hit.geometric_normal.y
+                << "," << hit.geometric_normal.z << " w " << w.x << "," << w.y << "," << w.z
+                << " t " << hit.t << " self-hit object " << hit.object_id << " at t = " << next.t;
         }
     }
     EXPECT_GT(tested, 10000);

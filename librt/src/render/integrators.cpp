@@ -63,7 +63,8 @@ glm::vec3 light_irradiance(const Scene& scene, const glm::vec3& p, const glm::ve
         const SphereLight& light = lights[i];
         // Drawn even when unused, so later decisions of the path keep their numbers.
         const glm::vec2 u = sampler.next_2d();
-        const SphereSample s = sample_sphere_visible(light.sphere.center, light.sphere.radius, p, u);
+        const SphereSample s =
+            sample_sphere_visible(light.sphere.center, light.sphere.radius, p, u);
         if (!(s.pdf > 0.0f)) continue;
         const glm::vec3 to_light = s.point - p;
         const float d2 = glm::dot(to_light, to_light);
@@ -101,10 +102,10 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler, int
     bool emission_counts = true;  // at the camera and after mirrors and glass
     for (int depth = 0;;) {
         Hit hit;
-        if (!scene.intersect(ray, hit)) break;
+        if (!scene.intersect_for_shading(ray, hit)) break;
         const Material& m = scene.material(hit);
-        if (m.emits() && (S == Strategy::Brute || emission_counts ||
-                          !scene.is_sphere_light(hit.object_id)))
+        if (m.emits() &&
+            (S == Strategy::Brute || emission_counts || !scene.is_sphere_light(hit.object_id)))
             radiance += throughput * m.emission;
         if (depth >= max_depth || m.kind == MaterialKind::Emissive) break;
         ++depth;
@@ -137,11 +138,15 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler, int
                 break;
             }
             case MaterialKind::Diffuse: {
-                const glm::vec3 a = scene.albedo(hit);
+                // Everything this vertex adds or passes on is scaled by throughput * albedo:
+                // when that is 0 (the blue floor's path meeting the red wall), stop without
+                // spending shadow rays on it.
+                const glm::vec3 weight = throughput * scene.albedo(hit);
+                if (!(max_component(weight) > 0.0f)) return radiance;
                 if constexpr (S != Strategy::Brute) {
                     // Lambert: outgoing radiance = albedo / pi * irradiance.
-                    radiance += throughput * a * k_inv_pi *
-                                light_irradiance(scene, hit.point, ng, ns, sampler);
+                    radiance +=
+                        weight * k_inv_pi * light_irradiance(scene, hit.point, ng, ns, sampler);
                 }
                 if constexpr (S == Strategy::Direct) {
                     return radiance;
@@ -150,7 +155,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler, int
                     // Below the true surface (a bent shading normal): the path ends there.
                     if (glm::dot(wi, ng) <= 0.0f) return radiance;
                     // Cosine sampling: (albedo / pi) cos / (cos / pi) = albedo.
-                    throughput *= a;
+                    throughput = weight;
                     emission_counts = false;
                     break;
                 }
@@ -216,9 +221,12 @@ glm::vec3 AlbedoNormalIntegrator::li(const Scene& scene, const Ray& ray,
     if (view_ == DebugView::Normal) return guard(0.5f * hit.shading_normal + 0.5f);
     const Material& m = scene.material(hit);
     switch (m.kind) {
-        case MaterialKind::Diffuse: return guard(scene.albedo(hit));
-        case MaterialKind::Emissive: return guard(m.emission);
-        default: return guard(m.albedo);
+        case MaterialKind::Diffuse:
+            return guard(scene.albedo(hit));
+        case MaterialKind::Emissive:
+            return guard(m.emission);
+        default:
+            return guard(m.albedo);
     }
 }
 

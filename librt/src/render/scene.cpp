@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 namespace librt {
@@ -14,36 +15,41 @@ bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-// Checks what queries rely on: indices in range, optional arrays of the right length,
-// finite positions. (librt::validate(TriangleMesh) says more once it is available.)
-void check_mesh(const TriangleMesh& mesh) {
-    const std::size_t n = mesh.positions.size();
-    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-        const glm::uvec3& t = mesh.triangles[i];
-        if (t.x >= n || t.y >= n || t.z >= n) {
-            std::ostringstream msg;
-            msg << "mesh triangle " << i << " = (" << t.x << ", " << t.y << ", " << t.z
-                << "): index out of range (" << n << " positions)";
-            throw Error(msg.str());
-        }
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-        if (!finite(mesh.positions[i])) {
-            std::ostringstream msg;
-            msg << "mesh position " << i << " is not finite";
-            throw Error(msg.str());
-        }
-    }
-    auto check_size = [](const char* what, std::size_t got, std::size_t want) {
-        if (got != 0 && got != want) {
-            std::ostringstream msg;
-            msg << "mesh " << what << " has " << got << " entries, expected 0 or " << want;
-            throw Error(msg.str());
-        }
-    };
-    check_size("normals", mesh.normals.size(), n);
-    check_size("uvs", mesh.uvs.size(), n);
-    check_size("material_ids", mesh.material_ids.size(), mesh.triangles.size());
+/// A ray in double precision, prepared once per query for the sphere tests.
+struct DoubleRay {
+    glm::dvec3 origin;
+    glm::dvec3 direction;
+    double a;      // |direction|^2
+    double inv_a;  // 1 / |direction|^2
+
+    explicit DoubleRay(const Ray& r)
+        : origin(r.origin),
+          direction(r.direction),
+          a(glm::dot(direction, direction)),
+          inv_a(1.0 / a) {}
+};
+
+/// Ray-sphere test in double (the report's walls have radius ~1000, where float loses
+/// the root's digits): the quadratic a t^2 + 2 b t + c = 0 with a = |d|^2, b = oc . d,
+/// c = |oc|^2 - r^2. Its discriminant / a is r^2 - |oc - (b/a) d|^2, the squared
+/// half-chord, free of the cancellation of b^2 - a c; the roots are q / a and c / q with
+/// q = -(b + sign(b) sqrt(disc)) (no cancellation either). Returns the nearest root in
+/// (t_min, t_max), or a negative value for none (t_min >= 0 for every query).
+inline double hit_sphere(const glm::dvec3& center, double radius2, const DoubleRay& ray,
+                         double t_min, double t_max) {
+    const glm::dvec3 oc = ray.origin - center;
+    const double b = glm::dot(oc, ray.direction);
+    const glm::dvec3 closest = oc - (b * ray.inv_a) * ray.direction;
+    const double half_chord2 = radius2 - glm::dot(closest, closest);
+    if (!(half_chord2 >= 0.0)) return -1.0;  // misses (or NaN)
+    const double c = glm::dot(oc, oc) - radius2;
+    const double q = -(b + std::copysign(std::sqrt(half_chord2 * ray.a), b));
+    const double t_a = q * ray.inv_a;
+    const double t_b = q != 0.0 ? c / q : t_a;
+    const double near = std::min(t_a, t_b), far = std::max(t_a, t_b);
+    if (near > t_min && near < t_max) return near;
+    if (far > t_min && far < t_max) return far;
+    return -1.0;
 }
 
 // The unit normal of a triangle from its winding; `fallback` when degenerate.
@@ -101,7 +107,8 @@ std::uint32_t Scene::add_sphere(const Sphere& sphere, std::uint32_t material) {
         msg << "sphere radius = " << sphere.radius << ": must be finite and > 0";
         throw Error(msg.str());
     }
-    spheres_.push_back(sphere);
+    spheres_.push_back(
+        {sphere, glm::dvec3(sphere.center), double(sphere.radius) * double(sphere.radius)});
     return add_object(ObjectKind::Sphere, std::uint32_t(spheres_.size() - 1), material);
 }
 
@@ -124,7 +131,7 @@ std::uint32_t Scene::add_triangle(const Triangle& triangle, std::uint32_t materi
 
 std::uint32_t Scene::add_mesh(TriangleMesh mesh, std::uint32_t material) {
     check_material_id(material);
-    check_mesh(mesh);
+    validate(mesh);
     meshes_.push_back({std::move(mesh), {}, {}});
     return add_object(ObjectKind::Mesh, std::uint32_t(meshes_.size() - 1), material);
 }
@@ -167,15 +174,13 @@ std::uint32_t Scene::mtl_to_material(const MeshMaterial& mtl) {
 
 std::uint32_t Scene::add_mesh_with_mtl(TriangleMesh mesh, std::uint32_t fallback_material) {
     check_material_id(fallback_material);
-    check_mesh(mesh);
+    validate(mesh);
     std::vector<std::uint32_t> mapped(mesh.materials.size());
     for (std::size_t i = 0; i < mesh.materials.size(); ++i)
         mapped[i] = mtl_to_material(mesh.materials[i]);
     std::vector<std::uint32_t> per_triangle(mesh.triangles.size(), fallback_material);
-    for (std::size_t i = 0; i < mesh.material_ids.size(); ++i) {
-        const std::uint32_t id = mesh.material_ids[i];
-        if (id < mapped.size()) per_triangle[i] = mapped[id];
-    }
+    for (std::size_t i = 0; i < mesh.material_ids.size(); ++i)
+        per_triangle[i] = mapped[mesh.material_ids[i]];  // in range: validated
     meshes_.push_back({std::move(mesh), {}, std::move(per_triangle)});
     return add_object(ObjectKind::Mesh, std::uint32_t(meshes_.size() - 1), kInvalidId);
 }
@@ -204,7 +209,7 @@ void Scene::commit() {
         const Object& o = objects_[id];
         BBox box;
         if (o.kind == ObjectKind::Sphere) {
-            box = librt::bounds(spheres_[o.index]);
+            box = librt::bounds(spheres_[o.index].sphere);
         } else {
             MeshData& m = meshes_[o.index];
             if (m.bvh.triangle_count() != m.mesh.triangle_count() || m.bvh.bvh().empty())
@@ -220,26 +225,94 @@ void Scene::commit() {
     slot_object_.resize(top_.prim_indices.size());
     for (std::size_t slot = 0; slot < slot_object_.size(); ++slot)
         slot_object_[slot] = ids[top_.prim_indices[slot]];
+    flat_.count = 0;
+    if (ids.size() <= kFlatObjectLimit) {
+        flat_.count = std::uint32_t(ids.size());
+        for (std::size_t i = 0; i < ids.size(); ++i) {
+            flat_.lo_x[i] = boxes[i].lo.x;
+            flat_.lo_y[i] = boxes[i].lo.y;
+            flat_.lo_z[i] = boxes[i].lo.z;
+            flat_.hi_x[i] = boxes[i].hi.x;
+            flat_.hi_y[i] = boxes[i].hi.y;
+            flat_.hi_z[i] = boxes[i].hi.z;
+            flat_.object[i] = ids[i];
+        }
+    }
     committed_ = true;
 }
 
 void Scene::require_committed() const {
-    if (!committed_) throw Error("Scene queried before commit(): call commit() after adding objects");
+    if (!committed_)
+        throw Error("Scene queried before commit(): call commit() after adding objects");
 }
 
-bool Scene::intersect(const Ray& ray, Hit& hit) const {
+bool Scene::intersect(const Ray& ray, Hit& hit) const { return intersect_impl(ray, hit, true); }
+
+bool Scene::intersect_for_shading(const Ray& ray, Hit& hit) const {
+    return intersect_impl(ray, hit, false);
+}
+
+template <bool AnyHit, class TestObject>
+bool Scene::visit_objects(Ray& ray, TestObject&& test_object) const {
+    if (flat_.count == 0)
+        return traverse<AnyHit>(top_, ray, [&](std::uint32_t slot, Ray& current) {
+            return test_object(slot_object_[slot], current);
+        });
+    if (!is_traceable(ray)) return false;
+    // Entry distance of every object box (slab test, branch-free); NaN when missed, so that
+    // no comparison selects it (t_max may be +inf, which a +inf marker would not beat).
+    constexpr float kSkip = std::numeric_limits<float>::quiet_NaN();
+    const glm::vec3 inv = safe_inverse(ray.direction);
+    const glm::vec3& o = ray.origin;
+    const std::uint32_t n = flat_.count;
+    float enter[kFlatObjectLimit];
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const float x0 = (flat_.lo_x[i] - o.x) * inv.x, x1 = (flat_.hi_x[i] - o.x) * inv.x;
+        const float y0 = (flat_.lo_y[i] - o.y) * inv.y, y1 = (flat_.hi_y[i] - o.y) * inv.y;
+        const float z0 = (flat_.lo_z[i] - o.z) * inv.z, z1 = (flat_.hi_z[i] - o.z) * inv.z;
+        const float t_in = std::max(std::max(std::min(x0, x1), std::min(y0, y1)),
+                                    std::max(std::min(z0, z1), ray.t_min));
+        const float t_out = std::min(std::min(std::max(x0, x1), std::max(y0, y1)),
+                                     std::min(std::max(z0, z1), ray.t_max));
+        enter[i] = t_in <= t_out ? t_in : kSkip;
+    }
+    // Visit boxes nearest entry first; stop when the next one starts beyond the nearest hit.
+    bool found = false;
+    for (;;) {
+        std::uint32_t next = kInvalidId;
+        float next_enter = ray.t_max;
+        for (std::uint32_t i = 0; i < n; ++i) {
+            if (enter[i] <= next_enter) {
+                next_enter = enter[i];
+                next = i;
+            }
+        }
+        if (next == kInvalidId) return found;
+        enter[next] = kSkip;
+        if (test_object(flat_.object[next], ray)) {
+            found = true;
+            if constexpr (AnyHit) return true;
+        }
+    }
+}
+
+bool Scene::intersect_impl(const Ray& ray, Hit& hit, bool sphere_uv_always) const {
     require_committed();
     Ray r = ray;
+    const DoubleRay dray(ray);
     std::uint32_t best_object = kInvalidId;
     PrimitiveHit best;
-    traverse<false>(top_, r, [&](std::uint32_t slot, Ray& current) {
-        const std::uint32_t id = slot_object_[slot];
+    visit_objects<false>(r, [&](std::uint32_t id, Ray& current) {
         const Object& o = objects_[id];
         if (o.kind == ObjectKind::Sphere) {
-            const auto t = librt::intersect(spheres_[o.index], current);
-            if (!t) return false;
-            current.t_max = *t;
-            best = {*t, 0.0f, 0.0f, 0};
+            const SphereData& s = spheres_[o.index];
+            const double t = hit_sphere(s.center, s.radius2, dray, current.t_min, current.t_max);
+            if (!(t >= 0.0)) return false;
+            // Rounding to float may land on t_max itself; keep the interval open.
+            float tf = static_cast<float>(t);
+            if (!(tf < current.t_max)) tf = std::nextafter(current.t_max, 0.0f);
+            current.t_max = tf;
+            best = {tf, 0.0f, 0.0f, 0};
         } else {
             const PrimitiveHit h = meshes_[o.index].bvh.intersect(current);
             if (!h.valid()) return false;
@@ -250,37 +323,43 @@ bool Scene::intersect(const Ray& ray, Hit& hit) const {
         return true;
     });
     if (best_object == kInvalidId) return false;
-    finish_hit(ray, best_object, best, hit);
+    finish_hit(ray, best_object, best, sphere_uv_always, hit);
     return true;
 }
 
 bool Scene::occluded(const Ray& ray, std::uint32_t ignored_object) const {
     require_committed();
     Ray r = ray;
-    return traverse<true>(top_, r, [&](std::uint32_t slot, Ray& current) {
-        const std::uint32_t id = slot_object_[slot];
+    const DoubleRay dray(ray);
+    return visit_objects<true>(r, [&](std::uint32_t id, Ray& current) {
         if (id == ignored_object) return false;
         const Object& o = objects_[id];
-        if (o.kind == ObjectKind::Sphere)
-            return librt::intersect(spheres_[o.index], current).has_value();
+        if (o.kind == ObjectKind::Sphere) {
+            const SphereData& s = spheres_[o.index];
+            return hit_sphere(s.center, s.radius2, dray, current.t_min, current.t_max) >= 0.0;
+        }
         return meshes_[o.index].bvh.occluded(current);
     });
 }
 
 void Scene::finish_hit(const Ray& ray, std::uint32_t object_id, const PrimitiveHit& prim,
-                       Hit& hit) const {
+                       bool sphere_uv_always, Hit& hit) const {
     const Object& o = objects_[object_id];
     hit.t = prim.t;
     hit.object_id = object_id;
     const glm::vec3 back = -ray.direction;  // fallback orientation for degenerate normals
     if (o.kind == ObjectKind::Sphere) {
-        const Sphere& s = spheres_[o.index];
+        const Sphere& s = spheres_[o.index].sphere;
         hit.point = ray.at(prim.t);
         hit.geometric_normal = unit_or(hit.point - s.center, back);
         hit.shading_normal = hit.geometric_normal;
-        // v flipped so that it grows toward +y like OBJ coordinates: images map upright.
-        const glm::vec2 uv = sphere_uv(s, hit.point);
-        hit.uv = {uv.x, 1.0f - uv.y};
+        if (sphere_uv_always || materials_[o.material].albedo_texture >= 0) {
+            // v flipped so that it grows toward +y like OBJ coordinates: images map upright.
+            const glm::vec2 uv = sphere_uv(s, hit.point);
+            hit.uv = {uv.x, 1.0f - uv.y};
+        } else {
+            hit.uv = glm::vec2(0.0f);
+        }
         hit.primitive_id = 0;
         return;
     }
@@ -300,9 +379,8 @@ void Scene::finish_hit(const Ray& ray, std::uint32_t object_id, const PrimitiveH
         const glm::vec3 ns = unit_or(n, hit.geometric_normal);
         hit.shading_normal = glm::dot(ns, hit.geometric_normal) < 0.0f ? -ns : ns;
     }
-    hit.uv = mesh.uvs.empty()
-                 ? glm::vec2(b1, b2)
-                 : b0 * mesh.uvs[idx.x] + b1 * mesh.uvs[idx.y] + b2 * mesh.uvs[idx.z];
+    hit.uv = mesh.uvs.empty() ? glm::vec2(b1, b2)
+                              : b0 * mesh.uvs[idx.x] + b1 * mesh.uvs[idx.y] + b2 * mesh.uvs[idx.z];
     hit.primitive_id = prim.primitive_id;
 }
 

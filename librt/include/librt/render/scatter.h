@@ -29,8 +29,8 @@ namespace librt {
 
 /// What a smooth dielectric boundary did to a ray.
 struct DielectricScatter {
-    glm::vec3 direction{0.0f};        ///< unit outgoing direction
-    bool transmitted = false;         ///< true: refracted through; false: reflected
+    glm::vec3 direction{0.0f};               ///< unit outgoing direction
+    bool transmitted = false;                ///< true: refracted through; false: reflected
     bool total_internal_reflection = false;  ///< reflected because no refraction exists
 };
 

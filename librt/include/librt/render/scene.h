@@ -12,10 +12,12 @@
 #include <librt/render/material.h>
 #include <librt/render/texture.h>
 
+#include <glm/ext/vector_double3.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -95,14 +97,16 @@ public:
     /// returned (the triangle's primitive id is its rank among loose triangles).
     std::uint32_t add_triangle(const Triangle& triangle, std::uint32_t material);
     /// Adds a mesh whose triangles all use `material` (its own materials are ignored);
-    /// returns its object id. Throws librt::Error for an invalid mesh or material id.
+    /// returns its object id. Throws librt::Error for an invalid mesh (librt::validate) or
+    /// an unknown material id.
     std::uint32_t add_mesh(TriangleMesh mesh, std::uint32_t material);
     /// Adds a mesh whose triangles use its MTL materials, mapped to scene materials:
     /// Ke != 0 -> emissive; illum 4, 6, 7 or d < 1 -> dielectric of index Ni; illum 3, 5
     /// or Ks = 1 -> mirror; otherwise diffuse Kd, with map_Kd as albedo texture (loaded once
     /// per path; a texture that fails to load is reported on stderr and Kd kept).
-    /// Triangles without a (valid) material id use `fallback_material`. Returns the
-    /// object id.
+    /// A mesh without material_ids uses `fallback_material` throughout. Returns the object
+    /// id. Throws librt::Error for an invalid mesh (librt::validate: e.g. a material id out
+    /// of range), an unknown fallback id, or an MTL value no Material accepts.
     std::uint32_t add_mesh_with_mtl(TriangleMesh mesh, std::uint32_t fallback_material);
     /// Adds a point light (validated). Point lights are not geometry.
     void add_point_light(const PointLight& light);
@@ -120,6 +124,10 @@ public:
     /// and returns true, or returns false and leaves `hit` alone. Throws librt::Error
     /// before commit().
     [[nodiscard]] bool intersect(const Ray& ray, Hit& hit) const;
+    /// intersect() for renderers: the same hit, except that a sphere's uv (two inverse
+    /// trigonometric calls) is computed only when its material has a texture, and is
+    /// (0, 0) otherwise, since only texture lookups read it. What the integrators call.
+    [[nodiscard]] bool intersect_for_shading(const Ray& ray, Hit& hit) const;
     /// True when anything lies in (ray.t_min, ray.t_max): for shadow rays. The object
     /// `ignored_object` (e.g. the sphere light being sampled) is skipped. Throws
     /// librt::Error before commit().
@@ -174,6 +182,12 @@ private:
         std::uint32_t index;     ///< into spheres_ or meshes_
         std::uint32_t material;  ///< uniform material, or kInvalidId for per-triangle ids
     };
+    /// A sphere with the double-precision copies its test uses.
+    struct SphereData {
+        Sphere sphere;
+        glm::dvec3 center;
+        double radius2;
+    };
     struct MeshData {
         TriangleMesh mesh;
         TriangleBvh bvh;
@@ -184,21 +198,40 @@ private:
     void check_material_id(std::uint32_t material) const;
     std::uint32_t add_object(ObjectKind kind, std::uint32_t index, std::uint32_t material);
     std::uint32_t mtl_to_material(const MeshMaterial& mtl);
+    /// Calls test_object(object id, ray) -> bool for the objects the ray may hit, nearest
+    /// box first, through flat_ or top_; stops at the first hit with AnyHit.
+    template <bool AnyHit, class TestObject>
+    bool visit_objects(Ray& ray, TestObject&& test_object) const;
+    bool intersect_impl(const Ray& ray, Hit& hit, bool sphere_uv_always) const;
     void finish_hit(const Ray& ray, std::uint32_t object_id, const PrimitiveHit& prim,
-                    Hit& hit) const;
+                    bool sphere_uv_always, Hit& hit) const;
 
     std::vector<Material> materials_;
     std::vector<ImageTexture> textures_;
     std::map<std::string, std::int32_t> texture_by_path_;
     std::vector<Object> objects_;
-    std::vector<Sphere> spheres_;
+    std::vector<SphereData> spheres_;
     std::vector<MeshData> meshes_;
     std::uint32_t loose_object_ = kInvalidId;  ///< object of the add_triangle mesh
     std::vector<PointLight> point_lights_;
     std::vector<SphereLight> sphere_lights_;
     std::vector<std::uint32_t> sphere_light_objects_;
 
-    Bvh top_;                                ///< over objects_' boxes
+    /// Up to this many objects, the top level is a flat list of boxes rather than top_: the
+    /// report's six radius-1000 wall spheres all overlap the room, so every interior node of
+    /// a BVH over them does too and a ray visits nearly all of them, while the entry
+    /// distances of a dozen boxes cost less than a walk down that tree (about 2x faster in
+    /// the room).
+    static constexpr std::uint32_t kFlatObjectLimit = 16;
+    /// The objects' boxes as structure of arrays, when there are at most kFlatObjectLimit.
+    struct FlatBoxes {
+        std::array<float, kFlatObjectLimit> lo_x{}, lo_y{}, lo_z{}, hi_x{}, hi_y{}, hi_z{};
+        std::array<std::uint32_t, kFlatObjectLimit> object{};  ///< box i -> object id
+        std::uint32_t count = 0;                               ///< 0: use top_
+    };
+
+    Bvh top_;  ///< over objects_' boxes
+    FlatBoxes flat_;
     std::vector<std::uint32_t> slot_object_;  ///< top_ slot -> object id
     bool committed_ = false;
 };

@@ -34,8 +34,8 @@ public:
     [[nodiscard]] const glm::vec3& texel(int x, int y) const {
         return texels_[std::size_t(y) * std::size_t(width_) + std::size_t(x)];
     }
-    [[nodiscard]] int width() const { return width_; }    ///< texels per row
-    [[nodiscard]] int height() const { return height_; }  ///< number of rows
+    [[nodiscard]] int width() const { return width_; }            ///< texels per row
+    [[nodiscard]] int height() const { return height_; }          ///< number of rows
     [[nodiscard]] bool empty() const { return texels_.empty(); }  ///< true when default-made
 
 private:
