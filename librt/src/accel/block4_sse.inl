@@ -9,26 +9,46 @@
 
 /// Per-ray constants of the 4-lane test: triangle.h's permutation and shear, broadcast.
 struct TriRay4 {
-    WatertightRay w;  ///< for the double-precision fallback on edges
     __m128 o_kx, o_ky, o_kz;  ///< origin components along the permuted axes
     __m128 sx, sy, sz;
     std::uint32_t kx, ky, kz;
 };
 
+/// triangle.h's prepare_watertight for a traceable ray, with its three divisions
+/// (s_x = d_kx / d_kz, s_y = d_ky / d_kz, s_z = 1 / d_kz) done by one vector division:
+/// IEEE division is exact per lane, so the values are the scalar ones.
 inline TriRay4 prepare_triangles4(const Ray& ray) {
+    const float* d = &ray.direction.x;
+    const float ax = std::fabs(d[0]), ay = std::fabs(d[1]), az = std::fabs(d[2]);
+    const std::uint32_t kz = (ax > ay) ? (ax > az ? 0u : 2u) : (ay > az ? 1u : 2u);
+    std::uint32_t kx = kz == 2 ? 0u : kz + 1;
+    std::uint32_t ky = kx == 2 ? 0u : kx + 1;
+    if (d[kz] < 0.0f) std::swap(kx, ky);  // keep the winding
+    const __m128 s = _mm_div_ps(_mm_setr_ps(d[kx], d[ky], 1.0f, 1.0f), _mm_set1_ps(d[kz]));
     TriRay4 r;
-    r.w = prepare_watertight(ray);
-    r.kx = static_cast<std::uint32_t>(r.w.kx);
-    r.ky = static_cast<std::uint32_t>(r.w.ky);
-    r.kz = static_cast<std::uint32_t>(r.w.kz);
+    r.kx = kx;
+    r.ky = ky;
+    r.kz = kz;
     const float* o = &ray.origin.x;
-    r.o_kx = _mm_set1_ps(o[r.kx]);
-    r.o_ky = _mm_set1_ps(o[r.ky]);
-    r.o_kz = _mm_set1_ps(o[r.kz]);
-    r.sx = _mm_set1_ps(r.w.sx);
-    r.sy = _mm_set1_ps(r.w.sy);
-    r.sz = _mm_set1_ps(r.w.sz);
+    r.o_kx = _mm_set1_ps(o[kx]);
+    r.o_ky = _mm_set1_ps(o[ky]);
+    r.o_kz = _mm_set1_ps(o[kz]);
+    r.sx = _mm_shuffle_ps(s, s, _MM_SHUFFLE(0, 0, 0, 0));
+    r.sy = _mm_shuffle_ps(s, s, _MM_SHUFFLE(1, 1, 1, 1));
+    r.sz = _mm_shuffle_ps(s, s, _MM_SHUFFLE(2, 2, 2, 2));
     return r;
+}
+
+/// bbox.h's safe_inverse of the direction by one vector division: a component below
+/// 1e-30 in magnitude becomes 1e-30 with its sign first. Lane 3 is 1.
+inline __m128 safe_inverse4(const glm::vec3& dir) {
+    const __m128 d = _mm_setr_ps(dir.x, dir.y, dir.z, 1.0f);
+    const __m128 sign = _mm_set1_ps(-0.0f);
+    const __m128 tiny = _mm_set1_ps(1e-30f);
+    const __m128 small = _mm_cmplt_ps(_mm_andnot_ps(sign, d), tiny);
+    const __m128 signed_tiny = _mm_or_ps(_mm_and_ps(d, sign), tiny);
+    const __m128 fixed = _mm_or_ps(_mm_and_ps(small, signed_tiny), _mm_andnot_ps(small, d));
+    return _mm_div_ps(_mm_set1_ps(1.0f), fixed);
 }
 
 /// Recomputes the edge functions of the lanes in `lanes` in double, as triangle.h does
@@ -57,8 +77,9 @@ inline TriRay4 prepare_triangles4(const Ray& ray) {
 }
 
 /// Watertight ray-triangle test (Woop, Benthin and Wald, JCGT 2013) of a block's four
-/// triangles. Returns the mask of lanes hit with t in (t_min, t_max), and their t, u, v.
-inline int test_block4(const TriangleBlock& b, const TriRay4& r, __m128 t_min, __m128 t_max,
+/// triangles. Returns the lanes hit with t in (t_min, t_max) (all bits set in those lanes),
+/// and their t, u, v.
+inline __m128 test_block4(const TriangleBlock& b, const TriRay4& r, __m128 t_min, __m128 t_max,
                        __m128& t, __m128& u, __m128& v) {
     // Corners relative to the origin; z along the permuted axis kz...
     const __m128 az = _mm_sub_ps(_mm_load_ps(b.p[0][r.kz]), r.o_kz);
@@ -87,9 +108,10 @@ inline int test_block4(const TriangleBlock& b, const TriRay4& r, __m128 t_min, _
     const __m128 any_pos =
         _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)), _mm_cmpgt_ps(e2, zero));
     const __m128 det = _mm_add_ps(_mm_add_ps(e0, e1), e2);
-    // cmpneq is true for NaN: a padding lane is rejected below by its NaN t.
+    // cmpneq is true for NaN: a padding lane is rejected below by its NaN t. (No early exit
+    // here: whether any lane is inside is a coin toss, and the division is cheaper than
+    // the mispredicted branch.)
     __m128 ok = _mm_andnot_ps(_mm_and_ps(any_neg, any_pos), _mm_cmpneq_ps(det, zero));
-    if (_mm_movemask_ps(ok) == 0) return 0;
 
     // t = s_z (e0 az + e1 bz + e2 cz) / det, barycentrics u = e1 / det, v = e2 / det.
     const __m128 t_scaled = _mm_mul_ps(
@@ -99,7 +121,7 @@ inline int test_block4(const TriangleBlock& b, const TriRay4& r, __m128 t_min, _
     ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpgt_ps(t, t_min), _mm_cmplt_ps(t, t_max)));
     u = _mm_mul_ps(e1, inv_det);
     v = _mm_mul_ps(e2, inv_det);
-    return _mm_movemask_ps(ok);
+    return ok;
 }
 
 /// The triangle half of a kernel policy (see wide_traversal.inl).
@@ -111,18 +133,19 @@ struct Block4Kernel {
     static bool intersect_block(const TriangleBlock& block, const TriRay& r, float t_min, float& t_max,
                                 std::uint32_t& lane, float& u, float& v) {
         __m128 t4, u4, v4;
-        int mask = test_block4(block, r, _mm_set1_ps(t_min), _mm_set1_ps(t_max), t4, u4, v4);
-        if (mask == 0) return false;
+        const __m128 hit = test_block4(block, r, _mm_set1_ps(t_min), _mm_set1_ps(t_max), t4, u4, v4);
+        if (_mm_movemask_ps(hit) == 0) return false;
+        // The nearest lane without branches: the minimum of the hit lanes' t (misses count as
+        // +inf), then the lowest lane holding it, as the scalar loop keeps the first of equals.
+        const __m128 tt = _mm_or_ps(_mm_and_ps(hit, t4), _mm_andnot_ps(hit, _mm_set1_ps(INFINITY)));
+        __m128 m = _mm_min_ps(tt, _mm_shuffle_ps(tt, tt, _MM_SHUFFLE(2, 3, 0, 1)));
+        m = _mm_min_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)));
+        const int nearest = _mm_movemask_ps(_mm_and_ps(hit, _mm_cmpeq_ps(tt, m)));
+        const auto k = static_cast<std::uint32_t>(std::countr_zero(static_cast<unsigned>(nearest)));
         alignas(16) float ts[4], us[4], vs[4];
         _mm_store_ps(ts, t4);
         _mm_store_ps(us, u4);
         _mm_store_ps(vs, v4);
-        // The nearest lane; the lowest among equals, as the scalar loop keeps the first.
-        auto k = static_cast<std::uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
-        for (mask &= mask - 1; mask != 0; mask &= mask - 1) {
-            const auto j = static_cast<std::uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
-            if (ts[j] < ts[k]) k = j;
-        }
         t_max = ts[k];
         lane = k;
         u = us[k];
@@ -132,6 +155,6 @@ struct Block4Kernel {
 
     static bool occluded_block(const TriangleBlock& block, const TriRay& r, float t_min, float t_max) {
         __m128 t4, u4, v4;
-        return test_block4(block, r, _mm_set1_ps(t_min), _mm_set1_ps(t_max), t4, u4, v4) != 0;
+        return _mm_movemask_ps(test_block4(block, r, _mm_set1_ps(t_min), _mm_set1_ps(t_max), t4, u4, v4)) != 0;
     }
 };

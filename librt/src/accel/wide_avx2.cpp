@@ -38,9 +38,10 @@ struct Kernel : Block4Kernel {
 
     static NodeRay prepare_nodes(const Ray& ray) {
         NodeRay r;
-        const glm::vec3 inv = safe_inverse(ray.direction);
+        alignas(16) float inv[4];
+        _mm_store_ps(inv, safe_inverse4(ray.direction));
         for (std::uint32_t a = 0; a < 3; ++a) {
-            const float inv_a = inv[static_cast<int>(a)];
+            const float inv_a = inv[a];
             r.o[a] = _mm256_set1_ps(ray.origin[static_cast<int>(a)]);
             r.inv[a] = _mm256_set1_ps(inv_a);
             const bool negative = std::signbit(inv_a);

@@ -8,7 +8,6 @@
 namespace librt {
 namespace {
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
 
 /// Writes child slot i of a wide node.
 void set_child(WideBvhNode& node, std::uint32_t i, const BBox& box, std::uint32_t ref) {
