@@ -34,6 +34,14 @@ void check_mesh(const TriangleMesh& mesh) {
             throw Error(msg.str());
         }
     }
+    // NaN normals or uvs would reach shading (and the texture lookup) unchecked.
+    for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
+        if (!finite(mesh.normals[i])) throw Error("mesh normal " + std::to_string(i) + " is not finite");
+    }
+    for (std::size_t i = 0; i < mesh.uvs.size(); ++i) {
+        if (!std::isfinite(mesh.uvs[i].x) || !std::isfinite(mesh.uvs[i].y))
+            throw Error("mesh uv " + std::to_string(i) + " is not finite");
+    }
     auto check_size = [](const char* what, std::size_t got, std::size_t want) {
         if (got != 0 && got != want) {
             std::ostringstream msg;
