@@ -19,9 +19,37 @@ namespace librt::apps {
 
 namespace {
 
+// Set by SIGINT / SIGTERM; lock-free, so the handler may store to it.
 std::atomic<bool> g_cancel{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
 
-extern "C" void on_interrupt(int /*signal*/) { g_cancel.store(true); }
+// The first signal asks for a clean stop; a second one (the user insisting, e.g. while a
+// huge mesh loads, which is not cancellable) gets the default action: immediate death.
+extern "C" void on_interrupt(int signal) {
+    if (g_cancel.exchange(true)) {
+        std::signal(signal, SIG_DFL);
+        std::raise(signal);
+    }
+}
+
+/// Routes SIGINT and SIGTERM to on_interrupt while alive, restoring the previous
+/// handlers on every exit path (return or exception).
+class InterruptGuard {
+public:
+    InterruptGuard()
+        : previous_int_(std::signal(SIGINT, on_interrupt)),
+          previous_term_(std::signal(SIGTERM, on_interrupt)) {}
+    ~InterruptGuard() {
+        std::signal(SIGINT, previous_int_);
+        std::signal(SIGTERM, previous_term_);
+    }
+    InterruptGuard(const InterruptGuard&) = delete;
+    InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+private:
+    void (*previous_int_)(int);
+    void (*previous_term_)(int);
+};
 
 }  // namespace
 
@@ -76,6 +104,9 @@ int run(CLI::App& app, int argc, char** argv, const std::function<int()>& body) 
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     }
+    // From here on Ctrl-C / SIGTERM only set g_cancel: a render in progress (or the next
+    // one) stops at once, render_and_write writes nothing and returns 130.
+    const InterruptGuard interrupts;
     try {
         return body();
     } catch (const librt::Error& e) {
@@ -99,17 +130,13 @@ int render_and_write(const Scene& scene, const CameraSettings& camera_settings,
     settings.seed = o.seed;
     settings.progress = !o.quiet;
     settings.cancel = &g_cancel;
-    auto* const previous = std::signal(SIGINT, on_interrupt);
+    // Ctrl-C (or SIGTERM) before the write starts: exit 130, nothing written. During the
+    // (short) write it takes effect once the file is complete: image files only ever
+    // appear whole, through a temporary renamed into place, so there is never a partial
+    // file or a stray temporary either way.
     RenderStats stats;
-    Image image;
-    try {
-        image = render(scene, camera, integrator, settings, &stats);
-    } catch (...) {
-        std::signal(SIGINT, previous);
-        throw;
-    }
-    std::signal(SIGINT, previous);
-    if (stats.cancelled) {
+    const Image image = render(scene, camera, integrator, settings, &stats);
+    if (stats.cancelled || g_cancel.load()) {
         std::cerr << "interrupted: nothing written\n";
         return 130;
     }
@@ -130,6 +157,10 @@ int render_and_write(const Scene& scene, const CameraSettings& camera_settings,
 
     write_image(o.output, image, tone_map);
     if (!o.quiet) std::printf("wrote %s\n", o.output.c_str());
+    if (g_cancel.load()) {
+        std::cerr << "interrupted after " << o.output << " was written\n";
+        return 130;
+    }
     if (after_write) after_write(image);
 
     if (o.check) {

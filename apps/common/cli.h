@@ -56,11 +56,12 @@ void add_mesh_options(CLI::App& app, MeshOptions& options);
 
 /// Parses the command line and runs `body`. A librt::Error (or any other exception) is
 /// printed on stderr and gives exit code 1; command-line errors give CLI11's code.
-/// Returns body's exit code otherwise.
+/// Returns body's exit code otherwise. While body runs, SIGINT and SIGTERM request a
+/// clean stop (render_and_write then returns 130 without writing); a second one kills.
 [[nodiscard]] int run(CLI::App& app, int argc, char** argv, const std::function<int()>& body);
 
-/// Renders with the options' sample count, threads and seed (Ctrl-C cancels: nothing is
-/// written, exit 130), prints a summary, writes options.output tone-mapped with the
+/// Renders with the options' sample count, threads and seed (Ctrl-C or SIGTERM cancels:
+/// nothing is written, exit 130; see docs/robustness.md), prints a summary, writes options.output tone-mapped with the
 /// report's gamma and exposure, and with --check returns 2 when the image is all black
 /// or has a non-finite pixel. `after_write`, when set, gets the linear image once it is
 /// written (e.g. to write a zoomed crop). `scene` must be committed.

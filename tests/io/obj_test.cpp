@@ -302,7 +302,7 @@ TEST(Obj, ZeroIndexIsAnErrorNamingTheFile) {
     const std::string msg =
         load_error(dir.write("zero.obj", std::string(kSquareVerts) + "f 1 2 3\nf 0 1 2\n"));
     EXPECT_TRUE(contains(msg, "zero.obj")) << msg;
-    EXPECT_TRUE(contains(msg, "line 6")) << msg;  // tinyobjloader's message names the line
+    EXPECT_TRUE(contains(msg, "zero.obj:6:")) << msg;  // file:line
 }
 
 TEST(Obj, MissingFileAndDirectoryAreErrorsNamingThePath) {

@@ -5,7 +5,9 @@
 #include "integrator_test_util.h"
 
 #include <librt/core/error.h>
+#include <librt/render/camera.h>
 #include <librt/render/integrators.h>
+#include <librt/render/renderer.h>
 #include <librt/render/scene.h>
 
 #include <gtest/gtest.h>
@@ -342,6 +344,78 @@ TEST(Integrators, FiniteOnHostileScenes) {
     // Something was lit: the light inside glass reaches the floor through it.
     const StatImage img = render_stats(scene, path, outside, 8, 12);
     EXPECT_GT(region(img, 0, 0, 12, 12).mean.x, 0.0);
+}
+
+// (g) Degenerate geometry, through the real renderer (jittered camera, several threads):
+// a mesh whose vertex normals are all zero, zero-area and sliver triangles, spheres and a
+// sphere light of radius 1e-6 and 1e-20 (radius 0 is refused by add_sphere), a mirror and a
+// glass ball seen at grazing angles from a camera in the floor's plane, and a glass ball
+// showing total internal reflection. Every pixel must be finite, with no sample dropped
+// by the renderer or replaced by the integrators' guard (a debug build would assert).
+TEST(Integrators, FiniteOnDegenerateGeometry) {
+    Scene scene;
+    const auto white = scene.add_material(Material::diffuse(glm::vec3(0.8f)));
+    const auto chrome = scene.add_material(Material::mirror());
+    const auto glass = scene.add_material(Material::dielectric(1.8f));
+    const auto lamp = scene.add_material(Material::emissive(glm::vec3(5.0f)));
+    add_floor(scene, 20.0f, white);
+    TriangleMesh flat;  // a tent with all-zero vertex normals, plus degenerate triangles
+    flat.positions = {{-3, 0, -3}, {3, 0, -3}, {0, 3, -2}, {0, 0, 0}, {1, 1, 1}, {2, 2, 2},
+                      {5, 0.5f, 0}, {5, 0.5f, 0}, {5, 0.5f, 0}, {-4, 0, 1}, {4, 0, 1}, {0, 1e-20f, 1}};
+    flat.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}, {9, 10, 11}};
+    flat.normals.assign(flat.positions.size(), glm::vec3(0.0f));
+    flat.uvs.assign(flat.positions.size(), glm::vec2(0.5f));
+    scene.add_mesh(flat, white);
+    scene.add_mesh(flat, glass);  // the same shape in glass: flat normals, open mesh
+    scene.add_sphere({{1, 1, 3}, 1e-6f}, white);
+    scene.add_sphere({{-1, 1, 3}, 1e-20f}, chrome);
+    scene.add_sphere({{3, 1, 1}, 1.0f}, chrome);
+    scene.add_sphere({{-3, 1, 1}, 1.0f}, glass);
+    scene.add_sphere({{0, 6, 0}, 0.5f}, lamp);  // an emissive sphere that is not a light
+    scene.add_sphere_light({{{2, 4, 2}, 1e-20f}, glm::vec3(1.0f)});
+    scene.add_sphere_light({{{-2, 4, 2}, 1e-6f}, glm::vec3(1e6f)});
+    scene.add_sphere_light({{{0, 8, 4}, 1.0f}, glm::vec3(4.0f)});
+    scene.add_point_light({{0, 5, 5}, glm::vec3(50.0f)});
+    scene.add_point_light({{0, 0, 1}, glm::vec3(50.0f)});  // exactly on a degenerate triangle
+    scene.commit();
+
+    PathTracer path({6});
+    PathTracer roulette({30, true, 1});
+    DirectLighting direct;
+    BruteForcePathTracer brute({6});
+    AlbedoNormalIntegrator normal(DebugView::Normal);
+    const std::vector<GuardedIntegrator*> integrators = {&path, &roulette, &direct, &brute, &normal};
+    std::vector<CameraSettings> cameras(3);
+    cameras[0].position = {0, 3, 12};  // overview
+    cameras[0].look_at = {0, 1, 0};
+    cameras[1].position = {-12, 0, 1};  // in the floor's plane: grazing everything
+    cameras[1].look_at = {0, 0, 1};
+    cameras[2].position = {-3, 1, 1};  // inside the glass ball, looking at grazing angles
+    cameras[2].look_at = {0, 1, 1};
+    cameras[2].vertical_fov_degrees = 170.0f;
+    for (CameraSettings& cs : cameras) {
+        cs.width = cs.height = 12;
+        cs.pixel_jitter = PixelJitter::Gaussian;
+        cs.lens = LensModel::Disk;
+        cs.lens_radius = 0.05f;
+        cs.focal_distance = 10.0f;
+    }
+    RenderSettings settings;
+    settings.samples_per_pixel = 6;
+    settings.threads = 2;
+    settings.tile_size = 5;
+    settings.progress = false;
+    for (const CameraSettings& cs : cameras)
+        for (GuardedIntegrator* integ : integrators) {
+            RenderStats stats;
+            const Image image = render(scene, Camera(cs), *integ, settings, &stats);
+            EXPECT_EQ(stats.nonfinite_samples, 0u);
+            for (const glm::vec3& p : image.pixels) {
+                ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+                ASSERT_GE(std::min({p.x, p.y, p.z}), 0.0f);
+            }
+        }
+    for (GuardedIntegrator* integ : integrators) EXPECT_EQ(integ->nonfinite_count(), 0u);
 }
 
 #ifdef NDEBUG

@@ -37,6 +37,11 @@ void check_input(std::span<const BBox> boxes, std::span<const glm::vec3> centers
         const glm::vec3& c = centers[i];
         if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z))
             throw Error("BVH build: primitive " + std::to_string(i) + " has a non-finite centre");
+        // A NaN corner would poison every box above it (min/max keep NaN or drop it).
+        const BBox& b = boxes[i];
+        if (std::isnan(b.lo.x) || std::isnan(b.lo.y) || std::isnan(b.lo.z) ||
+            std::isnan(b.hi.x) || std::isnan(b.hi.y) || std::isnan(b.hi.z))
+            throw Error("BVH build: primitive " + std::to_string(i) + " has a NaN box");
     }
 }
 

@@ -12,9 +12,41 @@ namespace librt {
 namespace {
 
 std::vector<Triangle> mesh_triangles(const TriangleMesh& mesh) {
+    // A bad index would read outside positions, a NaN corner would vanish from its box
+    // (min and max drop NaN): refuse both. (Error and std::to_string come with
+    // bvh_traversal.h.)
+    const std::size_t n = mesh.positions.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::vec3& p = mesh.positions[i];
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            throw Error("mesh: position " + std::to_string(i) + " is not finite");
+    }
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+        const glm::uvec3& t = mesh.triangles[i];
+        if (t.x >= n || t.y >= n || t.z >= n) {
+            const std::uint32_t bad = t.x >= n ? t.x : t.y >= n ? t.y : t.z;
+            throw Error("mesh: triangle " + std::to_string(i) + " index " + std::to_string(bad) +
+                        " is out of range (" + std::to_string(n) + " positions)");
+        }
+    }
     std::vector<Triangle> tris(mesh.triangle_count());
     for (std::size_t i = 0; i < tris.size(); ++i) tris[i] = mesh.triangle(i);
     return tris;
+}
+
+/// The triangles, after checking every corner is finite.
+std::span<const Triangle> checked(std::span<const Triangle> triangles) {
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+        const Triangle& t = triangles[i];
+        const float sum = t.p0.x + t.p0.y + t.p0.z + t.p1.x + t.p1.y + t.p1.z + t.p2.x + t.p2.y + t.p2.z;
+        if (!std::isfinite(sum)) {
+            // The sum also overflows for huge finite corners; name the real culprit.
+            for (const glm::vec3& p : {t.p0, t.p1, t.p2})
+                if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+                    throw Error("triangle " + std::to_string(i) + " has a non-finite corner");
+        }
+    }
+    return triangles;
 }
 
 /// Leaf callback shared by the BVH and the linear scan: tests the triangle in a slot
@@ -59,7 +91,7 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh, BvhBuilder builder) {
 }
 
 TriangleBvh::TriangleBvh(std::span<const Triangle> triangles, BvhBuilder builder) {
-    build(triangles, builder);
+    build(checked(triangles), builder);
 }
 
 void TriangleBvh::build(std::span<const Triangle> triangles, BvhBuilder builder) {

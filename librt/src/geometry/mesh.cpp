@@ -35,6 +35,16 @@ BBox TriangleMesh::bounds() const {
 }
 
 void transform(TriangleMesh& mesh, const glm::mat4& matrix) {
+    // Checked before anything moves, so a bad matrix leaves the mesh untouched.
+    for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) {
+            if (!std::isfinite(matrix[c][r])) {
+                throw Error("transform: matrix entry (row " + std::to_string(r) + ", column " +
+                            std::to_string(c) + ") = " + std::to_string(matrix[c][r]) +
+                            ": must be finite");
+            }
+        }
+    }
     // GLM is column-major: matrix[c][r]; the bottom row is matrix[c][3].
     if (matrix[0][3] != 0.0f || matrix[1][3] != 0.0f || matrix[2][3] != 0.0f ||
         matrix[3][3] != 1.0f) {
@@ -42,14 +52,14 @@ void transform(TriangleMesh& mesh, const glm::mat4& matrix) {
     }
     const glm::mat3 linear(matrix);
     const glm::vec3 translation(matrix[3]);
+    const float det = glm::determinant(linear);
+    if (!mesh.normals.empty() && (!(det != 0.0f) || !std::isfinite(det))) {
+        throw Error("transform: matrix is singular (det = " + std::to_string(det) +
+                    "), normals cannot be transformed");
+    }
     for (glm::vec3& p : mesh.positions) p = linear * p + translation;
 
-    const float det = glm::determinant(linear);
     if (!mesh.normals.empty()) {
-        if (!(det != 0.0f) || !std::isfinite(det)) {
-            throw Error("transform: matrix is singular (det = " + std::to_string(det) +
-                        "), normals cannot be transformed");
-        }
         // Normals transform by the inverse transpose so they stay perpendicular to tangents.
         const glm::mat3 normal_matrix = glm::transpose(glm::inverse(linear));
         for (glm::vec3& n : mesh.normals) {
@@ -67,6 +77,15 @@ void transform(TriangleMesh& mesh, const glm::mat4& matrix) {
 
 glm::mat4 make_transform(const glm::vec3& scale, const glm::vec3& rotation_degrees,
                          const glm::vec3& translation) {
+    const auto check = [](const char* name, const glm::vec3& v) {
+        if (!is_finite(v)) {
+            throw Error(std::string("make_transform: ") + name + " = " + to_string(v) +
+                        ": must be finite");
+        }
+    };
+    check("scale", scale);
+    check("rotation_degrees", rotation_degrees);
+    check("translation", translation);
     // M = T * Rz * Ry * Rx * S: applied right to left to a point.
     glm::mat4 m = glm::translate(glm::mat4(1.0f), translation);
     m = glm::rotate(m, glm::radians(rotation_degrees.z), glm::vec3(0, 0, 1));

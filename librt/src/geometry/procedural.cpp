@@ -37,6 +37,15 @@ void check_range(const char* fn, const char* name, long long value, long long lo
     }
 }
 
+/// Refuses a mesh of more than kMaxProceduralVertices before anything is allocated.
+void check_vertex_count(const char* fn, const std::string& what, std::uint64_t vertices) {
+    if (vertices > kMaxProceduralVertices) {
+        throw Error(std::string(fn) + ": " + what + " gives " + std::to_string(vertices) +
+                    " vertices, more than the limit of " +
+                    std::to_string(kMaxProceduralVertices));
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Teapot
 
@@ -97,6 +106,9 @@ TriangleMesh make_uv_sphere(const glm::vec3& center, float radius, int segments,
     check_center_radius("make_uv_sphere", center, radius);
     check_range("make_uv_sphere", "segments", segments, 3, 1 << 15);
     check_range("make_uv_sphere", "rings", rings, 2, 1 << 15);
+    check_vertex_count("make_uv_sphere",
+                       "segments = " + std::to_string(segments) + ", rings = " + std::to_string(rings),
+                       std::uint64_t(rings + 1) * std::uint64_t(segments + 1));
     const auto S = static_cast<std::uint32_t>(segments);
     const auto R = static_cast<std::uint32_t>(rings);
     TriangleMesh m;
@@ -248,6 +260,9 @@ TriangleMesh make_box(const glm::vec3& lo, const glm::vec3& hi) {
 
 TriangleMesh make_teapot(int tessellation) {
     check_range("make_teapot", "tessellation", tessellation, 1, 4096);
+    check_vertex_count("make_teapot", "tessellation = " + std::to_string(tessellation),
+                       std::uint64_t{teapot_patch_count} * std::uint64_t(tessellation + 1) *
+                           std::uint64_t(tessellation + 1));
     const auto n = static_cast<std::uint32_t>(tessellation);
     const std::uint32_t row = n + 1;  // grid points per side
 

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <iterator>
 #include <random>
@@ -180,9 +181,21 @@ void write_pfm(const fs::path& path, const Image& image) {
 }
 
 Image read_pfm(const fs::path& path) {
+    // A directory opens as a stream on Linux and then throws std::ios_base::failure on
+    // the first read: refuse it by name first, and turn any other read failure into an
+    // Error too.
+    std::error_code status_error;
+    if (fs::is_directory(path, status_error)) {
+        throw Error("cannot read " + quoted(path) + ": is a directory");
+    }
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error("cannot read " + quoted(path) + ": " + std::strerror(errno));
-    const Bytes data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    Bytes data;
+    try {
+        data.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    } catch (const std::exception& e) {
+        throw Error("cannot read " + quoted(path) + ": " + e.what());
+    }
     if (in.bad()) throw Error("cannot read " + quoted(path) + ": read error");
     const auto malformed = [&](const std::string& what) {
         return Error(quoted(path) + ": not a valid PFM file: " + what);

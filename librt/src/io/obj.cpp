@@ -2,6 +2,8 @@
 
 #include <librt/core/error.h>
 
+#include "io/obj_scan.h"
+
 #include <tiny_obj_loader.h>
 
 #include <glm/geometric.hpp>
@@ -11,12 +13,16 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cerrno>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <functional>
+#include <istream>
 #include <limits>
 #include <random>
+#include <streambuf>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -34,16 +40,39 @@ constexpr std::int32_t kAbsent = -1;  // tinyobjloader's "no vt / vn" index
 // ---------------------------------------------------------------------------------------------
 // Loading
 
-/// Throws unless path names a file we can open.
-void check_readable(const fs::path& path) {
+/// The whole file as bytes; throws naming the path when it is missing, a directory or
+/// unreadable.
+std::string read_file(const fs::path& path) {
     std::error_code ec;
     const fs::file_status status = fs::status(path, ec);
     if (status.type() == fs::file_type::not_found) throw Error(path.string() + ": no such file");
     if (ec) throw Error(path.string() + ": cannot access: " + ec.message());
     if (fs::is_directory(status)) throw Error(path.string() + ": is a directory, not an OBJ file");
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) throw Error(path.string() + ": cannot open for reading");
+    std::FILE* file = std::fopen(path.string().c_str(), "rb");
+    if (file == nullptr) {
+        throw Error(path.string() + ": cannot open for reading: " + std::strerror(errno));
+    }
+    std::string text;
+    char buffer[1 << 16];
+    std::size_t got = 0;
+    while ((got = std::fread(buffer, 1, sizeof buffer, file)) > 0) text.append(buffer, got);
+    const bool failed = std::ferror(file) != 0;
+    const int saved_errno = errno;
+    std::fclose(file);
+    if (failed) {
+        throw Error(path.string() + ": read error: " + std::strerror(saved_errno));
+    }
+    return text;
 }
+
+/// A read-only stream buffer over text that lives elsewhere (no copy, unlike stringbuf).
+class ViewBuffer : public std::streambuf {
+public:
+    explicit ViewBuffer(std::string_view text) {
+        char* begin = const_cast<char*>(text.data());  // never written: get area only
+        setg(begin, begin, begin + text.size());
+    }
+};
 
 /// tinyobjloader's newline-separated messages as trimmed, non-empty lines.
 std::vector<std::string> split_lines(const std::string& text) {
@@ -368,30 +397,45 @@ void write_mtl(const TriangleMesh& mesh, const fs::path& path) {
 }  // namespace
 
 TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
-    check_readable(path);
+    const std::string text = read_file(path);
     const fs::path dir = path.parent_path();
 
-    tinyobj::ObjReaderConfig config;
-    // We triangulate ourselves: tinyobjloader's triangulation reads positions through
-    // unchecked indices (n-gons) or silently drops faces with bad ones (quads), before we
-    // could check them.
-    config.triangulate = false;
-    config.vertex_color = false;
-    // An empty search path makes tinyobjloader look beside the OBJ too. (It splits the path at
-    // ':', so a directory containing ':' loses its MTL, with a warning.)
-    config.mtl_search_path = dir.string();
-    tinyobj::ObjReader reader;
-    if (!reader.ParseFromFile(path.string(), config)) {
-        const std::vector<std::string> lines = split_lines(reader.Error());
+    // Our own strict pass first: it names the line of what tinyobjloader would misread
+    // silently (bad numbers, bad indices, binary data).
+    detail::ObjScanOptions scan_options;
+    scan_options.check_uv_indices = options.load_uvs;
+    scan_options.check_normal_indices = options.load_normals;
+    detail::ObjScanResult scan = detail::scan_obj(text, path.string(), scan_options);
+
+    // We triangulate ourselves (triangulate = false): tinyobjloader's triangulation reads
+    // positions through unchecked indices (n-gons) or silently drops faces with bad ones
+    // (quads), before we could check them. No vertex colours.
+    // The MTL is looked up in the OBJ's directory (tinyobjloader splits that path at ':',
+    // so a directory containing ':' loses its MTL, with a warning).
+    std::string mtl_dir = dir.string();
+    if (!mtl_dir.empty() && mtl_dir.back() != '/') mtl_dir += '/';
+    tinyobj::MaterialFileReader mtl_reader(mtl_dir);
+    ViewBuffer buffer(std::string_view(text).substr(scan.skip));
+    std::istream stream(&buffer);
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> obj_materials;
+    std::string tiny_warning, tiny_error;
+    if (!tinyobj::LoadObj(&attrib, &shapes, &obj_materials, &tiny_warning, &tiny_error, &stream,
+                          &mtl_reader, /*triangulate=*/false, /*default_vcols_fallback=*/false)) {
+        const std::vector<std::string> lines = split_lines(tiny_error);
         std::string message = path.string() + ":";
         for (const std::string& line : lines) message += " " + line;
         if (lines.empty()) message += " cannot parse";
         throw Error(message);
     }
-    std::vector<std::string> warnings = split_lines(reader.Warning());
-    for (std::string& line : split_lines(reader.Error())) warnings.push_back(std::move(line));
+    std::vector<std::string> warnings = std::move(scan.warnings);
+    for (std::string& line : split_lines(tiny_warning)) {
+        // Our scan reported these with their line numbers.
+        if (line != "Degenerated face found") warnings.push_back(std::move(line));
+    }
+    for (std::string& line : split_lines(tiny_error)) warnings.push_back(std::move(line));
 
-    const tinyobj::attrib_t& attrib = reader.GetAttrib();
     const std::size_t nv = attrib.vertices.size() / 3;
     const std::size_t nvt = attrib.texcoords.size() / 2;
     const std::size_t nvn = attrib.normals.size() / 3;
@@ -402,7 +446,7 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
 
     // Reserve the exact triangle count: a polygon of n corners makes n - 2 triangles.
     std::size_t triangle_estimate = 0;
-    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    for (const tinyobj::shape_t& shape : shapes) {
         std::size_t corner_count = 0;
         for (const unsigned char n : shape.mesh.num_face_vertices) {
             corner_count += n;
@@ -422,7 +466,6 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
     for (std::size_t i = 0; i < nv; ++i) mesh.positions[i] = to_vec3(&attrib.vertices[3 * i]);
     VertexUnifier unifier(mesh.positions);
 
-    const std::vector<tinyobj::material_t>& obj_materials = reader.GetMaterials();
     const auto default_material = static_cast<std::uint32_t>(obj_materials.size());
     bool uses_default = false;
     std::size_t skipped = 0;
@@ -430,7 +473,7 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
     std::vector<std::uint32_t> corners;
     PolygonScratch scratch;
 
-    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    for (const tinyobj::shape_t& shape : shapes) {
         const tinyobj::mesh_t& m = shape.mesh;
         std::size_t offset = 0;
         for (std::size_t f = 0; f < m.num_face_vertices.size(); ++f) {

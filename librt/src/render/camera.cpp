@@ -48,10 +48,12 @@ void validate(const CameraSettings& s) {
     if (!is_finite(s.look_at)) fail("look_at", to_text(s.look_at), "must be finite");
     if (!is_finite(s.up)) fail("up", to_text(s.up), "must be finite");
     const glm::vec3 view = s.look_at - s.position;
-    if (!(glm::length(view) > 0.0f) || !std::isfinite(glm::length(view))) {
-        fail("look_at", to_text(s.look_at), "must differ from position");
+    if (!std::isfinite(glm::length(view))) {
+        fail("look_at", to_text(s.look_at), "is too far from position (overflows float)");
     }
+    if (!(glm::length(view) > 0.0f)) fail("look_at", to_text(s.look_at), "must differ from position");
     if (!(glm::length(s.up) > 0.0f)) fail("up", to_text(s.up), "must not be zero");
+    if (!std::isfinite(glm::length(s.up))) fail("up", to_text(s.up), "is too long (overflows float)");
     // |sin| of the angle between up and the view direction; below ~1e-4 rad the
     // basis would be numerically meaningless.
     const float sin_angle =

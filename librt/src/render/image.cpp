@@ -2,6 +2,7 @@
 
 #include <librt/core/error.h>
 
+#include <cstdio>
 #include <string>
 
 namespace librt {
@@ -11,12 +12,18 @@ void check_image_size(long long width, long long height) {
     if (width < 0 || height < 0) {
         throw Error("image size " + size + ": width and height must be >= 0");
     }
-    // Checked in 64 bits before the multiplication can overflow: each side <= 2^31.
-    const auto bytes = static_cast<unsigned long long>(width) *
-                       static_cast<unsigned long long>(height) * sizeof(glm::vec3);
-    if (bytes > Image::k_max_bytes) {
-        throw Error("image size " + size + ": the film would need " + std::to_string(bytes) +
-                    " bytes, more than the 4 GiB limit");
+    // Compared by division, so no product can wrap around (2^32 x 2^30 pixels of 12
+    // bytes would wrap a 64-bit product to exactly 0).
+    constexpr auto k_max_pixels = Image::k_max_bytes / sizeof(glm::vec3);
+    const auto w = static_cast<unsigned long long>(width);
+    const auto h = static_cast<unsigned long long>(height);
+    if (w > 0 && h > k_max_pixels / w) {
+        // For the message only: in double, which cannot overflow here.
+        const double gib = double(w) * double(h) * double(sizeof(glm::vec3)) / double(1ull << 30u);
+        char needs[64];
+        std::snprintf(needs, sizeof needs, "%.4g GiB", gib);
+        throw Error("image size " + size + ": the film would need " + needs +
+                    ", more than the 4 GiB limit");
     }
 }
 

@@ -7,12 +7,14 @@
 namespace librt {
 namespace {
 
-void check_colour(const char* name, const glm::vec3& c) {
+// Every component finite and >= 0, and <= 1 when `at_most_one` (a reflectance).
+void check_colour(const char* name, const glm::vec3& c, bool at_most_one) {
     for (int i = 0; i < 3; ++i) {
-        if (!std::isfinite(c[i]) || c[i] < 0.0f) {
+        if (!std::isfinite(c[i]) || c[i] < 0.0f || (at_most_one && c[i] > 1.0f)) {
             std::ostringstream msg;
             msg << "material " << name << " = (" << c.x << ", " << c.y << ", " << c.z
-                << "): every component must be finite and >= 0";
+                << "): every component must be "
+                << (at_most_one ? "in [0, 1]" : "finite and >= 0");
             throw Error(msg.str());
         }
     }
@@ -56,8 +58,9 @@ Material Material::emissive(const glm::vec3& radiance) {
 }
 
 void validate(const Material& material) {
-    check_colour("albedo", material.albedo);
-    check_colour("emission", material.emission);
+    // A reflectance above 1 creates energy: throughput would grow without bound.
+    check_colour("albedo", material.albedo, true);
+    check_colour("emission", material.emission, false);
     if (!std::isfinite(material.ior) || !(material.ior > 0.0f)) {
         std::ostringstream msg;
         msg << "material ior = " << material.ior << ": must be finite and > 0";

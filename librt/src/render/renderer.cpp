@@ -121,8 +121,9 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
 
     integrator.preprocess(scene);
 
-    // Tiles in row-major order; each is written by exactly one thread.
-    const int tile = settings.tile_size;
+    // Tiles in row-major order; each is written by exactly one thread. A tile larger than
+    // the image is the image (and keeps the index arithmetic below far from overflow).
+    const int tile = std::min(settings.tile_size, std::max(image.width, image.height));
     const int tiles_x = (image.width + tile - 1) / tile;
     const int tiles_y = (image.height + tile - 1) / tile;
     const auto tile_count = static_cast<std::size_t>(tiles_x) * static_cast<std::size_t>(tiles_y);
@@ -158,13 +159,21 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
         return false;
     };
 
+    // Cancellation is checked before every pixel and every kCancelCheckSamples samples
+    // within one, so even a pixel of 2^20 samples cannot hold up a cancelled render. A
+    // pixel left unfinished stays black.
+    constexpr int kCancelCheckSamples = 64;
     const auto render_tile = [&](const Tile& t, std::uint64_t& samples, std::uint64_t& nonfinite) {
         for (int y = t.y0; y < t.y1; ++y) {
-            if (stop_requested()) return false;
             for (int x = t.x0; x < t.x1; ++x) {
                 glm::dvec3 sum(0.0);
                 std::uint32_t finite = 0;
                 for (int s = 0; s < settings.samples_per_pixel; ++s) {
+                    if (s % kCancelCheckSamples == 0 && stop_requested()) {
+                        samples += static_cast<std::uint64_t>(s);
+                        nonfinite += static_cast<std::uint64_t>(s) - finite;
+                        return false;
+                    }
                     Sampler sampler(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y),
                                     static_cast<std::uint32_t>(s), settings.seed);
                     const Ray ray = camera.generate_ray(x, y, sampler);

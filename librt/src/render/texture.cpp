@@ -5,6 +5,9 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <system_error>
 #include <memory>
 #include <sstream>
 
@@ -42,6 +45,20 @@ ImageTexture::ImageTexture(int width, int height, std::vector<glm::vec3> linear_
 ImageTexture ImageTexture::load(const std::filesystem::path& path) {
     int w = 0, h = 0, channels = 0;
     const std::string name = path.string();
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (status.type() == std::filesystem::file_type::not_found)
+        throw Error("cannot load texture " + name + ": no such file");
+    if (std::filesystem::is_directory(status))
+        throw Error("cannot load texture " + name + ": is a directory");
+    // The header first: refuse a huge image before stb allocates its pixels.
+    if (stbi_info(name.c_str(), &w, &h, &channels) != 0 &&
+        std::uint64_t(w) * std::uint64_t(h) > k_max_texels) {
+        std::ostringstream msg;
+        msg << "cannot load texture " << name << ": " << w << " x " << h
+            << " texels, more than the limit of " << k_max_texels;
+        throw Error(msg.str());
+    }
     std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load(name.c_str(), &w, &h, &channels, 3),
                                                    stbi_image_free);
     if (!data) {

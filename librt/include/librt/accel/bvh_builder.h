@@ -35,6 +35,10 @@ struct SahConfig {
 /// Which builder a caller wants.
 enum class BvhBuilder { Median, Sah };
 
+// Both builders throw librt::Error naming the primitive when boxes and centers differ in
+// length, a centre is not finite or a box has a NaN corner; the tree is never deeper
+// than kMaxBvhDepth (a node at that depth becomes a leaf, however many primitives it has).
+
 /// Builds with the report's median split. boxes[i] and centers[i] describe primitive i.
 [[nodiscard]] Bvh build_median_bvh(std::span<const BBox> boxes, std::span<const glm::vec3> centers,
                                    const MedianSplitConfig& config = {});

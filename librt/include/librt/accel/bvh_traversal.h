@@ -3,29 +3,40 @@
 #include <librt/accel/bvh.h>
 #include <librt/geometry/bbox.h>
 #include <librt/geometry/ray.h>
+#include <librt/core/error.h>
 
 #include <glm/geometric.hpp>
 
+#include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <utility>
 
 namespace librt {
 
-/// True when a ray can hit anything: finite origin and a finite, non-zero direction.
+/// True when a ray can hit anything: finite origin, a finite, non-zero direction and
+/// t_min <= t_max (so a NaN t_min or t_max is not traceable either).
 [[nodiscard]] inline bool is_traceable(const Ray& ray) {
     const float d2 = glm::dot(ray.direction, ray.direction);
     return std::isfinite(ray.origin.x + ray.origin.y + ray.origin.z) && std::isfinite(d2) &&
-           d2 > 0.0f && !(ray.t_min > ray.t_max);
+           d2 > 0.0f && ray.t_min <= ray.t_max;
 }
 
 /// Walks a BVH front to back. For each leaf slot it calls
 /// `hit_slot(std::uint32_t slot, Ray& ray) -> bool`, which tests primitive
 /// bvh.prim_indices[slot] and, on a hit, shrinks ray.t_max to it and returns true;
 /// nodes beyond the nearest hit so far are pruned. With AnyHit the walk stops at the
-/// first hit (shadow rays). Returns whether anything was hit.
+/// first hit (shadow rays). Returns whether anything was hit. A ray that is not
+/// is_traceable misses. The deferred-node stack holds kMaxBvhDepth entries, enough for
+/// any tree the builders make; a hand-made Bvh whose `depth` says deeper throws
+/// librt::Error instead of overflowing it.
 template <bool AnyHit, class HitSlot>
 bool traverse(const Bvh& bvh, Ray& ray, HitSlot&& hit_slot) {
+    if (bvh.depth > kMaxBvhDepth) {
+        throw Error("BVH depth " + std::to_string(bvh.depth) + " exceeds kMaxBvhDepth = " +
+                    std::to_string(kMaxBvhDepth));
+    }
     if (bvh.nodes.empty() || !is_traceable(ray)) return false;
     const glm::vec3 inv_dir = safe_inverse(ray.direction);
     const BvhNode* nodes = bvh.nodes.data();
@@ -60,6 +71,7 @@ bool traverse(const Bvh& bvh, Ray& ray, HitSlot&& hit_slot) {
             if (hit_a && hit_b) {
                 const bool swap = b.t_enter < a.t_enter;
                 if (swap) std::swap(near, far);
+                assert(stack_size < kMaxBvhDepth && "Bvh::depth understates the tree's depth");
                 stack[stack_size++] = {far, swap ? a.t_enter : b.t_enter};
                 current = near;
                 continue;

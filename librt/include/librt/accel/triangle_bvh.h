@@ -28,7 +28,8 @@ namespace librt {
 class TriangleBvh {
 public:
     TriangleBvh() = default;
-    /// Builds over all triangles of the mesh.
+    /// Builds over all triangles of the mesh. Throws librt::Error for an index out of
+    /// range or a non-finite position.
     explicit TriangleBvh(const TriangleMesh& mesh, BvhBuilder builder = BvhBuilder::Sah);
     /// Builds over loose triangles (primitive id = index in the span).
     explicit TriangleBvh(std::span<const Triangle> triangles, BvhBuilder builder = BvhBuilder::Sah);

@@ -71,8 +71,17 @@ struct SlabInterval {
     [[nodiscard]] bool hit() const { return t_enter <= t_exit; }
 };
 
-/// Slab test (Kay-Kajiya): intersects the three slabs' parameter intervals.
-/// inv_dir comes from safe_inverse(ray.direction).
+/// Relative widening of a slab test's exit distance: 2 gamma(3), gamma(n) = n u / (1 - n u)
+/// with u = 2^-24. Each slab distance (lo - o) * inv carries three roundings (the
+/// subtraction, 1/d, the product), so computed entry and exit are each within gamma(3) of
+/// the exact ones; widening the exit by twice that keeps every box the ray really touches
+/// (pbrt's conservative slab test). Without it a ray through a box's face or edge could
+/// compute entry a few ulps past exit and skip a triangle the watertight test would hit.
+inline constexpr float kSlabExitSlack = 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
+
+/// Slab test (Kay-Kajiya): intersects the three slabs' parameter intervals, the exit
+/// widened by kSlabExitSlack so rounding never loses a hit. inv_dir comes from
+/// safe_inverse(ray.direction).
 [[nodiscard]] inline SlabInterval intersect(const BBox& box, const glm::vec3& origin,
                                             const glm::vec3& inv_dir, float t_min,
                                             float t_max) {
@@ -81,7 +90,9 @@ struct SlabInterval {
     const glm::vec3 tnear = glm::min(t0, t1);
     const glm::vec3 tfar = glm::max(t0, t1);
     const float enter = std::max(std::max(tnear.x, tnear.y), std::max(tnear.z, t_min));
-    const float exit = std::min(std::min(tfar.x, tfar.y), std::min(tfar.z, t_max));
+    float far = std::min(std::min(tfar.x, tfar.y), tfar.z);
+    far += std::fabs(far) * kSlabExitSlack;
+    const float exit = std::min(far, t_max);
     return {enter, exit};
 }
 

@@ -48,12 +48,15 @@ struct TriangleMesh {
 
 /// Applies an affine transform to positions (and the inverse transpose to normals, renormalised).
 /// A mirroring matrix (negative determinant) also swaps two corners of every triangle, so the
-/// winding's normal keeps agreeing with the shading normals. Throws librt::Error if the bottom
-/// row is not (0 0 0 1), or if the mesh has normals and the matrix is singular.
+/// winding's normal keeps agreeing with the shading normals. Throws librt::Error, leaving the
+/// mesh untouched, if an entry is not finite, the bottom row is not (0 0 0 1), or the mesh
+/// has normals and the matrix is singular. (Positions that overflow to infinity under a
+/// huge scale are not checked here: validate() reports them.)
 void transform(TriangleMesh& mesh, const glm::mat4& matrix);
 
 /// Scale, then rotate (angles in degrees about x, then y, then z), then translate:
-/// the report's "scaled by 20 and moved by (0, -10, 0)".
+/// the report's "scaled by 20 and moved by (0, -10, 0)". Throws librt::Error naming the
+/// argument when one is not finite.
 [[nodiscard]] glm::mat4 make_transform(const glm::vec3& scale, const glm::vec3& rotation_degrees,
                                        const glm::vec3& translation);
 

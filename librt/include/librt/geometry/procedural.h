@@ -5,13 +5,19 @@
 #include <glm/vec3.hpp>
 
 #include <cstddef>
+#include <cstdint>
 
 namespace librt {
+
+/// Most vertices a procedural generator makes (2^26, about 2 GiB with normals and uvs):
+/// larger requests throw librt::Error before allocating.
+inline constexpr std::uint64_t kMaxProceduralVertices = std::uint64_t{1} << 26u;
 
 /// A UV sphere with unit outward normals and uvs matching sphere_uv (u = azimuth around +y,
 /// v = 0 at the +y pole). segments (>= 3) around the axis, rings (>= 2) from pole to pole:
 /// (rings + 1)(segments + 1) vertices (seam and poles repeated for the uvs) and
-/// 2 segments (rings - 1) triangles (none degenerate). Throws librt::Error on bad parameters.
+/// 2 segments (rings - 1) triangles (none degenerate). Throws librt::Error naming the parameter
+/// on bad parameters (segments and rings at most 2^15, at most kMaxProceduralVertices vertices).
 [[nodiscard]] TriangleMesh make_uv_sphere(const glm::vec3& center, float radius, int segments,
                                           int rings);
 
@@ -56,7 +62,8 @@ inline constexpr int teapot_patch_count = 32;
 ///   extremes: handle at -1, spout lip at +1); then y spans [-0.4896, 0.4896] (the bottom at
 ///   -0.4896, the lid's knob at +0.4896) and z spans [-0.6217, 0.6217] (the body).
 ///   Coarse grids may fall slightly inside these bounds, never outside.
-/// Throws librt::Error if tessellation is out of range.
+/// Throws librt::Error if tessellation is out of range or the mesh would have more than
+/// kMaxProceduralVertices vertices (tessellation above 1447).
 [[nodiscard]] TriangleMesh make_teapot(int tessellation);
 
 /// The smallest tessellation n with teapot_triangle_count(n) >= target triangles, i.e.

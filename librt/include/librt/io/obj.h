@@ -35,11 +35,19 @@ struct ObjLoadOptions {
 /// - material_ids is always filled. materials holds the MTL's materials in file order; if any
 ///   face has no (known) material, a default MeshMaterial named "default" is appended and those
 ///   faces use it. map_Kd is resolved against the OBJ's directory.
-/// - Throws librt::Error naming the path when it is missing, a directory or unreadable, or
-///   when tinyobjloader fails (its message names the line); naming the path and face (counted
-///   from 1 in file order, not counting faces of under 3 corners, which tinyobjloader drops
-///   with a warning) for an index out of range. A relative (negative) vt/vn index that
-///   resolves to exactly one before the first entry cannot be told from "absent".
+/// - Throws librt::Error naming the path when it is missing, a directory or unreadable.
+/// - Before tinyobjloader parses it (which would read "v 1 abc 2" as (1, 0, 2) and "nan" as
+///   0), a strict pass checks every v / vt / vn / f statement and throws librt::Error
+///   "path:line: problem" (face N counted from 1 in file order, not counting faces of under
+///   3 corners) for: a NUL byte (binary or UTF-16 text), a UTF-16 byte order mark, a wrong
+///   count of numbers, a number that is malformed or not finite in float, a malformed face
+///   corner, an index 0, an index beyond the int range, a relative index before the first
+///   element, an absolute index beyond the file's count, a face of more than 255 corners.
+///   vt / vn indices are range-checked only when uvs / normals are loaded.
+/// - Warnings, not errors (one each, with the first line): faces of fewer than 3 corners
+///   (dropped), lines and points (ignored), unknown statements (ignored), no faces at all
+///   (an empty mesh). A UTF-8 byte order mark is skipped. Lines may end in LF, CRLF or CR,
+///   the last one with or without a newline, and be of any length.
 /// - A missing MTL file is a warning, not an error: the faces get the default material.
 [[nodiscard]] TriangleMesh load_obj(const std::filesystem::path& path,
                                     const ObjLoadOptions& options = {});

@@ -37,7 +37,8 @@ struct Image {
 };
 
 /// Throws librt::Error naming the size when a width x height film is invalid (negative
-/// side) or larger than Image::k_max_bytes; does nothing otherwise.
+/// side) or larger than Image::k_max_bytes (for any sides, no overflow); does nothing
+/// otherwise.
 void check_image_size(long long width, long long height);
 
 }  // namespace librt

@@ -57,8 +57,9 @@ struct Material {
     }
 };
 
-/// Throws librt::Error naming the parameter and its value when albedo or emission has a
-/// negative or non-finite component, or ior is not finite and positive.
+/// Throws librt::Error naming the parameter and its value when an albedo component is
+/// outside [0, 1] (or NaN), emission has a negative or non-finite component, ior is not
+/// finite and positive, or albedo_texture is below -1.
 void validate(const Material& material);
 
 }  // namespace librt

@@ -21,9 +21,14 @@ public:
     /// librt::Error if the size is not positive or texels.size() != width * height.
     ImageTexture(int width, int height, std::vector<glm::vec3> linear_texels);
 
+    /// Most texels load() accepts: 2^28 (16384 x 16384, 3 GiB as floats).
+    static constexpr std::uint64_t k_max_texels = std::uint64_t{1} << 28u;
+
     /// Loads a PNG, JPEG, BMP, TGA... with stb_image, converting its 8-bit sRGB values
     /// to linear (an alpha channel is dropped, grey is replicated). Throws librt::Error
-    /// naming the path (and stb's reason) when the file cannot be read or decoded.
+    /// naming the path (and stb's reason) when the file is missing, a directory,
+    /// unreadable, cannot be decoded, or has more than k_max_texels texels (checked from
+    /// the header, before decoding).
     [[nodiscard]] static ImageTexture load(const std::filesystem::path& path);
 
     /// Bilinearly filtered linear RGB at texture coordinates uv (repeat wrap, v up).

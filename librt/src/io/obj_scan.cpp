@@ -1,0 +1,302 @@
+#include "io/obj_scan.h"
+
+#include <librt/core/error.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <system_error>
+
+namespace librt::detail {
+
+namespace {
+
+/// A statement's tokens, split at spaces and tabs (as tinyobjloader splits them).
+class Tokens {
+public:
+    explicit Tokens(std::string_view line) : rest_(line) {}
+
+    /// The next token, or "" at the end of the line.
+    std::string_view next() {
+        std::size_t i = 0;
+        while (i < rest_.size() && (rest_[i] == ' ' || rest_[i] == '\t')) ++i;
+        std::size_t j = i;
+        while (j < rest_.size() && rest_[j] != ' ' && rest_[j] != '\t') ++j;
+        const std::string_view token = rest_.substr(i, j - i);
+        rest_.remove_prefix(j);
+        return token;
+    }
+
+private:
+    std::string_view rest_;
+};
+
+/// A token for a message: at most 40 bytes, bytes outside printable ASCII as \xNN.
+std::string printable(std::string_view token) {
+    constexpr std::size_t k_max = 40;
+    std::string out;
+    for (std::size_t i = 0; i < token.size() && i < k_max; ++i) {
+        const auto c = static_cast<unsigned char>(token[i]);
+        if (c >= 0x20 && c < 0x7f) {
+            out += static_cast<char>(c);
+        } else {
+            constexpr char hex[] = "0123456789abcdef";
+            out += "\\x";
+            out += hex[c >> 4];
+            out += hex[c & 15];
+        }
+    }
+    if (token.size() > k_max) out += "...";
+    return out;
+}
+
+/// 'text', built by appending (GCC 12 warns falsely, -Wrestrict, on "literal" + string).
+std::string quoted(std::string_view text) {
+    std::string out(1, '\'');
+    out += text;
+    out += '\'';
+    return out;
+}
+
+/// Statements tinyobjloader reads or that OBJ defines (curves, surfaces, display
+/// attributes) and librt ignores without comment.
+bool known_keyword(std::string_view k) {
+    static constexpr std::string_view known[] = {
+        "v",     "vt",    "vn",     "vp",    "f",       "l",        "p",         "g",
+        "o",     "s",     "usemtl", "mtllib", "t",      "vw",       "cstype",    "deg",
+        "bmat",  "step",  "curv",   "curv2", "surf",    "parm",     "trim",      "hole",
+        "scrv",  "sp",    "end",    "con",   "mg",      "bevel",    "c_interp",  "d_interp",
+        "lod",   "usemap", "maplib", "shadow_obj", "trace_obj", "ctech", "stech", "call",
+        "csh",   "fo",
+    };
+    for (const std::string_view s : known)
+        if (k == s) return true;
+    return false;
+}
+
+/// The scan's state: element counts so far and what to report.
+class Scanner {
+public:
+    Scanner(const std::string& name, const ObjScanOptions& options)
+        : name_(name), options_(options) {}
+
+    void line(std::string_view text, std::size_t number);
+    ObjScanResult finish();
+
+private:
+    /// Error "name:line: what".
+    [[noreturn]] void fail(std::size_t line, const std::string& what) const {
+        throw Error(name_ + ":" + std::to_string(line) + ": " + what);
+    }
+
+    void numbers(Tokens& tokens, std::string_view keyword, std::size_t lo, std::size_t hi,
+                 std::size_t line);
+    void face(Tokens& tokens, std::size_t line);
+    void corner_field(std::string_view field, const char* what, std::size_t count, bool check,
+                      std::size_t line, const std::string& at);
+
+    /// An absolute index beyond the elements read so far: legal only if the file defines
+    /// enough of them later, so it is checked at the end.
+    struct ForwardReference {
+        std::size_t line;
+        const char* what;
+        std::int64_t index;
+        std::string at;  ///< "face N, corner '...': "
+    };
+
+    const std::string& name_;
+    ObjScanOptions options_;
+    std::size_t positions_ = 0, uvs_ = 0, normals_ = 0;
+    std::size_t faces_ = 0;  // faces of 3+ corners, i.e. the faces load_obj numbers
+    std::vector<ForwardReference> forward_;
+    std::size_t short_faces_ = 0, short_face_line_ = 0;
+    std::size_t lines_points_ = 0, lines_points_line_ = 0;
+    std::size_t unknown_ = 0, unknown_line_ = 0;
+    std::string unknown_keyword_;
+    ObjScanResult result_;
+};
+
+void Scanner::numbers(Tokens& tokens, std::string_view keyword, std::size_t lo,
+                      std::size_t hi, std::size_t line) {
+    std::size_t count = 0;
+    for (std::string_view t = tokens.next(); !t.empty(); t = tokens.next()) {
+        if (t.front() == '#') break;  // a trailing comment
+        ++count;
+        if (count > hi) continue;  // reported below with the count
+        std::string_view digits = t;
+        if (digits.size() > 1 && digits.front() == '+') digits.remove_prefix(1);
+        double value = 0.0;
+        const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+        if (ec == std::errc::result_out_of_range ||
+            (ec == std::errc() && end == digits.data() + digits.size() &&
+             (!std::isfinite(value) || std::fabs(value) > double(std::numeric_limits<float>::max())))) {
+            fail(line, quoted(keyword) + " number " + printable(t) +
+                           " is not finite in single precision");
+        }
+        if (ec != std::errc() || end != digits.data() + digits.size()) {
+            fail(line, quoted(keyword) + " has a malformed number " + quoted(printable(t)));
+        }
+    }
+    if (count < lo || count > hi) {
+        const std::string range =
+            lo == hi ? std::to_string(lo) : std::to_string(lo) + " to " + std::to_string(hi);
+        fail(line, quoted(keyword) + " needs " + range + " numbers, found " +
+                       std::to_string(count));
+    }
+}
+
+void Scanner::corner_field(std::string_view field, const char* what, std::size_t count,
+                           bool check, std::size_t line, const std::string& at) {
+    std::string_view digits = field;
+    if (digits.size() > 1 && digits.front() == '+') digits.remove_prefix(1);
+    std::int64_t index = 0;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+    if (ec == std::errc::result_out_of_range ||
+        (ec == std::errc() && (index > std::numeric_limits<std::int32_t>::max() ||
+                               index < -std::int64_t{std::numeric_limits<std::int32_t>::max()}))) {
+        fail(line, at + what + " index " + printable(field) + " is out of range");
+    }
+    if (ec != std::errc() || end != digits.data() + digits.size()) {
+        fail(line, at + "malformed " + what + " index '" + printable(field) + "'");
+    }
+    if (index == 0) fail(line, at + what + " index 0 (OBJ indices start at 1)");
+    if (!check) return;
+    if (index < 0) {
+        // Relative: -1 is the latest element defined above this line.
+        if (std::int64_t(count) + index < 0) {
+            fail(line, at + "relative " + what + " index " + std::to_string(index) +
+                           " reaches before the first " + what + " (" + std::to_string(count) +
+                           " defined above)");
+        }
+    } else if (std::uint64_t(index) > count) {
+        forward_.push_back({line, what, index, at});
+    }
+}
+
+void Scanner::face(Tokens& tokens, std::size_t line) {
+    // Faces are numbered like load_obj's other messages: from 1, in file order, not
+    // counting those of under 3 corners.
+    const std::string face = "face " + std::to_string(faces_ + 1) + ", ";
+    std::size_t corners = 0;
+    for (std::string_view t = tokens.next(); !t.empty(); t = tokens.next()) {
+        if (t.front() == '#') break;
+        ++corners;
+        const std::string at = face + "corner " + quoted(printable(t)) + ": ";
+        // v, v/vt, v//vn or v/vt/vn.
+        const std::size_t s1 = t.find('/');
+        const std::string_view v = t.substr(0, s1);
+        std::string_view vt, vn;
+        if (s1 != std::string_view::npos) {
+            const std::string_view rest = t.substr(s1 + 1);
+            const std::size_t s2 = rest.find('/');
+            vt = rest.substr(0, s2);
+            if (s2 != std::string_view::npos) {
+                vn = rest.substr(s2 + 1);
+                if (vn.empty() || vn.find('/') != std::string_view::npos)
+                    fail(line, at + "malformed (expected v, v/vt, v//vn or v/vt/vn)");
+            } else if (vt.empty()) {
+                fail(line, at + "malformed (expected v, v/vt, v//vn or v/vt/vn)");
+            }
+        }
+        corner_field(v, "position", positions_, true, line, at);
+        if (!vt.empty()) corner_field(vt, "texture coordinate", uvs_, options_.check_uv_indices, line, at);
+        if (!vn.empty()) corner_field(vn, "normal", normals_, options_.check_normal_indices, line, at);
+    }
+    if (corners > 255) {
+        fail(line, "face of " + std::to_string(corners) + " corners (at most 255 are supported)");
+    }
+    if (corners < 3) {
+        if (short_faces_++ == 0) short_face_line_ = line;
+        return;
+    }
+    ++faces_;
+}
+
+void Scanner::line(std::string_view text, std::size_t number) {
+    if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
+        fail(number, "NUL byte in column " + std::to_string(nul + 1) +
+                         " (a binary file, or UTF-16 text?)");
+    }
+    Tokens tokens(text);
+    const std::string_view keyword = tokens.next();
+    if (keyword.empty() || keyword.front() == '#') return;
+    if (keyword == "v") {
+        numbers(tokens, keyword, 3, 7, number);
+        ++positions_;
+    } else if (keyword == "vt") {
+        numbers(tokens, keyword, 1, 3, number);
+        ++uvs_;
+    } else if (keyword == "vn") {
+        numbers(tokens, keyword, 3, 3, number);
+        ++normals_;
+    } else if (keyword == "f") {
+        face(tokens, number);
+    } else if (keyword == "l" || keyword == "p") {
+        if (lines_points_++ == 0) lines_points_line_ = number;
+    } else if (!known_keyword(keyword)) {
+        if (unknown_++ == 0) {
+            unknown_line_ = number;
+            unknown_keyword_ = printable(keyword);
+        }
+    }
+}
+
+ObjScanResult Scanner::finish() {
+    for (const ForwardReference& f : forward_) {
+        const std::string what = f.what;
+        const std::size_t count = what == "position" ? positions_
+                                  : what == "normal" ? normals_
+                                                     : uvs_;
+        if (std::uint64_t(f.index) > count) {
+            fail(f.line, f.at + what + " index " + std::to_string(f.index) +
+                             " is out of range (the file has " + std::to_string(count) + ")");
+        }
+    }
+    auto& w = result_.warnings;
+    if (short_faces_ > 0) {
+        w.push_back("line " + std::to_string(short_face_line_) + ": " +
+                    std::to_string(short_faces_) +
+                    " face(s) of fewer than 3 corners ignored (first here)");
+    }
+    if (lines_points_ > 0) {
+        w.push_back("line " + std::to_string(lines_points_line_) + ": " +
+                    std::to_string(lines_points_) +
+                    " line/point statement(s) ignored (first here): librt renders triangles only");
+    }
+    if (unknown_ > 0) {
+        w.push_back("line " + std::to_string(unknown_line_) + ": " + std::to_string(unknown_) +
+                    " unknown statement(s) ignored (first here: '" + unknown_keyword_ + "')");
+    }
+    if (faces_ == 0) w.push_back("no faces: the mesh has no triangles");
+    return std::move(result_);
+}
+
+}  // namespace
+
+ObjScanResult scan_obj(std::string_view text, const std::string& name,
+                       const ObjScanOptions& options) {
+    std::size_t skip = 0;
+    if (text.size() >= 2 && ((text[0] == '\xff' && text[1] == '\xfe') ||
+                             (text[0] == '\xfe' && text[1] == '\xff'))) {
+        throw Error(name + ":1: UTF-16 byte order mark: OBJ files must be ASCII or UTF-8");
+    }
+    if (text.substr(0, 3) == "\xef\xbb\xbf") skip = 3;  // UTF-8 byte order mark
+    Scanner scanner(name, options);
+    // Lines end at \n, \r or \r\n, as tinyobjloader reads them, so line numbers agree.
+    std::size_t number = 0;
+    std::size_t start = skip;
+    while (start < text.size()) {
+        std::size_t end = start;
+        while (end < text.size() && text[end] != '\n' && text[end] != '\r') ++end;
+        scanner.line(text.substr(start, end - start), ++number);
+        if (end < text.size() && text[end] == '\r' && end + 1 < text.size() && text[end + 1] == '\n')
+            ++end;
+        start = end + 1;
+    }
+    ObjScanResult result = scanner.finish();
+    result.skip = skip;
+    return result;
+}
+
+}  // namespace librt::detail
