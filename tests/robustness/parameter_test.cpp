@@ -188,16 +188,16 @@ TEST(BadParameter, SceneGeometryNonFinite) {
     expect_error([&] { (void)scene.add_triangle({{0, 0, 0}, {kNan, 0, 0}, {0, 1, 0}}, grey); }, {"add_triangle", "finite"});
     TriangleMesh m = one_triangle();
     m.positions[1].y = kInf;
-    expect_error([&] { (void)scene.add_mesh(m, grey); }, {"mesh position 1 is not finite"});
+    expect_error([&] { (void)scene.add_mesh(m, grey); }, {"position 1 is not finite"});
     m = one_triangle();
     m.normals = {{0, 0, 1}, {0, 0, kNan}, {0, 0, 1}};
-    expect_error([&] { (void)scene.add_mesh(m, grey); }, {"mesh normal 1 is not finite"});
+    expect_error([&] { (void)scene.add_mesh(m, grey); }, {"normal 1 is not finite"});
     m = one_triangle();
     m.uvs = {{0, 0}, {1, 0}, {kInf, 1}};
-    expect_error([&] { (void)scene.add_mesh_with_mtl(m, grey); }, {"mesh uv 2 is not finite"});
+    expect_error([&] { (void)scene.add_mesh_with_mtl(m, grey); }, {"uv 2 is not finite"});
     m = one_triangle();
     m.triangles.push_back({0, 1, 0xFFFFFFFFu});
-    expect_error([&] { (void)scene.add_mesh(m, grey); }, {"mesh triangle 1", "out of range"});
+    expect_error([&] { (void)scene.add_mesh(m, grey); }, {"triangle 1", "out of range"});
     expect_error([&] { (void)scene.add_texture(ImageTexture{}); }, {"add_texture", "empty"});
     EXPECT_EQ(scene.object_count(), 0u);  // nothing half-added
 }

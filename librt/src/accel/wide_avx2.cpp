@@ -62,8 +62,9 @@ struct Kernel : Block4Kernel {
         }
         const __m256 enter =
             _mm256_max_ps(_mm256_max_ps(tn[0], tn[1]), _mm256_max_ps(tn[2], _mm256_set1_ps(t_min)));
-        const __m256 exit =
-            _mm256_min_ps(_mm256_min_ps(tf[0], tf[1]), _mm256_min_ps(tf[2], _mm256_set1_ps(t_max)));
+        const __m256 exit = _mm256_min_ps(
+            _mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(tf[0], tf[1]), tf[2]), _mm256_set1_ps(kSlabExitScale)),
+            _mm256_set1_ps(t_max));
         _mm256_store_ps(t_enter, enter);
         return static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(enter, exit, _CMP_LE_OQ)));
     }

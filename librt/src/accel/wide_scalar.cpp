@@ -52,7 +52,8 @@ struct Kernel {
                 tf[a] = (node.bounds[r.far[a]][i] - r.o[a]) * r.inv[a];
             }
             const float enter = std::max(std::max(tn[0], tn[1]), std::max(tn[2], t_min));
-            const float exit = std::min(std::min(tf[0], tf[1]), std::min(tf[2], t_max));
+            const float exit =
+                std::min(std::min(std::min(tf[0], tf[1]), tf[2]) * kSlabExitScale, t_max);
             t_enter[i] = enter;
             mask |= static_cast<std::uint32_t>(enter <= exit) << i;
         }

@@ -63,6 +63,13 @@ struct BBox {
     return {inv(d.x), inv(d.y), inv(d.z)};
 }
 
+/// Scale applied to a slab test's exit distance so that float rounding in (plane - o) * inv
+/// never drops a box the ray really crosses: 1 + 2 gamma(3), gamma(n) = n eps / (1 - n eps)
+/// the bound on n rounded operations (pbrt's conservative ray-box test). Without it a ray
+/// that crosses a tiny box far from its origin can see exit < enter by an ulp.
+inline constexpr float kSlabExitScale =
+    1.0f + 2.0f * (3.0f * 0.5f * 1.1920929e-07f) / (1.0f - 3.0f * 0.5f * 1.1920929e-07f);
+
 /// The parameter interval [t_enter, t_exit] in which a ray is inside a box,
 /// clipped to the ray's [t_min, t_max]; empty when t_enter > t_exit.
 struct SlabInterval {
