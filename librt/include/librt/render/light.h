@@ -10,7 +10,7 @@ namespace librt {
 /// An isotropic point light (the report's first light). Not part of the geometry: no ray
 /// can hit it, only shadow rays aimed at it see it.
 struct PointLight {
-    glm::vec3 position{0.0f};
+    glm::vec3 position{0.0f};  ///< where the light is
     /// Radiant intensity I in W/sr per channel: a surface at distance d whose normal makes
     /// angle theta with the light receives irradiance E = I cos(theta) / d^2.
     glm::vec3 intensity{0.0f};
@@ -31,7 +31,7 @@ struct PointLight {
 /// uniform radiance, equal in every outgoing direction. Scene::add_sphere_light also adds
 /// the sphere as an emissive object, so camera and bounce rays can hit it.
 struct SphereLight {
-    Sphere sphere;
+    Sphere sphere;             ///< the emitting surface
     glm::vec3 radiance{0.0f};  ///< emitted radiance L (W / (sr m^2)) per channel
 
     /// The uniform radiance with which a sphere of the given radius emits `power` in
