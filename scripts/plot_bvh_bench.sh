@@ -21,21 +21,30 @@ if [ -z "$csv" ]; then
     --benchmark_out="$csv" --benchmark_out_format=csv
 fi
 
+mkdir -p docs
 data=$(mktemp -d)
 trap 'rm -rf "$data"' EXIT
 
 # Google Benchmark's CSV: a header line, then one line per row (or per aggregate); the
-# user counters are extra columns named in the header. Keep medians when repeated.
+# user counters are extra columns named in the header. Keep medians when repeated. The
+# librt_vs_embree rows carry both librt's and Embree's rates.
 awk -F, -v out="$data" '
-  /^name,/ { for (i = 1; i <= NF; ++i) col[$i] = i; header = 1; next }
+  /^name,/ { for (i = 1; i <= NF; ++i) { h = $i; gsub(/"/, "", h); col[h] = i }; header = 1; next }
   !header { next }
   {
     name = $1; gsub(/"/, "", name)
     if (name ~ /_(mean|stddev|cv)$/) next
     sub(/_median$/, "", name)
+    sub(/\/(manual|real)_time$/, "", name)
     split(name, part, "/")             # mesh/engine/incoherent/1t
     if (part[3] != "incoherent" || part[4] != "1t") next
-    print $(col["tris"]), $(col["Mrays"]), part[1] >> (out "/" part[2] ".dat")
+    tris = $(col["tris"])
+    if (part[2] == "librt_vs_embree" || part[2] == "librt") {
+      print tris, $(col["librt_Mrays"]), part[1] >> (out "/librt.dat")
+      if ($(col["embree_Mrays"]) > 0) print tris, $(col["embree_Mrays"]), part[1] >> (out "/embree.dat")
+    } else {
+      print tris, $(col["Mrays"]), part[1] >> (out "/" part[2] ".dat")
+    }
   }' "$csv"
 
 for f in "$data"/*.dat; do sort -g -o "$f" "$f"; done
