@@ -1,19 +1,26 @@
-// BVH microbenchmarks: librt against Embree 3 on the same meshes and rays, from one run.
+// BVH microbenchmarks: librt against Embree 3 on the same meshes and rays, in one run.
 //
 // Engines: "naive" (TriangleList, small meshes and few rays only), "median" and "sah"
 // (the binary BVHs through the generic traverse<>), "librt" (TriangleBvh, the fast path
 // the renderer uses) and "embree" (rtcIntersect1 / rtcOccluded1, when CMake found it).
-// Rows are named <mesh>/<engine>/<rays>/<threads>, or <mesh>/<engine>/build.
+//
+// librt and Embree are measured in the same rows, named <mesh>/librt_vs_embree/<rays>/<threads>
+// and <mesh>/librt_vs_embree/build: the rays go in chunks of 32768, each chunk through both
+// engines (alternating which goes first), so both see the same machine load, which on a
+// shared machine drifts faster than a benchmark row lasts. Counters: librt_Mrays,
+// embree_Mrays and their ratio (librt / Embree; for builds librt_ms, embree_ms, their ratio,
+// and bytes per triangle). Without Embree the rows are <mesh>/librt/... with librt's
+// counters only. The binary BVHs and the naive scan have rows of their own
+// (<mesh>/<engine>/incoherent/1t, counter Mrays; <mesh>/<engine>/build).
 //
 // Rays: "incoherent" (closest hit), "anyhit" (the same rays through occluded()) and
 // "primary" (1024x1024 pinhole), see tests/ray_sets.h. "1t" rows trace on the calling
-// thread and report rays / thread CPU time; "<N>t" rows split the rays over N
-// std::threads (N = hardware threads) and report rays / (summed thread CPU time / N),
-// i.e. the rate of N dedicated cores, with the wall-clock rate as "wall_Mrays". Builds
-// report wall time (Embree and librt build on all cores) and memory per triangle.
+// thread and count rays / thread CPU time; "<N>t" rows split the chunks over N std::threads
+// (N = hardware threads) and count rays / (summed thread CPU time / N): the rate of N
+// dedicated cores. Builds count wall time (both builders use all cores).
 //
-// After the run a summary table prints each librt row beside its Embree row with their
-// ratio (medians when --benchmark_repetitions is given).
+// After the run a summary table prints librt beside Embree with the ratio (medians when
+// --benchmark_repetitions is given).
 //
 // Run: ./build/release/bench/librt_bench [--benchmark_filter=bunny] [--benchmark_repetitions=3]
 // Meshes are centred and scaled to a bounding-box diagonal of 100, as in the reference
@@ -173,16 +180,19 @@ std::size_t trace_range(const Engine& engine, const Ray* rays, std::size_t count
     return hits;
 }
 
-void set_ray_counters(benchmark::State& state, std::size_t count, std::size_t hits,
-                      double tris) {
-    state.counters["Mrays"] = benchmark::Counter(static_cast<double>(count) * 1e-6,
-                                                 benchmark::Counter::kIsIterationInvariantRate);
-    state.counters["hit%"] = 100.0 * static_cast<double>(hits) /
-                             (static_cast<double>(count) * static_cast<double>(state.iterations()));
-    state.counters["tris"] = tris;
+/// Every counter any row has: the CSV reporter wants one set of columns for the run, so
+/// a row gets 0 for those that do not apply to it.
+constexpr const char* kCounters[] = {"Mrays",    "librt_Mrays", "embree_Mrays", "ratio",
+                                     "librt_ms", "embree_ms",   "librt_B/tri",  "embree_B/tri",
+                                     "hit%",     "tris",        "threads"};
+
+void complete_counters(benchmark::State& state) {
+    for (const char* key : kCounters)
+        if (state.counters.find(key) == state.counters.end()) state.counters[key] = 0.0;
 }
 
-/// Single thread: the framework times the calling thread's CPU time.
+/// One engine alone, single thread (the naive scan and the binary BVHs): the framework
+/// times the calling thread's CPU time.
 template <class Engine>
 void trace_single(benchmark::State& state, const Engine& engine, const std::vector<Ray>& rays,
                   std::size_t count, Query query, double tris) {
@@ -192,48 +202,87 @@ void trace_single(benchmark::State& state, const Engine& engine, const std::vect
         hits += trace_range(engine, rays.data(), count, query);
         benchmark::DoNotOptimize(hits);
     }
-    set_ray_counters(state, count, hits, tris);
+    state.counters["Mrays"] = benchmark::Counter(static_cast<double>(count) * 1e-6,
+                                                 benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["hit%"] = 100.0 * static_cast<double>(hits) /
+                             (static_cast<double>(count) * static_cast<double>(state.iterations()));
+    state.counters["tris"] = tris;
+    complete_counters(state);
 }
 
-/// All cores: threads take chunks of rays from a shared counter; the iteration time is
-/// the threads' mean CPU time (what N dedicated cores would take), wall time aside.
-template <class Engine>
-void trace_parallel(benchmark::State& state, const Engine& engine, const std::vector<Ray>& rays,
-                    Query query, double tris) {
-    constexpr std::size_t kChunk = 4096;
-    const unsigned n = thread_count();
-    std::size_t hits = 0;
-    double wall_total = 0.0;
+/// librt and (when present) Embree on the same rays, chunk by chunk, on `threads` threads
+/// (1 = the calling thread). Each engine's rate is rays / (its summed thread CPU time /
+/// threads); the iteration time is both engines' (manual time).
+template <class A, class B>
+void trace_pair(benchmark::State& state, const A& a, const B* b, const std::vector<Ray>& rays,
+                Query query, double tris, unsigned threads) {
+    constexpr std::size_t kChunk = 1u << 15;
+    const std::size_t chunks = (rays.size() + kChunk - 1) / kChunk;
+    double cpu_a = 0.0, cpu_b = 0.0;
+    std::size_t hits_a = 0, hits_b = 0;
     for (auto _ : state) {
         std::atomic<std::size_t> next{0};
-        std::atomic<std::size_t> iteration_hits{0};
-        std::vector<double> cpu(n, 0.0);
+        std::vector<double> ta(threads, 0.0), tb(threads, 0.0);
+        std::vector<std::size_t> ha(threads, 0), hb(threads, 0);
         auto work = [&](unsigned t) {
-            const double start = thread_cpu_seconds();
-            std::size_t h = 0;
             for (;;) {
-                const std::size_t begin = next.fetch_add(kChunk);
-                if (begin >= rays.size()) break;
-                h += trace_range(engine, rays.data() + begin, std::min(kChunk, rays.size() - begin), query);
+                const std::size_t k = next.fetch_add(1);
+                if (k >= chunks) break;
+                const Ray* first = rays.data() + k * kChunk;
+                const std::size_t n = std::min(kChunk, rays.size() - k * kChunk);
+                auto run_a = [&] {
+                    const double start = thread_cpu_seconds();
+                    ha[t] += trace_range(a, first, n, query);
+                    ta[t] += thread_cpu_seconds() - start;
+                };
+                auto run_b = [&] {
+                    if (!b) return;
+                    const double start = thread_cpu_seconds();
+                    hb[t] += trace_range(*b, first, n, query);
+                    tb[t] += thread_cpu_seconds() - start;
+                };
+                if (k % 2 == 0) {
+                    run_a();
+                    run_b();
+                } else {
+                    run_b();
+                    run_a();
+                }
             }
-            iteration_hits += h;
-            cpu[t] = thread_cpu_seconds() - start;
         };
-        const auto wall_start = std::chrono::steady_clock::now();
-        std::vector<std::thread> threads;
-        for (unsigned t = 1; t < n; ++t) threads.emplace_back(work, t);
+        std::vector<std::thread> helpers;
+        for (unsigned t = 1; t < threads; ++t) helpers.emplace_back(work, t);
         work(0);
-        for (std::thread& t : threads) t.join();
-        wall_total += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-        double cpu_sum = 0.0;
-        for (const double c : cpu) cpu_sum += c;
-        state.SetIterationTime(cpu_sum / n);
-        hits += iteration_hits.load();
+        for (std::thread& t : helpers) t.join();
+        double iteration = 0.0;
+        for (unsigned t = 0; t < threads; ++t) {
+            cpu_a += ta[t];
+            cpu_b += tb[t];
+            hits_a += ha[t];
+            hits_b += hb[t];
+            iteration += ta[t] + tb[t];
+        }
+        state.SetIterationTime(iteration / threads);
     }
-    set_ray_counters(state, rays.size(), hits, tris);
-    state.counters["wall_Mrays"] = static_cast<double>(rays.size()) * 1e-6 *
-                                   static_cast<double>(state.iterations()) / wall_total;
-    state.counters["threads"] = n;
+    const double rays_total = static_cast<double>(rays.size()) * static_cast<double>(state.iterations());
+    const double librt = rays_total / (cpu_a / threads) * 1e-6;
+    state.counters["librt_Mrays"] = librt;
+    state.counters["hit%"] = 100.0 * static_cast<double>(hits_a) / rays_total;
+    if (b) {
+        const double embree = rays_total / (cpu_b / threads) * 1e-6;
+        state.counters["embree_Mrays"] = embree;
+        state.counters["ratio"] = librt / embree;
+        if (hits_a != hits_b)  // the engines may differ on rays grazing an edge, rarely
+            state.counters["embree_hit%"] = 100.0 * static_cast<double>(hits_b) / rays_total;
+    }
+    state.counters["tris"] = tris;
+    state.counters["threads"] = threads;
+    complete_counters(state);
+    state.counters.erase("embree_hit%");  // keep the CSV's columns fixed
+}
+
+double wall_seconds() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 /// An engine built on first use, so that a --benchmark_filter run builds only what it
@@ -266,112 +315,133 @@ struct RowKind {
     bool parallel;
 };
 
-/// Registers one trace row of one engine on one workload.
-template <class Engine>
-void register_trace(const std::shared_ptr<Workload>& w, const std::string& engine_name,
-                    std::shared_ptr<Lazy<Engine>> engine, const RowKind& kind, std::size_t count) {
+/// A build row of one binary builder (wall time; memory of the BVH and its triangles).
+void register_binary_build(const std::shared_ptr<Workload>& w, const char* name, BvhBuilder builder) {
     const double tris = static_cast<double>(w->mesh.triangle_count());
-    const std::vector<Ray>* rays = std::string(kind.rays) == "primary" ? &w->primary : &w->incoherent;
-    const std::string threads = kind.parallel ? std::to_string(thread_count()) + "t" : "1t";
-    const std::string name = w->name + "/" + engine_name + "/" + kind.rays + "/" + threads;
-    const Query query = kind.query;
-    if (kind.parallel) {
-        benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) {
-            trace_parallel(s, **engine, *rays, query, tris);
-        })->Unit(benchmark::kMillisecond)->UseManualTime();
-    } else {
-        benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) {
-            trace_single(s, **engine, *rays, count, query, tris);
-        })->Unit(benchmark::kMillisecond);
-    }
+    benchmark::RegisterBenchmark((w->name + "/" + name + "/build").c_str(), [=](benchmark::State& s) {
+        std::size_t bytes = 0;
+        for (auto _ : s) {
+            bytes = BinaryTriangleBvh(w->mesh, builder).memory_bytes();
+            benchmark::DoNotOptimize(bytes);
+        }
+        s.counters["librt_B/tri"] = static_cast<double>(bytes) / tris;
+        s.counters["tris"] = tris;
+        complete_counters(s);
+    })->Unit(benchmark::kMillisecond)->UseRealTime();
 }
 
-/// Registers a build row: `make` builds the engine and returns its memory in bytes.
-template <class Make>
-void register_build(const std::shared_ptr<Workload>& w, const std::string& engine_name, Make make) {
+/// librt's build beside Embree's (alternating which goes first), wall time each.
+void register_pair_build(const std::shared_ptr<Workload>& w, const std::string& engines) {
     const double tris = static_cast<double>(w->mesh.triangle_count());
-    benchmark::RegisterBenchmark((w->name + "/" + engine_name + "/build").c_str(),
-                                 [=](benchmark::State& s) {
-                                     std::size_t bytes = 0;
-                                     for (auto _ : s) {
-                                         bytes = make();
-                                         benchmark::DoNotOptimize(bytes);
-                                     }
-                                     s.counters["bytes/tri"] = static_cast<double>(bytes) / tris;
-                                     s.counters["tris"] = tris;
-                                 })
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime()
-        ->MeasureProcessCPUTime();
+    benchmark::RegisterBenchmark((w->name + "/" + engines + "/build").c_str(), [=](benchmark::State& s) {
+        double wall_a = 0.0, wall_b = 0.0;
+        std::size_t bytes_a = 0, bytes_b = 0;
+        bool a_first = true;
+        for (auto _ : s) {
+            auto run_a = [&] {
+                const double start = wall_seconds();
+                bytes_a = TriangleBvh(w->mesh).memory_bytes();
+                wall_a += wall_seconds() - start;
+            };
+            auto run_b = [&] {
+                if (!bench::embree_available()) return;
+                const double start = wall_seconds();
+                bytes_b = bench::EmbreeScene(w->mesh).memory_bytes();
+                wall_b += wall_seconds() - start;
+            };
+            const double start = wall_seconds();
+            if (a_first) {
+                run_a();
+                run_b();
+            } else {
+                run_b();
+                run_a();
+            }
+            a_first = !a_first;
+            s.SetIterationTime(wall_seconds() - start);
+        }
+        const double n = static_cast<double>(s.iterations());
+        s.counters["librt_ms"] = 1e3 * wall_a / n;
+        s.counters["librt_B/tri"] = static_cast<double>(bytes_a) / tris;
+        if (bench::embree_available()) {
+            s.counters["embree_ms"] = 1e3 * wall_b / n;
+            s.counters["embree_B/tri"] = static_cast<double>(bytes_b) / tris;
+            s.counters["ratio"] = wall_a / wall_b;
+        }
+        s.counters["tris"] = tris;
+        complete_counters(s);
+    })->Unit(benchmark::kMillisecond)->UseManualTime();
 }
 
 void register_all(const std::vector<std::shared_ptr<Workload>>& workloads) {
+    const bool have_embree = bench::embree_available();
+    const std::string engines = have_embree ? "librt_vs_embree" : "librt";
     for (const auto& w : workloads) {
-        // Rows that are compared sit next to each other, so they run close in time on a
-        // machine whose load drifts: the builds, then each ray set engine by engine.
         const TriangleMesh* mesh = &w->mesh;
-        register_build(w, "median", [mesh] { return BinaryTriangleBvh(*mesh, BvhBuilder::Median).memory_bytes(); });
-        register_build(w, "sah", [mesh] { return BinaryTriangleBvh(*mesh, BvhBuilder::Sah).memory_bytes(); });
-        register_build(w, "librt", [mesh] { return TriangleBvh(*mesh).memory_bytes(); });
-        if (bench::embree_available())
-            register_build(w, "embree", [mesh] { return bench::EmbreeScene(*mesh).memory_bytes(); });
+        const double tris = static_cast<double>(mesh->triangle_count());
+        register_binary_build(w, "median", BvhBuilder::Median);
+        register_binary_build(w, "sah", BvhBuilder::Sah);
+        register_pair_build(w, engines);
 
-        auto naive = std::make_shared<Lazy<TriangleList>>(mesh);
-        auto median = std::make_shared<Lazy<BinaryTriangleBvh>>(mesh, BvhBuilder::Median);
-        auto sah = std::make_shared<Lazy<BinaryTriangleBvh>>(mesh, BvhBuilder::Sah);
+        // The slow engines: incoherent closest hit on one thread, on a prefix of the rays.
+        auto single = [&](const char* name, auto engine, std::size_t count) {
+            benchmark::RegisterBenchmark((w->name + "/" + name + "/incoherent/1t").c_str(),
+                                         [=](benchmark::State& s) {
+                                             trace_single(s, **engine, w->incoherent, count, Query::Closest, tris);
+                                         })
+                ->Unit(benchmark::kMillisecond);
+        };
+        if (w->mesh.triangle_count() <= 100'000)
+            single("naive", std::make_shared<Lazy<TriangleList>>(mesh), kNaiveRays);
+        single("median", std::make_shared<Lazy<BinaryTriangleBvh>>(mesh, BvhBuilder::Median), kBinaryRays);
+        single("sah", std::make_shared<Lazy<BinaryTriangleBvh>>(mesh, BvhBuilder::Sah), kBinaryRays);
+
         auto librt = std::make_shared<Lazy<TriangleBvh>>(mesh, BvhBuilder::Sah);
         auto embree = std::make_shared<Lazy<bench::EmbreeScene>>(mesh);
         const RowKind kinds[] = {{"incoherent", Query::Closest, false}, {"incoherent", Query::Closest, true},
                                  {"anyhit", Query::Any, false},         {"anyhit", Query::Any, true},
                                  {"primary", Query::Closest, false},    {"primary", Query::Closest, true}};
         for (const RowKind& kind : kinds) {
-            const bool first = &kind == &kinds[0];
-            if (!first && !w->headline) break;
-            if (first) {
-                // The slow engines only on incoherent rays, single thread, on a prefix.
-                if (w->mesh.triangle_count() <= 100'000) register_trace(w, "naive", naive, kind, kNaiveRays);
-                register_trace(w, "median", median, kind, kBinaryRays);
-                register_trace(w, "sah", sah, kind, kBinaryRays);
-            }
-            register_trace(w, "librt", librt, kind, kIncoherentRays);
-            if (bench::embree_available()) register_trace(w, "embree", embree, kind, kIncoherentRays);
+            if (&kind != &kinds[0] && !w->headline) break;
+            if (kind.parallel && thread_count() == 1) continue;
+            const std::vector<Ray>* rays = std::string(kind.rays) == "primary" ? &w->primary : &w->incoherent;
+            const unsigned threads = kind.parallel ? thread_count() : 1u;
+            const std::string name =
+                w->name + "/" + engines + "/" + kind.rays + "/" + std::to_string(threads) + "t";
+            const Query query = kind.query;
+            benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) {
+                const TriangleBvh& a = **librt;
+                const bench::EmbreeScene* b = have_embree ? &**embree : nullptr;
+                trace_pair(s, a, b, *rays, query, tris, threads);
+            })->Unit(benchmark::kMillisecond)->UseManualTime();
         }
     }
 }
 
-/// The console reporter, also keeping each row's figures for the summary table.
+/// The console reporter, also keeping each row's counters for the summary table.
 class SummaryReporter : public benchmark::ConsoleReporter {
 public:
-    struct Figures {
-        double mrays = 0.0, ms = 0.0, bytes_per_tri = 0.0;
-        bool median = false;  ///< from the median aggregate rather than a single run
-    };
-
     void ReportRuns(const std::vector<Run>& runs) override {
         ConsoleReporter::ReportRuns(runs);
         for (const Run& run : runs) {
             if (run.error_occurred) continue;
             const bool is_median = run.run_type == Run::RT_Aggregate && run.aggregate_name == "median";
             if (run.run_type == Run::RT_Aggregate && !is_median) continue;
-            Figures& f = rows_[run.run_name.function_name];
-            if (f.median && !is_median) continue;
-            f.median = is_median;
-            auto counter = [&](const char* key) {
-                const auto it = run.counters.find(key);
-                return it == run.counters.end() ? 0.0 : it->second.value;
-            };
-            f.mrays = counter("Mrays");
-            f.bytes_per_tri = counter("bytes/tri");
-            f.ms = run.GetAdjustedRealTime();  // rows use milliseconds
+            Row& row = rows_[run.run_name.function_name];
+            if (row.median && !is_median) continue;  // a median beats single runs
+            row.median = is_median;
+            for (const auto& [key, counter] : run.counters) row.counters[key] = counter.value;
         }
     }
 
     /// Prints librt beside Embree (and the binary BVHs for context) for every mesh.
     void print_summary(const std::vector<std::shared_ptr<Workload>>& workloads) const {
-        auto find = [&](const std::string& name) -> std::optional<Figures> {
+        auto get = [&](const std::string& name, const char* key) -> std::optional<double> {
             const auto it = rows_.find(name);
             if (it == rows_.end()) return std::nullopt;
-            return it->second;
+            const auto c = it->second.counters.find(key);
+            if (c == it->second.counters.end() || c->second == 0.0) return std::nullopt;
+            return c->second;
         };
         auto cell = [](std::optional<double> v, const char* fmt) {
             char buf[32];
@@ -379,42 +449,41 @@ public:
             std::snprintf(buf, sizeof buf, fmt, *v);
             return std::string(buf);
         };
+        const bool have_embree = bench::embree_available();
+        const std::string engines = have_embree ? "librt_vs_embree" : "librt";
         const std::string mt = std::to_string(thread_count()) + "t";
-        std::printf("\nSummary (Mrays/s: 1t = one thread's CPU time, %s = per %u dedicated cores; "
-                    "medians when repeated)%s\n",
+        std::printf("\nSummary: Mrays/s (1t: one thread's CPU time; %s: per %u dedicated cores), "
+                    "medians when repeated%s\n",
                     mt.c_str(), thread_count(),
-                    bench::embree_available() ? "" : "\n  Embree rows are missing: built without Embree");
+                    have_embree ? "" : "\n  Embree rows are missing: librt_bench was built without Embree");
         std::printf("%-12s %-11s %-4s %9s %9s %9s %9s %7s\n", "mesh", "rays", "thr", "median",
                     "sah", "librt", "embree", "ratio");
         for (const auto& w : workloads)
             for (const char* rays : {"incoherent", "anyhit", "primary"})
                 for (const std::string& threads : {std::string("1t"), mt}) {
-                    auto mrays = [&](const char* engine) -> std::optional<double> {
-                        const auto f = find(w->name + "/" + engine + "/" + rays + "/" + threads);
-                        if (!f) return std::nullopt;
-                        return f->mrays;
+                    const std::string pair = w->name + "/" + engines + "/" + rays + "/" + threads;
+                    const auto librt = get(pair, "librt_Mrays");
+                    if (!librt) continue;
+                    auto single = [&](const char* engine) {
+                        return get(w->name + "/" + engine + "/" + rays + "/" + threads, "Mrays");
                     };
-                    const auto librt = mrays("librt"), embree = mrays("embree");
-                    if (!librt && !embree) continue;
-                    std::optional<double> ratio;
-                    if (librt && embree && *embree > 0.0) ratio = *librt / *embree;
                     std::printf("%-12s %-11s %-4s %9s %9s %9s %9s %7s\n", w->name.c_str(), rays,
-                                threads.c_str(), cell(mrays("median"), "%.3f").c_str(),
-                                cell(mrays("sah"), "%.3f").c_str(), cell(librt, "%.3f").c_str(),
-                                cell(embree, "%.3f").c_str(), cell(ratio, "%.2f").c_str());
+                                threads.c_str(), cell(single("median"), "%.3f").c_str(),
+                                cell(single("sah"), "%.3f").c_str(), cell(librt, "%.3f").c_str(),
+                                cell(get(pair, "embree_Mrays"), "%.3f").c_str(),
+                                cell(get(pair, "ratio"), "%.2f").c_str());
                 }
-        std::printf("\n%-12s %10s %10s %7s %11s %11s %7s\n", "mesh", "librt ms", "embree ms",
+        std::printf("\n%-12s %10s %10s %7s %11s %12s %7s\n", "mesh", "librt ms", "embree ms",
                     "ratio", "librt B/tri", "embree B/tri", "ratio");
         for (const auto& w : workloads) {
-            const auto l = find(w->name + "/librt/build"), e = find(w->name + "/embree/build");
-            if (!l && !e) continue;
-            std::optional<double> lms, ems, lb, eb, rms, rb;
-            if (l) lms = l->ms, lb = l->bytes_per_tri;
-            if (e) ems = e->ms, eb = e->bytes_per_tri;
-            if (l && e && e->ms > 0.0) rms = l->ms / e->ms;
-            if (l && e && e->bytes_per_tri > 0.0) rb = l->bytes_per_tri / e->bytes_per_tri;
-            std::printf("%-12s %10s %10s %7s %11s %11s %7s\n", w->name.c_str(), cell(lms, "%.1f").c_str(),
-                        cell(ems, "%.1f").c_str(), cell(rms, "%.2f").c_str(), cell(lb, "%.1f").c_str(),
+            const std::string build = w->name + "/" + engines + "/build";
+            const auto lb = get(build, "librt_B/tri"), eb = get(build, "embree_B/tri");
+            if (!get(build, "librt_ms")) continue;
+            std::optional<double> rb;
+            if (lb && eb) rb = *lb / *eb;
+            std::printf("%-12s %10s %10s %7s %11s %12s %7s\n", w->name.c_str(),
+                        cell(get(build, "librt_ms"), "%.1f").c_str(), cell(get(build, "embree_ms"), "%.1f").c_str(),
+                        cell(get(build, "ratio"), "%.2f").c_str(), cell(lb, "%.1f").c_str(),
                         cell(eb, "%.1f").c_str(), cell(rb, "%.2f").c_str());
         }
         double load[3] = {0, 0, 0};
@@ -423,7 +492,11 @@ public:
     }
 
 private:
-    std::map<std::string, Figures> rows_;
+    struct Row {
+        std::map<std::string, double> counters;
+        bool median = false;  ///< from the median aggregate rather than a single run
+    };
+    std::map<std::string, Row> rows_;
 };
 
 }  // namespace

@@ -131,12 +131,18 @@ struct BuildRef {
 };
 static_assert(sizeof(BuildRef) == 48, "BuildRef must stay 48 bytes");
 
-/// A node under construction: bounds, then first slot and count (leaf) or first child.
+/// A node under construction (trivially default-constructible, so the buffer of them is
+/// allocated untouched):
+///   bytes  0..31  box (Box4: lo.xyz + padding, hi.xyz + padding)
+///   bytes 32..35  first slot (leaf) or first child (interior)
+///   bytes 36..39  primitive count (leaf) or 0 (interior)
+///   bytes 40..47  padding to Box4's 16-byte alignment
 struct RawNode {
     Box4 box;
     std::uint32_t index;
     std::uint32_t count;
 };
+static_assert(sizeof(RawNode) == 48, "RawNode must stay 48 bytes");
 
 /// A node whose primitives are refs_[begin, end), with the bounds of their centres.
 struct SahTask {

@@ -13,10 +13,13 @@
 // Needs <bit>, <cstdint>, librt/accel/bvh_traversal.h (is_traceable) and wide_bvh.h.
 
 /// A deferred child: its reference and the distance at which the ray enters its box.
+///   bytes 0..3  child reference (as in WideBvhNode::child)
+///   bytes 4..7  entry distance
 struct StackEntry {
     std::uint32_t ref;
     float t_enter;
 };
+static_assert(sizeof(StackEntry) == 8, "StackEntry must stay 8 bytes");
 
 /// A node visit pushes at most eight entries and takes one back, so the stack never holds
 /// more than seven per level above the current node plus eight.

@@ -22,15 +22,19 @@ struct LargePageAllocator {
     using value_type = T;
 
     LargePageAllocator() = default;
+    /// Stateless: any two allocators are interchangeable.
     template <class U>
     LargePageAllocator(const LargePageAllocator<U>&) noexcept {}
 
+    /// Room for n objects of T (uninitialised).
     [[nodiscard]] T* allocate(std::size_t n) {
         if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
         return static_cast<T*>(detail::allocate_large(n * sizeof(T), alignof(T)));
     }
+    /// Frees what allocate(n) returned.
     void deallocate(T* p, std::size_t n) noexcept { detail::deallocate_large(p, n * sizeof(T), alignof(T)); }
 
+    /// Always equal (stateless).
     template <class U>
     bool operator==(const LargePageAllocator<U>&) const noexcept { return true; }
 };
