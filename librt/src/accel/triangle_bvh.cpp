@@ -89,7 +89,6 @@ void TriangleBvh::build(std::span<const Triangle> triangles, BvhBuilder builder)
     const Bvh binary = builder == BvhBuilder::Median ? build_median_bvh(boxes, centers)
                                                      : build_sah_bvh(boxes, centers, triangle_sah_config());
     wide_ = collapse_to_wide(binary, triangles);
-    builder_ = builder;
     view_ = std::make_shared<BinaryView>();
     set_simd_path(default_simd_path());
 }
