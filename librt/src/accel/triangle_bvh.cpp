@@ -7,9 +7,22 @@
 #include <atomic>
 #include <mutex>
 #include <string>
+#include <thread>
 
 namespace librt {
 namespace {
+
+/// Runs body(begin, end) over [0, n) split between the hardware threads (inline when n is
+/// small).
+template <class Body>
+void parallel_ranges(std::size_t n, Body&& body) {
+    const std::size_t threads = n < 65536 ? 1 : std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::thread> helpers;
+    for (std::size_t t = 1; t < threads; ++t)
+        helpers.emplace_back([&, t] { body(n * t / threads, n * (t + 1) / threads); });
+    body(0, n / threads);
+    for (std::thread& h : helpers) h.join();
+}
 
 std::vector<Triangle> mesh_triangles(const TriangleMesh& mesh) {
     // A bad index would read outside positions, a NaN corner would vanish from its box
@@ -30,7 +43,9 @@ std::vector<Triangle> mesh_triangles(const TriangleMesh& mesh) {
         }
     }
     std::vector<Triangle> tris(mesh.triangle_count());
-    for (std::size_t i = 0; i < tris.size(); ++i) tris[i] = mesh.triangle(i);
+    parallel_ranges(tris.size(), [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) tris[i] = mesh.triangle(i);
+    });
     return tris;
 }
 
@@ -97,14 +112,15 @@ TriangleBvh::TriangleBvh(std::span<const Triangle> triangles, BvhBuilder builder
 void TriangleBvh::build(std::span<const Triangle> triangles, BvhBuilder builder) {
     std::vector<BBox> boxes(triangles.size());
     std::vector<glm::vec3> centers(triangles.size());
-    for (std::size_t i = 0; i < triangles.size(); ++i) {
-        boxes[i] = librt::bounds(triangles[i]);
-        centers[i] = boxes[i].center();
-    }
+    parallel_ranges(triangles.size(), [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            boxes[i] = librt::bounds(triangles[i]);
+            centers[i] = boxes[i].center();
+        }
+    });
     const Bvh binary = builder == BvhBuilder::Median ? build_median_bvh(boxes, centers)
                                                      : build_sah_bvh(boxes, centers, triangle_sah_config());
     wide_ = collapse_to_wide(binary, triangles);
-    builder_ = builder;
     view_ = std::make_shared<BinaryView>();
     set_simd_path(default_simd_path());
 }

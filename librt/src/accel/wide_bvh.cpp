@@ -140,18 +140,20 @@ private:
         const std::uint32_t block_count = (count + kTriangleBlockSize - 1) / kTriangleBlockSize;
         if (first + block_count - 1 > WideBvhNode::kMaxFirstBlock)
             throw Error("wide BVH: too many triangle blocks (" + std::to_string(first + block_count) + ")");
+        out_.blocks.resize(first + block_count);
         for (std::uint32_t b = 0; b < block_count; ++b) {
-            TriangleBlock block;
+            TriangleBlock& block = out_.blocks[first + b];
             for (std::uint32_t lane = 0; lane < kTriangleBlockSize; ++lane) {
                 const std::uint32_t slot = begin + b * kTriangleBlockSize + lane;
+                // The triangles are gathered in leaf order: ask for one a few slots ahead.
+                if (slot + 8 < bvh_.prim_indices.size()) __builtin_prefetch(&triangle_at(slot + 8));
                 const bool real = slot < begin + count;
-                const Triangle t = real ? triangle_at(slot) : Triangle{glm::vec3(kNaN), glm::vec3(kNaN), glm::vec3(kNaN)};
-                const glm::vec3* corners[3] = {&t.p0, &t.p1, &t.p2};
+                const Triangle& t = real ? triangle_at(slot) : kPadding;
+                const float corners[3][3] = {{t.p0.x, t.p0.y, t.p0.z}, {t.p1.x, t.p1.y, t.p1.z}, {t.p2.x, t.p2.y, t.p2.z}};
                 for (int c = 0; c < 3; ++c)
-                    for (int a = 0; a < 3; ++a) block.p[c][a][lane] = (*corners[c])[a];
+                    for (int a = 0; a < 3; ++a) block.p[c][a][lane] = corners[c][a];
                 block.id[lane] = real ? bvh_.prim_indices[slot] : kInvalidId;
             }
-            out_.blocks.push_back(block);
         }
         return WideBvhNode::make_leaf(first, block_count);
     }
@@ -174,6 +176,7 @@ private:
     }
 
     static constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+    static constexpr Triangle kPadding{glm::vec3(kNaN), glm::vec3(kNaN), glm::vec3(kNaN)};
     const Bvh& bvh_;
     std::span<const Triangle> triangles_;
     WideBvh& out_;

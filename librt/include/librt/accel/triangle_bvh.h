@@ -24,7 +24,7 @@ namespace librt {
 /// from the chosen binary builder's tree) whose leaves hold the triangles in blocks of four,
 /// tested with SIMD kernels picked at run time (see simd.h). Hits report the mesh's own
 /// triangle index and the exact t of triangle.h's watertight test, whatever the path.
-/// Immutable after construction: queries may run concurrently from any number of threads.
+/// Queries may run concurrently from any number of threads (set_simd_path aside).
 class TriangleBvh {
 public:
     TriangleBvh() = default;
@@ -39,13 +39,17 @@ public:
     /// True when anything lies in (ray.t_min, ray.t_max): for shadow rays.
     [[nodiscard]] bool occluded(const Ray& ray) const;
 
-    /// The binary BVH the wide one was collapsed from (same builder, same tree; slots index
-    /// the mesh's triangles). Not kept by the fast path: rebuilt on the first call (thread
-    /// safe) and kept from then on, for inspection and statistics.
+    /// The binary BVH the wide one was collapsed from (same nodes, bounds and leaves; its
+    /// prim_indices are the mesh's triangle indices). The fast path does not keep it: it is
+    /// expanded from the wide tree on the first call (thread safe, O(triangles)) and kept
+    /// from then on, for inspection and statistics. To test for an empty BVH, prefer
+    /// triangle_count() or wide_bvh().empty(), which cost nothing.
     [[nodiscard]] const Bvh& bvh() const;
     /// The structure intersect() and occluded() traverse.
     [[nodiscard]] const WideBvh& wide_bvh() const { return wide_; }
+    /// Box around all triangles (empty for an empty BVH).
     [[nodiscard]] BBox bounds() const { return wide_.bounds; }
+    /// Number of triangles built over (the mesh's, or the span's, size).
     [[nodiscard]] std::size_t triangle_count() const { return wide_.triangle_count; }
     /// Bytes of the wide BVH and its triangle blocks (plus the binary view once bvh() has
     /// built it).
@@ -62,7 +66,6 @@ private:
 
     struct BinaryView;
     WideBvh wide_;
-    BvhBuilder builder_ = BvhBuilder::Sah;
     SimdPath path_ = SimdPath::Scalar;
     PrimitiveHit (*intersect_fn_)(const WideBvh&, const Ray&) = nullptr;
     bool (*occluded_fn_)(const WideBvh&, const Ray&) = nullptr;
