@@ -93,14 +93,15 @@ TriangleMesh load_report_mesh(const std::filesystem::path& path, const MeshPlace
     return mesh;
 }
 
-void add_report_mesh(Scene& scene, TriangleMesh mesh, const Material& fallback) {
+void add_report_mesh(Scene& scene, TriangleMesh mesh, const Material& fallback,
+                     BvhBuilder builder) {
     const std::uint32_t fallback_id = scene.add_material(fallback);
     // load_obj gives faces without an MTL material one named "default": such a mesh
     // has no materials of its own.
     const bool own_materials = std::any_of(mesh.materials.begin(), mesh.materials.end(),
                                            [](const MeshMaterial& m) { return m.name != "default"; });
     if (!own_materials) {
-        (void)scene.add_mesh(std::move(mesh), fallback_id);
+        (void)scene.add_mesh(std::move(mesh), fallback_id, builder);
     } else {
         (void)scene.add_mesh_with_mtl(std::move(mesh), fallback_id);
     }

@@ -65,6 +65,7 @@ void place_mesh(TriangleMesh& mesh, const MeshPlacement& placement);
                                             const MeshPlacement& placement);
 
 /// Adds the mesh with its MTL materials, or `fallback` when it has none of its own.
-void add_report_mesh(Scene& scene, TriangleMesh mesh, const Material& fallback);
+void add_report_mesh(Scene& scene, TriangleMesh mesh, const Material& fallback,
+                     BvhBuilder builder = BvhBuilder::Sah);
 
 }  // namespace librt::apps

@@ -136,6 +136,12 @@ std::uint32_t Scene::add_mesh(TriangleMesh mesh, std::uint32_t material) {
     return add_object(ObjectKind::Mesh, std::uint32_t(meshes_.size() - 1), material);
 }
 
+std::uint32_t Scene::add_mesh(TriangleMesh mesh, std::uint32_t material, BvhBuilder builder) {
+    const std::uint32_t id = add_mesh(std::move(mesh), material);
+    meshes_.back().builder = builder;
+    return id;
+}
+
 std::uint32_t Scene::mtl_to_material(const MeshMaterial& mtl) {
     const auto any_positive = [](const glm::vec3& v) {
         return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f;
@@ -212,8 +218,8 @@ void Scene::commit() {
             box = librt::bounds(spheres_[o.index].sphere);
         } else {
             MeshData& m = meshes_[o.index];
-            if (m.bvh.triangle_count() != m.mesh.triangle_count() || m.bvh.bvh().empty())
-                m.bvh = TriangleBvh(m.mesh, BvhBuilder::Sah);
+            if (m.bvh.triangle_count() != m.mesh.triangle_count() || m.bvh.wide_bvh().empty())
+                m.bvh = TriangleBvh(m.mesh, m.builder);
             box = m.bvh.bounds();
         }
         if (box.empty()) continue;  // an empty mesh can be hit by nothing
