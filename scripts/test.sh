@@ -5,7 +5,8 @@
 #   2. the same with librt as a shared library (preset release-shared)
 #   3. AddressSanitizer + UndefinedBehaviorSanitizer build, every unit test
 #   4. ThreadSanitizer build, the multithreaded renderer tests
-#   5. the OBJ fuzzer (libFuzzer, clang) for a bounded time (LIBRT_FUZZ_SECONDS, default 60)
+#   5. the OBJ and image fuzzers (libFuzzer, clang), each for a bounded time
+#      (LIBRT_FUZZ_SECONDS, default 60)
 # CI runs exactly this (.ci/run). `--quick` runs stage 1 only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -50,14 +51,17 @@ cmake --preset tsan
 cmake --build --preset tsan -j "$jobs" --target librt_tests
 run_ctest tsan
 
-stage "fuzzing load_obj + BVH build for ${LIBRT_FUZZ_SECONDS:-60} s"
+stage "fuzzing load_obj + BVH build, and the image loaders, ${LIBRT_FUZZ_SECONDS:-60} s each"
 cmake --preset fuzz
 cmake --build --preset fuzz -j "$jobs"
-corpus="$logs/corpus"
-mkdir -p "$corpus"
-cp tests/fuzz/corpus/obj/* "$corpus"/
-./build/fuzz/tests/fuzz/obj_fuzz -max_total_time="${LIBRT_FUZZ_SECONDS:-60}" -max_len=4096 \
-    -rss_limit_mb=2048 -print_final_stats=1 "$corpus" 2>&1 | tail -n 12
+# Each target works on a copy of its seed corpus, so new inputs stay out of the tree.
+for target in obj:obj_fuzz image:image_fuzz; do
+  corpus="$logs/corpus_${target%%:*}"
+  mkdir -p "$corpus"
+  cp "tests/fuzz/corpus/${target%%:*}"/* "$corpus"/
+  ./build/fuzz/tests/fuzz/"${target##*:}" -max_total_time="${LIBRT_FUZZ_SECONDS:-60}" \
+      -max_len=4096 -rss_limit_mb=2048 -print_final_stats=1 "$corpus" 2>&1 | tail -n 12
+done
 
 stage "all stages passed"
 summary

@@ -281,6 +281,9 @@ TEST(BadFile, TextureMissingDirectoryEmptyGarbageHuge) {
     // A header claiming 20000 x 20000 texels: refused from the header, before decoding.
     expect_error([&] { (void)ImageTexture::load(dir.write("huge.ppm", "P6\n20000 20000\n255\n")); },
                  {"huge.ppm", "20000 x 20000", "more than the limit"});
+    // A binary PPM cut short: stb would hand back uninitialised memory as texels.
+    expect_error([&] { (void)ImageTexture::load(dir.write("short.ppm", "P6\n64 64\n255\n\x01\x02\x03")); },
+                 {"short.ppm", "truncated"});
 }
 
 TEST(BadFile, TextureUnreadable) {
@@ -309,6 +312,9 @@ TEST(BadFile, ImageOutputPaths) {
     // A PFM header claiming an absurd size is refused before allocating.
     expect_error([&] { (void)read_pfm(dir.write("huge.pfm", "PF\n100000 100000\n-1\n")); },
                  {"100000 x 100000", "4 GiB"});
+    // Within the limit but without its raster: refused before the 1.2 GB film is made.
+    expect_error([&] { (void)read_pfm(dir.write("short.pfm", "PF\n10000 10000\n-1\n")); },
+                 {"short.pfm", "truncated raster: 0 bytes for 1200000000"});
 }
 
 TEST(BadFile, ImageOutputIntoReadOnlyDirectory) {

@@ -234,12 +234,16 @@ Image read_pfm(const fs::path& path) {
     ++pos;
 
     check_image_size(size[0], size[1]);
-    Image image(static_cast<int>(size[0]), static_cast<int>(size[1]));
-    const std::size_t needed = image.pixels.size() * static_cast<std::size_t>(channels) * 4;
+    // The raster must be there before the film is allocated: a 20-byte file claiming
+    // 10000 x 10000 pixels must not cost 1.2 GB.
+    const std::size_t needed = static_cast<std::size_t>(size[0]) *
+                               static_cast<std::size_t>(size[1]) *
+                               static_cast<std::size_t>(channels) * 4;
     if (data.size() - pos < needed) {
         throw malformed("truncated raster: " + std::to_string(data.size() - pos) +
                         " bytes for " + std::to_string(needed));
     }
+    Image image(static_cast<int>(size[0]), static_cast<int>(size[1]));
     const bool little_endian = scale < 0.0;
     const unsigned char* p = data.data() + pos;
     for (int y = image.height - 1; y >= 0; --y) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <system_error>
 #include <memory>
 #include <sstream>
@@ -52,12 +53,44 @@ ImageTexture ImageTexture::load(const std::filesystem::path& path) {
     if (std::filesystem::is_directory(status))
         throw Error("cannot load texture " + name + ": is a directory");
     // The header first: refuse a huge image before stb allocates its pixels.
-    if (stbi_info(name.c_str(), &w, &h, &channels) != 0 &&
-        std::uint64_t(w) * std::uint64_t(h) > k_max_texels) {
-        std::ostringstream msg;
-        msg << "cannot load texture " << name << ": " << w << " x " << h
-            << " texels, more than the limit of " << k_max_texels;
-        throw Error(msg.str());
+    if (stbi_info(name.c_str(), &w, &h, &channels) != 0) {
+        if (std::uint64_t(w) * std::uint64_t(h) > k_max_texels) {
+            std::ostringstream msg;
+            msg << "cannot load texture " << name << ": " << w << " x " << h
+                << " texels, more than the limit of " << k_max_texels;
+            throw Error(msg.str());
+        }
+        // A header that claims far more texels than the file could encode is corrupt or
+        // truncated: stb would allocate for it and then decode zeros (or, for binary
+        // PNM, return uninitialised memory) at great length. No format compresses a
+        // texel into less than 1/4096 byte (deflate peaks near 1/344 for RGB, a
+        // constant-colour JPEG near 1/1000), so that is the bound; 64 Ki texels are
+        // always allowed.
+        const std::uint64_t file_bytes = std::filesystem::file_size(path, ec);
+        const std::uint64_t texels = std::uint64_t(w) * std::uint64_t(h);
+        if (!ec && texels > 4096u * file_bytes + 65536u) {
+            std::ostringstream msg;
+            msg << "cannot load texture " << name << ": the header claims " << w << " x " << h
+                << " texels in a file of " << file_bytes << " bytes (corrupt or truncated)";
+            throw Error(msg.str());
+        }
+        // stb's binary PNM reader does not check for a short read: a truncated P5/P6
+        // file would come back as uninitialised memory. Its raster is w h c bytes (two
+        // per sample at 16 bits) after the header, so a shorter file is truncated.
+        char magic[2] = {0, 0};
+        std::ifstream probe(path, std::ios::binary);
+        probe.read(magic, 2);
+        if (magic[0] == 'P' && (magic[1] == '5' || magic[1] == '6')) {
+            const std::uint64_t raster = std::uint64_t(w) * std::uint64_t(h) *
+                                         std::uint64_t(channels) *
+                                         (stbi_is_16_bit(name.c_str()) ? 2u : 1u);
+            if (!ec && file_bytes < raster) {
+                std::ostringstream msg;
+                msg << "cannot load texture " << name << ": truncated (" << file_bytes
+                    << " bytes for a raster of " << raster << ")";
+                throw Error(msg.str());
+            }
+        }
     }
     std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load(name.c_str(), &w, &h, &channels, 3),
                                                    stbi_image_free);
