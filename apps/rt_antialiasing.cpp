@@ -12,18 +12,24 @@
 using namespace librt;
 
 int main(int argc, char** argv) {
-    CLI::App app{"The report's anti-aliasing: Gaussian pixel jitter, sigma = 0.5 pixel", "rt_antialiasing"};
+    CLI::App app{"The report's anti-aliasing: Gaussian pixel jitter, sigma = 0.5 pixel",
+                 "rt_antialiasing"};
     apps::AppOptions options;
     options.spp = 30;
     apps::add_common_options(app, options);
     bool no_jitter = false;
     float sigma = 0.5f;
     int zoom = 0;
-    app.add_flag("--no-jitter", no_jitter, "Every ray through the pixel centre (the aliased comparison)");
-    app.add_option("--sigma", sigma, "Standard deviation of the pixel jitter, in pixels")->capture_default_str();
-    app.add_option("--zoom", zoom, "Also write <output>_zoom.png: the white sphere's edge enlarged this many times");
+    app.add_flag("--no-jitter", no_jitter,
+                 "Every ray through the pixel centre (the aliased comparison)");
+    app.add_option("--sigma", sigma, "Standard deviation of the pixel jitter, in pixels")
+        ->capture_default_str();
+    app.add_option(
+        "--zoom", zoom,
+        "Also write <output>_zoom.png: the white sphere's edge enlarged this many times");
     return apps::run(app, argc, argv, [&] {
-        if (options.output.empty()) options.output = no_jitter ? "antialiasing_no_jitter.png" : "antialiasing.png";
+        if (options.output.empty())
+            options.output = no_jitter ? "antialiasing_no_jitter.png" : "antialiasing.png";
         Scene scene;
         apps::add_room(scene);
         apps::add_report_spheres(scene);

@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
     app.add_option("--focal-distance", focal_distance, "Distance along each ray that is sharp")
         ->capture_default_str();
     return apps::run(app, argc, argv, [&] {
-        if (options.output.empty()) options.output = pinhole ? "depth_of_field_pinhole.png" : "depth_of_field.png";
+        if (options.output.empty())
+            options.output = pinhole ? "depth_of_field_pinhole.png" : "depth_of_field.png";
         Scene scene;
         apps::add_room(scene);
         apps::add_report_spheres(scene);

@@ -23,12 +23,15 @@ int main(int argc, char** argv) {
     apps::MeshOptions mesh_options;
     apps::add_mesh_options(app, mesh_options);
     BvhBuilder builder = BvhBuilder::Median;
-    const std::map<std::string, BvhBuilder> builders{{"median", BvhBuilder::Median}, {"sah", BvhBuilder::Sah}};
+    const std::map<std::string, BvhBuilder> builders{{"median", BvhBuilder::Median},
+                                                     {"sah", BvhBuilder::Sah}};
     app.add_option("--bvh", builder,
-                   "BVH of the mesh, timed against the linear scan and then rendered with: median (the report's split) or sah")
+                   "BVH of the mesh, timed against the linear scan and then rendered with: median "
+                   "(the report's split) or sah")
         ->transform(CLI::CheckedTransformer(builders, CLI::ignore_case));
     return apps::run(app, argc, argv, [&] {
-        TriangleMesh mesh = apps::load_report_mesh(mesh_options.path, apps::placement_of(mesh_options));
+        TriangleMesh mesh =
+            apps::load_report_mesh(mesh_options.path, apps::placement_of(mesh_options));
         CameraSettings camera = apps::camera_of(options);
         camera.pixel_jitter = PixelJitter::Gaussian;
         if (!options.quiet) apps::print_bvh_timing(mesh, builder, Camera(camera));
@@ -36,7 +39,8 @@ int main(int argc, char** argv) {
         Scene scene;
         apps::add_room(scene);
         apps::add_report_spheres(scene);
-        apps::add_report_mesh(scene, std::move(mesh), Material::diffuse({0.9f, 0.6f, 0.3f}), builder);
+        apps::add_report_mesh(scene, std::move(mesh), Material::diffuse({0.9f, 0.6f, 0.3f}),
+                              builder);
         apps::add_report_light(scene, apps::LightKind::Sphere, options.power);
         scene.commit();
         PathTracerSettings settings;

@@ -7,7 +7,8 @@
 using namespace librt;
 
 int main(int argc, char** argv) {
-    CLI::App app{"The report's soft shadows: a light sphere of radius 10, path tracing", "rt_soft_shadows"};
+    CLI::App app{"The report's soft shadows: a light sphere of radius 10, path tracing",
+                 "rt_soft_shadows"};
     apps::AppOptions options;
     options.spp = 30;
     options.output = "soft_shadows.png";

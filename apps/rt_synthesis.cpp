@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
     apps::add_mesh_options(app, mesh_options);
     float lens_sigma = 1.0f;
     float focal_distance = 55.0f;
-    app.add_option("--lens-sigma", lens_sigma, "Standard deviation of the lens jitter (0 = pinhole)")
+    app.add_option("--lens-sigma", lens_sigma,
+                   "Standard deviation of the lens jitter (0 = pinhole)")
         ->capture_default_str();
     app.add_option("--focal-distance", focal_distance, "Distance along each ray that is sharp")
         ->capture_default_str();
@@ -26,8 +27,9 @@ int main(int argc, char** argv) {
         Scene scene;
         apps::add_room(scene);
         apps::add_report_spheres(scene);
-        apps::add_report_mesh(scene, apps::load_report_mesh(mesh_options.path, apps::placement_of(mesh_options)),
-                              Material::diffuse({0.9f, 0.6f, 0.3f}));
+        apps::add_report_mesh(
+            scene, apps::load_report_mesh(mesh_options.path, apps::placement_of(mesh_options)),
+            Material::diffuse({0.9f, 0.6f, 0.3f}));
         apps::add_report_light(scene, apps::LightKind::Sphere, options.power);
         scene.commit();
         PathTracerSettings settings;

@@ -26,6 +26,9 @@
 // Meshes are centred and scaled to a bounding-box diagonal of 100, as in the reference
 // figures of ../shared/data/README.md.
 
+#include "../tests/ray_sets.h"
+#include "embree_scene.h"
+
 #include <librt/accel/bvh_builder.h>
 #include <librt/accel/bvh_traversal.h>
 #include <librt/accel/triangle_bvh.h>
@@ -34,9 +37,6 @@
 #include <librt/io/obj.h>
 
 #include <benchmark/benchmark.h>
-
-#include "../tests/ray_sets.h"
-#include "embree_scene.h"
 
 #include <glm/geometric.hpp>
 
@@ -99,7 +99,8 @@ std::vector<std::shared_ptr<Workload>> make_workloads() {
         const BBox box = w->mesh.bounds();
         w->incoherent = librt::testing::incoherent_rays(box, kIncoherentRays, 42);
         if (headline)
-            w->primary = librt::testing::primary_rays(box, kPrimaryResolution, kPrimaryResolution, 40.0f);
+            w->primary =
+                librt::testing::primary_rays(box, kPrimaryResolution, kPrimaryResolution, 40.0f);
         out.push_back(std::move(w));
     };
     for (const std::size_t target : {1'000u, 10'000u, 100'000u, 1'000'000u})
@@ -130,7 +131,8 @@ public:
         }
         bvh_ = build_bvh(builder, boxes, centers);
         triangles_.resize(boxes.size());
-        for (std::size_t s = 0; s < boxes.size(); ++s) triangles_[s] = mesh.triangle(bvh_.prim_indices[s]);
+        for (std::size_t s = 0; s < boxes.size(); ++s)
+            triangles_[s] = mesh.triangle(bvh_.prim_indices[s]);
     }
     [[nodiscard]] PrimitiveHit intersect(const Ray& ray) const {
         Ray r = ray;
@@ -264,7 +266,8 @@ void trace_pair(benchmark::State& state, const A& a, const B* b, const std::vect
         }
         state.SetIterationTime(iteration / threads);
     }
-    const double rays_total = static_cast<double>(rays.size()) * static_cast<double>(state.iterations());
+    const double rays_total =
+        static_cast<double>(rays.size()) * static_cast<double>(state.iterations());
     const double librt = rays_total / (cpu_a / threads) * 1e-6;
     state.counters["librt_Mrays"] = librt;
     state.counters["hit%"] = 100.0 * static_cast<double>(hits_a) / rays_total;
@@ -282,7 +285,8 @@ void trace_pair(benchmark::State& state, const A& a, const B* b, const std::vect
 }
 
 double wall_seconds() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
 }
 
 /// An engine built on first use, so that a --benchmark_filter run builds only what it
@@ -316,61 +320,69 @@ struct RowKind {
 };
 
 /// A build row of one binary builder (wall time; memory of the BVH and its triangles).
-void register_binary_build(const std::shared_ptr<Workload>& w, const char* name, BvhBuilder builder) {
+void register_binary_build(const std::shared_ptr<Workload>& w, const char* name,
+                           BvhBuilder builder) {
     const double tris = static_cast<double>(w->mesh.triangle_count());
-    benchmark::RegisterBenchmark((w->name + "/" + name + "/build").c_str(), [=](benchmark::State& s) {
-        std::size_t bytes = 0;
-        for (auto _ : s) {
-            bytes = BinaryTriangleBvh(w->mesh, builder).memory_bytes();
-            benchmark::DoNotOptimize(bytes);
-        }
-        s.counters["librt_B/tri"] = static_cast<double>(bytes) / tris;
-        s.counters["tris"] = tris;
-        complete_counters(s);
-    })->Unit(benchmark::kMillisecond)->UseRealTime();
+    benchmark::RegisterBenchmark((w->name + "/" + name + "/build").c_str(),
+                                 [=](benchmark::State& s) {
+                                     std::size_t bytes = 0;
+                                     for (auto _ : s) {
+                                         bytes = BinaryTriangleBvh(w->mesh, builder).memory_bytes();
+                                         benchmark::DoNotOptimize(bytes);
+                                     }
+                                     s.counters["librt_B/tri"] = static_cast<double>(bytes) / tris;
+                                     s.counters["tris"] = tris;
+                                     complete_counters(s);
+                                 })
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
 }
 
 /// librt's build beside Embree's (alternating which goes first), wall time each.
 void register_pair_build(const std::shared_ptr<Workload>& w, const std::string& engines) {
     const double tris = static_cast<double>(w->mesh.triangle_count());
-    benchmark::RegisterBenchmark((w->name + "/" + engines + "/build").c_str(), [=](benchmark::State& s) {
-        double wall_a = 0.0, wall_b = 0.0;
-        std::size_t bytes_a = 0, bytes_b = 0;
-        bool a_first = true;
-        for (auto _ : s) {
-            auto run_a = [&] {
+    benchmark::RegisterBenchmark(
+        (w->name + "/" + engines + "/build").c_str(),
+        [=](benchmark::State& s) {
+            double wall_a = 0.0, wall_b = 0.0;
+            std::size_t bytes_a = 0, bytes_b = 0;
+            bool a_first = true;
+            for (auto _ : s) {
+                auto run_a = [&] {
+                    const double start = wall_seconds();
+                    bytes_a = TriangleBvh(w->mesh).memory_bytes();
+                    wall_a += wall_seconds() - start;
+                };
+                auto run_b = [&] {
+                    if (!bench::embree_available()) return;
+                    const double start = wall_seconds();
+                    bytes_b = bench::EmbreeScene(w->mesh).memory_bytes();
+                    wall_b += wall_seconds() - start;
+                };
                 const double start = wall_seconds();
-                bytes_a = TriangleBvh(w->mesh).memory_bytes();
-                wall_a += wall_seconds() - start;
-            };
-            auto run_b = [&] {
-                if (!bench::embree_available()) return;
-                const double start = wall_seconds();
-                bytes_b = bench::EmbreeScene(w->mesh).memory_bytes();
-                wall_b += wall_seconds() - start;
-            };
-            const double start = wall_seconds();
-            if (a_first) {
-                run_a();
-                run_b();
-            } else {
-                run_b();
-                run_a();
+                if (a_first) {
+                    run_a();
+                    run_b();
+                } else {
+                    run_b();
+                    run_a();
+                }
+                a_first = !a_first;
+                s.SetIterationTime(wall_seconds() - start);
             }
-            a_first = !a_first;
-            s.SetIterationTime(wall_seconds() - start);
-        }
-        const double n = static_cast<double>(s.iterations());
-        s.counters["librt_ms"] = 1e3 * wall_a / n;
-        s.counters["librt_B/tri"] = static_cast<double>(bytes_a) / tris;
-        if (bench::embree_available()) {
-            s.counters["embree_ms"] = 1e3 * wall_b / n;
-            s.counters["embree_B/tri"] = static_cast<double>(bytes_b) / tris;
-            s.counters["ratio"] = wall_a / wall_b;
-        }
-        s.counters["tris"] = tris;
-        complete_counters(s);
-    })->Unit(benchmark::kMillisecond)->UseManualTime();
+            const double n = static_cast<double>(s.iterations());
+            s.counters["librt_ms"] = 1e3 * wall_a / n;
+            s.counters["librt_B/tri"] = static_cast<double>(bytes_a) / tris;
+            if (bench::embree_available()) {
+                s.counters["embree_ms"] = 1e3 * wall_b / n;
+                s.counters["embree_B/tri"] = static_cast<double>(bytes_b) / tris;
+                s.counters["ratio"] = wall_a / wall_b;
+            }
+            s.counters["tris"] = tris;
+            complete_counters(s);
+        })
+        ->Unit(benchmark::kMillisecond)
+        ->UseManualTime();
 }
 
 void register_all(const std::vector<std::shared_ptr<Workload>>& workloads) {
@@ -387,33 +399,42 @@ void register_all(const std::vector<std::shared_ptr<Workload>>& workloads) {
         auto single = [&](const char* name, auto engine, std::size_t count) {
             benchmark::RegisterBenchmark((w->name + "/" + name + "/incoherent/1t").c_str(),
                                          [=](benchmark::State& s) {
-                                             trace_single(s, **engine, w->incoherent, count, Query::Closest, tris);
+                                             trace_single(s, **engine, w->incoherent, count,
+                                                          Query::Closest, tris);
                                          })
                 ->Unit(benchmark::kMillisecond);
         };
         if (w->mesh.triangle_count() <= 100'000)
             single("naive", std::make_shared<Lazy<TriangleList>>(mesh), kNaiveRays);
-        single("median", std::make_shared<Lazy<BinaryTriangleBvh>>(mesh, BvhBuilder::Median), kBinaryRays);
-        single("sah", std::make_shared<Lazy<BinaryTriangleBvh>>(mesh, BvhBuilder::Sah), kBinaryRays);
+        single("median", std::make_shared<Lazy<BinaryTriangleBvh>>(mesh, BvhBuilder::Median),
+               kBinaryRays);
+        single("sah", std::make_shared<Lazy<BinaryTriangleBvh>>(mesh, BvhBuilder::Sah),
+               kBinaryRays);
 
         auto librt = std::make_shared<Lazy<TriangleBvh>>(mesh, BvhBuilder::Sah);
         auto embree = std::make_shared<Lazy<bench::EmbreeScene>>(mesh);
-        const RowKind kinds[] = {{"incoherent", Query::Closest, false}, {"incoherent", Query::Closest, true},
-                                 {"anyhit", Query::Any, false},         {"anyhit", Query::Any, true},
-                                 {"primary", Query::Closest, false},    {"primary", Query::Closest, true}};
+        const RowKind kinds[] = {
+            {"incoherent", Query::Closest, false}, {"incoherent", Query::Closest, true},
+            {"anyhit", Query::Any, false},         {"anyhit", Query::Any, true},
+            {"primary", Query::Closest, false},    {"primary", Query::Closest, true}};
         for (const RowKind& kind : kinds) {
             if (&kind != &kinds[0] && !w->headline) break;
             if (kind.parallel && thread_count() == 1) continue;
-            const std::vector<Ray>* rays = std::string(kind.rays) == "primary" ? &w->primary : &w->incoherent;
+            const std::vector<Ray>* rays =
+                std::string(kind.rays) == "primary" ? &w->primary : &w->incoherent;
             const unsigned threads = kind.parallel ? thread_count() : 1u;
             const std::string name =
                 w->name + "/" + engines + "/" + kind.rays + "/" + std::to_string(threads) + "t";
             const Query query = kind.query;
-            benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) {
-                const TriangleBvh& a = **librt;
-                const bench::EmbreeScene* b = have_embree ? &**embree : nullptr;
-                trace_pair(s, a, b, *rays, query, tris, threads);
-            })->Unit(benchmark::kMillisecond)->UseManualTime();
+            benchmark::RegisterBenchmark(name.c_str(),
+                                         [=](benchmark::State& s) {
+                                             const TriangleBvh& a = **librt;
+                                             const bench::EmbreeScene* b =
+                                                 have_embree ? &**embree : nullptr;
+                                             trace_pair(s, a, b, *rays, query, tris, threads);
+                                         })
+                ->Unit(benchmark::kMillisecond)
+                ->UseManualTime();
         }
     }
 }
@@ -425,7 +446,8 @@ public:
         ConsoleReporter::ReportRuns(runs);
         for (const Run& run : runs) {
             if (run.error_occurred) continue;
-            const bool is_median = run.run_type == Run::RT_Aggregate && run.aggregate_name == "median";
+            const bool is_median =
+                run.run_type == Run::RT_Aggregate && run.aggregate_name == "median";
             if (run.run_type == Run::RT_Aggregate && !is_median) continue;
             Row& row = rows_[run.run_name.function_name];
             if (row.median && !is_median) continue;  // a median beats single runs
@@ -452,10 +474,11 @@ public:
         const bool have_embree = bench::embree_available();
         const std::string engines = have_embree ? "librt_vs_embree" : "librt";
         const std::string mt = std::to_string(thread_count()) + "t";
-        std::printf("\nSummary: Mrays/s (1t: one thread's CPU time; %s: per %u dedicated cores), "
-                    "medians when repeated%s\n",
-                    mt.c_str(), thread_count(),
-                    have_embree ? "" : "\n  Embree rows are missing: librt_bench was built without Embree");
+        std::printf(
+            "\nSummary: Mrays/s (1t: one thread's CPU time; %s: per %u dedicated cores), "
+            "medians when repeated%s\n",
+            mt.c_str(), thread_count(),
+            have_embree ? "" : "\n  Embree rows are missing: librt_bench was built without Embree");
         std::printf("%-12s %-11s %-4s %9s %9s %9s %9s %7s\n", "mesh", "rays", "thr", "median",
                     "sah", "librt", "embree", "ratio");
         for (const auto& w : workloads)
@@ -482,13 +505,15 @@ public:
             std::optional<double> rb;
             if (lb && eb) rb = *lb / *eb;
             std::printf("%-12s %10s %10s %7s %11s %12s %7s\n", w->name.c_str(),
-                        cell(get(build, "librt_ms"), "%.1f").c_str(), cell(get(build, "embree_ms"), "%.1f").c_str(),
+                        cell(get(build, "librt_ms"), "%.1f").c_str(),
+                        cell(get(build, "embree_ms"), "%.1f").c_str(),
                         cell(get(build, "ratio"), "%.2f").c_str(), cell(lb, "%.1f").c_str(),
                         cell(eb, "%.1f").c_str(), cell(rb, "%.2f").c_str());
         }
         double load[3] = {0, 0, 0};
         if (getloadavg(load, 3) == 3)
-            std::printf("\nload average at the end of the run: %.2f %.2f %.2f\n", load[0], load[1], load[2]);
+            std::printf("\nload average at the end of the run: %.2f %.2f %.2f\n", load[0], load[1],
+                        load[2]);
     }
 
 private:

@@ -20,7 +20,9 @@ namespace librt::bench {
 bool embree_available() { return false; }
 
 struct EmbreeScene::Impl {};
-EmbreeScene::EmbreeScene(const TriangleMesh&) { throw Error("librt_bench was built without Embree"); }
+EmbreeScene::EmbreeScene(const TriangleMesh&) {
+    throw Error("librt_bench was built without Embree");
+}
 EmbreeScene::~EmbreeScene() = default;
 PrimitiveHit EmbreeScene::intersect(const Ray&) const { return {}; }
 bool EmbreeScene::occluded(const Ray&) const { return false; }
@@ -73,10 +75,12 @@ struct EmbreeScene::Impl {
 EmbreeScene::EmbreeScene(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>()) {
     RTCDevice dev = device();
     impl_->vertices.reserve(3 * mesh.positions.size() + 1);
-    for (const glm::vec3& p : mesh.positions) impl_->vertices.insert(impl_->vertices.end(), {p.x, p.y, p.z});
+    for (const glm::vec3& p : mesh.positions)
+        impl_->vertices.insert(impl_->vertices.end(), {p.x, p.y, p.z});
     impl_->vertices.push_back(0.0f);
     impl_->indices.reserve(3 * mesh.triangles.size());
-    for (const glm::uvec3& t : mesh.triangles) impl_->indices.insert(impl_->indices.end(), {t.x, t.y, t.z});
+    for (const glm::uvec3& t : mesh.triangles)
+        impl_->indices.insert(impl_->indices.end(), {t.x, t.y, t.z});
 
     const std::lock_guard lock(g_build_mutex);
     const long long before = g_device_bytes.load();
@@ -85,7 +89,8 @@ EmbreeScene::EmbreeScene(const TriangleMesh& mesh) : impl_(std::make_unique<Impl
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                impl_->vertices.data(), 0, 3 * sizeof(float), mesh.positions.size());
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                               impl_->indices.data(), 0, 3 * sizeof(unsigned), mesh.triangles.size());
+                               impl_->indices.data(), 0, 3 * sizeof(unsigned),
+                               mesh.triangles.size());
     rtcCommitGeometry(geom);
     rtcAttachGeometry(impl_->scene, geom);
     rtcReleaseGeometry(geom);

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Sets up a fresh Debian 12 machine, then builds and runs the whole test suite:
-#   1. release build, every ctest test (unit, statistical, app smoke tests, package tests:
+#   1. release build (after a clang-format check), every ctest test (unit, statistical, app smoke tests, package tests:
 #      install into a scratch prefix, then build and run examples/* against it)
 #   2. the same with librt as a shared library (preset release-shared)
 #   3. AddressSanitizer + UndefinedBehaviorSanitizer build, every unit test
@@ -32,6 +32,7 @@ summary() {
 
 stage "release build and tests"
 cmake --preset release
+cmake --build --preset release --target format-check  # clang-format, .clang-format
 cmake --build --preset release -j "$jobs"
 run_ctest release
 if [ "$quick" = 1 ]; then summary; exit 0; fi

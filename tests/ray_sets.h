@@ -47,8 +47,8 @@ inline std::vector<Ray> primary_rays(const BBox& box, int width, int height, flo
     rays.reserve(std::size_t(width) * std::size_t(height));
     for (int i = 0; i < height; ++i)
         for (int j = 0; j < width; ++j) {
-            const float x = (2.0f * (float(j) + 0.5f) / float(width) - 1.0f) * half *
-                            float(width) / float(height);
+            const float x = (2.0f * (float(j) + 0.5f) / float(width) - 1.0f) * half * float(width) /
+                            float(height);
             const float y = (1.0f - 2.0f * (float(i) + 0.5f) / float(height)) * half;
             Ray r;
             r.origin = eye;

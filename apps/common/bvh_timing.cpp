@@ -26,7 +26,8 @@ void print_bvh_timing(const TriangleMesh& mesh, BvhBuilder builder, const Camera
     pinhole.lens = LensModel::Pinhole;
     const Camera centre(pinhole);
     std::vector<Ray> rays;
-    rays.reserve(static_cast<std::size_t>(centre.width()) * static_cast<std::size_t>(centre.height()));
+    rays.reserve(static_cast<std::size_t>(centre.width()) *
+                 static_cast<std::size_t>(centre.height()));
     for (int y = 0; y < centre.height(); ++y) {
         for (int x = 0; x < centre.width(); ++x) {
             Sampler sampler(0, 0, 0, 0);
@@ -61,9 +62,11 @@ void print_bvh_timing(const TriangleMesh& mesh, BvhBuilder builder, const Camera
     std::printf("mesh: %zu triangles; %s BVH: %zu nodes built in %.1f ms\n", mesh.triangle_count(),
                 builder == BvhBuilder::Median ? "median-split" : "SAH", bvh.bvh().nodes.size(),
                 build_seconds * 1e3);
-    std::printf("primary rays vs the mesh alone: BVH %.2f Mrays/s (%zu hits), linear scan %.4f Mrays/s: %.0fx faster%s\n",
-                bvh_rate * 1e-6, bvh_hits, list_rate * 1e-6, bvh_rate / list_rate,
-                mismatches == 0 ? "" : " (MISMATCHED HITS)");
+    std::printf(
+        "primary rays vs the mesh alone: BVH %.2f Mrays/s (%zu hits), linear scan %.4f Mrays/s: "
+        "%.0fx faster%s\n",
+        bvh_rate * 1e-6, bvh_hits, list_rate * 1e-6, bvh_rate / list_rate,
+        mismatches == 0 ? "" : " (MISMATCHED HITS)");
 }
 
 }  // namespace librt::apps

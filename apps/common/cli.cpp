@@ -58,33 +58,40 @@ void add_common_options(CLI::App& app, AppOptions& o) {
     app.add_option("--height", o.height, "Image height in pixels")->capture_default_str();
     app.add_option("--size", o.size, "Sets both width and height");
     app.add_option("--spp", o.spp, "Samples per pixel")->capture_default_str();
-    app.add_option("--bounces", o.bounces, "Scattering events per path (mirror/glass bounces for direct lighting)")
+    app.add_option("--bounces", o.bounces,
+                   "Scattering events per path (mirror/glass bounces for direct lighting)")
         ->capture_default_str();
     app.add_option("--threads", o.threads, "Worker threads, 0 = all cores")->capture_default_str();
     app.add_option("--seed", o.seed, "Random seed (the image is the same for any thread count)")
         ->capture_default_str();
-    app.add_option("-o,--output", o.output, "Output image: .png (tone-mapped), .pfm or .hdr (linear)")
+    app.add_option("-o,--output", o.output,
+                   "Output image: .png (tone-mapped), .pfm or .hdr (linear)")
         ->capture_default_str();
     app.add_option("--exposure", o.exposure,
                    "Multiplies the report's exposure 255^(-1/0.45) before gamma 0.45")
         ->capture_default_str();
-    app.add_option("--power", o.power, "Total light power (the report's 2.14e8 times its 80 summed samples)")
+    app.add_option("--power", o.power,
+                   "Total light power (the report's 2.14e8 times its 80 summed samples)")
         ->capture_default_str();
-    app.add_flag("--check", o.check, "Exit with code 2 if the image is all black or has NaN/Inf pixels");
+    app.add_flag("--check", o.check,
+                 "Exit with code 2 if the image is all black or has NaN/Inf pixels");
     app.add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
 }
 
 void add_mesh_options(CLI::App& app, MeshOptions& o) {
-    app.add_option("--mesh", o.path, "OBJ file (with its MTL); default: a procedural Utah teapot of ~5.5k triangles");
+    app.add_option("--mesh", o.path,
+                   "OBJ file (with its MTL); default: a procedural Utah teapot of ~5.5k triangles");
     app.add_option("--mesh-fit", o.placement.fit,
-                   "Fit the mesh first: bottom centre to the origin, largest side to this many units (0 = as in the file)")
+                   "Fit the mesh first: bottom centre to the origin, largest side to this many "
+                   "units (0 = as in the file)")
         ->capture_default_str();
     app.add_option("--mesh-scale", o.placement.scale, "The report's scale, applied after fitting")
         ->capture_default_str();
     app.add_option("--mesh-offset", o.offset, "The report's offset x y z, applied after scaling")
         ->expected(3)
         ->capture_default_str();
-    app.add_option("--mesh-rotate", o.placement.rotate_y_degrees, "Turn about +y in degrees, before scaling")
+    app.add_option("--mesh-rotate", o.placement.rotate_y_degrees,
+                   "Turn about +y in degrees, before scaling")
         ->capture_default_str();
 }
 
@@ -142,12 +149,15 @@ int render_and_write(const Scene& scene, const CameraSettings& camera_settings,
     }
 
     std::uint64_t guarded = 0;
-    if (const auto* g = dynamic_cast<const GuardedIntegrator*>(&integrator)) guarded = g->nonfinite_count();
+    if (const auto* g = dynamic_cast<const GuardedIntegrator*>(&integrator))
+        guarded = g->nonfinite_count();
     if (!o.quiet) {
-        const double rate = stats.seconds > 0.0 ? static_cast<double>(stats.samples) / stats.seconds : 0.0;
+        const double rate =
+            stats.seconds > 0.0 ? static_cast<double>(stats.samples) / stats.seconds : 0.0;
         std::printf("%dx%d, %d spp, %u threads: %.2f s (%.2f M samples/s)\n", image.width,
                     image.height, o.spp,
-                    o.threads > 0 ? static_cast<unsigned>(o.threads) : std::max(1u, std::thread::hardware_concurrency()),
+                    o.threads > 0 ? static_cast<unsigned>(o.threads)
+                                  : std::max(1u, std::thread::hardware_concurrency()),
                     stats.seconds, rate * 1e-6);
     }
     if (stats.nonfinite_samples + guarded > 0) {
@@ -164,11 +174,13 @@ int render_and_write(const Scene& scene, const CameraSettings& camera_settings,
     if (after_write) after_write(image);
 
     if (o.check) {
-        const bool finite = std::all_of(image.pixels.begin(), image.pixels.end(), [](const glm::vec3& p) {
-            return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-        });
+        const bool finite =
+            std::all_of(image.pixels.begin(), image.pixels.end(), [](const glm::vec3& p) {
+                return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+            });
         const std::vector<std::uint8_t> rgb = to_rgb8(image, tone_map);
-        const bool black = std::all_of(rgb.begin(), rgb.end(), [](std::uint8_t v) { return v == 0; });
+        const bool black =
+            std::all_of(rgb.begin(), rgb.end(), [](std::uint8_t v) { return v == 0; });
         if (!finite || black) {
             std::fprintf(stderr, "check failed: the image %s\n",
                          !finite ? "has non-finite pixels" : "is all black");

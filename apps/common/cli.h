@@ -21,18 +21,18 @@ namespace librt::apps {
 
 /// Options every app has.
 struct AppOptions {
-    int width = 512;           ///< --width
-    int height = 512;          ///< --height
-    int size = 0;              ///< --size: sets width and height when > 0
-    int spp = 1;               ///< --spp, samples per pixel
-    int bounces = 5;           ///< --bounces, scattering events per path
-    int threads = 0;           ///< --threads, 0 = all cores
-    std::uint64_t seed = 0;    ///< --seed
-    std::string output;        ///< -o/--output: .png, .pfm or .hdr
-    float exposure = 1.0f;     ///< --exposure: multiplies kReportExposure
+    int width = 512;              ///< --width
+    int height = 512;             ///< --height
+    int size = 0;                 ///< --size: sets width and height when > 0
+    int spp = 1;                  ///< --spp, samples per pixel
+    int bounces = 5;              ///< --bounces, scattering events per path
+    int threads = 0;              ///< --threads, 0 = all cores
+    std::uint64_t seed = 0;       ///< --seed
+    std::string output;           ///< -o/--output: .png, .pfm or .hdr
+    float exposure = 1.0f;        ///< --exposure: multiplies kReportExposure
     float power = kDefaultPower;  ///< --power: total light power
-    bool check = false;        ///< --check: exit 2 if the image is black or has NaN/Inf
-    bool quiet = false;        ///< --quiet: no progress bar, no summary
+    bool check = false;           ///< --check: exit 2 if the image is black or has NaN/Inf
+    bool quiet = false;           ///< --quiet: no progress bar, no summary
 };
 
 /// Options of the apps that show a mesh.
@@ -61,9 +61,9 @@ void add_mesh_options(CLI::App& app, MeshOptions& options);
 [[nodiscard]] int run(CLI::App& app, int argc, char** argv, const std::function<int()>& body);
 
 /// Renders with the options' sample count, threads and seed (Ctrl-C or SIGTERM cancels:
-/// nothing is written, exit 130; see docs/robustness.md), prints a summary, writes options.output tone-mapped with the
-/// report's gamma and exposure, and with --check returns 2 when the image is all black
-/// or has a non-finite pixel. `after_write`, when set, gets the linear image once it is
+/// nothing is written, exit 130; see docs/robustness.md), prints a summary, writes options.output
+/// tone-mapped with the report's gamma and exposure, and with --check returns 2 when the image is
+/// all black or has a non-finite pixel. `after_write`, when set, gets the linear image once it is
 /// written (e.g. to write a zoomed crop). `scene` must be committed.
 [[nodiscard]] int render_and_write(const Scene& scene, const CameraSettings& camera,
                                    Integrator& integrator, const AppOptions& options,

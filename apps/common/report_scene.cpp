@@ -26,7 +26,8 @@ void add_room(Scene& scene) {
         {{0.0f, 1000.0f, 0.0f}, 940.0f, {1.0f, 1.0f, 1.0f}},   // ceiling, white
     };
     for (const Wall& w : walls) {
-        (void)scene.add_sphere(Sphere{w.center, w.radius}, scene.add_material(Material::diffuse(w.albedo)));
+        (void)scene.add_sphere(Sphere{w.center, w.radius},
+                               scene.add_material(Material::diffuse(w.albedo)));
     }
 }
 
@@ -35,7 +36,8 @@ void add_report_spheres(Scene& scene) {
                            scene.add_material(Material::diffuse(glm::vec3(1.0f))));
     (void)scene.add_sphere(Sphere{{25.0f, 0.0f, -50.0f}, 8.0f},
                            scene.add_material(Material::diffuse({0.0f, 1.0f, 0.0f})));
-    (void)scene.add_sphere(Sphere{{-15.0f, 20.0f, 0.0f}, 7.0f}, scene.add_material(Material::mirror()));
+    (void)scene.add_sphere(Sphere{{-15.0f, 20.0f, 0.0f}, 7.0f},
+                           scene.add_material(Material::mirror()));
     (void)scene.add_sphere(Sphere{{15.0f, 20.0f, 0.0f}, 7.0f},
                            scene.add_material(Material::dielectric(1.4f, /*fresnel=*/false)));
 }
@@ -83,8 +85,8 @@ void place_mesh(TriangleMesh& mesh, const MeshPlacement& placement) {
                             glm::translate(glm::mat4(1.0f), -bottom_center));
     }
     // The report's placement: p' = scale * p + offset (after the optional turn about y).
-    transform(mesh, make_transform(glm::vec3(placement.scale), {0.0f, placement.rotate_y_degrees, 0.0f},
-                                   placement.offset));
+    transform(mesh, make_transform(glm::vec3(placement.scale),
+                                   {0.0f, placement.rotate_y_degrees, 0.0f}, placement.offset));
 }
 
 TriangleMesh load_report_mesh(const std::filesystem::path& path, const MeshPlacement& placement) {
@@ -98,8 +100,9 @@ void add_report_mesh(Scene& scene, TriangleMesh mesh, const Material& fallback,
     const std::uint32_t fallback_id = scene.add_material(fallback);
     // load_obj gives faces without an MTL material one named "default": such a mesh
     // has no materials of its own.
-    const bool own_materials = std::any_of(mesh.materials.begin(), mesh.materials.end(),
-                                           [](const MeshMaterial& m) { return m.name != "default"; });
+    const bool own_materials =
+        std::any_of(mesh.materials.begin(), mesh.materials.end(),
+                    [](const MeshMaterial& m) { return m.name != "default"; });
     if (!own_materials) {
         (void)scene.add_mesh(std::move(mesh), fallback_id, builder);
     } else {

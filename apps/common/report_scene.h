@@ -48,9 +48,9 @@ struct MeshPlacement {
     /// Largest bounding-box side after fitting, in model units, with the box's bottom centre
     /// moved to the origin; 0 keeps the file's coordinates as they are (as the report did).
     float fit = 0.75f;
-    float scale = 20.0f;                          ///< the report's scale
-    glm::vec3 offset{0.0f, -10.0f, 0.0f};         ///< the report's offset (puts y = 0 on the floor)
-    float rotate_y_degrees = 0.0f;                ///< turn about +y before scaling
+    float scale = 20.0f;                   ///< the report's scale
+    glm::vec3 offset{0.0f, -10.0f, 0.0f};  ///< the report's offset (puts y = 0 on the floor)
+    float rotate_y_degrees = 0.0f;         ///< turn about +y before scaling
 };
 
 /// The default mesh when no file is given: a Utah teapot of ~5.5k triangles (the size of

@@ -1,14 +1,14 @@
 // The BVH against the linear scan on real and procedural meshes: both builders must
 // return exactly the scan's nearest t (ties aside) and the same any-hit answer.
 
+#include "ray_sets.h"
+#include "test_support.h"
+
 #include <librt/accel/triangle_bvh.h>
 #include <librt/geometry/procedural.h>
 #include <librt/io/obj.h>
 
 #include <gtest/gtest.h>
-
-#include "ray_sets.h"
-#include "test_support.h"
 
 #include <thread>
 #include <vector>

@@ -1,10 +1,10 @@
+#include "ray_sets.h"
+
 #include <librt/accel/bvh_builder.h>
 #include <librt/accel/triangle_bvh.h>
 #include <librt/core/error.h>
 
 #include <gtest/gtest.h>
-
-#include "ray_sets.h"
 
 #include <random>
 #include <vector>
@@ -22,7 +22,9 @@ std::vector<Triangle> random_soup(std::size_t count, std::uint32_t seed) {
     for (std::size_t i = 0; i < count; ++i) {
         const glm::vec3 c{U(rng), U(rng), U(rng)};
         const float s = (i % 97 == 0) ? 0.5f : 0.03f;
-        auto corner = [&] { return c + s * glm::vec3(U(rng) - 0.5f, U(rng) - 0.5f, U(rng) - 0.5f); };
+        auto corner = [&] {
+            return c + s * glm::vec3(U(rng) - 0.5f, U(rng) - 0.5f, U(rng) - 0.5f);
+        };
         tris[i] = {corner(), corner(), corner()};
     }
     return tris;
@@ -72,8 +74,7 @@ void check_structure(const Bvh& bvh, std::span<const Triangle> tris, std::uint32
 /// The BVH must find exactly what the linear scan finds: the same t (the same
 /// triangle test runs on the same ray), and the same triangle unless two tie at t.
 void expect_agrees_with_linear_scan(std::span<const Triangle> tris, const std::vector<Ray>& rays,
-                                    const std::vector<PrimitiveHit>& expected,
-                                    BvhBuilder builder) {
+                                    const std::vector<PrimitiveHit>& expected, BvhBuilder builder) {
     const TriangleBvh accel(tris, builder);
     std::size_t hits = 0, mismatches = 0, any_mismatches = 0;
     for (std::size_t i = 0; i < rays.size(); ++i) {

@@ -3,6 +3,9 @@
 // same triangle unless two tie at that t); the structure keeps its invariants; the binary
 // view gives back the builder's tree; the parallel SAH builder does not depend on threads.
 
+#include "ray_sets.h"
+#include "test_support.h"
+
 #include <librt/accel/bvh_builder.h>
 #include <librt/accel/simd.h>
 #include <librt/accel/triangle_bvh.h>
@@ -12,9 +15,6 @@
 #include <librt/io/obj.h>
 
 #include <gtest/gtest.h>
-
-#include "ray_sets.h"
-#include "test_support.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +33,9 @@ std::vector<Triangle> random_soup(std::size_t count, std::uint32_t seed) {
     for (std::size_t i = 0; i < count; ++i) {
         const glm::vec3 c{U(rng), U(rng), U(rng)};
         const float s = (i % 97 == 0) ? 0.5f : 0.03f;
-        auto corner = [&] { return c + s * glm::vec3(U(rng) - 0.5f, U(rng) - 0.5f, U(rng) - 0.5f); };
+        auto corner = [&] {
+            return c + s * glm::vec3(U(rng) - 0.5f, U(rng) - 0.5f, U(rng) - 0.5f);
+        };
         tris[i] = {corner(), corner(), corner()};
     }
     return tris;
@@ -60,7 +62,8 @@ std::vector<PrimitiveHit> scan(std::span<const Triangle> tris, const std::vector
 
 /// Runs every supported path of `accel` against the scan's answers.
 void expect_every_path_matches(TriangleBvh& accel, std::span<const Triangle> tris,
-                               const std::vector<Ray>& rays, const std::vector<PrimitiveHit>& want) {
+                               const std::vector<Ray>& rays,
+                               const std::vector<PrimitiveHit>& want) {
     for (const SimdPath path : supported_simd_paths()) {
         SCOPED_TRACE(to_string(path));
         accel.set_simd_path(path);
@@ -135,7 +138,8 @@ void check_wide_structure(const WideBvh& wide, std::span<const Triangle> tris) {
             for (const std::uint32_t id : below) {
                 ASSERT_LT(id, tris.size());
                 const BBox tb = bounds(tris[id]);
-                ASSERT_TRUE(box.contains(tb.lo) && box.contains(tb.hi)) << "child box misses triangle " << id;
+                ASSERT_TRUE(box.contains(tb.lo) && box.contains(tb.hi))
+                    << "child box misses triangle " << id;
             }
             if (!WideBvhNode::is_leaf(ref)) {
                 ASSERT_LT(ref, wide.nodes.size());
@@ -221,14 +225,17 @@ TEST(SimdPath, ScalarAlwaysSupportedAndDefaultIsSupported) {
 
 TEST(WideBvh, EveryPathAgreesWithLinearScanOnRandomSoup) {
     const auto tris = random_soup(1000, 2);
-    expect_every_path_matches(tris, librt::testing::incoherent_rays(BBox{glm::vec3(0.0f), glm::vec3(1.0f)}, 50000, 3));
+    expect_every_path_matches(
+        tris, librt::testing::incoherent_rays(BBox{glm::vec3(0.0f), glm::vec3(1.0f)}, 50000, 3));
 }
 
 TEST(WideBvh, EveryPathAgreesWithLinearScanOnTeapotAndIcosphere) {
     const auto teapot = triangles_of(make_teapot(4));
-    expect_every_path_matches(teapot, librt::testing::incoherent_rays(make_teapot(4).bounds(), 30000, 21));
+    expect_every_path_matches(teapot,
+                              librt::testing::incoherent_rays(make_teapot(4).bounds(), 30000, 21));
     const TriangleMesh sphere = make_icosphere(glm::vec3(0.0f), 1.0f, 3);
-    expect_every_path_matches(triangles_of(sphere), librt::testing::incoherent_rays(sphere.bounds(), 30000, 22));
+    expect_every_path_matches(triangles_of(sphere),
+                              librt::testing::incoherent_rays(sphere.bounds(), 30000, 22));
 }
 
 TEST(WideBvh, EveryPathAgreesWithLinearScanOnBunnyAtOriginalScale) {

@@ -9,13 +9,14 @@
 #include <librt/io/image_io.h>
 #include <librt/render/texture.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 namespace {
 
@@ -48,11 +49,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     write(pfm_path, data, size);
     try {
         const librt::Image image = librt::read_pfm(pfm_path);
-        if (image.pixels.size() != std::size_t(image.width) * std::size_t(image.height)) __builtin_trap();
+        if (image.pixels.size() != std::size_t(image.width) * std::size_t(image.height))
+            __builtin_trap();
         librt::write_pfm(copy_path, image);
         const librt::Image back = librt::read_pfm(copy_path);
         if (back.width != image.width || back.height != image.height ||
-            std::memcmp(back.pixels.data(), image.pixels.data(), image.pixels.size() * sizeof(glm::vec3)) != 0)
+            std::memcmp(back.pixels.data(), image.pixels.data(),
+                        image.pixels.size() * sizeof(glm::vec3)) != 0)
             __builtin_trap();
     } catch (const librt::Error&) {
     }

@@ -7,20 +7,21 @@
 #include <librt/io/obj.h>
 
 #include <glm/geometric.hpp>
+#include <unistd.h>
 
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 namespace {
 
 std::filesystem::path scratch_file() {
     // One file per process, reused: load_obj reads from a path.
-    static const std::filesystem::path path = std::filesystem::temp_directory_path() /
-                                              ("librt_obj_fuzz_" + std::to_string(::getpid()) + ".obj");
+    static const std::filesystem::path path =
+        std::filesystem::temp_directory_path() /
+        ("librt_obj_fuzz_" + std::to_string(::getpid()) + ".obj");
     return path;
 }
 
@@ -38,12 +39,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
         const librt::TriangleMesh mesh = librt::load_obj(path, options);
         librt::validate(mesh);
-        for (const librt::BvhBuilder builder : {librt::BvhBuilder::Median, librt::BvhBuilder::Sah}) {
+        for (const librt::BvhBuilder builder :
+             {librt::BvhBuilder::Median, librt::BvhBuilder::Sah}) {
             const librt::TriangleBvh bvh(mesh, builder);
             const librt::BBox box = bvh.bounds();
             if (box.empty()) continue;
             // A ray from outside through the box centre, and one along each axis.
-            for (const glm::vec3 dir : {glm::vec3(1, 1, 1), glm::vec3(0, 0, -1), glm::vec3(0, 1, 0)}) {
+            for (const glm::vec3 dir :
+                 {glm::vec3(1, 1, 1), glm::vec3(0, 0, -1), glm::vec3(0, 1, 0)}) {
                 librt::Ray ray;
                 ray.direction = dir;
                 ray.origin = box.center() - dir * (glm::length(box.diagonal()) + 1.0f);

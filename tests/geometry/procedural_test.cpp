@@ -99,7 +99,7 @@ TEST(Procedural, UvSphereUvsMatchSphereUv) {
     const Sphere s{{0, 1, 0}, 2.0f};
     const TriangleMesh m = make_uv_sphere(s.center, s.radius, 16, 8);
     const std::size_t row = 17;
-    for (std::size_t i = 1; i < 8; ++i) {      // poles have no azimuth
+    for (std::size_t i = 1; i < 8; ++i) {       // poles have no azimuth
         for (std::size_t j = 1; j < 16; ++j) {  // the seam is u = 0 and 1 at once
             const std::size_t k = i * row + j;
             const glm::vec2 expected = sphere_uv(s, m.positions[k]);

@@ -32,7 +32,8 @@ protected:
     void TearDown() override { fs::remove_all(dir_); }
 
     [[nodiscard]] std::size_t entries() const {
-        return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
+        return static_cast<std::size_t>(
+            std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
     }
 
     fs::path dir_;
@@ -98,9 +99,9 @@ TEST_F(ImageIoTest, ReadsBigEndianAndGreyscalePfm) {
 
 TEST_F(ImageIoTest, MalformedPfmNamesTheFile) {
     const fs::path path = dir_ / "bad.pfm";
-    for (const std::string& content :
-         {std::string("P6\n1 1\n255\n"), std::string("PF\n0 1\n-1\n"), std::string("PF\n2 2\n-1\nabc"),
-          std::string("PF\n1 1\n0\n            "), std::string("")}) {
+    for (const std::string& content : {std::string("P6\n1 1\n255\n"), std::string("PF\n0 1\n-1\n"),
+                                       std::string("PF\n2 2\n-1\nabc"),
+                                       std::string("PF\n1 1\n0\n            "), std::string("")}) {
         {
             std::ofstream out(path, std::ios::binary);
             out << content;

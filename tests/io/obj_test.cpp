@@ -1,7 +1,7 @@
+#include "test_support.h"
+
 #include <librt/core/error.h>
 #include <librt/io/obj.h>
-
-#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -24,9 +24,8 @@ public:
     TempDir() {
         static std::atomic<int> counter{0};
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path_ = fs::temp_directory_path() /
-                ("librt_obj_" + std::string(info ? info->name() : "x") + "_" +
-                 std::to_string(counter++));
+        path_ = fs::temp_directory_path() / ("librt_obj_" + std::string(info ? info->name() : "x") +
+                                             "_" + std::to_string(counter++));
         fs::remove_all(path_);
         fs::create_directories(path_);
     }
@@ -122,17 +121,17 @@ TEST(Obj, QuadsAndPolygonsAreTriangulated) {
     TempDir dir;
     // A quad, a pentagon, a concave L-shaped hexagon (area 3) and a concave dart whose first
     // corner cannot see the others (a fan from it would fold over), all facing +z.
-    const TriangleMesh m = load(dir.write("poly.obj", std::string(kSquareVerts) +
-                                                          "f 1 2 3 4\n"
-                                                          "v 10 0 0\nv 12 0 0\nv 13 1 0\n"
-                                                          "v 11 2 0\nv 9 1 0\n"
-                                                          "f 5 6 7 8 9\n"
-                                                          "v 20 0 0\nv 22 0 0\nv 22 1 0\n"
-                                                          "v 21 1 0\nv 21 2 0\nv 20 2 0\n"
-                                                          "f 10 11 12 13 14 15\n"
-                                                          "v 30 0 0\nv 32 1 0\nv 34 0 0\n"
-                                                          "v 32 3 0\n"
-                                                          "f 16 17 18 19\n"));
+    const TriangleMesh m =
+        load(dir.write("poly.obj", std::string(kSquareVerts) + "f 1 2 3 4\n"
+                                                               "v 10 0 0\nv 12 0 0\nv 13 1 0\n"
+                                                               "v 11 2 0\nv 9 1 0\n"
+                                                               "f 5 6 7 8 9\n"
+                                                               "v 20 0 0\nv 22 0 0\nv 22 1 0\n"
+                                                               "v 21 1 0\nv 21 2 0\nv 20 2 0\n"
+                                                               "f 10 11 12 13 14 15\n"
+                                                               "v 30 0 0\nv 32 1 0\nv 34 0 0\n"
+                                                               "v 32 3 0\n"
+                                                               "f 16 17 18 19\n"));
     EXPECT_EQ(m.triangle_count(), 2u + 3u + 4u + 2u);  // n - 2 each
     // Pentagon and dart areas by the shoelace formula: 5 and 4.
     EXPECT_NEAR(total_area(m), 1.0f + 5.0f + 3.0f + 4.0f, 1e-5f);
@@ -144,9 +143,10 @@ TEST(Obj, QuadsAndPolygonsAreTriangulated) {
 TEST(Obj, ZeroAreaPolygonIsSkippedWithAWarning) {
     TempDir dir;
     std::vector<std::string> warnings;
-    const TriangleMesh m = load(dir.write("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\n"
-                                                      "v 0 1 0\n"
-                                                      "f 1 2 3 4\nf 1 2 5\n"),
+    const TriangleMesh m = load(dir.write("flat.obj",
+                                          "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\n"
+                                          "v 0 1 0\n"
+                                          "f 1 2 3 4\nf 1 2 5\n"),
                                 &warnings);
     EXPECT_EQ(m.triangle_count(), 1u);
     EXPECT_EQ(m.material_ids.size(), 1u);
@@ -157,11 +157,12 @@ TEST(Obj, ZeroAreaPolygonIsSkippedWithAWarning) {
 
 TEST(Obj, NegativeIndicesAreRelative) {
     TempDir dir;
-    const TriangleMesh m = load(dir.write("rel.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
-                                                     "vt 0 0\nvt 1 0\nvt 0 1\n"
-                                                     "f -3/-3 -2/-2 -1/-1\n"
-                                                     "v 5 5 5\n"
-                                                     "f -4 -3 -1\n"));
+    const TriangleMesh m = load(dir.write("rel.obj",
+                                          "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                          "vt 0 0\nvt 1 0\nvt 0 1\n"
+                                          "f -3/-3 -2/-2 -1/-1\n"
+                                          "v 5 5 5\n"
+                                          "f -4 -3 -1\n"));
     ASSERT_EQ(m.triangle_count(), 2u);
     EXPECT_EQ(m.triangles[0], glm::uvec3(0, 1, 2));
     EXPECT_EQ(m.positions[m.triangles[1].z], glm::vec3(5, 5, 5));
@@ -173,12 +174,13 @@ TEST(Obj, TripletsAreUnifiedIntoVertices) {
     TempDir dir;
     // Two faces of a box edge: positions 2 and 3 are shared, but with different normals,
     // so they must split; the repeated triplet 1/1/1 must not.
-    const TriangleMesh m = load(dir.write("split.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 1 0 -1\n"
-                                                       "vt 0 0\nvt 1 0\nvt 1 1\n"
-                                                       "vn 0 0 1\nvn 1 0 0\n"
-                                                       "f 1/1/1 2/2/1 3/3/1\n"
-                                                       "f 1/1/1 3/3/1 2/2/1\n"
-                                                       "f 2/1/2 4/2/2 3/3/2\n"));
+    const TriangleMesh m = load(dir.write("split.obj",
+                                          "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 1 0 -1\n"
+                                          "vt 0 0\nvt 1 0\nvt 1 1\n"
+                                          "vn 0 0 1\nvn 1 0 0\n"
+                                          "f 1/1/1 2/2/1 3/3/1\n"
+                                          "f 1/1/1 3/3/1 2/2/1\n"
+                                          "f 2/1/2 4/2/2 3/3/2\n"));
     EXPECT_EQ(m.vertex_count(), 4u + 2u);  // 2/1/2 and 3/3/2 are new; 4/2/2 claims slot 3
     ASSERT_EQ(m.normals.size(), m.vertex_count());
     ASSERT_EQ(m.uvs.size(), m.vertex_count());
@@ -200,9 +202,10 @@ TEST(Obj, TripletsAreUnifiedIntoVertices) {
 
 TEST(Obj, OptionsDropAttributesAndTransform) {
     TempDir dir;
-    const fs::path p = dir.write("opt.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\n"
-                                            "vn 0 0 1\nvn 0 1 0\n"
-                                            "f 1/1/1 2/2/1 3/1/1\nf 1/2/2 3/1/2 2/2/2\n");
+    const fs::path p = dir.write("opt.obj",
+                                 "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\n"
+                                 "vn 0 0 1\nvn 0 1 0\n"
+                                 "f 1/1/1 2/2/1 3/1/1\nf 1/2/2 3/1/2 2/2/2\n");
     EXPECT_EQ(load(p).vertex_count(), 6u);  // the second face's three triplets are all new
     ObjLoadOptions options;
     std::vector<std::string> warnings;
@@ -224,24 +227,26 @@ TEST(Obj, OptionsDropAttributesAndTransform) {
 
 TEST(Obj, MissingNormalsAreComputedFromFaces) {
     TempDir dir;
-    const TriangleMesh m = load(dir.write("mixed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
-                                                       "vn 0 0 1\n"
-                                                       "f 1//1 2//1 3//1\nf 2 4 3\n"));
+    const TriangleMesh m = load(dir.write("mixed.obj",
+                                          "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
+                                          "vn 0 0 1\n"
+                                          "f 1//1 2//1 3//1\nf 2 4 3\n"));
     ASSERT_EQ(m.normals.size(), m.vertex_count());
     EXPECT_EQ(m.normals[m.triangles[1].y], glm::vec3(0, 0, 1));  // vertex 4 had none
 }
 
 TEST(Obj, MaterialsAreReadFromTheMtl) {
     TempDir dir;
-    dir.write("scene.mtl", "newmtl red\n"
-                           "Kd 0.8 0.1 0.1\nKs 0.2 0.3 0.4\nKe 1 2 3\nNi 1.5\nd 0.25\n"
-                           "illum 7\nmap_Kd textures/wood.png\n"
-                           "newmtl plain\nKd 0.5 0.5 0.5\n");
-    const TriangleMesh m = load(dir.write("scene.obj", "mtllib scene.mtl\n" +
-                                                           std::string(kSquareVerts) +
-                                                           "f 1 2 3\n"
-                                                           "usemtl plain\nf 1 3 4\n"
-                                                           "usemtl red\nf 2 3 4 1\n"));
+    dir.write("scene.mtl",
+              "newmtl red\n"
+              "Kd 0.8 0.1 0.1\nKs 0.2 0.3 0.4\nKe 1 2 3\nNi 1.5\nd 0.25\n"
+              "illum 7\nmap_Kd textures/wood.png\n"
+              "newmtl plain\nKd 0.5 0.5 0.5\n");
+    const TriangleMesh m =
+        load(dir.write("scene.obj", "mtllib scene.mtl\n" + std::string(kSquareVerts) +
+                                        "f 1 2 3\n"
+                                        "usemtl plain\nf 1 3 4\n"
+                                        "usemtl red\nf 2 3 4 1\n"));
     ASSERT_EQ(m.materials.size(), 3u);  // red, plain, and the default for the first face
     const MeshMaterial& red = m.materials[0];
     EXPECT_EQ(red.name, "red");
@@ -260,8 +265,8 @@ TEST(Obj, MaterialsAreReadFromTheMtl) {
 TEST(Obj, MissingMtlIsAWarningNotAnError) {
     TempDir dir;
     std::vector<std::string> warnings;
-    const fs::path p = dir.write("nomtl.obj", "mtllib absent.mtl\n" + std::string(kSquareVerts) +
-                                                  "usemtl red\nf 1 2 3\n");
+    const fs::path p = dir.write(
+        "nomtl.obj", "mtllib absent.mtl\n" + std::string(kSquareVerts) + "usemtl red\nf 1 2 3\n");
     const TriangleMesh m = load(p, &warnings);
     EXPECT_EQ(m.triangle_count(), 1u);
     ASSERT_EQ(m.materials.size(), 1u);
@@ -288,8 +293,8 @@ TEST(Obj, OutOfRangeIndicesNameFileAndFace) {
     EXPECT_TRUE(contains(msg, "face 2")) << msg;
     EXPECT_TRUE(contains(msg, "7")) << msg;
     // tinyobjloader would drop such a quad or read outside its arrays for an n-gon.
-    for (const char* face : {"f 1 2 3 9\n", "f 1 2 3 4 9\n", "f -5 1 2\n", "f 1/4 2/1 3/1\n",
-                             "f 1//2 2//1 3//1\n"}) {
+    for (const char* face :
+         {"f 1 2 3 9\n", "f 1 2 3 4 9\n", "f -5 1 2\n", "f 1/4 2/1 3/1\n", "f 1//2 2//1 3//1\n"}) {
         const std::string text = std::string(kSquareVerts) + "vt 0 0\nvn 0 0 1\n" + face;
         const std::string m = load_error(dir.write("bad.obj", text));
         EXPECT_TRUE(contains(m, "bad.obj")) << face << " -> " << m;

@@ -40,8 +40,8 @@ void expect_rejects(const CameraSettings& s, const std::string& parameter) {
 
 TEST(Camera, CentreAndCornerDirectionsFollowTheReport) {
     const Camera camera(CameraSettings{});  // the report's camera, 512x512, 60 degrees
-    for (const auto& [i, j] : {std::pair{255, 255}, {256, 256}, {0, 0}, {0, 511}, {511, 0},
-                              {511, 511}, {100, 400}}) {
+    for (const auto& [i, j] :
+         {std::pair{255, 255}, {256, 256}, {0, 0}, {0, 511}, {511, 0}, {511, 511}, {100, 400}}) {
         Sampler sampler(0, 0, 0, 0);
         const Ray ray = camera.generate_ray(j, i, sampler);
         EXPECT_EQ(ray.origin, glm::vec3(0.0f, 0.0f, 55.0f));
@@ -172,9 +172,12 @@ TEST(Camera, InvalidSettingsNameTheParameter) {
     expect_rejects(with([](CameraSettings& s) { s.width = 0; }), "width = 0");
     expect_rejects(with([](CameraSettings& s) { s.width = 65537; }), "width = 65537");
     expect_rejects(with([](CameraSettings& s) { s.height = -3; }), "height = -3");
-    expect_rejects(with([](CameraSettings& s) { s.vertical_fov_degrees = 0.0f; }), "vertical_fov_degrees");
-    expect_rejects(with([](CameraSettings& s) { s.vertical_fov_degrees = 180.0f; }), "vertical_fov_degrees = 180");
-    expect_rejects(with([](CameraSettings& s) { s.vertical_fov_degrees = NAN; }), "vertical_fov_degrees");
+    expect_rejects(with([](CameraSettings& s) { s.vertical_fov_degrees = 0.0f; }),
+                   "vertical_fov_degrees");
+    expect_rejects(with([](CameraSettings& s) { s.vertical_fov_degrees = 180.0f; }),
+                   "vertical_fov_degrees = 180");
+    expect_rejects(with([](CameraSettings& s) { s.vertical_fov_degrees = NAN; }),
+                   "vertical_fov_degrees");
     expect_rejects(with([](CameraSettings& s) { s.position.x = INFINITY; }), "position");
     expect_rejects(with([](CameraSettings& s) { s.look_at = s.position; }), "look_at");
     expect_rejects(with([](CameraSettings& s) { s.up = {0.0f, 0.0f, 1.0f}; }), "up");
@@ -183,5 +186,8 @@ TEST(Camera, InvalidSettingsNameTheParameter) {
     expect_rejects(with([](CameraSettings& s) { s.lens_sigma = -1.0f; }), "lens_sigma = -1");
     expect_rejects(with([](CameraSettings& s) { s.lens_radius = NAN; }), "lens_radius");
     expect_rejects(with([](CameraSettings& s) { s.focal_distance = 0.0f; }), "focal_distance = 0");
-    EXPECT_NO_THROW(Camera(with([](CameraSettings& s) { s.width = 1; s.height = 65536; })));
+    EXPECT_NO_THROW(Camera(with([](CameraSettings& s) {
+        s.width = 1;
+        s.height = 65536;
+    })));
 }

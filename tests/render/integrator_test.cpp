@@ -360,8 +360,9 @@ TEST(Integrators, FiniteOnDegenerateGeometry) {
     const auto lamp = scene.add_material(Material::emissive(glm::vec3(5.0f)));
     add_floor(scene, 20.0f, white);
     TriangleMesh flat;  // a tent with all-zero vertex normals, plus degenerate triangles
-    flat.positions = {{-3, 0, -3}, {3, 0, -3}, {0, 3, -2}, {0, 0, 0}, {1, 1, 1}, {2, 2, 2},
-                      {5, 0.5f, 0}, {5, 0.5f, 0}, {5, 0.5f, 0}, {-4, 0, 1}, {4, 0, 1}, {0, 1e-20f, 1}};
+    flat.positions = {{-3, 0, -3},  {3, 0, -3}, {0, 3, -2},   {0, 0, 0},
+                      {1, 1, 1},    {2, 2, 2},  {5, 0.5f, 0}, {5, 0.5f, 0},
+                      {5, 0.5f, 0}, {-4, 0, 1}, {4, 0, 1},    {0, 1e-20f, 1}};
     flat.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}, {9, 10, 11}};
     flat.normals.assign(flat.positions.size(), glm::vec3(0.0f));
     flat.uvs.assign(flat.positions.size(), glm::vec2(0.5f));
@@ -384,7 +385,8 @@ TEST(Integrators, FiniteOnDegenerateGeometry) {
     DirectLighting direct;
     BruteForcePathTracer brute({6});
     AlbedoNormalIntegrator normal(DebugView::Normal);
-    const std::vector<GuardedIntegrator*> integrators = {&path, &roulette, &direct, &brute, &normal};
+    const std::vector<GuardedIntegrator*> integrators = {&path, &roulette, &direct, &brute,
+                                                         &normal};
     std::vector<CameraSettings> cameras(3);
     cameras[0].position = {0, 3, 12};  // overview
     cameras[0].look_at = {0, 1, 0};

@@ -1,6 +1,6 @@
 #include <librt/core/error.h>
-#include <librt/render/renderer.h>
 #include <librt/render/integrators.h>
+#include <librt/render/renderer.h>
 #include <librt/render/scene.h>
 
 #include <gtest/gtest.h>
@@ -23,7 +23,8 @@ namespace {
 class HashIntegrator final : public Integrator {
 public:
     void preprocess(const Scene& /*scene*/) override { ++preprocess_calls; }
-    [[nodiscard]] glm::vec3 li(const Scene& /*scene*/, const Ray& ray, Sampler& sampler) const override {
+    [[nodiscard]] glm::vec3 li(const Scene& /*scene*/, const Ray& ray,
+                               Sampler& sampler) const override {
         const float a = sampler.next_1d();
         const glm::vec2 b = sampler.next_2d();
         return {a + ray.direction.x, b.x * ray.origin.y, b.y - ray.direction.y};
@@ -34,7 +35,8 @@ public:
 // NaN on a random half of the left-hand samples, 1 elsewhere.
 class SometimesNan final : public Integrator {
 public:
-    [[nodiscard]] glm::vec3 li(const Scene& /*scene*/, const Ray& ray, Sampler& sampler) const override {
+    [[nodiscard]] glm::vec3 li(const Scene& /*scene*/, const Ray& ray,
+                               Sampler& sampler) const override {
         if (ray.direction.x < 0.0f && sampler.next_1d() < 0.5f) {
             return {std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f};
         }
@@ -45,7 +47,8 @@ public:
 // Slow: ~0.2 ms per sample.
 class Slow final : public Integrator {
 public:
-    [[nodiscard]] glm::vec3 li(const Scene& /*scene*/, const Ray& /*ray*/, Sampler& /*sampler*/) const override {
+    [[nodiscard]] glm::vec3 li(const Scene& /*scene*/, const Ray& /*ray*/,
+                               Sampler& /*sampler*/) const override {
         std::this_thread::sleep_for(std::chrono::microseconds(200));
         return glm::vec3(1.0f);
     }
@@ -53,7 +56,8 @@ public:
 
 class Throwing final : public Integrator {
 public:
-    [[nodiscard]] glm::vec3 li(const Scene& /*scene*/, const Ray& ray, Sampler& /*sampler*/) const override {
+    [[nodiscard]] glm::vec3 li(const Scene& /*scene*/, const Ray& ray,
+                               Sampler& /*sampler*/) const override {
         if (ray.direction.x > 0.2f) throw std::runtime_error("integrator failure");
         return glm::vec3(0.5f);
     }
@@ -153,7 +157,8 @@ TEST(Renderer, NonFiniteSamplesAreDroppedAndCounted) {
             int finite = 0;
             for (std::uint32_t s = 0; s < 8; ++s) {
                 Sampler sampler(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y), s, 0);
-                const glm::vec3 l = integrator_const.li(scene, camera.generate_ray(x, y, sampler), sampler);
+                const glm::vec3 l =
+                    integrator_const.li(scene, camera.generate_ray(x, y, sampler), sampler);
                 std::isfinite(l.x) ? ++finite : ++expected_nonfinite;
             }
             // The mean of the finite samples, which are all 1; black when none is left.
@@ -181,7 +186,8 @@ TEST(Renderer, CancellationReturnsPromptly) {
     RenderStats stats;
     const auto start = std::chrono::steady_clock::now();
     const Image image = render(scene, camera, integrator, settings, &stats);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     canceller.join();
     EXPECT_TRUE(stats.cancelled);
     EXPECT_LT(seconds, 1.0);
@@ -267,6 +273,6 @@ TEST(Renderer, RendersARealSceneWithoutNaN) {
     RenderSettings settings;
     settings.progress = false;
     const Image image = render(scene, camera, integrator, settings);
-    EXPECT_GT(image.at(12, 10).x, 0.0f);   // lit sphere in the middle
+    EXPECT_GT(image.at(12, 10).x, 0.0f);         // lit sphere in the middle
     EXPECT_EQ(image.at(0, 0), glm::vec3(0.0f));  // background
 }

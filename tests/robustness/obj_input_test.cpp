@@ -130,9 +130,10 @@ TEST(BadObj, MalformedNumbersNameFileAndLine) {
     }
     // Accepted spellings: signs, exponents, w and vertex colours, trailing comments.
     std::vector<std::string> w;
-    const TriangleMesh m = load(dir.write("fine.obj", "v +1 -2.5e0 .5\nv 1 0 0 1\n"
-                                                      "v 0 1 0 0.5 0.5 0.5 # colour\n"
-                                                      "f 1 2 3\n"),
+    const TriangleMesh m = load(dir.write("fine.obj",
+                                          "v +1 -2.5e0 .5\nv 1 0 0 1\n"
+                                          "v 0 1 0 0.5 0.5 0.5 # colour\n"
+                                          "f 1 2 3\n"),
                                 w);
     ASSERT_EQ(m.vertex_count(), 3u);
     EXPECT_EQ(m.positions[0], glm::vec3(1.0f, -2.5f, 0.5f));
@@ -218,7 +219,7 @@ TEST(BadObj, LinesAndPointsOnlyGiveAnEmptyMeshAndWarnings) {
 
 TEST(BadObj, LineEndingsAndNoFinalNewline) {
     ScratchDir dir;
-    for (const char* text : {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3",          // no final newline
+    for (const char* text : {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3",            // no final newline
                              "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n",  // CRLF
                              "v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r"}) {       // old Mac CR
         std::vector<std::string> w;
@@ -235,10 +236,9 @@ TEST(BadObj, VeryLongLines) {
     const std::string mb(std::size_t{1} << 20, '7');
     std::vector<std::string> w;
     // A 1 MB comment, group name and unknown statement: read, the last one warned about.
-    const TriangleMesh m =
-        load(dir.write("long.obj", "#" + mb + "\ng " + mb + "\n" + kTriangle + "f 1 2 3\n" +
-                                       "junk" + mb + "\n"),
-             w);
+    const TriangleMesh m = load(dir.write("long.obj", "#" + mb + "\ng " + mb + "\n" + kTriangle +
+                                                          "f 1 2 3\n" + "junk" + mb + "\n"),
+                                w);
     EXPECT_EQ(m.triangle_count(), 1u);
     EXPECT_TRUE(has(joined(w), "long.obj: line 7: 1 unknown statement(s) ignored")) << joined(w);
     EXPECT_LT(joined(w).size(), 1000u);  // the 1 MB keyword is not copied into the message
@@ -289,12 +289,14 @@ TEST(BadObj, Utf8JunkIsWarnedAboutAndItsByteOrderMarkSkipped) {
                                 w);
     EXPECT_EQ(m.triangle_count(), 1u);
     const std::string all = joined(w);
-    EXPECT_TRUE(has(all, "utf8.obj: line 4: 2 unknown statement(s) ignored (first here: "
-                         "'\\xc3\\xa9t\\xc3\\xa9')"))
+    EXPECT_TRUE(has(all,
+                    "utf8.obj: line 4: 2 unknown statement(s) ignored (first here: "
+                    "'\\xc3\\xa9t\\xc3\\xa9')"))
         << all;
     // A UTF-8 byte order mark would otherwise hide the first vertex from tinyobjloader.
     w.clear();
-    const TriangleMesh bom = load(dir.write("bom.obj", "\xef\xbb\xbf" + kTriangle + "f 1 2 3\n"), w);
+    const TriangleMesh bom =
+        load(dir.write("bom.obj", "\xef\xbb\xbf" + kTriangle + "f 1 2 3\n"), w);
     ASSERT_EQ(bom.vertex_count(), 3u);
     EXPECT_EQ(bom.triangle_count(), 1u);
     EXPECT_TRUE(w.empty()) << joined(w);
@@ -326,8 +328,9 @@ TEST(BadObj, MissingTextureIsAWarningAndKeepsKd) {
     dir.write("tex.mtl", "newmtl painted\nKd 0.1 0.2 0.3\nmap_Kd no_such_texture.png\n");
     std::vector<std::string> w;
     const TriangleMesh m =
-        load(dir.write("tex.obj", "mtllib tex.mtl\nusemtl painted\n" + kTriangle + "vt 0 0\n"
-                                                                                  "f 1/1 2/1 3/1\n"),
+        load(dir.write("tex.obj", "mtllib tex.mtl\nusemtl painted\n" + kTriangle +
+                                      "vt 0 0\n"
+                                      "f 1/1 2/1 3/1\n"),
              w);
     ASSERT_EQ(m.materials.size(), 1u);
     Scene scene;
@@ -349,9 +352,9 @@ TEST(BadObj, ImpossibleMtlValuesNameTheMaterial) {
     ScratchDir dir;
     dir.write("bright.mtl", "newmtl too_bright\nKd 1.5 0 0\n");
     std::vector<std::string> w;
-    const TriangleMesh m =
-        load(dir.write("bright.obj", "mtllib bright.mtl\nusemtl too_bright\n" + kTriangle + "f 1 2 3\n"),
-             w);
+    const TriangleMesh m = load(
+        dir.write("bright.obj", "mtllib bright.mtl\nusemtl too_bright\n" + kTriangle + "f 1 2 3\n"),
+        w);
     Scene scene;
     const auto fallback = scene.add_material(Material::diffuse(glm::vec3(0.5f)));
     const std::string msg = error_of([&] { (void)scene.add_mesh_with_mtl(m, fallback); });

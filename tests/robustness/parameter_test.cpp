@@ -41,7 +41,8 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 template <class F>
 void expect_error(F&& f, std::initializer_list<const char*> parts) {
     const std::string msg = error_of(f);
-    for (const char* part : parts) EXPECT_TRUE(has(msg, part)) << "'" << part << "' not in: " << msg;
+    for (const char* part : parts)
+        EXPECT_TRUE(has(msg, part)) << "'" << part << "' not in: " << msg;
 }
 
 TriangleMesh one_triangle() {
@@ -61,16 +62,27 @@ TEST(BadParameter, CameraNonFiniteAndAbsurdValues) {
             (void)Camera(s);
         };
     };
-    expect_error(camera([](CameraSettings& s) { s.width = -1; }), {"camera width = -1", "[1, 65536]"});
-    expect_error(camera([](CameraSettings& s) { s.height = INT_MAX; }), {"camera height = 2147483647"});
+    expect_error(camera([](CameraSettings& s) { s.width = -1; }),
+                 {"camera width = -1", "[1, 65536]"});
+    expect_error(camera([](CameraSettings& s) { s.height = INT_MAX; }),
+                 {"camera height = 2147483647"});
     expect_error(camera([](CameraSettings& s) { s.width = INT_MIN; }), {"width = -2147483648"});
     expect_error(camera([](CameraSettings& s) { s.vertical_fov_degrees = kInf; }),
                  {"vertical_fov_degrees = inf"});
     expect_error(camera([](CameraSettings& s) { s.vertical_fov_degrees = -30.0f; }),
                  {"vertical_fov_degrees = -30"});
-    expect_error(camera([](CameraSettings& s) { s.position = {0, kNan, 0}; }), {"camera position = (0, nan, 0)"});
-    expect_error(camera([](CameraSettings& s) { s.look_at = {kInf, 0, 0}; }), {"camera look_at = (inf, 0, 0)"});
-    expect_error(camera([](CameraSettings& s) { s.up = {kNan, 1, 0}; }), {"camera up = (nan, 1, 0)"});
+    expect_error(camera([](CameraSettings& s) {
+                     s.position = {0, kNan, 0};
+                 }),
+                 {"camera position = (0, nan, 0)"});
+    expect_error(camera([](CameraSettings& s) {
+                     s.look_at = {kInf, 0, 0};
+                 }),
+                 {"camera look_at = (inf, 0, 0)"});
+    expect_error(camera([](CameraSettings& s) {
+                     s.up = {kNan, 1, 0};
+                 }),
+                 {"camera up = (nan, 1, 0)"});
     // Finite but so far apart that their distance overflows float.
     expect_error(camera([](CameraSettings& s) {
                      s.position = {-3e38f, 0, 0};
@@ -78,12 +90,17 @@ TEST(BadParameter, CameraNonFiniteAndAbsurdValues) {
                      s.up = {0, 1, 0};
                  }),
                  {"camera look_at", "overflows float"});
-    expect_error(camera([](CameraSettings& s) { s.up = {0, 3e38f, 3e38f}; }), {"camera up", "overflows float"});
+    expect_error(camera([](CameraSettings& s) {
+                     s.up = {0, 3e38f, 3e38f};
+                 }),
+                 {"camera up", "overflows float"});
     expect_error(camera([](CameraSettings& s) { s.pixel_sigma = kInf; }), {"pixel_sigma = inf"});
     expect_error(camera([](CameraSettings& s) { s.lens_sigma = kNan; }), {"lens_sigma = nan"});
     expect_error(camera([](CameraSettings& s) { s.lens_radius = -1.0f; }), {"lens_radius = -1"});
-    expect_error(camera([](CameraSettings& s) { s.focal_distance = kNan; }), {"focal_distance = nan"});
-    expect_error(camera([](CameraSettings& s) { s.focal_distance = -kInf; }), {"focal_distance = -inf"});
+    expect_error(camera([](CameraSettings& s) { s.focal_distance = kNan; }),
+                 {"focal_distance = nan"});
+    expect_error(camera([](CameraSettings& s) { s.focal_distance = -kInf; }),
+                 {"focal_distance = -inf"});
 }
 
 TEST(BadParameter, RenderSettingsAndFilmSize) {
@@ -101,10 +118,12 @@ TEST(BadParameter, RenderSettingsAndFilmSize) {
             (void)render(scene, camera, integrator, s);
         };
     };
-    expect_error(render_with([](RenderSettings& s) { s.samples_per_pixel = -7; }), {"samples_per_pixel = -7"});
+    expect_error(render_with([](RenderSettings& s) { s.samples_per_pixel = -7; }),
+                 {"samples_per_pixel = -7"});
     expect_error(render_with([](RenderSettings& s) { s.samples_per_pixel = INT_MAX; }),
                  {"samples_per_pixel = 2147483647", "[1, 1048576]"});
-    expect_error(render_with([](RenderSettings& s) { s.threads = INT_MIN; }), {"threads = -2147483648"});
+    expect_error(render_with([](RenderSettings& s) { s.threads = INT_MIN; }),
+                 {"threads = -2147483648"});
     expect_error(render_with([](RenderSettings& s) { s.tile_size = -1; }), {"tile_size = -1"});
     // A tile larger than the image is the whole image (no overflow in the tile arithmetic).
     RenderSettings huge_tile;
@@ -116,15 +135,18 @@ TEST(BadParameter, RenderSettingsAndFilmSize) {
     EXPECT_EQ(image.pixels.size(), 16u);
 
     // A film that cannot fit in memory is refused before allocating, and quickly.
-    for (const auto& [w, h] : {std::pair{65536, 65536}, std::pair{65536, 20000}, std::pair{30000, 30000}}) {
+    for (const auto& [w, h] :
+         {std::pair{65536, 65536}, std::pair{65536, 20000}, std::pair{30000, 30000}}) {
         CameraSettings big;
         big.width = w;
         big.height = h;
         const auto start = std::chrono::steady_clock::now();
-        const std::string msg = error_of([&] { (void)render(scene, Camera(big), integrator, RenderSettings{}); });
+        const std::string msg =
+            error_of([&] { (void)render(scene, Camera(big), integrator, RenderSettings{}); });
         EXPECT_TRUE(has(msg, std::to_string(w) + " x " + std::to_string(h))) << msg;
         EXPECT_TRUE(has(msg, "4 GiB")) << msg;
-        EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+        EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                  1.0);
     }
     expect_error([] { (void)Image(-1, 5); }, {"image size -1 x 5"});
     expect_error([] { (void)Image(INT_MAX, INT_MAX); }, {"image size 2147483647 x 2147483647"});
@@ -133,19 +155,33 @@ TEST(BadParameter, RenderSettingsAndFilmSize) {
 TEST(BadParameter, BounceCounts) {
     for (const int depth : {-1, 1001, INT_MAX, INT_MIN}) {
         const std::string value = "max_depth = " + std::to_string(depth);
-        expect_error([&] { (void)PathTracer(PathTracerSettings{depth}); }, {value.c_str(), "[0, 1000]"});
-        expect_error([&] { (void)BruteForcePathTracer(PathTracerSettings{depth}); }, {value.c_str()});
+        expect_error([&] { (void)PathTracer(PathTracerSettings{depth}); },
+                     {value.c_str(), "[0, 1000]"});
+        expect_error([&] { (void)BruteForcePathTracer(PathTracerSettings{depth}); },
+                     {value.c_str()});
         expect_error([&] { (void)DirectLighting(DirectLightingSettings{depth}); }, {value.c_str()});
     }
-    expect_error([] { (void)PathTracer(PathTracerSettings{5, true, -2}); }, {"russian_roulette_depth = -2"});
+    expect_error(
+        [] {
+            (void)PathTracer(PathTracerSettings{5, true, -2});
+        },
+        {"russian_roulette_depth = -2"});
     // The extremes that are allowed work: no bounce at all, and the maximum.
     EXPECT_NO_THROW((void)PathTracer(PathTracerSettings{0}));
     EXPECT_NO_THROW((void)PathTracer(PathTracerSettings{1000}));
 }
 
 TEST(BadParameter, MaterialNonFiniteAndOutOfRange) {
-    expect_error([] { (void)Material::diffuse({kNan, 0.5f, 0.5f}); }, {"material albedo = (nan, 0.5, 0.5)"});
-    expect_error([] { (void)Material::diffuse({0.5f, 1.5f, 0.5f}); }, {"albedo = (0.5, 1.5, 0.5)", "[0, 1]"});
+    expect_error(
+        [] {
+            (void)Material::diffuse({kNan, 0.5f, 0.5f});
+        },
+        {"material albedo = (nan, 0.5, 0.5)"});
+    expect_error(
+        [] {
+            (void)Material::diffuse({0.5f, 1.5f, 0.5f});
+        },
+        {"albedo = (0.5, 1.5, 0.5)", "[0, 1]"});
     expect_error([] { (void)Material::mirror({kInf, 1, 1}); }, {"albedo = (inf, 1, 1)"});
     expect_error([] { (void)Material::dielectric(kInf); }, {"ior = inf"});
     expect_error([] { (void)Material::dielectric(0.0f); }, {"ior = 0"});
@@ -164,15 +200,43 @@ TEST(BadParameter, MaterialNonFiniteAndOutOfRange) {
 
 TEST(BadParameter, LightsNonFiniteAndZeroSize) {
     Scene scene;
-    expect_error([&] { scene.add_point_light({{kNan, 0, 0}, glm::vec3(1.0f)}); }, {"point light position = (nan, 0, 0)"});
-    expect_error([&] { scene.add_point_light({{0, 0, 0}, {kInf, 1, 1}}); }, {"point light intensity = (inf, 1, 1)"});
-    expect_error([&] { scene.add_point_light(PointLight::from_power({0, 0, 0}, -5.0f)); }, {"point light intensity"});
-    expect_error([&] { (void)scene.add_sphere_light({{{0, 0, 0}, 0.0f}, glm::vec3(1.0f)}); }, {"sphere light radius = 0"});
-    expect_error([&] { (void)scene.add_sphere_light({{{0, 0, 0}, kNan}, glm::vec3(1.0f)}); }, {"sphere light radius = nan"});
-    expect_error([&] { (void)scene.add_sphere_light({{{0, kInf, 0}, 1.0f}, glm::vec3(1.0f)}); }, {"sphere light center"});
+    expect_error(
+        [&] {
+            scene.add_point_light({{kNan, 0, 0}, glm::vec3(1.0f)});
+        },
+        {"point light position = (nan, 0, 0)"});
+    expect_error(
+        [&] {
+            scene.add_point_light({{0, 0, 0}, {kInf, 1, 1}});
+        },
+        {"point light intensity = (inf, 1, 1)"});
+    expect_error(
+        [&] {
+            scene.add_point_light(PointLight::from_power({0, 0, 0}, -5.0f));
+        },
+        {"point light intensity"});
+    expect_error(
+        [&] {
+            (void)scene.add_sphere_light({{{0, 0, 0}, 0.0f}, glm::vec3(1.0f)});
+        },
+        {"sphere light radius = 0"});
+    expect_error(
+        [&] {
+            (void)scene.add_sphere_light({{{0, 0, 0}, kNan}, glm::vec3(1.0f)});
+        },
+        {"sphere light radius = nan"});
+    expect_error(
+        [&] {
+            (void)scene.add_sphere_light({{{0, kInf, 0}, 1.0f}, glm::vec3(1.0f)});
+        },
+        {"sphere light center"});
     // A given power on a vanishing radius needs an infinite radiance: refused.
     const glm::vec3 radiance = SphereLight::radiance_for_power(100.0f, 1e-30f);
-    expect_error([&] { (void)scene.add_sphere_light({{{0, 0, 0}, 1e-30f}, radiance}); }, {"sphere light radiance = (inf"});
+    expect_error(
+        [&] {
+            (void)scene.add_sphere_light({{{0, 0, 0}, 1e-30f}, radiance});
+        },
+        {"sphere light radiance = (inf"});
     EXPECT_EQ(scene.point_lights().size(), 0u);
     EXPECT_EQ(scene.sphere_lights().size(), 0u);
 }
@@ -183,9 +247,17 @@ TEST(BadParameter, SceneGeometryNonFinite) {
     expect_error([&] { (void)scene.add_sphere({{0, 0, 0}, 0.0f}, grey); }, {"sphere radius = 0"});
     expect_error([&] { (void)scene.add_sphere({{0, 0, 0}, kNan}, grey); }, {"sphere radius = nan"});
     expect_error([&] { (void)scene.add_sphere({{0, 0, 0}, kInf}, grey); }, {"sphere radius = inf"});
-    expect_error([&] { (void)scene.add_sphere({{0, 0, -kInf}, 1.0f}, grey); }, {"sphere center = (0, 0, -inf)"});
+    expect_error(
+        [&] {
+            (void)scene.add_sphere({{0, 0, -kInf}, 1.0f}, grey);
+        },
+        {"sphere center = (0, 0, -inf)"});
     expect_error([&] { (void)scene.add_sphere({{0, 0, 0}, 1.0f}, 99); }, {"material id 99"});
-    expect_error([&] { (void)scene.add_triangle({{0, 0, 0}, {kNan, 0, 0}, {0, 1, 0}}, grey); }, {"add_triangle", "finite"});
+    expect_error(
+        [&] {
+            (void)scene.add_triangle({{0, 0, 0}, {kNan, 0, 0}, {0, 1, 0}}, grey);
+        },
+        {"add_triangle", "finite"});
     TriangleMesh m = one_triangle();
     m.positions[1].y = kInf;
     expect_error([&] { (void)scene.add_mesh(m, grey); }, {"position 1 is not finite"});
@@ -203,9 +275,21 @@ TEST(BadParameter, SceneGeometryNonFinite) {
 }
 
 TEST(BadParameter, TransformsNonFinite) {
-    expect_error([] { (void)make_transform({kNan, 1, 1}, {}, {}); }, {"make_transform: scale = (nan"});
-    expect_error([] { (void)make_transform({1, 1, 1}, {0, kInf, 0}, {}); }, {"make_transform: rotation_degrees"});
-    expect_error([] { (void)make_transform({1, 1, 1}, {}, {0, 0, -kInf}); }, {"make_transform: translation"});
+    expect_error(
+        [] {
+            (void)make_transform({kNan, 1, 1}, {}, {});
+        },
+        {"make_transform: scale = (nan"});
+    expect_error(
+        [] {
+            (void)make_transform({1, 1, 1}, {0, kInf, 0}, {});
+        },
+        {"make_transform: rotation_degrees"});
+    expect_error(
+        [] {
+            (void)make_transform({1, 1, 1}, {}, {0, 0, -kInf});
+        },
+        {"make_transform: translation"});
     TriangleMesh m = one_triangle();
     glm::mat4 bad(1.0f);
     bad[1][2] = kNan;  // column 1, row 2
@@ -233,7 +317,8 @@ TEST(BadParameter, ProceduralCounts) {
     const auto start = std::chrono::steady_clock::now();
     expect_error([] { (void)make_uv_sphere({}, 1, 1 << 15, 1 << 15); },
                  {"make_uv_sphere", "segments = 32768, rings = 32768", "more than the limit"});
-    expect_error([] { (void)make_teapot(4096); }, {"make_teapot", "tessellation = 4096", "vertices"});
+    expect_error([] { (void)make_teapot(4096); },
+                 {"make_teapot", "tessellation = 4096", "vertices"});
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
     expect_error([] { (void)make_teapot(-1); }, {"tessellation = -1"});
     expect_error([] { (void)make_icosphere({}, 1, -1); }, {"subdivisions = -1"});
@@ -248,7 +333,8 @@ TEST(BadParameter, ProceduralCounts) {
 TEST(BadParameter, BvhBuilderInput) {
     const std::vector<BBox> boxes = {BBox{{0, 0, 0}, {1, 1, 1}}, BBox{{0, kNan, 0}, {1, 1, 1}}};
     const std::vector<glm::vec3> centers = {glm::vec3(0.5f), glm::vec3(0.5f)};
-    expect_error([&] { (void)build_median_bvh(boxes, centers); }, {"BVH build: primitive 1 has a NaN box"});
+    expect_error([&] { (void)build_median_bvh(boxes, centers); },
+                 {"BVH build: primitive 1 has a NaN box"});
     expect_error([&] { (void)build_sah_bvh(boxes, centers); }, {"primitive 1 has a NaN box"});
     const std::vector<glm::vec3> inf_centers = {glm::vec3(0.5f), {0, 0, kInf}};
     expect_error([&] { (void)build_bvh(BvhBuilder::Sah, std::vector<BBox>(2), inf_centers); },
@@ -263,27 +349,35 @@ TEST(BadParameter, BvhBuilderInput) {
     m = one_triangle();
     m.positions[0].x = kNan;
     expect_error([&] { (void)TriangleBvh(m, BvhBuilder::Median); }, {"position 0 is not finite"});
-    const std::vector<Triangle> loose = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 0}, {1, kNan, 0}, {0, 1, 0}}};
+    const std::vector<Triangle> loose = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
+                                         {{0, 0, 0}, {1, kNan, 0}, {0, 1, 0}}};
     expect_error([&] { (void)TriangleBvh(loose); }, {"triangle 1 has a non-finite corner"});
 }
 
 TEST(BadFile, TextureMissingDirectoryEmptyGarbageHuge) {
     ScratchDir dir;
-    expect_error([&] { (void)ImageTexture::load(dir.path() / "absent.png"); }, {"absent.png", "no such file"});
+    expect_error([&] { (void)ImageTexture::load(dir.path() / "absent.png"); },
+                 {"absent.png", "no such file"});
     fs::create_directory(dir.path() / "folder.png");
-    expect_error([&] { (void)ImageTexture::load(dir.path() / "folder.png"); }, {"folder.png", "is a directory"});
-    expect_error([&] { (void)ImageTexture::load(dir.write("empty.png", "")); }, {"cannot load texture", "empty.png"});
+    expect_error([&] { (void)ImageTexture::load(dir.path() / "folder.png"); },
+                 {"folder.png", "is a directory"});
+    expect_error([&] { (void)ImageTexture::load(dir.write("empty.png", "")); },
+                 {"cannot load texture", "empty.png"});
     expect_error([&] { (void)ImageTexture::load(dir.write("junk.png", "this is not an image")); },
                  {"cannot load texture", "junk.png"});
     // A PNG cut short after its signature.
-    expect_error([&] { (void)ImageTexture::load(dir.write("cut.png", std::string("\x89PNG\r\n\x1a\n", 8))); },
-                 {"cut.png"});
+    expect_error(
+        [&] {
+            (void)ImageTexture::load(dir.write("cut.png", std::string("\x89PNG\r\n\x1a\n", 8)));
+        },
+        {"cut.png"});
     // A header claiming 20000 x 20000 texels: refused from the header, before decoding.
     expect_error([&] { (void)ImageTexture::load(dir.write("huge.ppm", "P6\n20000 20000\n255\n")); },
                  {"huge.ppm", "20000 x 20000", "more than the limit"});
     // A binary PPM cut short: stb would hand back uninitialised memory as texels.
-    expect_error([&] { (void)ImageTexture::load(dir.write("short.ppm", "P6\n64 64\n255\n\x01\x02\x03")); },
-                 {"short.ppm", "truncated"});
+    expect_error(
+        [&] { (void)ImageTexture::load(dir.write("short.ppm", "P6\n64 64\n255\n\x01\x02\x03")); },
+        {"short.ppm", "truncated"});
 }
 
 TEST(BadFile, TextureUnreadable) {
@@ -303,12 +397,14 @@ TEST(BadFile, ImageOutputPaths) {
     EXPECT_TRUE(fs::is_directory(dir.path() / "out.png"));
     // A directory path with no file name.
     expect_error([&] { write_png(dir.path().string() + "/", image); }, {"no file name"});
-    expect_error([&] { write_image(dir.path() / "no_extension", image); }, {"no_extension", "unknown image format"});
+    expect_error([&] { write_image(dir.path() / "no_extension", image); },
+                 {"no_extension", "unknown image format"});
     EXPECT_EQ(dir.listing(), "out.png");  // no temporary left behind by any of these
     // Reading back: missing, a directory, empty.
     expect_error([&] { (void)read_pfm(dir.path() / "absent.pfm"); }, {"absent.pfm"});
     expect_error([&] { (void)read_pfm(dir.path() / "out.png"); }, {"out.png"});
-    expect_error([&] { (void)read_pfm(dir.write("empty.pfm", "")); }, {"empty.pfm", "not a valid PFM"});
+    expect_error([&] { (void)read_pfm(dir.write("empty.pfm", "")); },
+                 {"empty.pfm", "not a valid PFM"});
     // A PFM header claiming an absurd size is refused before allocating.
     expect_error([&] { (void)read_pfm(dir.write("huge.pfm", "PF\n100000 100000\n-1\n")); },
                  {"100000 x 100000", "4 GiB"});

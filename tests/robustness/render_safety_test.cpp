@@ -29,7 +29,9 @@ struct AllIntegrators {
     BruteForcePathTracer brute{PathTracerSettings{5}};
     AlbedoNormalIntegrator albedo{DebugView::Albedo};
     AlbedoNormalIntegrator normal{DebugView::Normal};
-    std::vector<GuardedIntegrator*> all() { return {&path, &roulette, &direct, &brute, &albedo, &normal}; }
+    std::vector<GuardedIntegrator*> all() {
+        return {&path, &roulette, &direct, &brute, &albedo, &normal};
+    }
 };
 
 struct Rendered {
@@ -71,7 +73,8 @@ TEST(OddScene, EmptySceneRendersBlack) {
     AllIntegrators integrators;
     Scene empty;
     empty.commit();
-    Scene lights_only;  // lights but no surface: still nothing to see (a point light is no geometry)
+    Scene
+        lights_only;  // lights but no surface: still nothing to see (a point light is no geometry)
     lights_only.add_point_light({{0, 5, 0}, glm::vec3(100.0f)});
     lights_only.commit();
     for (const Scene* scene : {&empty, &lights_only}) {
@@ -85,9 +88,10 @@ TEST(OddScene, EmptySceneRendersBlack) {
     // An uncommitted scene cannot be rendered: an error, not a crash.
     Scene uncommitted;
     PathTracer path;
-    EXPECT_TRUE(librt::testing::has(
-        librt::testing::error_of([&] { (void)render_small(uncommitted, path, {0, 0, 5}, {0, 0, 0}); }),
-        "commit"));
+    EXPECT_TRUE(librt::testing::has(librt::testing::error_of([&] {
+                                        (void)render_small(uncommitted, path, {0, 0, 5}, {0, 0, 0});
+                                    }),
+                                    "commit"));
 }
 
 TEST(OddScene, CameraInsideAnObject) {

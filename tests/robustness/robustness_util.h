@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <atomic>
 #include <filesystem>
@@ -15,8 +17,6 @@
 #include <string_view>
 #include <system_error>
 #include <vector>
-
-#include <unistd.h>
 
 namespace librt::testing {
 
@@ -99,7 +99,7 @@ inline bool permissions_are_bypassed(const std::filesystem::path& unreadable_fil
 /// Skips the rest of the test, visibly, when `file` (made unreadable with chmod 000) can
 /// still be read: running as root, permissions do not block reads.
 #define LIBRT_SKIP_IF_PERMISSIONS_BYPASSED(file)                                              \
-    if (::librt::testing::permissions_are_bypassed(file)) {                                    \
+    if (::librt::testing::permissions_are_bypassed(file)) {                                   \
         GTEST_SKIP() << "running with permission override (root?): chmod 000 does not block " \
-                        "reads here, so the unreadable-file case cannot be tested";            \
+                        "reads here, so the unreadable-file case cannot be tested";           \
     }

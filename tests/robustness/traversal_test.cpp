@@ -35,7 +35,8 @@ std::vector<Triangle> exponential_triangles(int count) {
     std::vector<Triangle> tris;
     for (int k = 0; k < count; ++k) {
         const float a = std::ldexp(1.0f, -k);
-        tris.push_back({{a, -0.25f * a, 0.0f}, {1.5f * a, -0.25f * a, 0.0f},
+        tris.push_back({{a, -0.25f * a, 0.0f},
+                        {1.5f * a, -0.25f * a, 0.0f},
                         {1.25f * a, 0.25f * a, 0.25f * a}});
     }
     return tris;
@@ -45,7 +46,8 @@ std::vector<Triangle> exponential_triangles(int count) {
 std::uint32_t walked_depth(const Bvh& bvh, std::uint32_t node = 0, std::uint32_t depth = 0) {
     const BvhNode& n = bvh.nodes[node];
     if (n.is_leaf()) return depth;
-    return std::max(walked_depth(bvh, n.index, depth + 1), walked_depth(bvh, n.index + 1, depth + 1));
+    return std::max(walked_depth(bvh, n.index, depth + 1),
+                    walked_depth(bvh, n.index + 1, depth + 1));
 }
 
 /// The rays that must terminate and miss, whatever the scene.
@@ -60,16 +62,16 @@ std::vector<Ray> untraceable_rays() {
         rays.push_back(r);
     };
     const glm::vec3 o{0.2f, 0.2f, 5.0f}, d{0.0f, 0.0f, -1.0f};
-    add(o, {0, 0, 0});                  // zero direction
-    add(o, {1e-30f, 0, -1e-30f});       // so small its squared length underflows to 0
-    add(o, {kNan, 0, -1});              // NaN direction
-    add(o, {0, 0, -kInf});              // infinite direction
+    add(o, {0, 0, 0});             // zero direction
+    add(o, {1e-30f, 0, -1e-30f});  // so small its squared length underflows to 0
+    add(o, {kNan, 0, -1});         // NaN direction
+    add(o, {0, 0, -kInf});         // infinite direction
     add(o, {kInf, kInf, -kInf});
-    add({kNan, 0.2f, 5}, d);            // NaN origin
-    add({0.2f, -kInf, 5}, d);           // infinite origin
-    add(o, d, kNan);                    // NaN t_min
-    add(o, d, 0.0f, kNan);              // NaN t_max
-    add(o, d, 10.0f, 1.0f);             // empty range
+    add({kNan, 0.2f, 5}, d);   // NaN origin
+    add({0.2f, -kInf, 5}, d);  // infinite origin
+    add(o, d, kNan);           // NaN t_min
+    add(o, d, 0.0f, kNan);     // NaN t_max
+    add(o, d, 10.0f, 1.0f);    // empty range
     return rays;
 }
 
@@ -116,8 +118,9 @@ TEST(Traversal, DeepTreeQueriesAgreeWithLinearScan) {
                 const float u = U(rng), v = U(rng) * (1.0f - u);
                 const glm::vec3 target = t.p0 + u * (t.p1 - t.p0) + v * (t.p2 - t.p0);
                 Ray r;
-                r.origin = i % 2 == 0 ? target + scale * glm::vec3(U(rng) - 0.5f, U(rng) - 0.5f, 1.0f)
-                                      : glm::vec3(0.7f, 0.1f, 2.0f);
+                r.origin = i % 2 == 0
+                               ? target + scale * glm::vec3(U(rng) - 0.5f, U(rng) - 0.5f, 1.0f)
+                               : glm::vec3(0.7f, 0.1f, 2.0f);
                 // Unit length: a direction of length ~2^-100 would have a squared length
                 // that underflows, which makes a ray untraceable (it misses everything).
                 r.direction = glm::normalize(target - r.origin);
@@ -183,10 +186,10 @@ TEST(Traversal, UntraceableRaysMissInTriangleBvhAndScene) {
 TEST(Traversal, DegenerateTrianglesAreNeverHit) {
     // Zero area: a point, collinear corners, a repeated corner; each lying across the rays.
     TriangleMesh m;
-    m.positions = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0},          // a point
-                   {-1, 0, 0}, {0, 0, 0}, {1, 0, 0},         // collinear along x
-                   {0, -1, 0}, {0, 1, 0}, {0, -1, 0},        // repeated corner
-                   {0, 0, -1}, {0, 0, 0}, {0, 0, 1}};        // collinear along the ray
+    m.positions = {{0, 0, 0},  {0, 0, 0}, {0, 0, 0},   // a point
+                   {-1, 0, 0}, {0, 0, 0}, {1, 0, 0},   // collinear along x
+                   {0, -1, 0}, {0, 1, 0}, {0, -1, 0},  // repeated corner
+                   {0, 0, -1}, {0, 0, 0}, {0, 0, 1}};  // collinear along the ray
     m.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}, {9, 10, 11}};
     const TriangleBvh bvh(m);
     const TriangleList linear(m);
@@ -195,8 +198,8 @@ TEST(Traversal, DegenerateTrianglesAreNeverHit) {
     (void)scene.add_mesh(m, grey);
     scene.commit();
     std::vector<Ray> rays;
-    for (const glm::vec3 d : {glm::vec3(0, 0, -1), glm::vec3(0, -1, 0), glm::vec3(-1, 0, 0),
-                              glm::vec3(-1, -1, -1)}) {
+    for (const glm::vec3 d :
+         {glm::vec3(0, 0, -1), glm::vec3(0, -1, 0), glm::vec3(-1, 0, 0), glm::vec3(-1, -1, -1)}) {
         for (const glm::vec3 target : {glm::vec3(0), glm::vec3(0.5f, 0, 0), glm::vec3(0, 0.5f, 0),
                                        glm::vec3(0, 0, 0.5f), glm::vec3(1, 0, 0)}) {
             rays.push_back(Ray{target - 5.0f * d, d});
@@ -216,7 +219,7 @@ TEST(Traversal, SliverTrianglesGiveFiniteUnitNormals) {
     // Nearly degenerate: areas around 1e-30 and 1e-38, whose cross product underflows.
     // They may be hit; every hit must have a finite t and unit normals.
     TriangleMesh m;
-    m.positions = {{-1, -1e-15f, 0}, {1, -1e-15f, 0}, {0, 1e-15f, 0},
+    m.positions = {{-1, -1e-15f, 0},      {1, -1e-15f, 0},      {0, 1e-15f, 0},
                    {-1e-19f, -1e-19f, 1}, {1e-19f, -1e-19f, 1}, {0, 1e-19f, 1}};
     m.triangles = {{0, 1, 2}, {3, 4, 5}};
     m.normals.assign(m.positions.size(), glm::vec3(0.0f));  // zero vertex normals too

@@ -1,7 +1,7 @@
+#include "sampling/chi_square.h"
+
 #include <librt/sampling/jitter.h>
 #include <librt/sampling/rng.h>
-
-#include "sampling/chi_square.h"
 
 #include <gtest/gtest.h>
 
@@ -96,17 +96,17 @@ TEST(Jitter, PixelJitterHasSigmaOneHalfByDefault) {
 }
 
 TEST(Jitter, LensJitterHasTheGivenSigma) {
-    expect_gaussian(moments([](glm::vec2 u) { return gaussian_lens_jitter(u, 1.0f); }, 5, k_n),
-                    1.0, k_n);
-    expect_gaussian(moments([](glm::vec2 u) { return gaussian_lens_jitter(u, 3.0f); }, 6, k_n),
-                    3.0, k_n);
+    expect_gaussian(moments([](glm::vec2 u) { return gaussian_lens_jitter(u, 1.0f); }, 5, k_n), 1.0,
+                    k_n);
+    expect_gaussian(moments([](glm::vec2 u) { return gaussian_lens_jitter(u, 3.0f); }, 6, k_n), 3.0,
+                    k_n);
 }
 
 TEST(Jitter, ExtremeSamplesStayFinite) {
     const float top = 1.0f - 0x1p-24f;  // the largest next_float()
-    for (const glm::vec2 u : {glm::vec2(0.0f, 0.0f), glm::vec2(top, top), glm::vec2(0.5f, 0.0f),
-                              glm::vec2(top, 0.0f), glm::vec2(0.0f, top), glm::vec2(0.3f, 1.0f),
-                              glm::vec2(0.3f, 1.5f)}) {
+    for (const glm::vec2 u :
+         {glm::vec2(0.0f, 0.0f), glm::vec2(top, top), glm::vec2(0.5f, 0.0f), glm::vec2(top, 0.0f),
+          glm::vec2(0.0f, top), glm::vec2(0.3f, 1.0f), glm::vec2(0.3f, 1.5f)}) {
         for (const glm::vec2 z : {box_muller(u), gaussian_pixel_jitter(u),
                                   gaussian_lens_jitter(u, 1.0f), disk_lens_jitter(u, 2.0f)}) {
             EXPECT_TRUE(std::isfinite(z.x) && std::isfinite(z.y))

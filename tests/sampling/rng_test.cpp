@@ -101,7 +101,7 @@ TEST(SampleRng, EachInputChangesTheStream) {
         make_sample_rng(18, 42, 3, 99), make_sample_rng(17, 43, 3, 99),
         make_sample_rng(17, 42, 4, 99), make_sample_rng(17, 42, 3, 100),
         make_sample_rng(42, 17, 3, 99),  // swapped x and y
-        make_sample_rng(0, 0, 0, 0),     make_sample_rng(0, 0, 0, 1)};
+        make_sample_rng(0, 0, 0, 0),    make_sample_rng(0, 0, 0, 1)};
     for (const Pcg32& rng : others) {
         const auto other = draw(rng, 1000);
         // Two independent 32-bit streams agree at a position with probability 2^-32.

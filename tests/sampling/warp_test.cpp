@@ -1,7 +1,7 @@
+#include "sampling/chi_square.h"
+
 #include <librt/sampling/rng.h>
 #include <librt/sampling/warp.h>
-
-#include "sampling/chi_square.h"
 
 #include <gtest/gtest.h>
 
@@ -37,8 +37,8 @@ struct DirectionBins {
         const double c = l.z;
         constexpr double slack = 1e-5;
         if (!(c >= cos_lo - slack && c <= cos_hi + slack)) return -1;
-        const int i = std::clamp(static_cast<int>((c - cos_lo) / (cos_hi - cos_lo) * n_cos), 0,
-                                 n_cos - 1);
+        const int i =
+            std::clamp(static_cast<int>((c - cos_lo) / (cos_hi - cos_lo) * n_cos), 0, n_cos - 1);
         double phi = std::atan2(static_cast<double>(l.y), static_cast<double>(l.x));
         if (phi < 0.0) phi += k_two_pi;
         const int j = std::clamp(static_cast<int>(phi / k_two_pi * n_phi), 0, n_phi - 1);
@@ -56,8 +56,7 @@ struct DirectionBins {
 /// Gauss-Legendre on 2 x 2 sub-cells: its nodes are interior, so a pdf that drops to 0
 /// on a cell edge (a cone's rim) is not sampled on the edge.
 std::vector<double> expected_counts(const DirectionBins& bins,
-                                    const std::function<double(const glm::vec3&)>& pdf,
-                                    int n) {
+                                    const std::function<double(const glm::vec3&)>& pdf, int n) {
     const std::array<double, 3> node = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)};
     const std::array<double, 3> weight = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
     constexpr int sub = 2;
@@ -127,12 +126,19 @@ glm::vec3 normalized_axis(const glm::vec3& from, const glm::vec3& to) {
 // ---- Frame ---------------------------------------------------------------------------
 
 TEST(Frame, OrthonormalAndRightHandedForManyNormals) {
-    std::vector<glm::vec3> normals = {
-        {0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0},
-        glm::normalize(glm::vec3(1e-7f, 0, -1)), glm::normalize(glm::vec3(0, 1e-4f, -1)),
-        glm::normalize(glm::vec3(1e-4f, -1e-4f, -1)), glm::normalize(glm::vec3(1e-3f, 1e-3f, -1)),
-        glm::normalize(glm::vec3(1, 1, -1e-7f)), glm::normalize(glm::vec3(1, -1, 1e-7f)),
-        glm::normalize(glm::vec3(-3e-4f, 2e-4f, 1))};
+    std::vector<glm::vec3> normals = {{0, 0, 1},
+                                      {0, 0, -1},
+                                      {1, 0, 0},
+                                      {0, 1, 0},
+                                      {-1, 0, 0},
+                                      {0, -1, 0},
+                                      glm::normalize(glm::vec3(1e-7f, 0, -1)),
+                                      glm::normalize(glm::vec3(0, 1e-4f, -1)),
+                                      glm::normalize(glm::vec3(1e-4f, -1e-4f, -1)),
+                                      glm::normalize(glm::vec3(1e-3f, 1e-3f, -1)),
+                                      glm::normalize(glm::vec3(1, 1, -1e-7f)),
+                                      glm::normalize(glm::vec3(1, -1, 1e-7f)),
+                                      glm::normalize(glm::vec3(-3e-4f, 2e-4f, 1))};
     Pcg32 rng(11u, 0u);
     for (int i = 0; i < 10'000; ++i) normals.push_back(sample_uniform_sphere(rng.next_vec2()));
 
@@ -241,8 +247,8 @@ TEST(Warp, ConcentricDiskInsideAndAreaUniform) {
 
 TEST(Warp, ConcentricDiskMapsCentreAndBoundary) {
     EXPECT_EQ(sample_uniform_disk_concentric({0.5f, 0.5f}), glm::vec2(0.0f));
-    for (const glm::vec2 u : {glm::vec2(0, 0), glm::vec2(0, 0.5f), glm::vec2(0.25f, 0),
-                              glm::vec2(0, 0.9f)}) {
+    for (const glm::vec2 u :
+         {glm::vec2(0, 0), glm::vec2(0, 0.5f), glm::vec2(0.25f, 0), glm::vec2(0, 0.9f)}) {
         EXPECT_NEAR(glm::length(sample_uniform_disk_concentric(u)), 1.0f, 1e-6f);
     }
 }
@@ -300,8 +306,8 @@ TEST(SphereLight, VisibleDirectionsChiSquare) {
         glm::vec3 c, ref;
         float d_over_r;
     };
-    const std::array<Setup, 2> setups = {{{{2, -1, 3}, {0.5f, 0.2f, -0.4f}, 2.8f},
-                                          {{0, 0, 0}, {0.9f, -1.3f, 0.7f}, 1.1f}}};
+    const std::array<Setup, 2> setups = {
+        {{{2, -1, 3}, {0.5f, 0.2f, -0.4f}, 2.8f}, {{0, 0, 0}, {0.9f, -1.3f, 0.7f}, 1.1f}}};
     for (std::size_t k = 0; k < setups.size(); ++k) {
         const glm::vec3 c = setups[k].c, ref = setups[k].ref;
         const float r = glm::length(ref - c) / setups[k].d_over_r;
@@ -311,8 +317,7 @@ TEST(SphereLight, VisibleDirectionsChiSquare) {
         bins.cos_lo = cos_theta_max(c, r, ref);
         expect_directions_follow_pdf(
             bins, [&](glm::vec2 u) { return sample_sphere_visible(c, r, ref, u).point - ref; },
-            [&](const glm::vec3& w) { return double(sphere_visible_pdf(c, r, ref, w)); },
-            109 + k);
+            [&](const glm::vec3& w) { return double(sphere_visible_pdf(c, r, ref, w)); }, 109 + k);
     }
 }
 

@@ -3,8 +3,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <condition_variable>
 #include <cmath>
+#include <condition_variable>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -39,8 +39,8 @@ void check_input(std::span<const BBox> boxes, std::span<const glm::vec3> centers
             throw Error("BVH build: primitive " + std::to_string(i) + " has a non-finite centre");
         // A NaN corner would poison every box above it (min/max keep NaN or drop it).
         const BBox& b = boxes[i];
-        if (std::isnan(b.lo.x) || std::isnan(b.lo.y) || std::isnan(b.lo.z) ||
-            std::isnan(b.hi.x) || std::isnan(b.hi.y) || std::isnan(b.hi.z))
+        if (std::isnan(b.lo.x) || std::isnan(b.lo.y) || std::isnan(b.lo.z) || std::isnan(b.hi.x) ||
+            std::isnan(b.hi.y) || std::isnan(b.hi.z))
             throw Error("BVH build: primitive " + std::to_string(i) + " has a NaN box");
     }
 }
@@ -159,7 +159,8 @@ struct SahTask {
 /// depth first at the end, so the result does not depend on scheduling.
 class SahBuilder {
 public:
-    SahBuilder(std::span<const BBox> boxes, std::span<const glm::vec3> centers, const SahConfig& config)
+    SahBuilder(std::span<const BBox> boxes, std::span<const glm::vec3> centers,
+               const SahConfig& config)
         : boxes_(boxes), centers_(centers), config_(config) {
         bin_count_ = std::clamp(config.bin_count, 2u, 256u);
         max_leaf_ = std::max(config.max_leaf_size, 1u);

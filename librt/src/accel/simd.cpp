@@ -8,19 +8,25 @@ namespace librt {
 
 const char* to_string(SimdPath path) {
     switch (path) {
-        case SimdPath::Scalar: return "scalar";
-        case SimdPath::Sse: return "sse";
-        case SimdPath::Avx2: return "avx2";
-        case SimdPath::Avx512: return "avx512";
+        case SimdPath::Scalar:
+            return "scalar";
+        case SimdPath::Sse:
+            return "sse";
+        case SimdPath::Avx2:
+            return "avx2";
+        case SimdPath::Avx512:
+            return "avx512";
     }
     return "unknown";
 }
 
 bool simd_path_supported(SimdPath path) {
     switch (path) {
-        case SimdPath::Scalar: return true;
+        case SimdPath::Scalar:
+            return true;
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-        case SimdPath::Sse: return true;  // SSE2 is part of x86-64
+        case SimdPath::Sse:
+            return true;  // SSE2 is part of x86-64
         // __builtin_cpu_supports also checks that the OS saves the wider registers.
         case SimdPath::Avx2:
             return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt") &&
@@ -30,7 +36,8 @@ bool simd_path_supported(SimdPath path) {
                    __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt") &&
                    __builtin_cpu_supports("bmi");
 #else
-        default: return false;
+        default:
+            return false;
 #endif
     }
     return false;
@@ -48,15 +55,18 @@ SimdPath default_simd_path() {
         const SimdPath best = supported_simd_paths().back();
         const char* env = std::getenv("LIBRT_SIMD");
         if (!env || !*env || std::string_view(env) == "auto") return best;
-        for (const SimdPath p : {SimdPath::Scalar, SimdPath::Sse, SimdPath::Avx2, SimdPath::Avx512}) {
+        for (const SimdPath p :
+             {SimdPath::Scalar, SimdPath::Sse, SimdPath::Avx2, SimdPath::Avx512}) {
             if (std::string_view(env) != to_string(p)) continue;
             if (simd_path_supported(p)) return p;
             std::fprintf(stderr, "librt: LIBRT_SIMD=%s is not supported here, using %s\n", env,
                          to_string(best));
             return best;
         }
-        std::fprintf(stderr, "librt: LIBRT_SIMD=%s is not one of auto, scalar, sse, avx2, avx512; using %s\n",
-                     env, to_string(best));
+        std::fprintf(
+            stderr,
+            "librt: LIBRT_SIMD=%s is not one of auto, scalar, sse, avx2, avx512; using %s\n", env,
+            to_string(best));
         return best;
     }();
     return chosen;

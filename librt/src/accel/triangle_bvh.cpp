@@ -1,8 +1,8 @@
+#include "wide_kernels.h"
+
 #include <librt/accel/bvh_traversal.h>
 #include <librt/accel/triangle_bvh.h>
 #include <librt/core/error.h>
-
-#include "wide_kernels.h"
 
 #include <atomic>
 #include <mutex>
@@ -53,7 +53,8 @@ std::vector<Triangle> mesh_triangles(const TriangleMesh& mesh) {
 std::span<const Triangle> checked(std::span<const Triangle> triangles) {
     for (std::size_t i = 0; i < triangles.size(); ++i) {
         const Triangle& t = triangles[i];
-        const float sum = t.p0.x + t.p0.y + t.p0.z + t.p1.x + t.p1.y + t.p1.z + t.p2.x + t.p2.y + t.p2.z;
+        const float sum =
+            t.p0.x + t.p0.y + t.p0.z + t.p1.x + t.p1.y + t.p1.z + t.p2.x + t.p2.y + t.p2.z;
         if (!std::isfinite(sum)) {
             // The sum also overflows for huge finite corners; name the real culprit.
             for (const glm::vec3& p : {t.p0, t.p1, t.p2})
@@ -118,8 +119,9 @@ void TriangleBvh::build(std::span<const Triangle> triangles, BvhBuilder builder)
             centers[i] = boxes[i].center();
         }
     });
-    const Bvh binary = builder == BvhBuilder::Median ? build_median_bvh(boxes, centers)
-                                                     : build_sah_bvh(boxes, centers, triangle_sah_config());
+    const Bvh binary = builder == BvhBuilder::Median
+                           ? build_median_bvh(boxes, centers)
+                           : build_sah_bvh(boxes, centers, triangle_sah_config());
     wide_ = collapse_to_wide(binary, triangles);
     view_ = std::make_shared<BinaryView>();
     set_simd_path(default_simd_path());
@@ -127,7 +129,8 @@ void TriangleBvh::build(std::span<const Triangle> triangles, BvhBuilder builder)
 
 void TriangleBvh::set_simd_path(SimdPath path) {
     if (!simd_path_supported(path))
-        throw Error(std::string("TriangleBvh: SIMD path ") + to_string(path) + " is not supported here");
+        throw Error(std::string("TriangleBvh: SIMD path ") + to_string(path) +
+                    " is not supported here");
     const detail::WideKernels k = detail::wide_kernels(path);
     path_ = path;
     intersect_fn_ = k.intersect;

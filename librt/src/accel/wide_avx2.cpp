@@ -1,7 +1,7 @@
-// AVX2 wide-BVH kernels: the eight child boxes of a node in one 8-lane test, four triangles per test.
-// Only this file's kernels are compiled for the instruction set (a target pragma around
-// them, not a -m flag on the file), so nothing here can leak into baseline code; they
-// run only when simd_path_supported() says the CPU has it.
+// AVX2 wide-BVH kernels: the eight child boxes of a node in one 8-lane test, four triangles per
+// test. Only this file's kernels are compiled for the instruction set (a target pragma around them,
+// not a -m flag on the file), so nothing here can leak into baseline code; they run only when
+// simd_path_supported() says the CPU has it.
 
 #include "wide_kernels.h"
 
@@ -57,16 +57,20 @@ struct Kernel : Block4Kernel {
                                         float t_max, float* t_enter) {
         __m256 tn[3], tf[3];
         for (std::uint32_t a = 0; a < 3; ++a) {
-            tn[a] = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.bounds[r.near[a]]), r.o[a]), r.inv[a]);
-            tf[a] = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.bounds[r.far[a]]), r.o[a]), r.inv[a]);
+            tn[a] = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.bounds[r.near[a]]), r.o[a]),
+                                  r.inv[a]);
+            tf[a] = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.bounds[r.far[a]]), r.o[a]),
+                                  r.inv[a]);
         }
         const __m256 enter =
             _mm256_max_ps(_mm256_max_ps(tn[0], tn[1]), _mm256_max_ps(tn[2], _mm256_set1_ps(t_min)));
-        const __m256 exit = _mm256_min_ps(
-            _mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(tf[0], tf[1]), tf[2]), _mm256_set1_ps(kSlabExitScale)),
-            _mm256_set1_ps(t_max));
+        const __m256 exit =
+            _mm256_min_ps(_mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(tf[0], tf[1]), tf[2]),
+                                        _mm256_set1_ps(kSlabExitScale)),
+                          _mm256_set1_ps(t_max));
         _mm256_store_ps(t_enter, enter);
-        return static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(enter, exit, _CMP_LE_OQ)));
+        return static_cast<std::uint32_t>(
+            _mm256_movemask_ps(_mm256_cmp_ps(enter, exit, _CMP_LE_OQ)));
     }
 };
 
@@ -74,7 +78,9 @@ struct Kernel : Block4Kernel {
 
 }  // namespace
 
-PrimitiveHit intersect(const WideBvh& bvh, const Ray& ray) { return intersect_with<Kernel>(bvh, ray); }
+PrimitiveHit intersect(const WideBvh& bvh, const Ray& ray) {
+    return intersect_with<Kernel>(bvh, ray);
+}
 bool occluded(const WideBvh& bvh, const Ray& ray) { return occluded_with<Kernel>(bvh, ray); }
 
 }  // namespace librt::detail::avx2

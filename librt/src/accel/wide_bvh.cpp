@@ -8,7 +8,6 @@
 namespace librt {
 namespace {
 
-
 /// Writes child slot i of a wide node.
 void set_child(WideBvhNode& node, std::uint32_t i, const BBox& box, std::uint32_t ref) {
     node.bounds[0][i] = box.lo.x;
@@ -22,7 +21,8 @@ void set_child(WideBvhNode& node, std::uint32_t i, const BBox& box, std::uint32_
 
 WideBvhNode empty_node() {
     WideBvhNode node;
-    for (std::uint32_t i = 0; i < kWideBvhWidth; ++i) set_child(node, i, BBox{}, WideBvhNode::kEmptyChild);
+    for (std::uint32_t i = 0; i < kWideBvhWidth; ++i)
+        set_child(node, i, BBox{}, WideBvhNode::kEmptyChild);
     return node;
 }
 
@@ -102,7 +102,8 @@ private:
             }
             set_child(out_.nodes[wide], i, n.bounds, ref);
         }
-        for (std::uint32_t k = 0; k < pending; ++k) fill(pending_wide[k], pending_binary[k], depth + 1);
+        for (std::uint32_t k = 0; k < pending; ++k)
+            fill(pending_wide[k], pending_binary[k], depth + 1);
     }
 
     /// Blocks and extra nodes leaf() will make for a leaf of `count` triangles.
@@ -113,7 +114,8 @@ private:
         }
         ++nodes;
         const std::uint32_t chunk = (count + kWideBvhWidth - 1) / kWideBvhWidth;
-        for (std::uint32_t s = 0; s < count; s += chunk) count_leaf(std::min(chunk, count - s), blocks, nodes);
+        for (std::uint32_t s = 0; s < count; s += chunk)
+            count_leaf(std::min(chunk, count - s), blocks, nodes);
     }
 
     /// A leaf reference for slots [begin, begin + count), or a node splitting them when
@@ -139,7 +141,8 @@ private:
         const auto first = static_cast<std::uint32_t>(out_.blocks.size());
         const std::uint32_t block_count = (count + kTriangleBlockSize - 1) / kTriangleBlockSize;
         if (first + block_count - 1 > WideBvhNode::kMaxFirstBlock)
-            throw Error("wide BVH: too many triangle blocks (" + std::to_string(first + block_count) + ")");
+            throw Error("wide BVH: too many triangle blocks (" +
+                        std::to_string(first + block_count) + ")");
         out_.blocks.resize(first + block_count);
         for (std::uint32_t b = 0; b < block_count; ++b) {
             TriangleBlock& block = out_.blocks[first + b];
@@ -149,7 +152,8 @@ private:
                 if (slot + 8 < bvh_.prim_indices.size()) __builtin_prefetch(&triangle_at(slot + 8));
                 const bool real = slot < begin + count;
                 const Triangle& t = real ? triangle_at(slot) : kPadding;
-                const float corners[3][3] = {{t.p0.x, t.p0.y, t.p0.z}, {t.p1.x, t.p1.y, t.p1.z}, {t.p2.x, t.p2.y, t.p2.z}};
+                const float corners[3][3] = {
+                    {t.p0.x, t.p0.y, t.p0.z}, {t.p1.x, t.p1.y, t.p1.z}, {t.p2.x, t.p2.y, t.p2.z}};
                 for (int c = 0; c < 3; ++c)
                     for (int a = 0; a < 3; ++a) block.p[c][a][lane] = corners[c][a];
                 block.id[lane] = real ? bvh_.prim_indices[slot] : kInvalidId;
@@ -213,7 +217,8 @@ Bvh expand_to_binary(const WideBvh& wide) {
         first_slot[b + 1] = first_slot[b] + real;
     }
     // The block range under a reference: a leaf's own, or all of a split-leaf node's.
-    auto block_range = [&](auto&& self, std::uint32_t ref, std::uint32_t& lo, std::uint32_t& hi) -> void {
+    auto block_range = [&](auto&& self, std::uint32_t ref, std::uint32_t& lo,
+                           std::uint32_t& hi) -> void {
         if (WideBvhNode::is_leaf(ref)) {
             lo = std::min(lo, WideBvhNode::first_block(ref));
             hi = std::max(hi, WideBvhNode::first_block(ref) + WideBvhNode::block_count(ref));
@@ -268,7 +273,8 @@ Bvh expand_to_binary(const WideBvh& wide) {
             b.extend(me(me, local[l].b));
             return b;
         };
-        auto emit_local = [&](auto&& me, std::uint32_t l, std::uint32_t where, std::uint32_t d) -> void {
+        auto emit_local = [&](auto&& me, std::uint32_t l, std::uint32_t where,
+                              std::uint32_t d) -> void {
             if (!local[l].interior) {
                 const std::uint32_t s = local[l].a;
                 self(self, node.child[s], node.child_bounds(s), where, d);

@@ -19,10 +19,10 @@ struct WideKernels {
 [[nodiscard]] WideKernels wide_kernels(SimdPath path);
 
 // One pair per instruction set, each in its own wide_<isa>.cpp.
-#define LIBRT_DECLARE_WIDE_KERNELS(isa)                                          \
-    namespace isa {                                                              \
-    [[nodiscard]] PrimitiveHit intersect(const WideBvh& bvh, const Ray& ray);    \
-    [[nodiscard]] bool occluded(const WideBvh& bvh, const Ray& ray);             \
+#define LIBRT_DECLARE_WIDE_KERNELS(isa)                                       \
+    namespace isa {                                                           \
+    [[nodiscard]] PrimitiveHit intersect(const WideBvh& bvh, const Ray& ray); \
+    [[nodiscard]] bool occluded(const WideBvh& bvh, const Ray& ray);          \
     }
 LIBRT_DECLARE_WIDE_KERNELS(scalar)
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))

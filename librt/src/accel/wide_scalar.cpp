@@ -62,8 +62,8 @@ struct Kernel {
 
     static TriRay prepare_triangles(const Ray& ray) { return prepare_watertight(ray); }
 
-    static bool intersect_block(const TriangleBlock& block, const TriRay& w, float t_min, float& t_max,
-                                std::uint32_t& lane, float& u, float& v) {
+    static bool intersect_block(const TriangleBlock& block, const TriRay& w, float t_min,
+                                float& t_max, std::uint32_t& lane, float& u, float& v) {
         bool found = false;
         for (std::uint32_t k = 0; k < kTriangleBlockSize; ++k) {
             const auto h = intersect(block.triangle(k), w, t_min, t_max);
@@ -77,7 +77,8 @@ struct Kernel {
         return found;
     }
 
-    static bool occluded_block(const TriangleBlock& block, const TriRay& w, float t_min, float t_max) {
+    static bool occluded_block(const TriangleBlock& block, const TriRay& w, float t_min,
+                               float t_max) {
         for (std::uint32_t k = 0; k < kTriangleBlockSize; ++k)
             if (intersect(block.triangle(k), w, t_min, t_max)) return true;
         return false;
@@ -88,7 +89,9 @@ struct Kernel {
 
 }  // namespace
 
-PrimitiveHit intersect(const WideBvh& bvh, const Ray& ray) { return intersect_with<Kernel>(bvh, ray); }
+PrimitiveHit intersect(const WideBvh& bvh, const Ray& ray) {
+    return intersect_with<Kernel>(bvh, ray);
+}
 bool occluded(const WideBvh& bvh, const Ray& ray) { return occluded_with<Kernel>(bvh, ray); }
 
 }  // namespace librt::detail::scalar

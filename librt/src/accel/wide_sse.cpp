@@ -51,13 +51,15 @@ struct Kernel : Block4Kernel {
         for (std::uint32_t h = 0; h < kWideBvhWidth; h += 4) {
             __m128 tn[3], tf[3];
             for (std::uint32_t a = 0; a < 3; ++a) {
-                tn[a] = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(&node.bounds[r.near[a]][h]), r.o[a]), r.inv[a]);
-                tf[a] = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(&node.bounds[r.far[a]][h]), r.o[a]), r.inv[a]);
+                tn[a] = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(&node.bounds[r.near[a]][h]), r.o[a]),
+                                   r.inv[a]);
+                tf[a] = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(&node.bounds[r.far[a]][h]), r.o[a]),
+                                   r.inv[a]);
             }
             const __m128 enter = _mm_max_ps(_mm_max_ps(tn[0], tn[1]), _mm_max_ps(tn[2], tmin));
-            const __m128 exit = _mm_min_ps(
-                _mm_mul_ps(_mm_min_ps(_mm_min_ps(tf[0], tf[1]), tf[2]), _mm_set1_ps(kSlabExitScale)),
-                tmax);
+            const __m128 exit = _mm_min_ps(_mm_mul_ps(_mm_min_ps(_mm_min_ps(tf[0], tf[1]), tf[2]),
+                                                      _mm_set1_ps(kSlabExitScale)),
+                                           tmax);
             _mm_store_ps(t_enter + h, enter);
             mask |= static_cast<std::uint32_t>(_mm_movemask_ps(_mm_cmple_ps(enter, exit))) << h;
         }
@@ -69,7 +71,9 @@ struct Kernel : Block4Kernel {
 
 }  // namespace
 
-PrimitiveHit intersect(const WideBvh& bvh, const Ray& ray) { return intersect_with<Kernel>(bvh, ray); }
+PrimitiveHit intersect(const WideBvh& bvh, const Ray& ray) {
+    return intersect_with<Kernel>(bvh, ray);
+}
 bool occluded(const WideBvh& bvh, const Ray& ray) { return occluded_with<Kernel>(bvh, ray); }
 
 }  // namespace librt::detail::sse

@@ -14,7 +14,9 @@ constexpr std::size_t kHugePage = std::size_t{2} << 20;
 constexpr std::size_t kLargeThreshold = std::size_t{1} << 20;
 
 /// Large blocks are rounded up to whole huge pages, so madvise covers all of them.
-std::size_t large_size(std::size_t bytes) { return (bytes + kHugePage - 1) / kHugePage * kHugePage; }
+std::size_t large_size(std::size_t bytes) {
+    return (bytes + kHugePage - 1) / kHugePage * kHugePage;
+}
 
 }  // namespace
 

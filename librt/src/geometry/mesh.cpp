@@ -1,6 +1,5 @@
-#include <librt/geometry/mesh.h>
-
 #include <librt/core/error.h>
+#include <librt/geometry/mesh.h>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -101,8 +100,8 @@ void validate(const TriangleMesh& mesh) {
                     std::to_string(n) + " positions (must be 0 or equal)");
     }
     if (!mesh.uvs.empty() && mesh.uvs.size() != n) {
-        throw Error("mesh: " + std::to_string(mesh.uvs.size()) + " uvs for " +
-                    std::to_string(n) + " positions (must be 0 or equal)");
+        throw Error("mesh: " + std::to_string(mesh.uvs.size()) + " uvs for " + std::to_string(n) +
+                    " positions (must be 0 or equal)");
     }
     if (!mesh.material_ids.empty() && mesh.material_ids.size() != mesh.triangles.size()) {
         throw Error("mesh: " + std::to_string(mesh.material_ids.size()) + " material ids for " +

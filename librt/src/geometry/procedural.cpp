@@ -1,8 +1,7 @@
-#include <librt/geometry/procedural.h>
+#include "geometry/teapot_data.h"
 
 #include <librt/core/error.h>
-
-#include "geometry/teapot_data.h"
+#include <librt/geometry/procedural.h>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
@@ -41,8 +40,7 @@ void check_range(const char* fn, const char* name, long long value, long long lo
 void check_vertex_count(const char* fn, const std::string& what, std::uint64_t vertices) {
     if (vertices > kMaxProceduralVertices) {
         throw Error(std::string(fn) + ": " + what + " gives " + std::to_string(vertices) +
-                    " vertices, more than the limit of " +
-                    std::to_string(kMaxProceduralVertices));
+                    " vertices, more than the limit of " + std::to_string(kMaxProceduralVertices));
     }
 }
 
@@ -106,9 +104,10 @@ TriangleMesh make_uv_sphere(const glm::vec3& center, float radius, int segments,
     check_center_radius("make_uv_sphere", center, radius);
     check_range("make_uv_sphere", "segments", segments, 3, 1 << 15);
     check_range("make_uv_sphere", "rings", rings, 2, 1 << 15);
-    check_vertex_count("make_uv_sphere",
-                       "segments = " + std::to_string(segments) + ", rings = " + std::to_string(rings),
-                       std::uint64_t(rings + 1) * std::uint64_t(segments + 1));
+    check_vertex_count(
+        "make_uv_sphere",
+        "segments = " + std::to_string(segments) + ", rings = " + std::to_string(rings),
+        std::uint64_t(rings + 1) * std::uint64_t(segments + 1));
     const auto S = static_cast<std::uint32_t>(segments);
     const auto R = static_cast<std::uint32_t>(rings);
     TriangleMesh m;
@@ -167,8 +166,7 @@ TriangleMesh make_icosphere(const glm::vec3& center, float radius, int subdivisi
         for (std::uint32_t j = i + 1; j < 12; ++j) {
             for (std::uint32_t k = j + 1; k < 12; ++k) {
                 if (!adjacent(i, j) || !adjacent(j, k) || !adjacent(i, k)) continue;
-                const glm::dvec3 n =
-                    glm::cross(corners[j] - corners[i], corners[k] - corners[i]);
+                const glm::dvec3 n = glm::cross(corners[j] - corners[i], corners[k] - corners[i]);
                 if (glm::dot(n, corners[i]) > 0.0) {
                     faces.emplace_back(i, j, k);
                 } else {
@@ -239,12 +237,12 @@ TriangleMesh make_box(const glm::vec3& lo, const glm::vec3& hi) {
     const glm::vec3 ex(d.x, 0, 0), ey(0, d.y, 0), ez(0, 0, d.z);
     // Each face as a quad whose edge_u x edge_v points outward.
     const std::array<std::array<glm::vec3, 3>, 6> faces = {{
-        {lo, ez, ey},             // -x
-        {lo + ex, ey, ez},        // +x
-        {lo, ex, ez},             // -y
-        {lo + ey, ez, ex},        // +y
-        {lo, ey, ex},             // -z
-        {lo + ez, ex, ey},        // +z
+        {lo, ez, ey},       // -x
+        {lo + ex, ey, ez},  // +x
+        {lo, ex, ez},       // -y
+        {lo + ey, ez, ex},  // +y
+        {lo, ey, ex},       // -z
+        {lo + ez, ex, ey},  // +z
     }};
     TriangleMesh m;
     for (const auto& f : faces) {

@@ -1,6 +1,5 @@
-#include <librt/io/image_io.h>
-
 #include <librt/core/error.h>
+#include <librt/io/image_io.h>
 
 #include <stb/stb_image_write.h>
 
@@ -8,8 +7,8 @@
 #include <atomic>
 #include <cctype>
 #include <cerrno>
-#include <cmath>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -105,11 +104,11 @@ void write_file_atomically(const fs::path& path, const Bytes& bytes) {
 
 void check_writable_image(const fs::path& path, const Image& image) {
     if (image.width < 1 || image.height < 1 ||
-        image.pixels.size() != static_cast<std::size_t>(image.width) *
-                                   static_cast<std::size_t>(image.height)) {
-        throw Error("cannot write " + quoted(path) + ": image is " +
-                    std::to_string(image.width) + " x " + std::to_string(image.height) +
-                    " with " + std::to_string(image.pixels.size()) + " pixels");
+        image.pixels.size() !=
+            static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height)) {
+        throw Error("cannot write " + quoted(path) + ": image is " + std::to_string(image.width) +
+                    " x " + std::to_string(image.height) + " with " +
+                    std::to_string(image.pixels.size()) + " pixels");
     }
 }
 
@@ -153,8 +152,8 @@ void write_png(const fs::path& path, const Image& image, const ToneMap& tone_map
     check_writable_image(path, image);
     const std::vector<std::uint8_t> rgb = to_rgb8(image, tone_map);
     Bytes encoded;
-    if (stbi_write_png_to_func(append_bytes, &encoded, image.width, image.height, 3,
-                               rgb.data(), image.width * 3) == 0) {
+    if (stbi_write_png_to_func(append_bytes, &encoded, image.width, image.height, 3, rgb.data(),
+                               image.width * 3) == 0) {
         throw Error("cannot write " + quoted(path) + ": PNG encoding failed");
     }
     write_file_atomically(path, encoded);
@@ -222,10 +221,10 @@ Image read_pfm(const fs::path& path) {
     const std::string_view scale_token = next_token(data, pos);
     double scale = 0.0;
     {
-        const auto [end, ec] = std::from_chars(
-            scale_token.data(), scale_token.data() + scale_token.size(), scale);
-        if (ec != std::errc() || end != scale_token.data() + scale_token.size() ||
-            scale == 0.0 || !std::isfinite(scale)) {
+        const auto [end, ec] =
+            std::from_chars(scale_token.data(), scale_token.data() + scale_token.size(), scale);
+        if (ec != std::errc() || end != scale_token.data() + scale_token.size() || scale == 0.0 ||
+            !std::isfinite(scale)) {
             throw malformed("bad scale '" + std::string(scale_token) + "'");
         }
     }
@@ -240,8 +239,8 @@ Image read_pfm(const fs::path& path) {
                                static_cast<std::size_t>(size[1]) *
                                static_cast<std::size_t>(channels) * 4;
     if (data.size() - pos < needed) {
-        throw malformed("truncated raster: " + std::to_string(data.size() - pos) +
-                        " bytes for " + std::to_string(needed));
+        throw malformed("truncated raster: " + std::to_string(data.size() - pos) + " bytes for " +
+                        std::to_string(needed));
     }
     Image image(static_cast<int>(size[0]), static_cast<int>(size[1]));
     const bool little_endian = scale < 0.0;

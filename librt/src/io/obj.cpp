@@ -1,19 +1,17 @@
-#include <librt/io/obj.h>
-
-#include <librt/core/error.h>
-
 #include "io/obj_scan.h"
 
-#include <tiny_obj_loader.h>
+#include <librt/core/error.h>
+#include <librt/io/obj.h>
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cerrno>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -274,8 +272,8 @@ MeshMaterial to_mesh_material(const tinyobj::material_t& m, const fs::path& dir)
 /// Fills normals of vertices without a vn with the area-weighted normal of their triangles.
 void fill_missing_normals(TriangleMesh& mesh, const std::vector<std::int32_t>& vn) {
     for (const glm::uvec3& t : mesh.triangles) {
-        const glm::vec3 n = area_normal(Triangle{mesh.positions[t.x], mesh.positions[t.y],
-                                                 mesh.positions[t.z]});
+        const glm::vec3 n =
+            area_normal(Triangle{mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]});
         for (int k = 0; k < 3; ++k) {
             if (vn[t[k]] == kAbsent) mesh.normals[t[k]] += n;
         }
@@ -443,7 +441,6 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
         throw Error(path.string() + ": too many positions (" + std::to_string(nv) + ")");
     }
 
-
     // Reserve the exact triangle count: a polygon of n corners makes n - 2 triangles.
     std::size_t triangle_estimate = 0;
     for (const tinyobj::shape_t& shape : shapes) {
@@ -575,8 +572,8 @@ void save_obj(const TriangleMesh& mesh, const fs::path& path) {
     if (with_materials) write_mtl(mesh, mtl_path);
 
     write_atomically(path, [&](Writer& w) {
-        w << "# written by librt save_obj: " << std::uint64_t{mesh.vertex_count()}
-          << " vertices, " << std::uint64_t{mesh.triangle_count()} << " triangles\n";
+        w << "# written by librt save_obj: " << std::uint64_t{mesh.vertex_count()} << " vertices, "
+          << std::uint64_t{mesh.triangle_count()} << " triangles\n";
         if (with_materials) w << "mtllib " << mtl_path.filename().string() << '\n';
         for (const glm::vec3& p : mesh.positions) {
             w << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';

@@ -63,12 +63,12 @@ std::string quoted(std::string_view text) {
 /// attributes) and librt ignores without comment.
 bool known_keyword(std::string_view k) {
     static constexpr std::string_view known[] = {
-        "v",     "vt",    "vn",     "vp",    "f",       "l",        "p",         "g",
-        "o",     "s",     "usemtl", "mtllib", "t",      "vw",       "cstype",    "deg",
-        "bmat",  "step",  "curv",   "curv2", "surf",    "parm",     "trim",      "hole",
-        "scrv",  "sp",    "end",    "con",   "mg",      "bevel",    "c_interp",  "d_interp",
-        "lod",   "usemap", "maplib", "shadow_obj", "trace_obj", "ctech", "stech", "call",
-        "csh",   "fo",
+        "v",          "vt",        "vn",       "vp",       "f",      "l",      "p",
+        "g",          "o",         "s",        "usemtl",   "mtllib", "t",      "vw",
+        "cstype",     "deg",       "bmat",     "step",     "curv",   "curv2",  "surf",
+        "parm",       "trim",      "hole",     "scrv",     "sp",     "end",    "con",
+        "mg",         "bevel",     "c_interp", "d_interp", "lod",    "usemap", "maplib",
+        "shadow_obj", "trace_obj", "ctech",    "stech",    "call",   "csh",    "fo",
     };
     for (const std::string_view s : known)
         if (k == s) return true;
@@ -117,8 +117,8 @@ private:
     ObjScanResult result_;
 };
 
-void Scanner::numbers(Tokens& tokens, std::string_view keyword, std::size_t lo,
-                      std::size_t hi, std::size_t line) {
+void Scanner::numbers(Tokens& tokens, std::string_view keyword, std::size_t lo, std::size_t hi,
+                      std::size_t line) {
     std::size_t count = 0;
     for (std::string_view t = tokens.next(); !t.empty(); t = tokens.next()) {
         if (t.front() == '#') break;  // a trailing comment
@@ -130,7 +130,8 @@ void Scanner::numbers(Tokens& tokens, std::string_view keyword, std::size_t lo,
         const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
         if (ec == std::errc::result_out_of_range ||
             (ec == std::errc() && end == digits.data() + digits.size() &&
-             (!std::isfinite(value) || std::fabs(value) > double(std::numeric_limits<float>::max())))) {
+             (!std::isfinite(value) ||
+              std::fabs(value) > double(std::numeric_limits<float>::max())))) {
             fail(line, quoted(keyword) + " number " + printable(t) +
                            " is not finite in single precision");
         }
@@ -141,13 +142,13 @@ void Scanner::numbers(Tokens& tokens, std::string_view keyword, std::size_t lo,
     if (count < lo || count > hi) {
         const std::string range =
             lo == hi ? std::to_string(lo) : std::to_string(lo) + " to " + std::to_string(hi);
-        fail(line, quoted(keyword) + " needs " + range + " numbers, found " +
-                       std::to_string(count));
+        fail(line,
+             quoted(keyword) + " needs " + range + " numbers, found " + std::to_string(count));
     }
 }
 
-void Scanner::corner_field(std::string_view field, const char* what, std::size_t count,
-                           bool check, std::size_t line, const std::string& at) {
+void Scanner::corner_field(std::string_view field, const char* what, std::size_t count, bool check,
+                           std::size_t line, const std::string& at) {
     std::string_view digits = field;
     if (digits.size() > 1 && digits.front() == '+') digits.remove_prefix(1);
     std::int64_t index = 0;
@@ -200,8 +201,10 @@ void Scanner::face(Tokens& tokens, std::size_t line) {
             }
         }
         corner_field(v, "position", positions_, true, line, at);
-        if (!vt.empty()) corner_field(vt, "texture coordinate", uvs_, options_.check_uv_indices, line, at);
-        if (!vn.empty()) corner_field(vn, "normal", normals_, options_.check_normal_indices, line, at);
+        if (!vt.empty())
+            corner_field(vt, "texture coordinate", uvs_, options_.check_uv_indices, line, at);
+        if (!vn.empty())
+            corner_field(vn, "normal", normals_, options_.check_normal_indices, line, at);
     }
     if (corners > 255) {
         fail(line, "face of " + std::to_string(corners) + " corners (at most 255 are supported)");
@@ -215,8 +218,8 @@ void Scanner::face(Tokens& tokens, std::size_t line) {
 
 void Scanner::line(std::string_view text, std::size_t number) {
     if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
-        fail(number, "NUL byte in column " + std::to_string(nul + 1) +
-                         " (a binary file, or UTF-16 text?)");
+        fail(number,
+             "NUL byte in column " + std::to_string(nul + 1) + " (a binary file, or UTF-16 text?)");
     }
     Tokens tokens(text);
     const std::string_view keyword = tokens.next();
@@ -277,8 +280,8 @@ ObjScanResult Scanner::finish() {
 ObjScanResult scan_obj(std::string_view text, const std::string& name,
                        const ObjScanOptions& options) {
     std::size_t skip = 0;
-    if (text.size() >= 2 && ((text[0] == '\xff' && text[1] == '\xfe') ||
-                             (text[0] == '\xfe' && text[1] == '\xff'))) {
+    if (text.size() >= 2 &&
+        ((text[0] == '\xff' && text[1] == '\xfe') || (text[0] == '\xfe' && text[1] == '\xff'))) {
         throw Error(name + ":1: UTF-16 byte order mark: OBJ files must be ASCII or UTF-8");
     }
     if (text.substr(0, 3) == "\xef\xbb\xbf") skip = 3;  // UTF-8 byte order mark
@@ -290,7 +293,8 @@ ObjScanResult scan_obj(std::string_view text, const std::string& name,
         std::size_t end = start;
         while (end < text.size() && text[end] != '\n' && text[end] != '\r') ++end;
         scanner.line(text.substr(start, end - start), ++number);
-        if (end < text.size() && text[end] == '\r' && end + 1 < text.size() && text[end + 1] == '\n')
+        if (end < text.size() && text[end] == '\r' && end + 1 < text.size() &&
+            text[end + 1] == '\n')
             ++end;
         start = end + 1;
     }

@@ -1,6 +1,5 @@
-#include <librt/render/camera.h>
-
 #include <librt/core/error.h>
+#include <librt/render/camera.h>
 #include <librt/sampling/jitter.h>
 
 #include <glm/geometric.hpp>
@@ -51,13 +50,14 @@ void validate(const CameraSettings& s) {
     if (!std::isfinite(glm::length(view))) {
         fail("look_at", to_text(s.look_at), "is too far from position (overflows float)");
     }
-    if (!(glm::length(view) > 0.0f)) fail("look_at", to_text(s.look_at), "must differ from position");
+    if (!(glm::length(view) > 0.0f))
+        fail("look_at", to_text(s.look_at), "must differ from position");
     if (!(glm::length(s.up) > 0.0f)) fail("up", to_text(s.up), "must not be zero");
-    if (!std::isfinite(glm::length(s.up))) fail("up", to_text(s.up), "is too long (overflows float)");
+    if (!std::isfinite(glm::length(s.up)))
+        fail("up", to_text(s.up), "is too long (overflows float)");
     // |sin| of the angle between up and the view direction; below ~1e-4 rad the
     // basis would be numerically meaningless.
-    const float sin_angle =
-        glm::length(glm::cross(glm::normalize(view), glm::normalize(s.up)));
+    const float sin_angle = glm::length(glm::cross(glm::normalize(view), glm::normalize(s.up)));
     if (!(sin_angle > 1e-4f)) {
         fail("up", to_text(s.up), "must not be parallel to the view direction");
     }
@@ -83,8 +83,8 @@ Camera::Camera(const CameraSettings& settings) : settings_(settings) {
     forward_ = glm::normalize(settings_.look_at - settings_.position);
     right_ = glm::normalize(glm::cross(forward_, settings_.up));
     up_ = glm::cross(right_, forward_);
-    const double half_fov = 0.5 * static_cast<double>(settings_.vertical_fov_degrees) *
-                            3.14159265358979323846 / 180.0;
+    const double half_fov =
+        0.5 * static_cast<double>(settings_.vertical_fov_degrees) * 3.14159265358979323846 / 180.0;
     // The report's image-plane distance: H / (2 tan(fov/2)) pixels.
     image_plane_distance_ =
         static_cast<float>(static_cast<double>(settings_.height) / (2.0 * std::tan(half_fov)));
@@ -103,8 +103,7 @@ Ray Camera::generate_ray(int px, int py, Sampler& sampler) const {
     // The report's camera-space direction: (j - W/2 + 0.5 + dx, -i + H/2 - 0.5 + dy, -d).
     const float cx = static_cast<float>(px) - half_w + 0.5f + offset.x;
     const float cy = -static_cast<float>(py) + half_h - 0.5f + offset.y;
-    const glm::vec3 u =
-        glm::normalize(cx * right_ + cy * up_ + image_plane_distance_ * forward_);
+    const glm::vec3 u = glm::normalize(cx * right_ + cy * up_ + image_plane_distance_ * forward_);
 
     Ray ray;
     ray.origin = settings_.position;

@@ -1,6 +1,5 @@
-#include <librt/render/image.h>
-
 #include <librt/core/error.h>
+#include <librt/render/image.h>
 
 #include <cstdio>
 #include <string>

@@ -13,8 +13,7 @@ void check_colour(const char* name, const glm::vec3& c, bool at_most_one) {
         if (!std::isfinite(c[i]) || c[i] < 0.0f || (at_most_one && c[i] > 1.0f)) {
             std::ostringstream msg;
             msg << "material " << name << " = (" << c.x << ", " << c.y << ", " << c.z
-                << "): every component must be "
-                << (at_most_one ? "in [0, 1]" : "finite and >= 0");
+                << "): every component must be " << (at_most_one ? "in [0, 1]" : "finite and >= 0");
             throw Error(msg.str());
         }
     }

@@ -1,6 +1,5 @@
-#include <librt/render/renderer.h>
-
 #include <librt/core/error.h>
+#include <librt/render/renderer.h>
 
 #include <glm/vec3.hpp>
 
@@ -69,7 +68,8 @@ public:
 private:
     void draw(std::size_t done, std::size_t total, double elapsed) {
         constexpr int k_width = 30;
-        const double fraction = total == 0 ? 1.0 : static_cast<double>(done) / static_cast<double>(total);
+        const double fraction =
+            total == 0 ? 1.0 : static_cast<double>(done) / static_cast<double>(total);
         const int filled = static_cast<int>(fraction * k_width);
         std::string bar(static_cast<std::size_t>(filled), '#');
         bar.resize(k_width, '.');
@@ -136,8 +136,8 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
 
     unsigned thread_count = settings.threads > 0 ? static_cast<unsigned>(settings.threads)
                                                  : std::thread::hardware_concurrency();
-    thread_count = std::clamp<unsigned>(thread_count, 1u,
-                                        static_cast<unsigned>(std::min<std::size_t>(tile_count, 1024)));
+    thread_count = std::clamp<unsigned>(
+        thread_count, 1u, static_cast<unsigned>(std::min<std::size_t>(tile_count, 1024)));
 
     std::atomic<std::size_t> next_tile{0};
     std::atomic<std::size_t> tiles_done{0};
@@ -186,8 +186,8 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
                 samples += static_cast<std::uint64_t>(settings.samples_per_pixel);
                 nonfinite += static_cast<std::uint64_t>(settings.samples_per_pixel) - finite;
                 // Pixel estimate: the mean of its finite samples.
-                image.at(x, y) = finite > 0 ? glm::vec3(sum / static_cast<double>(finite))
-                                            : glm::vec3(0.0f);
+                image.at(x, y) =
+                    finite > 0 ? glm::vec3(sum / static_cast<double>(finite)) : glm::vec3(0.0f);
             }
         }
         return true;

@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <system_error>
 #include <memory>
 #include <sstream>
+#include <system_error>
 
 namespace librt {
 namespace {

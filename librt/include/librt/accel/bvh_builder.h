@@ -24,12 +24,13 @@ struct MedianSplitConfig {
 /// for blocks of one). Subtrees are built in parallel; the tree does not depend on the
 /// number of threads.
 struct SahConfig {
-    std::uint32_t bin_count = 32;      ///< bins per axis for large nodes (fewer for small ones)
-    std::uint32_t max_leaf_size = 8;   ///< larger nodes are always split
-    float traversal_cost = 1.0f;       ///< cost of visiting a node, relative to...
-    float intersection_cost = 1.0f;    ///< ...the cost of testing one block of primitives
-    std::uint32_t leaf_block_size = 1;  ///< primitives tested together in a leaf (4 for TriangleBvh)
-    std::uint32_t thread_count = 0;     ///< build threads; 0 = std::thread::hardware_concurrency()
+    std::uint32_t bin_count = 32;     ///< bins per axis for large nodes (fewer for small ones)
+    std::uint32_t max_leaf_size = 8;  ///< larger nodes are always split
+    float traversal_cost = 1.0f;      ///< cost of visiting a node, relative to...
+    float intersection_cost = 1.0f;   ///< ...the cost of testing one block of primitives
+    std::uint32_t leaf_block_size =
+        1;                           ///< primitives tested together in a leaf (4 for TriangleBvh)
+    std::uint32_t thread_count = 0;  ///< build threads; 0 = std::thread::hardware_concurrency()
 };
 
 /// Which builder a caller wants.

@@ -1,9 +1,9 @@
 #pragma once
 
 #include <librt/accel/bvh.h>
+#include <librt/core/error.h>
 #include <librt/geometry/bbox.h>
 #include <librt/geometry/ray.h>
-#include <librt/core/error.h>
 
 #include <glm/geometric.hpp>
 
@@ -34,8 +34,8 @@ namespace librt {
 template <bool AnyHit, class HitSlot>
 bool traverse(const Bvh& bvh, Ray& ray, HitSlot&& hit_slot) {
     if (bvh.depth > kMaxBvhDepth) {
-        throw Error("BVH depth " + std::to_string(bvh.depth) + " exceeds kMaxBvhDepth = " +
-                    std::to_string(kMaxBvhDepth));
+        throw Error("BVH depth " + std::to_string(bvh.depth) +
+                    " exceeds kMaxBvhDepth = " + std::to_string(kMaxBvhDepth));
     }
     if (bvh.nodes.empty() || !is_traceable(ray)) return false;
     const glm::vec3 inv_dir = safe_inverse(ray.direction);

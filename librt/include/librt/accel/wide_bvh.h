@@ -44,16 +44,22 @@ struct alignas(32) WideBvhNode {
     /// True for a leaf (or unused) reference.
     [[nodiscard]] static constexpr bool is_leaf(std::uint32_t ref) { return (ref & kLeafBit) != 0; }
     /// First block of a leaf reference.
-    [[nodiscard]] static constexpr std::uint32_t first_block(std::uint32_t ref) { return ref & kMaxFirstBlock; }
+    [[nodiscard]] static constexpr std::uint32_t first_block(std::uint32_t ref) {
+        return ref & kMaxFirstBlock;
+    }
     /// Number of blocks (1..kMaxLeafBlocks) of a leaf reference.
-    [[nodiscard]] static constexpr std::uint32_t block_count(std::uint32_t ref) { return ((ref >> 27) & 15u) + 1; }
+    [[nodiscard]] static constexpr std::uint32_t block_count(std::uint32_t ref) {
+        return ((ref >> 27) & 15u) + 1;
+    }
     /// The reference of a leaf of `count` blocks starting at block `first`.
-    [[nodiscard]] static constexpr std::uint32_t make_leaf(std::uint32_t first, std::uint32_t count) {
+    [[nodiscard]] static constexpr std::uint32_t make_leaf(std::uint32_t first,
+                                                           std::uint32_t count) {
         return kLeafBit | ((count - 1) << 27) | first;
     }
     /// Child i's box.
     [[nodiscard]] BBox child_bounds(std::uint32_t i) const {
-        return {{bounds[0][i], bounds[2][i], bounds[4][i]}, {bounds[1][i], bounds[3][i], bounds[5][i]}};
+        return {{bounds[0][i], bounds[2][i], bounds[4][i]},
+                {bounds[1][i], bounds[3][i], bounds[5][i]}};
     }
 };
 static_assert(sizeof(WideBvhNode) == 224, "WideBvhNode must stay 224 bytes");
@@ -87,9 +93,9 @@ struct WideBvh {
     /// slot 2 + j); or kSplitLeaf (the node splits one oversized binary leaf) or
     /// kSingleLeaf (the root over a binary tree that is one leaf).
     std::vector<std::uint32_t> shapes;
-    BBox bounds;                      ///< of all triangles
-    std::size_t triangle_count = 0;   ///< triangles held (padding lanes aside)
-    std::uint32_t depth = 0;          ///< wide levels below the root, at most kMaxWideBvhDepth
+    BBox bounds;                     ///< of all triangles
+    std::size_t triangle_count = 0;  ///< triangles held (padding lanes aside)
+    std::uint32_t depth = 0;         ///< wide levels below the root, at most kMaxWideBvhDepth
 
     static constexpr std::uint32_t kSplitLeaf = 0xffffffffu;
     static constexpr std::uint32_t kSingleLeaf = 0xfffffffeu;

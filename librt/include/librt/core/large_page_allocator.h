@@ -32,11 +32,15 @@ struct LargePageAllocator {
         return static_cast<T*>(detail::allocate_large(n * sizeof(T), alignof(T)));
     }
     /// Frees what allocate(n) returned.
-    void deallocate(T* p, std::size_t n) noexcept { detail::deallocate_large(p, n * sizeof(T), alignof(T)); }
+    void deallocate(T* p, std::size_t n) noexcept {
+        detail::deallocate_large(p, n * sizeof(T), alignof(T));
+    }
 
     /// Always equal (stateless).
     template <class U>
-    bool operator==(const LargePageAllocator<U>&) const noexcept { return true; }
+    bool operator==(const LargePageAllocator<U>&) const noexcept {
+        return true;
+    }
 };
 
 }  // namespace librt

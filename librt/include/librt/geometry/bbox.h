@@ -90,8 +90,7 @@ inline constexpr float kSlabExitSlack = 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f 
 /// widened by kSlabExitSlack so rounding never loses a hit. inv_dir comes from
 /// safe_inverse(ray.direction).
 [[nodiscard]] inline SlabInterval intersect(const BBox& box, const glm::vec3& origin,
-                                            const glm::vec3& inv_dir, float t_min,
-                                            float t_max) {
+                                            const glm::vec3& inv_dir, float t_min, float t_max) {
     const glm::vec3 t0 = (box.lo - origin) * inv_dir;
     const glm::vec3 t1 = (box.hi - origin) * inv_dir;
     const glm::vec3 tnear = glm::min(t0, t1);

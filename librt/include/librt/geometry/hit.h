@@ -24,9 +24,9 @@ struct PrimitiveHit {
 struct Hit {
     float t = std::numeric_limits<float>::infinity();
     glm::vec3 point{0.0f};
-    glm::vec3 geometric_normal{0.0f};  ///< unit, from the primitive's shape
-    glm::vec3 shading_normal{0.0f};    ///< unit, interpolated when the mesh has normals
-    glm::vec2 uv{0.0f};                ///< surface parameterisation or texture coordinates
+    glm::vec3 geometric_normal{0.0f};         ///< unit, from the primitive's shape
+    glm::vec3 shading_normal{0.0f};           ///< unit, interpolated when the mesh has normals
+    glm::vec2 uv{0.0f};                       ///< surface parameterisation or texture coordinates
     std::uint32_t primitive_id = kInvalidId;  ///< triangle index within its mesh, or 0
     std::uint32_t object_id = kInvalidId;     ///< index of the object in its scene
 };

@@ -16,13 +16,14 @@ namespace librt {
 /// A material as read from an OBJ's MTL file; the renderer maps it to its own materials.
 struct MeshMaterial {
     std::string name;
-    glm::vec3 diffuse{0.8f};        ///< Kd
-    glm::vec3 specular{0.0f};       ///< Ks
-    glm::vec3 emission{0.0f};       ///< Ke
-    float ior = 1.0f;               ///< Ni
-    float dissolve = 1.0f;          ///< d (1 = opaque)
-    int illum = 2;                  ///< MTL illumination model
-    std::string diffuse_texture;    ///< map_Kd, resolved to a path relative to the working directory; empty if none
+    glm::vec3 diffuse{0.8f};      ///< Kd
+    glm::vec3 specular{0.0f};     ///< Ks
+    glm::vec3 emission{0.0f};     ///< Ke
+    float ior = 1.0f;             ///< Ni
+    float dissolve = 1.0f;        ///< d (1 = opaque)
+    int illum = 2;                ///< MTL illumination model
+    std::string diffuse_texture;  ///< map_Kd, resolved to a path relative to the working directory;
+                                  ///< empty if none
 };
 
 /// An indexed triangle mesh. Per-vertex attributes share the positions' indexing;

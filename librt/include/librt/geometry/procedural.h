@@ -24,8 +24,7 @@ inline constexpr std::uint64_t kMaxProceduralVertices = std::uint64_t{1} << 26u;
 /// An icosahedron subdivided `subdivisions` times (0..10), every vertex on the sphere:
 /// 10 * 4^s + 2 vertices and 20 * 4^s triangles, with unit outward normals and no uvs.
 /// Throws librt::Error on bad parameters.
-[[nodiscard]] TriangleMesh make_icosphere(const glm::vec3& center, float radius,
-                                          int subdivisions);
+[[nodiscard]] TriangleMesh make_icosphere(const glm::vec3& center, float radius, int subdivisions);
 
 /// The parallelogram corner, corner + edge_u, corner + edge_u + edge_v, corner + edge_v as two
 /// triangles facing edge_u x edge_v, with that unit normal and uvs (0,0) (1,0) (1,1) (0,1).

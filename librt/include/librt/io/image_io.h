@@ -13,8 +13,7 @@
 namespace librt {
 
 /// 8-bit RGB PNG of the image tone-mapped by `tone_map` (stb_image_write).
-void write_png(const std::filesystem::path& path, const Image& image,
-               const ToneMap& tone_map = {});
+void write_png(const std::filesystem::path& path, const Image& image, const ToneMap& tone_map = {});
 
 /// Linear float RGB PFM (Portable Float Map): "PF", little-endian (scale -1), rows
 /// bottom to top as the format specifies. Values are written bit for bit.

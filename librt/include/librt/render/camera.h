@@ -23,18 +23,18 @@ enum class LensModel {
 /// Everything that defines a camera. Defaults are the report's camera: at (0, 0, 55)
 /// looking down -z, 60 degree vertical field of view, 512x512, no jitter, pinhole.
 struct CameraSettings {
-    glm::vec3 position{0.0f, 0.0f, 55.0f};  ///< centre of projection (the report's C)
-    glm::vec3 look_at{0.0f, 0.0f, 0.0f};    ///< a point the optical axis passes through
-    glm::vec3 up{0.0f, 1.0f, 0.0f};         ///< world "up"; must not be parallel to the view
-    float vertical_fov_degrees = 60.0f;     ///< full vertical field of view, in (0, 180)
-    int width = 512;                        ///< image width in pixels, in [1, 65536]
-    int height = 512;                       ///< image height in pixels, in [1, 65536]
+    glm::vec3 position{0.0f, 0.0f, 55.0f};         ///< centre of projection (the report's C)
+    glm::vec3 look_at{0.0f, 0.0f, 0.0f};           ///< a point the optical axis passes through
+    glm::vec3 up{0.0f, 1.0f, 0.0f};                ///< world "up"; must not be parallel to the view
+    float vertical_fov_degrees = 60.0f;            ///< full vertical field of view, in (0, 180)
+    int width = 512;                               ///< image width in pixels, in [1, 65536]
+    int height = 512;                              ///< image height in pixels, in [1, 65536]
     PixelJitter pixel_jitter = PixelJitter::None;  ///< sub-pixel position of the rays
-    float pixel_sigma = 0.5f;               ///< Gaussian pixel jitter's sigma in pixels (>= 0)
-    LensModel lens = LensModel::Pinhole;    ///< depth-of-field model
-    float lens_sigma = 1.0f;                ///< Gaussian lens's sigma in scene units (>= 0)
-    float lens_radius = 1.0f;               ///< disk lens's radius in scene units (>= 0)
-    float focal_distance = 55.0f;           ///< distance along each ray that stays sharp (> 0)
+    float pixel_sigma = 0.5f;             ///< Gaussian pixel jitter's sigma in pixels (>= 0)
+    LensModel lens = LensModel::Pinhole;  ///< depth-of-field model
+    float lens_sigma = 1.0f;              ///< Gaussian lens's sigma in scene units (>= 0)
+    float lens_radius = 1.0f;             ///< disk lens's radius in scene units (>= 0)
+    float focal_distance = 55.0f;         ///< distance along each ray that stays sharp (> 0)
 };
 
 /// The report's perspective camera. Pixel (x, y) = (column j, row i), rows top to

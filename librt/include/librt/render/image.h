@@ -11,9 +11,9 @@ namespace librt {
 /// A film of linear RGB radiance, row-major with the top row first (pixel (x, y) =
 /// column x, row y, as the camera numbers them).
 struct Image {
-    int width = 0;                   ///< pixels per row
-    int height = 0;                  ///< number of rows
-    std::vector<glm::vec3> pixels;   ///< width * height values, top row first
+    int width = 0;                  ///< pixels per row
+    int height = 0;                 ///< number of rows
+    std::vector<glm::vec3> pixels;  ///< width * height values, top row first
 
     /// An empty 0x0 image.
     Image() = default;

@@ -16,17 +16,20 @@ struct RenderSettings {
     int samples_per_pixel = 1;  ///< samples averaged per pixel, in [1, 2^20]
     int threads = 0;            ///< worker threads in [0, 1024]; 0 = hardware_concurrency()
     std::uint64_t seed = 0;     ///< varies every random number of the render
-    int tile_size = 16;         ///< side of the square tiles handed to threads (>= 1; capped at the image size)
-    bool progress = true;       ///< progress bar on stderr (only if it is a terminal and the render takes > ~1 s)
-    const std::atomic<bool>* cancel = nullptr;  ///< when set and it becomes true, the render stops early
+    int tile_size =
+        16;  ///< side of the square tiles handed to threads (>= 1; capped at the image size)
+    bool progress =
+        true;  ///< progress bar on stderr (only if it is a terminal and the render takes > ~1 s)
+    const std::atomic<bool>* cancel =
+        nullptr;  ///< when set and it becomes true, the render stops early
 };
 
 /// What a render did.
 struct RenderStats {
-    double seconds = 0.0;                ///< wall-clock time of the render (preprocess included)
-    std::uint64_t samples = 0;           ///< camera samples taken (Integrator::li calls)
-    std::uint64_t nonfinite_samples = 0; ///< samples dropped because a channel was NaN or infinite
-    bool cancelled = false;              ///< true when `cancel` stopped the render before the end
+    double seconds = 0.0;                 ///< wall-clock time of the render (preprocess included)
+    std::uint64_t samples = 0;            ///< camera samples taken (Integrator::li calls)
+    std::uint64_t nonfinite_samples = 0;  ///< samples dropped because a channel was NaN or infinite
+    bool cancelled = false;               ///< true when `cancel` stopped the render before the end
 };
 
 /// Throws librt::Error naming the first bad parameter of `settings` and its value.

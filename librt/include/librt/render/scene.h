@@ -195,7 +195,7 @@ private:
         TriangleMesh mesh;
         TriangleBvh bvh;
         std::vector<std::uint32_t> triangle_materials;  ///< scene ids, when per-triangle
-        BvhBuilder builder = BvhBuilder::Sah;            ///< how commit() builds bvh
+        BvhBuilder builder = BvhBuilder::Sah;           ///< how commit() builds bvh
     };
 
     void require_committed() const;

@@ -133,7 +133,7 @@ struct SphereSample {
 
 /// The density per solid angle at ref with which sample_sphere_visible picks direction
 /// wi (unit length), for weighting lights against BSDF samples; 0 if wi misses the sphere.
-[[nodiscard]] float sphere_visible_pdf(const glm::vec3& center, float radius,
-                                       const glm::vec3& ref, const glm::vec3& wi);
+[[nodiscard]] float sphere_visible_pdf(const glm::vec3& center, float radius, const glm::vec3& ref,
+                                       const glm::vec3& wi);
 
 }  // namespace librt
