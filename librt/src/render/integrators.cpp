@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <optional>
 #include <string>
 
 namespace librt {
@@ -36,25 +37,36 @@ enum class Strategy {
     Brute,   ///< cosine bounces only; emitters found by chance
 };
 
+/// The shadow ray from surface point p toward `target`, when the target is in front of
+/// both the geometric normal ng and the shading normal ns; also gives the shading cosine
+/// and the squared distance. Starts off the surface along ng; ends at the target.
+std::optional<Ray> shadow_ray_to(const glm::vec3& p, const glm::vec3& ng, const glm::vec3& ns,
+                                 const glm::vec3& target, float& cos_s, float& d2) {
+    const glm::vec3 to_light = target - p;
+    d2 = glm::dot(to_light, to_light);
+    if (!(d2 > 0.0f)) return std::nullopt;
+    const glm::vec3 wl = to_light / std::sqrt(d2);
+    cos_s = glm::dot(ns, wl);
+    if (cos_s <= 0.0f || glm::dot(ng, wl) <= 0.0f) return std::nullopt;
+    Ray shadow;
+    shadow.origin = offset_ray_origin(p, ng, wl);
+    const glm::vec3 rest = target - shadow.origin;
+    shadow.t_max = glm::length(rest);
+    if (!(shadow.t_max > 0.0f)) return std::nullopt;
+    shadow.direction = rest / shadow.t_max;
+    return shadow;
+}
+
 /// The sum over all lights of one estimate each of L_i cos(theta) / pdf, i.e. of the
 /// irradiance at a point with unit normals ng (geometric) and ns (shading), both on the
 /// side the light must come from. Shadow rays start off the surface along ng.
 glm::vec3 light_irradiance(const Scene& scene, const glm::vec3& p, const glm::vec3& ng,
                            const glm::vec3& ns, Sampler& sampler) {
     glm::vec3 e(0.0f);
+    float cos_s = 0.0f, d2 = 0.0f;
     for (const PointLight& light : scene.point_lights()) {
-        const glm::vec3 to_light = light.position - p;
-        const float d2 = glm::dot(to_light, to_light);
-        if (!(d2 > 0.0f)) continue;
-        const glm::vec3 wl = to_light / std::sqrt(d2);
-        const float cos_s = glm::dot(ns, wl);
-        if (cos_s <= 0.0f || glm::dot(ng, wl) <= 0.0f) continue;
-        Ray shadow;
-        shadow.origin = offset_ray_origin(p, ng, wl);
-        const glm::vec3 rest = light.position - shadow.origin;
-        shadow.t_max = glm::length(rest);
-        shadow.direction = rest / shadow.t_max;
-        if (scene.occluded(shadow)) continue;
+        const std::optional<Ray> shadow = shadow_ray_to(p, ng, ns, light.position, cos_s, d2);
+        if (!shadow || scene.occluded(*shadow)) continue;
         // Irradiance from a point light: E = I cos(theta) / d^2.
         e += light.intensity * (cos_s / d2);
     }
@@ -66,20 +78,9 @@ glm::vec3 light_irradiance(const Scene& scene, const glm::vec3& p, const glm::ve
         const SphereSample s =
             sample_sphere_visible(light.sphere.center, light.sphere.radius, p, u);
         if (!(s.pdf > 0.0f)) continue;
-        const glm::vec3 to_light = s.point - p;
-        const float d2 = glm::dot(to_light, to_light);
-        if (!(d2 > 0.0f)) continue;
-        const glm::vec3 wl = to_light / std::sqrt(d2);
-        const float cos_s = glm::dot(ns, wl);
-        if (cos_s <= 0.0f || glm::dot(ng, wl) <= 0.0f) continue;
-        Ray shadow;
-        shadow.origin = offset_ray_origin(p, ng, wl);
-        const glm::vec3 rest = s.point - shadow.origin;
-        shadow.t_max = glm::length(rest);
-        if (!(shadow.t_max > 0.0f)) continue;
-        shadow.direction = rest / shadow.t_max;
+        const std::optional<Ray> shadow = shadow_ray_to(p, ng, ns, s.point, cos_s, d2);
         // The light's own sphere is skipped: the sample is its first point along the ray.
-        if (scene.occluded(shadow, scene.sphere_light_object(i))) continue;
+        if (!shadow || scene.occluded(*shadow, scene.sphere_light_object(i))) continue;
         // Monte Carlo irradiance estimate from a solid-angle sample: L cos(theta) / pdf.
         e += light.radiance * (cos_s / s.pdf);
     }
