@@ -3,10 +3,15 @@
 #include <librt/core/error.h>
 #include <librt/render/scene.h>
 
+#include <bit>
 #include <cmath>
 #include <iostream>
 #include <limits>
 #include <sstream>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace librt {
 namespace {
@@ -265,41 +270,73 @@ bool Scene::visit_objects(Ray& ray, TestObject&& test_object) const {
             return test_object(slot_object_[slot], current);
         });
     if (!is_traceable(ray)) return false;
-    // Entry distance of every object box (slab test, branch-free); NaN when missed, so that
-    // no comparison selects it (t_max may be +inf, which a +inf marker would not beat).
-    constexpr float kSkip = std::numeric_limits<float>::quiet_NaN();
     const glm::vec3 inv = safe_inverse(ray.direction);
     const glm::vec3& o = ray.origin;
+    // Entry distance of each box and a bit set per box entered (the slab test of bbox.h,
+    // exit widened by kSlabExitSlack); bit i clear means box i is missed or visited.
     const std::uint32_t n = flat_.count;
     float enter[kFlatObjectLimit];
+    std::uint32_t pending = 0;
+#if defined(__SSE2__)
+    // Four boxes at a time. min/max operands are ordered as in the scalar version's
+    // std::min/std::max (_mm_min_ps(b, a) is std::min(a, b)), so NaNs resolve the same way.
+    static_assert(kFlatObjectLimit % 4 == 0);
+    const __m128 ox = _mm_set1_ps(o.x), oy = _mm_set1_ps(o.y), oz = _mm_set1_ps(o.z);
+    const __m128 ix = _mm_set1_ps(inv.x), iy = _mm_set1_ps(inv.y), iz = _mm_set1_ps(inv.z);
+    const __m128 t_min = _mm_set1_ps(ray.t_min), t_max = _mm_set1_ps(ray.t_max);
+    const __m128 sign_bit = _mm_set1_ps(-0.0f), slack = _mm_set1_ps(kSlabExitSlack);
+    for (std::uint32_t i = 0; i < n; i += 4) {
+        const __m128 x0 = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&flat_.lo_x[i]), ox), ix);
+        const __m128 x1 = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&flat_.hi_x[i]), ox), ix);
+        const __m128 y0 = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&flat_.lo_y[i]), oy), iy);
+        const __m128 y1 = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&flat_.hi_y[i]), oy), iy);
+        const __m128 z0 = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&flat_.lo_z[i]), oz), iz);
+        const __m128 z1 = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&flat_.hi_z[i]), oz), iz);
+        const __m128 t_in = _mm_max_ps(_mm_max_ps(_mm_min_ps(z1, z0), t_min),
+                                       _mm_max_ps(_mm_min_ps(y1, y0), _mm_min_ps(x1, x0)));
+        __m128 far =
+            _mm_min_ps(_mm_max_ps(z1, z0), _mm_min_ps(_mm_max_ps(y1, y0), _mm_max_ps(x1, x0)));
+        far = _mm_add_ps(far, _mm_mul_ps(_mm_andnot_ps(sign_bit, far), slack));  // |far| slack
+        const __m128 t_out = _mm_min_ps(far, t_max);
+        _mm_storeu_ps(&enter[i], t_in);
+        pending |= std::uint32_t(_mm_movemask_ps(_mm_cmple_ps(t_in, t_out))) << i;
+    }
+    pending &= (1u << n) - 1u;  // n <= 16: the slots past it are zero boxes
+#else
     for (std::uint32_t i = 0; i < n; ++i) {
         const float x0 = (flat_.lo_x[i] - o.x) * inv.x, x1 = (flat_.hi_x[i] - o.x) * inv.x;
         const float y0 = (flat_.lo_y[i] - o.y) * inv.y, y1 = (flat_.hi_y[i] - o.y) * inv.y;
         const float z0 = (flat_.lo_z[i] - o.z) * inv.z, z1 = (flat_.hi_z[i] - o.z) * inv.z;
         const float t_in = std::max(std::max(std::min(x0, x1), std::min(y0, y1)),
                                     std::max(std::min(z0, z1), ray.t_min));
-        const float t_out = std::min(std::min(std::max(x0, x1), std::max(y0, y1)),
-                                     std::min(std::max(z0, z1), ray.t_max));
-        enter[i] = t_in <= t_out ? t_in : kSkip;
+        float far = std::min(std::min(std::max(x0, x1), std::max(y0, y1)), std::max(z0, z1));
+        far += std::fabs(far) * kSlabExitSlack;  // never lose a box to rounding (bbox.h)
+        const float t_out = std::min(far, ray.t_max);
+        enter[i] = t_in;
+        pending |= std::uint32_t(t_in <= t_out) << i;
     }
+#endif
     // Visit boxes nearest entry first; stop when the next one starts beyond the nearest hit.
     bool found = false;
-    for (;;) {
-        std::uint32_t next = kInvalidId;
-        float next_enter = ray.t_max;
-        for (std::uint32_t i = 0; i < n; ++i) {
-            if (enter[i] <= next_enter) {
+    while (pending != 0) {
+        std::uint32_t rest = pending;
+        std::uint32_t next = std::uint32_t(std::countr_zero(rest));
+        float next_enter = enter[next];
+        for (rest &= rest - 1; rest != 0; rest &= rest - 1) {
+            const auto i = std::uint32_t(std::countr_zero(rest));
+            if (enter[i] < next_enter) {
                 next_enter = enter[i];
                 next = i;
             }
         }
-        if (next == kInvalidId) return found;
-        enter[next] = kSkip;
+        if (!(next_enter <= ray.t_max)) break;  // the rest all start beyond the nearest hit
+        pending &= ~(1u << next);
         if (test_object(flat_.object[next], ray)) {
             found = true;
             if constexpr (AnyHit) return true;
         }
     }
+    return found;
 }
 
 bool Scene::intersect_impl(const Ray& ray, Hit& hit, bool sphere_uv_always) const {
