@@ -9,9 +9,8 @@ endfunction()
 # for each instruction set must compute bit-identical hits, and an FMA the compiler inserts
 # in one of them (but not in the scalar reference) would break that.
 # -fno-trapping-math changes no result (librt never enables floating-point exceptions); it
-# lets the compiler turn selects between floats into branch-free vector code, which it
-# otherwise may not since a comparison could raise an exception flag (the scene's flat
-# object loop: 1.6x slower with branches).
+# lets the compiler turn selects between floats into branch-free (and vector) code, which
+# it otherwise may not, since a comparison could raise an exception flag.
 function(librt_set_float_model target)
   target_compile_options(${target} PRIVATE
     $<$<CXX_COMPILER_ID:GNU,Clang>:-ffp-contract=off -fno-trapping-math>)
