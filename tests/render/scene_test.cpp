@@ -424,6 +424,37 @@ TEST(Scene, SphereLightIsAnEmissiveObject) {
     EXPECT_EQ(scene.material(hit).emission, light.radiance);
 }
 
+TEST(Scene, UnsampledEmittersAreAnyEmissionButTheSphereLights) {
+    Scene scene;
+    const auto diffuse = scene.add_material(Material::diffuse(glm::vec3(0.5f)));
+    scene.add_sphere({{0, 0, 0}, 1.0f}, diffuse);
+    scene.add_sphere_light({{{0, 5, 0}, 1.0f}, {2, 3, 4}});
+    scene.commit();
+    EXPECT_FALSE(scene.has_unsampled_emitters()) << "the light's own emission is sampled";
+
+    Material glowing = Material::diffuse(glm::vec3(0.5f));
+    glowing.emission = glm::vec3(0.1f);
+    scene.add_triangle({{0, 0, 3}, {1, 0, 3}, {0, 1, 3}}, scene.add_material(glowing));
+    scene.commit();
+    EXPECT_TRUE(scene.has_unsampled_emitters()) << "a loose emissive triangle";
+
+    // Per-triangle MTL materials: one emissive triangle (Ke) among diffuse ones.
+    Scene mtl_scene;
+    const auto fallback = mtl_scene.add_material(Material::diffuse(glm::vec3(0.5f)));
+    TriangleMesh mesh = quad_z(0, 0, 1, 1, 0);
+    mesh.materials.resize(2);
+    mesh.materials[0].diffuse = glm::vec3(0.5f);
+    mesh.materials[1].emission = glm::vec3(4.0f);
+    mesh.material_ids = {0, 0};
+    mtl_scene.add_mesh_with_mtl(mesh, fallback);
+    mtl_scene.commit();
+    EXPECT_FALSE(mtl_scene.has_unsampled_emitters());
+    mesh.material_ids = {0, 1};
+    mtl_scene.add_mesh_with_mtl(mesh, fallback);
+    mtl_scene.commit();
+    EXPECT_TRUE(mtl_scene.has_unsampled_emitters());
+}
+
 TEST(Scene, OffsetScalesWithPositionAndFollowsDirection) {
     const glm::vec3 n(0, 1, 0);
     const glm::vec3 p1(1, 0, 0), p1000(1000, 0, 0);

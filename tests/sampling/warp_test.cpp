@@ -353,6 +353,50 @@ TEST(SphereLight, VisiblePointsOnSphereFacingRefWithMatchingPdf) {
     }
 }
 
+TEST(SphereLight, DirectionSamplesAreTheVisiblePointsSeenFromRef) {
+    // sample_sphere_direction must pick, for the same u, the direction toward
+    // sample_sphere_visible's point, at its distance and with its pdf: from near (wide cone),
+    // far (tiny cone) and inside the sphere.
+    struct Case {
+        glm::vec3 c, ref;
+        float r;
+    };
+    const std::array<Case, 4> cases = {{{{2, -1, 3}, {0.5f, 0.2f, -0.4f}, 1.4f},
+                                        {{0, 0, 0}, {0, 0.3f, 1.05f}, 1.0f},
+                                        {{-10, 20, 40}, {3e3f, -1e3f, 2e3f}, 10.0f},
+                                        {{0, 0, 0}, {0.3f, -0.2f, 0.5f}, 1.0f}}};
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+        const Case& cs = cases[k];
+        SCOPED_TRACE(::testing::Message() << "case " << k);
+        Pcg32 rng(130u + k, 1u);
+        for (int i = 0; i < 20'000; ++i) {
+            const glm::vec2 u = rng.next_vec2();
+            const SphereSample p = sample_sphere_visible(cs.c, cs.r, cs.ref, u);
+            const SphereDirectionSample d = sample_sphere_direction(cs.c, cs.r, cs.ref, u);
+            const float expected_distance = glm::length(p.point - cs.ref);
+            ASSERT_NEAR(glm::length(d.direction), 1.0f, 1e-6f);
+            ASSERT_NEAR(d.distance, expected_distance, 2e-6f * expected_distance + 1e-5f * cs.r);
+            // Relative to r, and to the float spacing where the points lie (~1 ulp of the
+            // far case's 3.7e3 units: a 1e-7 rad turn of the direction moves it 4e-4).
+            const float tolerance = 2e-5f * cs.r + 1e-7f * (glm::length(cs.ref) + d.distance);
+            ASSERT_LT(glm::length(cs.ref + d.distance * d.direction - p.point), tolerance)
+                << "u = (" << u.x << ", " << u.y << ")";
+            ASSERT_FLOAT_EQ(d.pdf, p.pdf);
+        }
+    }
+}
+
+TEST(SphereLight, DirectionSamplesFollowTheVisiblePdf) {
+    const glm::vec3 c(2, -1, 3), ref(0.5f, 0.2f, -0.4f);
+    const float r = glm::length(ref - c) / 1.1f;  // a wide cone, 65 degrees
+    DirectionBins bins;
+    bins.frame = Frame::from_normal(normalized_axis(ref, c));
+    bins.cos_lo = cos_theta_max(c, r, ref);
+    expect_directions_follow_pdf(
+        bins, [&](glm::vec2 u) { return sample_sphere_direction(c, r, ref, u).direction; },
+        [&](const glm::vec3& w) { return double(sphere_visible_pdf(c, r, ref, w)); }, 131);
+}
+
 TEST(SphereLight, InsidePdfMatchesFunctionAndIsFinite) {
     const glm::vec3 c(0, 0, 0), ref(0.3f, -0.2f, 0.5f);
     const float r = 1.0f;

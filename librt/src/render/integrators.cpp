@@ -63,8 +63,8 @@ std::optional<Ray> shadow_ray_to(const glm::vec3& p, const glm::vec3& ng, const 
 glm::vec3 light_irradiance(const Scene& scene, const glm::vec3& p, const glm::vec3& ng,
                            const glm::vec3& ns, Sampler& sampler) {
     glm::vec3 e(0.0f);
-    float cos_s = 0.0f, d2 = 0.0f;
     for (const PointLight& light : scene.point_lights()) {
+        float cos_s = 0.0f, d2 = 0.0f;
         const std::optional<Ray> shadow = shadow_ray_to(p, ng, ns, light.position, cos_s, d2);
         if (!shadow || scene.occluded(*shadow)) continue;
         // Irradiance from a point light: E = I cos(theta) / d^2.
@@ -75,14 +75,21 @@ glm::vec3 light_irradiance(const Scene& scene, const glm::vec3& p, const glm::ve
         const SphereLight& light = lights[i];
         // Drawn even when unused, so later decisions of the path keep their numbers.
         const glm::vec2 u = sampler.next_2d();
-        const SphereSample s =
-            sample_sphere_visible(light.sphere.center, light.sphere.radius, p, u);
+        const SphereDirectionSample s =
+            sample_sphere_direction(light.sphere.center, light.sphere.radius, p, u);
         if (!(s.pdf > 0.0f)) continue;
-        const std::optional<Ray> shadow = shadow_ray_to(p, ng, ns, s.point, cos_s, d2);
-        // The light's own sphere is skipped: the sample is its first point along the ray.
-        if (!shadow || scene.occluded(*shadow, scene.sphere_light_object(i))) continue;
+        const float cos_w = glm::dot(ns, s.direction);
+        if (cos_w <= 0.0f || glm::dot(ng, s.direction) <= 0.0f) continue;
+        // The shadow ray ends where the direction meets the light. Its start moved off the
+        // surface by the offset, so it may reach that far inside the light: harmless, as
+        // the light's own sphere is skipped and nothing else should sit in it.
+        Ray shadow;
+        shadow.origin = offset_ray_origin(p, ng, s.direction);
+        shadow.direction = s.direction;
+        shadow.t_max = s.distance;
+        if (scene.occluded(shadow, scene.sphere_light_object(i))) continue;
         // Monte Carlo irradiance estimate from a solid-angle sample: L cos(theta) / pdf.
-        e += light.radiance * (cos_s / s.pdf);
+        e += light.radiance * (cos_w / s.pdf);
     }
     return e;
 }
@@ -152,6 +159,12 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler, int
                 if constexpr (S == Strategy::Direct) {
                     return radiance;
                 } else {
+                    // The last bounce: what it finds would count only if it emitted and
+                    // light sampling had not covered it (this vertex just sampled the
+                    // lights). With no such emitter, save the ray.
+                    if (S == Strategy::Path && depth >= max_depth &&
+                        !scene.has_unsampled_emitters())
+                        return radiance;
                     wi = sample_cosine_hemisphere(ns, sampler.next_2d());
                     // Below the true surface (a bent shading normal): the path ends there.
                     if (glm::dot(wi, ng) <= 0.0f) return radiance;

@@ -232,6 +232,16 @@ void Scene::commit() {
         centers.push_back(box.center());
         ids.push_back(id);
     }
+    unsampled_emitters_ = false;
+    for (const Object& o : objects_) {
+        if (o.light) continue;
+        if (o.material != kInvalidId) {
+            unsampled_emitters_ |= materials_[o.material].emits();
+        } else {
+            for (const std::uint32_t m : meshes_[o.index].triangle_materials)
+                unsampled_emitters_ |= materials_[m].emits();
+        }
+    }
     top_ = build_sah_bvh(boxes, centers);
     slot_object_.resize(top_.prim_indices.size());
     for (std::size_t slot = 0; slot < slot_object_.size(); ++slot)

@@ -107,6 +107,33 @@ SphereSample sample_sphere_visible(const glm::vec3& center, float radius, const 
     return {center + radius * normal, normal, cone_pdf(one_minus_cos_max)};
 }
 
+SphereDirectionSample sample_sphere_direction(const glm::vec3& center, float radius,
+                                              const glm::vec3& ref, glm::vec2 u) {
+    const glm::vec3 to_center = center - ref;
+    const float dist2 = glm::dot(to_center, to_center);
+    const float r2 = radius * radius;
+    if (!(dist2 > r2)) {
+        const SphereSample s = sample_sphere_visible(center, radius, ref, u);
+        const glm::vec3 to_point = s.point - ref;
+        const float distance = glm::length(to_point);
+        if (!(distance > 0.0f) || !(s.pdf > 0.0f)) return {};
+        return {to_point / distance, distance, s.pdf};
+    }
+    const float one_minus_cos_max = subtended_cone(r2 / dist2).one_minus_cos_max;
+    const float one_minus_cos = u.x * one_minus_cos_max;
+    const float cos_theta = 1.0f - one_minus_cos;
+    const float sin2_theta = one_minus_cos * (2.0f - one_minus_cos);
+    const float dist = std::sqrt(dist2);
+    const Frame frame = Frame::from_normal(to_center * (1.0f / dist));
+    const glm::vec3 direction = frame.to_world(cone_direction(one_minus_cos, u.y));
+    // Near root of the ray-sphere quadratic at angle theta off the axis:
+    // t = d cos(theta) - sqrt(r^2 - d^2 sin^2(theta)), written as (d^2 - r^2) /
+    // (d cos(theta) + sqrt(...)) to avoid the cancellation, with d^2 - r^2 = (d - r)(d + r).
+    const float half_chord = std::sqrt(std::max(0.0f, r2 - dist2 * sin2_theta));
+    const float distance = (dist - radius) * (dist + radius) / (dist * cos_theta + half_chord);
+    return {direction, distance, cone_pdf(one_minus_cos_max)};
+}
+
 float sphere_visible_pdf(const glm::vec3& center, float radius, const glm::vec3& ref,
                          const glm::vec3& wi) {
     const glm::vec3 to_center = center - ref;

@@ -173,6 +173,12 @@ public:
         return object_id < objects_.size() && objects_[object_id].light;
     }
 
+    /// True when some surface emits light that light sampling does not account for: an
+    /// emissive material on anything but a sphere light's own sphere. When false, a path
+    /// that has just scattered off a diffuse surface for the last time can find nothing
+    /// more to add, so the integrator need not trace that last ray. Valid after commit().
+    [[nodiscard]] bool has_unsampled_emitters() const { return unsampled_emitters_; }
+
     /// Bounding box of all objects (empty if none); valid after commit().
     [[nodiscard]] BBox bounds() const { return top_.bounds(); }
 
@@ -237,6 +243,7 @@ private:
     Bvh top_;  ///< over objects_' boxes
     FlatBoxes flat_;
     std::vector<std::uint32_t> slot_object_;  ///< top_ slot -> object id
+    bool unsampled_emitters_ = false;         ///< see has_unsampled_emitters()
     bool committed_ = false;
 };
 
