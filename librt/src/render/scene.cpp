@@ -44,10 +44,15 @@ inline double hit_sphere(const glm::dvec3& center, double radius2, const DoubleR
                          double t_min, double t_max) {
     const glm::dvec3 oc = ray.origin - center;
     const double b = glm::dot(oc, ray.direction);
+    const double c = glm::dot(oc, oc) - radius2;
+    // Outside (c > 0) and moving away (b >= 0): both roots are <= 0 (their product c / a
+    // is positive, their sum -2 b / a is not), so no hit. Every ray leaving a sphere's
+    // outer surface ends here, without the square root: in the report's room that is each
+    // ray from a wall, which starts inside its wall's bounding box.
+    if (b >= 0.0 && c > 0.0) return -1.0;
     const glm::dvec3 closest = oc - (b * ray.inv_a) * ray.direction;
     const double half_chord2 = radius2 - glm::dot(closest, closest);
     if (!(half_chord2 >= 0.0)) return -1.0;  // misses (or NaN)
-    const double c = glm::dot(oc, oc) - radius2;
     const double q = -(b + std::copysign(std::sqrt(half_chord2 * ray.a), b));
     const double t_a = q * ray.inv_a;
     const double t_b = q != 0.0 ? c / q : t_a;
