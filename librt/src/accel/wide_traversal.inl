@@ -82,7 +82,7 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit)
                     continue;
                 }
                 // Three or more: push them all, insertion-sort the new entries so the
-                // nearest is on top, and take the top.
+                // nearest is on top, and take it.
                 const std::uint32_t base = sp;
                 stack[sp++] = {node.child[i0], t_enter[i0]};
                 stack[sp++] = {node.child[i1], t_enter[i1]};
@@ -92,14 +92,11 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit)
                     stack[sp++] = {node.child[i], t_enter[i]};
                 } while (mask != 0);
                 for (std::uint32_t k = base; k < sp; ++k) prefetch_child(nodes, blocks, stack[k].ref);
-                // (Any hit ends an any-hit walk, wherever it lies on the ray: no sorting.)
-                if constexpr (!AnyHit) {
-                    for (std::uint32_t k = base + 1; k < sp; ++k) {
-                        const StackEntry e = stack[k];
-                        std::uint32_t j = k;
-                        for (; j > base && stack[j - 1].t_enter < e.t_enter; --j) stack[j] = stack[j - 1];
-                        stack[j] = e;
-                    }
+                for (std::uint32_t k = base + 1; k < sp; ++k) {
+                    const StackEntry e = stack[k];
+                    std::uint32_t j = k;
+                    for (; j > base && stack[j - 1].t_enter < e.t_enter; --j) stack[j] = stack[j - 1];
+                    stack[j] = e;
                 }
                 current = stack[--sp].ref;
                 continue;
