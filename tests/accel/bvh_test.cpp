@@ -1,4 +1,5 @@
 #include "ray_sets.h"
+#include "triangle_sets.h"
 
 #include <librt/accel/bvh_builder.h>
 #include <librt/accel/triangle_bvh.h>
@@ -11,24 +12,9 @@
 
 using namespace librt;
 using librt::testing::incoherent_rays;
+using librt::testing::random_soup;
 
 namespace {
-
-/// A random soup of small triangles in the unit cube, plus a few large ones across it.
-std::vector<Triangle> random_soup(std::size_t count, std::uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> U(0.0f, 1.0f);
-    std::vector<Triangle> tris(count);
-    for (std::size_t i = 0; i < count; ++i) {
-        const glm::vec3 c{U(rng), U(rng), U(rng)};
-        const float s = (i % 97 == 0) ? 0.5f : 0.03f;
-        auto corner = [&] {
-            return c + s * glm::vec3(U(rng) - 0.5f, U(rng) - 0.5f, U(rng) - 0.5f);
-        };
-        tris[i] = {corner(), corner(), corner()};
-    }
-    return tris;
-}
 
 /// Checks the structural invariants every builder must keep.
 void check_structure(const Bvh& bvh, std::span<const Triangle> tris, std::uint32_t max_leaf,

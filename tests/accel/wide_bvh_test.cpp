@@ -5,6 +5,7 @@
 
 #include "ray_sets.h"
 #include "test_support.h"
+#include "triangle_sets.h"
 
 #include <librt/accel/bvh_builder.h>
 #include <librt/accel/simd.h>
@@ -23,29 +24,10 @@
 #include <vector>
 
 using namespace librt;
+using librt::testing::random_soup;
+using librt::testing::triangles_of;
 
 namespace {
-
-std::vector<Triangle> random_soup(std::size_t count, std::uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> U(0.0f, 1.0f);
-    std::vector<Triangle> tris(count);
-    for (std::size_t i = 0; i < count; ++i) {
-        const glm::vec3 c{U(rng), U(rng), U(rng)};
-        const float s = (i % 97 == 0) ? 0.5f : 0.03f;
-        auto corner = [&] {
-            return c + s * glm::vec3(U(rng) - 0.5f, U(rng) - 0.5f, U(rng) - 0.5f);
-        };
-        tris[i] = {corner(), corner(), corner()};
-    }
-    return tris;
-}
-
-std::vector<Triangle> triangles_of(const TriangleMesh& mesh) {
-    std::vector<Triangle> tris(mesh.triangle_count());
-    for (std::size_t i = 0; i < tris.size(); ++i) tris[i] = mesh.triangle(i);
-    return tris;
-}
 
 /// Linear-scan answers, spread over two threads.
 std::vector<PrimitiveHit> scan(std::span<const Triangle> tris, const std::vector<Ray>& rays) {

@@ -7,12 +7,6 @@
 using namespace librt;
 
 namespace {
-Ray make_ray(glm::vec3 o, glm::vec3 d) {
-    Ray r;
-    r.origin = o;
-    r.direction = d;
-    return r;
-}
 const BBox kBox{{-1, -1, -1}, {1, 2, 3}};
 }  // namespace
 
@@ -30,14 +24,14 @@ TEST(BBox, EmptyAndExtend) {
 }
 
 TEST(BBox, EntryExitInterval) {
-    const auto iv = intersect(kBox, make_ray({0, 0, 10}, {0, 0, -1}));
+    const auto iv = intersect(kBox, Ray{{0, 0, 10}, {0, 0, -1}});
     ASSERT_TRUE(iv.hit());
     EXPECT_FLOAT_EQ(iv.t_enter, 7.0f);
     EXPECT_FLOAT_EQ(iv.t_exit, 11.0f);
 }
 
 TEST(BBox, OriginInsideEntersAtTMin) {
-    const auto iv = intersect(kBox, make_ray({0, 0, 0}, {1, 0, 0}));
+    const auto iv = intersect(kBox, Ray{{0, 0, 0}, {1, 0, 0}});
     ASSERT_TRUE(iv.hit());
     EXPECT_FLOAT_EQ(iv.t_enter, 0.0f);
     EXPECT_FLOAT_EQ(iv.t_exit, 1.0f);
@@ -45,32 +39,32 @@ TEST(BBox, OriginInsideEntersAtTMin) {
 
 TEST(BBox, AxisParallelRaysHaveNoNan) {
     // Parallel to x and y, inside the x/y slabs: must hit.
-    auto iv = intersect(kBox, make_ray({0.5f, 0.5f, 10}, {0, 0, -1}));
+    auto iv = intersect(kBox, Ray{{0.5f, 0.5f, 10}, {0, 0, -1}});
     EXPECT_TRUE(iv.hit());
     EXPECT_FALSE(std::isnan(iv.t_enter) || std::isnan(iv.t_exit));
     // Parallel to x and y, outside the x slab: must miss.
-    iv = intersect(kBox, make_ray({1.5f, 0.5f, 10}, {0, 0, -1}));
+    iv = intersect(kBox, Ray{{1.5f, 0.5f, 10}, {0, 0, -1}});
     EXPECT_FALSE(iv.hit());
     // Origin exactly on a slab plane while parallel to it (0 * inf in a naive test).
     // A zero component counts as an infinitesimal of its sign: +0 on the hi face
     // leaves the box, +0 on the lo face and -0 on the hi face stay in it. Two boxes
     // sharing a face therefore never both drop such a ray.
-    iv = intersect(kBox, make_ray({1.0f, 0.5f, 10}, {0, 0, -1}));
+    iv = intersect(kBox, Ray{{1.0f, 0.5f, 10}, {0, 0, -1}});
     EXPECT_FALSE(std::isnan(iv.t_enter) || std::isnan(iv.t_exit));
     EXPECT_FALSE(iv.hit());
-    iv = intersect(kBox, make_ray({-1.0f, 0.5f, 10}, {0, 0, -1}));
+    iv = intersect(kBox, Ray{{-1.0f, 0.5f, 10}, {0, 0, -1}});
     EXPECT_TRUE(iv.hit());
-    iv = intersect(kBox, make_ray({1.0f, 0.5f, 10}, {-0.0f, 0, -1}));
+    iv = intersect(kBox, Ray{{1.0f, 0.5f, 10}, {-0.0f, 0, -1}});
     EXPECT_TRUE(iv.hit());
     // Negative zero components behave like zero.
-    iv = intersect(kBox, make_ray({0.5f, 0.5f, 10}, {-0.0f, -0.0f, -1}));
+    iv = intersect(kBox, Ray{{0.5f, 0.5f, 10}, {-0.0f, -0.0f, -1}});
     EXPECT_TRUE(iv.hit());
 }
 
 TEST(BBox, MissesAndRespectsTRange) {
-    EXPECT_FALSE(intersect(kBox, make_ray({5, 5, 5}, {1, 0, 0})).hit());
-    EXPECT_FALSE(intersect(kBox, make_ray({0, 0, 10}, {0, 0, 1})).hit());  // behind
-    Ray r = make_ray({0, 0, 10}, {0, 0, -1});
+    EXPECT_FALSE(intersect(kBox, Ray{{5, 5, 5}, {1, 0, 0}}).hit());
+    EXPECT_FALSE(intersect(kBox, Ray{{0, 0, 10}, {0, 0, 1}}).hit());  // behind
+    Ray r = Ray{{0, 0, 10}, {0, 0, -1}};
     r.t_max = 6.0f;
     EXPECT_FALSE(intersect(kBox, r).hit());
 }

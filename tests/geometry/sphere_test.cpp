@@ -6,45 +6,36 @@
 
 using namespace librt;
 
-namespace {
-Ray make_ray(glm::vec3 o, glm::vec3 d) {
-    Ray r;
-    r.origin = o;
-    r.direction = d;
-    return r;
-}
-}  // namespace
-
 TEST(Sphere, HitFromOutsideReturnsNearRoot) {
     const Sphere s{{0, 0, -10}, 2};
-    const auto t = intersect(s, make_ray({0, 0, 0}, {0, 0, -1}));
+    const auto t = intersect(s, Ray{{0, 0, 0}, {0, 0, -1}});
     ASSERT_TRUE(t);
     EXPECT_FLOAT_EQ(*t, 8.0f);
 }
 
 TEST(Sphere, HitFromInsideReturnsFarRoot) {
     const Sphere s{{1, 2, 3}, 5};
-    const auto t = intersect(s, make_ray({1, 2, 3}, {0, 1, 0}));
+    const auto t = intersect(s, Ray{{1, 2, 3}, {0, 1, 0}});
     ASSERT_TRUE(t);
     EXPECT_FLOAT_EQ(*t, 5.0f);
 }
 
 TEST(Sphere, BehindTheRayMisses) {
     const Sphere s{{0, 0, 10}, 2};
-    EXPECT_FALSE(intersect(s, make_ray({0, 0, 0}, {0, 0, -1})));
+    EXPECT_FALSE(intersect(s, Ray{{0, 0, 0}, {0, 0, -1}}));
 }
 
 TEST(Sphere, TangentRayTouchesOnce) {
     const Sphere s{{0, 0, -10}, 1};
-    const auto t = intersect(s, make_ray({1, 0, 0}, {0, 0, -1}));
+    const auto t = intersect(s, Ray{{1, 0, 0}, {0, 0, -1}});
     ASSERT_TRUE(t);
     EXPECT_NEAR(*t, 10.0f, 1e-3f);
-    EXPECT_FALSE(intersect(s, make_ray({1.001f, 0, 0}, {0, 0, -1})));
+    EXPECT_FALSE(intersect(s, Ray{{1.001f, 0, 0}, {0, 0, -1}}));
 }
 
 TEST(Sphere, RespectsTRange) {
     const Sphere s{{0, 0, -10}, 2};
-    Ray r = make_ray({0, 0, 0}, {0, 0, -1});
+    Ray r = Ray{{0, 0, 0}, {0, 0, -1}};
     r.t_max = 7.0f;
     EXPECT_FALSE(intersect(s, r));
     r.t_max = 100.0f;
@@ -56,7 +47,7 @@ TEST(Sphere, RespectsTRange) {
 
 TEST(Sphere, NonUnitDirectionScalesT) {
     const Sphere s{{0, 0, -10}, 2};
-    const auto t = intersect(s, make_ray({0, 0, 0}, {0, 0, -2}));
+    const auto t = intersect(s, Ray{{0, 0, 0}, {0, 0, -2}});
     ASSERT_TRUE(t);
     EXPECT_FLOAT_EQ(*t, 4.0f);
 }
@@ -64,7 +55,7 @@ TEST(Sphere, NonUnitDirectionScalesT) {
 TEST(Sphere, HugeWallSphereIsAccurate) {
     // The report's floor: radius 990 centred 1000 below; surface at y = -10.
     const Sphere floor{{0, -1000, 0}, 990};
-    const Ray down = make_ray({0, 0, 0}, {0, -1, 0});
+    const Ray down = Ray{{0, 0, 0}, {0, -1, 0}};
     const auto t = intersect(floor, down);
     ASSERT_TRUE(t);
     EXPECT_NEAR(*t, 10.0f, 1e-4f);
@@ -74,6 +65,6 @@ TEST(Sphere, HugeWallSphereIsAccurate) {
 
 TEST(Sphere, ZeroOrNanDirectionMisses) {
     const Sphere s{{0, 0, 0}, 1};
-    EXPECT_FALSE(intersect(s, make_ray({0, 0, 5}, {0, 0, 0})));
-    EXPECT_FALSE(intersect(s, make_ray({0, 0, 5}, {NAN, 0, -1})));
+    EXPECT_FALSE(intersect(s, Ray{{0, 0, 5}, {0, 0, 0}}));
+    EXPECT_FALSE(intersect(s, Ray{{0, 0, 5}, {NAN, 0, -1}}));
 }
