@@ -31,13 +31,9 @@ int main(int argc, char** argv) {
         if (options.output.empty())
             options.output = no_jitter ? "antialiasing_no_jitter.png" : "antialiasing.png";
         Scene scene;
-        apps::add_room(scene);
-        apps::add_report_spheres(scene);
-        apps::add_report_light(scene, apps::LightKind::Sphere, options.power);
+        apps::add_report_scene(scene, apps::LightKind::Sphere, options.power);
         scene.commit();
-        PathTracerSettings settings;
-        settings.max_depth = options.bounces;
-        PathTracer integrator(settings);
+        PathTracer integrator(apps::path_tracer_settings(options));
         CameraSettings camera = apps::camera_of(options);
         camera.pixel_jitter = no_jitter ? PixelJitter::None : PixelJitter::Gaussian;
         camera.pixel_sigma = sigma;

@@ -26,13 +26,9 @@ int main(int argc, char** argv) {
         if (options.output.empty())
             options.output = pinhole ? "depth_of_field_pinhole.png" : "depth_of_field.png";
         Scene scene;
-        apps::add_room(scene);
-        apps::add_report_spheres(scene);
-        apps::add_report_light(scene, apps::LightKind::Sphere, options.power);
+        apps::add_report_scene(scene, apps::LightKind::Sphere, options.power);
         scene.commit();
-        PathTracerSettings settings;
-        settings.max_depth = options.bounces;
-        PathTracer integrator(settings);
+        PathTracer integrator(apps::path_tracer_settings(options));
         CameraSettings camera = apps::camera_of(options);
         camera.pixel_jitter = PixelJitter::Gaussian;
         camera.lens = pinhole ? LensModel::Pinhole : LensModel::Gaussian;

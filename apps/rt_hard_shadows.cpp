@@ -14,9 +14,7 @@ int main(int argc, char** argv) {
     apps::add_common_options(app, options);
     return apps::run(app, argc, argv, [&] {
         Scene scene;
-        apps::add_room(scene);
-        apps::add_report_spheres(scene);
-        apps::add_report_light(scene, apps::LightKind::Point, options.power);
+        apps::add_report_scene(scene, apps::LightKind::Point, options.power);
         scene.commit();
         DirectLighting integrator(DirectLightingSettings{options.bounces});
         return apps::render_and_write(scene, apps::camera_of(options), integrator, options);

@@ -43,9 +43,7 @@ int main(int argc, char** argv) {
                               builder);
         apps::add_report_light(scene, apps::LightKind::Sphere, options.power);
         scene.commit();
-        PathTracerSettings settings;
-        settings.max_depth = options.bounces;
-        PathTracer integrator(settings);
+        PathTracer integrator(apps::path_tracer_settings(options));
         return apps::render_and_write(scene, camera, integrator, options);
     });
 }

@@ -15,13 +15,9 @@ int main(int argc, char** argv) {
     apps::add_common_options(app, options);
     return apps::run(app, argc, argv, [&] {
         Scene scene;
-        apps::add_room(scene);
-        apps::add_report_spheres(scene);
-        apps::add_report_light(scene, apps::LightKind::Sphere, options.power);
+        apps::add_report_scene(scene, apps::LightKind::Sphere, options.power);
         scene.commit();
-        PathTracerSettings settings;
-        settings.max_depth = options.bounces;
-        PathTracer integrator(settings);
+        PathTracer integrator(apps::path_tracer_settings(options));
         return apps::render_and_write(scene, apps::camera_of(options), integrator, options);
     });
 }

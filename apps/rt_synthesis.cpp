@@ -32,9 +32,7 @@ int main(int argc, char** argv) {
             Material::diffuse({0.9f, 0.6f, 0.3f}));
         apps::add_report_light(scene, apps::LightKind::Sphere, options.power);
         scene.commit();
-        PathTracerSettings settings;
-        settings.max_depth = options.bounces;
-        PathTracer integrator(settings);
+        PathTracer integrator(apps::path_tracer_settings(options));
         CameraSettings camera = apps::camera_of(options);
         camera.pixel_jitter = PixelJitter::Gaussian;
         camera.lens = LensModel::Gaussian;

@@ -101,6 +101,12 @@ MeshPlacement placement_of(const MeshOptions& o) {
     return p;
 }
 
+PathTracerSettings path_tracer_settings(const AppOptions& options) {
+    PathTracerSettings settings;
+    settings.max_depth = options.bounces;
+    return settings;
+}
+
 CameraSettings camera_of(const AppOptions& o) {
     return o.size > 0 ? report_camera(o.size, o.size) : report_camera(o.width, o.height);
 }

@@ -5,6 +5,7 @@
 #include <librt/render/camera.h>
 #include <librt/render/image.h>
 #include <librt/render/integrator.h>
+#include <librt/render/integrators.h>
 #include <librt/render/scene.h>
 
 #include <CLI/CLI.hpp>
@@ -53,6 +54,9 @@ void add_mesh_options(CLI::App& app, MeshOptions& options);
 
 /// The report's camera at the size given on the command line.
 [[nodiscard]] CameraSettings camera_of(const AppOptions& options);
+
+/// The path tracer's settings from the command line (--bounces).
+[[nodiscard]] PathTracerSettings path_tracer_settings(const AppOptions& options);
 
 /// Parses the command line and runs `body`. A librt::Error (or any other exception) is
 /// printed on stderr and gives exit code 1; command-line errors give CLI11's code.

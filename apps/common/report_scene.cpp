@@ -52,6 +52,12 @@ void add_report_light(Scene& scene, LightKind kind, float power) {
     }
 }
 
+void add_report_scene(Scene& scene, LightKind light, float power) {
+    add_room(scene);
+    add_report_spheres(scene);
+    add_report_light(scene, light, power);
+}
+
 CameraSettings report_camera(int width, int height) {
     CameraSettings s;  // the defaults are the report's camera
     s.width = width;

@@ -40,6 +40,9 @@ void add_report_spheres(Scene& scene);
 /// Adds the report's light of the given total power (same in every channel).
 void add_report_light(Scene& scene, LightKind kind, float power);
 
+/// The report's scene without a mesh: add_room, add_report_spheres, add_report_light.
+void add_report_scene(Scene& scene, LightKind light, float power);
+
 /// The report's camera: at (0, 0, 55) looking down -z, 60 degree vertical fov.
 [[nodiscard]] CameraSettings report_camera(int width, int height);
 
