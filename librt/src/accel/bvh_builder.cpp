@@ -1,3 +1,5 @@
+#include "core/parallel.h"
+
 #include <librt/accel/bvh_builder.h>
 #include <librt/core/error.h>
 
@@ -176,19 +178,30 @@ public:
     Bvh run() {
         const auto n = static_cast<std::uint32_t>(boxes_.size());
         if (n == 0) return {};
-        refs_.reset(new BuildRef[n]);
-        ids_.reset(new std::uint32_t[n]);
-        nodes_.reset(new RawNode[2 * std::size_t{n} - 1]);
+        refs_ = detail::make_large_buffer<BuildRef>(n);
+        ids_ = detail::make_large_buffer<std::uint32_t>(n);
+        nodes_ = detail::make_large_buffer<RawNode>(2 * std::size_t{n} - 1);
+        // The references and the root's bounds, in parallel parts merged in part order.
+        const unsigned parts = std::min(threads_, detail::threads_for(n));
+        std::vector<Box4> part_boxes(parts), part_centroids(parts);
+        detail::parallel_parts(n, parts, [&](unsigned p, std::size_t begin, std::size_t end) {
+            Box4 box, centroids;
+            for (std::size_t i = begin; i < end; ++i) {
+                BuildRef& r = refs_[i];
+                r.box = Box4{load3(boxes_[i].lo), load3(boxes_[i].hi)};
+                r.c = load3(centers_[i]);
+                ids_[i] = static_cast<std::uint32_t>(i);
+                box.grow(r.box);
+                centroids.grow(r.c, r.c);
+            }
+            part_boxes[p] = box;
+            part_centroids[p] = centroids;
+        });
         SahTask root{0, 0, n, 0, {}};
         Box4 root_box;
-        for (std::uint32_t i = 0; i < n; ++i) {
-            BuildRef& r = refs_[i];
-            r.box.lo = load3(boxes_[i].lo);
-            r.box.hi = load3(boxes_[i].hi);
-            r.c = load3(centers_[i]);
-            ids_[i] = i;
-            root_box.grow(r.box);
-            root.centroid_bounds.grow(r.c, r.c);
+        for (unsigned p = 0; p < parts; ++p) {
+            root_box.grow(part_boxes[p]);
+            root.centroid_bounds.grow(part_centroids[p]);
         }
         nodes_[0].box = root_box;
         next_node_ = 1;
@@ -427,9 +440,9 @@ private:
     unsigned threads_;
     std::vector<float> blocks_;  // B(n) = ceil(n / block_)
 
-    std::unique_ptr<BuildRef[]> refs_;
-    std::unique_ptr<std::uint32_t[]> ids_;  // primitive index of each ref
-    std::unique_ptr<RawNode[]> nodes_;
+    detail::LargeBuffer<BuildRef> refs_;
+    detail::LargeBuffer<std::uint32_t> ids_;  // primitive index of each ref
+    detail::LargeBuffer<RawNode> nodes_;
     std::atomic<std::uint32_t> next_node_{0};
 
     std::mutex mutex_;  // guards queue_ and pending_

@@ -1,3 +1,4 @@
+#include "core/parallel.h"
 #include "wide_kernels.h"
 
 #include <librt/accel/bvh_traversal.h>
@@ -5,6 +6,7 @@
 #include <librt/core/error.h>
 
 #include <atomic>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -16,15 +18,18 @@ namespace {
 /// small).
 template <class Body>
 void parallel_ranges(std::size_t n, Body&& body) {
-    const std::size_t threads = n < 65536 ? 1 : std::max(1u, std::thread::hardware_concurrency());
-    std::vector<std::thread> helpers;
-    for (std::size_t t = 1; t < threads; ++t)
-        helpers.emplace_back([&, t] { body(n * t / threads, n * (t + 1) / threads); });
-    body(0, n / threads);
-    for (std::thread& h : helpers) h.join();
+    detail::parallel_parts(n, detail::threads_for(n),
+                           [&](unsigned, std::size_t begin, std::size_t end) { body(begin, end); });
 }
 
-std::vector<Triangle> mesh_triangles(const TriangleMesh& mesh) {
+/// The mesh's triangles as a flat array, first touched by the threads that fill it.
+struct MeshTriangles {
+    detail::LargeBuffer<Triangle> data;
+    std::size_t count = 0;
+    [[nodiscard]] std::span<const Triangle> span() const { return {data.get(), count}; }
+};
+
+MeshTriangles mesh_triangles(const TriangleMesh& mesh) {
     // A bad index would read outside positions, a NaN corner would vanish from its box
     // (min and max drop NaN): refuse both. (Error and std::to_string come with
     // bvh_traversal.h.)
@@ -42,9 +47,11 @@ std::vector<Triangle> mesh_triangles(const TriangleMesh& mesh) {
                         " is out of range (" + std::to_string(n) + " positions)");
         }
     }
-    std::vector<Triangle> tris(mesh.triangle_count());
-    parallel_ranges(tris.size(), [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) tris[i] = mesh.triangle(i);
+    MeshTriangles tris{detail::make_large_buffer<Triangle>(mesh.triangle_count()),
+                       mesh.triangle_count()};
+    parallel_ranges(tris.count, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i)
+            std::construct_at(&tris.data[i], mesh.triangle(i));
     });
     return tris;
 }
@@ -103,7 +110,8 @@ struct TriangleBvh::BinaryView {
 };
 
 TriangleBvh::TriangleBvh(const TriangleMesh& mesh, BvhBuilder builder) {
-    build(mesh_triangles(mesh), builder);
+    const MeshTriangles tris = mesh_triangles(mesh);
+    build(tris.span(), builder);
 }
 
 TriangleBvh::TriangleBvh(std::span<const Triangle> triangles, BvhBuilder builder) {
@@ -111,12 +119,15 @@ TriangleBvh::TriangleBvh(std::span<const Triangle> triangles, BvhBuilder builder
 }
 
 void TriangleBvh::build(std::span<const Triangle> triangles, BvhBuilder builder) {
-    std::vector<BBox> boxes(triangles.size());
-    std::vector<glm::vec3> centers(triangles.size());
-    parallel_ranges(triangles.size(), [&](std::size_t begin, std::size_t end) {
+    const std::size_t n = triangles.size();
+    const detail::LargeBuffer<BBox> box_buffer = detail::make_large_buffer<BBox>(n);
+    const detail::LargeBuffer<glm::vec3> center_buffer = detail::make_large_buffer<glm::vec3>(n);
+    const std::span<BBox> boxes(box_buffer.get(), n);
+    const std::span<glm::vec3> centers(center_buffer.get(), n);
+    parallel_ranges(n, [&](std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) {
-            boxes[i] = librt::bounds(triangles[i]);
-            centers[i] = boxes[i].center();
+            std::construct_at(&boxes[i], librt::bounds(triangles[i]));
+            std::construct_at(&centers[i], boxes[i].center());
         }
     });
     const Bvh binary = builder == BvhBuilder::Median
@@ -163,7 +174,10 @@ std::size_t TriangleBvh::memory_bytes() const {
     return bytes;
 }
 
-TriangleList::TriangleList(const TriangleMesh& mesh) : triangles_(mesh_triangles(mesh)) {}
+TriangleList::TriangleList(const TriangleMesh& mesh) {
+    const MeshTriangles tris = mesh_triangles(mesh);
+    triangles_.assign(tris.span().begin(), tris.span().end());
+}
 
 TriangleList::TriangleList(std::span<const Triangle> triangles)
     : triangles_(triangles.begin(), triangles.end()) {}

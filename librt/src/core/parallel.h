@@ -1,0 +1,58 @@
+#pragma once
+
+// Internal helpers for the builders' data-parallel loops and scratch arrays.
+
+#include <librt/core/large_page_allocator.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <memory>
+#include <thread>
+#include <type_traits>
+#include <vector>
+
+namespace librt::detail {
+
+/// Runs body(part, begin, end) over [0, n) cut into `parts` contiguous pieces, one thread
+/// each (the calling thread takes part 0); inline when parts is 1. Part p covers
+/// [n p / parts, n (p + 1) / parts), so the split depends only on n and parts.
+template <class Body>
+void parallel_parts(std::size_t n, unsigned parts, Body&& body) {
+    parts = std::max(1u, parts);
+    std::vector<std::thread> helpers;
+    helpers.reserve(parts - 1);
+    for (unsigned p = 1; p < parts; ++p)
+        helpers.emplace_back([&, p] { body(p, n * p / parts, n * (p + 1) / parts); });
+    body(0u, std::size_t{0}, n / parts);
+    for (std::thread& h : helpers) h.join();
+}
+
+/// How many threads a loop over n items gets: one below `grain` items (thread start-up
+/// costs more than it saves), else every hardware thread.
+[[nodiscard]] inline unsigned threads_for(std::size_t n, std::size_t grain = 65536) {
+    return n < grain ? 1u : std::max(1u, std::thread::hardware_concurrency());
+}
+
+/// Frees a LargeBuffer.
+template <class T>
+struct LargeFree {
+    std::size_t count = 0;
+    void operator()(T* p) const noexcept { LargePageAllocator<T>().deallocate(p, count); }
+};
+
+/// An uninitialised array on (transparent) huge pages, for build-time scratch arrays of
+/// tens of megabytes: on 4 KiB pages the kernel's page faults on first touch cost about a
+/// tenth of a large build. T must be trivially destructible; elements are created with
+/// std::construct_at (or, for implicit-lifetime aggregates, by assignment).
+template <class T>
+requires std::is_trivially_destructible_v<T>
+using LargeBuffer = std::unique_ptr<T[], LargeFree<T>>;
+
+/// A LargeBuffer of `count` elements, not initialised.
+template <class T>
+[[nodiscard]] LargeBuffer<T> make_large_buffer(std::size_t count) {
+    return LargeBuffer<T>(LargePageAllocator<T>().allocate(std::max<std::size_t>(count, 1)),
+                          LargeFree<T>{std::max<std::size_t>(count, 1)});
+}
+
+}  // namespace librt::detail
