@@ -1,6 +1,7 @@
 #pragma once
 
 #include <librt/accel/bvh.h>
+#include <librt/export.h>
 #include <librt/geometry/bbox.h>
 
 #include <glm/vec3.hpp>
@@ -41,15 +42,17 @@ enum class BvhBuilder { Median, Sah };
 // than kMaxBvhDepth (a node at that depth becomes a leaf, however many primitives it has).
 
 /// Builds with the report's median split. boxes[i] and centers[i] describe primitive i.
-[[nodiscard]] Bvh build_median_bvh(std::span<const BBox> boxes, std::span<const glm::vec3> centers,
-                                   const MedianSplitConfig& config = {});
+[[nodiscard]] LIBRT_API Bvh build_median_bvh(std::span<const BBox> boxes,
+                                             std::span<const glm::vec3> centers,
+                                             const MedianSplitConfig& config = {});
 
 /// Builds with binned SAH. boxes[i] and centers[i] describe primitive i.
-[[nodiscard]] Bvh build_sah_bvh(std::span<const BBox> boxes, std::span<const glm::vec3> centers,
-                                const SahConfig& config = {});
+[[nodiscard]] LIBRT_API Bvh build_sah_bvh(std::span<const BBox> boxes,
+                                          std::span<const glm::vec3> centers,
+                                          const SahConfig& config = {});
 
 /// Builds with the chosen builder and its default settings.
-[[nodiscard]] Bvh build_bvh(BvhBuilder builder, std::span<const BBox> boxes,
-                            std::span<const glm::vec3> centers);
+[[nodiscard]] LIBRT_API Bvh build_bvh(BvhBuilder builder, std::span<const BBox> boxes,
+                                      std::span<const glm::vec3> centers);
 
 }  // namespace librt

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <librt/export.h>
+
 #include <cstdint>
 #include <vector>
 
@@ -18,17 +20,17 @@ enum class SimdPath : std::uint8_t {
 };
 
 /// "scalar", "sse", "avx2" or "avx512".
-[[nodiscard]] const char* to_string(SimdPath path);
+[[nodiscard]] LIBRT_API const char* to_string(SimdPath path);
 
 /// True when the kernel for `path` is compiled in and the CPU and OS support it.
-[[nodiscard]] bool simd_path_supported(SimdPath path);
+[[nodiscard]] LIBRT_API bool simd_path_supported(SimdPath path);
 
 /// Every supported path, Scalar first, best last.
-[[nodiscard]] std::vector<SimdPath> supported_simd_paths();
+[[nodiscard]] LIBRT_API std::vector<SimdPath> supported_simd_paths();
 
 /// The path new objects start with: the best supported one, unless the environment
 /// variable LIBRT_SIMD names another supported path (scalar, sse, avx2, avx512; auto or
 /// unset = best). Read once, at the first call.
-[[nodiscard]] SimdPath default_simd_path();
+[[nodiscard]] LIBRT_API SimdPath default_simd_path();
 
 }  // namespace librt

@@ -4,6 +4,7 @@
 #include <librt/accel/bvh_builder.h>
 #include <librt/accel/simd.h>
 #include <librt/accel/wide_bvh.h>
+#include <librt/export.h>
 #include <librt/geometry/hit.h>
 #include <librt/geometry/mesh.h>
 #include <librt/geometry/ray.h>
@@ -18,14 +19,14 @@ namespace librt {
 
 /// The binned-SAH settings TriangleBvh builds with (BvhBuilder::Sah): leaves are costed
 /// in blocks of kTriangleBlockSize triangles and hold at most two blocks.
-[[nodiscard]] SahConfig triangle_sah_config();
+[[nodiscard]] LIBRT_API SahConfig triangle_sah_config();
 
 /// Closest-hit and any-hit queries over a triangle mesh through an 8-wide BVH (collapsed
 /// from the chosen binary builder's tree) whose leaves hold the triangles in blocks of four,
 /// tested with SIMD kernels picked at run time (see simd.h). Hits report the mesh's own
 /// triangle index and the exact t of triangle.h's watertight test, whatever the path.
 /// Queries may run concurrently from any number of threads (set_simd_path aside).
-class TriangleBvh {
+class LIBRT_API TriangleBvh {
 public:
     TriangleBvh() = default;
     /// Builds over all triangles of the mesh. Throws librt::Error for an index out of
@@ -74,7 +75,7 @@ private:
 
 /// The naive alternative with the same interface: tests every triangle for every ray.
 /// Kept for tests (ground truth) and benchmarks (the thing a BVH must beat).
-class TriangleList {
+class LIBRT_API TriangleList {
 public:
     TriangleList() = default;
     explicit TriangleList(const TriangleMesh& mesh);

@@ -2,6 +2,7 @@
 
 #include <librt/accel/bvh.h>
 #include <librt/core/large_page_allocator.h>
+#include <librt/export.h>
 #include <librt/geometry/bbox.h>
 #include <librt/geometry/hit.h>
 #include <librt/geometry/triangle.h>
@@ -113,11 +114,12 @@ struct WideBvh {
 /// it has eight (the usual greedy collapse, as in Embree's and Ylitie et al.'s wide BVHs).
 /// triangles[i] is primitive i of the binary BVH. Leaves larger than kMaxLeafBlocks
 /// blocks (the median builder's degenerate leaves) are split into extra nodes.
-[[nodiscard]] WideBvh collapse_to_wide(const Bvh& bvh, std::span<const Triangle> triangles);
+[[nodiscard]] LIBRT_API WideBvh collapse_to_wide(const Bvh& bvh,
+                                                 std::span<const Triangle> triangles);
 
 /// The binary BVH a wide one was collapsed from, rebuilt from WideBvh::shapes: the same
 /// nodes, bounds and leaves (a leaf's slots index prim_indices, which lists the triangle ids
 /// in block order), in O(nodes) time.
-[[nodiscard]] Bvh expand_to_binary(const WideBvh& wide);
+[[nodiscard]] LIBRT_API Bvh expand_to_binary(const WideBvh& wide);
 
 }  // namespace librt

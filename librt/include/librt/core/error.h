@@ -1,5 +1,7 @@
 #pragma once
 
+#include <librt/export.h>
+
 #include <stdexcept>
 #include <string>
 
@@ -8,7 +10,7 @@ namespace librt {
 /// The one exception type librt throws: bad input (a file, a parameter) or a
 /// resource it cannot get. The message names what was wrong, e.g.
 /// "bunny.obj:12: face index 0 is out of range" or "spp = -1: must be >= 1".
-class Error : public std::runtime_error {
+class LIBRT_API Error : public std::runtime_error {
 public:
     explicit Error(const std::string& message) : std::runtime_error(message) {}
 };

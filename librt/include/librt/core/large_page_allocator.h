@@ -1,17 +1,21 @@
 #pragma once
 
+#include <librt/export.h>
+
 #include <cstddef>
 #include <new>
 
 namespace librt {
 
 namespace detail {
+// Exported although internal: LargePageAllocator below is inline and calls them from the
+// user's code (e.g. when a WideBvh is copied or destroyed there).
 /// Allocates `bytes` aligned to `alignment`; large blocks go on 2 MiB boundaries and are
 /// advised to use transparent huge pages (Linux), which spares random accesses into big
 /// acceleration structures most of their TLB misses. Throws std::bad_alloc.
-[[nodiscard]] void* allocate_large(std::size_t bytes, std::size_t alignment);
+[[nodiscard]] LIBRT_API void* allocate_large(std::size_t bytes, std::size_t alignment);
 /// Frees what allocate_large returned for the same `bytes` and `alignment`.
-void deallocate_large(void* p, std::size_t bytes, std::size_t alignment) noexcept;
+LIBRT_API void deallocate_large(void* p, std::size_t bytes, std::size_t alignment) noexcept;
 }  // namespace detail
 
 /// A std::allocator replacement for big arrays that are read at random (BVH nodes, leaf

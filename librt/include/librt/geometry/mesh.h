@@ -1,5 +1,6 @@
 #pragma once
 
+#include <librt/export.h>
 #include <librt/geometry/bbox.h>
 #include <librt/geometry/triangle.h>
 
@@ -28,7 +29,7 @@ struct MeshMaterial {
 
 /// An indexed triangle mesh. Per-vertex attributes share the positions' indexing;
 /// optional arrays are either empty or exactly as long as the array they annotate.
-struct TriangleMesh {
+struct LIBRT_API TriangleMesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::uvec3> triangles;        ///< three indices into positions per triangle
     std::vector<glm::vec3> normals;           ///< optional, one per position
@@ -53,17 +54,18 @@ struct TriangleMesh {
 /// mesh untouched, if an entry is not finite, the bottom row is not (0 0 0 1), or the mesh
 /// has normals and the matrix is singular. (Positions that overflow to infinity under a
 /// huge scale are not checked here: validate() reports them.)
-void transform(TriangleMesh& mesh, const glm::mat4& matrix);
+LIBRT_API void transform(TriangleMesh& mesh, const glm::mat4& matrix);
 
 /// Scale, then rotate (angles in degrees about x, then y, then z), then translate:
 /// the report's "scaled by 20 and moved by (0, -10, 0)". Throws librt::Error naming the
 /// argument when one is not finite.
-[[nodiscard]] glm::mat4 make_transform(const glm::vec3& scale, const glm::vec3& rotation_degrees,
-                                       const glm::vec3& translation);
+[[nodiscard]] LIBRT_API glm::mat4 make_transform(const glm::vec3& scale,
+                                                 const glm::vec3& rotation_degrees,
+                                                 const glm::vec3& translation);
 
 /// Throws librt::Error naming the problem (and the offending index) when triangle or material
 /// indices are out of range, optional arrays have the wrong length, or positions, normals or
 /// uvs are not finite.
-void validate(const TriangleMesh& mesh);
+LIBRT_API void validate(const TriangleMesh& mesh);
 
 }  // namespace librt

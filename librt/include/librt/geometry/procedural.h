@@ -1,5 +1,6 @@
 #pragma once
 
+#include <librt/export.h>
 #include <librt/geometry/mesh.h>
 
 #include <glm/vec3.hpp>
@@ -18,23 +19,24 @@ inline constexpr std::uint64_t kMaxProceduralVertices = std::uint64_t{1} << 26u;
 /// (rings + 1)(segments + 1) vertices (seam and poles repeated for the uvs) and
 /// 2 segments (rings - 1) triangles (none degenerate). Throws librt::Error naming the parameter
 /// on bad parameters (segments and rings at most 2^15, at most kMaxProceduralVertices vertices).
-[[nodiscard]] TriangleMesh make_uv_sphere(const glm::vec3& center, float radius, int segments,
-                                          int rings);
+[[nodiscard]] LIBRT_API TriangleMesh make_uv_sphere(const glm::vec3& center, float radius,
+                                                    int segments, int rings);
 
 /// An icosahedron subdivided `subdivisions` times (0..10), every vertex on the sphere:
 /// 10 * 4^s + 2 vertices and 20 * 4^s triangles, with unit outward normals and no uvs.
 /// Throws librt::Error on bad parameters.
-[[nodiscard]] TriangleMesh make_icosphere(const glm::vec3& center, float radius, int subdivisions);
+[[nodiscard]] LIBRT_API TriangleMesh make_icosphere(const glm::vec3& center, float radius,
+                                                    int subdivisions);
 
 /// The parallelogram corner, corner + edge_u, corner + edge_u + edge_v, corner + edge_v as two
 /// triangles facing edge_u x edge_v, with that unit normal and uvs (0,0) (1,0) (1,1) (0,1).
 /// Throws librt::Error if the edges are parallel or zero.
-[[nodiscard]] TriangleMesh make_quad(const glm::vec3& corner, const glm::vec3& edge_u,
-                                     const glm::vec3& edge_v);
+[[nodiscard]] LIBRT_API TriangleMesh make_quad(const glm::vec3& corner, const glm::vec3& edge_u,
+                                               const glm::vec3& edge_v);
 
 /// The axis-aligned box [lo, hi] as 12 outward-facing triangles, 4 vertices per face so each
 /// face has its own flat normal and (0..1)^2 uvs. Throws librt::Error unless lo < hi.
-[[nodiscard]] TriangleMesh make_box(const glm::vec3& lo, const glm::vec3& hi);
+[[nodiscard]] LIBRT_API TriangleMesh make_box(const glm::vec3& lo, const glm::vec3& hi);
 
 /// Patches in the Utah teapot: rim 4, body 8, handle 4, spout 4, lid 8, bottom 4.
 inline constexpr int teapot_patch_count = 32;
@@ -63,14 +65,14 @@ inline constexpr int teapot_patch_count = 32;
 ///   Coarse grids may fall slightly inside these bounds, never outside.
 /// Throws librt::Error if tessellation is out of range or the mesh would have more than
 /// kMaxProceduralVertices vertices (tessellation above 1447).
-[[nodiscard]] TriangleMesh make_teapot(int tessellation);
+[[nodiscard]] LIBRT_API TriangleMesh make_teapot(int tessellation);
 
 /// The smallest tessellation n with teapot_triangle_count(n) >= target triangles, i.e.
 /// ceil(sqrt(target / 64)), at least 1. Throws librt::Error if it would exceed 4096.
-[[nodiscard]] int teapot_tessellation_for(std::size_t target);
+[[nodiscard]] LIBRT_API int teapot_tessellation_for(std::size_t target);
 
 /// make_teapot(teapot_tessellation_for(target)): at least `target` triangles, e.g. for
 /// benchmarks at 1k, 10k, ... 1M+ triangles.
-[[nodiscard]] TriangleMesh make_teapot_with_triangles(std::size_t target);
+[[nodiscard]] LIBRT_API TriangleMesh make_teapot_with_triangles(std::size_t target);
 
 }  // namespace librt

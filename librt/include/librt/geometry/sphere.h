@@ -1,5 +1,6 @@
 #pragma once
 
+#include <librt/export.h>
 #include <librt/geometry/bbox.h>
 #include <librt/geometry/ray.h>
 
@@ -20,7 +21,7 @@ struct Sphere {
 /// Both roots are considered, so a ray starting inside hits the far side.
 /// Solved in double with the cancellation-free quadratic: the report's walls are
 /// huge, and float loses the root's digits there.
-[[nodiscard]] std::optional<float> intersect(const Sphere& sphere, const Ray& ray);
+[[nodiscard]] LIBRT_API std::optional<float> intersect(const Sphere& sphere, const Ray& ray);
 
 /// Bounding box of a sphere.
 [[nodiscard]] inline BBox bounds(const Sphere& s) {
@@ -28,9 +29,9 @@ struct Sphere {
 }
 
 /// Outward unit normal at a point on the sphere.
-[[nodiscard]] glm::vec3 normal_at(const Sphere& sphere, const glm::vec3& point);
+[[nodiscard]] LIBRT_API glm::vec3 normal_at(const Sphere& sphere, const glm::vec3& point);
 
 /// Spherical (u, v) in [0,1]^2 of a point on the sphere: u = azimuth around +y, v = polar from +y.
-[[nodiscard]] glm::vec2 sphere_uv(const Sphere& sphere, const glm::vec3& point);
+[[nodiscard]] LIBRT_API glm::vec2 sphere_uv(const Sphere& sphere, const glm::vec3& point);
 
 }  // namespace librt

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <librt/export.h>
 #include <librt/render/image.h>
 #include <librt/render/tone_map.h>
 
@@ -13,25 +14,26 @@
 namespace librt {
 
 /// 8-bit RGB PNG of the image tone-mapped by `tone_map` (stb_image_write).
-void write_png(const std::filesystem::path& path, const Image& image, const ToneMap& tone_map = {});
+LIBRT_API void write_png(const std::filesystem::path& path, const Image& image,
+                         const ToneMap& tone_map = {});
 
 /// Linear float RGB PFM (Portable Float Map): "PF", little-endian (scale -1), rows
 /// bottom to top as the format specifies. Values are written bit for bit.
-void write_pfm(const std::filesystem::path& path, const Image& image);
+LIBRT_API void write_pfm(const std::filesystem::path& path, const Image& image);
 
 /// Reads a PFM: colour ("PF") or greyscale ("Pf", copied to all three channels), either
 /// byte order; rows are returned top row first. Throws librt::Error naming the file
 /// when it is missing, malformed or truncated.
-[[nodiscard]] Image read_pfm(const std::filesystem::path& path);
+[[nodiscard]] LIBRT_API Image read_pfm(const std::filesystem::path& path);
 
 /// Linear Radiance RGBE (.hdr) via stb_image_write.
-void write_hdr(const std::filesystem::path& path, const Image& image);
+LIBRT_API void write_hdr(const std::filesystem::path& path, const Image& image);
 
 /// Chooses the format by extension (case-insensitive): ".png" is tone-mapped with
 /// `tone_map`; ".pfm" and ".hdr" stay linear but are multiplied by tone_map.exposure
 /// (no gamma, no clamp), so that 1.0 is display white in HDR viewers. Any other
 /// extension throws librt::Error naming the path.
-void write_image(const std::filesystem::path& path, const Image& image,
-                 const ToneMap& tone_map = {});
+LIBRT_API void write_image(const std::filesystem::path& path, const Image& image,
+                           const ToneMap& tone_map = {});
 
 }  // namespace librt

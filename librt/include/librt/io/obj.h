@@ -1,5 +1,6 @@
 #pragma once
 
+#include <librt/export.h>
 #include <librt/geometry/mesh.h>
 
 #include <glm/mat4x4.hpp>
@@ -49,13 +50,13 @@ struct ObjLoadOptions {
 ///   (an empty mesh). A UTF-8 byte order mark is skipped. Lines may end in LF, CRLF or CR,
 ///   the last one with or without a newline, and be of any length.
 /// - A missing MTL file is a warning, not an error: the faces get the default material.
-[[nodiscard]] TriangleMesh load_obj(const std::filesystem::path& path,
-                                    const ObjLoadOptions& options = {});
+[[nodiscard]] LIBRT_API TriangleMesh load_obj(const std::filesystem::path& path,
+                                              const ObjLoadOptions& options = {});
 
 /// Writes a mesh as OBJ (v, vt, vn, f with 1-based v/vt/vn triplets, exact float round trip),
 /// plus an MTL named after it (same stem, ".mtl") when the mesh has materials. Each file is
 /// written to a temporary name beside it and renamed, so readers never see half a file.
 /// Throws librt::Error naming the path when the mesh is invalid or a file cannot be written.
-void save_obj(const TriangleMesh& mesh, const std::filesystem::path& path);
+LIBRT_API void save_obj(const TriangleMesh& mesh, const std::filesystem::path& path);
 
 }  // namespace librt

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <librt/export.h>
 #include <librt/geometry/ray.h>
 #include <librt/render/sampler.h>
 
@@ -42,7 +43,7 @@ struct CameraSettings {
 /// (j - W/2 + 0.5 + dx, -i + H/2 - 0.5 + dy, -H / (2 tan(fov/2))), rotated into the
 /// world by the look-at basis. Immutable after construction; safe to share across
 /// threads.
-class Camera {
+class LIBRT_API Camera {
 public:
     /// Validates the settings; throws librt::Error naming the first bad parameter and
     /// its value.

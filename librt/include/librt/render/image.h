@@ -1,5 +1,7 @@
 #pragma once
 
+#include <librt/export.h>
+
 #include <glm/vec3.hpp>
 
 #include <cstddef>
@@ -10,7 +12,7 @@ namespace librt {
 
 /// A film of linear RGB radiance, row-major with the top row first (pixel (x, y) =
 /// column x, row y, as the camera numbers them).
-struct Image {
+struct LIBRT_API Image {
     int width = 0;                  ///< pixels per row
     int height = 0;                 ///< number of rows
     std::vector<glm::vec3> pixels;  ///< width * height values, top row first
@@ -39,6 +41,6 @@ struct Image {
 /// Throws librt::Error naming the size when a width x height film is invalid (negative
 /// side) or larger than Image::k_max_bytes (for any sides, no overflow); does nothing
 /// otherwise.
-void check_image_size(long long width, long long height);
+LIBRT_API void check_image_size(long long width, long long height);
 
 }  // namespace librt

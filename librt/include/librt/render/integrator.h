@@ -1,5 +1,6 @@
 #pragma once
 
+#include <librt/export.h>
 #include <librt/geometry/ray.h>
 #include <librt/render/sampler.h>
 
@@ -12,7 +13,7 @@ class Scene;
 /// Estimates the radiance arriving along a camera ray: the one place where rendering
 /// algorithms differ, hence the one virtual interface of the renderer. Implementations
 /// are immutable during a render and called from many threads at once.
-class Integrator {
+class LIBRT_API Integrator {
 public:
     virtual ~Integrator() = default;
     /// Called once before a render, e.g. to inspect the scene's lights.

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <librt/export.h>
 #include <librt/render/integrator.h>
 
 #include <atomic>
@@ -19,7 +20,7 @@ namespace librt {
 /// Common base: guards every estimate against NaN and Inf. A non-finite sample is
 /// replaced by 0 and counted (atomically, as li() runs on many threads); a debug build
 /// also asserts, since it means a bug or a degenerate scene.
-class GuardedIntegrator : public Integrator {
+class LIBRT_API GuardedIntegrator : public Integrator {
 public:
     /// How many samples were non-finite and replaced by 0 since construction.
     [[nodiscard]] std::uint64_t nonfinite_count() const {
@@ -43,7 +44,7 @@ struct DirectLightingSettings {
 /// shadow ray, I cos(theta) / d^2 * albedo / pi) plus one cone sample of every sphere
 /// light; no indirect diffuse light. Mirrors and glass are followed up to max_depth;
 /// emitters seen directly or through mirrors and glass show their radiance.
-class DirectLighting final : public GuardedIntegrator {
+class LIBRT_API DirectLighting final : public GuardedIntegrator {
 public:
     /// Throws librt::Error naming max_depth when it is outside [0, 1000].
     explicit DirectLighting(const DirectLightingSettings& settings = {});
@@ -73,7 +74,7 @@ struct PathTracerSettings {
 /// one seen by the camera or through mirrors and glass adds its radiance; emitters that
 /// are not sphere lights (emissive meshes, glowing diffuse surfaces) are not sampled, so
 /// they always count when hit.
-class PathTracer final : public GuardedIntegrator {
+class LIBRT_API PathTracer final : public GuardedIntegrator {
 public:
     /// Throws librt::Error naming max_depth or russian_roulette_depth when out of range.
     explicit PathTracer(const PathTracerSettings& settings = {});
@@ -91,7 +92,7 @@ private:
 /// lights and emissive surfaces, only more slowly. Point lights contribute NOTHING: a
 /// point has no area, so no sampled direction ever hits it (with point lights only it
 /// renders black), which is why it is the ground truth only for area lights.
-class BruteForcePathTracer final : public GuardedIntegrator {
+class LIBRT_API BruteForcePathTracer final : public GuardedIntegrator {
 public:
     /// Throws librt::Error naming max_depth or russian_roulette_depth when out of range.
     explicit BruteForcePathTracer(const PathTracerSettings& settings = {});
@@ -111,7 +112,7 @@ enum class DebugView : std::uint8_t {
 };
 
 /// Debug view of the first surface hit; black where nothing is hit.
-class AlbedoNormalIntegrator final : public GuardedIntegrator {
+class LIBRT_API AlbedoNormalIntegrator final : public GuardedIntegrator {
 public:
     /// Shows the given view.
     explicit AlbedoNormalIntegrator(DebugView view = DebugView::Albedo) : view_(view) {}

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <librt/export.h>
 #include <librt/geometry/sphere.h>
 #include <librt/sampling/warp.h>
 
@@ -48,10 +49,10 @@ struct SphereLight {
 
 /// Throws librt::Error naming the parameter and value if position or intensity is not
 /// finite or intensity is negative.
-void validate(const PointLight& light);
+LIBRT_API void validate(const PointLight& light);
 
 /// Throws librt::Error naming the parameter and value if the sphere is not finite, its
 /// radius is not > 0, or the radiance is negative or not finite.
-void validate(const SphereLight& light);
+LIBRT_API void validate(const SphereLight& light);
 
 }  // namespace librt

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <librt/export.h>
+
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -21,7 +23,7 @@ enum class MaterialKind : std::uint8_t {
 ///
 /// Emission is honoured for every kind (a diffuse surface may also glow, which the white
 /// furnace test uses); Emissive only adds "reflects nothing".
-struct Material {
+struct LIBRT_API Material {
     MaterialKind kind = MaterialKind::Diffuse;  ///< which branch of the integrators applies
     /// Diffuse reflectance in [0, 1] per channel, or the tint of a mirror or dielectric
     /// (1 = colourless). Unused by Emissive.
@@ -60,6 +62,6 @@ struct Material {
 /// Throws librt::Error naming the parameter and its value when an albedo component is
 /// outside [0, 1] (or NaN), emission has a negative or non-finite component, ior is not
 /// finite and positive, or albedo_texture is below -1.
-void validate(const Material& material);
+LIBRT_API void validate(const Material& material);
 
 }  // namespace librt

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <librt/export.h>
 #include <librt/render/camera.h>
 #include <librt/render/image.h>
 #include <librt/render/integrator.h>
@@ -33,7 +34,7 @@ struct RenderStats {
 };
 
 /// Throws librt::Error naming the first bad parameter of `settings` and its value.
-void validate(const RenderSettings& settings);
+LIBRT_API void validate(const RenderSettings& settings);
 
 /// Renders `scene` through `camera` with `integrator`: calls integrator.preprocess(scene),
 /// then threads take tiles from an atomic counter. Sample s of pixel (x, y) uses
@@ -45,7 +46,8 @@ void validate(const RenderSettings& settings);
 /// and stats->cancelled is set. Throws librt::Error for invalid settings or a film too
 /// large to allocate (before allocating it); an exception thrown by the integrator stops
 /// the render and is rethrown.
-[[nodiscard]] Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
-                           const RenderSettings& settings, RenderStats* stats = nullptr);
+[[nodiscard]] LIBRT_API Image render(const Scene& scene, const Camera& camera,
+                                     Integrator& integrator, const RenderSettings& settings,
+                                     RenderStats* stats = nullptr);
 
 }  // namespace librt

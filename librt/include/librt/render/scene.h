@@ -2,6 +2,7 @@
 
 #include <librt/accel/bvh.h>
 #include <librt/accel/triangle_bvh.h>
+#include <librt/export.h>
 #include <librt/geometry/bbox.h>
 #include <librt/geometry/hit.h>
 #include <librt/geometry/mesh.h>
@@ -83,7 +84,7 @@ inline constexpr float kRayOffsetAbsolute = 0x1p-20f;
 ///
 /// Any add_* after commit() un-commits the scene; queries then throw until commit() runs
 /// again. A committed scene is immutable and may be queried from many threads at once.
-class Scene {
+class LIBRT_API Scene {
 public:
     /// Adds a material (validated) and returns its id.
     std::uint32_t add_material(const Material& material);

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <librt/export.h>
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -14,7 +16,7 @@ namespace librt {
 /// Lookups use OBJ texture coordinates: u runs left to right and v bottom to top (the
 /// image's first row is v = 1), both wrapping around (repeat), with bilinear filtering
 /// between the four nearest texel centres.
-class ImageTexture {
+class LIBRT_API ImageTexture {
 public:
     ImageTexture() = default;
     /// A texture from linear texels in row-major order, top row first; throws
@@ -53,6 +55,6 @@ private:
 
 /// The sRGB transfer function inverted (IEC 61966-2-1): c / 12.92 below 0.04045, else
 /// ((c + 0.055) / 1.055)^2.4, for c in [0, 1].
-[[nodiscard]] float srgb_to_linear(float c);
+[[nodiscard]] LIBRT_API float srgb_to_linear(float c);
 
 }  // namespace librt

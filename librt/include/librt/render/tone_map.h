@@ -1,5 +1,6 @@
 #pragma once
 
+#include <librt/export.h>
 #include <librt/render/image.h>
 
 #include <cstdint>
@@ -18,14 +19,15 @@ struct ToneMap {
 };
 
 /// Throws librt::Error naming the parameter when exposure or gamma is out of range.
-void validate(const ToneMap& tone_map);
+LIBRT_API void validate(const ToneMap& tone_map);
 
 /// One channel: 255 * clamp(exposure * L, 0, 1)^gamma, rounded to nearest; NaN gives 0.
 /// Does not validate `tone_map`.
-[[nodiscard]] std::uint8_t tone_map_channel(float radiance, const ToneMap& tone_map);
+[[nodiscard]] LIBRT_API std::uint8_t tone_map_channel(float radiance, const ToneMap& tone_map);
 
 /// The whole image as 8-bit RGB, width * height * 3 bytes, top row first.
 /// Validates `tone_map` first.
-[[nodiscard]] std::vector<std::uint8_t> to_rgb8(const Image& image, const ToneMap& tone_map);
+[[nodiscard]] LIBRT_API std::vector<std::uint8_t> to_rgb8(const Image& image,
+                                                          const ToneMap& tone_map);
 
 }  // namespace librt

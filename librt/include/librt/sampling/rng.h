@@ -1,5 +1,7 @@
 #pragma once
 
+#include <librt/export.h>
+
 #include <glm/vec2.hpp>
 
 #include <cstdint>
@@ -16,7 +18,7 @@ namespace librt {
 /// Small (16 bytes), fast, statistically strong, and each of its 2^63 streams
 /// (selected by the odd increment) is an independent sequence of period 2^64.
 /// Renderers should get one from make_sample_rng(), never share one across threads.
-class Pcg32 {
+class LIBRT_API Pcg32 {
 public:
     /// A fixed default stream, for tests and tools; renders use make_sample_rng().
     Pcg32() : Pcg32(0x853c49e6748fea9bULL, 0xda3e39cb94b95bdbULL) {}
@@ -68,7 +70,7 @@ private:
 /// seed) are hashed through the splitmix64 finaliser into the PCG state and stream, so
 /// a pixel's samples never depend on which thread draws them or in which order, and
 /// neighbouring pixels or samples get unrelated streams rather than shifted copies.
-[[nodiscard]] Pcg32 make_sample_rng(std::uint32_t pixel_x, std::uint32_t pixel_y,
-                                    std::uint32_t sample_index, std::uint64_t seed);
+[[nodiscard]] LIBRT_API Pcg32 make_sample_rng(std::uint32_t pixel_x, std::uint32_t pixel_y,
+                                              std::uint32_t sample_index, std::uint64_t seed);
 
 }  // namespace librt

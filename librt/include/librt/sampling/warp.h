@@ -1,5 +1,7 @@
 #pragma once
 
+#include <librt/export.h>
+
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -88,7 +90,7 @@ struct Frame {
 /// Uniform direction in the cone of half-angle theta_max around +z (cos theta uniform in
 /// [cos_theta_max, 1]). For a cone known by its sin^2, sample_sphere_visible keeps more
 /// digits; here 1 - cos_theta_max is taken as given.
-[[nodiscard]] glm::vec3 sample_uniform_cone(glm::vec2 u, float cos_theta_max);
+[[nodiscard]] LIBRT_API glm::vec3 sample_uniform_cone(glm::vec2 u, float cos_theta_max);
 
 /// Density per solid angle of sample_uniform_cone: 1 / (2 pi (1 - cos_theta_max)), the
 /// inverse of the cone's solid angle.
@@ -98,7 +100,7 @@ struct Frame {
 
 /// Uniform point on the unit disk by Shirley and Chiu's concentric map: squares of
 /// [-1,1]^2 become rings, so strata stay compact and adjacent (unlike sqrt(u1), 2 pi u2).
-[[nodiscard]] glm::vec2 sample_uniform_disk_concentric(glm::vec2 u);
+[[nodiscard]] LIBRT_API glm::vec2 sample_uniform_disk_concentric(glm::vec2 u);
 
 /// Density per unit area of sample_uniform_disk_concentric: 1 / pi.
 [[nodiscard]] constexpr float uniform_disk_pdf() { return k_inv_pi; }
@@ -120,7 +122,8 @@ struct SphereSample {
 };
 
 /// Uniform point on the whole sphere surface; pdf per unit AREA = 1 / (4 pi r^2).
-[[nodiscard]] SphereSample sample_sphere_area(const glm::vec3& center, float radius, glm::vec2 u);
+[[nodiscard]] LIBRT_API SphereSample sample_sphere_area(const glm::vec3& center, float radius,
+                                                        glm::vec2 u);
 
 /// A point on the part of a sphere visible from ref, found by sampling the cone of
 /// directions the sphere subtends at ref uniformly; pdf per unit SOLID ANGLE at ref,
@@ -128,8 +131,8 @@ struct SphereSample {
 /// When ref is inside (or on) the sphere there is no cone: the point is sampled uniformly
 /// over the area and the pdf converted to solid angle (dist^2 / (|cos| 4 pi r^2)), 0 if
 /// degenerate. The normal is outward, so from inside it faces away from ref.
-[[nodiscard]] SphereSample sample_sphere_visible(const glm::vec3& center, float radius,
-                                                 const glm::vec3& ref, glm::vec2 u);
+[[nodiscard]] LIBRT_API SphereSample sample_sphere_visible(const glm::vec3& center, float radius,
+                                                           const glm::vec3& ref, glm::vec2 u);
 
 /// A direction from a point toward a sphere, and how far the sphere is along it.
 struct SphereDirectionSample {
@@ -143,12 +146,14 @@ struct SphereDirectionSample {
 /// point nor its normal is built (from outside, 4 square roots and 3 divisions instead
 /// of the 10 and 10 that the point, its normal and the shadow ray toward it cost). From
 /// inside (or on) the sphere it falls back to sample_sphere_visible.
-[[nodiscard]] SphereDirectionSample sample_sphere_direction(const glm::vec3& center, float radius,
-                                                            const glm::vec3& ref, glm::vec2 u);
+[[nodiscard]] LIBRT_API SphereDirectionSample sample_sphere_direction(const glm::vec3& center,
+                                                                      float radius,
+                                                                      const glm::vec3& ref,
+                                                                      glm::vec2 u);
 
 /// The density per solid angle at ref with which sample_sphere_visible picks direction
 /// wi (unit length), for weighting lights against BSDF samples; 0 if wi misses the sphere.
-[[nodiscard]] float sphere_visible_pdf(const glm::vec3& center, float radius, const glm::vec3& ref,
-                                       const glm::vec3& wi);
+[[nodiscard]] LIBRT_API float sphere_visible_pdf(const glm::vec3& center, float radius,
+                                                 const glm::vec3& ref, const glm::vec3& wi);
 
 }  // namespace librt
