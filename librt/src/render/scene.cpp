@@ -293,8 +293,9 @@ bool Scene::visit_objects(Ray& ray, TestObject&& test_object) const {
     float enter[kFlatObjectLimit];
     std::uint32_t pending = 0;
 #if defined(__SSE2__)
-    // Four boxes at a time. min/max operands are ordered as in the scalar version's
-    // std::min/std::max (_mm_min_ps(b, a) is std::min(a, b)), so NaNs resolve the same way.
+    // Four boxes at a time, each min/max the scalar version's with its operands swapped
+    // (_mm_min_ps(b, a) is std::min(a, b), _mm_max_ps(b, a) is std::max(a, b)): the same
+    // result for every input, NaN included.
     static_assert(kFlatObjectLimit % 4 == 0);
     const __m128 ox = _mm_set1_ps(o.x), oy = _mm_set1_ps(o.y), oz = _mm_set1_ps(o.z);
     const __m128 ix = _mm_set1_ps(inv.x), iy = _mm_set1_ps(inv.y), iz = _mm_set1_ps(inv.z);
@@ -307,12 +308,12 @@ bool Scene::visit_objects(Ray& ray, TestObject&& test_object) const {
         const __m128 y1 = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&flat_.hi_y[i]), oy), iy);
         const __m128 z0 = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&flat_.lo_z[i]), oz), iz);
         const __m128 z1 = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&flat_.hi_z[i]), oz), iz);
-        const __m128 t_in = _mm_max_ps(_mm_max_ps(_mm_min_ps(z1, z0), t_min),
+        const __m128 t_in = _mm_max_ps(_mm_max_ps(t_min, _mm_min_ps(z1, z0)),
                                        _mm_max_ps(_mm_min_ps(y1, y0), _mm_min_ps(x1, x0)));
         __m128 far =
             _mm_min_ps(_mm_max_ps(z1, z0), _mm_min_ps(_mm_max_ps(y1, y0), _mm_max_ps(x1, x0)));
         far = _mm_add_ps(far, _mm_mul_ps(_mm_andnot_ps(sign_bit, far), slack));  // |far| slack
-        const __m128 t_out = _mm_min_ps(far, t_max);
+        const __m128 t_out = _mm_min_ps(t_max, far);
         _mm_storeu_ps(&enter[i], t_in);
         pending |= std::uint32_t(_mm_movemask_ps(_mm_cmple_ps(t_in, t_out))) << i;
     }
