@@ -22,5 +22,10 @@ math(EXPR other_count "${total} - ${undocumented_count}")
 message(STATUS "doxygen: ${undocumented_count} undocumented public members, "
                "${other_count} other warnings (all in ${LOG})")
 if(STRICT AND total GREATER 0)
+  # Name every offender on the console, so a failing build or test says what to document.
+  file(STRINGS "${LOG}" all_lines)
+  foreach(line IN LISTS all_lines)
+    message("${line}")
+  endforeach()
   message(FATAL_ERROR "LIBRT_DOCS_STRICT: ${total} Doxygen warnings")
 endif()

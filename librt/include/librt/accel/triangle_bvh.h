@@ -78,13 +78,17 @@ private:
 class LIBRT_API TriangleList {
 public:
     TriangleList() = default;
+    /// Copies all triangles of the mesh (primitive id = triangle index). Throws
+    /// librt::Error for an index out of range or a non-finite position.
     explicit TriangleList(const TriangleMesh& mesh);
+    /// Copies loose triangles (primitive id = index in the span).
     explicit TriangleList(std::span<const Triangle> triangles);
 
     /// Nearest hit with t in (ray.t_min, ray.t_max), if any.
     [[nodiscard]] PrimitiveHit intersect(const Ray& ray) const;
     /// True when anything lies in (ray.t_min, ray.t_max).
     [[nodiscard]] bool occluded(const Ray& ray) const;
+    /// Number of triangles held.
     [[nodiscard]] std::size_t triangle_count() const { return triangles_.size(); }
 
 private:

@@ -35,11 +35,20 @@ inline constexpr std::uint32_t kMaxWideBvhDepth = kMaxBvhDepth + 16;
 ///     WideBvh::blocks;
 ///   - unused: kEmptyChild, with an empty box (lo = +inf, hi = -inf) that no ray enters.
 struct alignas(32) WideBvhNode {
+    /// bounds[plane][i]: child i's box, one row per slab plane in the order lo.x, hi.x,
+    /// lo.y, hi.y, lo.z, hi.z (see child_bounds()).
     float bounds[6][kWideBvhWidth];
+    /// child[i]: child i's reference (node index, leaf or kEmptyChild, as above);
+    /// collapse_to_wide puts the unused slots last.
     std::uint32_t child[kWideBvhWidth];
 
+    /// Bit 31 of a reference: set for a leaf (and for kEmptyChild), clear for a node index.
     static constexpr std::uint32_t kLeafBit = 0x80000000u;
+    /// The reference of an unused slot: all bits set (so is_leaf() is true); its box is
+    /// empty, so traversal never reaches it.
     static constexpr std::uint32_t kEmptyChild = 0xffffffffu;
+    /// Mask of bits 0..26 of a leaf reference (its first block), hence also the largest
+    /// block index a leaf can start at.
     static constexpr std::uint32_t kMaxFirstBlock = (1u << 27) - 1;
 
     /// True for a leaf (or unused) reference.
@@ -70,7 +79,10 @@ static_assert(sizeof(WideBvhNode) == 224, "WideBvhNode must stay 224 bytes");
 ///   bytes 144..159  id[lane]: the caller's triangle index, kInvalidId for padding
 /// Padding lanes have NaN corners, which the watertight test rejects.
 struct alignas(16) TriangleBlock {
+    /// p[corner][axis][lane]: coordinate `axis` (x, y, z) of corner p0, p1 or p2 of the
+    /// triangle in `lane`; NaN in padding lanes.
     float p[3][3][kTriangleBlockSize];
+    /// id[lane]: the caller's index of the triangle in `lane`; kInvalidId in padding lanes.
     std::uint32_t id[kTriangleBlockSize];
 
     /// The triangle in a lane.
@@ -86,7 +98,9 @@ static_assert(sizeof(TriangleBlock) == 160, "TriangleBlock must stay 160 bytes")
 /// is nodes[0] (a non-empty tree always has a root node, even over one triangle); leaves
 /// hold copies of their triangles in blocks, in traversal order.
 struct WideBvh {
+    /// The wide nodes, root at nodes[0]; empty for an empty tree.
     std::vector<WideBvhNode, LargePageAllocator<WideBvhNode>> nodes;
+    /// The leaves' triangle blocks; a leaf reference names a run of consecutive blocks.
     std::vector<TriangleBlock, LargePageAllocator<TriangleBlock>> blocks;
     /// Per node, how collapse_to_wide opened it from one binary node, so expand_to_binary
     /// can give back that binary tree: bits 0..2 = number k of openings, bits 3j+3..3j+5 =
@@ -98,9 +112,12 @@ struct WideBvh {
     std::size_t triangle_count = 0;  ///< triangles held (padding lanes aside)
     std::uint32_t depth = 0;         ///< wide levels below the root, at most kMaxWideBvhDepth
 
+    /// shapes entry of a node that splits one binary leaf too big for a leaf reference.
     static constexpr std::uint32_t kSplitLeaf = 0xffffffffu;
+    /// shapes entry of the root when the whole binary tree is a single leaf.
     static constexpr std::uint32_t kSingleLeaf = 0xfffffffeu;
 
+    /// True for a tree over no triangles (no nodes).
     [[nodiscard]] bool empty() const { return nodes.empty(); }
     /// Bytes held by nodes, blocks and shapes.
     [[nodiscard]] std::size_t memory_bytes() const {

@@ -23,7 +23,7 @@ LIBRT_API void deallocate_large(void* p, std::size_t bytes, std::size_t alignmen
 /// Embree does for its BVHs. Small arrays get plain aligned operator new.
 template <class T>
 struct LargePageAllocator {
-    using value_type = T;
+    using value_type = T;  ///< the element type, as std::allocator_traits requires
 
     LargePageAllocator() = default;
     /// Stateless: any two allocators are interchangeable.

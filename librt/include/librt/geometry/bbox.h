@@ -14,10 +14,13 @@ namespace librt {
 /// An axis-aligned bounding box. A default-constructed box is empty
 /// (lo = +inf, hi = -inf) so that extending it with anything gives that thing.
 struct BBox {
-    glm::vec3 lo{std::numeric_limits<float>::infinity()};
-    glm::vec3 hi{-std::numeric_limits<float>::infinity()};
+    glm::vec3 lo{std::numeric_limits<float>::infinity()};   ///< minimum corner; +inf if empty
+    glm::vec3 hi{-std::numeric_limits<float>::infinity()};  ///< maximum corner; -inf if empty
 
+    /// The empty box.
     BBox() = default;
+    /// The box with corners lo_ (minimum) and hi_ (maximum), taken as given: lo_ > hi_
+    /// on any axis makes an empty box.
     BBox(const glm::vec3& lo_, const glm::vec3& hi_) : lo(lo_), hi(hi_) {}
 
     /// Grows the box to contain a point.
@@ -32,7 +35,9 @@ struct BBox {
     }
     /// True when the box contains no point.
     [[nodiscard]] bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+    /// Midpoint of the corners (meaningless for an empty box).
     [[nodiscard]] glm::vec3 center() const { return 0.5f * (lo + hi); }
+    /// hi - lo: the side lengths (negative components for an empty box).
     [[nodiscard]] glm::vec3 diagonal() const { return hi - lo; }
     /// Surface area, the SAH's measure of the chance a random ray hits the box; 0 if empty.
     [[nodiscard]] float surface_area() const {
@@ -45,6 +50,7 @@ struct BBox {
         const glm::vec3 d = diagonal();
         return (d.x >= d.y && d.x >= d.z) ? 0 : (d.y >= d.z ? 1 : 2);
     }
+    /// True when p lies in the closed box (faces included); false for an empty box.
     [[nodiscard]] bool contains(const glm::vec3& p) const {
         return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z &&
                p.z <= hi.z;
@@ -73,8 +79,9 @@ inline constexpr float kSlabExitScale =
 /// The parameter interval [t_enter, t_exit] in which a ray is inside a box,
 /// clipped to the ray's [t_min, t_max]; empty when t_enter > t_exit.
 struct SlabInterval {
-    float t_enter;
-    float t_exit;
+    float t_enter;  ///< where the ray enters the box, at least the ray's t_min
+    float t_exit;   ///< where it leaves it (widened by kSlabExitSlack), at most the ray's t_max
+    /// True when the interval is not empty: the ray segment touches the box.
     [[nodiscard]] bool hit() const { return t_enter <= t_exit; }
 };
 

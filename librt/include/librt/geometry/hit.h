@@ -13,18 +13,19 @@ inline constexpr std::uint32_t kInvalidId = std::numeric_limits<std::uint32_t>::
 
 /// What traversal knows about a hit: cheap to produce, enough to finish later.
 struct PrimitiveHit {
-    float t = std::numeric_limits<float>::infinity();
+    float t = std::numeric_limits<float>::infinity();  ///< ray parameter of the hit; inf if none
     float u = 0.0f;  ///< barycentric weight of vertex 1 (triangles) or unused
     float v = 0.0f;  ///< barycentric weight of vertex 2 (triangles) or unused
-    std::uint32_t primitive_id = kInvalidId;
+    std::uint32_t primitive_id = kInvalidId;  ///< the primitive hit; kInvalidId for a miss
+    /// True when something was hit.
     [[nodiscard]] bool valid() const { return primitive_id != kInvalidId; }
 };
 
 /// The full surface record a shader needs, filled in once for the nearest hit.
 struct Hit {
-    float t = std::numeric_limits<float>::infinity();
-    glm::vec3 point{0.0f};
-    glm::vec3 geometric_normal{0.0f};         ///< unit, from the primitive's shape
+    float t = std::numeric_limits<float>::infinity();  ///< ray parameter of the hit; inf if none
+    glm::vec3 point{0.0f};                             ///< the surface point hit, in world space
+    glm::vec3 geometric_normal{0.0f};                  ///< unit, from the primitive's shape
     glm::vec3 shading_normal{0.0f};           ///< unit, interpolated when the mesh has normals
     glm::vec2 uv{0.0f};                       ///< surface parameterisation or texture coordinates
     std::uint32_t primitive_id = kInvalidId;  ///< triangle index within its mesh, or 0

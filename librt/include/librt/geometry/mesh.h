@@ -16,7 +16,7 @@ namespace librt {
 
 /// A material as read from an OBJ's MTL file; the renderer maps it to its own materials.
 struct MeshMaterial {
-    std::string name;
+    std::string name;             ///< newmtl name, as usemtl refers to it
     glm::vec3 diffuse{0.8f};      ///< Kd
     glm::vec3 specular{0.0f};     ///< Ks
     glm::vec3 emission{0.0f};     ///< Ke
@@ -30,14 +30,16 @@ struct MeshMaterial {
 /// An indexed triangle mesh. Per-vertex attributes share the positions' indexing;
 /// optional arrays are either empty or exactly as long as the array they annotate.
 struct LIBRT_API TriangleMesh {
-    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> positions;         ///< vertex positions, in the mesh's space
     std::vector<glm::uvec3> triangles;        ///< three indices into positions per triangle
     std::vector<glm::vec3> normals;           ///< optional, one per position
     std::vector<glm::vec2> uvs;               ///< optional, one per position
     std::vector<std::uint32_t> material_ids;  ///< optional, one per triangle, into materials
     std::vector<MeshMaterial> materials;      ///< from the MTL file, may be empty
 
+    /// Number of triangles (size of triangles).
     [[nodiscard]] std::size_t triangle_count() const { return triangles.size(); }
+    /// Number of vertices (size of positions).
     [[nodiscard]] std::size_t vertex_count() const { return positions.size(); }
     /// The corners of triangle i.
     [[nodiscard]] Triangle triangle(std::size_t i) const {

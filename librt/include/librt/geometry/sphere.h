@@ -13,8 +13,8 @@ namespace librt {
 
 /// A sphere; the report's walls are spheres too (radius ~1000).
 struct Sphere {
-    glm::vec3 center{0.0f};
-    float radius = 1.0f;
+    glm::vec3 center{0.0f};  ///< centre, in world space
+    float radius = 1.0f;     ///< radius, > 0
 };
 
 /// Nearest t in (ray.t_min, ray.t_max) where the ray meets the sphere, or nothing.

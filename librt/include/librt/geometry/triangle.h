@@ -13,23 +13,30 @@ namespace librt {
 
 /// A triangle by its three corners. Point(u, v) = (1 - u - v) p0 + u p1 + v p2.
 struct Triangle {
-    glm::vec3 p0{0.0f}, p1{0.0f}, p2{0.0f};
+    glm::vec3 p0{0.0f},  ///< corner at (u, v) = (0, 0)
+        p1{0.0f},        ///< corner at (u, v) = (1, 0)
+        p2{0.0f};        ///< corner at (u, v) = (0, 1)
 };
 
 /// A ray-triangle hit: distance and barycentric (u, v).
 struct TriangleHit {
-    float t;
-    float u;
-    float v;
+    float t;  ///< ray parameter, in (t_min, t_max)
+    float u;  ///< barycentric weight of p1
+    float v;  ///< barycentric weight of p2 (p0's is 1 - u - v)
 };
 
 /// Per-ray constants of the watertight test: the axis permutation that makes the
-/// direction's largest component z, and the shear that maps the direction onto +z.
-/// Computed once per ray, reused for every triangle it meets.
+/// direction's largest component z, and the shear that maps the direction onto +z
+/// (Woop, Benthin and Wald). A corner p is tested as q = p - origin; sheared, the ray
+/// is the +z axis. Computed once per ray, reused for every triangle it meets.
 struct WatertightRay {
-    glm::vec3 origin{0.0f};
-    int kx = 0, ky = 1, kz = 2;
-    float sx = 0.0f, sy = 0.0f, sz = 0.0f;
+    glm::vec3 origin{0.0f};  ///< the ray's origin; triangles are translated by -origin
+    int kx = 0,          ///< first 2D axis (0, 1, 2 = x, y, z): kz + 1 mod 3; kz + 2 if d[kz] < 0
+        ky = 1,          ///< second 2D axis, the other of kz + 1, kz + 2 (the swap keeps winding)
+        kz = 2;          ///< axis of the direction's largest |component|, the one mapped onto +z
+    float sx = 0.0f,     ///< shear d[kx] / d[kz]: a corner's 2D x = q[kx] - sx * q[kz]
+        sy = 0.0f,       ///< shear d[ky] / d[kz]: a corner's 2D y = q[ky] - sy * q[kz]
+        sz = 0.0f;       ///< 1 / d[kz]: t = sz * (barycentric blend of the corners' q[kz])
     bool valid = false;  ///< false for a zero or NaN direction, which hits nothing
 };
 

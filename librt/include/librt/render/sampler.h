@@ -13,6 +13,7 @@ namespace librt {
 /// how work is spread over threads.
 class Sampler {
 public:
+    /// Sampler drawing from a copy of an already seeded generator.
     explicit Sampler(const Pcg32& rng) : rng_(rng) {}
     /// Sampler for sample `sample_index` of pixel (x, y) in a render seeded with `seed`.
     Sampler(std::uint32_t x, std::uint32_t y, std::uint32_t sample_index, std::uint64_t seed)
