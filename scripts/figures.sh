@@ -11,7 +11,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-figures}
 [ $# -gt 0 ] && shift
-apps=build/release/apps
+apps=${LIBRT_APPS_DIR:-build/release/apps}  # the ctest smoke.figures_script points it elsewhere
 if [ ! -x "$apps/rt_synthesis" ]; then
   bash scripts/setup.sh
   cmake --preset release
