@@ -25,19 +25,22 @@ static_assert(sizeof(StackEntry) == 8, "StackEntry must stay 8 bytes");
 /// more than seven per level above the current node plus eight.
 inline constexpr std::uint32_t kWideStackSize = (kWideBvhWidth - 1) * kMaxWideBvhDepth + kWideBvhWidth;
 
-/// Asks the memory system for a deferred child's node or first leaf block, so that it is
-/// (likely) in cache when the child's turn comes while the nearer subtree is walked.
+/// Asks the memory system for every cache line of a deferred child's node or leaf blocks,
+/// so that they are (likely) in cache when the child's turn comes while the nearer subtree
+/// is walked.
 inline void prefetch_child(const WideBvhNode* nodes, const TriangleBlock* blocks, std::uint32_t ref) {
     const char* p;
-    std::uint32_t lines;
+    std::size_t bytes;
     if (WideBvhNode::is_leaf(ref)) {
         p = reinterpret_cast<const char*>(blocks + WideBvhNode::first_block(ref));
-        lines = (sizeof(TriangleBlock) + 63) / 64;
+        bytes = WideBvhNode::block_count(ref) * sizeof(TriangleBlock);
     } else {
         p = reinterpret_cast<const char*>(nodes + ref);
-        lines = (sizeof(WideBvhNode) + 63) / 64;
+        bytes = sizeof(WideBvhNode);
     }
-    for (std::uint32_t k = 0; k < lines; ++k) __builtin_prefetch(p + 64 * k);
+    const char* const last = p + bytes - 1;  // an unaligned run may span one more line
+    for (; p <= last; p += 64) __builtin_prefetch(p);
+    __builtin_prefetch(last);
 }
 
 /// Front-to-back traversal: the children a node's test hits are visited nearest first,
