@@ -1,3 +1,5 @@
+#include "robustness/robustness_util.h"
+
 #include <librt/core/error.h>
 #include <librt/geometry/procedural.h>
 #include <librt/geometry/sphere.h>
@@ -9,12 +11,13 @@
 
 #include <chrono>
 #include <cmath>
-#include <functional>
 #include <map>
 #include <string>
 #include <utility>
 
 using namespace librt;
+
+using librt::testing::error_of;
 
 namespace {
 
@@ -63,15 +66,6 @@ void expect_outward(const TriangleMesh& m, const glm::vec3& center) {
         const Triangle t = m.triangle(i);
         EXPECT_GT(glm::dot(area_normal(t), centroid(t) - center), 0.0f) << "triangle " << i;
     }
-}
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
 }
 
 }  // namespace

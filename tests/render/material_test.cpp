@@ -1,5 +1,7 @@
 // Materials, lights, textures and the specular scattering formulas (incl. a glass slab).
 
+#include "robustness/robustness_util.h"
+
 #include <librt/core/error.h>
 #include <librt/render/light.h>
 #include <librt/render/material.h>
@@ -17,16 +19,9 @@
 #include <string>
 
 namespace librt {
-namespace {
+using librt::testing::error_of;
 
-std::string error_of(const auto& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
+namespace {
 
 TEST(Material, FactoriesSetKindAndDefaults) {
     const Material d = Material::diffuse({0.2f, 0.4f, 0.6f});

@@ -1,3 +1,5 @@
+#include "robustness/robustness_util.h"
+
 #include <librt/core/error.h>
 #include <librt/render/scene.h>
 
@@ -13,6 +15,8 @@
 #include <vector>
 
 namespace librt {
+using librt::testing::error_of;
+
 namespace {
 
 // Two triangles forming the square [x0, x1] x [y0, y1] at height z, facing +z.
@@ -21,15 +25,6 @@ TriangleMesh quad_z(float x0, float y0, float x1, float y1, float z) {
     m.positions = {{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}};
     m.triangles = {{0, 1, 2}, {0, 2, 3}};
     return m;
-}
-
-std::string error_of(const auto& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
 }
 
 TEST(Scene, QueriesBeforeCommitThrow) {
