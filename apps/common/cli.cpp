@@ -4,7 +4,7 @@
 #include <librt/io/image_io.h>
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
-#include <librt/render/tone_map.h>
+#include <librt/core/tone_map.h>
 
 #include <algorithm>
 #include <atomic>

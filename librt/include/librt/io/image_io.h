@@ -1,8 +1,8 @@
 #pragma once
 
 #include <librt/export.h>
-#include <librt/render/image.h>
-#include <librt/render/tone_map.h>
+#include <librt/core/image.h>
+#include <librt/core/tone_map.h>
 
 #include <filesystem>
 

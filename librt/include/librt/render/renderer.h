@@ -2,7 +2,7 @@
 
 #include <librt/export.h>
 #include <librt/render/camera.h>
-#include <librt/render/image.h>
+#include <librt/core/image.h>
 #include <librt/render/integrator.h>
 
 #include <atomic>

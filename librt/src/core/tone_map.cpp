@@ -1,5 +1,5 @@
 #include <librt/core/error.h>
-#include <librt/render/tone_map.h>
+#include <librt/core/tone_map.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include <librt/core/error.h>
-#include <librt/render/image.h>
-#include <librt/render/tone_map.h>
+#include <librt/core/image.h>
+#include <librt/core/tone_map.h>
 
 #include <gtest/gtest.h>
 

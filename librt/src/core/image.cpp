@@ -1,5 +1,5 @@
 #include <librt/core/error.h>
-#include <librt/render/image.h>
+#include <librt/core/image.h>
 
 #include <cstdio>
 #include <string>
