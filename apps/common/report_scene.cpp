@@ -3,10 +3,13 @@
 #include <librt/core/error.h>
 #include <librt/geometry/procedural.h>
 #include <librt/io/obj.h>
+#include <librt/io/obj_materials.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <iostream>
+#include <string>
 
 namespace librt::apps {
 
@@ -112,7 +115,9 @@ void add_report_mesh(Scene& scene, TriangleMesh mesh, const Material& fallback,
     if (!own_materials) {
         (void)scene.add_mesh(std::move(mesh), fallback_id, builder);
     } else {
-        (void)scene.add_mesh_with_mtl(std::move(mesh), fallback_id);
+        // The library returns its warnings (textures that failed to load); the app prints.
+        for (const std::string& w : add_mesh_with_mtl(scene, std::move(mesh), fallback_id).warnings)
+            std::cerr << "warning: " << w << '\n';
     }
 }
 
