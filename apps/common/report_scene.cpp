@@ -19,7 +19,7 @@ void add_room(Scene& scene) {
         float radius;
         glm::vec3 albedo;
     };
-    // The report's room: (centre, radius, albedo), scenes.md.
+    // The report's room: (centre, radius, albedo), docs/scenes.md.
     const Wall walls[] = {
         {{0.0f, -1000.0f, 0.0f}, 990.0f, {0.0f, 0.0f, 1.0f}},  // floor, blue
         {{0.0f, 0.0f, -1050.0f}, 940.0f, {1.0f, 0.0f, 1.0f}},  // back wall, magenta
