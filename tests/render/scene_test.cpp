@@ -8,8 +8,6 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <random>
 #include <string>
 #include <vector>

@@ -135,7 +135,7 @@ public:
     /// librt::Error before commit().
     [[nodiscard]] bool occluded(const Ray& ray, std::uint32_t ignored_object = kInvalidId) const;
 
-    /// The material of a hit's primitive (per-triangle MTL materials respected).
+    /// The material of a hit's primitive (per-triangle materials respected).
     [[nodiscard]] const Material& material(const Hit& hit) const {
         return materials_[material_id(hit)];
     }
