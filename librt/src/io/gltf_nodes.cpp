@@ -243,8 +243,9 @@ void read_nodes(const tinygltf::Model& model, int scene_index, Context& ctx, Glt
         }
         if (seen[std::size_t(r)]) ctx.fail(path, "node " + std::to_string(r) + " is listed twice");
         seen[std::size_t(r)] = 1;
-        stack.emplace_back(r, glm::mat4(1.0f));
     }
+    // Roots pushed last-first, as children below, so nodes are visited in file order.
+    for (auto r = roots.rbegin(); r != roots.rend(); ++r) stack.emplace_back(*r, glm::mat4(1.0f));
     while (!stack.empty()) {
         const auto [index, parent_world] = stack.back();
         stack.pop_back();
