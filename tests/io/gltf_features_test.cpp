@@ -307,3 +307,28 @@ TEST(GltfScene, MaterialsWithTheirExtensions) {
     ASSERT_EQ(s.warnings.size(), 1u) << all(s.warnings);
     EXPECT_TRUE(lt::has(s.warnings[0], "extensionsUsed[4]: extension EXT_unknown_thing"));
 }
+
+// The glTF fuzzer's seeds (tests/fuzz/corpus/gltf, written by hand) are valid files that
+// reach every stage: the fuzzer mutates from there.
+TEST(GltfFuzzSeeds, EverySeedLoads) {
+    const fs::path dir = fs::path(LIBRT_FUZZ_CORPUS_DIR) / "gltf";
+    GltfScene s = load_gltf(dir / "quad_indexed.glb");
+    EXPECT_EQ(s.triangles_placed(), 2u);
+    EXPECT_TRUE(s.warnings.empty()) << all(s.warnings);
+    s = load_gltf(dir / "strip_sparse.gltf");
+    EXPECT_EQ(s.triangles_placed(), 3u);  // the strip; the lines skipped
+    EXPECT_EQ(s.meshes[0].primitives[0].positions[3], glm::vec3(2, 2, 0));  // sparse
+    EXPECT_EQ(s.warnings.size(), 1u) << all(s.warnings);
+    s = load_gltf(dir / "scene_features.gltf");
+    EXPECT_EQ(s.cameras.size(), 2u);
+    EXPECT_EQ(s.lights.size(), 3u);
+    ASSERT_EQ(s.textures.size(), 1u);
+    EXPECT_EQ(s.textures[0].image, 0);
+    EXPECT_TRUE(s.warnings.empty()) << all(s.warnings);
+    s = load_gltf(dir / "fan_quantized.glb");
+    EXPECT_EQ(s.triangles_placed(), 2u);
+    EXPECT_EQ(s.meshes[0].primitives[0].positions[2], glm::vec3(100, 100, 0));
+    EXPECT_NEAR(s.meshes[0].primitives[0].colors[2].w, 128.0f / 255.0f, 1e-6f);
+    ASSERT_EQ(s.warnings.size(), 1u);  // it has no scenes: its root nodes are placed
+    EXPECT_TRUE(lt::has(s.warnings[0], "fan_quantized.glb: scenes: none in the file"));
+}
