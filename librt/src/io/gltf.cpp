@@ -7,6 +7,8 @@
 #include <librt/io/gltf.h>
 
 #include <cmath>
+#include <exception>
+#include <new>
 #include <string>
 
 namespace librt {
@@ -64,16 +66,23 @@ GltfScene load_gltf(const std::filesystem::path& path, const GltfLoadOptions& op
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;
-    if (container.binary) {
-        // The declared length: at most the file's size (split_container), so < 2^32.
-        const auto length = static_cast<unsigned int>(container.length);
-        ok = loader.LoadBinaryFromMemory(&model, &err, &warn,
-                                         reinterpret_cast<const unsigned char*>(bytes.data()),
-                                         length, routing.base_dir);
-    } else {
-        ok = loader.LoadASCIIFromString(&model, &err, &warn, container.json.data(),
-                                        static_cast<unsigned int>(container.json.size()),
-                                        routing.base_dir);
+    try {
+        if (container.binary) {
+            // The declared length: at most the file's size (split_container), so < 2^32.
+            const auto length = static_cast<unsigned int>(container.length);
+            ok = loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                             reinterpret_cast<const unsigned char*>(bytes.data()),
+                                             length, routing.base_dir);
+        } else {
+            ok = loader.LoadASCIIFromString(&model, &err, &warn, container.json.data(),
+                                            static_cast<unsigned int>(container.json.size()),
+                                            routing.base_dir);
+        }
+    } catch (const std::bad_alloc&) {
+        throw;
+    } catch (const std::exception& e) {
+        // tinygltf reports through err; an exception from inside it is still bad input.
+        ctx.fail("", std::string("invalid glTF: ") + e.what());
     }
     if (!ok) {
         while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();

@@ -260,7 +260,11 @@ void check_buffer_views(const Json& doc, const std::vector<std::uint64_t>& buffe
         if (len == v.end() || !len->is_number_unsigned() || len->get<std::uint64_t>() == 0)
             ctx.fail(path + ".byteLength", "missing or not a positive integer");
         std::uint64_t offset = 0;
-        if (const auto o = v.find("byteOffset"); o != v.end()) offset = o->get<std::uint64_t>();
+        if (const auto o = v.find("byteOffset"); o != v.end()) {
+            if (!o->is_number_unsigned())
+                ctx.fail(path + ".byteOffset", "not a non-negative integer");
+            offset = o->get<std::uint64_t>();
+        }
         const std::uint64_t length = len->get<std::uint64_t>();
         const std::uint64_t available = buffer_lengths[buffer->get<std::size_t>()];
         // Both are below 2^53 (check_structure), so the sum cannot overflow.
@@ -271,6 +275,8 @@ void check_buffer_views(const Json& doc, const std::vector<std::uint64_t>& buffe
                                std::to_string(available) + ")");
         }
         if (const auto s = v.find("byteStride"); s != v.end()) {
+            if (!s->is_number_unsigned())
+                ctx.fail(path + ".byteStride", "not a non-negative integer");
             const std::uint64_t stride = s->get<std::uint64_t>();
             if (stride < 4 || stride > 252 || stride % 4 != 0)
                 ctx.fail(path + ".byteStride",
@@ -361,11 +367,16 @@ JsonFacts check_json(const Container& container, const std::string& base_dir,
         ctx.fail("", "broken JSON: " + what);
     }
     if (!doc.is_object()) ctx.fail("", "not a glTF file: the JSON is not an object");
-    check_structure(doc, ctx);
-    check_asset_and_extensions(doc, ctx);
     JsonFacts facts;
-    const auto lengths = check_buffers(doc, container, base_dir, max_file_bytes, ctx, facts);
-    check_buffer_views(doc, lengths, ctx);
+    try {
+        check_structure(doc, ctx);
+        check_asset_and_extensions(doc, ctx);
+        const auto lengths = check_buffers(doc, container, base_dir, max_file_bytes, ctx, facts);
+        check_buffer_views(doc, lengths, ctx);
+    } catch (const Json::exception& e) {
+        // A member of an unexpected JSON type that a check above did not test first.
+        ctx.fail("", std::string("unexpected JSON: ") + e.what());
+    }
     return facts;
 }
 
