@@ -85,23 +85,32 @@ struct Frame {
 /// tinygltf would truncate or drop.
 void check_structure(const Json& root, const Context& ctx) {
     std::vector<Frame> stack{{&root, "", 1, false, false, false}};
-    auto check_leaf = [&](const Json& v, const Frame& parent, std::string_view key,
-                          const std::string& path) {
+    // A member's path, built only when needed (an error, or a container to visit).
+    auto member_path = [](const Frame& parent, bool is_object, const std::string& key,
+                          std::size_t i) {
+        if (!is_object) return parent.path + "[" + std::to_string(i) + "]";
+        return parent.path.empty() ? key : parent.path + "." + key;
+    };
+    auto check_leaf = [&](const Json& v, const Frame& parent, bool is_object,
+                          const std::string& key, std::size_t i) {
         if (parent.free_form || !v.is_number()) return;
+        auto path = [&] { return member_path(parent, is_object, key, i); };
         const bool int_field = parent.ints || is_int_field(key) ||
                                (parent.sparse && (key == "count" || key == "byteOffset"));
         const bool size_field = !int_field && is_size_field(key);
         if (!int_field && !size_field) return;
         if (v.is_number_float()) {
-            ctx.fail(path, "expected an integer, found " + v.dump());
+            ctx.fail(path(), "expected an integer, found " + v.dump());
         }
         if (v.is_number_unsigned()) {
             const auto u = v.get<std::uint64_t>();
             const std::uint64_t limit = int_field ? std::uint64_t(std::numeric_limits<int>::max())
                                                   : (std::uint64_t{1} << 53u);
-            if (u > limit) ctx.fail(path, v.dump() + " is too large");
-        } else if (size_field || v.get<std::int64_t>() < std::numeric_limits<int>::min()) {
-            ctx.fail(path, v.dump() + ": must not be negative");
+            if (u > limit) ctx.fail(path(), v.dump() + " is too large");
+        } else if (size_field) {
+            ctx.fail(path(), v.dump() + ": must not be negative");
+        } else if (v.get<std::int64_t>() < std::numeric_limits<int>::min()) {
+            ctx.fail(path(), v.dump() + " is too small");
         }
     };
     while (!stack.empty()) {
@@ -114,19 +123,17 @@ void check_structure(const Json& root, const Context& ctx) {
         const bool is_object = frame.value->is_object();
         std::size_t i = 0;
         for (auto it = frame.value->begin(); it != frame.value->end(); ++it, ++i) {
-            const std::string key = is_object ? it.key() : std::string();
-            const std::string path = is_object ? (frame.path.empty() ? key : frame.path + "." + key)
-                                               : frame.path + "[" + std::to_string(i) + "]";
+            static const std::string no_key;
+            const std::string& key = is_object ? it.key() : no_key;
             const Json& child = *it;
             if (child.is_structured()) {
                 const bool free_form =
                     frame.free_form || (is_object && (key == "extras" || key == "extensions"));
-                stack.push_back({&child, path, frame.depth + 1, free_form,
-                                 is_object && is_int_container(key),
+                stack.push_back({&child, member_path(frame, is_object, key, i), frame.depth + 1,
+                                 free_form, is_object && is_int_container(key),
                                  frame.sparse || (is_object && key == "sparse")});
             } else {
-                check_leaf(child, frame, is_object ? std::string_view(key) : std::string_view(),
-                           path);
+                check_leaf(child, frame, is_object, key, i);
             }
         }
     }
