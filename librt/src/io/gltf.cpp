@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <new>
 #include <string>
 
@@ -50,6 +51,9 @@ GltfScene load_gltf(const std::filesystem::path& path, const GltfLoadOptions& op
     Context ctx(path.string(), &scene.warnings);
     const std::string bytes = read_regular_file(path, options.max_file_bytes);
     const Container container = split_container(bytes, ctx);
+    // tinygltf takes lengths as unsigned int.
+    if (container.json.size() > std::numeric_limits<unsigned int>::max())
+        ctx.fail("", "JSON of more than 4 GiB");
     FsRouting routing;
     routing.base_dir = path.parent_path().string();
     routing.max_bytes = options.max_file_bytes;
