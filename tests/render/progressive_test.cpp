@@ -12,6 +12,7 @@
 #include <atomic>
 #include <chrono>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
@@ -247,4 +248,21 @@ TEST_F(ProgressiveTest, BadSettingsNameTheParameter) {
     Film uneven(camera_.width(), camera_.height());
     uneven.at(5, 6).samples = 1;
     expect_error(progressive(4, 1), uneven, "film pixel (5, 6) holds 1 samples");
+}
+
+// A progress callback that throws mid-pass stops the workers; the exception comes out of
+// render_progressive and the film keeps only what it held before (here: nothing).
+TEST(Progressive, AThrowingProgressCallbackStopsTheRender) {
+    Scene scene;
+    scene.commit();
+    CameraSettings cs;
+    cs.width = cs.height = 48;
+    const Camera camera(cs);
+    Slowing integrator;
+    integrator.slow = true;  // a pass lasts over a second: the callback is called mid-pass
+    ProgressiveSettings s = progressive(4, 1);
+    s.render.progress = [](const RenderProgress&) { throw std::runtime_error("display gone"); };
+    Film film;
+    EXPECT_THROW((void)render_progressive(scene, camera, integrator, film, s), std::runtime_error);
+    EXPECT_EQ(uniform_sample_count(film), 0u);
 }

@@ -202,7 +202,13 @@ BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrato
             const double fraction =
                 static_cast<double>(tiles_done.load(std::memory_order_relaxed)) /
                 static_cast<double>(tile_count);
-            if (tick(fraction)) aborted.store(true, std::memory_order_relaxed);
+            try {
+                if (tick(fraction)) aborted.store(true, std::memory_order_relaxed);
+            } catch (...) {  // a throwing progress callback stops the render, then is rethrown
+                const std::lock_guard<std::mutex> guard(mutex);
+                if (!failure) failure = std::current_exception();
+                failed.store(true, std::memory_order_relaxed);
+            }
             lock.lock();
         }
     }

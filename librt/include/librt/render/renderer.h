@@ -26,7 +26,8 @@ struct RenderProgress {
 };
 
 /// Receives progress reports on the thread that called the render function: about ten
-/// times a second while it runs, and once at the end of every pass. It must not throw.
+/// times a second while it runs, and once at the end of every pass. An exception it
+/// throws during a pass stops the render and is rethrown by the render function.
 using ProgressCallback = std::function<void(const RenderProgress&)>;
 
 /// How to spread a render over pixels, samples and threads.
