@@ -1,3 +1,7 @@
+// The render loop (run_block) and the entry points built on it: render, render_block and
+// render_progressive. A little over 400 lines: the entry points share the loop's private
+// types, so they stay in one file.
+
 #include "render/aov.h"
 
 #include <librt/core/error.h>
