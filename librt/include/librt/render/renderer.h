@@ -116,13 +116,14 @@ LIBRT_API void validate(const ProgressiveSettings& settings);
 /// limit has passed, or settings.render.cancel is set. An empty (0x0) film is created at
 /// the camera's size (with AOVs if settings.aovs); a non-empty one must have the camera's
 /// size and hold the same number of samples in every pixel, and is continued: rendering
-/// is resumable. Each pass renders onto a copy of the film that replaces it only once the
-/// pass is complete, so the film always holds whole passes: every pixel the mean of the
-/// same number of samples (stats.samples_per_pixel, over stats.passes passes). The time
-/// limit is checked between passes and, while a pass runs, about ten times a second: a
-/// pass still running at the limit is abandoned, except that a film holding no samples
-/// always gets its first pass. The film equals a one-shot render of the same total sample
-/// count bit for bit. Calls integrator.preprocess(scene) once.
+/// is resumable. Each pass renders onto a copy of the film (memory for two films) that
+/// replaces it only once the pass is complete, so the film always holds whole passes:
+/// every pixel the mean of the same number of samples (stats.samples_per_pixel, over
+/// stats.passes passes). The time limit is checked between passes and, while a pass runs,
+/// about ten times a second: a pass still running at the limit is abandoned, except that
+/// a film holding no samples always gets its first pass. The film equals a one-shot
+/// render of the same total sample count bit for bit. Calls integrator.preprocess(scene)
+/// once.
 LIBRT_API RenderStats render_progressive(const Scene& scene, const Camera& camera,
                                          Integrator& integrator, Film& film,
                                          const ProgressiveSettings& settings);
