@@ -43,12 +43,12 @@ protected:
 
 // Layers of random values spanning many binades (and signs, for normals), with an
 // infinite depth where nothing was hit.
-ExrLayers random_layers(int w, int h) {
+ImageLayers random_layers(int w, int h) {
     Pcg32 rng(7, 11);
     const auto value = [&](float lo_exp, float hi_exp) {
         return std::exp2(lo_exp + (hi_exp - lo_exp) * rng.next_float());
     };
-    ExrLayers layers;
+    ImageLayers layers;
     layers.beauty = Image(w, h);
     layers.albedo = Image(w, h);
     layers.normal = Image(w, h);
@@ -93,11 +93,11 @@ void expect_half_close(const Image& written, const Image& read, const char* laye
 }  // namespace
 
 TEST_F(ExrTest, FloatRoundTripIsExactForEveryLayer) {
-    const ExrLayers layers = random_layers(17, 9);
+    const ImageLayers layers = random_layers(17, 9);
     const fs::path path = dir_ / "all.exr";
     write_exr(path, layers, ExrPixelType::Float);
     EXPECT_EQ(entries(), 1u);  // no temporary left behind
-    const ExrLayers back = read_exr(path);
+    const ImageLayers back = read_exr(path);
     expect_same(layers.beauty, back.beauty, "beauty");
     expect_same(layers.albedo, back.albedo, "albedo");
     expect_same(layers.normal, back.normal, "normal");
@@ -106,10 +106,10 @@ TEST_F(ExrTest, FloatRoundTripIsExactForEveryLayer) {
 }
 
 TEST_F(ExrTest, HalfRoundTripIsWithinHalfPrecision) {
-    const ExrLayers layers = random_layers(23, 5);
+    const ImageLayers layers = random_layers(23, 5);
     const fs::path path = dir_ / "half.exr";
     write_exr(path, layers, ExrPixelType::Half);
-    const ExrLayers back = read_exr(path);
+    const ImageLayers back = read_exr(path);
     expect_half_close(layers.beauty, back.beauty, "beauty");
     expect_half_close(layers.albedo, back.albedo, "albedo");
     expect_half_close(layers.normal, back.normal, "normal");
@@ -122,11 +122,11 @@ TEST_F(ExrTest, HalfRoundTripIsWithinHalfPrecision) {
 }
 
 TEST_F(ExrTest, OptionalLayersAreOmitted) {
-    ExrLayers layers;
+    ImageLayers layers;
     layers.beauty = Image(4, 3);
     layers.beauty.at(1, 2) = {0.5f, 1.5f, 2.5f};
     write_exr(dir_ / "beauty.exr", layers, ExrPixelType::Float);
-    const ExrLayers back = read_exr(dir_ / "beauty.exr");
+    const ImageLayers back = read_exr(dir_ / "beauty.exr");
     expect_same(layers.beauty, back.beauty, "beauty");
     EXPECT_TRUE(back.albedo.pixels.empty());
     EXPECT_TRUE(back.normal.pixels.empty());
@@ -144,9 +144,9 @@ TEST_F(ExrTest, RenderedFilmLayersRoundTrip) {
     s.aovs = true;
     Film film;
     (void)render_progressive(scene, camera, integrator, film, s);
-    const ExrLayers layers = resolve_layers(film);
+    const ImageLayers layers = resolve_layers(film);
     write_exr(dir_ / "render.exr", layers, ExrPixelType::Float);
-    const ExrLayers back = read_exr(dir_ / "render.exr");
+    const ImageLayers back = read_exr(dir_ / "render.exr");
     expect_same(resolve(film), back.beauty, "beauty");
     expect_same(layers.albedo, back.albedo, "albedo");
     expect_same(layers.normal, back.normal, "normal");
@@ -156,7 +156,7 @@ TEST_F(ExrTest, RenderedFilmLayersRoundTrip) {
 
 TEST_F(ExrTest, BadLayersAreRefusedAndLeaveNothing) {
     const fs::path path = dir_ / "bad.exr";
-    const auto expect_error = [&](const ExrLayers& layers, const std::string& text) {
+    const auto expect_error = [&](const ImageLayers& layers, const std::string& text) {
         try {
             write_exr(path, layers);
             ADD_FAILURE() << text;
@@ -166,7 +166,7 @@ TEST_F(ExrTest, BadLayersAreRefusedAndLeaveNothing) {
         }
         EXPECT_EQ(entries(), 0u) << text;
     };
-    ExrLayers layers = random_layers(6, 4);
+    ImageLayers layers = random_layers(6, 4);
     layers.depth.pop_back();
     expect_error(layers, "layer depth has 23 pixels, the beauty 24");
     layers = random_layers(6, 4);
@@ -176,7 +176,7 @@ TEST_F(ExrTest, BadLayersAreRefusedAndLeaveNothing) {
     layers = random_layers(6, 4);
     layers.normal.at(2, 3).y = std::numeric_limits<float>::quiet_NaN();
     expect_error(layers, "channel normal.Y is NaN at pixel (2, 3)");
-    expect_error(ExrLayers{}, "beauty is 0 x 0");
+    expect_error(ImageLayers{}, "beauty is 0 x 0");
     // An existing file is left as it was when a write fails.
     { std::ofstream(path) << "old"; }
     layers = random_layers(6, 4);

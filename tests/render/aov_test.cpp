@@ -31,7 +31,7 @@ CameraSettings axis_camera(int width = 8, int height = 6) {
 // A 100 x 100 slab between z0 and z1 (z0 < z1), facing the z axis with both big faces.
 TriangleMesh slab(float z0, float z1) { return make_box({-50.0f, -50.0f, z0}, {50.0f, 50.0f, z1}); }
 
-ExrLayers render_layers(const Scene& scene, const CameraSettings& cs) {
+ImageLayers render_layers(const Scene& scene, const CameraSettings& cs) {
     const Camera camera(cs);
     PathTracer integrator(PathTracerSettings{3});
     integrator.preprocess(scene);
@@ -57,7 +57,7 @@ TEST(Aov, DiffuseWallGivesItsAlbedoNormalAndDistance) {
     (void)scene.add_mesh(slab(-6.0f, -5.0f), scene.add_material(Material::diffuse(albedo)));
     scene.commit();
     const CameraSettings cs = axis_camera();
-    const ExrLayers layers = render_layers(scene, cs);
+    const ImageLayers layers = render_layers(scene, cs);
     const Camera camera(cs);
     for (int y = 0; y < cs.height; ++y) {
         for (int x = 0; x < cs.width; ++x) {
@@ -80,7 +80,7 @@ TEST(Aov, MirrorsAreFollowedToTheFirstDiffuseHit) {
                          scene.add_material(Material::diffuse({0.8f, 0.6f, 0.4f})));
     scene.commit();
     const CameraSettings cs = axis_camera();
-    const ExrLayers layers = render_layers(scene, cs);
+    const ImageLayers layers = render_layers(scene, cs);
     const Camera camera(cs);
     for (int y = 0; y < cs.height; ++y) {
         for (int x = 0; x < cs.width; ++x) {
@@ -106,7 +106,7 @@ TEST(Aov, GlassIsFollowedThroughToTheWallBehind) {
     (void)scene.add_mesh(slab(-8.0f, -5.0f), scene.add_material(Material::diffuse(albedo)));
     scene.commit();
     const CameraSettings cs = axis_camera();
-    const ExrLayers layers = render_layers(scene, cs);
+    const ImageLayers layers = render_layers(scene, cs);
     const Camera camera(cs);
     const glm::vec3 expected_albedo = 0.81f * albedo;
     for (int y = 0; y < cs.height; ++y) {
@@ -141,7 +141,7 @@ TEST(Aov, FresnelGlassMixesReflectionAndRefraction) {
     Film film(1, 1, true);
     const std::uint32_t n = 20000;
     (void)render_block(scene, camera, integrator, film, {0, 0, 1, 1, 0, n}, RenderSettings{});
-    const ExrLayers layers = resolve_layers(film);
+    const ImageLayers layers = resolve_layers(film);
     const double r0 = 0.04;
     const double p = r0 + (1.0 - r0) * (1.0 - r0) * r0 / (1.0 - r0 * r0);
     const double sigma = std::sqrt(p * (1.0 - p) / n);
@@ -153,7 +153,7 @@ TEST(Aov, MissesAndEmittersAndEndlessMirrors) {
     // Nothing to hit: zero albedo and normal, infinite depth.
     Scene empty;
     empty.commit();
-    const ExrLayers none = render_layers(empty, axis_camera(2, 2));
+    const ImageLayers none = render_layers(empty, axis_camera(2, 2));
     EXPECT_EQ(none.albedo.at(1, 1), glm::vec3(0.0f));
     EXPECT_EQ(none.normal.at(1, 1), glm::vec3(0.0f));
     EXPECT_TRUE(std::isinf(none.depth[3]));
@@ -163,7 +163,7 @@ TEST(Aov, MissesAndEmittersAndEndlessMirrors) {
     (void)light.add_mesh(slab(-6.0f, -5.0f),
                          light.add_material(Material::emissive(glm::vec3(3.0f))));
     light.commit();
-    const ExrLayers lit = render_layers(light, axis_camera(2, 2));
+    const ImageLayers lit = render_layers(light, axis_camera(2, 2));
     EXPECT_EQ(lit.albedo.at(0, 0), glm::vec3(0.0f));
     EXPECT_GT(lit.beauty.at(0, 0).x, 0.0f);
 
@@ -173,7 +173,7 @@ TEST(Aov, MissesAndEmittersAndEndlessMirrors) {
     (void)hall.add_mesh(slab(-6.0f, -5.0f), mirror);
     (void)hall.add_mesh(slab(5.0f, 6.0f), mirror);
     hall.commit();
-    const ExrLayers endless = render_layers(hall, axis_camera(1, 1));
+    const ImageLayers endless = render_layers(hall, axis_camera(1, 1));
     EXPECT_EQ(endless.albedo.at(0, 0), glm::vec3(0.0f));
     EXPECT_EQ(endless.normal.at(0, 0), glm::vec3(0.0f));
     EXPECT_NEAR(endless.depth[0], 5.0f, 1e-5f);

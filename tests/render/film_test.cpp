@@ -207,7 +207,7 @@ TEST(Film, ResolveIsTheMeanOfTheFiniteSamplesAndTheAovMeans) {
     film.at(0, 0) = FilmPixel{glm::dvec3(3.0, 6.0, 9.0), 4, 3};  // one sample was NaN
     film.aovs[0] = AovPixel{glm::dvec3(2.0), glm::dvec3(0.0, 0.0, 3.0), 10.0, 2, 0};
     // Pixel (1, 0) holds no samples: black, zero AOVs, infinite depth.
-    const ExrLayers layers = resolve_layers(film);
+    const ImageLayers layers = resolve_layers(film);
     EXPECT_EQ(layers.beauty.at(0, 0), glm::vec3(1.0f, 2.0f, 3.0f));
     EXPECT_EQ(layers.albedo.at(0, 0), glm::vec3(0.5f));  // over all 4 samples
     EXPECT_EQ(layers.normal.at(0, 0), glm::vec3(0.0f, 0.0f, 0.75f));

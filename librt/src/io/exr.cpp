@@ -122,7 +122,7 @@ struct ErrorMessage {
 
 }  // namespace
 
-void write_exr(const fs::path& path, const ExrLayers& layers, ExrPixelType type) {
+void write_exr(const fs::path& path, const ImageLayers& layers, ExrPixelType type) {
     const Image& beauty = layers.beauty;
     const auto pixel_count = static_cast<std::size_t>(std::max(beauty.width, 0)) *
                              static_cast<std::size_t>(std::max(beauty.height, 0));
@@ -193,7 +193,7 @@ void write_exr(const fs::path& path, const ExrLayers& layers, ExrPixelType type)
     write_file_atomically(path, memory, size);
 }
 
-ExrLayers read_exr(const fs::path& path) {
+ImageLayers read_exr(const fs::path& path) {
     const std::string name = path.string();
     EXRVersion version;
     const int version_status = ParseEXRVersionFromFile(&version, name.c_str());
@@ -261,7 +261,7 @@ ExrLayers read_exr(const fs::path& path) {
         for (std::size_t i = 0; i < count; ++i) result.pixels[i] = glm::vec3(a[i], b[i], c[i]);
         return result;
     };
-    ExrLayers layers;
+    ImageLayers layers;
     layers.beauty = rgb("", "RGB");
     if (layers.beauty.pixels.empty()) {
         throw Error("cannot read " + quoted(path) + ": no R, G, B channels");

@@ -77,8 +77,8 @@ Image resolve(const Film& film) {
     return image;
 }
 
-ExrLayers resolve_layers(const Film& film) {
-    ExrLayers layers;
+ImageLayers resolve_layers(const Film& film) {
+    ImageLayers layers;
     layers.beauty = resolve(film);
     layers.sample_count.resize(film.pixels.size());
     for (std::size_t i = 0; i < film.pixels.size(); ++i)

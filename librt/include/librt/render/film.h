@@ -1,8 +1,8 @@
 #pragma once
 
 #include <librt/core/image.h>
+#include <librt/core/image_layers.h>
 #include <librt/export.h>
-#include <librt/io/exr.h>
 
 #include <glm/ext/vector_double3.hpp>
 
@@ -98,7 +98,7 @@ LIBRT_API void merge(Film& into, const Film& from);
 /// film has AOVs, albedo and normal (means over all samples of the pixel, a miss counting
 /// as 0) and depth (mean camera distance over the samples that hit; +infinity when none
 /// did).
-[[nodiscard]] LIBRT_API ExrLayers resolve_layers(const Film& film);
+[[nodiscard]] LIBRT_API ImageLayers resolve_layers(const Film& film);
 
 /// The number of samples every pixel of the film holds; throws librt::Error naming a
 /// pixel that holds a different number than pixel (0, 0). 0 for an empty film.
