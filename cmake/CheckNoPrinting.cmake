@@ -28,9 +28,6 @@ set(_printing
 # Lines allowed to print, as "path relative to ROOT|substring of the line|why". Keep this
 # list short: each entry is a place where the library still talks to the console.
 set(_exemptions
-  # The opt-in progress bar (RenderSettings::progress, drawn only when stderr is a
-  # terminal): user interface the caller asks for, not a warning.
-  "librt/src/render/renderer.cpp|stderr|progress bar"
   # LIBRT_SIMD naming a path this CPU lacks, read once at start-up before any caller can
   # be told. To become a query (e.g. the chosen path and why) in the accel/ work.
   "librt/src/accel/simd.cpp|stderr|LIBRT_SIMD warning"

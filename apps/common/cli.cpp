@@ -13,7 +13,12 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <string>
 #include <thread>
+
+#if defined(__unix__) || defined(__APPLE__)
+#include <unistd.h>
+#endif
 
 namespace librt::apps {
 
@@ -49,6 +54,71 @@ public:
 private:
     void (*previous_int_)(int);
     void (*previous_term_)(int);
+};
+
+bool stderr_is_terminal() {
+#if defined(__unix__) || defined(__APPLE__)
+    return ::isatty(::fileno(stderr)) != 0;
+#else
+    return false;
+#endif
+}
+
+std::string format_duration(double seconds) {
+    const auto total = static_cast<long long>(std::max(0.0, seconds) + 0.5);
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%lld:%02lld:%02lld", total / 3600, (total / 60) % 60,
+                  total % 60);
+    return buffer;
+}
+
+// A one-line progress bar on stderr fed by the renderer's progress callback, shown only
+// on a terminal once the render has run for more than a second, redrawn at most ten
+// times a second.
+class ProgressBar {
+public:
+    explicit ProgressBar(bool wanted) : enabled_(wanted && stderr_is_terminal()) {}
+    ~ProgressBar() { finish(); }  // also when the render throws: the error gets its own line
+    ProgressBar(const ProgressBar&) = delete;
+    ProgressBar& operator=(const ProgressBar&) = delete;
+
+    void update(const RenderProgress& p) {
+        if (!enabled_) return;
+        last_ = p;
+        if (p.seconds < 1.0 || p.seconds - last_draw_ < 0.1) return;
+        draw(p);
+    }
+
+    void finish() {
+        if (!drawn_) return;
+        draw(last_);
+        std::fputc('\n', stderr);
+        std::fflush(stderr);
+        drawn_ = false;
+    }
+
+private:
+    void draw(const RenderProgress& p) {
+        constexpr int k_width = 30;
+        const double fraction = std::clamp(p.fraction, 0.0, 1.0);
+        const int filled = static_cast<int>(fraction * k_width);
+        std::string bar(static_cast<std::size_t>(filled), '#');
+        bar.resize(k_width, '.');
+        // Remaining time by linear extrapolation: elapsed * (1 - f) / f.
+        const std::string remaining =
+            fraction > 0.0 ? format_duration(p.seconds * (1.0 - fraction) / fraction) : "?";
+        std::fprintf(stderr, "\r[%s] %3d%%  elapsed %s  remaining %s ", bar.c_str(),
+                     static_cast<int>(fraction * 100.0), format_duration(p.seconds).c_str(),
+                     remaining.c_str());
+        std::fflush(stderr);
+        last_draw_ = p.seconds;
+        drawn_ = true;
+    }
+
+    bool enabled_;
+    RenderProgress last_;
+    double last_draw_ = 0.0;
+    bool drawn_ = false;
 };
 
 }  // namespace
@@ -141,7 +211,8 @@ int render_and_write(const Scene& scene, const CameraSettings& camera_settings,
     settings.samples_per_pixel = o.spp;
     settings.threads = o.threads;
     settings.seed = o.seed;
-    settings.progress = !o.quiet;
+    ProgressBar progress(!o.quiet);
+    settings.progress = [&progress](const RenderProgress& p) { progress.update(p); };
     settings.cancel = &g_cancel;
     // Ctrl-C (or SIGTERM) before the write starts: exit 130, nothing written. During the
     // (short) write it takes effect once the file is complete: image files only ever
@@ -149,6 +220,7 @@ int render_and_write(const Scene& scene, const CameraSettings& camera_settings,
     // file or a stray temporary either way.
     RenderStats stats;
     const Image image = render(scene, camera, integrator, settings, &stats);
+    progress.finish();
     if (stats.cancelled || g_cancel.load()) {
         std::cerr << "interrupted: nothing written\n";
         return 130;

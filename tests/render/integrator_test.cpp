@@ -406,7 +406,7 @@ TEST(Integrators, FiniteOnDegenerateGeometry) {
     settings.samples_per_pixel = 6;
     settings.threads = 2;
     settings.tile_size = 5;
-    settings.progress = false;
+    settings.progress = nullptr;
     for (const CameraSettings& cs : cameras)
         for (GuardedIntegrator* integ : integrators) {
             RenderStats stats;

@@ -96,7 +96,7 @@ TEST(Renderer, ImageIsIdenticalForAnyThreadCountAndTileSize) {
     RenderSettings settings;
     settings.samples_per_pixel = 5;
     settings.seed = 42;
-    settings.progress = false;
+    settings.progress = nullptr;
     settings.threads = 1;
     RenderStats stats;
     const Image reference = render(scene, camera, integrator, settings, &stats);
@@ -124,7 +124,7 @@ TEST(Renderer, PixelIsTheMeanOfItsSamples) {
     RenderSettings settings;
     settings.samples_per_pixel = 6;
     settings.seed = 7;
-    settings.progress = false;
+    settings.progress = nullptr;
     const Image image = render(scene, camera, integrator, settings);
     for (int y = 0; y < 3; ++y) {
         for (int x = 0; x < 4; ++x) {
@@ -147,7 +147,7 @@ TEST(Renderer, NonFiniteSamplesAreDroppedAndCounted) {
     SometimesNan integrator;
     RenderSettings settings;
     settings.samples_per_pixel = 8;
-    settings.progress = false;
+    settings.progress = nullptr;
     settings.threads = 2;
     RenderStats stats;
     const Image image = render(scene, camera, integrator, settings, &stats);
@@ -177,7 +177,7 @@ TEST(Renderer, CancellationReturnsPromptly) {
     std::atomic<bool> cancel{false};
     RenderSettings settings;
     settings.threads = 2;
-    settings.progress = false;
+    settings.progress = nullptr;
     settings.cancel = &cancel;
     std::thread canceller([&] {
         std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -196,7 +196,7 @@ TEST(Renderer, CancellationReturnsPromptly) {
     EXPECT_EQ(image.width, 256);
 
     // Cancelled before it starts: nothing rendered.
-    settings.progress = true;
+    settings.progress = [](const RenderProgress&) {};  // a callback must not change the result
     RenderStats none;
     const Image black = render(scene, camera, integrator, settings, &none);
     EXPECT_TRUE(none.cancelled);
@@ -210,7 +210,7 @@ TEST(Renderer, IntegratorExceptionIsRethrown) {
     Throwing integrator;
     RenderSettings settings;
     settings.threads = 2;
-    settings.progress = false;
+    settings.progress = nullptr;
     EXPECT_THROW((void)render(scene, camera, integrator, settings), std::runtime_error);
 }
 
@@ -271,7 +271,7 @@ TEST(Renderer, RendersARealSceneWithoutNaN) {
     const Camera camera(cs);
     DirectLighting integrator;
     RenderSettings settings;
-    settings.progress = false;
+    settings.progress = nullptr;
     const Image image = render(scene, camera, integrator, settings);
     EXPECT_GT(image.at(12, 10).x, 0.0f);         // lit sphere in the middle
     EXPECT_EQ(image.at(0, 0), glm::vec3(0.0f));  // background

@@ -60,7 +60,7 @@ TEST(Cancellation, ASlowRenderStopsPromptly) {
     RenderSettings settings;
     settings.samples_per_pixel = 1 << 20;
     settings.threads = 2;
-    settings.progress = false;
+    settings.progress = nullptr;
     settings.cancel = &cancel;
     RenderStats stats;
     Clock::time_point cancelled_at;
@@ -86,7 +86,7 @@ TEST(Cancellation, CancelledBeforeTheStartRendersNothing) {
     RenderSettings settings;
     settings.samples_per_pixel = 64;
     settings.threads = 4;
-    settings.progress = false;
+    settings.progress = nullptr;
     settings.cancel = &cancel;
     RenderStats stats;
     const auto start = Clock::now();
@@ -105,7 +105,7 @@ TEST(Cancellation, ManyThreadsCancelledMidTile) {
     settings.samples_per_pixel = 4096;
     settings.threads = 8;  // more threads than cores: cancellation must reach them all
     settings.tile_size = 3;
-    settings.progress = false;
+    settings.progress = nullptr;
     settings.cancel = &cancel;
     RenderStats stats;
     std::thread canceller([&] {
@@ -130,7 +130,7 @@ TEST(Multithreaded, RealSceneIsIdenticalForAnyThreadCount) {
     PathTracer integrator(PathTracerSettings{6, true, 2});
     RenderSettings settings;
     settings.samples_per_pixel = 3;
-    settings.progress = false;
+    settings.progress = nullptr;
     settings.seed = 9;
     settings.threads = 1;
     const Image reference = render(scene, camera, integrator, settings);

@@ -115,7 +115,7 @@ TEST(BadParameter, RenderSettingsAndFilmSize) {
     const auto render_with = [&](auto change) {
         return [&, change] {
             RenderSettings s;
-            s.progress = false;
+            s.progress = nullptr;
             change(s);
             (void)render(scene, camera, integrator, s);
         };
@@ -129,7 +129,7 @@ TEST(BadParameter, RenderSettingsAndFilmSize) {
     expect_error(render_with([](RenderSettings& s) { s.tile_size = -1; }), {"tile_size = -1"});
     // A tile larger than the image is the whole image (no overflow in the tile arithmetic).
     RenderSettings huge_tile;
-    huge_tile.progress = false;
+    huge_tile.progress = nullptr;
     huge_tile.tile_size = INT_MAX;
     RenderStats stats;
     const Image image = render(scene, camera, integrator, huge_tile, &stats);

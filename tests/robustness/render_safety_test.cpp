@@ -49,7 +49,7 @@ Rendered render_small(const Scene& scene, Integrator& integrator, const glm::vec
     RenderSettings settings;
     settings.samples_per_pixel = spp;
     settings.threads = 2;
-    settings.progress = false;
+    settings.progress = nullptr;
     Rendered r;
     r.image = render(scene, Camera(cs), integrator, settings, &r.stats);
     return r;

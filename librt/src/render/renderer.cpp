@@ -1,3 +1,9 @@
+// The render loop (run_block) and the entry points built on it: render, render_block and
+// render_progressive. A little over 400 lines: the entry points share the loop's private
+// types, so they stay in one file.
+
+#include "render/aov.h"
+
 #include <librt/core/error.h>
 #include <librt/core/finite.h>
 #include <librt/render/renderer.h>
@@ -8,16 +14,13 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
-#include <cstdio>
 #include <exception>
 #include <mutex>
 #include <string>
+#include <system_error>
 #include <thread>
+#include <utility>
 #include <vector>
-
-#if defined(__unix__) || defined(__APPLE__)
-#include <unistd.h>
-#endif
 
 namespace librt {
 
@@ -29,79 +32,11 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-bool stderr_is_terminal() {
-#if defined(__unix__) || defined(__APPLE__)
-    return ::isatty(::fileno(stderr)) != 0;
-#else
-    return false;
-#endif
-}
-
-std::string format_duration(double seconds) {
-    const auto total = static_cast<long long>(std::max(0.0, seconds) + 0.5);
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%lld:%02lld:%02lld", total / 3600, (total / 60) % 60,
-                  total % 60);
-    return buffer;
-}
-
-// A one-line progress bar on stderr, shown only on a terminal once the render has run
-// for more than a second, redrawn at most ten times a second.
-class ProgressBar {
-public:
-    ProgressBar(bool wanted, Clock::time_point start)
-        : enabled_(wanted && stderr_is_terminal()), start_(start) {}
-
-    void update(std::size_t done, std::size_t total) {
-        if (!enabled_) return;
-        const double elapsed = seconds_since(start_);
-        if (elapsed < 1.0 || elapsed - last_draw_ < 0.1) return;
-        draw(done, total, elapsed);
-    }
-
-    void finish(std::size_t done, std::size_t total) {
-        if (!drawn_) return;
-        draw(done, total, seconds_since(start_));
-        std::fputc('\n', stderr);
-        std::fflush(stderr);
-    }
-
-private:
-    void draw(std::size_t done, std::size_t total, double elapsed) {
-        constexpr int k_width = 30;
-        const double fraction =
-            total == 0 ? 1.0 : static_cast<double>(done) / static_cast<double>(total);
-        const int filled = static_cast<int>(fraction * k_width);
-        std::string bar(static_cast<std::size_t>(filled), '#');
-        bar.resize(k_width, '.');
-        // Remaining time by linear extrapolation: elapsed * (1 - f) / f.
-        const std::string remaining =
-            fraction > 0.0 ? format_duration(elapsed * (1.0 - fraction) / fraction) : "?";
-        std::fprintf(stderr, "\r[%s] %3d%%  elapsed %s  remaining %s ", bar.c_str(),
-                     static_cast<int>(fraction * 100.0), format_duration(elapsed).c_str(),
-                     remaining.c_str());
-        std::fflush(stderr);
-        last_draw_ = elapsed;
-        drawn_ = true;
-    }
-
-    bool enabled_;
-    Clock::time_point start_;
-    double last_draw_ = 0.0;
-    bool drawn_ = false;
-};
-
 struct Tile {
     int x0, y0, x1, y1;  // pixel range [x0, x1) x [y0, y1)
 };
 
-}  // namespace
-
-void validate(const RenderSettings& s) {
-    if (s.samples_per_pixel < 1 || s.samples_per_pixel > (1 << 20)) {
-        throw Error("samples_per_pixel = " + std::to_string(s.samples_per_pixel) +
-                    ": must be in [1, 1048576]");
-    }
+void validate_threads_and_tiles(const RenderSettings& s) {
     if (s.threads < 0 || s.threads > 1024) {
         throw Error("threads = " + std::to_string(s.threads) + ": must be in [0, 1024]");
     }
@@ -110,25 +45,44 @@ void validate(const RenderSettings& s) {
     }
 }
 
-Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
-             const RenderSettings& settings, RenderStats* stats) {
-    const Clock::time_point start = Clock::now();
-    validate(settings);
-    Image image(camera.width(), camera.height());  // checks the film size before allocating
+/// How run_block ended.
+struct BlockOutcome {
+    std::uint64_t samples = 0;    // Integrator::li calls
+    std::uint64_t nonfinite = 0;  // of which non-finite
+    bool complete = false;        // every pixel of the block got all its samples
+    bool cancelled = false;       // settings.cancel stopped it
+    bool aborted = false;         // `tick` stopped it
+};
 
-    integrator.preprocess(scene);
+/// Called on the calling thread about ten times a second with the fraction of the
+/// block's tiles done; returning true stops the block (as a cancellation would).
+using Tick = std::function<bool(double fraction)>;
 
-    // Tiles in row-major order; each is written by exactly one thread. A tile larger than
-    // the image is the image (and keeps the index arithmetic below far from overflow).
-    const int tile = std::min(settings.tile_size, std::max(image.width, image.height));
-    const int tiles_x = (image.width + tile - 1) / tile;
-    const int tiles_y = (image.height + tile - 1) / tile;
+// The one render loop under every entry point: threads take the block's tiles from an
+// atomic counter and render each pixel's samples onto its film record, in sample order.
+// The calling thread watches (ticks) until the workers are done.
+BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrator& integrator,
+                       Film& film, const RenderBlock& block, const RenderSettings& settings,
+                       const Tick& tick) {
+    BlockOutcome outcome;
+    const int width = block.x1 - block.x0;
+    const int height = block.y1 - block.y0;
+    if (width <= 0 || height <= 0 || block.count == 0) {
+        outcome.complete = true;
+        return outcome;
+    }
+    // Tiles of the block in row-major order; each is written by exactly one thread. A tile
+    // larger than the block is the block (and keeps the index arithmetic far from overflow).
+    const int tile = std::min(settings.tile_size, std::max(width, height));
+    const int tiles_x = (width + tile - 1) / tile;
+    const int tiles_y = (height + tile - 1) / tile;
     const auto tile_count = static_cast<std::size_t>(tiles_x) * static_cast<std::size_t>(tiles_y);
     const auto tile_at = [&](std::size_t i) {
         const int tx = static_cast<int>(i % static_cast<std::size_t>(tiles_x));
         const int ty = static_cast<int>(i / static_cast<std::size_t>(tiles_x));
-        return Tile{tx * tile, ty * tile, std::min(image.width, (tx + 1) * tile),
-                    std::min(image.height, (ty + 1) * tile)};
+        return Tile{block.x0 + tx * tile, block.y0 + ty * tile,
+                    block.x0 + std::min(width, (tx + 1) * tile),
+                    block.y0 + std::min(height, (ty + 1) * tile)};
     };
 
     unsigned thread_count = settings.threads > 0 ? static_cast<unsigned>(settings.threads)
@@ -141,6 +95,7 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
     std::atomic<std::uint64_t> sample_total{0};
     std::atomic<std::uint64_t> nonfinite_total{0};
     std::atomic<bool> cancelled{false};
+    std::atomic<bool> aborted{false};
     std::atomic<bool> failed{false};
     std::exception_ptr failure;
     std::mutex mutex;
@@ -148,7 +103,8 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
     unsigned workers_finished = 0;
 
     const auto stop_requested = [&] {
-        if (failed.load(std::memory_order_relaxed)) return true;
+        if (failed.load(std::memory_order_relaxed) || aborted.load(std::memory_order_relaxed))
+            return true;
         if (settings.cancel != nullptr && settings.cancel->load(std::memory_order_relaxed)) {
             cancelled.store(true, std::memory_order_relaxed);
             return true;
@@ -158,33 +114,49 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
 
     // Cancellation is checked before every pixel and every kCancelCheckSamples samples
     // within one, so even a pixel of 2^20 samples cannot hold up a cancelled render. A
-    // pixel left unfinished stays black.
-    constexpr int kCancelCheckSamples = 64;
+    // pixel stopped part-way keeps the samples it took: its record stays consistent.
+    constexpr std::uint32_t kCancelCheckSamples = 64;
+    const bool with_aovs = film.has_aovs();
+    const std::uint32_t end = block.first + block.count;
     const auto render_tile = [&](const Tile& t, std::uint64_t& samples, std::uint64_t& nonfinite) {
         for (int y = t.y0; y < t.y1; ++y) {
             for (int x = t.x0; x < t.x1; ++x) {
-                glm::dvec3 sum(0.0);
-                std::uint32_t kept = 0;  // finite samples
-                for (int s = 0; s < settings.samples_per_pixel; ++s) {
-                    if (s % kCancelCheckSamples == 0 && stop_requested()) {
-                        samples += static_cast<std::uint64_t>(s);
-                        nonfinite += static_cast<std::uint64_t>(s) - kept;
-                        return false;
+                const std::size_t index = film.index(x, y);
+                // The running sums, continued in sample order (see film.h).
+                FilmPixel pixel = film.pixels[index];
+                AovPixel aov = with_aovs ? film.aovs[index] : AovPixel{};
+                const auto px = static_cast<std::uint32_t>(x);
+                const auto py = static_cast<std::uint32_t>(y);
+                bool stopped = false;
+                for (std::uint32_t s = block.first; s < end; ++s) {
+                    if ((s - block.first) % kCancelCheckSamples == 0 && stop_requested()) {
+                        stopped = true;
+                        break;
                     }
-                    Sampler sampler(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y),
-                                    static_cast<std::uint32_t>(s), settings.seed);
+                    Sampler sampler(px, py, s, settings.seed);
                     const Ray ray = camera.generate_ray(x, y, sampler);
+                    if (with_aovs) {
+                        const AovSample a = sample_aovs(scene, ray, px, py, s, settings.seed);
+                        aov.albedo += glm::dvec3(a.albedo);
+                        aov.normal += glm::dvec3(a.normal);
+                        if (a.hit) {
+                            aov.depth += static_cast<double>(a.depth);
+                            ++aov.hits;
+                        }
+                    }
                     const glm::vec3 l = integrator.li(scene, ray, sampler);
+                    ++pixel.samples;
+                    ++samples;
                     if (finite(l)) {
-                        sum += glm::dvec3(l);
-                        ++kept;
+                        pixel.radiance += glm::dvec3(l);
+                        ++pixel.finite;
+                    } else {
+                        ++nonfinite;
                     }
                 }
-                samples += static_cast<std::uint64_t>(settings.samples_per_pixel);
-                nonfinite += static_cast<std::uint64_t>(settings.samples_per_pixel) - kept;
-                // Pixel estimate: the mean of its finite samples.
-                image.at(x, y) =
-                    kept > 0 ? glm::vec3(sum / static_cast<double>(kept)) : glm::vec3(0.0f);
+                film.pixels[index] = pixel;
+                if (with_aovs) film.aovs[index] = aov;
+                if (stopped) return false;
             }
         }
         return true;
@@ -223,28 +195,225 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
         throw Error(std::string("cannot start render threads: ") + e.what());
     }
 
-    // The calling thread watches: progress bar, and wakes as soon as all workers are done.
-    ProgressBar progress(settings.progress, start);
+    // The calling thread watches: ticks about ten times a second, and wakes as soon as all
+    // workers are done.
     {
         std::unique_lock<std::mutex> lock(mutex);
         while (workers_finished < threads.size()) {
             finished_cv.wait_for(lock, std::chrono::milliseconds(100));
+            if (workers_finished == threads.size() || !tick) continue;
             lock.unlock();
-            progress.update(tiles_done.load(std::memory_order_relaxed), tile_count);
+            const double fraction =
+                static_cast<double>(tiles_done.load(std::memory_order_relaxed)) /
+                static_cast<double>(tile_count);
+            try {
+                if (tick(fraction)) aborted.store(true, std::memory_order_relaxed);
+            } catch (...) {  // a throwing progress callback stops the render, then is rethrown
+                const std::lock_guard<std::mutex> guard(mutex);
+                if (!failure) failure = std::current_exception();
+                failed.store(true, std::memory_order_relaxed);
+            }
             lock.lock();
         }
     }
     for (std::thread& t : threads) t.join();
-    progress.finish(tiles_done.load(), tile_count);
 
     if (failure) std::rethrow_exception(failure);
+    outcome.samples = sample_total.load();
+    outcome.nonfinite = nonfinite_total.load();
+    outcome.complete = tiles_done.load() == tile_count;
+    outcome.cancelled = !outcome.complete && cancelled.load();
+    outcome.aborted = !outcome.complete && !outcome.cancelled && aborted.load();
+    return outcome;
+}
+
+void check_film_matches(const Film& film, const Camera& camera) {
+    if (film.width != camera.width() || film.height != camera.height()) {
+        throw Error("film size " + std::to_string(film.width) + " x " +
+                    std::to_string(film.height) + ": must be the camera's " +
+                    std::to_string(camera.width()) + " x " + std::to_string(camera.height()));
+    }
+}
+
+}  // namespace
+
+void validate(const RenderSettings& s) {
+    if (s.samples_per_pixel < 1 || s.samples_per_pixel > static_cast<int>(kMaxSamplesPerPixel)) {
+        throw Error("samples_per_pixel = " + std::to_string(s.samples_per_pixel) +
+                    ": must be in [1, 1048576]");
+    }
+    validate_threads_and_tiles(s);
+}
+
+void validate(const ProgressiveSettings& s) {
+    validate(s.render);
+    if (s.pass_samples < 1 || s.pass_samples > static_cast<int>(kMaxSamplesPerPixel)) {
+        throw Error("pass_samples = " + std::to_string(s.pass_samples) +
+                    ": must be in [1, 1048576]");
+    }
+    if (!std::isfinite(s.time_limit) || s.time_limit < 0.0) {
+        throw Error("time_limit = " + std::to_string(s.time_limit) +
+                    ": must be finite and >= 0 seconds");
+    }
+}
+
+Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
+             const RenderSettings& settings, RenderStats* stats) {
+    const Clock::time_point start = Clock::now();
+    validate(settings);
+    check_image_size(camera.width(), camera.height());  // before allocating anything
+    Film film(camera.width(), camera.height());
+
+    integrator.preprocess(scene);
+    const auto spp = static_cast<std::uint32_t>(settings.samples_per_pixel);
+    const RenderBlock whole{0, 0, film.width, film.height, 0, spp};
+    Tick tick;
+    if (settings.progress) {
+        tick = [&](double fraction) {
+            settings.progress({fraction, seconds_since(start), 0, 0});
+            return false;
+        };
+    }
+    const BlockOutcome outcome = run_block(scene, camera, integrator, film, whole, settings, tick);
+    if (settings.progress && outcome.complete)
+        settings.progress({1.0, seconds_since(start), 1, spp});
+
+    Image image = resolve(film);
+    if (!outcome.complete) {
+        // As before films: a pixel the cancellation stopped part-way stays black.
+        for (std::size_t i = 0; i < film.pixels.size(); ++i) {
+            if (film.pixels[i].samples < spp) image.pixels[i] = glm::vec3(0.0f);
+        }
+    }
     if (stats != nullptr) {
+        *stats = RenderStats{};
         stats->seconds = seconds_since(start);
-        stats->samples = sample_total.load();
-        stats->nonfinite_samples = nonfinite_total.load();
-        stats->cancelled = cancelled.load() && tiles_done.load() < tile_count;
+        stats->samples = outcome.samples;
+        stats->nonfinite_samples = outcome.nonfinite;
+        stats->cancelled = outcome.cancelled;
+        stats->passes = outcome.complete ? 1 : 0;
+        stats->samples_per_pixel = outcome.complete ? spp : 0;
     }
     return image;
+}
+
+RenderStats render_block(const Scene& scene, const Camera& camera, const Integrator& integrator,
+                         Film& film, const RenderBlock& block, const RenderSettings& settings) {
+    const Clock::time_point start = Clock::now();
+    validate_threads_and_tiles(settings);
+    check_film_matches(film, camera);
+    if (block.x0 < 0 || block.x0 > block.x1 || block.x1 > film.width || block.y0 < 0 ||
+        block.y0 > block.y1 || block.y1 > film.height) {
+        throw Error("block [" + std::to_string(block.x0) + ", " + std::to_string(block.x1) +
+                    ") x [" + std::to_string(block.y0) + ", " + std::to_string(block.y1) +
+                    "): must lie in the " + std::to_string(film.width) + " x " +
+                    std::to_string(film.height) + " film");
+    }
+    if (std::uint64_t{block.first} + block.count > kMaxSamplesPerPixel) {
+        throw Error("block samples [" + std::to_string(block.first) + ", " +
+                    std::to_string(std::uint64_t{block.first} + block.count) +
+                    "): a pixel holds at most 1048576 samples");
+    }
+    for (int y = block.y0; y < block.y1; ++y) {
+        for (int x = block.x0; x < block.x1; ++x) {
+            if (film.at(x, y).samples != block.first) {
+                throw Error("block.first = " + std::to_string(block.first) + ": film pixel (" +
+                            std::to_string(x) + ", " + std::to_string(y) + ") holds " +
+                            std::to_string(film.at(x, y).samples) +
+                            " samples (a block continues a pixel's samples in order)");
+            }
+        }
+    }
+    Tick tick;
+    if (settings.progress) {
+        tick = [&](double fraction) {
+            settings.progress({fraction, seconds_since(start), 0, block.first});
+            return false;
+        };
+    }
+    const BlockOutcome outcome = run_block(scene, camera, integrator, film, block, settings, tick);
+    RenderStats stats;
+    stats.seconds = seconds_since(start);
+    stats.samples = outcome.samples;
+    stats.nonfinite_samples = outcome.nonfinite;
+    stats.cancelled = outcome.cancelled;
+    stats.passes = outcome.complete ? 1 : 0;
+    stats.samples_per_pixel = outcome.complete ? block.first + block.count : block.first;
+    if (settings.progress && outcome.complete)
+        settings.progress({1.0, stats.seconds, 1, stats.samples_per_pixel});
+    return stats;
+}
+
+RenderStats render_progressive(const Scene& scene, const Camera& camera, Integrator& integrator,
+                               Film& film, const ProgressiveSettings& settings) {
+    validate(settings);
+    const std::function<double()> clock = settings.clock ? settings.clock : [] {
+        return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+    };
+    const double start = clock();
+    const auto elapsed = [&] { return clock() - start; };
+    if (film.width == 0 && film.height == 0) {
+        check_image_size(camera.width(), camera.height());
+        film = Film(camera.width(), camera.height(), settings.aovs);
+    }
+    check_film_matches(film, camera);
+    const std::uint32_t first = uniform_sample_count(film);
+    const auto target = static_cast<std::uint32_t>(settings.render.samples_per_pixel);
+    const auto pass = static_cast<std::uint32_t>(settings.pass_samples);
+    const RenderSettings& rs = settings.render;
+    const double limit = settings.time_limit;
+
+    RenderStats stats;
+    stats.samples_per_pixel = first;
+    std::uint32_t n = first;  // samples every pixel of `film` holds
+    // Fraction of the work done once every pixel holds `samples` (and, with a time limit,
+    // of the time used, whichever is further).
+    const auto fraction = [&](double samples, double seconds) {
+        double f = target > first ? (samples - first) / double(target - first) : 1.0;
+        if (limit > 0.0) f = std::max(f, seconds / limit);
+        return std::clamp(f, 0.0, 1.0);
+    };
+    if (n < target) integrator.preprocess(scene);
+    Film work;  // the pass in progress: a copy of `film` that replaces it once complete
+    while (n < target) {
+        // A film holding no samples always gets its first pass, whatever the limit.
+        if (limit > 0.0 && n > 0 && elapsed() >= limit) {
+            stats.time_limit_reached = true;
+            break;
+        }
+        if (rs.cancel != nullptr && rs.cancel->load()) {
+            stats.cancelled = true;
+            break;
+        }
+        const std::uint32_t count = std::min(pass, target - n);
+        work = film;
+        const RenderBlock block{0, 0, film.width, film.height, n, count};
+        const Tick tick = [&](double done) {
+            if (rs.progress) {
+                const double seconds = elapsed();
+                rs.progress({fraction(n + done * count, seconds), seconds, stats.passes, n});
+            }
+            return limit > 0.0 && n > 0 && elapsed() >= limit;
+        };
+        const BlockOutcome outcome = run_block(scene, camera, integrator, work, block, rs, tick);
+        stats.samples += outcome.samples;
+        stats.nonfinite_samples += outcome.nonfinite;
+        if (!outcome.complete) {  // the unfinished pass is dropped with `work`
+            stats.cancelled = outcome.cancelled;
+            stats.time_limit_reached = outcome.aborted;
+            break;
+        }
+        std::swap(film, work);
+        n += count;
+        ++stats.passes;
+        stats.samples_per_pixel = n;
+        if (rs.progress) {
+            const double seconds = elapsed();
+            rs.progress({fraction(n, seconds), seconds, stats.passes, n});
+        }
+    }
+    stats.seconds = elapsed();
+    return stats;
 }
 
 }  // namespace librt

@@ -3,14 +3,32 @@
 #include <librt/core/image.h>
 #include <librt/export.h>
 #include <librt/render/camera.h>
+#include <librt/render/film.h>
 #include <librt/render/integrator.h>
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 
 namespace librt {
 
 class Scene;
+
+/// Most samples a pixel may hold (and the largest samples_per_pixel): 2^20.
+inline constexpr std::uint32_t kMaxSamplesPerPixel = std::uint32_t{1} << 20u;
+
+/// Where a render is, for a progress display. The library draws nothing itself.
+struct RenderProgress {
+    double fraction = 0.0;  ///< of the planned work done, in [0, 1] (time too, with a time limit)
+    double seconds = 0.0;   ///< since the render began
+    int passes = 0;         ///< passes finished so far (a one-shot render is one pass)
+    std::uint32_t samples_per_pixel = 0;  ///< samples per pixel of the finished passes
+};
+
+/// Receives progress reports on the thread that called the render function: about ten
+/// times a second while it runs, and once at the end of every pass. An exception it
+/// throws during a pass stops the render and is rethrown by the render function.
+using ProgressCallback = std::function<void(const RenderProgress&)>;
 
 /// How to spread a render over pixels, samples and threads.
 struct RenderSettings {
@@ -19,8 +37,7 @@ struct RenderSettings {
     std::uint64_t seed = 0;     ///< varies every random number of the render
     int tile_size =
         16;  ///< side of the square tiles handed to threads (>= 1; capped at the image size)
-    bool progress =
-        true;  ///< progress bar on stderr (only if it is a terminal and the render takes > ~1 s)
+    ProgressCallback progress;  ///< progress reports (see ProgressCallback); empty = none
     const std::atomic<bool>* cancel =
         nullptr;  ///< when set and it becomes true, the render stops early
 };
@@ -31,6 +48,9 @@ struct RenderStats {
     std::uint64_t samples = 0;            ///< camera samples taken (Integrator::li calls)
     std::uint64_t nonfinite_samples = 0;  ///< samples dropped because a channel was NaN or infinite
     bool cancelled = false;               ///< true when `cancel` stopped the render before the end
+    bool time_limit_reached = false;      ///< render_progressive: stopped by its time limit
+    int passes = 0;                       ///< passes finished and kept in the film
+    std::uint32_t samples_per_pixel = 0;  ///< samples every pixel holds after a complete pass
 };
 
 /// Throws librt::Error naming the first bad parameter of `settings` and its value.
@@ -40,14 +60,72 @@ LIBRT_API void validate(const RenderSettings& settings);
 /// then threads take tiles from an atomic counter. Sample s of pixel (x, y) uses
 /// Sampler(x, y, s, seed), and each pixel is the mean of its finite samples (non-finite
 /// ones are dropped and counted; all dropped gives black), accumulated in sample order,
-/// so the image is bit-identical for any thread count and tile size. Cancellation is
-/// checked before every pixel and every 64 samples of a pixel, so a cancelled render
-/// returns after at most 64 samples' work per thread; pixels not yet finished stay black
-/// and stats->cancelled is set. Throws librt::Error for invalid settings or a film too
-/// large to allocate (before allocating it); an exception thrown by the integrator stops
-/// the render and is rethrown.
+/// so the image is bit-identical for any thread count and tile size. It is render_block
+/// of the whole image and samples [0, samples_per_pixel) onto an empty Film, resolved.
+/// Cancellation is checked before every pixel and every 64 samples of a pixel, so a
+/// cancelled render returns after at most 64 samples' work per thread; pixels not yet
+/// finished stay black and stats->cancelled is set. Throws librt::Error for invalid
+/// settings or a film too large to allocate (before allocating it); an exception thrown
+/// by the integrator stops the render and is rethrown.
 [[nodiscard]] LIBRT_API Image render(const Scene& scene, const Camera& camera,
                                      Integrator& integrator, const RenderSettings& settings,
                                      RenderStats* stats = nullptr);
+
+/// A piece of a render: samples [first, first + count) of the pixels [x0, x1) x [y0, y1).
+struct RenderBlock {
+    int x0 = 0;               ///< first column
+    int y0 = 0;               ///< first row
+    int x1 = 0;               ///< one past the last column
+    int y1 = 0;               ///< one past the last row
+    std::uint32_t first = 0;  ///< first sample index
+    std::uint32_t count = 0;  ///< number of samples per pixel
+};
+
+/// Renders `block` onto `film`, continuing each pixel's sums: every pixel of the block
+/// must hold exactly block.first samples (the film header explains why this makes any
+/// split bit-identical to the one-shot render). `integrator` must have been preprocessed
+/// for `scene`; settings.samples_per_pixel is not used. The film must have the camera's
+/// size; with AOVs, its AOV sums are rendered in the same pass. Threads, seeding, progress
+/// and cancellation work as in render(); a cancelled block leaves every pixel holding
+/// some number of samples in [first, first + count], its sums consistent with that count.
+/// Throws librt::Error naming the parameter for an invalid block (outside the film,
+/// first + count > 2^20) or a pixel holding a different number of samples, before
+/// rendering anything.
+LIBRT_API RenderStats render_block(const Scene& scene, const Camera& camera,
+                                   const Integrator& integrator, Film& film,
+                                   const RenderBlock& block, const RenderSettings& settings);
+
+/// A render in passes, until a sample count or a time limit is reached.
+struct ProgressiveSettings {
+    /// Threads, seed, tile size, progress and cancellation; samples_per_pixel is the total
+    /// each pixel should hold at the end.
+    RenderSettings render;
+    int pass_samples = 1;     ///< samples per pixel added by each pass, in [1, 2^20]
+    double time_limit = 0.0;  ///< seconds (finite, >= 0) after which rendering stops; 0 = none
+    bool aovs = false;        ///< a newly created film keeps AOV sums
+    /// Seconds on a monotonic clock, for the time limit and progress reports; empty =
+    /// std::chrono::steady_clock. Tests pass a fake one.
+    std::function<double()> clock;
+};
+
+/// Throws librt::Error naming the first bad parameter of `settings` and its value.
+LIBRT_API void validate(const ProgressiveSettings& settings);
+
+/// Renders passes of settings.pass_samples samples per pixel over the whole image onto
+/// `film` until every pixel holds settings.render.samples_per_pixel samples, the time
+/// limit has passed, or settings.render.cancel is set. An empty (0x0) film is created at
+/// the camera's size (with AOVs if settings.aovs); a non-empty one must have the camera's
+/// size and hold the same number of samples in every pixel, and is continued: rendering
+/// is resumable. Each pass renders onto a copy of the film (memory for two films) that
+/// replaces it only once the pass is complete, so the film always holds whole passes:
+/// every pixel the mean of the same number of samples (stats.samples_per_pixel, over
+/// stats.passes passes). The time limit is checked between passes and, while a pass runs,
+/// about ten times a second: a pass still running at the limit is abandoned, except that
+/// a film holding no samples always gets its first pass. The film equals a one-shot
+/// render of the same total sample count bit for bit. Calls integrator.preprocess(scene)
+/// once.
+LIBRT_API RenderStats render_progressive(const Scene& scene, const Camera& camera,
+                                         Integrator& integrator, Film& film,
+                                         const ProgressiveSettings& settings);
 
 }  // namespace librt

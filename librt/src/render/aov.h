@@ -1,0 +1,37 @@
+#pragma once
+
+#include <librt/geometry/ray.h>
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+
+// The arbitrary output variables (AOVs) of one camera sample, for denoisers and
+// compositors. Private to the renderer; one function so that it can move onto the
+// BSDF seam (lobe flags instead of Material::is_specular) in one place.
+
+namespace librt {
+
+class Scene;
+
+/// What one camera sample contributes to the AOV layers.
+struct AovSample {
+    glm::vec3 albedo{0.0f};  ///< reflectance of the first non-specular hit, tinted by the mirrors
+                             ///< and glass before it
+    glm::vec3 normal{0.0f};  ///< unit shading normal at that hit (0 when there is none)
+    float depth = 0.0f;      ///< camera distance of the first hit (valid when `hit`)
+    bool hit = false;        ///< the camera ray hit something
+};
+
+/// Most mirror and glass surfaces followed before the albedo gives up (and is 0).
+inline constexpr int kAovMaxSpecularBounces = 16;
+
+/// The AOVs of the camera ray `ray` of sample `sample` of pixel (x, y). Follows the ray
+/// through mirrors (reflection) and dielectrics (Fresnel-chosen reflection or refraction,
+/// as the integrators choose) to the first non-specular hit. Its random numbers come from
+/// their own stream (seeded from the same pixel, sample and seed, but never from the
+/// integrator's sampler), so computing AOVs leaves the beauty image unchanged.
+[[nodiscard]] AovSample sample_aovs(const Scene& scene, const Ray& ray, std::uint32_t x,
+                                    std::uint32_t y, std::uint32_t sample, std::uint64_t seed);
+
+}  // namespace librt
