@@ -50,9 +50,10 @@ struct ScalarKernel {
                 near[a] = node.bounds[r.near[a]][i];
                 far[a] = node.bounds[r.far[a]][i];
             }
-            float exit;
-            slab_test(near, far, r.o, r.inv, t_min, t_max, t_enter[i], exit);
-            mask |= static_cast<std::uint32_t>(t_enter[i] <= exit) << i;
+            float enter, exit;  // locals, so the store to t_enter cannot alias the planes
+            slab_test(near, far, r.o, r.inv, t_min, t_max, enter, exit);
+            t_enter[i] = enter;
+            mask |= static_cast<std::uint32_t>(enter <= exit) << i;
         }
         return mask;
     }

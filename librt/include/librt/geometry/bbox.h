@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace librt {
 
@@ -98,13 +99,22 @@ inline void slab_test(const V (&near)[3], const V (&far)[3], const V (&origin)[3
     const V n0 = (near[0] - origin[0]) * inv[0], f0 = (far[0] - origin[0]) * inv[0];
     const V n1 = (near[1] - origin[1]) * inv[1], f1 = (far[1] - origin[1]) * inv[1];
     const V n2 = (near[2] - origin[2]) * inv[2], f2 = (far[2] - origin[2]) * inv[2];
-    const V n01 = n0 > n1 ? n0 : n1;
-    const V n2t = n2 > t_min ? n2 : t_min;
-    enter = n01 > n2t ? n01 : n2t;
-    const V f01 = f0 < f1 ? f0 : f1;
-    V f = f01 < f2 ? f01 : f2;
-    if constexpr (Robust) f = f * (1.0f + kSlabExitSlack);
-    exit = f < t_max ? f : t_max;
+    if constexpr (std::is_same_v<V, float>) {
+        // std::max(b, a) is `a > b ? a : b`, std::min(b, a) is `a < b ? a : b`: the same
+        // values as the vector form, which compilers keep in registers better here.
+        enter = std::max(std::max(n1, n0), std::max(t_min, n2));
+        float f = std::min(f2, std::min(f1, f0));
+        if constexpr (Robust) f = f * (1.0f + kSlabExitSlack);
+        exit = std::min(t_max, f);
+    } else {
+        const V n01 = n0 > n1 ? n0 : n1;
+        const V n2t = n2 > t_min ? n2 : t_min;
+        enter = n01 > n2t ? n01 : n2t;
+        const V f01 = f0 < f1 ? f0 : f1;
+        V f = f01 < f2 ? f01 : f2;
+        if constexpr (Robust) f = f * (1.0f + kSlabExitSlack);
+        exit = f < t_max ? f : t_max;
+    }
 }
 
 /// The parameter interval [t_enter, t_exit] in which a ray is inside a box,
