@@ -34,7 +34,8 @@ struct Rows {
 
 bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-/// A random ray towards the boxes: sometimes with zero (or -0) direction components, sometimes a finite t_max.
+/// A random ray towards the boxes: sometimes with zero (or -0) direction components, sometimes a
+/// finite t_max.
 Ray random_ray(std::mt19937& rng) {
     std::uniform_real_distribution<float> u(-4.0f, 4.0f);
     std::uniform_int_distribution<int> pick(0, 7);
@@ -73,8 +74,8 @@ TEST(SlabTest, FourBoxFormAgreesWithTheOneBoxForm) {
         Rows rows;
         for (std::uint32_t i = 0; i < 4; ++i) rows.set(i, boxes[i] = random_box(rng));
         float enter[4];
-        const std::uint32_t mask = detail::slab_test4(&rows.rows[0][0], 4, detail::prepare_slab4(ray),
-                                                      ray.t_min, ray.t_max, enter);
+        const std::uint32_t mask = detail::slab_test4(
+            &rows.rows[0][0], 4, detail::prepare_slab4(ray), ray.t_min, ray.t_max, enter);
         const SlabRay one(ray);
         for (std::uint32_t i = 0; i < 4; ++i) {
             const SlabInterval s = intersect(boxes[i], one, ray.t_min, ray.t_max);

@@ -101,8 +101,9 @@ inline void slab_test(const V (&near)[3], const V (&far)[3], const V (&origin)[3
     const V n2 = (near[2] - origin[2]) * inv[2], f2 = (far[2] - origin[2]) * inv[2];
     if constexpr (std::is_same_v<V, float>) {
         // std::max(b, a) is `a > b ? a : b`, std::min(b, a) is `a < b ? a : b`: the same
-        // values as the vector form, which compilers keep in registers better here.
-        enter = std::max(std::max(n1, n0), std::max(t_min, n2));
+        // values as the vector form (ties and -0 included), which GCC keeps in registers
+        // better here.
+        enter = std::max(std::max(t_min, n2), std::max(n1, n0));
         float f = std::min(f2, std::min(f1, f0));
         if constexpr (Robust) f = f * (1.0f + kSlabExitSlack);
         exit = std::min(t_max, f);
