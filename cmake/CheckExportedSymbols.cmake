@@ -2,9 +2,8 @@
 # the dynamic symbols the library defines (nm -D --defined-only, demangled) and fails when
 #   (a) a symbol of the public API is missing (a LIBRT_API lost on the way), or
 #   (b) a symbol names something that must stay private: a nested namespace of librt
-#       (librt::detail::, librt::teapot_data::, ... apart from the few exported on purpose
-#       below), an anonymous namespace, or a private dependency (tinyobj, tinygltf,
-#       nlohmann-json, stb).
+#       (librt::detail::, librt::teapot_data::, ... unless listed in `allowed` below), an
+#       anonymous namespace, or a private dependency (tinyobj, tinygltf, nlohmann-json, stb).
 # Registered by tests/CMakeLists.txt only when librt is a shared library.
 #   LIBRARY: the shared library (e.g. $<TARGET_FILE:librt>)
 #   NM:      the nm program (CMAKE_NM; plain "nm" if empty)
@@ -37,10 +36,7 @@ set(required
   "librt::GuardedIntegrator::guard("
   "typeinfo for librt::Error"
   "typeinfo for librt::Integrator"
-  "vtable for librt::PathTracer"
-  # The inline LargePageAllocator of core/large_page_allocator.h calls these two.
-  "librt::detail::allocate_large("
-  "librt::detail::deallocate_large(")
+  "vtable for librt::PathTracer")
 
 # (b) Private names, as regular expressions matched anywhere in a symbol...
 set(forbidden
@@ -50,10 +46,9 @@ set(forbidden
   "tinygltf::"
   "nlohmann::"
   "(^| |::)stbi")
-# ...except these symbols (matched as the start of a symbol), exported on purpose.
-set(allowed
-  "librt::detail::allocate_large("
-  "librt::detail::deallocate_large(")
+# ...except these symbols (matched as the start of a symbol), exported on purpose: none
+# since the large-page allocator became private (librt/src/core).
+set(allowed)
 
 execute_process(COMMAND "${NM}" -D --defined-only -C "${LIBRARY}"
   RESULT_VARIABLE rc OUTPUT_VARIABLE nm_output ERROR_VARIABLE nm_error)

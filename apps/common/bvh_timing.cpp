@@ -60,7 +60,7 @@ void print_bvh_timing(const TriangleMesh& mesh, BvhBuilder builder, const Camera
     const double bvh_rate = static_cast<double>(rays.size()) / bvh_seconds;
     const double list_rate = static_cast<double>(scanned) / list_seconds;
     std::printf("mesh: %zu triangles; %s BVH: %zu nodes built in %.1f ms\n", mesh.triangle_count(),
-                builder == BvhBuilder::Median ? "median-split" : "SAH", bvh.bvh().nodes.size(),
+                builder == BvhBuilder::Median ? "median-split" : "SAH", bvh.stats().node_count,
                 build_seconds * 1e3);
     std::printf(
         "primary rays vs the mesh alone: BVH %.2f Mrays/s (%zu hits), linear scan %.4f Mrays/s: "

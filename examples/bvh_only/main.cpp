@@ -58,9 +58,10 @@ int main(int argc, char** argv) {
         const librt::TriangleBvh bvh(mesh, librt::BvhBuilder::Sah);
         const librt::TriangleList brute_force(mesh);
         const librt::BBox box = bvh.bounds();
+        const librt::BvhStats stats = bvh.stats();
         std::printf("%s: %zu triangles, BVH of %zu nodes, depth %u, %zu bytes\n",
-                    argc > 1 ? argv[1] : "torus", bvh.triangle_count(), bvh.bvh().nodes.size(),
-                    bvh.bvh().depth, bvh.memory_bytes());
+                    argc > 1 ? argv[1] : "torus", bvh.triangle_count(), stats.node_count,
+                    stats.depth, stats.bytes);
         std::printf("bounds: (%.3f, %.3f, %.3f) .. (%.3f, %.3f, %.3f)\n", box.lo.x, box.lo.y,
                     box.lo.z, box.hi.x, box.hi.y, box.hi.z);
 

@@ -1,13 +1,12 @@
 #include "core/parallel.h"
+#include "wide_bvh.h"
 #include "wide_kernels.h"
 
 #include <librt/accel/bvh_traversal.h>
 #include <librt/accel/triangle_bvh.h>
 #include <librt/core/error.h>
 
-#include <atomic>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <thread>
 
@@ -94,19 +93,12 @@ struct NearestTriangle {
 // (B(n) = ceil(n / 4)), and a block test costs about as much as a wide node's box test.
 SahConfig triangle_sah_config() {
     SahConfig config;
-    config.leaf_block_size = kTriangleBlockSize;
-    config.max_leaf_size = 2 * kTriangleBlockSize;
+    config.leaf_block_size = detail::kTriangleBlockSize;
+    config.max_leaf_size = 2 * detail::kTriangleBlockSize;
     config.traversal_cost = 1.0f;
     config.intersection_cost = 1.0f;
     return config;
 }
-
-/// The binary view behind bvh(), made on first use.
-struct TriangleBvh::BinaryView {
-    std::once_flag once;
-    std::atomic<bool> built{false};
-    Bvh bvh;
-};
 
 TriangleBvh::TriangleBvh(const TriangleMesh& mesh, BvhBuilder builder) {
     const MeshTriangles tris = mesh_triangles(mesh);
@@ -132,8 +124,11 @@ void TriangleBvh::build(std::span<const Triangle> triangles, BvhBuilder builder)
     const Bvh binary = builder == BvhBuilder::Median
                            ? build_median_bvh(boxes, centers)
                            : build_sah_bvh(boxes, centers, triangle_sah_config());
-    wide_ = collapse_to_wide(binary, triangles);
-    view_ = std::make_shared<BinaryView>();
+    triangle_count_ = n;
+    bounds_ = binary.bounds();
+    if (n != 0)
+        tree_ =
+            std::make_shared<const detail::WideBvh>(detail::collapse_to_wide(binary, triangles));
     set_simd_path(default_simd_path());
 }
 
@@ -148,30 +143,18 @@ void TriangleBvh::set_simd_path(SimdPath path) {
 }
 
 PrimitiveHit TriangleBvh::intersect(const Ray& ray) const {
-    if (wide_.empty()) return {};
-    return intersect_fn_(wide_, ray);
+    if (!tree_) return {};
+    return intersect_fn_(*tree_, ray);
 }
 
 bool TriangleBvh::occluded(const Ray& ray) const {
-    if (wide_.empty()) return false;
-    return occluded_fn_(wide_, ray);
+    if (!tree_) return false;
+    return occluded_fn_(*tree_, ray);
 }
 
-const Bvh& TriangleBvh::bvh() const {
-    static const Bvh empty;
-    if (!view_) return empty;
-    std::call_once(view_->once, [this] {
-        view_->bvh = expand_to_binary(wide_);
-        view_->built = true;
-    });
-    return view_->bvh;
-}
+BvhStats TriangleBvh::stats() const { return tree_ ? detail::wide_bvh_stats(*tree_) : BvhStats{}; }
 
-std::size_t TriangleBvh::memory_bytes() const {
-    std::size_t bytes = wide_.memory_bytes();
-    if (view_ && view_->built) bytes += view_->bvh.memory_bytes();
-    return bytes;
-}
+std::size_t TriangleBvh::memory_bytes() const { return tree_ ? tree_->memory_bytes() : 0; }
 
 TriangleList::TriangleList(const TriangleMesh& mesh) {
     const MeshTriangles tris = mesh_triangles(mesh);

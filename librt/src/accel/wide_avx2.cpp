@@ -1,18 +1,19 @@
-// AVX2 wide-BVH kernels: the eight child boxes of a node in one 8-lane test, four triangles per
-// test. Only this file's kernels are compiled for the instruction set (a target pragma around them,
-// not a -m flag on the file), so nothing here can leak into baseline code; they run only when
-// simd_path_supported() says the CPU has it.
+// AVX2 wide-BVH kernel: the eight child boxes of a node in one 8-lane test (slab8_avx.h),
+// four triangles per test (block4_sse.h, VEX-encoded here). Only this file's kernel is
+// compiled for the instruction set (a target pragma around it, not a -m flag on the file,
+// so nothing leaks into baseline code); it runs only when simd_path_supported() says the
+// CPU has it. The entry points are flatten: the baseline traversal template and the
+// block test are inlined into them, so all of it is compiled for AVX2.
 
 #include "wide_kernels.h"
 
 #if defined(LIBRT_HAVE_X86_KERNELS)
-#include <librt/accel/bvh_traversal.h>
-#include <librt/geometry/triangle.h>
+#include "block4_sse.h"
+#include "slab8_avx.h"
+#include "wide_traversal.h"
 
 #include <immintrin.h>
 
-#include <bit>
-#include <cmath>
 #include <cstdint>
 
 #if defined(__clang__)
@@ -22,17 +23,38 @@
 #pragma GCC target("avx2,popcnt,bmi")
 #endif
 
-namespace librt::detail::avx2 {
+namespace librt::detail {
 namespace {
 
-#include "block4_sse.inl"
+/// The WideKernel policy of the AVX2 path.
+struct Avx2Kernel : Block4Triangles {
+    using NodeRay = SlabRay8;
 
-#define LIBRT_WIDE_HIT_MASK(enter, exit) \
-    static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(enter, exit, _CMP_LE_OQ)))
-#include "wide_avx8.inl"
-#undef LIBRT_WIDE_HIT_MASK
+    static NodeRay prepare_nodes(const Ray& ray) { return prepare_slab8(ray); }
 
-}  // namespace librt::detail::avx2
+    /// slab_test8, its hit lanes gathered by movemask.
+    static std::uint32_t intersect_node(const WideBvhNode& node, const NodeRay& r, float t_min,
+                                        float t_max, float* t_enter) {
+        __m256 enter, exit;
+        slab_test8(node, r, t_min, t_max, t_enter, enter, exit);
+        return static_cast<std::uint32_t>(
+            _mm256_movemask_ps(_mm256_cmp_ps(enter, exit, _CMP_LE_OQ)));
+    }
+};
+static_assert(WideKernel<Avx2Kernel>);
+
+[[gnu::flatten]] PrimitiveHit avx2_intersect(const WideBvh& bvh, const Ray& ray) {
+    return intersect_wide<Avx2Kernel>(bvh, ray);
+}
+[[gnu::flatten]] bool avx2_occluded(const WideBvh& bvh, const Ray& ray) {
+    return occluded_wide<Avx2Kernel>(bvh, ray);
+}
+
+}  // namespace
+
+WideKernels avx2_wide_kernels() { return {&avx2_intersect, &avx2_occluded}; }
+
+}  // namespace librt::detail
 
 #if defined(__clang__)
 #pragma clang attribute pop

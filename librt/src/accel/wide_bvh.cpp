@@ -1,11 +1,12 @@
-#include <librt/accel/wide_bvh.h>
+#include "wide_bvh.h"
+
 #include <librt/core/error.h>
 
 #include <algorithm>
 #include <limits>
 #include <string>
 
-namespace librt {
+namespace librt::detail {
 namespace {
 
 /// Writes child slot i of a wide node.
@@ -43,10 +44,8 @@ public:
                 ++interior;
         }
         out_.nodes.reserve(interior + split_nodes + 1);
-        out_.shapes.reserve(interior + split_nodes + 1);
         out_.blocks.reserve(blocks);
         out_.nodes.push_back(empty_node());
-        out_.shapes.push_back(0);
         fill(0, 0, 0);
     }
 
@@ -57,10 +56,8 @@ private:
         std::uint32_t open[kWideBvhWidth];
         std::uint32_t count = 0;
         const BvhNode& root = bvh_.nodes[binary];
-        std::uint32_t shape = 0, steps = 0;
         if (root.is_leaf()) {
             open[count++] = binary;
-            shape = WideBvh::kSingleLeaf;
         } else {
             open[count++] = root.index;
             open[count++] = root.index + 1;
@@ -82,10 +79,7 @@ private:
             const BvhNode& n = bvh_.nodes[open[best]];
             open[best] = n.index;
             open[count++] = n.index + 1;
-            shape |= static_cast<std::uint32_t>(best) << (3 + 3 * steps);
-            shape = (shape & ~7u) | ++steps;
         }
-        out_.shapes[wide] = shape;
         // Leaves first, so a node's blocks sit together; then the interior children.
         std::uint32_t pending_binary[kWideBvhWidth];
         std::uint32_t pending_wide[kWideBvhWidth];
@@ -124,7 +118,6 @@ private:
         if (count <= kMaxLeafBlocks * kTriangleBlockSize) return emit_blocks(begin, count);
         check_depth(depth + 1);
         const std::uint32_t node = new_node();
-        out_.shapes[node] = WideBvh::kSplitLeaf;
         const std::uint32_t chunk = (count + kWideBvhWidth - 1) / kWideBvhWidth;
         std::uint32_t i = 0;
         for (std::uint32_t s = begin; s < begin + count; s += chunk, ++i) {
@@ -170,7 +163,6 @@ private:
         const auto index = static_cast<std::uint32_t>(out_.nodes.size());
         if (index >= WideBvhNode::kLeafBit) throw Error("wide BVH: too many nodes");
         out_.nodes.push_back(empty_node());
-        out_.shapes.push_back(0);
         return index;
     }
 
@@ -201,98 +193,23 @@ WideBvh collapse_to_wide(const Bvh& bvh, std::span<const Triangle> triangles) {
     return out;
 }
 
-Bvh expand_to_binary(const WideBvh& wide) {
-    Bvh out;
-    if (wide.empty()) return out;
-    // Slots: the real lanes of the blocks, in block order.
-    std::vector<std::uint32_t> first_slot(wide.blocks.size() + 1, 0);
-    out.prim_indices.reserve(wide.triangle_count);
-    for (std::size_t b = 0; b < wide.blocks.size(); ++b) {
-        std::uint32_t real = 0;
-        for (const std::uint32_t id : wide.blocks[b].id)
-            if (id != kInvalidId) {
-                out.prim_indices.push_back(id);
-                ++real;
-            }
-        first_slot[b + 1] = first_slot[b] + real;
+BvhStats wide_bvh_stats(const WideBvh& wide) {
+    BvhStats s;
+    s.node_count = wide.nodes.size();
+    s.depth = wide.depth;
+    s.bytes = wide.memory_bytes();
+    for (const WideBvhNode& node : wide.nodes) {
+        for (const std::uint32_t ref : node.child) {
+            if (ref == WideBvhNode::kEmptyChild || !WideBvhNode::is_leaf(ref)) continue;
+            ++s.leaf_count;
+            std::uint32_t size = 0;
+            const std::uint32_t first = WideBvhNode::first_block(ref);
+            for (std::uint32_t b = first; b < first + WideBvhNode::block_count(ref); ++b)
+                for (const std::uint32_t id : wide.blocks[b].id) size += id != kInvalidId;
+            s.max_leaf_size = std::max(s.max_leaf_size, size);
+        }
     }
-    // The block range under a reference: a leaf's own, or all of a split-leaf node's.
-    auto block_range = [&](auto&& self, std::uint32_t ref, std::uint32_t& lo,
-                           std::uint32_t& hi) -> void {
-        if (WideBvhNode::is_leaf(ref)) {
-            lo = std::min(lo, WideBvhNode::first_block(ref));
-            hi = std::max(hi, WideBvhNode::first_block(ref) + WideBvhNode::block_count(ref));
-            return;
-        }
-        for (const std::uint32_t c : wide.nodes[ref].child)
-            if (c != WideBvhNode::kEmptyChild) self(self, c, lo, hi);
-    };
-
-    // The small binary tree a node's opening steps describe: entries 0..count-1 are the
-    // node's child slots, later ones interior nodes over two entries.
-    struct Local {
-        bool interior;
-        std::uint32_t a, b;  // slot (a) or children (a, b)
-    };
-    auto emit_ref = [&](auto&& self, std::uint32_t ref, const BBox& box, std::uint32_t at,
-                        std::uint32_t depth) -> void {
-        out.depth = std::max(out.depth, depth);
-        const bool leaf = WideBvhNode::is_leaf(ref) || wide.shapes[ref] == WideBvh::kSplitLeaf ||
-                          wide.shapes[ref] == WideBvh::kSingleLeaf;
-        if (leaf) {
-            std::uint32_t lo = ~0u, hi = 0;
-            block_range(block_range, ref, lo, hi);
-            out.nodes[at] = {box, first_slot[lo], first_slot[hi] - first_slot[lo]};
-            return;
-        }
-        const WideBvhNode& node = wide.nodes[ref];
-        const std::uint32_t shape = wide.shapes[ref];
-        // Replay the openings: slot s is local leaf `slot_of[s]`.
-        Local local[2 * kWideBvhWidth];
-        std::uint32_t slot_of[kWideBvhWidth];
-        std::uint32_t n = 0;
-        const std::uint32_t root = n++;
-        slot_of[0] = n;
-        local[n++] = {false, 0, 0};
-        slot_of[1] = n;
-        local[n++] = {false, 1, 0};
-        local[root] = {true, slot_of[0], slot_of[1]};
-        const std::uint32_t steps = shape & 7u;
-        for (std::uint32_t j = 0; j < steps; ++j) {
-            const std::uint32_t s = (shape >> (3 + 3 * j)) & 7u;
-            const std::uint32_t parent = slot_of[s];
-            slot_of[s] = n;
-            local[n++] = {false, s, 0};
-            slot_of[2 + j] = n;
-            local[n++] = {false, 2 + j, 0};
-            local[parent] = {true, slot_of[s], slot_of[2 + j]};
-        }
-        auto bounds_of = [&](auto&& me, std::uint32_t l) -> BBox {
-            if (!local[l].interior) return node.child_bounds(local[l].a);
-            BBox b = me(me, local[l].a);
-            b.extend(me(me, local[l].b));
-            return b;
-        };
-        auto emit_local = [&](auto&& me, std::uint32_t l, std::uint32_t where,
-                              std::uint32_t d) -> void {
-            if (!local[l].interior) {
-                const std::uint32_t s = local[l].a;
-                self(self, node.child[s], node.child_bounds(s), where, d);
-                return;
-            }
-            out.depth = std::max(out.depth, d);
-            const auto left = static_cast<std::uint32_t>(out.nodes.size());
-            out.nodes.resize(out.nodes.size() + 2);
-            out.nodes[where] = {bounds_of(bounds_of, l), left, 0};
-            me(me, local[l].a, left, d + 1);
-            me(me, local[l].b, left + 1, d + 1);
-        };
-        (void)box;
-        emit_local(emit_local, root, at, depth);
-    };
-    out.nodes.resize(1);
-    emit_ref(emit_ref, 0, wide.bounds, 0, 0);
-    return out;
+    return s;
 }
 
-}  // namespace librt
+}  // namespace librt::detail

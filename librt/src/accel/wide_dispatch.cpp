@@ -6,14 +6,14 @@ WideKernels wide_kernels(SimdPath path) {
     switch (path) {
 #if defined(LIBRT_HAVE_X86_KERNELS)
         case SimdPath::Sse:
-            return {&sse::intersect, &sse::occluded};
+            return sse_wide_kernels();
         case SimdPath::Avx2:
-            return {&avx2::intersect, &avx2::occluded};
+            return avx2_wide_kernels();
         case SimdPath::Avx512:
-            return {&avx512::intersect, &avx512::occluded};
+            return avx512_wide_kernels();
 #endif
         default:
-            return {&scalar::intersect, &scalar::occluded};
+            return scalar_wide_kernels();
     }
 }
 

@@ -1,23 +1,24 @@
-// The portable wide-BVH kernels: one child box and one triangle at a time, with the very
+// The portable wide-BVH kernel: one child box and one triangle at a time, with the very
 // arithmetic of bbox.h's slab test and triangle.h's watertight test. Every other
-// instruction set must agree with these.
+// instruction set must agree with it.
 
 #include "wide_kernels.h"
+#include "wide_traversal.h"
 
-#include <librt/accel/bvh_traversal.h>
+#include <librt/geometry/bbox.h>
 #include <librt/geometry/triangle.h>
 
-#include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 
-namespace librt::detail::scalar {
+namespace librt::detail {
 namespace {
 
-struct Kernel {
+/// The WideKernel policy of the scalar path.
+struct ScalarKernel {
     /// Per-ray constants of the slab test: origin, safe inverse direction, and for each
-    /// axis the bounds plane the ray enters through (lo when the inverse is positive).
+    /// axis the bounds rows the ray enters and leaves through (lo first when the inverse is
+    /// positive).
     struct NodeRay {
         float o[3];
         float inv[3];
@@ -32,8 +33,6 @@ struct Kernel {
         for (std::uint32_t a = 0; a < 3; ++a) {
             r.o[a] = ray.origin[static_cast<int>(a)];
             r.inv[a] = inv[static_cast<int>(a)];
-            // A negative inverse enters through hi: (hi - o) * inv <= (lo - o) * inv, so this
-            // picks min/max of bbox.h's slab test without computing both.
             const bool negative = std::signbit(r.inv[a]);
             r.near[a] = 2 * a + (negative ? 1 : 0);
             r.far[a] = 2 * a + (negative ? 0 : 1);
@@ -41,19 +40,18 @@ struct Kernel {
         return r;
     }
 
-    /// Slab test (Kay-Kajiya) of the eight children, as bbox.h's intersect.
+    /// bbox.h's slab_test of the eight children, one at a time.
     static std::uint32_t intersect_node(const WideBvhNode& node, const NodeRay& r, float t_min,
                                         float t_max, float* t_enter) {
         std::uint32_t mask = 0;
         for (std::uint32_t i = 0; i < kWideBvhWidth; ++i) {
-            float tn[3], tf[3];
+            float near[3], far[3];
             for (std::uint32_t a = 0; a < 3; ++a) {
-                tn[a] = (node.bounds[r.near[a]][i] - r.o[a]) * r.inv[a];
-                tf[a] = (node.bounds[r.far[a]][i] - r.o[a]) * r.inv[a];
+                near[a] = node.bounds[r.near[a]][i];
+                far[a] = node.bounds[r.far[a]][i];
             }
-            const float enter = std::max(std::max(tn[0], tn[1]), std::max(tn[2], t_min));
-            const float exit =
-                std::min(std::min(std::min(tf[0], tf[1]), tf[2]) * kSlabExitScale, t_max);
+            float enter, exit;  // locals, so the store to t_enter cannot alias the planes
+            slab_test(near, far, r.o, r.inv, t_min, t_max, enter, exit);
             t_enter[i] = enter;
             mask |= static_cast<std::uint32_t>(enter <= exit) << i;
         }
@@ -84,14 +82,17 @@ struct Kernel {
         return false;
     }
 };
+static_assert(WideKernel<ScalarKernel>);
 
-#include "wide_traversal.inl"
+PrimitiveHit scalar_intersect(const WideBvh& bvh, const Ray& ray) {
+    return intersect_wide<ScalarKernel>(bvh, ray);
+}
+bool scalar_occluded(const WideBvh& bvh, const Ray& ray) {
+    return occluded_wide<ScalarKernel>(bvh, ray);
+}
 
 }  // namespace
 
-PrimitiveHit intersect(const WideBvh& bvh, const Ray& ray) {
-    return intersect_with<Kernel>(bvh, ray);
-}
-bool occluded(const WideBvh& bvh, const Ray& ray) { return occluded_with<Kernel>(bvh, ray); }
+WideKernels scalar_wide_kernels() { return {&scalar_intersect, &scalar_occluded}; }
 
-}  // namespace librt::detail::scalar
+}  // namespace librt::detail

@@ -1,4 +1,4 @@
-#include <librt/core/large_page_allocator.h>
+#include "core/large_page_allocator.h"
 
 #include <algorithm>
 #include <cstdlib>

@@ -2,7 +2,7 @@
 
 // Internal helpers for the builders' data-parallel loops and scratch arrays.
 
-#include <librt/core/large_page_allocator.h>
+#include "core/large_page_allocator.h"
 
 #include <algorithm>
 #include <cstddef>

@@ -38,9 +38,9 @@ bool traverse(const Bvh& bvh, Ray& ray, HitSlot&& hit_slot) {
                     " exceeds kMaxBvhDepth = " + std::to_string(kMaxBvhDepth));
     }
     if (bvh.nodes.empty() || !is_traceable(ray)) return false;
-    const glm::vec3 inv_dir = safe_inverse(ray.direction);
+    const SlabRay slab_ray(ray);
     const BvhNode* nodes = bvh.nodes.data();
-    if (!intersect(nodes[0].bounds, ray.origin, inv_dir, ray.t_min, ray.t_max).hit()) return false;
+    if (!intersect(nodes[0].bounds, slab_ray, ray.t_min, ray.t_max).hit()) return false;
 
     // Deferred far children with their entry distance: at most one per level.
     struct Deferred {
@@ -63,10 +63,8 @@ bool traverse(const Bvh& bvh, Ray& ray, HitSlot&& hit_slot) {
             }
         } else {
             std::uint32_t near = node.index, far = node.index + 1;
-            const SlabInterval a =
-                intersect(nodes[near].bounds, ray.origin, inv_dir, ray.t_min, ray.t_max);
-            const SlabInterval b =
-                intersect(nodes[far].bounds, ray.origin, inv_dir, ray.t_min, ray.t_max);
+            const SlabInterval a = intersect(nodes[near].bounds, slab_ray, ray.t_min, ray.t_max);
+            const SlabInterval b = intersect(nodes[far].bounds, slab_ray, ray.t_min, ray.t_max);
             const bool hit_a = a.hit(), hit_b = b.hit();
             if (hit_a && hit_b) {
                 const bool swap = b.t_enter < a.t_enter;

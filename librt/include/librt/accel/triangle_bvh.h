@@ -2,8 +2,8 @@
 
 #include <librt/accel/bvh.h>
 #include <librt/accel/bvh_builder.h>
+#include <librt/accel/bvh_stats.h>
 #include <librt/accel/simd.h>
-#include <librt/accel/wide_bvh.h>
 #include <librt/export.h>
 #include <librt/geometry/hit.h>
 #include <librt/geometry/mesh.h>
@@ -17,15 +17,21 @@
 
 namespace librt {
 
+namespace detail {
+struct WideBvh;  // the private node layout (librt/src/accel/wide_bvh.h)
+}  // namespace detail
+
 /// The binned-SAH settings TriangleBvh builds with (BvhBuilder::Sah): leaves are costed
-/// in blocks of kTriangleBlockSize triangles and hold at most two blocks.
+/// in blocks of four triangles (the leaf block of the SIMD kernels) and hold at most two
+/// blocks.
 [[nodiscard]] LIBRT_API SahConfig triangle_sah_config();
 
 /// Closest-hit and any-hit queries over a triangle mesh through an 8-wide BVH (collapsed
 /// from the chosen binary builder's tree) whose leaves hold the triangles in blocks of four,
 /// tested with SIMD kernels picked at run time (see simd.h). Hits report the mesh's own
 /// triangle index and the exact t of triangle.h's watertight test, whatever the path.
-/// Queries may run concurrently from any number of threads (set_simd_path aside).
+/// Queries may run concurrently from any number of threads (set_simd_path aside). Copies
+/// share the immutable tree.
 class LIBRT_API TriangleBvh {
 public:
     TriangleBvh() = default;
@@ -40,20 +46,20 @@ public:
     /// True when anything lies in (ray.t_min, ray.t_max): for shadow rays.
     [[nodiscard]] bool occluded(const Ray& ray) const;
 
-    /// The binary BVH the wide one was collapsed from (same nodes, bounds and leaves; its
-    /// prim_indices are the mesh's triangle indices). The fast path does not keep it: it is
-    /// expanded from the wide tree on the first call (thread safe, O(triangles)) and kept
-    /// from then on, for inspection and statistics. To test for an empty BVH, prefer
-    /// triangle_count() or wide_bvh().empty(), which cost nothing.
-    [[nodiscard]] const Bvh& bvh() const;
-    /// The structure intersect() and occluded() traverse.
-    [[nodiscard]] const WideBvh& wide_bvh() const { return wide_; }
+    /// True for a BVH over no triangles, which nothing hits.
+    [[nodiscard]] bool empty() const { return tree_ == nullptr; }
+    /// Transitional spelling for render/scene.cpp's `wide_bvh().empty()` (this object, so it
+    /// means empty()); the wide layout is private now. Remove once the scene's top level
+    /// calls empty().
+    [[nodiscard]] const TriangleBvh& wide_bvh() const { return *this; }
     /// Box around all triangles (empty for an empty BVH).
-    [[nodiscard]] BBox bounds() const { return wide_.bounds; }
+    [[nodiscard]] BBox bounds() const { return bounds_; }
     /// Number of triangles built over (the mesh's, or the span's, size).
-    [[nodiscard]] std::size_t triangle_count() const { return wide_.triangle_count; }
-    /// Bytes of the wide BVH and its triangle blocks (plus the binary view once bvh() has
-    /// built it).
+    [[nodiscard]] std::size_t triangle_count() const { return triangle_count_; }
+    /// Node, leaf, depth and memory figures of the 8-wide tree (a leaf is a run of blocks of
+    /// four triangles; its size counts triangles), by one walk over its nodes.
+    [[nodiscard]] BvhStats stats() const;
+    /// Bytes of the wide BVH and its triangle blocks (stats().bytes without the walk).
     [[nodiscard]] std::size_t memory_bytes() const;
 
     /// The instruction set intersect() and occluded() use; default_simd_path() at first.
@@ -65,12 +71,14 @@ public:
 private:
     void build(std::span<const Triangle> triangles, BvhBuilder builder);
 
-    struct BinaryView;
-    WideBvh wide_;
+    friend const detail::WideBvh* wide_bvh_of(const TriangleBvh& bvh);
+
+    std::shared_ptr<const detail::WideBvh> tree_;  ///< null when empty; copies share it
+    BBox bounds_;
+    std::size_t triangle_count_ = 0;
     SimdPath path_ = SimdPath::Scalar;
-    PrimitiveHit (*intersect_fn_)(const WideBvh&, const Ray&) = nullptr;
-    bool (*occluded_fn_)(const WideBvh&, const Ray&) = nullptr;
-    std::shared_ptr<BinaryView> view_;  ///< shared by copies: the tree is immutable
+    PrimitiveHit (*intersect_fn_)(const detail::WideBvh&, const Ray&) = nullptr;
+    bool (*occluded_fn_)(const detail::WideBvh&, const Ray&) = nullptr;
 };
 
 /// The naive alternative with the same interface: tests every triangle for every ray.

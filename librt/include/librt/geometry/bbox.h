@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace librt {
 
@@ -69,12 +70,53 @@ struct BBox {
     return {inv(d.x), inv(d.y), inv(d.z)};
 }
 
-/// Scale applied to a slab test's exit distance so that float rounding in (plane - o) * inv
-/// never drops a box the ray really crosses: 1 + 2 gamma(3), gamma(n) = n eps / (1 - n eps)
-/// the bound on n rounded operations (pbrt's conservative ray-box test). Without it a ray
-/// that crosses a tiny box far from its origin can see exit < enter by an ulp.
-inline constexpr float kSlabExitScale =
-    1.0f + 2.0f * (3.0f * 0.5f * 1.1920929e-07f) / (1.0f - 3.0f * 0.5f * 1.1920929e-07f);
+/// The one widening of the conservative slab test: 2 gamma(3), gamma(n) = n u / (1 - n u)
+/// with u = 2^-24 (pbrt-v3 section 3.9.2, "conservative ray-bounds intersections"). Each
+/// slab distance (plane - o) * inv carries three roundings (the subtraction, 1/d, the
+/// product), so computed entry and exit are each within gamma(3) of the exact ones;
+/// scaling the exit by 1 + 2 gamma(3) keeps every box the ray really touches. Without it a
+/// ray through a box's face or edge far from its origin could compute entry an ulp past
+/// exit and skip a triangle the watertight test would hit. Every box test of librt (binary
+/// BVH, wide kernels, the scene's top level) widens by this constant through slab_test.
+inline constexpr float kSlabExitSlack = 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
+
+/// The slab test (Kay and Kajiya 1986) of one box or of a SIMD vector of boxes: the one
+/// implementation behind every box test of librt. V is float, or a GCC/Clang vector of
+/// floats (__m128, __m256) holding one box per lane, so the wide kernels run this very
+/// arithmetic lane by lane. For axis a, near[a] and far[a] are the planes the ray enters
+/// and leaves through (lo and hi when inv[a] is positive, swapped when it is negative;
+/// SlabRay picks them), origin[a] and inv[a] the ray's origin and safe_inverse direction.
+/// Writes the entry distance, max(near distances, t_min), and the exit distance,
+/// min(far distances, t_max); the box is hit when enter <= exit. With Robust, the exit is
+/// widened by 1 + kSlabExitSlack first. That bound holds for an exit >= 0, i.e. for every
+/// box a ray with t_min >= 0 can hit; an exit behind the origin is scaled the other way,
+/// which only a ray with a negative t_min could notice. min and max are written as
+/// `a < b ? a : b` (the semantics of SSE's minps: the second operand when one is NaN).
+template <bool Robust = true, class V>
+inline void slab_test(const V (&near)[3], const V (&far)[3], const V (&origin)[3],
+                      const V (&inv)[3], const V& t_min, const V& t_max, V& enter, V& exit) {
+    // Distances to the planes: t = (plane - o) / d = (plane - o) * inv.
+    const V n0 = (near[0] - origin[0]) * inv[0], f0 = (far[0] - origin[0]) * inv[0];
+    const V n1 = (near[1] - origin[1]) * inv[1], f1 = (far[1] - origin[1]) * inv[1];
+    const V n2 = (near[2] - origin[2]) * inv[2], f2 = (far[2] - origin[2]) * inv[2];
+    if constexpr (std::is_same_v<V, float>) {
+        // std::max(b, a) is `a > b ? a : b`, std::min(b, a) is `a < b ? a : b`: the same
+        // values as the vector form (ties and -0 included), which GCC keeps in registers
+        // better here.
+        enter = std::max(std::max(t_min, n2), std::max(n1, n0));
+        float f = std::min(f2, std::min(f1, f0));
+        if constexpr (Robust) f = f * (1.0f + kSlabExitSlack);
+        exit = std::min(t_max, f);
+    } else {
+        const V n01 = n0 > n1 ? n0 : n1;
+        const V n2t = n2 > t_min ? n2 : t_min;
+        enter = n01 > n2t ? n01 : n2t;
+        const V f01 = f0 < f1 ? f0 : f1;
+        V f = f01 < f2 ? f01 : f2;
+        if constexpr (Robust) f = f * (1.0f + kSlabExitSlack);
+        exit = f < t_max ? f : t_max;
+    }
+}
 
 /// The parameter interval [t_enter, t_exit] in which a ray is inside a box,
 /// clipped to the ray's [t_min, t_max]; empty when t_enter > t_exit.
@@ -85,33 +127,49 @@ struct SlabInterval {
     [[nodiscard]] bool hit() const { return t_enter <= t_exit; }
 };
 
-/// Relative widening of a slab test's exit distance: 2 gamma(3), gamma(n) = n u / (1 - n u)
-/// with u = 2^-24. Each slab distance (lo - o) * inv carries three roundings (the
-/// subtraction, 1/d, the product), so computed entry and exit are each within gamma(3) of
-/// the exact ones; widening the exit by twice that keeps every box the ray really touches
-/// (pbrt's conservative slab test). Without it a ray through a box's face or edge could
-/// compute entry a few ulps past exit and skip a triangle the watertight test would hit.
-inline constexpr float kSlabExitSlack = 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
+/// Per-ray constants of slab_test for one box at a time: the origin, the safe inverse
+/// direction and, per axis, which corner of a box the ray enters through.
+struct SlabRay {
+    float origin[3];    ///< the ray's origin
+    float inv_dir[3];   ///< safe_inverse(direction)
+    bool enters_hi[3];  ///< true when inv_dir[a] is negative: the ray enters through hi[a]
 
-/// Slab test (Kay-Kajiya): intersects the three slabs' parameter intervals, the exit
-/// widened by kSlabExitSlack so rounding never loses a hit. inv_dir comes from
-/// safe_inverse(ray.direction).
+    /// The constants of a ray with this origin and inverse direction (from safe_inverse).
+    SlabRay(const glm::vec3& o, const glm::vec3& inv) {
+        for (int a = 0; a < 3; ++a) {
+            origin[a] = o[a];
+            inv_dir[a] = inv[a];
+            // A negative inverse enters through hi: (hi - o) * inv <= (lo - o) * inv.
+            enters_hi[a] = std::signbit(inv[a]);
+        }
+    }
+    /// The constants of a whole ray.
+    explicit SlabRay(const Ray& ray) : SlabRay(ray.origin, safe_inverse(ray.direction)) {}
+};
+
+/// Conservative slab test of one box (slab_test with the exit widened by kSlabExitSlack),
+/// clipped to [t_min, t_max]. An empty box (lo > hi) is never hit.
+[[nodiscard]] inline SlabInterval intersect(const BBox& box, const SlabRay& r, float t_min,
+                                            float t_max) {
+    float near[3], far[3];
+    for (int a = 0; a < 3; ++a) {
+        near[a] = r.enters_hi[a] ? box.hi[a] : box.lo[a];
+        far[a] = r.enters_hi[a] ? box.lo[a] : box.hi[a];
+    }
+    SlabInterval s;
+    slab_test(near, far, r.origin, r.inv_dir, t_min, t_max, s.t_enter, s.t_exit);
+    return s;
+}
+
+/// The same for a ray given by origin and safe_inverse direction.
 [[nodiscard]] inline SlabInterval intersect(const BBox& box, const glm::vec3& origin,
                                             const glm::vec3& inv_dir, float t_min, float t_max) {
-    const glm::vec3 t0 = (box.lo - origin) * inv_dir;
-    const glm::vec3 t1 = (box.hi - origin) * inv_dir;
-    const glm::vec3 tnear = glm::min(t0, t1);
-    const glm::vec3 tfar = glm::max(t0, t1);
-    const float enter = std::max(std::max(tnear.x, tnear.y), std::max(tnear.z, t_min));
-    float far = std::min(std::min(tfar.x, tfar.y), tfar.z);
-    far += std::fabs(far) * kSlabExitSlack;
-    const float exit = std::min(far, t_max);
-    return {enter, exit};
+    return intersect(box, SlabRay(origin, inv_dir), t_min, t_max);
 }
 
 /// Convenience overload for a whole ray.
 [[nodiscard]] inline SlabInterval intersect(const BBox& box, const Ray& ray) {
-    return intersect(box, ray.origin, safe_inverse(ray.direction), ray.t_min, ray.t_max);
+    return intersect(box, SlabRay(ray), ray.t_min, ray.t_max);
 }
 
 }  // namespace librt

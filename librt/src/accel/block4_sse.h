@@ -1,11 +1,26 @@
-// Private, no include guard: the 4-lane watertight triangle test shared by the SSE, AVX2
-// and AVX-512 kernels (each includes it inside its own namespace, under its own target,
-// so the same intrinsics get that instruction set's encoding). Needs <immintrin.h>,
-// librt/geometry/triangle.h and wide_bvh.h.
+#pragma once
+
+// Private: the 4-lane watertight triangle test of a TriangleBlock (SSE2), the leaf half of
+// the SSE, AVX2 and AVX-512 wide kernels. Baseline code: the AVX kernels' entry points are
+// flattened, so there it is inlined with the VEX encoding.
 //
 // Lane by lane it performs the float operations of triangle.h's intersect() in the same
 // order (the library is built with -ffp-contract=off, so no product is fused into an
 // FMA behind our back): the t, u and v it returns are bit-identical to the scalar test's.
+
+#include "wide_bvh.h"
+
+#include <librt/geometry/ray.h>
+#include <librt/geometry/triangle.h>
+
+#include <immintrin.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+
+namespace librt::detail {
 
 /// Per-ray constants of the 4-lane test: triangle.h's permutation and shear, broadcast.
 struct TriRay4 {
@@ -39,22 +54,11 @@ inline TriRay4 prepare_triangles4(const Ray& ray) {
     return r;
 }
 
-/// bbox.h's safe_inverse of the direction by one vector division: a component below
-/// 1e-30 in magnitude becomes 1e-30 with its sign first. Lane 3 is 1.
-inline __m128 safe_inverse4(const glm::vec3& dir) {
-    const __m128 d = _mm_setr_ps(dir.x, dir.y, dir.z, 1.0f);
-    const __m128 sign = _mm_set1_ps(-0.0f);
-    const __m128 tiny = _mm_set1_ps(1e-30f);
-    const __m128 small = _mm_cmplt_ps(_mm_andnot_ps(sign, d), tiny);
-    const __m128 signed_tiny = _mm_or_ps(_mm_and_ps(d, sign), tiny);
-    const __m128 fixed = _mm_or_ps(_mm_and_ps(small, signed_tiny), _mm_andnot_ps(small, d));
-    return _mm_div_ps(_mm_set1_ps(1.0f), fixed);
-}
-
 /// Recomputes the edge functions of the lanes in `lanes` in double, as triangle.h does
 /// when one of them is exactly zero in float (a ray through an edge or vertex).
 [[gnu::noinline]] inline void exact_edges4(int lanes, __m128 ax, __m128 ay, __m128 bx, __m128 by,
-                                           __m128 cx, __m128 cy, __m128& e0, __m128& e1, __m128& e2) {
+                                           __m128 cx, __m128 cy, __m128& e0, __m128& e1,
+                                           __m128& e2) {
     alignas(16) float AX[4], AY[4], BX[4], BY[4], CX[4], CY[4], E0[4], E1[4], E2[4];
     _mm_store_ps(AX, ax);
     _mm_store_ps(AY, ay);
@@ -80,33 +84,40 @@ inline __m128 safe_inverse4(const glm::vec3& dir) {
 /// triangles. Returns the lanes hit with t in (t_min, t_max) (all bits set in those lanes),
 /// and their t, u, v.
 inline __m128 test_block4(const TriangleBlock& b, const TriRay4& r, __m128 t_min, __m128 t_max,
-                       __m128& t, __m128& u, __m128& v) {
+                          __m128& t, __m128& u, __m128& v) {
     // Corners relative to the origin; z along the permuted axis kz...
     const __m128 az = _mm_sub_ps(_mm_load_ps(b.p[0][r.kz]), r.o_kz);
     const __m128 bz = _mm_sub_ps(_mm_load_ps(b.p[1][r.kz]), r.o_kz);
     const __m128 cz = _mm_sub_ps(_mm_load_ps(b.p[2][r.kz]), r.o_kz);
     // ...and x, y sheared so the ray runs along +z: x' = x - s_x z, y' = y - s_y z.
-    const __m128 ax = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[0][r.kx]), r.o_kx), _mm_mul_ps(r.sx, az));
-    const __m128 ay = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[0][r.ky]), r.o_ky), _mm_mul_ps(r.sy, az));
-    const __m128 bx = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[1][r.kx]), r.o_kx), _mm_mul_ps(r.sx, bz));
-    const __m128 by = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[1][r.ky]), r.o_ky), _mm_mul_ps(r.sy, bz));
-    const __m128 cx = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[2][r.kx]), r.o_kx), _mm_mul_ps(r.sx, cz));
-    const __m128 cy = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[2][r.ky]), r.o_ky), _mm_mul_ps(r.sy, cz));
+    const __m128 ax =
+        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[0][r.kx]), r.o_kx), _mm_mul_ps(r.sx, az));
+    const __m128 ay =
+        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[0][r.ky]), r.o_ky), _mm_mul_ps(r.sy, az));
+    const __m128 bx =
+        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[1][r.kx]), r.o_kx), _mm_mul_ps(r.sx, bz));
+    const __m128 by =
+        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[1][r.ky]), r.o_ky), _mm_mul_ps(r.sy, bz));
+    const __m128 cx =
+        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[2][r.kx]), r.o_kx), _mm_mul_ps(r.sx, cz));
+    const __m128 cy =
+        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[2][r.ky]), r.o_ky), _mm_mul_ps(r.sy, cz));
 
-    // 2D edge functions (scaled barycentrics): e0 = cx by - cy bx, e1 = ax cy - ay cx, e2 = bx ay - by ax.
+    // 2D edge functions (scaled barycentrics): e0 = cx by - cy bx, e1 = ax cy - ay cx, e2 = bx ay -
+    // by ax.
     __m128 e0 = _mm_sub_ps(_mm_mul_ps(cx, by), _mm_mul_ps(cy, bx));
     __m128 e1 = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
     __m128 e2 = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
     const __m128 zero = _mm_setzero_ps();
-    const int on_edge = _mm_movemask_ps(
-        _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(e0, zero), _mm_cmpeq_ps(e1, zero)), _mm_cmpeq_ps(e2, zero)));
+    const int on_edge = _mm_movemask_ps(_mm_or_ps(
+        _mm_or_ps(_mm_cmpeq_ps(e0, zero), _mm_cmpeq_ps(e1, zero)), _mm_cmpeq_ps(e2, zero)));
     if (on_edge) exact_edges4(on_edge, ax, ay, bx, by, cx, cy, e0, e1, e2);
 
     // Inside when the three signs agree (either winding).
-    const __m128 any_neg =
-        _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)), _mm_cmplt_ps(e2, zero));
-    const __m128 any_pos =
-        _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)), _mm_cmpgt_ps(e2, zero));
+    const __m128 any_neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)),
+                                     _mm_cmplt_ps(e2, zero));
+    const __m128 any_pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)),
+                                     _mm_cmpgt_ps(e2, zero));
     const __m128 det = _mm_add_ps(_mm_add_ps(e0, e1), e2);
     // cmpneq is true for NaN: a padding lane is rejected below by its NaN t. (No early exit
     // here: whether any lane is inside is a coin toss, and the division is cheaper than
@@ -124,16 +135,17 @@ inline __m128 test_block4(const TriangleBlock& b, const TriRay4& r, __m128 t_min
     return ok;
 }
 
-/// The triangle half of a kernel policy (see wide_traversal.inl).
-struct Block4Kernel {
+/// The triangle half of a WideKernel policy (see wide_traversal.h): four triangles a test.
+struct Block4Triangles {
     using TriRay = TriRay4;
 
     static TriRay prepare_triangles(const Ray& ray) { return prepare_triangles4(ray); }
 
-    static bool intersect_block(const TriangleBlock& block, const TriRay& r, float t_min, float& t_max,
-                                std::uint32_t& lane, float& u, float& v) {
+    static bool intersect_block(const TriangleBlock& block, const TriRay& r, float t_min,
+                                float& t_max, std::uint32_t& lane, float& u, float& v) {
         __m128 t4, u4, v4;
-        const __m128 hit = test_block4(block, r, _mm_set1_ps(t_min), _mm_set1_ps(t_max), t4, u4, v4);
+        const __m128 hit =
+            test_block4(block, r, _mm_set1_ps(t_min), _mm_set1_ps(t_max), t4, u4, v4);
         if (_mm_movemask_ps(hit) == 0) return false;
         // The nearest lane without branches: the minimum of the hit lanes' t (misses count as
         // +inf), then the lowest lane holding it, as the scalar loop keeps the first of equals.
@@ -153,8 +165,12 @@ struct Block4Kernel {
         return true;
     }
 
-    static bool occluded_block(const TriangleBlock& block, const TriRay& r, float t_min, float t_max) {
+    static bool occluded_block(const TriangleBlock& block, const TriRay& r, float t_min,
+                               float t_max) {
         __m128 t4, u4, v4;
-        return _mm_movemask_ps(test_block4(block, r, _mm_set1_ps(t_min), _mm_set1_ps(t_max), t4, u4, v4)) != 0;
+        return _mm_movemask_ps(
+                   test_block4(block, r, _mm_set1_ps(t_min), _mm_set1_ps(t_max), t4, u4, v4)) != 0;
     }
 };
+
+}  // namespace librt::detail

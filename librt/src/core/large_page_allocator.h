@@ -1,22 +1,19 @@
 #pragma once
 
-#include <librt/export.h>
+// Private: the allocator of the big arrays traversal reads at random (wide BVH nodes, leaf
+// blocks, builder scratch). Internal since the wide BVH layout is; never installed.
 
 #include <cstddef>
 #include <new>
 
-namespace librt {
+namespace librt::detail {
 
-namespace detail {
-// Exported although internal: LargePageAllocator below is inline and calls them from the
-// user's code (e.g. when a WideBvh is copied or destroyed there).
 /// Allocates `bytes` aligned to `alignment`; large blocks go on 2 MiB boundaries and are
 /// advised to use transparent huge pages (Linux), which spares random accesses into big
 /// acceleration structures most of their TLB misses. Throws std::bad_alloc.
-[[nodiscard]] LIBRT_API void* allocate_large(std::size_t bytes, std::size_t alignment);
+[[nodiscard]] void* allocate_large(std::size_t bytes, std::size_t alignment);
 /// Frees what allocate_large returned for the same `bytes` and `alignment`.
-LIBRT_API void deallocate_large(void* p, std::size_t bytes, std::size_t alignment) noexcept;
-}  // namespace detail
+void deallocate_large(void* p, std::size_t bytes, std::size_t alignment) noexcept;
 
 /// A std::allocator replacement for big arrays that are read at random (BVH nodes, leaf
 /// blocks): from 1 MiB up, memory is 2 MiB-aligned and asked to live on huge pages, as
@@ -33,11 +30,11 @@ struct LargePageAllocator {
     /// Room for n objects of T (uninitialised).
     [[nodiscard]] T* allocate(std::size_t n) {
         if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
-        return static_cast<T*>(detail::allocate_large(n * sizeof(T), alignof(T)));
+        return static_cast<T*>(allocate_large(n * sizeof(T), alignof(T)));
     }
     /// Frees what allocate(n) returned.
     void deallocate(T* p, std::size_t n) noexcept {
-        detail::deallocate_large(p, n * sizeof(T), alignof(T));
+        deallocate_large(p, n * sizeof(T), alignof(T));
     }
 
     /// Always equal (stateless).
@@ -47,4 +44,4 @@ struct LargePageAllocator {
     }
 };
 
-}  // namespace librt
+}  // namespace librt::detail

@@ -1,8 +1,13 @@
 #pragma once
 
+// Private: the 8-wide node layout TriangleBvh traverses. Internal (never installed) so that
+// the layout can change without touching the API; apps read its figures through BvhStats.
+
+#include "core/large_page_allocator.h"
+
 #include <librt/accel/bvh.h>
-#include <librt/core/large_page_allocator.h>
-#include <librt/export.h>
+#include <librt/accel/bvh_stats.h>
+#include <librt/accel/triangle_bvh.h>
 #include <librt/geometry/bbox.h>
 #include <librt/geometry/hit.h>
 #include <librt/geometry/triangle.h>
@@ -12,7 +17,7 @@
 #include <span>
 #include <vector>
 
-namespace librt {
+namespace librt::detail {
 
 /// Children per wide node.
 inline constexpr std::uint32_t kWideBvhWidth = 8;
@@ -102,27 +107,15 @@ struct WideBvh {
     std::vector<WideBvhNode, LargePageAllocator<WideBvhNode>> nodes;
     /// The leaves' triangle blocks; a leaf reference names a run of consecutive blocks.
     std::vector<TriangleBlock, LargePageAllocator<TriangleBlock>> blocks;
-    /// Per node, how collapse_to_wide opened it from one binary node, so expand_to_binary
-    /// can give back that binary tree: bits 0..2 = number k of openings, bits 3j+3..3j+5 =
-    /// the child slot opened at step j (it keeps the left half, the right half goes to
-    /// slot 2 + j); or kSplitLeaf (the node splits one oversized binary leaf) or
-    /// kSingleLeaf (the root over a binary tree that is one leaf).
-    std::vector<std::uint32_t> shapes;
     BBox bounds;                     ///< of all triangles
     std::size_t triangle_count = 0;  ///< triangles held (padding lanes aside)
     std::uint32_t depth = 0;         ///< wide levels below the root, at most kMaxWideBvhDepth
 
-    /// shapes entry of a node that splits one binary leaf too big for a leaf reference.
-    static constexpr std::uint32_t kSplitLeaf = 0xffffffffu;
-    /// shapes entry of the root when the whole binary tree is a single leaf.
-    static constexpr std::uint32_t kSingleLeaf = 0xfffffffeu;
-
     /// True for a tree over no triangles (no nodes).
     [[nodiscard]] bool empty() const { return nodes.empty(); }
-    /// Bytes held by nodes, blocks and shapes.
+    /// Bytes held by nodes and blocks.
     [[nodiscard]] std::size_t memory_bytes() const {
-        return nodes.size() * sizeof(WideBvhNode) + blocks.size() * sizeof(TriangleBlock) +
-               shapes.size() * sizeof(std::uint32_t);
+        return nodes.size() * sizeof(WideBvhNode) + blocks.size() * sizeof(TriangleBlock);
     }
 };
 
@@ -131,12 +124,19 @@ struct WideBvh {
 /// it has eight (the usual greedy collapse, as in Embree's and Ylitie et al.'s wide BVHs).
 /// triangles[i] is primitive i of the binary BVH. Leaves larger than kMaxLeafBlocks
 /// blocks (the median builder's degenerate leaves) are split into extra nodes.
-[[nodiscard]] LIBRT_API WideBvh collapse_to_wide(const Bvh& bvh,
-                                                 std::span<const Triangle> triangles);
+[[nodiscard]] WideBvh collapse_to_wide(const Bvh& bvh, std::span<const Triangle> triangles);
 
-/// The binary BVH a wide one was collapsed from, rebuilt from WideBvh::shapes: the same
-/// nodes, bounds and leaves (a leaf's slots index prim_indices, which lists the triangle ids
-/// in block order), in O(nodes) time.
-[[nodiscard]] LIBRT_API Bvh expand_to_binary(const WideBvh& wide);
+/// Node, leaf and depth figures of a wide BVH, by one walk over its nodes.
+[[nodiscard]] BvhStats wide_bvh_stats(const WideBvh& wide);
+
+}  // namespace librt::detail
+
+namespace librt {
+
+/// The tree a TriangleBvh traverses, or null for an empty one: for the library's own code
+/// and the structure tests, which see the private layout.
+[[nodiscard]] inline const detail::WideBvh* wide_bvh_of(const TriangleBvh& bvh) {
+    return bvh.tree_.get();
+}
 
 }  // namespace librt

@@ -1,34 +1,63 @@
-// Private, no include guard: the wide-BVH traversal shared by every instruction set.
-// Each wide_<isa>.cpp includes it inside its own namespace (librt::detail::<isa>) after
-// switching the compiler to that instruction set, with a policy `K` providing:
-//   K::NodeRay K::prepare_nodes(const Ray&)
-//   std::uint32_t K::intersect_node(const WideBvhNode&, const K::NodeRay&, float t_min,
-//                                   float t_max, float* t_enter)
-//       -> bit i set when child i's box is entered within [t_min, t_max]; t_enter[i] = entry
-//   K::TriRay K::prepare_triangles(const Ray&)
-//   bool K::intersect_block(const TriangleBlock&, const K::TriRay&, float t_min, float& t_max,
-//                           std::uint32_t& lane, float& u, float& v)
-//       -> true when a lane is hit in (t_min, t_max); t_max, lane, u, v become the nearest
-//   bool K::occluded_block(const TriangleBlock&, const K::TriRay&, float t_min, float t_max)
-// Needs <bit>, <cstdint>, librt/accel/bvh_traversal.h (is_traceable) and wide_bvh.h.
+#pragma once
+
+// Private: the one traversal of the wide BVH, shared by every instruction set through a
+// kernel policy (WideKernel below). The traversal is baseline code that only calls the
+// policy; each wide_<isa>.cpp instantiates it in entry points compiled for its instruction
+// set and marked flatten, so the traversal and the policy's node and leaf tests are inlined
+// there with that instruction set's encoding.
+
+#include "wide_bvh.h"
+
+#include <librt/accel/bvh_traversal.h>
+#include <librt/geometry/hit.h>
+#include <librt/geometry/ray.h>
+
+#include <bit>
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+
+namespace librt::detail {
+
+/// What traverse_wide requires of a kernel policy K (static members only):
+///   - K::NodeRay prepare_nodes(ray): per-ray constants of the node test;
+///   - intersect_node(node, node_ray, t_min, t_max, t_enter): bit i set when child i's box is
+///     entered within [t_min, t_max] (bbox.h's slab_test), t_enter[i] its entry distance;
+///   - K::TriRay prepare_triangles(ray): per-ray constants of the leaf test;
+///   - intersect_block(block, tri_ray, t_min, t_max, lane, u, v): true when a lane is hit in
+///     (t_min, t_max); t_max, lane, u and v then become those of the nearest such lane;
+///   - occluded_block(block, tri_ray, t_min, t_max): true when any lane is hit.
+template <class K>
+concept WideKernel = requires(const Ray& ray, const WideBvhNode& node, const TriangleBlock& block,
+                              const typename K::NodeRay& node_ray,
+                              const typename K::TriRay& tri_ray, float t, float& t_max,
+                              std::uint32_t& lane, float* t_enter) {
+    { K::prepare_nodes(ray) } -> std::same_as<typename K::NodeRay>;
+    { K::intersect_node(node, node_ray, t, t, t_enter) } -> std::same_as<std::uint32_t>;
+    { K::prepare_triangles(ray) } -> std::same_as<typename K::TriRay>;
+    { K::intersect_block(block, tri_ray, t, t_max, lane, t_max, t_max) } -> std::same_as<bool>;
+    { K::occluded_block(block, tri_ray, t, t) } -> std::same_as<bool>;
+};
 
 /// A deferred child: its reference and the distance at which the ray enters its box.
 ///   bytes 0..3  child reference (as in WideBvhNode::child)
 ///   bytes 4..7  entry distance
-struct StackEntry {
+struct WideStackEntry {
     std::uint32_t ref;
     float t_enter;
 };
-static_assert(sizeof(StackEntry) == 8, "StackEntry must stay 8 bytes");
+static_assert(sizeof(WideStackEntry) == 8, "WideStackEntry must stay 8 bytes");
 
 /// A node visit pushes at most eight entries and takes one back, so the stack never holds
 /// more than seven per level above the current node plus eight.
-inline constexpr std::uint32_t kWideStackSize = (kWideBvhWidth - 1) * kMaxWideBvhDepth + kWideBvhWidth;
+inline constexpr std::uint32_t kWideStackSize =
+    (kWideBvhWidth - 1) * kMaxWideBvhDepth + kWideBvhWidth;
 
 /// Asks the memory system for every cache line of a deferred child's node or leaf blocks,
 /// so that they are (likely) in cache when the child's turn comes while the nearer subtree
 /// is walked.
-inline void prefetch_child(const WideBvhNode* nodes, const TriangleBlock* blocks, std::uint32_t ref) {
+inline void prefetch_child(const WideBvhNode* nodes, const TriangleBlock* blocks,
+                           std::uint32_t ref) {
     const char* p;
     std::size_t bytes;
     if (WideBvhNode::is_leaf(ref)) {
@@ -46,7 +75,7 @@ inline void prefetch_child(const WideBvhNode* nodes, const TriangleBlock* blocks
 /// Front-to-back traversal: the children a node's test hits are visited nearest first,
 /// the others deferred with their entry distance and skipped when a nearer hit is known.
 /// With AnyHit the walk stops at the first hit. Fills *hit (closest hit only).
-template <class K, bool AnyHit>
+template <WideKernel K, bool AnyHit>
 inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit) {
     if (bvh.nodes.empty() || !is_traceable(ray)) return false;
     const typename K::NodeRay node_ray = K::prepare_nodes(ray);
@@ -56,7 +85,7 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit)
     const WideBvhNode* nodes = bvh.nodes.data();
     const TriangleBlock* blocks = bvh.blocks.data();
 
-    StackEntry stack[kWideStackSize];
+    WideStackEntry stack[kWideStackSize];
     std::uint32_t sp = 0;
     std::uint32_t current = 0;  // the root node
     std::uint32_t hit_block = 0, hit_lane = 0;
@@ -94,11 +123,13 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit)
                     mask &= mask - 1;
                     stack[sp++] = {node.child[i], t_enter[i]};
                 } while (mask != 0);
-                for (std::uint32_t k = base; k < sp; ++k) prefetch_child(nodes, blocks, stack[k].ref);
+                for (std::uint32_t k = base; k < sp; ++k)
+                    prefetch_child(nodes, blocks, stack[k].ref);
                 for (std::uint32_t k = base + 1; k < sp; ++k) {
-                    const StackEntry e = stack[k];
+                    const WideStackEntry e = stack[k];
                     std::uint32_t j = k;
-                    for (; j > base && stack[j - 1].t_enter < e.t_enter; --j) stack[j] = stack[j - 1];
+                    for (; j > base && stack[j - 1].t_enter < e.t_enter; --j)
+                        stack[j] = stack[j - 1];
                     stack[j] = e;
                 }
                 current = stack[--sp].ref;
@@ -110,7 +141,8 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit)
             for (std::uint32_t b = first; b < end; ++b) {
                 if constexpr (AnyHit) {
                     if (K::occluded_block(blocks[b], tri_ray, t_min, t_max)) return true;
-                } else if (K::intersect_block(blocks[b], tri_ray, t_min, t_max, hit_lane, hit_u, hit_v)) {
+                } else if (K::intersect_block(blocks[b], tri_ray, t_min, t_max, hit_lane, hit_u,
+                                              hit_v)) {
                     hit_block = b;
                     found = true;
                 }
@@ -122,7 +154,7 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit)
                 if (found && hit) *hit = {t_max, hit_u, hit_v, blocks[hit_block].id[hit_lane]};
                 return found;
             }
-            const StackEntry& e = stack[--sp];
+            const WideStackEntry& e = stack[--sp];
             if (e.t_enter <= t_max) {
                 current = e.ref;
                 break;
@@ -131,15 +163,18 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit)
     }
 }
 
-/// The entry points every wide_<isa>.cpp exports.
-template <class K>
-inline PrimitiveHit intersect_with(const WideBvh& bvh, const Ray& ray) {
+/// Closest hit through kernel K: what every wide_<isa>.cpp's intersect entry returns.
+template <WideKernel K>
+inline PrimitiveHit intersect_wide(const WideBvh& bvh, const Ray& ray) {
     PrimitiveHit hit;
     traverse_wide<K, false>(bvh, ray, &hit);
     return hit;
 }
 
-template <class K>
-inline bool occluded_with(const WideBvh& bvh, const Ray& ray) {
+/// Any hit through kernel K: what every wide_<isa>.cpp's occluded entry returns.
+template <WideKernel K>
+inline bool occluded_wide(const WideBvh& bvh, const Ray& ray) {
     return traverse_wide<K, true>(bvh, ray, nullptr);
 }
+
+}  // namespace librt::detail
