@@ -7,6 +7,8 @@
 #include <glm/matrix.hpp>
 
 #include <cmath>
+#include <algorithm>
+#include <cstdio>
 #include <string>
 #include <utility>
 
@@ -108,9 +110,16 @@ void validate(const TriangleMesh& mesh) {
                     std::to_string(mesh.triangles.size()) + " triangles (must be 0 or equal)");
     }
     for (std::size_t i = 0; i < n; ++i) {
-        if (!is_finite(mesh.positions[i])) {
-            throw Error("mesh: position " + std::to_string(i) + " is not finite " +
-                        to_string(mesh.positions[i]));
+        const glm::vec3& p = mesh.positions[i];
+        if (!is_finite(p)) {
+            throw Error("mesh: position " + std::to_string(i) + " is not finite " + to_string(p));
+        }
+        if (std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}) > kMaxMeshCoordinate) {
+            char text[96];
+            std::snprintf(text, sizeof text, "(%g, %g, %g)", double(p.x), double(p.y), double(p.z));
+            throw Error("mesh: position " + std::to_string(i) + " = " + text +
+                        " is outside the representable range |coordinate| <= 2^40 (1.1e12): "
+                        "ray distances to it would overflow float and it would never be hit");
         }
     }
     for (std::size_t i = 0; i < mesh.normals.size(); ++i) {

@@ -142,11 +142,20 @@ double orient2d(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
     return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
+/// What triangulate_polygon made of a polygon.
+enum class Polygon {
+    Triangulated,  ///< triangles appended, covering exactly the polygon's area
+    ZeroArea,      ///< nothing appended: the polygon has no area
+    NotSimple,     ///< nothing appended: self-overlapping, no area-preserving triangulation
+};
+
 /// Ear clipping (Meisters' two-ears theorem: a simple polygon always has an ear to cut) in the
-/// polygon's own plane, appending triangles with the polygon's winding. A polygon that is not
-/// simple may run out of ears; the rest is then fanned. Returns false, appending nothing, when
-/// the polygon has zero area.
-bool triangulate_polygon(const std::vector<glm::vec3>& positions,
+/// polygon's own plane, appending triangles with the polygon's winding. Corners that add no
+/// area are dropped first: repeats of the previous corner and the tips of zero-width spikes
+/// (the boundary running out and back along one line), so weakly simple polygons triangulate
+/// too. A polygon that is not simple may run out of ears; the rest is then fanned, and if the
+/// triangles' total area differs from the polygon's (they overlap) nothing is appended.
+Polygon triangulate_polygon(const std::vector<glm::vec3>& positions,
                          const std::vector<std::uint32_t>& corners, PolygonScratch& scratch,
                          std::vector<glm::uvec3>& out) {
     const std::size_t n = corners.size();
@@ -161,7 +170,7 @@ bool triangulate_polygon(const std::vector<glm::vec3>& positions,
         extent2 = std::max(extent2, glm::dot(a, a));
     }
     const double len = glm::length(normal);
-    if (!(len > 1e-12 * extent2)) return false;  // zero (or NaN) area
+    if (!(len > 1e-12 * extent2)) return Polygon::ZeroArea;  // zero (or NaN) area
 
     // A right-handed orthonormal frame (u, v, n): the polygon runs counter-clockwise in (u, v).
     const glm::dvec3 nz = normal / len;
@@ -178,7 +187,39 @@ bool triangulate_polygon(const std::vector<glm::vec3>& positions,
         rem[i] = i;
     }
 
+    // Drop corners that add no area (see above); each leaves the signed area unchanged,
+    // since the triangle (previous, corner, next) it removes is flat.
+    const double tiny = 1e-12 * extent2;
+    for (bool changed = true; changed && rem.size() > 3;) {
+        changed = false;
+        for (std::size_t k = 0; k < rem.size() && rem.size() > 3;) {
+            const std::size_t m = rem.size();
+            const glm::dvec2 a = pts[rem[(k + m - 1) % m]], b = pts[rem[k]], c = pts[rem[(k + 1) % m]];
+            const glm::dvec2 ab = b - a, bc = c - b;
+            const bool repeat = glm::dot(ab, ab) <= tiny;
+            // Collinear (|ab x bc| tiny against |ab| |bc|) and turning back (ab . bc < 0).
+            const bool spike = std::abs(orient2d(a, b, c)) <= 1e-12 * glm::length(ab) * glm::length(bc) &&
+                               glm::dot(ab, bc) < 0.0;
+            if (repeat || spike) {
+                rem.erase(rem.begin() + static_cast<std::ptrdiff_t>(k));
+                changed = true;
+            } else {
+                ++k;
+            }
+        }
+    }
+
+    // Twice the polygon's signed area (shoelace), to check the triangulation against.
+    double polygon_area2 = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::dvec2& p = pts[i];
+        const glm::dvec2& q = pts[(i + 1) % n];
+        polygon_area2 += p.x * q.y - p.y * q.x;
+    }
+    const std::size_t first = out.size();
+    double triangles_area2 = 0.0;  // sum of |twice the area| of the triangles emitted
     auto emit = [&](std::size_t a, std::size_t b, std::size_t c) {
+        triangles_area2 += std::abs(orient2d(pts[a], pts[b], pts[c]));
         out.emplace_back(corners[a], corners[b], corners[c]);
     };
     while (rem.size() > 3) {
@@ -206,7 +247,12 @@ bool triangulate_polygon(const std::vector<glm::vec3>& positions,
         if (!clipped) break;
     }
     for (std::size_t i = 1; i + 1 < rem.size(); ++i) emit(rem[0], rem[i], rem[i + 1]);
-    return true;
+    // Overlapping triangles cover more than the polygon: refuse rather than double the area.
+    if (std::abs(triangles_area2 - std::abs(polygon_area2)) > 1e-6 * std::abs(polygon_area2)) {
+        out.resize(first);
+        return Polygon::NotSimple;
+    }
+    return Polygon::Triangulated;
 }
 
 /// "" when the corner's indices are in range, else what is wrong with them.
@@ -507,8 +553,9 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
 
     bool uses_default = false;
     std::size_t run = 0;  // the usemtl switch in force (scan.material_runs)
-    std::size_t skipped = 0;
+    std::size_t skipped = 0, not_simple = 0;
     std::size_t face_number = 0;  // 1-based in file order, for messages
+    std::size_t not_simple_face = 0;
     std::vector<std::uint32_t> corners;
     PolygonScratch scratch;
 
@@ -545,8 +592,11 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
             const std::size_t before = mesh.triangles.size();
             if (n == 3) {
                 mesh.triangles.emplace_back(corners[0], corners[1], corners[2]);
-            } else if (!triangulate_polygon(mesh.positions, corners, scratch, mesh.triangles)) {
-                ++skipped;
+            } else if (const Polygon p =
+                           triangulate_polygon(mesh.positions, corners, scratch, mesh.triangles);
+                       p != Polygon::Triangulated) {
+                ++(p == Polygon::ZeroArea ? skipped : not_simple);
+                if (p == Polygon::NotSimple && not_simple_face == 0) not_simple_face = face_number;
                 continue;
             }
             uses_default = uses_default || material == default_material;
@@ -563,6 +613,11 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
     if (skipped > 0) {
         warnings.push_back(std::to_string(skipped) +
                            " polygon(s) of zero area triangulate to nothing and were skipped");
+    }
+    if (not_simple > 0) {
+        warnings.push_back(std::to_string(not_simple) + " polygon(s) overlapping themselves (first: face " +
+                           std::to_string(not_simple_face) +
+                           ") have no triangulation of the same area and were skipped");
     }
 
     mesh.materials = std::move(materials);
