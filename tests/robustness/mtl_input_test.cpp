@@ -5,7 +5,9 @@
 #include "robustness/robustness_util.h"
 
 #include <librt/io/obj.h>
-#include <librt/render/texture.h>
+#include <librt/io/obj_materials.h>
+#include <librt/render/scene.h>
+#include <librt/io/texture_io.h>
 
 #include <gtest/gtest.h>
 
@@ -120,7 +122,7 @@ TEST(BadMtl, WindowsSeparatorsInTexturePathsAreNormalised) {
     const MeshMaterial m =
         material_of(dir, "newmtl x\nKd 0.5 0.5 0.5\nmap_Kd -s 2 2 1 -bm 1 .\\tex\\wood.ppm\n", w);
     EXPECT_EQ(m.diffuse_texture, (dir.path() / "tex" / "wood.ppm").string());
-    EXPECT_EQ(ImageTexture::load(m.diffuse_texture).width(), 1);
+    EXPECT_EQ(load_texture(m.diffuse_texture).width(), 1);
     EXPECT_TRUE(w.empty()) << joined(w);
 }
 
@@ -162,4 +164,18 @@ TEST(BadObj, NumbersBelowDoubleRangeReadAsZero) {
     const std::string msg =
         error_of([&] { (void)load(dir.write("o.obj", "v 1e400 0 0\n"), w); });
     EXPECT_TRUE(has(msg, "o.obj:1: 'v' number 1e400 is not finite")) << msg;
+}
+
+TEST(BadMtl, MirrorReflectanceErrorsNameKs) {
+    ScratchDir dir;
+    std::vector<std::string> w;
+    dir.write("m.mtl", "newmtl chrome\nillum 3\nKs 1.5 0 0\n");
+    const TriangleMesh m =
+        load(dir.write("m.obj", "mtllib m.mtl\nusemtl chrome\n" + kTriangle + "f 1 2 3\n"), w);
+    Scene scene;
+    const auto fallback = scene.add_material(Material::diffuse(glm::vec3(0.5f)));
+    // It said "material albedo = (1.5, 0, 0)", a name the MTL does not use.
+    const std::string msg = error_of([&] { (void)add_mesh_with_mtl(scene, m, fallback); });
+    EXPECT_TRUE(has(msg, "MTL material 'chrome': Ks = (1.5, 0, 0)")) << msg;
+    EXPECT_FALSE(has(msg, "albedo")) << msg;
 }

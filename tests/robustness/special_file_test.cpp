@@ -6,7 +6,7 @@
 
 #include <librt/io/image_io.h>
 #include <librt/io/obj.h>
-#include <librt/render/texture.h>
+#include <librt/io/texture_io.h>
 
 #include <gtest/gtest.h>
 
@@ -83,7 +83,7 @@ TEST(BadFile, FifoAsMeshMtlTextureOrImageIsRefusedNotBlockedOn) {
     msg = refused_without_blocking(fifo, [&] { (void)load(obj); });
     EXPECT_TRUE(has(msg, fifo.string() + ": is a FIFO (named pipe), not an MTL file")) << msg;
     // A texture (map_Kd is loaded through ImageTexture::load) and a PFM.
-    msg = refused_without_blocking(fifo, [&] { (void)ImageTexture::load(fifo); });
+    msg = refused_without_blocking(fifo, [&] { (void)load_texture(fifo); });
     EXPECT_TRUE(has(msg, "cannot load texture " + fifo.string() + ": is a FIFO")) << msg;
     msg = refused_without_blocking(fifo, [&] { (void)read_pfm(fifo); });
     EXPECT_TRUE(has(msg, fifo.string() + ": is a FIFO")) << msg;
@@ -97,7 +97,7 @@ TEST(BadFile, DevicesAreRefusedByWhatTheyAre) {
         std::string msg = refused_without_blocking(p, [&] { (void)load(p); });
         EXPECT_TRUE(has(msg, std::string(device) + ": is a character device, not an OBJ file"))
             << msg;
-        msg = refused_without_blocking(p, [&] { (void)ImageTexture::load(p); });
+        msg = refused_without_blocking(p, [&] { (void)load_texture(p); });
         EXPECT_TRUE(has(msg, "is a character device")) << msg;
     }
 }

@@ -296,8 +296,10 @@ private:
             const double extent = double(cb.hi[a]) - double(cb.lo[a]);
             usable[a] = extent > 0.0;
             if (!usable[a]) continue;
-            const double s = double(bin_count) / extent;
-            scale[a] = s <= double(std::numeric_limits<float>::max()) ? static_cast<float>(s) : kInf;
+            const double axis_scale = double(bin_count) / extent;
+            scale[a] = axis_scale <= double(std::numeric_limits<float>::max())
+                           ? static_cast<float>(axis_scale)
+                           : kInf;
         }
         const float last_bin = static_cast<float>(bin_count - 1);
         const V4 zero = splat(0.0f), last = splat(last_bin);
