@@ -110,7 +110,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         centres.push_back(boxes.back().center());
         all_finite = all_finite && finite(t.p0) && finite(t.p1) && finite(t.p2);
         const BBox& b = boxes.back();
-        in_range = in_range && std::max({-b.lo.x, -b.lo.y, -b.lo.z, b.hi.x, b.hi.y, b.hi.z}) <= range;
+        in_range =
+            in_range && std::max({-b.lo.x, -b.lo.y, -b.lo.z, b.hi.x, b.hi.y, b.hi.z}) <= range;
     }
     // The binary builders: a clean tree or a librt::Error, never anything else.
     std::vector<Bvh> trees;

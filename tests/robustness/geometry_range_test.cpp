@@ -55,7 +55,8 @@ TEST(GeometryRange, CentresNearTheFloatLimitAreFinite) {
     EXPECT_TRUE(std::isfinite(bc.x) && std::isfinite(bc.y) && std::isfinite(bc.z));
     EXPECT_EQ(bc.x, 0.5f * box.lo.x + 0.5f * box.hi.x);
     // A BVH over such boxes builds (it was refused as "non-finite centre").
-    const std::vector<BBox> boxes = {box, bounds(Triangle{{-big, 0, 0}, {-big, 1, 0}, {-big, 0, 1}})};
+    const std::vector<BBox> boxes = {box,
+                                     bounds(Triangle{{-big, 0, 0}, {-big, 1, 0}, {-big, 0, 1}})};
     const std::vector<glm::vec3> centres = {box.center(), boxes[1].center()};
     EXPECT_EQ(build_sah_bvh(boxes, centres).prim_indices.size(), 2u);
     EXPECT_EQ(build_median_bvh(boxes, centres).prim_indices.size(), 2u);
@@ -72,8 +73,8 @@ TEST(GeometryRange, TrianglesAtTheRangeLimitAreHitFromNearAndFar) {
     // Targets in [-0.25, 0.25] x [-0.5, 0] times the half-width: inside the triangle.
     std::uniform_real_distribution<float> u(-0.25f, 0.25f), v(-0.5f, 0.0f);
     const float far = kMaxMeshCoordinate;
-    for (const glm::vec3 origin : {glm::vec3(0, 0, 55), glm::vec3(far, far, far),
-                                   glm::vec3(-far, 0.5f * far, -55.0f)}) {
+    for (const glm::vec3 origin :
+         {glm::vec3(0, 0, 55), glm::vec3(far, far, far), glm::vec3(-far, 0.5f * far, -55.0f)}) {
         for (int i = 0; i < 100; ++i) {
             const glm::vec3 target{u(rng) * kMaxMeshCoordinate, v(rng) * kMaxMeshCoordinate, 0};
             Ray ray;
@@ -89,8 +90,9 @@ TEST(GeometryRange, MeshesBeyondTheRangeAreRefusedNotSilentlyMissed) {
     // The case: 2e18 wide, seen from 55 away, was never hit; now refused.
     const TriangleMesh m = wide_triangle(1e18f);
     const std::string msg = error_of([&] { validate(m); });
-    EXPECT_TRUE(has(msg, "mesh: position 0 = (-1e+18, -1e+18, 0) is outside the representable "
-                         "range |coordinate| <= 2^40"))
+    EXPECT_TRUE(has(msg,
+                    "mesh: position 0 = (-1e+18, -1e+18, 0) is outside the representable "
+                    "range |coordinate| <= 2^40"))
         << msg;
     ScratchDir dir;
     const auto path = dir.write("huge.obj", "v -1e18 0 0\nv 1e18 0 0\nv 0 1e18 0\nf 1 2 3\n");
@@ -108,23 +110,24 @@ TEST(GeometryRange, ZeroWidthSpikeKeepsThePolygonsArea) {
     ObjLoadOptions options;
     options.warnings = &w;
     // A 2 x 2 square with a spike from (2, 1) out to (4, 1) and back: area 4.
-    const TriangleMesh m = load_obj(dir.write("spike.obj", "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 4 1 0\n"
-                                                           "v 2 2 0\nv 0 2 0\nf 1 2 3 4 3 5 6\n"),
+    const TriangleMesh m = load_obj(dir.write("spike.obj",
+                                              "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 4 1 0\n"
+                                              "v 2 2 0\nv 0 2 0\nf 1 2 3 4 3 5 6\n"),
                                     options);
     EXPECT_NEAR(total_area(m), 4.0, 1e-6);
     EXPECT_TRUE(w.empty()) << w.front();
     // The same with the spike's base as a separate vertex at the same place.
-    const TriangleMesh m2 =
-        load_obj(dir.write("spike2.obj", "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 4 1 0\nv 2 1 0\n"
-                                         "v 2 2 0\nv 0 2 0\nf 1 2 3 4 5 6 7\n"),
-                 options);
+    const TriangleMesh m2 = load_obj(dir.write("spike2.obj",
+                                               "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 4 1 0\nv 2 1 0\n"
+                                               "v 2 2 0\nv 0 2 0\nf 1 2 3 4 5 6 7\n"),
+                                     options);
     EXPECT_NEAR(total_area(m2), 4.0, 1e-6);
     // A keyhole (a square with a square hole joined by a zero-width bridge): area 16 - 4.
-    const TriangleMesh key = load_obj(
-        dir.write("keyhole.obj", "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\n"
-                                 "v 1 1 0\nv 1 3 0\nv 3 3 0\nv 3 1 0\n"
-                                 "f 1 2 3 4 1 5 6 7 8 5\n"),
-        options);
+    const TriangleMesh key = load_obj(dir.write("keyhole.obj",
+                                                "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\n"
+                                                "v 1 1 0\nv 1 3 0\nv 3 3 0\nv 3 1 0\n"
+                                                "f 1 2 3 4 1 5 6 7 8 5\n"),
+                                      options);
     EXPECT_NEAR(total_area(key), 12.0, 1e-6);
     EXPECT_TRUE(w.empty()) << w.front();
     // A lopsided bow tie (edges 2-3 and 4-1 cross) overlaps itself: no triangulation has

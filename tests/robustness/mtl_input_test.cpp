@@ -6,8 +6,8 @@
 
 #include <librt/io/obj.h>
 #include <librt/io/obj_materials.h>
-#include <librt/render/scene.h>
 #include <librt/io/texture_io.h>
+#include <librt/render/scene.h>
 
 #include <gtest/gtest.h>
 
@@ -107,8 +107,9 @@ TEST(BadMtl, ReplacedValuesAreWarnedAbout) {
 TEST(BadObj, FaceLinesWithTrailingCommentsAreAccepted) {
     ScratchDir dir;
     std::vector<std::string> w;
-    const TriangleMesh m = load(dir.write("c.obj", "v 0 0 0 # origin\nv 1 0 0\nv 0 1 0\n"
-                                                   "v 1 1 0\nf 1 2 3 # first\nf 2 4 3\t#second\n"),
+    const TriangleMesh m = load(dir.write("c.obj",
+                                          "v 0 0 0 # origin\nv 1 0 0\nv 0 1 0\n"
+                                          "v 1 1 0\nf 1 2 3 # first\nf 2 4 3\t#second\n"),
                                 w);
     EXPECT_EQ(m.triangle_count(), 2u);
     EXPECT_TRUE(w.empty()) << joined(w);
@@ -141,10 +142,11 @@ TEST(BadObj, UnknownMaterialIsWarnedOnceWithItsLine) {
     EXPECT_EQ(m.materials[m.material_ids[2]].name, "default");
     const std::string all = joined(w);
     // tinyobjloader said "material [ 'missing' ] not found in .mtl" twice, with no line.
-    EXPECT_EQ(std::count(w.begin(), w.end(), (dir.path() / "u.obj").string() +
-                                                 ": line 5: usemtl 'missing': no such material "
-                                                 "in the MTL file(s); its faces get the default "
-                                                 "material"),
+    EXPECT_EQ(std::count(w.begin(), w.end(),
+                         (dir.path() / "u.obj").string() +
+                             ": line 5: usemtl 'missing': no such material "
+                             "in the MTL file(s); its faces get the default "
+                             "material"),
               1)
         << all;
     EXPECT_FALSE(has(all, "not found in .mtl")) << all;
@@ -161,8 +163,7 @@ TEST(BadObj, NumbersBelowDoubleRangeReadAsZero) {
         load(dir.write("u.obj", "v 1e-400 0 0\nv 1 0 0\nv 0 1 -1e-400\nf 1 2 3\n"), w);
     EXPECT_EQ(m.positions[0], glm::vec3(0.0f));
     EXPECT_EQ(m.positions[2], glm::vec3(0.0f, 1.0f, 0.0f));
-    const std::string msg =
-        error_of([&] { (void)load(dir.write("o.obj", "v 1e400 0 0\n"), w); });
+    const std::string msg = error_of([&] { (void)load(dir.write("o.obj", "v 1e400 0 0\n"), w); });
     EXPECT_TRUE(has(msg, "o.obj:1: 'v' number 1e400 is not finite")) << msg;
 }
 

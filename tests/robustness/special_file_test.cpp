@@ -123,8 +123,9 @@ TEST(BadFile, HugeSparseObjIsRefusedByItsFirstBytesOrItsSize) {
     // Above the limit: refused from its size, before reading, naming the option.
     ASSERT_EQ(::truncate(sparse.c_str(), (std::int64_t{1} << 31) + 1), 0);
     msg = librt::testing::error_of([&] { (void)load(sparse); });
-    EXPECT_TRUE(has(msg, "2147483649 bytes, more than the limit of 2147483648 bytes for an OBJ "
-                         "file (raise ObjLoadOptions::max_file_bytes"))
+    EXPECT_TRUE(has(msg,
+                    "2147483649 bytes, more than the limit of 2147483648 bytes for an OBJ "
+                    "file (raise ObjLoadOptions::max_file_bytes"))
         << msg;
     // The limit is an option: a valid file above a lowered limit is refused, then read.
     const fs::path small = dir.write("small.obj", kTriangle);

@@ -7,8 +7,8 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <utility>

@@ -127,8 +127,8 @@ std::string read_regular_file(const fs::path& path, const ReadRequest& request) 
     for (;;) {
         const std::size_t old = data.size();
         const std::size_t block = std::max<std::size_t>(kHead, size > old ? size - old : 0);
-        const std::uint64_t room = request.max_bytes + 1 - std::min<std::uint64_t>(
-                                                               old, request.max_bytes + 1);
+        const std::uint64_t room =
+            request.max_bytes + 1 - std::min<std::uint64_t>(old, request.max_bytes + 1);
         const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(block, room));
         if (want == 0) throw too_big("more than " + std::to_string(request.max_bytes));
         data.resize(old + want);
@@ -209,8 +209,8 @@ void AtomicFile::commit() {
         if (errno != EEXIST) fail(std::strerror(errno));
         for (int attempt = 0; attempt < 16 && temp_.empty(); ++attempt) {
             const fs::path candidate = dir / (".rt-" + unique_hex() + ".tmp");
-            if (::linkat(AT_FDCWD, proc.c_str(), AT_FDCWD, candidate.c_str(),
-                         AT_SYMLINK_FOLLOW) == 0) {
+            if (::linkat(AT_FDCWD, proc.c_str(), AT_FDCWD, candidate.c_str(), AT_SYMLINK_FOLLOW) ==
+                0) {
                 temp_ = candidate;
             } else if (errno != EEXIST) {
                 fail(std::strerror(errno));

@@ -25,9 +25,9 @@ namespace librt::detail {
 
 /// What read_regular_file is reading, for its messages and its limit.
 struct ReadRequest {
-    std::string_view what;          ///< "an OBJ file", "an MTL file", "an image file"...
-    std::uint64_t max_bytes;        ///< larger files are refused before reading
-    std::string_view raise_hint;    ///< how to raise the limit, appended to that message
+    std::string_view what;        ///< "an OBJ file", "an MTL file", "an image file"...
+    std::uint64_t max_bytes;      ///< larger files are refused before reading
+    std::string_view raise_hint;  ///< how to raise the limit, appended to that message
     /// Called once with the first bytes (up to 64 KiB, or the whole file if shorter) before
     /// the rest is read: it may throw to refuse a file by its start (a binary file given as
     /// text) without reading gigabytes first.

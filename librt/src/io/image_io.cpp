@@ -18,7 +18,6 @@
 #include <system_error>
 #include <vector>
 
-
 namespace librt {
 
 namespace fs = std::filesystem;
@@ -80,7 +79,9 @@ std::uint32_t get_u32(const unsigned char* p, bool little_endian) {
 
 // Reads the next whitespace-delimited token of a PFM header starting at `pos`.
 std::string_view next_token(std::string_view data, std::size_t& pos) {
-    const auto space = [&](std::size_t i) { return std::isspace(static_cast<unsigned char>(data[i])); };
+    const auto space = [&](std::size_t i) {
+        return std::isspace(static_cast<unsigned char>(data[i]));
+    };
     while (pos < data.size() && space(pos)) ++pos;
     const std::size_t start = pos;
     while (pos < data.size() && !space(pos)) ++pos;

@@ -156,8 +156,8 @@ enum class Polygon {
 /// too. A polygon that is not simple may run out of ears; the rest is then fanned, and if the
 /// triangles' total area differs from the polygon's (they overlap) nothing is appended.
 Polygon triangulate_polygon(const std::vector<glm::vec3>& positions,
-                         const std::vector<std::uint32_t>& corners, PolygonScratch& scratch,
-                         std::vector<glm::uvec3>& out) {
+                            const std::vector<std::uint32_t>& corners, PolygonScratch& scratch,
+                            std::vector<glm::uvec3>& out) {
     const std::size_t n = corners.size();
     const glm::dvec3 p0(positions[corners[0]]);
     // Newell's normal: the sum of (p_i - p0) x (p_i+1 - p0) is twice the vector area.
@@ -194,12 +194,14 @@ Polygon triangulate_polygon(const std::vector<glm::vec3>& positions,
         changed = false;
         for (std::size_t k = 0; k < rem.size() && rem.size() > 3;) {
             const std::size_t m = rem.size();
-            const glm::dvec2 a = pts[rem[(k + m - 1) % m]], b = pts[rem[k]], c = pts[rem[(k + 1) % m]];
+            const glm::dvec2 a = pts[rem[(k + m - 1) % m]], b = pts[rem[k]],
+                             c = pts[rem[(k + 1) % m]];
             const glm::dvec2 ab = b - a, bc = c - b;
             const bool repeat = glm::dot(ab, ab) <= tiny;
             // Collinear (|ab x bc| tiny against |ab| |bc|) and turning back (ab . bc < 0).
-            const bool spike = std::abs(orient2d(a, b, c)) <= 1e-12 * glm::length(ab) * glm::length(bc) &&
-                               glm::dot(ab, bc) < 0.0;
+            const bool spike =
+                std::abs(orient2d(a, b, c)) <= 1e-12 * glm::length(ab) * glm::length(bc) &&
+                glm::dot(ab, bc) < 0.0;
             if (repeat || spike) {
                 rem.erase(rem.begin() + static_cast<std::ptrdiff_t>(k));
                 changed = true;
@@ -443,7 +445,9 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
     request.what = "an OBJ file";
     request.max_bytes = options.max_file_bytes;
     request.raise_hint = "raise ObjLoadOptions::max_file_bytes to read it";
-    request.check_head = [&](std::string_view head) { detail::check_obj_head(head, path.string()); };
+    request.check_head = [&](std::string_view head) {
+        detail::check_obj_head(head, path.string());
+    };
     std::string text = detail::read_regular_file(path, request);
     const fs::path dir = path.parent_path();
 
@@ -586,8 +590,7 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
                 ++run;
             }
             const std::uint32_t material =
-                run == 0 ? default_material
-                         : name_material[scan.material_runs[run - 1].name];
+                run == 0 ? default_material : name_material[scan.material_runs[run - 1].name];
 
             const std::size_t before = mesh.triangles.size();
             if (n == 3) {
@@ -615,7 +618,8 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
                            " polygon(s) of zero area triangulate to nothing and were skipped");
     }
     if (not_simple > 0) {
-        warnings.push_back(std::to_string(not_simple) + " polygon(s) overlapping themselves (first: face " +
+        warnings.push_back(std::to_string(not_simple) +
+                           " polygon(s) overlapping themselves (first: face " +
                            std::to_string(not_simple_face) +
                            ") have no triangulation of the same area and were skipped");
     }

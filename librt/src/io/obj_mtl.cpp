@@ -60,8 +60,8 @@ private:
         throw Error(name_ + ":" + std::to_string(line_) + ": " + what);
     }
     void warn(const std::string& what) {
-        warnings_.push_back(name_ + ":" + std::to_string(line_) + ": material '" +
-                            current_.name + "': " + what);
+        warnings_.push_back(name_ + ":" + std::to_string(line_) + ": material '" + current_.name +
+                            "': " + what);
     }
     /// Between lo and hi numbers (no trailing comment counted), each strictly parsed.
     std::vector<float> numbers(std::string_view keyword, std::string_view rest, std::size_t lo,
@@ -99,8 +99,7 @@ std::vector<float> MtlParser::numbers(std::string_view keyword, std::string_view
     if (out.size() < lo || out.size() > hi) {
         const std::string range =
             lo == hi ? std::to_string(lo) : std::to_string(lo) + " to " + std::to_string(hi);
-        fail(quoted(keyword) + " needs " + range + " numbers, found " +
-             std::to_string(out.size()));
+        fail(quoted(keyword) + " needs " + range + " numbers, found " + std::to_string(out.size()));
     }
     return out;
 }
@@ -132,8 +131,8 @@ void MtlParser::flush() {
         return;
     }
     // The dielectric the renderer makes of illum 4, 6, 7 or d < 1 needs an index > 0.
-    const bool dielectric =
-        current_.illum == 4 || current_.illum == 6 || current_.illum == 7 || current_.dissolve < 1.0f;
+    const bool dielectric = current_.illum == 4 || current_.illum == 6 || current_.illum == 7 ||
+                            current_.dissolve < 1.0f;
     if (dielectric && !(current_.ior > 0.0f)) {
         warn(std::string("Ni ") + number_text(current_.ior) +
              " is not a valid index of refraction for a transparent material (must be > 0): "
@@ -262,7 +261,8 @@ void parse_mtl(std::string_view text, const std::string& name, std::vector<MeshM
         std::size_t end = start;
         while (end < text.size() && text[end] != '\n' && text[end] != '\r') ++end;
         parser.line(text.substr(start, end - start), ++number);
-        if (end < text.size() && text[end] == '\r' && end + 1 < text.size() && text[end + 1] == '\n')
+        if (end < text.size() && text[end] == '\r' && end + 1 < text.size() &&
+            text[end + 1] == '\n')
             ++end;
         start = end + 1;
     }

@@ -4,8 +4,8 @@
 
 #include <charconv>
 #include <cmath>
-#include <cstdlib>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <system_error>
 
@@ -265,8 +265,8 @@ void Scanner::line(std::string_view text, std::size_t number) {
     } else if (keyword == "f") {
         face(tokens, number);
     } else if (keyword == "usemtl" || keyword == "mtllib") {
-        const std::string_view rest = trimmed(text.substr(
-            static_cast<std::size_t>(keyword.data() + keyword.size() - text.data())));
+        const std::string_view rest = trimmed(
+            text.substr(static_cast<std::size_t>(keyword.data() + keyword.size() - text.data())));
         if (keyword == "usemtl") {
             usemtl(rest, number);
         } else {
