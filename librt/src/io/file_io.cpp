@@ -147,7 +147,10 @@ AtomicFile::AtomicFile(const fs::path& target) : target_(target) {
     const fs::path dir = target.parent_path();
     const std::string dir_name = dir.empty() ? "." : dir.string();
 #ifdef O_TMPFILE
-    fd_ = ::open(dir_name.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+    // The unnamed inode is linked in through /proc/self/fd (linkat's AT_EMPTY_PATH needs a
+    // capability): without /proc, use the named temporary.
+    static const bool have_proc_fd = ::access("/proc/self/fd", X_OK) == 0;
+    if (have_proc_fd) fd_ = ::open(dir_name.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
     if (fd_ >= 0) {
         unnamed_ = true;
         return;
