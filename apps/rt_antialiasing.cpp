@@ -28,15 +28,18 @@ int main(int argc, char** argv) {
         "--zoom", zoom,
         "Also write <output>_zoom.png: the white sphere's edge enlarged this many times");
     return apps::run(app, argc, argv, [&] {
+        // Every parameter is checked before anything is loaded or allocated.
+        apps::validate(options);
+        CameraSettings camera = apps::camera_of(options);
+        camera.pixel_jitter = no_jitter ? PixelJitter::None : PixelJitter::Gaussian;
+        camera.pixel_sigma = sigma;
+        (void)Camera(camera);  // validates --sigma
         if (options.output.empty())
             options.output = no_jitter ? "antialiasing_no_jitter.png" : "antialiasing.png";
         Scene scene;
         apps::add_report_scene(scene, apps::LightKind::Sphere, options.power);
         scene.commit();
         PathTracer integrator(apps::path_tracer_settings(options));
-        CameraSettings camera = apps::camera_of(options);
-        camera.pixel_jitter = no_jitter ? PixelJitter::None : PixelJitter::Gaussian;
-        camera.pixel_sigma = sigma;
         const auto write_zoom = [&](const Image& image) {
             if (zoom <= 0) return;
             std::filesystem::path path(options.output);

@@ -13,6 +13,8 @@ int main(int argc, char** argv) {
     options.output = "hard_shadows.png";
     apps::add_common_options(app, options);
     return apps::run(app, argc, argv, [&] {
+        // Every parameter is checked before anything is loaded or allocated.
+        apps::validate(options);
         Scene scene;
         apps::add_report_scene(scene, apps::LightKind::Point, options.power);
         scene.commit();

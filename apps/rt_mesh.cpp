@@ -30,10 +30,13 @@ int main(int argc, char** argv) {
                    "(the report's split) or sah")
         ->transform(CLI::CheckedTransformer(builders, CLI::ignore_case));
     return apps::run(app, argc, argv, [&] {
-        TriangleMesh mesh =
-            apps::load_report_mesh(mesh_options.path, apps::placement_of(mesh_options));
+        // Every parameter is checked before anything is loaded or allocated.
+        apps::validate(options);
+        apps::validate(mesh_options);
         CameraSettings camera = apps::camera_of(options);
         camera.pixel_jitter = PixelJitter::Gaussian;
+        TriangleMesh mesh =
+            apps::load_report_mesh(mesh_options.path, apps::placement_of(mesh_options));
         if (!options.quiet) apps::print_bvh_timing(mesh, builder, Camera(camera));
 
         Scene scene;

@@ -24,6 +24,15 @@ int main(int argc, char** argv) {
     app.add_option("--focal-distance", focal_distance, "Distance along each ray that is sharp")
         ->capture_default_str();
     return apps::run(app, argc, argv, [&] {
+        // Every parameter is checked before anything is loaded or allocated.
+        apps::validate(options);
+        apps::validate(mesh_options);
+        CameraSettings camera = apps::camera_of(options);
+        camera.pixel_jitter = PixelJitter::Gaussian;
+        camera.lens = LensModel::Gaussian;
+        camera.lens_sigma = lens_sigma;
+        camera.focal_distance = focal_distance;
+        (void)Camera(camera);  // validates --lens-sigma and --focal-distance
         Scene scene;
         apps::add_room(scene);
         apps::add_report_spheres(scene);
@@ -33,11 +42,6 @@ int main(int argc, char** argv) {
         apps::add_report_light(scene, apps::LightKind::Sphere, options.power);
         scene.commit();
         PathTracer integrator(apps::path_tracer_settings(options));
-        CameraSettings camera = apps::camera_of(options);
-        camera.pixel_jitter = PixelJitter::Gaussian;
-        camera.lens = LensModel::Gaussian;
-        camera.lens_sigma = lens_sigma;
-        camera.focal_distance = focal_distance;
         return apps::render_and_write(scene, camera, integrator, options);
     });
 }

@@ -31,10 +31,7 @@ set(_exemptions
   # LIBRT_SIMD naming a path this CPU lacks, read once at start-up before any caller can
   # be told. To become a query (e.g. the chosen path and why) in the accel/ work.
   "librt/src/accel/simd.cpp|stderr|LIBRT_SIMD warning"
-  "librt/src/accel/simd.cpp|std::fprintf(|LIBRT_SIMD warning"
-  # load_obj's fallback when ObjLoadOptions::warnings is null. Being removed on another
-  # branch of issue 11; once it is, this entry matches nothing and can be deleted.
-  "librt/src/io/obj.cpp|\"librt: warning: %s|load_obj stderr fallback")
+  "librt/src/accel/simd.cpp|std::fprintf(|LIBRT_SIMD warning")
 
 # Sets out_var to one "\n  file:line: text" per printing line of `files` (paths relative
 # to `root`) that no exemption covers (a string, not a list: code holds semicolons), and

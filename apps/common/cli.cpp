@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <charconv>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -178,7 +179,84 @@ PathTracerSettings path_tracer_settings(const AppOptions& options) {
 }
 
 CameraSettings camera_of(const AppOptions& o) {
-    return o.size > 0 ? report_camera(o.size, o.size) : report_camera(o.width, o.height);
+    return o.size ? report_camera(*o.size, *o.size) : report_camera(o.width, o.height);
+}
+
+namespace {
+
+/// A value as the user would have typed it: shortest round-trip form.
+std::string typed(float x) {
+    char buffer[32];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
+    return std::string(buffer, result.ptr);
+}
+
+[[noreturn]] void bad_option(const char* option, const std::string& value, const char* rule) {
+    std::string message(option);
+    message += " = ";
+    message += value;
+    message += ": ";
+    message += rule;
+    throw Error(message);
+}
+
+}  // namespace
+
+void validate(const AppOptions& o) {
+    constexpr int kMaxSide = 65536;  // the camera's limit
+    const auto side = [&](const char* option, int v) {
+        if (v < 1 || v > kMaxSide) bad_option(option, std::to_string(v), "must be in [1, 65536]");
+    };
+    if (o.size) {
+        side("--size", *o.size);
+    } else {
+        side("--width", o.width);
+        side("--height", o.height);
+    }
+    const CameraSettings camera = camera_of(o);
+    // The film (and rt_mesh's BVH timing, a ray per pixel) must fit before anything is
+    // allocated: 65536 x 65536 would need 48 GiB.
+    check_image_size(camera.width, camera.height);
+    RenderSettings settings;
+    settings.samples_per_pixel = o.spp;
+    settings.threads = o.threads;
+    librt::validate(settings);
+    if (o.bounces < 0 || o.bounces > 1000) {
+        bad_option("--bounces", std::to_string(o.bounces), "must be in [0, 1000]");
+    }
+    if (!std::isfinite(o.exposure) || !(o.exposure > 0.0f) ||
+        !std::isfinite(o.exposure * kReportExposure) || !(o.exposure * kReportExposure > 0.0f)) {
+        bad_option("--exposure", typed(o.exposure),
+                   "must be finite and > 0 (and times the report's exposure still so)");
+    }
+    // The light's radiance, power / (4 pi^2 r^2), must be finite too.
+    if (!std::isfinite(o.power) || o.power < 0.0f ||
+        !std::isfinite(SphereLight::radiance_for_power(o.power, kLightRadius).x)) {
+        bad_option("--power", typed(o.power),
+                   "must be finite and >= 0, with the light's radiance still finite");
+    }
+}
+
+void validate(const MeshOptions& o) {
+    const MeshPlacement& p = o.placement;
+    if (!std::isfinite(p.fit) || p.fit < 0.0f) {
+        bad_option("--mesh-fit", typed(p.fit), "must be finite and >= 0 (0 = no fitting)");
+    }
+    if (!std::isfinite(p.scale) || !(p.scale > 0.0f)) {
+        bad_option("--mesh-scale", typed(p.scale), "must be finite and > 0");
+    }
+    if (!std::isfinite(p.rotate_y_degrees)) {
+        bad_option("--mesh-rotate", typed(p.rotate_y_degrees), "must be finite");
+    }
+    if (o.offset.size() == 3) {
+        for (const float v : o.offset) {
+            if (!std::isfinite(v)) {
+                bad_option("--mesh-offset",
+                           typed(o.offset[0]) + " " + typed(o.offset[1]) + " " + typed(o.offset[2]),
+                           "must be finite");
+            }
+        }
+    }
 }
 
 int run(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,7 @@ namespace librt::apps {
 struct AppOptions {
     int width = 512;              ///< --width
     int height = 512;             ///< --height
-    int size = 0;                 ///< --size: sets width and height when > 0
+    std::optional<int> size;      ///< --size: sets width and height when given
     int spp = 1;                  ///< --spp, samples per pixel
     int bounces = 5;              ///< --bounces, scattering events per path
     int threads = 0;              ///< --threads, 0 = all cores
@@ -48,6 +49,14 @@ void add_common_options(CLI::App& app, AppOptions& options);
 
 /// Registers --mesh, --mesh-fit, --mesh-scale, --mesh-offset and --mesh-rotate.
 void add_mesh_options(CLI::App& app, MeshOptions& options);
+
+/// Throws librt::Error "--option = value: rule", naming the option as typed, for any common
+/// option that cannot be used (size, film, samples, threads, bounces, exposure, power).
+/// Each app calls it first, before it loads or allocates anything.
+void validate(const AppOptions& options);
+
+/// The same for the mesh options (--mesh-fit, --mesh-scale, --mesh-offset, --mesh-rotate).
+void validate(const MeshOptions& options);
 
 /// The placement from the parsed mesh options.
 [[nodiscard]] MeshPlacement placement_of(const MeshOptions& options);

@@ -8,8 +8,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <iostream>
 #include <string>
+#include <vector>
 
 namespace librt::apps {
 
@@ -74,33 +77,86 @@ TriangleMesh default_mesh() {
     return mesh;
 }
 
+namespace {
+
+/// A float as typed: shortest round-trip form.
+std::string typed(float x) {
+    char buffer[32];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
+    return std::string(buffer, result.ptr);
+}
+
+/// "--mesh-fit = F, --mesh-scale = S" (what the user controls), for placement errors.
+std::string placement_text(const MeshPlacement& p) {
+    return "--mesh-fit = " + typed(p.fit) + ", --mesh-scale = " + typed(p.scale);
+}
+
+}  // namespace
+
 void place_mesh(TriangleMesh& mesh, const MeshPlacement& placement) {
-    if (!(placement.fit >= 0.0f)) {
-        throw Error("mesh fit = " + std::to_string(placement.fit) + ": must be >= 0");
+    if (!(placement.fit >= 0.0f) || !std::isfinite(placement.fit)) {
+        throw Error("--mesh-fit = " + typed(placement.fit) + ": must be finite and >= 0");
     }
-    if (!(placement.scale > 0.0f)) {
-        throw Error("mesh scale = " + std::to_string(placement.scale) + ": must be > 0");
+    if (!(placement.scale > 0.0f) || !std::isfinite(placement.scale)) {
+        throw Error("--mesh-scale = " + typed(placement.scale) + ": must be finite and > 0");
     }
-    if (mesh.positions.empty()) throw Error("mesh has no vertices");
+    if (mesh.positions.empty()) throw Error("the mesh has no vertices");
+    // The placement's own matrices name their entries when they fail; the user typed
+    // options, so the errors below name those.
+    const auto apply = [&](const glm::mat4& m) {
+        try {
+            transform(mesh, m);
+        } catch (const Error& e) {
+            throw Error(placement_text(placement) + ": cannot place the mesh (" + e.what() + ")");
+        }
+    };
     if (placement.fit > 0.0f) {
         // Fit: bottom centre of the bounding box to the origin, largest side to `fit`.
         const BBox box = mesh.bounds();
         const glm::vec3 size = box.hi - box.lo;
         const float largest = std::max({size.x, size.y, size.z});
-        if (!(largest > 0.0f)) throw Error("mesh has a degenerate bounding box");
-        const glm::vec3 bottom_center{0.5f * (box.lo.x + box.hi.x), box.lo.y,
-                                      0.5f * (box.lo.z + box.hi.z)};
-        transform(mesh, glm::scale(glm::mat4(1.0f), glm::vec3(placement.fit / largest)) *
-                            glm::translate(glm::mat4(1.0f), -bottom_center));
+        if (!(largest > 0.0f)) {
+            throw Error("all vertices of the mesh are at one point: --mesh-fit = " +
+                        typed(placement.fit) + " cannot scale it (use --mesh-fit 0)");
+        }
+        const float factor = placement.fit / largest;
+        if (!std::isfinite(factor) || !std::isfinite(largest)) {
+            throw Error("--mesh-fit = " + typed(placement.fit) + ": the mesh's largest side, " +
+                        typed(largest) + ", cannot be scaled to it in float");
+        }
+        const glm::vec3 bottom_center{0.5f * box.lo.x + 0.5f * box.hi.x, box.lo.y,
+                                      0.5f * box.lo.z + 0.5f * box.hi.z};
+        apply(glm::scale(glm::mat4(1.0f), glm::vec3(factor)) *
+              glm::translate(glm::mat4(1.0f), -bottom_center));
     }
     // The report's placement: p' = scale * p + offset (after the optional turn about y).
-    transform(mesh, make_transform(glm::vec3(placement.scale),
-                                   {0.0f, placement.rotate_y_degrees, 0.0f}, placement.offset));
+    apply(make_transform(glm::vec3(placement.scale), {0.0f, placement.rotate_y_degrees, 0.0f},
+                         placement.offset));
+    for (const glm::vec3& p : mesh.positions) {
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+            throw Error(placement_text(placement) +
+                        ": the placed mesh's coordinates overflow float");
+        }
+    }
 }
 
 TriangleMesh load_report_mesh(const std::filesystem::path& path, const MeshPlacement& placement) {
-    TriangleMesh mesh = path.empty() ? default_mesh() : load_obj(path);
-    place_mesh(mesh, placement);
+    if (path.empty()) {
+        TriangleMesh mesh = default_mesh();
+        place_mesh(mesh, placement);
+        return mesh;
+    }
+    // librt never prints: the app prints the loader's warnings.
+    std::vector<std::string> warnings;
+    ObjLoadOptions options;
+    options.warnings = &warnings;
+    TriangleMesh mesh = load_obj(path, options);
+    for (const std::string& w : warnings) std::cerr << "warning: " << w << '\n';
+    try {
+        place_mesh(mesh, placement);
+    } catch (const Error& e) {
+        throw Error(path.string() + ": " + e.what());
+    }
     return mesh;
 }
 

@@ -283,23 +283,38 @@ private:
         // sweeps empty ones.
         const std::uint32_t bin_count = std::min(bin_count_, std::max(4u, n));
         const Box4& cb = task.centroid_bounds;
-        const V4 extent = cb.hi - cb.lo;
+        // Bin of a centre on an axis: (c - lo) * bins / extent, clamped to [0, bins - 1]
+        // while still a float, so the float -> int conversion is always in range. The scale
+        // comes from the extent in double, where it cannot overflow (lo, hi of +-3e38) nor
+        // underflow; a tiny positive extent (denormal centroids, 1e-40 apart) gives an
+        // infinite scale: then c == lo makes 0 * inf = NaN, which the clamp sends to bin 0,
+        // and every other centre goes to the last bin. The bin stays monotonic in c, which
+        // the partition below relies on.
         bool usable[3];
         V4 scale = splat(0.0f);
         for (int a = 0; a < 3; ++a) {
-            usable[a] = extent[a] > 0.0f;
-            if (usable[a]) scale[a] = static_cast<float>(bin_count) / extent[a];
+            const double extent = double(cb.hi[a]) - double(cb.lo[a]);
+            usable[a] = extent > 0.0;
+            if (!usable[a]) continue;
+            const double axis_scale = double(bin_count) / extent;
+            scale[a] = axis_scale <= double(std::numeric_limits<float>::max())
+                           ? static_cast<float>(axis_scale)
+                           : kInf;
         }
-        const V4i last = {std::int32_t(bin_count - 1), std::int32_t(bin_count - 1),
-                          std::int32_t(bin_count - 1), 0};
-        // Bin of a centre on every axis: (c - lo) * bins / extent, clamped to the last bin.
+        const float last_bin = static_cast<float>(bin_count - 1);
+        const V4 zero = splat(0.0f), last = splat(last_bin);
         auto bins_of = [&](const BuildRef& r) {
-            const V4i b = __builtin_convertvector((r.c - cb.lo) * scale, V4i);
-            return b < last ? b : last;
+            V4 f = (r.c - cb.lo) * scale;
+            f = f > zero ? f : zero;  // NaN fails the comparison: bin 0
+            f = f < last ? f : last;
+            return __builtin_convertvector(f, V4i);
         };
         auto bin_on = [&](const BuildRef& r, int a) {
-            return std::min(static_cast<std::int32_t>((r.c[a] - cb.lo[a]) * scale[a]),
-                            std::int32_t(bin_count - 1));
+            // The same operations as bins_of, one lane: both must put a centre in one bin.
+            float f = (r.c[a] - cb.lo[a]) * scale[a];
+            f = f > 0.0f ? f : 0.0f;
+            f = f < last_bin ? f : last_bin;
+            return static_cast<std::int32_t>(f);
         };
 
         float best_cost = kInf;

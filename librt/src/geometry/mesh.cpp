@@ -7,7 +7,9 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 
@@ -103,9 +105,16 @@ void validate(const TriangleMesh& mesh) {
                     std::to_string(mesh.triangles.size()) + " triangles (must be 0 or equal)");
     }
     for (std::size_t i = 0; i < n; ++i) {
-        if (!finite(mesh.positions[i])) {
-            throw Error("mesh: position " + std::to_string(i) + " is not finite " +
-                        to_string(mesh.positions[i]));
+        const glm::vec3& p = mesh.positions[i];
+        if (!finite(p)) {
+            throw Error("mesh: position " + std::to_string(i) + " is not finite " + to_string(p));
+        }
+        if (std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}) > kMaxMeshCoordinate) {
+            char text[96];
+            std::snprintf(text, sizeof text, "(%g, %g, %g)", double(p.x), double(p.y), double(p.z));
+            throw Error("mesh: position " + std::to_string(i) + " = " + text +
+                        " is outside the representable range |coordinate| <= 2^40 (1.1e12): "
+                        "ray distances to it would overflow float and it would never be hit");
         }
     }
     for (std::size_t i = 0; i < mesh.normals.size(); ++i) {

@@ -1,10 +1,11 @@
+#include "io/file_io.h"
+
 #include <librt/core/error.h>
 #include <librt/io/image_io.h>
 
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <charconv>
@@ -12,19 +13,10 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <exception>
-#include <fstream>
-#include <iterator>
-#include <random>
 #include <string>
 #include <string_view>
 #include <system_error>
 #include <vector>
-
-#if defined(__unix__) || defined(__APPLE__)
-#include <unistd.h>
-#define LIBRT_HAVE_FSYNC 1
-#endif
 
 namespace librt {
 
@@ -33,6 +25,10 @@ namespace fs = std::filesystem;
 namespace {
 
 using Bytes = std::vector<unsigned char>;
+
+// A PFM file is at most the largest image (check_image_size: 4 GiB of float RGB) and a
+// header, which is a few dozen bytes; 1 MiB of slack is plenty.
+constexpr std::uint64_t kMaxPfmBytes = (std::uint64_t{4} << 30) + (std::uint64_t{1} << 20);
 
 // The writers hand stb a film as a flat float array: three packed floats per pixel.
 static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
@@ -45,61 +41,10 @@ std::string quoted(const fs::path& path) {
     return out;
 }
 
-// A name no other writer (thread or process) picks: per-process random bits plus a counter.
-std::string unique_suffix() {
-    static const std::uint64_t process_bits = [] {
-        std::random_device device;
-        return (std::uint64_t{device()} << 32u) ^ std::uint64_t{device()};
-    }();
-    static std::atomic<std::uint64_t> counter{0};
-    const std::uint64_t n = counter.fetch_add(1, std::memory_order_relaxed);
-    char buffer[48];
-    std::snprintf(buffer, sizeof buffer, "%016llx-%llu",
-                  static_cast<unsigned long long>(process_bits),
-                  static_cast<unsigned long long>(n));
-    return buffer;
-}
-
-// Writes `bytes` to a temporary file beside `path`, flushes it to disk, then renames it
-// over `path` (atomic on POSIX): readers see the old file or the complete new one.
+// Writes the encoded image through the library's one atomic writer (io/file_io.h).
 void write_file_atomically(const fs::path& path, const Bytes& bytes) {
-    if (path.filename().empty()) throw Error("cannot write " + quoted(path) + ": no file name");
-    std::string temp_name(1, '.');
-    temp_name += path.filename().string();
-    temp_name += ".tmp-";
-    temp_name += unique_suffix();
-    const fs::path temp = path.parent_path() / temp_name;
-    // "x": fail rather than reuse an existing file of that name.
-    std::FILE* file = std::fopen(temp.string().c_str(), "wbx");
-    if (file == nullptr) {
-        throw Error("cannot write " + quoted(path) + ": " + std::strerror(errno));
-    }
-    bool ok = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
-    ok = std::fflush(file) == 0 && ok;
-    int saved_errno = ok ? 0 : errno;
-#ifdef LIBRT_HAVE_FSYNC
-    if (ok && ::fsync(::fileno(file)) != 0) {
-        ok = false;
-        saved_errno = errno;
-    }
-#endif
-    if (std::fclose(file) != 0 && ok) {
-        ok = false;
-        saved_errno = errno;
-    }
-    if (!ok) {
-        std::error_code ignored;
-        fs::remove(temp, ignored);
-        throw Error("cannot write " + quoted(path) + ": " +
-                    (saved_errno != 0 ? std::strerror(saved_errno) : "write failed"));
-    }
-    std::error_code ec;
-    fs::rename(temp, path, ec);
-    if (ec) {
-        std::error_code ignored;
-        fs::remove(temp, ignored);
-        throw Error("cannot write " + quoted(path) + ": " + ec.message());
-    }
+    detail::write_file_atomically(
+        path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 void check_writable_image(const fs::path& path, const Image& image) {
@@ -133,11 +78,14 @@ std::uint32_t get_u32(const unsigned char* p, bool little_endian) {
 }
 
 // Reads the next whitespace-delimited token of a PFM header starting at `pos`.
-std::string_view next_token(const Bytes& data, std::size_t& pos) {
-    while (pos < data.size() && std::isspace(data[pos])) ++pos;
+std::string_view next_token(std::string_view data, std::size_t& pos) {
+    const auto space = [&](std::size_t i) {
+        return std::isspace(static_cast<unsigned char>(data[i]));
+    };
+    while (pos < data.size() && space(pos)) ++pos;
     const std::size_t start = pos;
-    while (pos < data.size() && !std::isspace(data[pos])) ++pos;
-    return {reinterpret_cast<const char*>(data.data()) + start, pos - start};
+    while (pos < data.size() && !space(pos)) ++pos;
+    return data.substr(start, pos - start);
 }
 
 Image scaled(const Image& image, float factor) {
@@ -180,22 +128,17 @@ void write_pfm(const fs::path& path, const Image& image) {
 }
 
 Image read_pfm(const fs::path& path) {
-    // A directory opens as a stream on Linux and then throws std::ios_base::failure on
-    // the first read: refuse it by name first, and turn any other read failure into an
-    // Error too.
-    std::error_code status_error;
-    if (fs::is_directory(path, status_error)) {
-        throw Error("cannot read " + quoted(path) + ": is a directory");
-    }
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("cannot read " + quoted(path) + ": " + std::strerror(errno));
-    Bytes data;
+    // Only a regular file, of at most the largest image plus a header (no FIFO to block
+    // on, no /dev/zero to read forever).
+    detail::ReadRequest request;
+    request.what = "a PFM file";
+    request.max_bytes = kMaxPfmBytes;
+    std::string data;
     try {
-        data.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    } catch (const std::exception& e) {
-        throw Error("cannot read " + quoted(path) + ": " + e.what());
+        data = detail::read_regular_file(path, request);
+    } catch (const Error& e) {
+        throw Error(std::string("cannot read ") + e.what());
     }
-    if (in.bad()) throw Error("cannot read " + quoted(path) + ": read error");
     const auto malformed = [&](const std::string& what) {
         return Error(quoted(path) + ": not a valid PFM file: " + what);
     };
@@ -229,7 +172,9 @@ Image read_pfm(const fs::path& path) {
         }
     }
     // Exactly one whitespace character separates the header from the raster.
-    if (pos >= data.size() || !std::isspace(data[pos])) throw malformed("truncated header");
+    if (pos >= data.size() || !std::isspace(static_cast<unsigned char>(data[pos]))) {
+        throw malformed("truncated header");
+    }
     ++pos;
 
     check_image_size(size[0], size[1]);
@@ -244,7 +189,7 @@ Image read_pfm(const fs::path& path) {
     }
     Image image(static_cast<int>(size[0]), static_cast<int>(size[1]));
     const bool little_endian = scale < 0.0;
-    const unsigned char* p = data.data() + pos;
+    const auto* p = reinterpret_cast<const unsigned char*>(data.data()) + pos;
     for (int y = image.height - 1; y >= 0; --y) {
         for (int x = 0; x < image.width; ++x) {
             glm::vec3& out = image.at(x, y);

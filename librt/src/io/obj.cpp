@@ -1,3 +1,5 @@
+#include "io/file_io.h"
+#include "io/obj_mtl.h"
 #include "io/obj_scan.h"
 
 #include <librt/core/error.h>
@@ -9,17 +11,12 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <functional>
 #include <istream>
 #include <limits>
-#include <random>
 #include <streambuf>
 #include <string>
 #include <string_view>
@@ -34,34 +31,13 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::int32_t kAbsent = -1;  // tinyobjloader's "no vt / vn" index
+constexpr std::size_t npos = std::string::npos;
 
 // ---------------------------------------------------------------------------------------------
 // Loading
 
-/// The whole file as bytes; throws naming the path when it is missing, a directory or
-/// unreadable.
-std::string read_file(const fs::path& path) {
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (status.type() == fs::file_type::not_found) throw Error(path.string() + ": no such file");
-    if (ec) throw Error(path.string() + ": cannot access: " + ec.message());
-    if (fs::is_directory(status)) throw Error(path.string() + ": is a directory, not an OBJ file");
-    std::FILE* file = std::fopen(path.string().c_str(), "rb");
-    if (file == nullptr) {
-        throw Error(path.string() + ": cannot open for reading: " + std::strerror(errno));
-    }
-    std::string text;
-    char buffer[1 << 16];
-    std::size_t got = 0;
-    while ((got = std::fread(buffer, 1, sizeof buffer, file)) > 0) text.append(buffer, got);
-    const bool failed = std::ferror(file) != 0;
-    const int saved_errno = errno;
-    std::fclose(file);
-    if (failed) {
-        throw Error(path.string() + ": read error: " + std::strerror(saved_errno));
-    }
-    return text;
-}
+/// An MTL file is text of a few lines per material: 256 MiB is far beyond any real one.
+constexpr std::uint64_t kMaxMtlBytes = std::uint64_t{256} << 20;
 
 /// A read-only stream buffer over text that lives elsewhere (no copy, unlike stringbuf).
 class ViewBuffer : public std::streambuf {
@@ -166,13 +142,22 @@ double orient2d(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
     return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
+/// What triangulate_polygon made of a polygon.
+enum class Polygon {
+    Triangulated,  ///< triangles appended, covering exactly the polygon's area
+    ZeroArea,      ///< nothing appended: the polygon has no area
+    NotSimple,     ///< nothing appended: self-overlapping, no area-preserving triangulation
+};
+
 /// Ear clipping (Meisters' two-ears theorem: a simple polygon always has an ear to cut) in the
-/// polygon's own plane, appending triangles with the polygon's winding. A polygon that is not
-/// simple may run out of ears; the rest is then fanned. Returns false, appending nothing, when
-/// the polygon has zero area.
-bool triangulate_polygon(const std::vector<glm::vec3>& positions,
-                         const std::vector<std::uint32_t>& corners, PolygonScratch& scratch,
-                         std::vector<glm::uvec3>& out) {
+/// polygon's own plane, appending triangles with the polygon's winding. Corners that add no
+/// area are dropped first: repeats of the previous corner and the tips of zero-width spikes
+/// (the boundary running out and back along one line), so weakly simple polygons triangulate
+/// too. A polygon that is not simple may run out of ears; the rest is then fanned, and if the
+/// triangles' total area differs from the polygon's (they overlap) nothing is appended.
+Polygon triangulate_polygon(const std::vector<glm::vec3>& positions,
+                            const std::vector<std::uint32_t>& corners, PolygonScratch& scratch,
+                            std::vector<glm::uvec3>& out) {
     const std::size_t n = corners.size();
     const glm::dvec3 p0(positions[corners[0]]);
     // Newell's normal: the sum of (p_i - p0) x (p_i+1 - p0) is twice the vector area.
@@ -185,7 +170,7 @@ bool triangulate_polygon(const std::vector<glm::vec3>& positions,
         extent2 = std::max(extent2, glm::dot(a, a));
     }
     const double len = glm::length(normal);
-    if (!(len > 1e-12 * extent2)) return false;  // zero (or NaN) area
+    if (!(len > 1e-12 * extent2)) return Polygon::ZeroArea;  // zero (or NaN) area
 
     // A right-handed orthonormal frame (u, v, n): the polygon runs counter-clockwise in (u, v).
     const glm::dvec3 nz = normal / len;
@@ -202,7 +187,41 @@ bool triangulate_polygon(const std::vector<glm::vec3>& positions,
         rem[i] = i;
     }
 
+    // Drop corners that add no area (see above); each leaves the signed area unchanged,
+    // since the triangle (previous, corner, next) it removes is flat.
+    const double tiny = 1e-12 * extent2;
+    for (bool changed = true; changed && rem.size() > 3;) {
+        changed = false;
+        for (std::size_t k = 0; k < rem.size() && rem.size() > 3;) {
+            const std::size_t m = rem.size();
+            const glm::dvec2 a = pts[rem[(k + m - 1) % m]], b = pts[rem[k]],
+                             c = pts[rem[(k + 1) % m]];
+            const glm::dvec2 ab = b - a, bc = c - b;
+            const bool repeat = glm::dot(ab, ab) <= tiny;
+            // Collinear (|ab x bc| tiny against |ab| |bc|) and turning back (ab . bc < 0).
+            const bool spike =
+                std::abs(orient2d(a, b, c)) <= 1e-12 * glm::length(ab) * glm::length(bc) &&
+                glm::dot(ab, bc) < 0.0;
+            if (repeat || spike) {
+                rem.erase(rem.begin() + static_cast<std::ptrdiff_t>(k));
+                changed = true;
+            } else {
+                ++k;
+            }
+        }
+    }
+
+    // Twice the polygon's signed area (shoelace), to check the triangulation against.
+    double polygon_area2 = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::dvec2& p = pts[i];
+        const glm::dvec2& q = pts[(i + 1) % n];
+        polygon_area2 += p.x * q.y - p.y * q.x;
+    }
+    const std::size_t first = out.size();
+    double triangles_area2 = 0.0;  // sum of |twice the area| of the triangles emitted
     auto emit = [&](std::size_t a, std::size_t b, std::size_t c) {
+        triangles_area2 += std::abs(orient2d(pts[a], pts[b], pts[c]));
         out.emplace_back(corners[a], corners[b], corners[c]);
     };
     while (rem.size() > 3) {
@@ -230,7 +249,12 @@ bool triangulate_polygon(const std::vector<glm::vec3>& positions,
         if (!clipped) break;
     }
     for (std::size_t i = 1; i + 1 < rem.size(); ++i) emit(rem[0], rem[i], rem[i + 1]);
-    return true;
+    // Overlapping triangles cover more than the polygon: refuse rather than double the area.
+    if (std::abs(triangles_area2 - std::abs(polygon_area2)) > 1e-6 * std::abs(polygon_area2)) {
+        out.resize(first);
+        return Polygon::NotSimple;
+    }
+    return Polygon::Triangulated;
 }
 
 /// "" when the corner's indices are in range, else what is wrong with them.
@@ -254,21 +278,6 @@ std::string check_corner(const Corner& c, std::size_t nv, std::size_t nvt, std::
 
 glm::vec3 to_vec3(const tinyobj::real_t* v) { return {v[0], v[1], v[2]}; }
 
-MeshMaterial to_mesh_material(const tinyobj::material_t& m, const fs::path& dir) {
-    MeshMaterial out;
-    out.name = m.name;
-    out.diffuse = to_vec3(m.diffuse);
-    out.specular = to_vec3(m.specular);
-    out.emission = to_vec3(m.emission);
-    out.ior = m.ior;
-    out.dissolve = m.dissolve;
-    out.illum = m.illum;
-    if (!m.diffuse_texname.empty()) {
-        out.diffuse_texture = (dir / m.diffuse_texname).lexically_normal().string();
-    }
-    return out;
-}
-
 /// Fills normals of vertices without a vn with the area-weighted normal of their triangles.
 void fill_missing_normals(TriangleMesh& mesh, const std::vector<std::int32_t>& vn) {
     for (const glm::uvec3& t : mesh.triangles) {
@@ -284,14 +293,61 @@ void fill_missing_normals(TriangleMesh& mesh, const std::vector<std::int32_t>& v
     }
 }
 
+/// Hands warnings to the caller; with no list given, the caller does not want them (the
+/// library never prints).
 void report(const fs::path& path, const std::vector<std::string>& lines,
             const ObjLoadOptions& options) {
-    for (const std::string& line : lines) {
-        std::string message = path.string() + ": " + line;
-        if (options.warnings) {
-            options.warnings->push_back(std::move(message));
+    if (options.warnings == nullptr) return;
+    for (const std::string& line : lines) options.warnings->push_back(path.string() + ": " + line);
+}
+
+/// Reads the MTL files the OBJ names (mtllib, resolved against the OBJ's directory),
+/// appending their materials. A missing file is a warning (its materials are then unknown
+/// and their faces get the default material); anything else wrong is an Error.
+void load_mtllibs(const detail::ObjScanResult& scan, const fs::path& dir,
+                  std::vector<MeshMaterial>& materials, std::vector<std::string>& warnings,
+                  std::vector<std::string>& file_warnings) {
+    std::vector<std::string> seen;
+    for (const auto& [rest, line] : scan.mtllibs) {
+        // mtllib takes several files separated by spaces, but a single name may contain
+        // spaces too: the whole rest of the line is tried first when it names a file.
+        const std::string whole = detail::normalise_separators(rest);
+        std::vector<std::string> names;
+        std::error_code ec;
+        if (!whole.empty() && fs::exists(dir / whole, ec)) {
+            names.push_back(whole);
         } else {
-            std::fprintf(stderr, "librt: warning: %s\n", message.c_str());
+            std::size_t start = 0;
+            while (start < whole.size()) {
+                const std::size_t end = std::min(whole.find_first_of(" \t", start), whole.size());
+                if (end > start) names.push_back(whole.substr(start, end - start));
+                start = end + 1;
+            }
+        }
+        if (names.empty()) {
+            warnings.push_back("line " + std::to_string(line) + ": mtllib without a file name");
+        }
+        for (const std::string& name : names) {
+            if (std::find(seen.begin(), seen.end(), name) != seen.end()) continue;
+            seen.push_back(name);
+            const fs::path mtl_path = dir / name;
+            if (!fs::exists(fs::symlink_status(mtl_path, ec)) || !fs::exists(mtl_path, ec)) {
+                warnings.push_back("line " + std::to_string(line) + ": MTL file '" +
+                                   mtl_path.string() +
+                                   "' not found: its materials' faces get the default material");
+                continue;
+            }
+            detail::ReadRequest request;
+            request.what = "an MTL file";
+            request.max_bytes = kMaxMtlBytes;
+            const std::string text = detail::read_regular_file(mtl_path, request);
+            const std::size_t first = materials.size();
+            detail::parse_mtl(text, mtl_path.string(), materials, file_warnings);
+            // map_Kd is relative to the MTL's directory, which is the OBJ's.
+            for (std::size_t i = first; i < materials.size(); ++i) {
+                std::string& tex = materials[i].diffuse_texture;
+                if (!tex.empty()) tex = (dir / tex).lexically_normal().string();
+            }
         }
     }
 }
@@ -302,7 +358,7 @@ void report(const fs::path& path, const std::vector<std::string>& lines,
 /// Appends text and numbers to a buffer flushed to a stream in large blocks.
 class Writer {
 public:
-    explicit Writer(std::ofstream& out) : out_(out) { buffer_.reserve(kBlock + 256); }
+    explicit Writer(detail::AtomicFile& out) : out_(out) { buffer_.reserve(kBlock + 256); }
     ~Writer() = default;
     Writer(const Writer&) = delete;
     Writer& operator=(const Writer&) = delete;
@@ -321,7 +377,7 @@ public:
     Writer& operator<<(std::uint64_t x) { return put(x); }
     Writer& operator<<(int x) { return put(x); }
     void flush() {
-        out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+        out_.write(buffer_);
         buffer_.clear();
     }
 
@@ -335,31 +391,18 @@ private:
         return *this << std::string_view(tmp, static_cast<std::size_t>(result.ptr - tmp));
     }
 
-    std::ofstream& out_;
+    detail::AtomicFile& out_;
     std::string buffer_;
 };
 
-/// Runs body on a temporary file beside path, then renames it over path.
+/// Runs body on the library's one atomic writer (io/file_io.h): readers see the old file
+/// or the complete new one, and a kill during the write leaves no temporary.
 void write_atomically(const fs::path& path, const std::function<void(Writer&)>& body) {
-    std::random_device rd;
-    fs::path tmp = path;
-    tmp += ".tmp" + std::to_string(rd());
-    try {
-        std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
-        if (!file) throw Error(path.string() + ": cannot open for writing");
-        Writer w(file);
-        body(w);
-        w.flush();
-        file.close();
-        if (!file) throw Error(path.string() + ": write failed");
-        std::error_code ec;
-        fs::rename(tmp, path, ec);
-        if (ec) throw Error(path.string() + ": cannot replace: " + ec.message());
-    } catch (...) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        throw;
-    }
+    detail::AtomicFile file(path);
+    Writer w(file);
+    body(w);
+    w.flush();
+    file.commit();
 }
 
 std::string material_name(const TriangleMesh& mesh, std::size_t i) {
@@ -395,7 +438,17 @@ void write_mtl(const TriangleMesh& mesh, const fs::path& path) {
 }  // namespace
 
 TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
-    const std::string text = read_file(path);
+    // A regular file only (a FIFO would block, /dev/zero never end), within the size limit,
+    // and refused by its first 64 KiB when those are binary (a 2 GB sparse file of zeros
+    // is refused at once, not after reading it all).
+    detail::ReadRequest request;
+    request.what = "an OBJ file";
+    request.max_bytes = options.max_file_bytes;
+    request.raise_hint = "raise ObjLoadOptions::max_file_bytes to read it";
+    request.check_head = [&](std::string_view head) {
+        detail::check_obj_head(head, path.string());
+    };
+    std::string text = detail::read_regular_file(path, request);
     const fs::path dir = path.parent_path();
 
     // Our own strict pass first: it names the line of what tinyobjloader would misread
@@ -404,23 +457,28 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
     scan_options.check_uv_indices = options.load_uvs;
     scan_options.check_normal_indices = options.load_normals;
     detail::ObjScanResult scan = detail::scan_obj(text, path.string(), scan_options);
+    // Trailing comments the scan accepted would make tinyobjloader fail on `f 1 2 3 # c`:
+    // blank them (in place, no copy of the file).
+    for (const std::size_t at : scan.trailing_comments) {
+        for (std::size_t i = at; i < text.size() && text[i] != '\n' && text[i] != '\r'; ++i) {
+            text[i] = ' ';
+        }
+    }
 
     // We triangulate ourselves (triangulate = false): tinyobjloader's triangulation reads
     // positions through unchecked indices (n-gons) or silently drops faces with bad ones
-    // (quads), before we could check them. No vertex colours.
-    // The MTL is looked up in the OBJ's directory (tinyobjloader splits that path at ':',
-    // so a directory containing ':' loses its MTL, with a warning).
-    std::string mtl_dir = dir.string();
-    if (!mtl_dir.empty() && mtl_dir.back() != '/') mtl_dir += '/';
-    tinyobj::MaterialFileReader mtl_reader(mtl_dir);
+    // (quads), before we could check them. No vertex colours. No material reader either:
+    // tinyobjloader cuts usemtl names at the first space and reads MTL numbers leniently, so
+    // the MTL files and the usemtl switches come from our own reader and scan.
     ViewBuffer buffer(std::string_view(text).substr(scan.skip));
     std::istream stream(&buffer);
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
-    std::vector<tinyobj::material_t> obj_materials;
+    std::vector<tinyobj::material_t> unused_materials;
     std::string tiny_warning, tiny_error;
-    if (!tinyobj::LoadObj(&attrib, &shapes, &obj_materials, &tiny_warning, &tiny_error, &stream,
-                          &mtl_reader, /*triangulate=*/false, /*default_vcols_fallback=*/false)) {
+    if (!tinyobj::LoadObj(&attrib, &shapes, &unused_materials, &tiny_warning, &tiny_error, &stream,
+                          /*readMatFn=*/nullptr, /*triangulate=*/false,
+                          /*default_vcols_fallback=*/false)) {
         const std::vector<std::string> lines = split_lines(tiny_error);
         std::string message = path.string() + ":";
         for (const std::string& line : lines) message += " " + line;
@@ -429,10 +487,44 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
     }
     std::vector<std::string> warnings = std::move(scan.warnings);
     for (std::string& line : split_lines(tiny_warning)) {
-        // Our scan reported these with their line numbers.
-        if (line != "Degenerated face found") warnings.push_back(std::move(line));
+        // The scan reported these, with their line numbers (short faces, bad indices), or
+        // they concern materials, which tinyobjloader does not read here.
+        if (line == "Degenerated face found" || line.find("indices out of bounds") != npos ||
+            line.rfind("material [", 0) == 0) {
+            continue;
+        }
+        // "Empty group name. line: N" in the form of our other warnings.
+        if (const std::size_t at = line.rfind("Empty group name. line: ", 0); at == 0) {
+            warnings.push_back("line " + line.substr(24) + ": 'g' without a name");
+            continue;
+        }
+        warnings.push_back(std::move(line));
     }
     for (std::string& line : split_lines(tiny_error)) warnings.push_back(std::move(line));
+
+    // Materials: the MTL files in mtllib order, then a name -> index map where the first
+    // definition of a name wins.
+    std::vector<MeshMaterial> materials;
+    std::vector<std::string> mtl_warnings;  // already "mtl_path:line: ..."
+    load_mtllibs(scan, dir, materials, warnings, mtl_warnings);
+    std::unordered_map<std::string, std::uint32_t> material_index;
+    for (std::size_t i = 0; i < materials.size(); ++i) {
+        material_index.try_emplace(materials[i].name, static_cast<std::uint32_t>(i));
+    }
+    const auto default_material = static_cast<std::uint32_t>(materials.size());
+    // Per usemtl name: its material, or the default (warned about once, at its first use).
+    std::vector<std::uint32_t> name_material(scan.material_names.size(), default_material);
+    for (std::size_t i = 0; i < scan.material_names.size(); ++i) {
+        const auto& [name, line] = scan.material_names[i];
+        const auto it = material_index.find(name);
+        if (it != material_index.end()) {
+            name_material[i] = it->second;
+        } else {
+            warnings.push_back("line " + std::to_string(line) + ": usemtl '" + name +
+                               "': no such material in the MTL file(s); its faces get the "
+                               "default material");
+        }
+    }
 
     const std::size_t nv = attrib.vertices.size() / 3;
     const std::size_t nvt = attrib.texcoords.size() / 2;
@@ -463,10 +555,11 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
     for (std::size_t i = 0; i < nv; ++i) mesh.positions[i] = to_vec3(&attrib.vertices[3 * i]);
     VertexUnifier unifier(mesh.positions);
 
-    const auto default_material = static_cast<std::uint32_t>(obj_materials.size());
     bool uses_default = false;
-    std::size_t skipped = 0;
+    std::size_t run = 0;  // the usemtl switch in force (scan.material_runs)
+    std::size_t skipped = 0, not_simple = 0;
     std::size_t face_number = 0;  // 1-based in file order, for messages
+    std::size_t not_simple_face = 0;
     std::vector<std::uint32_t> corners;
     PolygonScratch scratch;
 
@@ -490,17 +583,23 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
             offset += n;
             if (n < 3) continue;  // tinyobjloader already warned
 
-            std::uint32_t material = default_material;
-            if (f < m.material_ids.size() && m.material_ids[f] >= 0 &&
-                static_cast<std::size_t>(m.material_ids[f]) < obj_materials.size()) {
-                material = static_cast<std::uint32_t>(m.material_ids[f]);
+            // Faces of 3+ corners come in file order, as the scan counted them.
+            const std::size_t face_index = face_number - 1;
+            while (run < scan.material_runs.size() &&
+                   scan.material_runs[run].first_face <= face_index) {
+                ++run;
             }
+            const std::uint32_t material =
+                run == 0 ? default_material : name_material[scan.material_runs[run - 1].name];
 
             const std::size_t before = mesh.triangles.size();
             if (n == 3) {
                 mesh.triangles.emplace_back(corners[0], corners[1], corners[2]);
-            } else if (!triangulate_polygon(mesh.positions, corners, scratch, mesh.triangles)) {
-                ++skipped;
+            } else if (const Polygon p =
+                           triangulate_polygon(mesh.positions, corners, scratch, mesh.triangles);
+                       p != Polygon::Triangulated) {
+                ++(p == Polygon::ZeroArea ? skipped : not_simple);
+                if (p == Polygon::NotSimple && not_simple_face == 0) not_simple_face = face_number;
                 continue;
             }
             uses_default = uses_default || material == default_material;
@@ -508,15 +607,24 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
                                      material);
         }
     }
+    if (face_number != scan.face_count) {
+        // The usemtl switches are counted in the scan's faces: the two must agree.
+        throw Error(path.string() + ": internal error: tinyobjloader read " +
+                    std::to_string(face_number) + " faces, the scan " +
+                    std::to_string(scan.face_count));
+    }
     if (skipped > 0) {
         warnings.push_back(std::to_string(skipped) +
                            " polygon(s) of zero area triangulate to nothing and were skipped");
     }
-
-    mesh.materials.reserve(obj_materials.size() + 1);
-    for (const tinyobj::material_t& m : obj_materials) {
-        mesh.materials.push_back(to_mesh_material(m, dir));
+    if (not_simple > 0) {
+        warnings.push_back(std::to_string(not_simple) +
+                           " polygon(s) overlapping themselves (first: face " +
+                           std::to_string(not_simple_face) +
+                           ") have no triangulation of the same area and were skipped");
     }
+
+    mesh.materials = std::move(materials);
     if (uses_default) {
         MeshMaterial fallback;
         fallback.name = "default";
@@ -550,6 +658,9 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
     }
 
     report(path, warnings, options);
+    if (options.warnings != nullptr) {
+        for (std::string& w : mtl_warnings) options.warnings->push_back(std::move(w));
+    }
 
     try {
         if (options.transform != glm::mat4(1.0f)) transform(mesh, options.transform);

@@ -2,6 +2,7 @@
 #include <librt/io/obj_materials.h>
 #include <librt/io/texture_io.h>
 
+#include <cstdio>
 #include <string>
 #include <utility>
 
@@ -17,8 +18,20 @@ Material material_from_mtl(const MeshMaterial& mtl) {
         if (any_positive(mtl.emission)) return Material::emissive(mtl.emission);
         if (mtl.illum == 4 || mtl.illum == 6 || mtl.illum == 7 || mtl.dissolve < 1.0f)
             return Material::dielectric(mtl.ior > 0.0f ? mtl.ior : 1.5f);
-        if (mtl.illum == 3 || mtl.illum == 5 || mtl.specular == glm::vec3(1.0f))
-            return Material::mirror(any_positive(mtl.specular) ? mtl.specular : glm::vec3(1.0f));
+        if (mtl.illum == 3 || mtl.illum == 5 || mtl.specular == glm::vec3(1.0f)) {
+            // A mirror's reflectance is the MTL's Ks: say so, not the Material's "albedo".
+            const glm::vec3 ks = any_positive(mtl.specular) ? mtl.specular : glm::vec3(1.0f);
+            for (int c = 0; c < 3; ++c) {
+                if (!(ks[c] >= 0.0f && ks[c] <= 1.0f)) {
+                    char text[96];
+                    std::snprintf(text, sizeof text, "(%g, %g, %g)", double(ks.x), double(ks.y),
+                                  double(ks.z));
+                    throw Error(std::string("Ks = ") + text +
+                                ": a mirror's reflectance, every component must be in [0, 1]");
+                }
+            }
+            return Material::mirror(ks);
+        }
         return Material::diffuse(mtl.diffuse);
     } catch (const Error& e) {
         throw Error("MTL material '" + mtl.name + "': " + e.what());

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <system_error>
 
@@ -59,6 +60,29 @@ std::string quoted(std::string_view text) {
     return out;
 }
 
+/// The text without leading and trailing spaces and tabs.
+std::string_view trimmed(std::string_view text) {
+    while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+    while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
+    return text;
+}
+
+/// "name:line: NUL byte in column C ..." for the first NUL byte of text, if any.
+void check_nul(std::string_view text, std::size_t skip, const std::string& name) {
+    const std::size_t nul = text.find('\0', skip);
+    if (nul == std::string_view::npos) return;
+    // Lines end at \n, \r or \r\n, as in scan_obj.
+    std::size_t line = 1, line_start = skip;
+    for (std::size_t i = skip; i < nul; ++i) {
+        if (text[i] == '\n' || (text[i] == '\r' && (i + 1 >= text.size() || text[i + 1] != '\n'))) {
+            ++line;
+            line_start = i + 1;
+        }
+    }
+    throw Error(name + ":" + std::to_string(line) + ": NUL byte in column " +
+                std::to_string(nul - line_start + 1) + " (a binary file, or UTF-16 text?)");
+}
+
 /// Statements tinyobjloader reads or that OBJ defines (curves, surfaces, display
 /// attributes) and librt ignores without comment.
 bool known_keyword(std::string_view k) {
@@ -78,8 +102,8 @@ bool known_keyword(std::string_view k) {
 /// The scan's state: element counts so far and what to report.
 class Scanner {
 public:
-    Scanner(const std::string& name, const ObjScanOptions& options)
-        : name_(name), options_(options) {}
+    Scanner(const char* base, const std::string& name, const ObjScanOptions& options)
+        : base_(base), name_(name), options_(options) {}
 
     void line(std::string_view text, std::size_t number);
     ObjScanResult finish();
@@ -105,6 +129,9 @@ private:
         std::string at;  ///< "face N, corner '...': "
     };
 
+    void usemtl(std::string_view name, std::size_t line);
+
+    const char* base_;  // the text's first byte, for offsets
     const std::string& name_;
     ObjScanOptions options_;
     std::size_t positions_ = 0, uvs_ = 0, normals_ = 0;
@@ -121,22 +148,21 @@ void Scanner::numbers(Tokens& tokens, std::string_view keyword, std::size_t lo, 
                       std::size_t line) {
     std::size_t count = 0;
     for (std::string_view t = tokens.next(); !t.empty(); t = tokens.next()) {
-        if (t.front() == '#') break;  // a trailing comment
+        if (t.front() == '#') {  // a trailing comment
+            result_.trailing_comments.push_back(static_cast<std::size_t>(t.data() - base_));
+            break;
+        }
         ++count;
         if (count > hi) continue;  // reported below with the count
-        std::string_view digits = t;
-        if (digits.size() > 1 && digits.front() == '+') digits.remove_prefix(1);
-        double value = 0.0;
-        const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-        if (ec == std::errc::result_out_of_range ||
-            (ec == std::errc() && end == digits.data() + digits.size() &&
-             (!std::isfinite(value) ||
-              std::fabs(value) > double(std::numeric_limits<float>::max())))) {
-            fail(line, quoted(keyword) + " number " + printable(t) +
-                           " is not finite in single precision");
-        }
-        if (ec != std::errc() || end != digits.data() + digits.size()) {
-            fail(line, quoted(keyword) + " has a malformed number " + quoted(printable(t)));
+        float value = 0.0f;
+        switch (parse_float(t, value)) {
+            case NumberStatus::Ok:
+                break;
+            case NumberStatus::TooLarge:
+                fail(line, quoted(keyword) + " number " + printable(t) +
+                               " is not finite in single precision");
+            case NumberStatus::Malformed:
+                fail(line, quoted(keyword) + " has a malformed number " + quoted(printable(t)));
         }
     }
     if (count < lo || count > hi) {
@@ -181,7 +207,10 @@ void Scanner::face(Tokens& tokens, std::size_t line) {
     const std::string face = "face " + std::to_string(faces_ + 1) + ", ";
     std::size_t corners = 0;
     for (std::string_view t = tokens.next(); !t.empty(); t = tokens.next()) {
-        if (t.front() == '#') break;
+        if (t.front() == '#') {  // a trailing comment
+            result_.trailing_comments.push_back(static_cast<std::size_t>(t.data() - base_));
+            break;
+        }
         ++corners;
         const std::string at = face + "corner " + quoted(printable(t)) + ": ";
         // v, v/vt, v//vn or v/vt/vn.
@@ -235,6 +264,14 @@ void Scanner::line(std::string_view text, std::size_t number) {
         ++normals_;
     } else if (keyword == "f") {
         face(tokens, number);
+    } else if (keyword == "usemtl" || keyword == "mtllib") {
+        const std::string_view rest = trimmed(
+            text.substr(static_cast<std::size_t>(keyword.data() + keyword.size() - text.data())));
+        if (keyword == "usemtl") {
+            usemtl(rest, number);
+        } else {
+            result_.mtllibs.emplace_back(std::string(rest), number);
+        }
     } else if (keyword == "l" || keyword == "p") {
         if (lines_points_++ == 0) lines_points_line_ = number;
     } else if (!known_keyword(keyword)) {
@@ -243,6 +280,16 @@ void Scanner::line(std::string_view text, std::size_t number) {
             unknown_keyword_ = printable(keyword);
         }
     }
+}
+
+void Scanner::usemtl(std::string_view name, std::size_t line) {
+    auto& names = result_.material_names;
+    std::size_t index = 0;
+    while (index < names.size() && names[index].first != name) ++index;
+    if (index == names.size()) names.emplace_back(std::string(name), line);
+    auto& runs = result_.material_runs;
+    if (!runs.empty() && runs.back().first_face == faces_) runs.pop_back();  // no faces between
+    runs.push_back({faces_, index});
 }
 
 ObjScanResult Scanner::finish() {
@@ -272,10 +319,44 @@ ObjScanResult Scanner::finish() {
                     " unknown statement(s) ignored (first here: '" + unknown_keyword_ + "')");
     }
     if (faces_ == 0) w.push_back("no faces: the mesh has no triangles");
+    result_.face_count = faces_;
     return std::move(result_);
 }
 
 }  // namespace
+
+NumberStatus parse_float(std::string_view token, float& value) {
+    std::string_view digits = token;
+    if (digits.size() > 1 && digits.front() == '+') digits.remove_prefix(1);
+    double parsed = 0.0;
+    const char* end = digits.data() + digits.size();
+    const auto [stop, ec] = std::from_chars(digits.data(), end, parsed);
+    if (ec == std::errc::invalid_argument || stop != end) return NumberStatus::Malformed;
+    if (ec == std::errc::result_out_of_range) {
+        // Too large, or too close to zero for a double: from_chars leaves the value
+        // unspecified, strtod tells them apart (HUGE_VAL, or at most DBL_MIN).
+        const std::string copy(digits);
+        const double fallback = std::strtod(copy.c_str(), nullptr);
+        if (!(std::fabs(fallback) <= std::numeric_limits<double>::min())) {
+            return NumberStatus::TooLarge;
+        }
+        value = 0.0f;
+        return NumberStatus::Ok;
+    }
+    if (!std::isfinite(parsed) || std::fabs(parsed) > double(std::numeric_limits<float>::max())) {
+        return NumberStatus::TooLarge;
+    }
+    value = static_cast<float>(parsed);
+    return NumberStatus::Ok;
+}
+
+void check_obj_head(std::string_view head, const std::string& name) {
+    if (head.size() >= 2 &&
+        ((head[0] == '\xff' && head[1] == '\xfe') || (head[0] == '\xfe' && head[1] == '\xff'))) {
+        throw Error(name + ":1: UTF-16 byte order mark: OBJ files must be ASCII or UTF-8");
+    }
+    check_nul(head, head.substr(0, 3) == "\xef\xbb\xbf" ? 3 : 0, name);
+}
 
 ObjScanResult scan_obj(std::string_view text, const std::string& name,
                        const ObjScanOptions& options) {
@@ -285,7 +366,7 @@ ObjScanResult scan_obj(std::string_view text, const std::string& name,
         throw Error(name + ":1: UTF-16 byte order mark: OBJ files must be ASCII or UTF-8");
     }
     if (text.substr(0, 3) == "\xef\xbb\xbf") skip = 3;  // UTF-8 byte order mark
-    Scanner scanner(name, options);
+    Scanner scanner(text.data(), name, options);
     // Lines end at \n, \r or \r\n, as tinyobjloader reads them, so line numbers agree.
     std::size_t number = 0;
     std::size_t start = skip;

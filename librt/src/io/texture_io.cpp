@@ -1,3 +1,5 @@
+#include "io/file_io.h"
+
 #include <librt/core/error.h>
 #include <librt/io/texture_io.h>
 
@@ -6,26 +8,39 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <sstream>
 #include <string>
-#include <system_error>
 #include <vector>
 
 namespace librt {
 
+namespace {
+
+// An image file read for a texture: 512 MiB, far above any 8192^2 texture's encoding
+// (kMaxTextureTexels), and below stb's int-sized memory interface.
+constexpr std::uint64_t kMaxTextureFileBytes = std::uint64_t{512} << 20;
+
+}  // namespace
+
 ImageTexture load_texture(const std::filesystem::path& path) {
     int w = 0, h = 0, channels = 0;
     const std::string name = path.string();
-    std::error_code ec;
-    const auto status = std::filesystem::status(path, ec);
-    if (status.type() == std::filesystem::file_type::not_found)
-        throw Error("cannot load texture " + name + ": no such file");
-    if (std::filesystem::is_directory(status))
-        throw Error("cannot load texture " + name + ": is a directory");
+    // Through the library's one reader (io/file_io.h): a regular file only (a FIFO would
+    // block forever), at most kMaxTextureFileBytes; stb then decodes from memory.
+    detail::ReadRequest request;
+    request.what = "an image file";
+    request.max_bytes = kMaxTextureFileBytes;
+    std::string bytes;
+    try {
+        bytes = detail::read_regular_file(path, request);
+    } catch (const Error& e) {
+        throw Error(std::string("cannot load texture ") + e.what());
+    }
+    const auto* encoded = reinterpret_cast<const stbi_uc*>(bytes.data());
+    const int encoded_size = static_cast<int>(bytes.size());  // <= kMaxTextureFileBytes
     // The header first: refuse a huge image before stb allocates its pixels.
-    if (stbi_info(name.c_str(), &w, &h, &channels) != 0) {
+    if (stbi_info_from_memory(encoded, encoded_size, &w, &h, &channels) != 0) {
         if (std::uint64_t(w) * std::uint64_t(h) > kMaxTextureTexels) {
             std::ostringstream msg;
             msg << "cannot load texture " << name << ": " << w << " x " << h
@@ -38,9 +53,9 @@ ImageTexture load_texture(const std::filesystem::path& path) {
         // texel into less than 1/4096 byte (deflate peaks near 1/344 for RGB, a
         // constant-colour JPEG near 1/1000), so that is the bound; 64 Ki texels are
         // always allowed.
-        const std::uint64_t file_bytes = std::filesystem::file_size(path, ec);
+        const std::uint64_t file_bytes = bytes.size();
         const std::uint64_t texels = std::uint64_t(w) * std::uint64_t(h);
-        if (!ec && texels > 4096u * file_bytes + 65536u) {
+        if (texels > 4096u * file_bytes + 65536u) {
             std::ostringstream msg;
             msg << "cannot load texture " << name << ": the header claims " << w << " x " << h
                 << " texels in a file of " << file_bytes << " bytes (corrupt or truncated)";
@@ -49,14 +64,11 @@ ImageTexture load_texture(const std::filesystem::path& path) {
         // stb's binary PNM reader does not check for a short read: a truncated P5/P6
         // file would come back as uninitialised memory. Its raster is w h c bytes (two
         // per sample at 16 bits) after the header, so a shorter file is truncated.
-        char magic[2] = {0, 0};
-        std::ifstream probe(path, std::ios::binary);
-        probe.read(magic, 2);
-        if (magic[0] == 'P' && (magic[1] == '5' || magic[1] == '6')) {
-            const std::uint64_t raster = std::uint64_t(w) * std::uint64_t(h) *
-                                         std::uint64_t(channels) *
-                                         (stbi_is_16_bit(name.c_str()) ? 2u : 1u);
-            if (!ec && file_bytes < raster) {
+        if (bytes.size() >= 2 && bytes[0] == 'P' && (bytes[1] == '5' || bytes[1] == '6')) {
+            const std::uint64_t raster =
+                std::uint64_t(w) * std::uint64_t(h) * std::uint64_t(channels) *
+                (stbi_is_16_bit_from_memory(encoded, encoded_size) ? 2u : 1u);
+            if (file_bytes < raster) {
                 std::ostringstream msg;
                 msg << "cannot load texture " << name << ": truncated (" << file_bytes
                     << " bytes for a raster of " << raster << ")";
@@ -64,8 +76,8 @@ ImageTexture load_texture(const std::filesystem::path& path) {
             }
         }
     }
-    std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load(name.c_str(), &w, &h, &channels, 3),
-                                                   stbi_image_free);
+    std::unique_ptr<stbi_uc, void (*)(void*)> data(
+        stbi_load_from_memory(encoded, encoded_size, &w, &h, &channels, 3), stbi_image_free);
     if (!data) {
         const char* reason = stbi_failure_reason();
         throw Error("cannot load texture " + name + ": " + (reason ? reason : "unknown error"));

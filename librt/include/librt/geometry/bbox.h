@@ -36,8 +36,13 @@ struct BBox {
     }
     /// True when the box contains no point.
     [[nodiscard]] bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
-    /// Midpoint of the corners (meaningless for an empty box).
-    [[nodiscard]] glm::vec3 center() const { return 0.5f * (lo + hi); }
+    /// Midpoint of the corners (meaningless for an empty box). Finite for any finite box:
+    /// where lo + hi overflows (corners near +-3e38) the halves are added instead.
+    [[nodiscard]] glm::vec3 center() const {
+        const glm::vec3 c = 0.5f * (lo + hi);
+        if (std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z)) return c;
+        return 0.5f * lo + 0.5f * hi;
+    }
     /// hi - lo: the side lengths (negative components for an empty box).
     [[nodiscard]] glm::vec3 diagonal() const { return hi - lo; }
     /// Surface area, the SAH's measure of the chance a random ray hits the box; 0 if empty.

@@ -65,9 +65,16 @@ LIBRT_API void transform(TriangleMesh& mesh, const glm::mat4& matrix);
                                                  const glm::vec3& rotation_degrees,
                                                  const glm::vec3& translation);
 
+/// The largest |coordinate| a mesh position may have, 2^40 (about 1.1e12). The watertight
+/// triangle test computes a distance from products of three coordinate differences in
+/// float: with corners and ray origins within +-2^40 these stay below 2^127, beyond it they
+/// overflow and the triangle is silently missed (a triangle 2e18 wide seen from distance 55
+/// is). validate() refuses positions outside this range; docs/robustness.md has the details.
+inline constexpr float kMaxMeshCoordinate = 1099511627776.0f;  // 2^40
+
 /// Throws librt::Error naming the problem (and the offending index) when triangle or material
-/// indices are out of range, optional arrays have the wrong length, or positions, normals or
-/// uvs are not finite.
+/// indices are out of range, optional arrays have the wrong length, positions, normals or uvs
+/// are not finite, or a position lies outside +-kMaxMeshCoordinate.
 LIBRT_API void validate(const TriangleMesh& mesh);
 
 }  // namespace librt

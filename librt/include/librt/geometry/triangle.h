@@ -114,7 +114,11 @@ struct WatertightRay {
 }
 
 /// Centroid (mean of the corners), what the BVH builders split on.
-[[nodiscard]] inline glm::vec3 centroid(const Triangle& t) { return (t.p0 + t.p1 + t.p2) / 3.0f; }
+[[nodiscard]] inline glm::vec3 centroid(const Triangle& t) {
+    const glm::vec3 c = (t.p0 + t.p1 + t.p2) / 3.0f;
+    if (std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z)) return c;
+    return t.p0 / 3.0f + t.p1 / 3.0f + t.p2 / 3.0f;  // the sum overflowed (corners near 3e38)
+}
 
 /// Unnormalised normal (p1 - p0) x (p2 - p0); its length is twice the area.
 [[nodiscard]] inline glm::vec3 area_normal(const Triangle& t) {

@@ -5,6 +5,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -16,9 +17,15 @@ struct ObjLoadOptions {
     glm::mat4 transform{1.0f};  ///< applied on load, as librt::transform (e.g. make_transform)
     bool load_normals = true;   ///< read vn; if false the mesh has no normals
     bool load_uvs = true;       ///< read vt; if false the mesh has no uvs
-    /// Where warnings go (a missing MTL, an unknown material, skipped faces), one line each,
-    /// prefixed by the file name; if null they are printed to stderr.
+    /// Where warnings go (a missing MTL, an unknown material, skipped faces, replaced MTL
+    /// values), one line each, prefixed by the file name (and the line): appended when
+    /// given; when null the caller does not want them and they are dropped. librt never
+    /// prints: an application prints the list itself (the apps do).
     std::vector<std::string>* warnings = nullptr;
+    /// Files larger than this are refused (librt::Error naming the size and this option)
+    /// before a byte is read; 2 GiB by default. The mesh built from an OBJ takes about as
+    /// much memory again as the file, so raise it only with memory to match.
+    std::uint64_t max_file_bytes = std::uint64_t{1} << 31;
 };
 
 /// Reads a Wavefront OBJ (and its MTL, looked up in the OBJ's directory) into one mesh.
@@ -36,7 +43,9 @@ struct ObjLoadOptions {
 /// - material_ids is always filled. materials holds the MTL's materials in file order; if any
 ///   face has no (known) material, a default MeshMaterial named "default" is appended and those
 ///   faces use it. map_Kd is resolved against the OBJ's directory.
-/// - Throws librt::Error naming the path when it is missing, a directory or unreadable.
+/// - Only regular files are read (the OBJ and its MTL files): a directory,
+///   FIFO, device or socket is refused with librt::Error naming the path and what it is, as
+///   is a missing or unreadable file or one above options.max_file_bytes (MTL: 256 MiB).
 /// - Before tinyobjloader parses it (which would read "v 1 abc 2" as (1, 0, 2) and "nan" as
 ///   0), a strict pass checks every v / vt / vn / f statement and throws librt::Error
 ///   "path:line: problem" (face N counted from 1 in file order, not counting faces of under
@@ -50,6 +59,12 @@ struct ObjLoadOptions {
 ///   (an empty mesh). A UTF-8 byte order mark is skipped. Lines may end in LF, CRLF or CR,
 ///   the last one with or without a newline, and be of any length.
 /// - A missing MTL file is a warning, not an error: the faces get the default material.
+///   MTL files are read by librt itself (io/obj_mtl.h): numbers as strictly as the OBJ's
+///   ("path:line: problem"); material names, in newmtl and usemtl alike, are the whole rest
+///   of the line, spaces included; map_Kd options are skipped and backslashes in its path
+///   become slashes; values replaced (d outside [0, 1], a transparent material's Ni <= 0)
+///   are warned about. A usemtl naming no MTL material is warned about once, with its line.
+/// - Trailing comments (`f 1 2 3 # note`) are allowed on every statement.
 [[nodiscard]] LIBRT_API TriangleMesh load_obj(const std::filesystem::path& path,
                                               const ObjLoadOptions& options = {});
 

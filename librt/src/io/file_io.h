@@ -1,0 +1,72 @@
+#pragma once
+
+// The library's one way to read and to write files (private, never installed).
+//
+// Reading: only regular files are opened. A FIFO, a device, a socket or a directory
+// given as an OBJ, MTL, texture or image would block forever (a FIFO with no writer),
+// never end (/dev/zero) or fail obscurely; each is refused with a librt::Error naming the
+// path and what it is. The file's size is checked against a limit before a byte is read,
+// and the read itself stops at the limit (a file that grows while read is refused too).
+//
+// Writing: AtomicFile makes a file appear complete or not at all. On Linux its data goes
+// to an unnamed O_TMPFILE inode in the target's directory, linked in only after fsync: a
+// kill (SIGKILL, SIGXFSZ) during the write leaves no name behind. Elsewhere (or where the
+// file system has no O_TMPFILE) it writes a temporary of a fixed short name, ".rt-" plus
+// 16 hex digits plus ".tmp", so any legal target name (up to NAME_MAX bytes) works, then
+// fsyncs and renames it over the target.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+
+namespace librt::detail {
+
+/// What read_regular_file is reading, for its messages and its limit.
+struct ReadRequest {
+    std::string_view what;        ///< "an OBJ file", "an MTL file", "an image file"...
+    std::uint64_t max_bytes;      ///< larger files are refused before reading
+    std::string_view raise_hint;  ///< how to raise the limit, appended to that message
+    /// Called once with the first bytes (up to 64 KiB, or the whole file if shorter) before
+    /// the rest is read: it may throw to refuse a file by its start (a binary file given as
+    /// text) without reading gigabytes first.
+    std::function<void(std::string_view head)> check_head;
+};
+
+/// The whole content of the regular file `path`. Throws librt::Error "path: problem" when
+/// it is missing, not a regular file (directory, FIFO, character or block device, socket),
+/// unreadable, larger than request.max_bytes, or when check_head throws.
+[[nodiscard]] std::string read_regular_file(const std::filesystem::path& path,
+                                            const ReadRequest& request);
+
+/// A file written completely or not at all (see the top of this header). Errors name the
+/// target: "cannot write 'path': reason".
+class AtomicFile {
+public:
+    /// Starts a write of `target` (which is not touched until commit()).
+    explicit AtomicFile(const std::filesystem::path& target);
+    /// Discards the data unless commit() succeeded.
+    ~AtomicFile();
+    AtomicFile(const AtomicFile&) = delete;
+    AtomicFile& operator=(const AtomicFile&) = delete;
+
+    /// Appends bytes.
+    void write(std::string_view bytes);
+    /// Flushes to disk and gives the data the target's name, replacing any earlier file.
+    void commit();
+
+private:
+    [[noreturn]] void fail(const std::string& reason);
+    void discard() noexcept;
+
+    std::filesystem::path target_;
+    std::filesystem::path temp_;  ///< the named temporary, if one was needed
+    int fd_ = -1;
+    bool unnamed_ = false;  ///< an O_TMPFILE inode, linked in by commit()
+};
+
+/// Writes `bytes` to `path` through an AtomicFile.
+void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
+
+}  // namespace librt::detail
