@@ -56,7 +56,7 @@ void TopLevel::check_prototype(std::uint32_t prototype) const {
     }
 }
 
-std::uint32_t TopLevel::add_sphere(const Sphere& sphere) {
+std::uint32_t TopLevel::add_sphere(const Sphere& sphere, bool uv) {
     if (!finite(sphere.center)) {
         std::ostringstream msg;
         msg << "sphere center = (" << sphere.center.x << ", " << sphere.center.y << ", "
@@ -68,7 +68,7 @@ std::uint32_t TopLevel::add_sphere(const Sphere& sphere) {
         msg << "sphere radius = " << sphere.radius << ": must be finite and > 0";
         throw Error(msg.str());
     }
-    spheres_.push_back({sphere, DoubleSphere(sphere)});
+    spheres_.push_back({sphere, DoubleSphere(sphere), uv});
     return add_object(ObjectKind::Sphere, std::uint32_t(spheres_.size() - 1));
 }
 
@@ -320,6 +320,18 @@ bool TopLevel::visit_objects(Ray& ray, TestObject&& test_object) const {
 
 bool TopLevel::intersect(const Ray& ray, ObjectHit& hit) const {
     require_built();
+    return closest(ray, hit);
+}
+
+bool TopLevel::intersect(const Ray& ray, Hit& hit, bool every_sphere_uv) const {
+    require_built();
+    ObjectHit h;
+    if (!closest(ray, h)) return false;
+    finish(ray, h, every_sphere_uv, hit);
+    return true;
+}
+
+bool TopLevel::closest(const Ray& ray, ObjectHit& hit) const {
     Ray r = ray;
     const DoubleRay dray(ray);
     std::uint32_t best_object = kInvalidId;
@@ -384,19 +396,21 @@ bool TopLevel::occluded(const Ray& ray, std::uint32_t ignored_object) const {
     });
 }
 
-void TopLevel::finish(const Ray& ray, const ObjectHit& object_hit, bool sphere_uv, Hit& hit) const {
+void TopLevel::finish(const Ray& ray, const ObjectHit& object_hit, bool every_sphere_uv,
+                      Hit& hit) const {
     const Object& o = objects_[object_hit.object_id];
     const PrimitiveHit& prim = object_hit.primitive;
     hit.t = prim.t;
     hit.object_id = object_hit.object_id;
-    hit.instance_id = o.kind == ObjectKind::Instance ? o.index : kInvalidId;
+    hit.instance_id = kInvalidId;
     const glm::vec3 back = -ray.direction;  // fallback orientation for degenerate normals
     if (o.kind == ObjectKind::Sphere) {
-        const Sphere& s = spheres_[o.index].sphere;
+        const SphereData& data = spheres_[o.index];
+        const Sphere& s = data.sphere;
         hit.point = ray.at(prim.t);
         hit.geometric_normal = unit_or(hit.point - s.center, back);
         hit.shading_normal = hit.geometric_normal;
-        if (sphere_uv) {
+        if (every_sphere_uv || data.uv) {
             // v flipped so that it grows toward +y like OBJ coordinates: images map upright.
             const glm::vec2 uv = librt::sphere_uv(s, hit.point);
             hit.uv = {uv.x, 1.0f - uv.y};
@@ -406,39 +420,59 @@ void TopLevel::finish(const Ray& ray, const ObjectHit& object_hit, bool sphere_u
         hit.primitive_id = 0;
         return;
     }
-    const Instance* inst = o.kind == ObjectKind::Instance ? &instances_[o.index] : nullptr;
-    const TriangleMesh& mesh = prototypes_[inst ? inst->prototype : o.index].mesh;
+    if (o.kind == ObjectKind::Instance) {
+        finish_instance(ray, instances_[o.index], prim, hit);
+        hit.instance_id = o.index;
+        return;
+    }
+    const TriangleMesh& mesh = prototypes_[o.index].mesh;
     const glm::uvec3& idx = mesh.triangles[prim.primitive_id];
     const float b1 = prim.u, b2 = prim.v, b0 = 1.0f - prim.u - prim.v;
     const glm::vec3& p0 = mesh.positions[idx.x];
     const glm::vec3& p1 = mesh.positions[idx.y];
     const glm::vec3& p2 = mesh.positions[idx.z];
     // Barycentric interpolation lands closer to the plane than o + t d does.
-    const glm::vec3 point = b0 * p0 + b1 * p1 + b2 * p2;
-    const glm::vec3 winding = glm::cross(p1 - p0, p2 - p0);
-    if (inst) {
-        hit.point = inst->to_world * point + inst->to_world_shift;
-        hit.geometric_normal = unit_or(inst->normal_matrix * winding, back);
-    } else {
-        hit.point = point;
-        hit.geometric_normal = unit_or(winding, back);
-    }
+    hit.point = b0 * p0 + b1 * p1 + b2 * p2;
+    hit.geometric_normal = unit_or(glm::cross(p1 - p0, p2 - p0), back);
     hit.shading_normal = hit.geometric_normal;
     if (!mesh.normals.empty()) {
-        glm::vec3 n0 = mesh.normals[idx.x], n1 = mesh.normals[idx.y], n2 = mesh.normals[idx.z];
-        if (inst) {
-            // Each vertex normal mapped and renormalised before interpolation, as transform()
-            // does to a baked copy (a zero normal stays zero).
-            const auto map = [&](const glm::vec3& n) {
-                const glm::vec3 m = inst->normal_matrix * n;
-                const float len = glm::length(m);
-                return len > 0.0f ? m / len : m;
-            };
-            n0 = map(n0);
-            n1 = map(n1);
-            n2 = map(n2);
-        }
-        const glm::vec3 ns = unit_or(b0 * n0 + b1 * n1 + b2 * n2, hit.geometric_normal);
+        const glm::vec3 n =
+            b0 * mesh.normals[idx.x] + b1 * mesh.normals[idx.y] + b2 * mesh.normals[idx.z];
+        const glm::vec3 ns = unit_or(n, hit.geometric_normal);
+        hit.shading_normal = glm::dot(ns, hit.geometric_normal) < 0.0f ? -ns : ns;
+    }
+    hit.uv = mesh.uvs.empty() ? glm::vec2(b1, b2)
+                              : b0 * mesh.uvs[idx.x] + b1 * mesh.uvs[idx.y] + b2 * mesh.uvs[idx.z];
+    hit.primitive_id = prim.primitive_id;
+}
+
+// Out of line so that the spheres' and meshes' path in finish() stays as lean as it was
+// before instances existed (the room's walls are finished millions of times).
+[[gnu::noinline]] void TopLevel::finish_instance(const Ray& ray, const Instance& inst,
+                                                 const PrimitiveHit& prim, Hit& hit) const {
+    const TriangleMesh& mesh = prototypes_[inst.prototype].mesh;
+    const glm::uvec3& idx = mesh.triangles[prim.primitive_id];
+    const float b1 = prim.u, b2 = prim.v, b0 = 1.0f - prim.u - prim.v;
+    const glm::vec3& p0 = mesh.positions[idx.x];
+    const glm::vec3& p1 = mesh.positions[idx.y];
+    const glm::vec3& p2 = mesh.positions[idx.z];
+    // The point by the matrix, the winding's normal by the inverse transpose: under a
+    // mirroring matrix that is what transform() gives a baked copy, which swaps two corners.
+    hit.point = inst.to_world * (b0 * p0 + b1 * p1 + b2 * p2) + inst.to_world_shift;
+    hit.geometric_normal =
+        unit_or(inst.normal_matrix * glm::cross(p1 - p0, p2 - p0), -ray.direction);
+    hit.shading_normal = hit.geometric_normal;
+    if (!mesh.normals.empty()) {
+        // Each vertex normal mapped and renormalised before interpolation, as transform()
+        // does to a baked copy (a zero normal stays zero).
+        const auto map = [&](const glm::vec3& n) {
+            const glm::vec3 m = inst.normal_matrix * n;
+            const float len = glm::length(m);
+            return len > 0.0f ? m / len : m;
+        };
+        const glm::vec3 n = b0 * map(mesh.normals[idx.x]) + b1 * map(mesh.normals[idx.y]) +
+                            b2 * map(mesh.normals[idx.z]);
+        const glm::vec3 ns = unit_or(n, hit.geometric_normal);
         hit.shading_normal = glm::dot(ns, hit.geometric_normal) < 0.0f ? -ns : ns;
     }
     hit.uv = mesh.uvs.empty() ? glm::vec2(b1, b2)

@@ -56,7 +56,9 @@ std::uint32_t Scene::add_mesh_object(TriangleMesh mesh, BvhBuilder builder, std:
 
 std::uint32_t Scene::add_sphere(const Sphere& sphere, std::uint32_t material) {
     check_material_id(material);
-    return add_object(top_.add_sphere(sphere), material);
+    // A sphere's uv costs two inverse trigonometric calls: for intersect_for_shading, only
+    // spheres with a texture need it (materials never change once added).
+    return add_object(top_.add_sphere(sphere, materials_[material].albedo_texture >= 0), material);
 }
 
 std::uint32_t Scene::add_triangle(const Triangle& triangle, std::uint32_t material) {
@@ -171,32 +173,8 @@ void Scene::commit() {
     committed_ = true;
 }
 
-void Scene::require_committed() const {
-    if (!committed_)
-        throw Error("Scene queried before commit(): call commit() after adding objects");
-}
-
-bool Scene::intersect(const Ray& ray, Hit& hit) const { return intersect_impl(ray, hit, true); }
-
-bool Scene::intersect_for_shading(const Ray& ray, Hit& hit) const {
-    return intersect_impl(ray, hit, false);
-}
-
-bool Scene::intersect_impl(const Ray& ray, Hit& hit, bool sphere_uv_always) const {
-    require_committed();
-    ObjectHit h;
-    if (!top_.intersect(ray, h)) return false;
-    // A sphere's uv costs two inverse trigonometric calls: only texture lookups read it.
-    const Object& o = objects_[h.object_id];
-    const bool sphere_uv = sphere_uv_always ||
-                           (o.material != kInvalidId && materials_[o.material].albedo_texture >= 0);
-    top_.finish(ray, h, sphere_uv, hit);
-    return true;
-}
-
-bool Scene::occluded(const Ray& ray, std::uint32_t ignored_object) const {
-    require_committed();
-    return top_.occluded(ray, ignored_object);
+void Scene::throw_not_committed() {
+    throw Error("Scene queried before commit(): call commit() after adding objects");
 }
 
 std::uint32_t Scene::material_id(const Hit& hit) const {

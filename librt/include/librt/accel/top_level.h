@@ -71,9 +71,10 @@ public:
     /// the room).
     static constexpr std::uint32_t kFlatObjectLimit = 16;
 
-    /// Adds a sphere; returns its object id. Throws librt::Error for a non-finite centre or
-    /// a radius not > 0.
-    std::uint32_t add_sphere(const Sphere& sphere);
+    /// Adds a sphere; returns its object id. `uv`: whether intersect(ray, hit, false)
+    /// computes the sphere's uv (two inverse trigonometric calls) or leaves it (0, 0).
+    /// Throws librt::Error for a non-finite centre or a radius not > 0.
+    std::uint32_t add_sphere(const Sphere& sphere, bool uv = true);
     /// Adds a mesh prototype (its BVH built by build(), with `builder`); returns its
     /// prototype id. A prototype alone is not geometry: add_mesh or add_instance shows it.
     /// Throws librt::Error for an invalid mesh (librt::validate).
@@ -99,6 +100,10 @@ public:
     /// Closest hit with t in (ray.t_min, ray.t_max): fills `hit` and returns true, or
     /// returns false and leaves `hit` alone. Throws librt::Error before build().
     [[nodiscard]] bool intersect(const Ray& ray, ObjectHit& hit) const;
+    /// Closest hit with t in (ray.t_min, ray.t_max), finished (see finish()), a sphere's uv
+    /// computed when `every_sphere_uv` is true or the sphere was added with uv = true; or
+    /// false, `hit` left alone. Throws librt::Error before build().
+    [[nodiscard]] bool intersect(const Ray& ray, Hit& hit, bool every_sphere_uv = true) const;
     /// True when anything but object `ignored_object` lies in (ray.t_min, ray.t_max).
     /// Throws librt::Error before build().
     [[nodiscard]] bool occluded(const Ray& ray, std::uint32_t ignored_object = kInvalidId) const;
@@ -107,8 +112,9 @@ public:
     /// inverse transpose for instances), shading normal (interpolated vertex normals when
     /// the mesh has them, flipped onto the geometric normal's side, else the geometric
     /// normal), uv (a mesh's uvs, else the barycentrics (b1, b2); a sphere's, v growing
-    /// toward +y, when `sphere_uv` is true, else (0, 0)), primitive, object and instance ids.
-    void finish(const Ray& ray, const ObjectHit& hit, bool sphere_uv, Hit& out) const;
+    /// toward +y, when `every_sphere_uv` is true or the sphere was added with uv = true,
+    /// else (0, 0)), primitive, object and instance ids.
+    void finish(const Ray& ray, const ObjectHit& hit, bool every_sphere_uv, Hit& out) const;
 
     /// Number of objects.
     [[nodiscard]] std::size_t object_count() const { return objects_.size(); }
@@ -144,6 +150,7 @@ private:
     struct SphereData {
         Sphere sphere;
         DoubleSphere prepared;
+        bool uv;  ///< see add_sphere
     };
     struct Prototype {
         TriangleMesh mesh;
@@ -168,9 +175,12 @@ private:
     };
 
     void require_built() const;
+    bool closest(const Ray& ray, ObjectHit& hit) const;
     void check_prototype(std::uint32_t prototype) const;
     std::uint32_t add_object(ObjectKind kind, std::uint32_t index);
     [[nodiscard]] BBox object_bounds(const Object& o) const;
+    void finish_instance(const Ray& ray, const Instance& inst, const PrimitiveHit& prim,
+                         Hit& hit) const;
     /// Calls test_object(object id, ray) -> bool for the objects the ray may hit, nearest
     /// box first, through flat_ or top_; stops at the first hit with AnyHit.
     template <bool AnyHit, class TestObject>

@@ -103,15 +103,24 @@ public:
     /// Closest hit with t in (ray.t_min, ray.t_max); fills `hit` (see the class comment)
     /// and returns true, or returns false and leaves `hit` alone. Throws librt::Error
     /// before commit().
-    [[nodiscard]] bool intersect(const Ray& ray, Hit& hit) const;
+    [[nodiscard]] bool intersect(const Ray& ray, Hit& hit) const {
+        require_committed();
+        return top_.intersect(ray, hit, true);
+    }
     /// intersect() for renderers: the same hit, except that a sphere's uv (two inverse
     /// trigonometric calls) is computed only when its material has a texture, and is
     /// (0, 0) otherwise, since only texture lookups read it. What the integrators call.
-    [[nodiscard]] bool intersect_for_shading(const Ray& ray, Hit& hit) const;
+    [[nodiscard]] bool intersect_for_shading(const Ray& ray, Hit& hit) const {
+        require_committed();
+        return top_.intersect(ray, hit, false);
+    }
     /// True when anything lies in (ray.t_min, ray.t_max): for shadow rays. The object
     /// `ignored_object` (e.g. the sphere light being sampled) is skipped. Throws
     /// librt::Error before commit().
-    [[nodiscard]] bool occluded(const Ray& ray, std::uint32_t ignored_object = kInvalidId) const;
+    [[nodiscard]] bool occluded(const Ray& ray, std::uint32_t ignored_object = kInvalidId) const {
+        require_committed();
+        return top_.occluded(ray, ignored_object);
+    }
 
     /// The material of a hit's primitive (per-triangle MTL materials respected).
     [[nodiscard]] const Material& material(const Hit& hit) const {
@@ -175,13 +184,16 @@ private:
         std::uint32_t material;  ///< uniform material, or kInvalidId for per-triangle ids
     };
 
-    void require_committed() const;
+    /// Inline, since every query starts with it; the throw is out of line.
+    void require_committed() const {
+        if (!committed_) throw_not_committed();
+    }
+    [[noreturn]] static void throw_not_committed();
     void check_material_id(std::uint32_t material) const;
     std::uint32_t add_object(std::uint32_t top_id, std::uint32_t material);
     std::uint32_t add_mesh_object(TriangleMesh mesh, BvhBuilder builder, std::uint32_t material,
                                   std::vector<std::uint32_t> per_triangle);
     std::uint32_t mtl_to_material(const MeshMaterial& mtl);
-    bool intersect_impl(const Ray& ray, Hit& hit, bool sphere_uv_always) const;
 
     std::vector<Material> materials_;
     std::vector<ImageTexture> textures_;
