@@ -48,10 +48,6 @@ public:
 
     /// True for a BVH over no triangles, which nothing hits.
     [[nodiscard]] bool empty() const { return tree_ == nullptr; }
-    /// Transitional spelling for render/scene.cpp's `wide_bvh().empty()` (this object, so it
-    /// means empty()); the wide layout is private now. Remove once the scene's top level
-    /// calls empty().
-    [[nodiscard]] const TriangleBvh& wide_bvh() const { return *this; }
     /// Box around all triangles (empty for an empty BVH).
     [[nodiscard]] BBox bounds() const { return bounds_; }
     /// Number of triangles built over (the mesh's, or the span's, size).

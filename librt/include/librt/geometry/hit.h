@@ -28,8 +28,12 @@ struct Hit {
     glm::vec3 geometric_normal{0.0f};                  ///< unit, from the primitive's shape
     glm::vec3 shading_normal{0.0f};           ///< unit, interpolated when the mesh has normals
     glm::vec2 uv{0.0f};                       ///< surface parameterisation or texture coordinates
-    std::uint32_t primitive_id = kInvalidId;  ///< triangle index within its mesh, or 0
+    std::uint32_t primitive_id = kInvalidId;  ///< triangle index within its mesh (an
+                                              ///< instance's: its prototype's), or 0
     std::uint32_t object_id = kInvalidId;     ///< index of the object in its scene
+    /// Rank of the instance hit among its scene's add_instance calls; kInvalidId when the
+    /// object is not an instance.
+    std::uint32_t instance_id = kInvalidId;
 };
 
 }  // namespace librt

@@ -1,25 +1,23 @@
 #pragma once
 
 #include <librt/accel/bvh.h>
+#include <librt/accel/top_level.h>
 #include <librt/accel/triangle_bvh.h>
 #include <librt/export.h>
 #include <librt/geometry/bbox.h>
 #include <librt/geometry/hit.h>
 #include <librt/geometry/mesh.h>
 #include <librt/geometry/ray.h>
+#include <librt/geometry/ray_offset.h>
 #include <librt/geometry/sphere.h>
 #include <librt/geometry/triangle.h>
 #include <librt/render/light.h>
 #include <librt/render/material.h>
 #include <librt/render/texture.h>
 
-#include <glm/ext/vector_double3.hpp>
-#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include <algorithm>
-#include <array>
-#include <cmath>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -27,52 +25,18 @@
 
 namespace librt {
 
-/// Relative part of the self-intersection offset: 2^-18, i.e. 32 to 64 float ulps of the
-/// largest coordinate of the point.
-inline constexpr float kRayOffsetRelative = 0x1p-18f;
-/// Absolute floor of the self-intersection offset, for points near the origin.
-inline constexpr float kRayOffsetAbsolute = 0x1p-20f;
-
-/// Distance by which offset_ray_origin moves a point off its surface: an absolute floor
-/// plus max(|p.x|, |p.y|, |p.z|) * 2^-18. A hit point computed in float lies within a few
-/// ulps of its largest coordinate from the true surface (the ray parameter is rounded to
-/// float, then o + t d rounds again), so 32+ ulps clears that error with a wide margin
-/// while staying far below any feature of a sane scene: in the report's room (|p| ~ 100)
-/// it is 4e-4, against the report's fixed 0.01; scaled by 1000 the scene gets 1000 times
-/// the offset, which a fixed epsilon would not do. Geometry thinner than the offset (a
-/// glass sheet of thickness ~1e-5 at that scale) can be stepped over.
-[[nodiscard]] inline float ray_offset_scale(const glm::vec3& p) {
-    const float m = std::max(std::max(std::fabs(p.x), std::fabs(p.y)), std::fabs(p.z));
-    return kRayOffsetAbsolute + kRayOffsetRelative * m;
-}
-
-/// The origin of a ray leaving surface point `point` in `direction`: the point moved by
-/// ray_offset_scale(point) along the unit geometric `normal`, to the side `direction`
-/// goes (so a reflected ray starts above the surface and a refracted one below it).
-[[nodiscard]] inline glm::vec3 offset_ray_origin(const glm::vec3& point, const glm::vec3& normal,
-                                                 const glm::vec3& direction) {
-    const float offset = ray_offset_scale(point);
-    return glm::dot(normal, direction) >= 0.0f ? point + offset * normal : point - offset * normal;
-}
-
-/// A ray leaving a surface point in a unit direction, its origin offset off the surface.
-[[nodiscard]] inline Ray spawn_ray(const glm::vec3& point, const glm::vec3& normal,
-                                   const glm::vec3& direction) {
-    Ray r;
-    r.origin = offset_ray_origin(point, normal, direction);
-    r.direction = direction;
-    return r;
-}
-
 /// The geometry, materials, textures and lights of a render, with closest-hit and any-hit
 /// queries over all of it.
 ///
-/// Objects are spheres (tested analytically, in double precision, so the report's
-/// radius-1000 walls stay exact) and triangle meshes (each with its own SAH TriangleBvh);
-/// commit() builds a top-level SAH Bvh over the objects' boxes. Traversal dispatches on a
-/// per-object tag, not a virtual call, and queries never allocate. Object ids count the
-/// add_sphere / add_mesh / add_sphere_light calls from 0, the loose
-/// triangles of add_triangle taking the id given at the first such call.
+/// The geometry lives in a TopLevel (accel/top_level.h): spheres (tested analytically, in
+/// double precision, so the report's radius-1000 walls stay exact), triangle meshes (each
+/// with its own SAH TriangleBvh) and instances of mesh prototypes (a prototype's triangles
+/// and BVH stored once, placed by affine transforms; rays go to object space with the
+/// direction not renormalised, so t is the world ray's); commit() builds it. The Scene adds
+/// what the geometry does not know: materials, textures and lights. Traversal dispatches on
+/// a per-object tag, not a virtual call, and queries never allocate. Object ids count the
+/// add_sphere / add_mesh / add_instance / add_sphere_light calls from
+/// 0, the loose triangles of add_triangle taking the id given at the first such call.
 ///
 /// Normal conventions of Hit: geometric_normal is unit and points where the primitive
 /// faces: outward for spheres, along (p1 - p0) x (p2 - p0) (counter-clockwise winding) for
@@ -110,6 +74,18 @@ public:
     /// material id.
     std::uint32_t add_mesh(TriangleMesh mesh, std::vector<std::uint32_t> triangle_materials,
                            BvhBuilder builder = BvhBuilder::Sah);
+    /// Adds a mesh prototype: its triangles and BVH (built by commit() with `builder`),
+    /// stored once however many instances place it. A prototype alone is not geometry;
+    /// returns the id add_instance takes. Throws librt::Error for an invalid mesh
+    /// (librt::validate). The mesh's own materials are ignored.
+    std::uint32_t add_mesh_prototype(TriangleMesh mesh, BvhBuilder builder = BvhBuilder::Sah);
+    /// Places prototype `prototype` by the affine `object_to_world` matrix, all its triangles
+    /// of `material`; returns its object id. Hits on it report the prototype's triangle as
+    /// primitive_id and the instance's rank among add_instance calls as instance_id. Throws
+    /// librt::Error for an unknown prototype or material id, or a matrix that is not finite,
+    /// not affine (bottom row 0 0 0 1) or singular.
+    std::uint32_t add_instance(std::uint32_t prototype, const glm::mat4& object_to_world,
+                               std::uint32_t material);
     /// Adds a point light (validated). Point lights are not geometry.
     void add_point_light(const PointLight& light);
     /// Adds a sphere light (validated) and the emissive sphere that is its surface;
@@ -125,15 +101,24 @@ public:
     /// Closest hit with t in (ray.t_min, ray.t_max); fills `hit` (see the class comment)
     /// and returns true, or returns false and leaves `hit` alone. Throws librt::Error
     /// before commit().
-    [[nodiscard]] bool intersect(const Ray& ray, Hit& hit) const;
+    [[nodiscard]] bool intersect(const Ray& ray, Hit& hit) const {
+        require_committed();
+        return top_.intersect(ray, hit, true);
+    }
     /// intersect() for renderers: the same hit, except that a sphere's uv (two inverse
     /// trigonometric calls) is computed only when its material has a texture, and is
     /// (0, 0) otherwise, since only texture lookups read it. What the integrators call.
-    [[nodiscard]] bool intersect_for_shading(const Ray& ray, Hit& hit) const;
+    [[nodiscard]] bool intersect_for_shading(const Ray& ray, Hit& hit) const {
+        require_committed();
+        return top_.intersect(ray, hit, false);
+    }
     /// True when anything lies in (ray.t_min, ray.t_max): for shadow rays. The object
     /// `ignored_object` (e.g. the sphere light being sampled) is skipped. Throws
     /// librt::Error before commit().
-    [[nodiscard]] bool occluded(const Ray& ray, std::uint32_t ignored_object = kInvalidId) const;
+    [[nodiscard]] bool occluded(const Ray& ray, std::uint32_t ignored_object = kInvalidId) const {
+        require_committed();
+        return top_.occluded(ray, ignored_object);
+    }
 
     /// The material of a hit's primitive (per-triangle materials respected).
     [[nodiscard]] const Material& material(const Hit& hit) const {
@@ -155,8 +140,16 @@ public:
     }
     /// Number of textures.
     [[nodiscard]] std::size_t texture_count() const { return textures_.size(); }
-    /// Number of objects (spheres, meshes, the loose-triangle mesh, light spheres).
+    /// Number of objects (spheres, meshes, the loose-triangle mesh, instances, light spheres).
     [[nodiscard]] std::size_t object_count() const { return objects_.size(); }
+    /// Number of instances (add_instance calls).
+    [[nodiscard]] std::size_t instance_count() const { return top_.instance_count(); }
+    /// Object id of instance i (Hit::instance_id == i).
+    [[nodiscard]] std::uint32_t instance_object(std::size_t i) const {
+        return top_.instance_object(std::uint32_t(i));
+    }
+    /// The geometry: objects, prototypes and the structure over them; built by commit().
+    [[nodiscard]] const TopLevel& top_level() const { return top_; }
 
     /// The point lights, in the order added.
     [[nodiscard]] std::span<const PointLight> point_lights() const { return point_lights_; }
@@ -182,65 +175,34 @@ public:
     [[nodiscard]] BBox bounds() const { return top_.bounds(); }
 
 private:
-    enum class ObjectKind : std::uint8_t { Sphere, Mesh };
-    /// What the top-level traversal dispatches on.
+    /// What the scene adds to a geometric object of top_ (same id).
     struct Object {
-        ObjectKind kind;
         bool light = false;      ///< surface of a sphere light
-        std::uint32_t index;     ///< into spheres_ or meshes_
+        std::uint32_t index;     ///< into triangle_materials_ when material is kInvalidId
         std::uint32_t material;  ///< uniform material, or kInvalidId for per-triangle ids
     };
-    /// A sphere with the double-precision copies its test uses.
-    struct SphereData {
-        Sphere sphere;
-        glm::dvec3 center;
-        double radius2;
-    };
-    struct MeshData {
-        TriangleMesh mesh;
-        TriangleBvh bvh;
-        std::vector<std::uint32_t> triangle_materials;  ///< scene ids, when per-triangle
-        BvhBuilder builder = BvhBuilder::Sah;           ///< how commit() builds bvh
-    };
 
-    void require_committed() const;
+    /// Inline, since every query starts with it; the throw is out of line.
+    void require_committed() const {
+        if (!committed_) throw_not_committed();
+    }
+    [[noreturn]] static void throw_not_committed();
     void check_material_id(std::uint32_t material) const;
-    std::uint32_t add_object(ObjectKind kind, std::uint32_t index, std::uint32_t material);
-    /// Calls test_object(object id, ray) -> bool for the objects the ray may hit, nearest
-    /// box first, through flat_ or top_; stops at the first hit with AnyHit.
-    template <bool AnyHit, class TestObject>
-    bool visit_objects(Ray& ray, TestObject&& test_object) const;
-    bool intersect_impl(const Ray& ray, Hit& hit, bool sphere_uv_always) const;
-    void finish_hit(const Ray& ray, std::uint32_t object_id, const PrimitiveHit& prim,
-                    bool sphere_uv_always, Hit& hit) const;
+    std::uint32_t add_object(std::uint32_t top_id, std::uint32_t material);
+    std::uint32_t add_mesh_object(TriangleMesh mesh, BvhBuilder builder, std::uint32_t material,
+                                  std::vector<std::uint32_t> per_triangle);
 
     std::vector<Material> materials_;
     std::vector<ImageTexture> textures_;
     std::vector<Object> objects_;
-    std::vector<SphereData> spheres_;
-    std::vector<MeshData> meshes_;
+    std::vector<std::vector<std::uint32_t>> triangle_materials_;  ///< scene ids, per triangle
     std::uint32_t loose_object_ = kInvalidId;  ///< object of the add_triangle mesh
     std::vector<PointLight> point_lights_;
     std::vector<SphereLight> sphere_lights_;
     std::vector<std::uint32_t> sphere_light_objects_;
 
-    /// Up to this many objects, the top level is a flat list of boxes rather than top_: the
-    /// report's six radius-1000 wall spheres all overlap the room, so every interior node of
-    /// a BVH over them does too and a ray visits nearly all of them, while the entry
-    /// distances of a dozen boxes cost less than a walk down that tree (about 2x faster in
-    /// the room).
-    static constexpr std::uint32_t kFlatObjectLimit = 16;
-    /// The objects' boxes as structure of arrays, when there are at most kFlatObjectLimit.
-    struct FlatBoxes {
-        std::array<float, kFlatObjectLimit> lo_x{}, lo_y{}, lo_z{}, hi_x{}, hi_y{}, hi_z{};
-        std::array<std::uint32_t, kFlatObjectLimit> object{};  ///< box i -> object id
-        std::uint32_t count = 0;                               ///< 0: use top_
-    };
-
-    Bvh top_;  ///< over objects_' boxes
-    FlatBoxes flat_;
-    std::vector<std::uint32_t> slot_object_;  ///< top_ slot -> object id
-    bool unsampled_emitters_ = false;         ///< see has_unsampled_emitters()
+    TopLevel top_;                     ///< the geometry and its acceleration structure
+    bool unsampled_emitters_ = false;  ///< see has_unsampled_emitters()
     bool committed_ = false;
 };
 

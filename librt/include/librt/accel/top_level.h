@@ -1,0 +1,202 @@
+#pragma once
+
+#include <librt/accel/bvh.h>
+#include <librt/accel/bvh_builder.h>
+#include <librt/accel/triangle_bvh.h>
+#include <librt/export.h>
+#include <librt/geometry/bbox.h>
+#include <librt/geometry/hit.h>
+#include <librt/geometry/mesh.h>
+#include <librt/geometry/ray.h>
+#include <librt/geometry/sphere.h>
+#include <librt/geometry/triangle.h>
+
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace librt {
+
+/// What a top-level object is.
+enum class ObjectKind : std::uint8_t {
+    Sphere,    ///< an analytic sphere, tested in double precision
+    Mesh,      ///< a mesh prototype in world space as it is (no transform)
+    Instance,  ///< a mesh prototype placed by an affine transform
+};
+
+/// What the top level knows of a closest hit: the object and the primitive hit in it (for
+/// meshes and instances the prototype's triangle index and barycentrics; t is the world
+/// ray's own parameter, whatever the object).
+struct ObjectHit {
+    std::uint32_t object_id = kInvalidId;  ///< the object hit, kInvalidId for a miss
+    PrimitiveHit primitive;                ///< the hit within it
+};
+
+/// The top level of a scene: its geometric objects (analytic spheres, triangle meshes and
+/// instances of mesh prototypes) over one acceleration structure, with closest-hit and
+/// any-hit queries and the finishing of a hit into a surface record. It knows nothing of
+/// materials or lights.
+///
+/// A prototype is a mesh with its TriangleBvh, built once by build(); a mesh object shows
+/// it as it is, an instance places it by an affine object-to-world matrix M. However many
+/// objects use a prototype, its triangles and BVH are stored once; an instance costs a few
+/// matrices.
+///
+/// Instances: a world ray (o, d) is taken to object space as (M^-1 o, M^-1 d), the
+/// direction NOT renormalised, so a hit's t is the same in both spaces and t_min / t_max
+/// carry over unchanged. The hit comes back with its point by M, its normals by the
+/// inverse transpose of M's linear part, renormalised; under a mirroring M (negative
+/// determinant) the geometric normal is therefore the inverse transpose of the prototype's
+/// winding normal, i.e. what transform() gives a baked copy (which swaps two corners).
+/// Instance boxes are the prototype box's eight corners mapped by M, padded by 2^-18 of
+/// their largest coordinate, so rounding of the ray transform never loses a hit.
+///
+/// Up to kFlatObjectLimit objects, the top level is a flat list of boxes tested four at a
+/// time; beyond that a SAH Bvh over the objects' boxes (see kFlatObjectLimit).
+///
+/// Object ids count add_sphere / add_mesh / add_instance calls from 0; prototype ids count
+/// add_prototype calls. Any add_* after build() un-builds; queries
+/// then throw until build() runs again. A built TopLevel is immutable and may be queried
+/// from many threads at once.
+class LIBRT_API TopLevel {
+public:
+    /// Up to this many objects, the top level is a flat list of boxes rather than a Bvh: the
+    /// report's six radius-1000 wall spheres all overlap the room, so every interior node of
+    /// a BVH over them does too and a ray visits nearly all of them, while the entry
+    /// distances of a dozen boxes cost less than a walk down that tree (about 2x faster in
+    /// the room).
+    static constexpr std::uint32_t kFlatObjectLimit = 16;
+
+    /// Adds a sphere; returns its object id. `uv`: whether intersect(ray, hit, false)
+    /// computes the sphere's uv (two inverse trigonometric calls) or leaves it (0, 0).
+    /// Throws librt::Error for a non-finite centre or a radius not > 0.
+    std::uint32_t add_sphere(const Sphere& sphere, bool uv = true);
+    /// Adds a mesh prototype (its BVH built by build(), with `builder`); returns its
+    /// prototype id. A prototype alone is not geometry: add_mesh or add_instance shows it.
+    /// Throws librt::Error for an invalid mesh (librt::validate).
+    std::uint32_t add_prototype(TriangleMesh mesh, BvhBuilder builder = BvhBuilder::Sah);
+    /// Adds a loose triangle; all loose triangles form one mesh object, created at the
+    /// first call, whose id is returned (the triangle's primitive id is its rank among
+    /// loose triangles). Throws librt::Error, adding nothing, for a non-finite corner.
+    std::uint32_t add_triangle(const Triangle& triangle);
+    /// Shows a prototype as it is, in world space; returns the object id. Throws
+    /// librt::Error for an unknown prototype.
+    std::uint32_t add_mesh(std::uint32_t prototype);
+    /// Places a prototype by an affine object-to-world matrix; returns the object id (its
+    /// instance id is its rank among add_instance calls). Throws librt::Error for an unknown
+    /// prototype or a matrix that is not finite, not affine (bottom row 0 0 0 1) or singular.
+    std::uint32_t add_instance(std::uint32_t prototype, const glm::mat4& object_to_world);
+
+    /// Builds the prototypes' BVHs not yet built and the structure over the objects; calling
+    /// it again without changes does nothing.
+    void build();
+    /// True when built and queries may run.
+    [[nodiscard]] bool built() const { return built_; }
+
+    /// Closest hit with t in (ray.t_min, ray.t_max): fills `hit` and returns true, or
+    /// returns false and leaves `hit` alone. Throws librt::Error before build().
+    [[nodiscard]] bool intersect(const Ray& ray, ObjectHit& hit) const;
+    /// Closest hit with t in (ray.t_min, ray.t_max), finished (see finish()), a sphere's uv
+    /// computed when `every_sphere_uv` is true or the sphere was added with uv = true; or
+    /// false, `hit` left alone. Throws librt::Error before build().
+    [[nodiscard]] bool intersect(const Ray& ray, Hit& hit, bool every_sphere_uv = true) const;
+    /// True when anything but object `ignored_object` lies in (ray.t_min, ray.t_max).
+    /// Throws librt::Error before build().
+    [[nodiscard]] bool occluded(const Ray& ray, std::uint32_t ignored_object = kInvalidId) const;
+    /// The surface record of a hit intersect() returned for `ray`: t, world point, unit
+    /// geometric normal (outward for spheres, the winding's for triangles, mapped by the
+    /// inverse transpose for instances), shading normal (interpolated vertex normals when
+    /// the mesh has them, flipped onto the geometric normal's side, else the geometric
+    /// normal), uv (a mesh's uvs, else the barycentrics (b1, b2); a sphere's, v growing
+    /// toward +y, when `every_sphere_uv` is true or the sphere was added with uv = true,
+    /// else (0, 0)), primitive, object and instance ids.
+    void finish(const Ray& ray, const ObjectHit& hit, bool every_sphere_uv, Hit& out) const;
+
+    /// Number of objects.
+    [[nodiscard]] std::size_t object_count() const { return objects_.size(); }
+    /// Number of prototypes.
+    [[nodiscard]] std::size_t prototype_count() const { return prototypes_.size(); }
+    /// Number of instances.
+    [[nodiscard]] std::size_t instance_count() const { return instances_.size(); }
+    /// What object `id` is.
+    [[nodiscard]] ObjectKind kind(std::uint32_t id) const { return objects_.at(id).kind; }
+    /// The prototype a mesh or instance object shows; kInvalidId for a sphere.
+    [[nodiscard]] std::uint32_t prototype_of(std::uint32_t id) const;
+    /// The mesh of a prototype.
+    [[nodiscard]] const TriangleMesh& prototype_mesh(std::uint32_t prototype) const {
+        return prototypes_.at(prototype).mesh;
+    }
+    /// The object id of instance `instance` (its rank among add_instance calls).
+    [[nodiscard]] std::uint32_t instance_object(std::uint32_t instance) const {
+        return instances_.at(instance).object;
+    }
+    /// Bounding box of all objects (empty if none); valid after build().
+    [[nodiscard]] BBox bounds() const { return top_.bounds(); }
+    /// Bytes held: prototype meshes and BVHs, spheres, instances, objects and the
+    /// structure over them.
+    [[nodiscard]] std::size_t memory_bytes() const;
+
+private:
+    /// What the traversal dispatches on.
+    struct Object {
+        ObjectKind kind;
+        std::uint32_t index;  ///< into spheres_, prototypes_ (Mesh) or instances_
+    };
+    /// A sphere with the double-precision copy its test uses.
+    struct SphereData {
+        Sphere sphere;
+        DoubleSphere prepared;
+        bool uv;  ///< see add_sphere
+    };
+    struct Prototype {
+        TriangleMesh mesh;
+        TriangleBvh bvh;
+        BvhBuilder builder = BvhBuilder::Sah;  ///< how build() builds bvh
+    };
+    /// An instance's transforms, all derived from object_to_world once.
+    struct Instance {
+        std::uint32_t prototype;
+        std::uint32_t object;       ///< its object id
+        glm::mat3 to_object;        ///< linear part of M^-1
+        glm::vec3 to_object_shift;  ///< translation of M^-1
+        glm::mat3 to_world;         ///< linear part of M
+        glm::vec3 to_world_shift;   ///< translation of M
+        glm::mat3 normal_matrix;    ///< inverse transpose of to_world
+    };
+    /// The objects' boxes as plane rows (lo.x, hi.x, lo.y, hi.y, lo.z, hi.z), when there are
+    /// at most kFlatObjectLimit; unused slots hold empty boxes, which no ray enters.
+    struct FlatBoxes {
+        float planes[6][kFlatObjectLimit];
+        std::array<std::uint32_t, kFlatObjectLimit> object{};  ///< box i -> object id
+        std::uint32_t count = 0;                               ///< 0: use top_
+    };
+
+    void require_built() const;
+    bool closest(const Ray& ray, ObjectHit& hit) const;
+    void check_prototype(std::uint32_t prototype) const;
+    std::uint32_t add_object(ObjectKind kind, std::uint32_t index);
+    [[nodiscard]] BBox object_bounds(const Object& o) const;
+    void finish_instance(const Ray& ray, const Instance& inst, const PrimitiveHit& prim,
+                         Hit& hit) const;
+    /// Calls test_object(object id, ray) -> bool for the objects the ray may hit, nearest
+    /// box first, through flat_ or top_; stops at the first hit with AnyHit.
+    template <bool AnyHit, class TestObject>
+    bool visit_objects(Ray& ray, TestObject&& test_object) const;
+
+    std::vector<Object> objects_;
+    std::vector<SphereData> spheres_;
+    std::vector<Prototype> prototypes_;
+    std::vector<Instance> instances_;
+    std::uint32_t loose_object_ = kInvalidId;  ///< object of the add_triangle mesh
+
+    Bvh top_;  ///< over objects_' boxes
+    FlatBoxes flat_;
+    std::vector<std::uint32_t> slot_object_;  ///< top_ slot -> object id
+    bool built_ = false;
+};
+
+}  // namespace librt

@@ -1,0 +1,235 @@
+// The top level's queries: the flat-list-or-BVH traversal (its flat list four boxes at a time), the
+// per-object tests and hit finishing. Adding objects and building: top_level_build.cpp.
+
+#include <librt/accel/bvh_traversal.h>
+#include <librt/accel/top_level.h>
+#include <librt/core/error.h>
+
+#include "accel/slab4.h"
+
+#include <glm/geometric.hpp>
+
+#include <bit>
+#include <cmath>
+
+namespace librt {
+namespace {
+
+// The unit normal of a triangle from its winding; `fallback` when degenerate.
+glm::vec3 unit_or(const glm::vec3& v, const glm::vec3& fallback) {
+    const float len2 = glm::dot(v, v);
+    if (!(len2 > 0.0f) || !std::isfinite(len2)) return fallback;
+    return v / std::sqrt(len2);
+}
+
+}  // namespace
+
+void TopLevel::require_built() const {
+    if (!built_) throw Error("TopLevel queried before build(): call build() after adding objects");
+}
+
+template <bool AnyHit, class TestObject>
+bool TopLevel::visit_objects(Ray& ray, TestObject&& test_object) const {
+    if (flat_.count == 0)
+        return traverse<AnyHit>(top_, ray, [&](std::uint32_t slot, Ray& current) {
+            return test_object(slot_object_[slot], current);
+        });
+    if (!is_traceable(ray)) return false;
+    // Entry distance of each box and a bit set per box entered (bbox.h's one conservative
+    // slab test, four boxes at a time); bit i clear means box i is missed or visited.
+    const std::uint32_t n = flat_.count;
+    float enter[kFlatObjectLimit];
+    std::uint32_t pending = 0;
+    static_assert(kFlatObjectLimit % 4 == 0);
+    const detail::SlabRay4 r4 = detail::prepare_slab4(ray);
+    for (std::uint32_t i = 0; i < n; i += 4)
+        pending |= detail::slab_test4(&flat_.planes[0][i], kFlatObjectLimit, r4, ray.t_min,
+                                      ray.t_max, &enter[i])
+                   << i;
+    pending &= (1u << n) - 1u;  // n <= 16: the slots past it are empty boxes
+    // Visit boxes nearest entry first; stop when the next one starts beyond the nearest hit.
+    bool found = false;
+    while (pending != 0) {
+        std::uint32_t rest = pending;
+        std::uint32_t next = std::uint32_t(std::countr_zero(rest));
+        float next_enter = enter[next];
+        for (rest &= rest - 1; rest != 0; rest &= rest - 1) {
+            const auto i = std::uint32_t(std::countr_zero(rest));
+            if (enter[i] < next_enter) {
+                next_enter = enter[i];
+                next = i;
+            }
+        }
+        if (!(next_enter <= ray.t_max)) break;  // the rest all start beyond the nearest hit
+        pending &= ~(1u << next);
+        if (test_object(flat_.object[next], ray)) {
+            found = true;
+            if constexpr (AnyHit) return true;
+        }
+    }
+    return found;
+}
+
+bool TopLevel::intersect(const Ray& ray, ObjectHit& hit) const {
+    require_built();
+    return closest(ray, hit);
+}
+
+bool TopLevel::intersect(const Ray& ray, Hit& hit, bool every_sphere_uv) const {
+    require_built();
+    ObjectHit h;
+    if (!closest(ray, h)) return false;
+    finish(ray, h, every_sphere_uv, hit);
+    return true;
+}
+
+bool TopLevel::closest(const Ray& ray, ObjectHit& hit) const {
+    Ray r = ray;
+    const DoubleRay dray(ray);
+    std::uint32_t best_object = kInvalidId;
+    PrimitiveHit best;
+    visit_objects<false>(r, [&](std::uint32_t id, Ray& current) {
+        const Object& o = objects_[id];
+        if (o.kind == ObjectKind::Sphere) {
+            const double t =
+                librt::intersect(spheres_[o.index].prepared, dray, current.t_min, current.t_max);
+            if (!(t >= 0.0)) return false;
+            // Rounding to float may land on t_max itself; keep the interval open.
+            float tf = static_cast<float>(t);
+            if (!(tf < current.t_max)) tf = std::nextafter(current.t_max, 0.0f);
+            current.t_max = tf;
+            best = {tf, 0.0f, 0.0f, 0};
+        } else {
+            PrimitiveHit h;
+            if (o.kind == ObjectKind::Mesh) {
+                h = prototypes_[o.index].bvh.intersect(current);
+            } else {
+                // Object space: the direction is not renormalised, so t carries over.
+                const Instance& inst = instances_[o.index];
+                Ray local = current;
+                local.origin = inst.to_object * current.origin + inst.to_object_shift;
+                local.direction = inst.to_object * current.direction;
+                h = prototypes_[inst.prototype].bvh.intersect(local);
+            }
+            if (!h.valid()) return false;
+            current.t_max = h.t;
+            best = h;
+        }
+        best_object = id;
+        return true;
+    });
+    if (best_object == kInvalidId) return false;
+    hit.object_id = best_object;
+    hit.primitive = best;
+    return true;
+}
+
+bool TopLevel::occluded(const Ray& ray, std::uint32_t ignored_object) const {
+    require_built();
+    Ray r = ray;
+    const DoubleRay dray(ray);
+    return visit_objects<true>(r, [&](std::uint32_t id, Ray& current) {
+        if (id == ignored_object) return false;
+        const Object& o = objects_[id];
+        switch (o.kind) {
+            case ObjectKind::Sphere:
+                return librt::intersect(spheres_[o.index].prepared, dray, current.t_min,
+                                        current.t_max) >= 0.0;
+            case ObjectKind::Mesh:
+                return prototypes_[o.index].bvh.occluded(current);
+            case ObjectKind::Instance:
+                break;
+        }
+        const Instance& inst = instances_[o.index];
+        Ray local = current;
+        local.origin = inst.to_object * current.origin + inst.to_object_shift;
+        local.direction = inst.to_object * current.direction;
+        return prototypes_[inst.prototype].bvh.occluded(local);
+    });
+}
+
+void TopLevel::finish(const Ray& ray, const ObjectHit& object_hit, bool every_sphere_uv,
+                      Hit& hit) const {
+    const Object& o = objects_[object_hit.object_id];
+    const PrimitiveHit& prim = object_hit.primitive;
+    hit.t = prim.t;
+    hit.object_id = object_hit.object_id;
+    hit.instance_id = kInvalidId;
+    const glm::vec3 back = -ray.direction;  // fallback orientation for degenerate normals
+    if (o.kind == ObjectKind::Sphere) {
+        const SphereData& data = spheres_[o.index];
+        const Sphere& s = data.sphere;
+        hit.point = ray.at(prim.t);
+        hit.geometric_normal = unit_or(hit.point - s.center, back);
+        hit.shading_normal = hit.geometric_normal;
+        if (every_sphere_uv || data.uv) {
+            // v flipped so that it grows toward +y like OBJ coordinates: images map upright.
+            const glm::vec2 uv = librt::sphere_uv(s, hit.point);
+            hit.uv = {uv.x, 1.0f - uv.y};
+        } else {
+            hit.uv = glm::vec2(0.0f);
+        }
+        hit.primitive_id = 0;
+        return;
+    }
+    if (o.kind == ObjectKind::Instance) {
+        finish_instance(ray, instances_[o.index], prim, hit);
+        hit.instance_id = o.index;
+        return;
+    }
+    const TriangleMesh& mesh = prototypes_[o.index].mesh;
+    const glm::uvec3& idx = mesh.triangles[prim.primitive_id];
+    const float b1 = prim.u, b2 = prim.v, b0 = 1.0f - prim.u - prim.v;
+    const glm::vec3& p0 = mesh.positions[idx.x];
+    const glm::vec3& p1 = mesh.positions[idx.y];
+    const glm::vec3& p2 = mesh.positions[idx.z];
+    // Barycentric interpolation lands closer to the plane than o + t d does.
+    hit.point = b0 * p0 + b1 * p1 + b2 * p2;
+    hit.geometric_normal = unit_or(glm::cross(p1 - p0, p2 - p0), back);
+    hit.shading_normal = hit.geometric_normal;
+    if (!mesh.normals.empty()) {
+        const glm::vec3 n =
+            b0 * mesh.normals[idx.x] + b1 * mesh.normals[idx.y] + b2 * mesh.normals[idx.z];
+        const glm::vec3 ns = unit_or(n, hit.geometric_normal);
+        hit.shading_normal = glm::dot(ns, hit.geometric_normal) < 0.0f ? -ns : ns;
+    }
+    hit.uv = mesh.uvs.empty() ? glm::vec2(b1, b2)
+                              : b0 * mesh.uvs[idx.x] + b1 * mesh.uvs[idx.y] + b2 * mesh.uvs[idx.z];
+    hit.primitive_id = prim.primitive_id;
+}
+
+// Out of line so that the spheres' and meshes' path in finish() stays as lean as it was
+// before instances existed (the room's walls are finished millions of times).
+[[gnu::noinline]] void TopLevel::finish_instance(const Ray& ray, const Instance& inst,
+                                                 const PrimitiveHit& prim, Hit& hit) const {
+    const TriangleMesh& mesh = prototypes_[inst.prototype].mesh;
+    const glm::uvec3& idx = mesh.triangles[prim.primitive_id];
+    const float b1 = prim.u, b2 = prim.v, b0 = 1.0f - prim.u - prim.v;
+    const glm::vec3& p0 = mesh.positions[idx.x];
+    const glm::vec3& p1 = mesh.positions[idx.y];
+    const glm::vec3& p2 = mesh.positions[idx.z];
+    // The point by the matrix, the winding's normal by the inverse transpose: under a
+    // mirroring matrix that is what transform() gives a baked copy, which swaps two corners.
+    hit.point = inst.to_world * (b0 * p0 + b1 * p1 + b2 * p2) + inst.to_world_shift;
+    hit.geometric_normal =
+        unit_or(inst.normal_matrix * glm::cross(p1 - p0, p2 - p0), -ray.direction);
+    hit.shading_normal = hit.geometric_normal;
+    if (!mesh.normals.empty()) {
+        // Each vertex normal mapped and renormalised before interpolation, as transform()
+        // does to a baked copy (a zero normal stays zero).
+        const auto map = [&](const glm::vec3& n) {
+            const glm::vec3 m = inst.normal_matrix * n;
+            const float len = glm::length(m);
+            return len > 0.0f ? m / len : m;
+        };
+        const glm::vec3 n = b0 * map(mesh.normals[idx.x]) + b1 * map(mesh.normals[idx.y]) +
+                            b2 * map(mesh.normals[idx.z]);
+        const glm::vec3 ns = unit_or(n, hit.geometric_normal);
+        hit.shading_normal = glm::dot(ns, hit.geometric_normal) < 0.0f ? -ns : ns;
+    }
+    hit.uv = mesh.uvs.empty() ? glm::vec2(b1, b2)
+                              : b0 * mesh.uvs[idx.x] + b1 * mesh.uvs[idx.y] + b2 * mesh.uvs[idx.z];
+    hit.primitive_id = prim.primitive_id;
+}
+
+}  // namespace librt

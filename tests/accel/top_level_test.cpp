@@ -1,0 +1,130 @@
+#include <librt/accel/top_level.h>
+#include <librt/core/error.h>
+#include <librt/geometry/procedural.h>
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <random>
+#include <vector>
+
+namespace librt {
+namespace {
+
+// Placing one prototype many times stores its triangles and BVH once: the instances add
+// only their matrices and the structure over them, a few hundred bytes each.
+TEST(TopLevel, InstancesShareTheirPrototype) {
+    const TriangleMesh mesh = make_teapot(16);  // 16k triangles
+    TopLevel single;
+    single.add_mesh(single.add_prototype(mesh));
+    single.build();
+
+    TopLevel many;
+    const std::uint32_t proto = many.add_prototype(mesh);
+    constexpr int kInstances = 64;
+    for (int k = 0; k < kInstances; ++k)
+        many.add_instance(proto,
+                          glm::translate(glm::mat4(1.0f), glm::vec3(10.0f * float(k), 0, 0)));
+    many.build();
+    EXPECT_EQ(many.instance_count(), std::size_t(kInstances));
+    EXPECT_EQ(many.prototype_count(), 1u);
+    // Per instance: the instance record, the object, a top-level node pair and index.
+    const std::size_t per_instance_bound = 512;
+    EXPECT_LE(many.memory_bytes(), single.memory_bytes() + kInstances * per_instance_bound);
+    EXPECT_GT(many.memory_bytes(), single.memory_bytes());
+}
+
+// The flat list (at most kFlatObjectLimit objects) and the top-level BVH beyond it find the
+// same hits as testing every object in turn.
+TEST(TopLevel, FlatListAndBvhAgreeWithBruteForce) {
+    for (const std::uint32_t count : {TopLevel::kFlatObjectLimit, TopLevel::kFlatObjectLimit + 9}) {
+        std::mt19937 rng(count);
+        std::uniform_real_distribution<float> U(-10.0f, 10.0f);
+        TopLevel top;
+        std::vector<TopLevel> singles(count);
+        const std::uint32_t proto = top.add_prototype(make_icosphere({0, 0, 0}, 1.0f, 2));
+        for (std::uint32_t i = 0; i < count; ++i) {
+            if (i % 3 == 0) {
+                const Sphere s{{U(rng), U(rng), U(rng)}, 0.5f + 0.1f * std::fabs(U(rng))};
+                top.add_sphere(s);
+                singles[i].add_sphere(s);
+            } else {
+                const glm::mat4 m =
+                    glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(U(rng), U(rng), U(rng))),
+                               glm::vec3(1.0f, 0.5f, i % 2 ? -1.5f : 1.5f));
+                if (i % 3 == 1) {
+                    top.add_instance(proto, m);
+                    singles[i].add_instance(
+                        singles[i].add_prototype(make_icosphere({0, 0, 0}, 1, 2)), m);
+                } else {
+                    TriangleMesh baked = make_icosphere({0, 0, 0}, 1.0f, 2);
+                    transform(baked, m);
+                    top.add_mesh(top.add_prototype(baked));
+                    singles[i].add_mesh(singles[i].add_prototype(std::move(baked)));
+                }
+            }
+            singles[i].build();
+        }
+        top.build();
+        int hits = 0;
+        for (int r = 0; r < 20000; ++r) {
+            Ray ray{{U(rng), U(rng), U(rng)}, {U(rng), U(rng), U(rng)}};
+            ObjectHit hit;
+            const bool found = top.intersect(ray, hit);
+            float best = ray.t_max;
+            std::uint32_t best_object = kInvalidId;
+            for (std::uint32_t i = 0; i < count; ++i) {
+                ObjectHit h;
+                if (singles[i].intersect(ray, h) && h.primitive.t < best) {
+                    best = h.primitive.t;
+                    best_object = i;
+                }
+            }
+            ASSERT_EQ(found, best_object != kInvalidId) << "ray " << r;
+            EXPECT_EQ(top.occluded(ray), found) << "ray " << r;
+            if (!found) continue;
+            ++hits;
+            EXPECT_EQ(hit.object_id, best_object) << "ray " << r;
+            EXPECT_EQ(hit.primitive.t, best) << "ray " << r;
+            // Ignoring the object hit leaves exactly the others.
+            bool others = false;
+            for (std::uint32_t i = 0; i < count; ++i) {
+                ObjectHit h;
+                others |= i != best_object && singles[i].intersect(ray, h);
+            }
+            EXPECT_EQ(top.occluded(ray, best_object), others) << "ray " << r;
+        }
+        EXPECT_GT(hits, 1000);
+    }
+}
+
+TEST(TopLevel, InstanceIdsAndBadInput) {
+    TopLevel top;
+    EXPECT_THROW((void)top.add_mesh(0), Error);
+    EXPECT_THROW((void)top.add_instance(0, glm::mat4(1.0f)), Error);
+    const std::uint32_t proto = top.add_prototype(make_box({-1, -1, -1}, {1, 1, 1}));
+    top.add_sphere({{0, 0, 10}, 1});
+    const std::uint32_t inst =
+        top.add_instance(proto, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -10)));
+    EXPECT_EQ(inst, 1u);
+    EXPECT_EQ(top.instance_object(0), inst);
+    EXPECT_EQ(top.kind(inst), ObjectKind::Instance);
+    EXPECT_EQ(top.prototype_of(inst), proto);
+    EXPECT_EQ(top.prototype_of(0), kInvalidId);
+    const Ray ray{{0, 0, 0}, {0, 0, -2}};
+    ObjectHit h;
+    EXPECT_THROW((void)top.intersect(ray, h), Error);
+    top.build();
+    ASSERT_TRUE(top.intersect(ray, h));
+    EXPECT_EQ(h.object_id, inst);
+    EXPECT_FLOAT_EQ(h.primitive.t, 4.5f);  // the box's face at z = -9, direction length 2
+    Hit hit;
+    top.finish(ray, h, false, hit);
+    EXPECT_EQ(hit.instance_id, 0u);
+    EXPECT_NEAR(hit.point.z, -9.0f, 1e-5f);
+    EXPECT_NEAR(hit.geometric_normal.z, 1.0f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace librt
