@@ -100,7 +100,7 @@ void Scene::check_material_id(std::uint32_t material) const {
 
 std::uint32_t Scene::add_object(ObjectKind kind, std::uint32_t index, std::uint32_t material) {
     committed_ = false;
-    objects_.push_back({kind, false, index, material});
+    objects_.push_back({kind, index, material});
     return std::uint32_t(objects_.size() - 1);
 }
 
@@ -203,16 +203,17 @@ std::uint32_t Scene::add_mesh_with_mtl(TriangleMesh mesh, std::uint32_t fallback
 
 void Scene::add_point_light(const PointLight& light) {
     validate(light);
-    point_lights_.push_back(light);
+    lights_.push_back({light, kInvalidId});
+    committed_ = false;
 }
 
 std::uint32_t Scene::add_sphere_light(const SphereLight& light) {
     validate(light);
     const std::uint32_t material = add_material(Material::emissive(light.radiance));
     const std::uint32_t object = add_sphere(light.sphere, material);
-    objects_[object].light = true;
-    sphere_lights_.push_back(light);
-    sphere_light_objects_.push_back(object);
+    if (light_of_object_.size() <= object) light_of_object_.resize(object + 1, kInvalidId);
+    light_of_object_[object] = std::uint32_t(lights_.size());
+    lights_.push_back({light, object});
     return object;
 }
 
@@ -238,8 +239,9 @@ void Scene::commit() {
         ids.push_back(id);
     }
     unsampled_emitters_ = false;
-    for (const Object& o : objects_) {
-        if (o.light) continue;
+    for (std::uint32_t id = 0; id < objects_.size(); ++id) {
+        const Object& o = objects_[id];
+        if (light_of_object(id) != kInvalidId) continue;
         if (o.material != kInvalidId) {
             unsampled_emitters_ |= materials_[o.material].emits();
         } else {
@@ -247,6 +249,7 @@ void Scene::commit() {
                 unsampled_emitters_ |= materials_[m].emits();
         }
     }
+    light_sampler_ = LightSampler(lights_);
     top_ = build_sah_bvh(boxes, centers);
     slot_object_.resize(top_.prim_indices.size());
     for (std::size_t slot = 0; slot < slot_object_.size(); ++slot)
