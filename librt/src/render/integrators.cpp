@@ -7,9 +7,12 @@
 
 #include <glm/geometric.hpp>
 
+#include "bsdf_dispatch.h"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace librt {
@@ -93,16 +96,22 @@ glm::vec3 sample_direct(const Scene& scene, const Hit& hit, const Material& m,
     const LightLiSample s = sample_li(light, hit.point, u);
     if (!s.valid()) return glm::vec3(0.0f);
     const glm::vec3 wi = sp.frame.to_local(s.wi);
-    // Monte Carlo estimate of the scattered light: f L |cos(theta_i)| / pdf.
-    const float light_pdf = chosen.pmf * s.pdf;
-    glm::vec3 c = eval(m, sp, wo, wi) * s.radiance * (std::fabs(wi.z) / light_pdf);
-    if (!(max_component(beta * c) > 0.0f)) return glm::vec3(0.0f);
+    // The unshadowed integrand f L |cos(theta_i)|; no shadow ray when it is 0.
+    const glm::vec3 fl = bsdfs::eval_bsdf(m, sp, wo, wi) * s.radiance * std::fabs(wi.z);
+    if (!(max_component(beta * fl) > 0.0f)) return glm::vec3(0.0f);
     // The light's own surface is skipped: the segment ends on it.
-    if (!unoccluded(scene, hit.point, hit.geometric_normal, hit.point + s.distance * s.wi,
+    if (!unoccluded(scene, spawn_ray_to(hit.point, hit.geometric_normal, s.wi, s.distance),
                     light.object))
         return glm::vec3(0.0f);
-    if (mis && !s.is_delta) c *= power_heuristic(light_pdf, pdf(m, sp, wo, wi));
-    return c;
+    // Monte Carlo estimate f L |cos| / p_light, times the MIS weight when asked.
+    const float a = chosen.pmf * s.pdf;
+    if (!mis || s.is_delta) return fl / a;
+    const float b = bsdfs::pdf_bsdf(m, sp, wo, wi);
+    // Power heuristic folded into the estimate: (a^2 / (a^2 + b^2)) / a = a / (a^2 + b^2),
+    // one division; the general form when the squares overflow (tiny lights).
+    const float denom = a * a + b * b;
+    if (denom < std::numeric_limits<float>::infinity()) return fl * (a / denom);
+    return fl * (power_heuristic(a, b) / a);
 }
 
 /// What a path needs besides the scene: depth limit, roulette and MIS choices.
@@ -136,13 +145,17 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                 S == Strategy::Brute ? 1.0f : emitter_weight(scene, hit, ray.direction, bounce);
             if (w > 0.0f) radiance += beta * m.emission * w;
         }
-        const BsdfLobe material_lobes = lobes(m);
+        const BsdfLobe material_lobes = bsdfs::lobes_of(m);
         if (depth >= settings.max_depth || material_lobes == BsdfLobe::None) break;
         ++depth;
 
+        const glm::vec3 albedo = scene.albedo(hit);
+        // Every lobe is scaled by the albedo (bsdf.h): when throughput * albedo is 0 (the
+        // blue floor's path meeting the red wall) the vertex can add and pass on nothing,
+        // so stop without spending a light sample and shadow ray on it.
+        if (!(max_component(beta * albedo) > 0.0f)) break;
         const ShadingPoint sp{
-            ShadingFrame::at(hit.shading_normal, hit.geometric_normal, ray.direction),
-            scene.albedo(hit)};
+            ShadingFrame::at(hit.shading_normal, hit.geometric_normal, ray.direction), albedo};
         const glm::vec3 wo = sp.frame.to_local(-ray.direction);
         // Light sampling alone takes the whole weight for direct lighting, without MIS, and
         // at the last scattering event, where no BSDF sample will be weighed against it.
@@ -156,9 +169,9 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             // save the ray.
             if (depth >= settings.max_depth && !scene.has_unsampled_emitters()) return radiance;
         }
-        const float uc = sampler.next_1d();
+        const float uc = chooses_lobe(material_lobes) ? sampler.next_1d() : 0.0f;
         const glm::vec2 u = sampler.next_2d();
-        const BsdfSample bs = sample(m, sp, wo, uc, u);
+        const BsdfSample bs = bsdfs::sample_bsdf(m, sp, wo, uc, u);
         if (!bs.valid()) break;  // absorbed, or below the real surface
         beta *= bs.weight;
         if (has(bs.lobe, BsdfLobe::Specular))
@@ -226,7 +239,7 @@ glm::vec3 AlbedoNormalIntegrator::li(const Scene& scene, const Ray& ray,
     const Material& m = scene.material(hit);
     // A surface that scatters nothing shows what it emits; the others their albedo, as the
     // BSDF sees it (texture applied).
-    return guard(lobes(m) == BsdfLobe::None ? m.emission : scene.albedo(hit));
+    return guard(bsdfs::lobes_of(m) == BsdfLobe::None ? m.emission : scene.albedo(hit));
 }
 
 }  // namespace librt

@@ -2,10 +2,6 @@
 
 namespace librt {
 
-LightLiSample sample_li(const Light& light, const glm::vec3& ref, glm::vec2 u) {
-    return std::visit([&](const auto& source) { return sample_li(source, ref, u); }, light.source);
-}
-
 float pdf_li(const Light& light, const glm::vec3& ref, const glm::vec3& wi) {
     return std::visit([&](const auto& source) { return pdf_li(source, ref, wi); }, light.source);
 }

@@ -33,7 +33,7 @@ LightSampler::LightSampler(std::span<const Light> lights) {
     for (std::size_t i = last; i < cdf_.size(); ++i) cdf_[i] = 1.0f;
 }
 
-SampledLight LightSampler::sample(float u) const {
+SampledLight LightSampler::search(float u) const {
     if (!any()) return {};
     // The first light whose cumulative probability exceeds u: lights of zero pmf have an
     // empty interval and are never returned.

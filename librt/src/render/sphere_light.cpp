@@ -32,13 +32,6 @@ void validate(const SphereLight& light) {
         fail("sphere light radiance", light.radiance, "must be finite and >= 0");
 }
 
-LightLiSample sample_li(const SphereLight& light, const glm::vec3& ref, glm::vec2 u) {
-    const SphereDirectionSample s =
-        sample_sphere_direction(light.sphere.center, light.sphere.radius, ref, u);
-    if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return {};
-    return {s.direction, light.radiance, s.pdf, s.distance, false};
-}
-
 float pdf_li(const SphereLight& light, const glm::vec3& ref, const glm::vec3& wi) {
     const float p = sphere_visible_pdf(light.sphere.center, light.sphere.radius, ref, wi);
     return std::isfinite(p) ? p : 0.0f;

@@ -88,7 +88,12 @@ struct ShadingFrame {
 /// parameters with its textures looked up there.
 struct ShadingPoint {
     ShadingFrame frame;      ///< local frame, facing wo
-    glm::vec3 albedo{0.0f};  ///< Material::albedo, or its texture's value at the point
+    /// Material::albedo, or its texture's value at the point: the colour that scales every
+    /// lobe of the material (Lambert's reflectance, the tint of mirrors and glass). A zero
+    /// channel scatters nothing in that channel, which the integrators use to skip a vertex
+    /// whose throughput times albedo is 0; a kind whose lobes share no such scale must
+    /// leave it at 1 and apply its colours itself.
+    glm::vec3 albedo{0.0f};
 };
 
 /// One direction drawn by sample().
@@ -105,6 +110,15 @@ struct BsdfSample {
     /// True when a direction was drawn; false ends the path (absorbed, or below the surface).
     [[nodiscard]] bool valid() const { return lobe != BsdfLobe::None && pdf > 0.0f; }
 };
+
+/// True when sample() needs its uc to choose among several lobes (reflection and
+/// transmission, or lobes of different kinds); with one lobe uc is unused, and a caller
+/// may pass anything and save drawing it.
+[[nodiscard]] constexpr bool chooses_lobe(BsdfLobe flags) {
+    const int kinds = int(has(flags, BsdfLobe::Diffuse)) + int(has(flags, BsdfLobe::Glossy)) +
+                      int(has(flags, BsdfLobe::Specular));
+    return kinds > 1 || (has(flags, BsdfLobe::Reflection) && has(flags, BsdfLobe::Transmission));
+}
 
 /// The lobes a material has.
 [[nodiscard]] LIBRT_API BsdfLobe lobes(const Material& material);

@@ -35,7 +35,10 @@ public:
     explicit LightSampler(std::span<const Light> lights);
 
     /// The light chosen by u in [0, 1).
-    [[nodiscard]] SampledLight sample(float u) const;
+    [[nodiscard]] SampledLight sample(float u) const {
+        if (cdf_.size() == 1) return {0, pmf_[0]};  // the common single light: no search
+        return search(u);
+    }
     /// Probability that sample() chooses light `light` (0 for an unknown index).
     [[nodiscard]] float pmf(std::uint32_t light) const {
         return light < pmf_.size() ? pmf_[light] : 0.0f;
@@ -46,6 +49,8 @@ public:
     [[nodiscard]] bool any() const { return !cdf_.empty() && cdf_.back() > 0.0f; }
 
 private:
+    [[nodiscard]] SampledLight search(float u) const;
+
     std::vector<float> pmf_;  ///< per light
     std::vector<float> cdf_;  ///< cdf_[i] = pmf_[0] + ... + pmf_[i]; the last positive is 1
 };

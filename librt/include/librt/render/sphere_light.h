@@ -8,6 +8,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <limits>
+
 namespace librt {
 
 /// A spherical area light (the report's later light): a sphere whose surface emits a
@@ -35,8 +37,13 @@ LIBRT_API void validate(const SphereLight& light);
 
 /// A direction toward the part of the sphere visible from ref, uniform in the cone it
 /// subtends (sample_sphere_direction), with the distance to the sphere along it.
-[[nodiscard]] LIBRT_API LightLiSample sample_li(const SphereLight& light, const glm::vec3& ref,
-                                                glm::vec2 u);
+[[nodiscard]] inline LightLiSample sample_li(const SphereLight& light, const glm::vec3& ref,
+                                             glm::vec2 u) {
+    const SphereDirectionSample s =
+        sample_sphere_direction(light.sphere.center, light.sphere.radius, ref, u);
+    if (!(s.pdf > 0.0f) || !(s.pdf < std::numeric_limits<float>::infinity())) return {};
+    return {s.direction, light.radiance, s.pdf, s.distance, false};
+}
 /// The solid-angle density of sample_li at ref for unit direction wi; 0 if wi misses.
 [[nodiscard]] LIBRT_API float pdf_li(const SphereLight& light, const glm::vec3& ref,
                                      const glm::vec3& wi);
