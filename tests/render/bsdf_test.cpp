@@ -77,8 +77,8 @@ TEST(Bsdf, LobesSayWhatEachKindDoes) {
     EXPECT_TRUE(has_non_specular(lobes(Material::diffuse(glm::vec3(0.5f)))));
     EXPECT_FALSE(has_non_specular(lobes(Material::dielectric(1.5f))));
     for (const Kind& k : all_kinds())
-        EXPECT_EQ(k.material.is_specular(), lobes(k.material) != BsdfLobe::None &&
-                                                !has_non_specular(lobes(k.material)))
+        EXPECT_EQ(k.material.is_specular(),
+                  lobes(k.material) != BsdfLobe::None && !has_non_specular(lobes(k.material)))
             << k.name;
 }
 

@@ -53,7 +53,8 @@ struct DirectionBins {
 /// Gauss-Legendre on 2 x 2 sub-cells: its nodes are interior, so a pdf that drops to 0
 /// on a cell edge (a cone's rim) is not sampled on the edge.
 inline std::vector<double> expected_counts(const DirectionBins& bins,
-                                    const std::function<double(const glm::vec3&)>& pdf, int n) {
+                                           const std::function<double(const glm::vec3&)>& pdf,
+                                           int n) {
     const std::array<double, 3> node = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)};
     const std::array<double, 3> weight = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
     constexpr int sub = 2;

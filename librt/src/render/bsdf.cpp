@@ -1,6 +1,6 @@
-#include <librt/render/bsdf.h>
-
 #include "bsdf_dispatch.h"
+
+#include <librt/render/bsdf.h>
 
 namespace librt {
 

@@ -5,11 +5,11 @@
 // and one case in dispatch(). Private, and inline so that the integrators' path loop
 // calls the BSDFs without a call through the public, out-of-line functions of bsdf.h.
 
-#include <librt/render/bsdf.h>
-
 #include "bsdf_dielectric.h"
 #include "bsdf_diffuse.h"
 #include "bsdf_mirror.h"
+
+#include <librt/render/bsdf.h>
 
 namespace librt {
 namespace bsdfs {
@@ -29,7 +29,6 @@ struct Black {
         return 0.0f;
     }
 };
-
 
 /// The one dispatch point from MaterialKind to its BSDF type: each type provides kLobes
 /// and static sample / eval / pdf. A new kind adds its header and one case here.
@@ -63,8 +62,8 @@ inline decltype(auto) dispatch(MaterialKind kind, Fn&& fn) {
     return dispatch(m.kind, [&](auto bsdf) { return decltype(bsdf)::eval(m, p, wo, wi); });
 }
 /// pdf() of bsdf.h, inline.
-[[nodiscard]] inline float pdf_bsdf(const Material& m, const ShadingPoint& p,
-                                    const glm::vec3& wo, const glm::vec3& wi) {
+[[nodiscard]] inline float pdf_bsdf(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
+                                    const glm::vec3& wi) {
     return dispatch(m.kind, [&](auto bsdf) { return decltype(bsdf)::pdf(m, p, wo, wi); });
 }
 

@@ -1,3 +1,5 @@
+#include "bsdf_dispatch.h"
+
 #include <librt/core/error.h>
 #include <librt/render/bsdf.h>
 #include <librt/render/integrators.h>
@@ -6,8 +8,6 @@
 #include <librt/render/shadow_ray.h>
 
 #include <glm/geometric.hpp>
-
-#include "bsdf_dispatch.h"
 
 #include <algorithm>
 #include <cassert>

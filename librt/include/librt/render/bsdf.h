@@ -87,7 +87,7 @@ struct ShadingFrame {
 /// What a BSDF needs at one point besides its material: the frame and the material's
 /// parameters with its textures looked up there.
 struct ShadingPoint {
-    ShadingFrame frame;      ///< local frame, facing wo
+    ShadingFrame frame;  ///< local frame, facing wo
     /// Material::albedo, or its texture's value at the point: the colour that scales every
     /// lobe of the material (Lambert's reflectance, the tint of mirrors and glass). A zero
     /// channel scatters nothing in that channel, which the integrators use to skip a vertex

@@ -38,8 +38,7 @@ struct Light {
 [[nodiscard]] inline LightLiSample sample_li(const Light& light, const glm::vec3& ref,
                                              glm::vec2 u) {
     // Inline: the path loop calls it once per shading point.
-    return std::visit([&](const auto& source) { return sample_li(source, ref, u); },
-                      light.source);
+    return std::visit([&](const auto& source) { return sample_li(source, ref, u); }, light.source);
 }
 /// The solid-angle density with which sample_li picks unit direction wi from ref (0 for
 /// delta lights and for directions that miss the light).
