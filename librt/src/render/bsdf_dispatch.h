@@ -61,6 +61,19 @@ inline decltype(auto) dispatch(MaterialKind kind, Fn&& fn) {
                                          const glm::vec3& wo, const glm::vec3& wi) {
     return dispatch(m.kind, [&](auto bsdf) { return decltype(bsdf)::eval(m, p, wo, wi); });
 }
+/// eval() and pdf() of bsdf.h at once (one dispatch; what next-event estimation with MIS
+/// needs), as f and the density.
+struct EvalPdf {
+    glm::vec3 f;
+    float pdf;
+};
+[[nodiscard]] inline EvalPdf eval_pdf_bsdf(const Material& m, const ShadingPoint& p,
+                                           const glm::vec3& wo, const glm::vec3& wi) {
+    return dispatch(m.kind, [&](auto bsdf) {
+        using T = decltype(bsdf);
+        return EvalPdf{T::eval(m, p, wo, wi), T::pdf(m, p, wo, wi)};
+    });
+}
 /// pdf() of bsdf.h, inline.
 [[nodiscard]] inline float pdf_bsdf(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
                                     const glm::vec3& wi) {

@@ -82,9 +82,9 @@ float emitter_weight(const Scene& scene, const Hit& hit, const glm::vec3& dir,
 /// shadow ray finds it unoccluded, times the power heuristic against BSDF sampling when
 /// `mis` (delta lights: weight 1, no BSDF sample can find them). `beta` is the path's
 /// throughput: no shadow ray is spent on a contribution it zeroes.
-glm::vec3 sample_direct(const Scene& scene, const Hit& hit, const Material& m,
-                        const ShadingPoint& sp, const glm::vec3& wo, const glm::vec3& beta,
-                        Sampler& sampler, bool mis) {
+inline glm::vec3 sample_direct(const Scene& scene, const Hit& hit, const Material& m,
+                               const ShadingPoint& sp, const glm::vec3& wo, const glm::vec3& beta,
+                               Sampler& sampler, bool mis) {
     const LightSampler& lights = scene.light_sampler();
     // Drawn even when unused, so later decisions of the path keep their numbers; no
     // number chooses among a single light.
@@ -97,7 +97,8 @@ glm::vec3 sample_direct(const Scene& scene, const Hit& hit, const Material& m,
     if (!s.valid()) return glm::vec3(0.0f);
     const glm::vec3 wi = sp.frame.to_local(s.wi);
     // The unshadowed integrand f L |cos(theta_i)|; no shadow ray when it is 0.
-    const glm::vec3 fl = bsdfs::eval_bsdf(m, sp, wo, wi) * s.radiance * std::fabs(wi.z);
+    const bsdfs::EvalPdf bsdf = bsdfs::eval_pdf_bsdf(m, sp, wo, wi);
+    const glm::vec3 fl = bsdf.f * s.radiance * std::fabs(wi.z);
     if (!(max_component(beta * fl) > 0.0f)) return glm::vec3(0.0f);
     // The light's own surface is skipped: the segment ends on it.
     if (!unoccluded(scene, spawn_ray_to(hit.point, hit.geometric_normal, s.wi, s.distance),
@@ -106,7 +107,7 @@ glm::vec3 sample_direct(const Scene& scene, const Hit& hit, const Material& m,
     // Monte Carlo estimate f L |cos| / p_light, times the MIS weight when asked.
     const float a = chosen.pmf * s.pdf;
     if (!mis || s.is_delta) return fl / a;
-    const float b = bsdfs::pdf_bsdf(m, sp, wo, wi);
+    const float b = bsdf.pdf;
     // Power heuristic folded into the estimate: (a^2 / (a^2 + b^2)) / a = a / (a^2 + b^2),
     // one division; the general form when the squares overflow (tiny lights).
     const float denom = a * a + b * b;
