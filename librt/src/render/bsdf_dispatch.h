@@ -51,9 +51,11 @@ inline decltype(auto) dispatch(MaterialKind kind, Fn&& fn) {
 [[nodiscard]] inline BsdfLobe lobes_of(const Material& m) {
     return dispatch(m.kind, [](auto bsdf) { return decltype(bsdf)::kLobes; });
 }
-/// sample() of bsdf.h, inline.
-[[nodiscard]] inline BsdfSample sample_bsdf(const Material& m, const ShadingPoint& p,
-                                            const glm::vec3& wo, float uc, glm::vec2 u) {
+/// sample() of bsdf.h, inline (forced: g++ keeps the call in the path loop otherwise).
+[[nodiscard, gnu::always_inline]] inline BsdfSample sample_bsdf(const Material& m,
+                                                                const ShadingPoint& p,
+                                                                const glm::vec3& wo, float uc,
+                                                                glm::vec2 u) {
     return dispatch(m.kind, [&](auto bsdf) { return decltype(bsdf)::sample(m, p, wo, uc, u); });
 }
 /// eval() of bsdf.h, inline.

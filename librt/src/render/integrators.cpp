@@ -82,9 +82,12 @@ float emitter_weight(const Scene& scene, const Hit& hit, const glm::vec3& dir,
 /// shadow ray finds it unoccluded, times the power heuristic against BSDF sampling when
 /// `mis` (delta lights: weight 1, no BSDF sample can find them). `beta` is the path's
 /// throughput: no shadow ray is spent on a contribution it zeroes.
-inline glm::vec3 sample_direct(const Scene& scene, const Hit& hit, const Material& m,
-                               const ShadingPoint& sp, const glm::vec3& wo, const glm::vec3& beta,
-                               Sampler& sampler, bool mis) {
+// Forced inline: called once per non-specular vertex, and g++ otherwise keeps the call
+// (callgrind on the synthesis: -1.6% instructions in the path loop).
+[[gnu::always_inline]] inline glm::vec3 sample_direct(const Scene& scene, const Hit& hit,
+                                                      const Material& m, const ShadingPoint& sp,
+                                                      const glm::vec3& wo, const glm::vec3& beta,
+                                                      Sampler& sampler, bool mis) {
     const LightSampler& lights = scene.light_sampler();
     // Drawn even when unused, so later decisions of the path keep their numbers; no
     // number chooses among a single light.
