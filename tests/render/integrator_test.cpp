@@ -18,32 +18,12 @@
 namespace librt {
 namespace {
 
+using testing::add_room;
 using testing::Pinhole;
 using testing::region;
 using testing::render_stats;
+using testing::room_camera;
 using testing::StatImage;
-
-// The report's room (scenes.md): six wall spheres, four spheres, and the light.
-void add_room(Scene& scene) {
-    auto diffuse = [&](glm::vec3 a) { return scene.add_material(Material::diffuse(a)); };
-    scene.add_sphere({{0, -1000, 0}, 990}, diffuse({0, 0, 1}));
-    scene.add_sphere({{0, 0, -1050}, 940}, diffuse({1, 0, 1}));
-    scene.add_sphere({{0, 0, 1000}, 940}, diffuse({1, 1, 0}));
-    scene.add_sphere({{1000, 0, 0}, 940}, diffuse({1, 0, 0}));
-    scene.add_sphere({{-1000, 0, 0}, 940}, diffuse({0, 1, 0}));
-    scene.add_sphere({{0, 1000, 0}, 940}, diffuse({1, 1, 1}));
-    scene.add_sphere({{-15, -2, 0}, 8}, diffuse({1, 1, 1}));
-    scene.add_sphere({{25, 0, -50}, 8}, diffuse({0, 1, 0}));
-    scene.add_sphere({{-15, 20, 0}, 7}, scene.add_material(Material::mirror()));
-    scene.add_sphere({{15, 20, 0}, 7}, scene.add_material(Material::dielectric(1.4f)));
-}
-
-Pinhole room_camera(int size) {
-    Pinhole cam;
-    cam.eye = {0, 0, 55};
-    cam.width = cam.height = size;
-    return cam;
-}
 
 // A floor quad at y = 0 facing +y, half-size s.
 void add_floor(Scene& scene, float s, std::uint32_t material) {

@@ -7,6 +7,7 @@
 
 #include <librt/geometry/ray.h>
 #include <librt/render/integrator.h>
+#include <librt/render/material.h>
 #include <librt/render/sampler.h>
 #include <librt/render/scene.h>
 
@@ -112,6 +113,29 @@ inline RegionEstimate region(const StatImage& img, int x0, int y0, int x1, int y
     r.mean /= count;
     r.se2 /= count * count;
     return r;
+}
+
+/// The report's room (scenes.md): six wall spheres and four spheres (add the light yourself).
+inline void add_room(Scene& scene) {
+    auto diffuse = [&](glm::vec3 a) { return scene.add_material(Material::diffuse(a)); };
+    scene.add_sphere({{0, -1000, 0}, 990}, diffuse({0, 0, 1}));
+    scene.add_sphere({{0, 0, -1050}, 940}, diffuse({1, 0, 1}));
+    scene.add_sphere({{0, 0, 1000}, 940}, diffuse({1, 1, 0}));
+    scene.add_sphere({{1000, 0, 0}, 940}, diffuse({1, 0, 0}));
+    scene.add_sphere({{-1000, 0, 0}, 940}, diffuse({0, 1, 0}));
+    scene.add_sphere({{0, 1000, 0}, 940}, diffuse({1, 1, 1}));
+    scene.add_sphere({{-15, -2, 0}, 8}, diffuse({1, 1, 1}));
+    scene.add_sphere({{25, 0, -50}, 8}, diffuse({0, 1, 0}));
+    scene.add_sphere({{-15, 20, 0}, 7}, scene.add_material(Material::mirror()));
+    scene.add_sphere({{15, 20, 0}, 7}, scene.add_material(Material::dielectric(1.4f)));
+}
+
+/// The report's camera on the room: at (0, 0, 55) looking down -z, size x size pixels.
+inline Pinhole room_camera(int size) {
+    Pinhole cam;
+    cam.eye = {0, 0, 55};
+    cam.width = cam.height = size;
+    return cam;
 }
 
 }  // namespace librt::testing

@@ -1,13 +1,15 @@
-// Materials, lights, textures and the specular scattering formulas (incl. a glass slab).
+// Materials, lights, textures and the specular scattering of the dielectric BSDF (incl. a
+// glass slab).
 
 #include "robustness/robustness_util.h"
 
 #include <librt/core/error.h>
 #include <librt/io/texture_io.h>
+#include <librt/render/bsdf.h>
 #include <librt/render/light.h>
 #include <librt/render/material.h>
-#include <librt/render/scatter.h>
 #include <librt/render/scene.h>
+#include <librt/render/specular.h>
 #include <librt/render/texture.h>
 
 #include <gtest/gtest.h>
@@ -23,6 +25,22 @@ namespace librt {
 using librt::testing::error_of;
 
 namespace {
+
+/// What the dielectric BSDF does to a world direction d (toward the surface) at a surface
+/// of unit outward normal n: the BSDF seam's sample() in the frame ShadingFrame::at builds.
+struct WorldScatter {
+    glm::vec3 direction{0.0f};  ///< unit outgoing direction, world
+    bool transmitted = false;   ///< crossed the surface
+    float pdf = 0.0f;           ///< probability of the lobe chosen
+};
+
+WorldScatter scatter(const Material& m, const glm::vec3& d, const glm::vec3& n, float u) {
+    const ShadingPoint sp{ShadingFrame::at(n, n, d), m.albedo};
+    const BsdfSample s = sample(m, sp, sp.frame.to_local(-d), u, glm::vec2(0.5f));
+    EXPECT_TRUE(s.valid());
+    EXPECT_TRUE(has(s.lobe, BsdfLobe::Specular));
+    return {sp.frame.to_world(s.wi), has(s.lobe, BsdfLobe::Transmission), s.pdf};
+}
 
 TEST(Material, FactoriesSetKindAndDefaults) {
     const Material d = Material::diffuse({0.2f, 0.4f, 0.6f});
@@ -157,9 +175,10 @@ TEST(Scatter, ReflectAndSchlick) {
 TEST(Scatter, SnellRefractionAndTotalInternalReflection) {
     const glm::vec3 n(0, 1, 0);  // outward
     const float ior = 1.5f;
+    const Material glass = Material::dielectric(ior, false);
     const float theta_i = 0.7f;
     const glm::vec3 d(std::sin(theta_i), -std::cos(theta_i), 0.0f);
-    const DielectricScatter in = scatter_dielectric(d, n, ior, false, 0.0f);
+    const WorldScatter in = scatter(glass, d, n, 0.0f);
     ASSERT_TRUE(in.transmitted);
     // Snell: sin(theta_t) = sin(theta_i) / ior, and the ray keeps going down.
     EXPECT_NEAR(in.direction.x, std::sin(theta_i) / ior, 1e-6f);
@@ -169,14 +188,13 @@ TEST(Scatter, SnellRefractionAndTotalInternalReflection) {
     // even without Fresnel.
     const float steep = 0.9f;
     const glm::vec3 up(std::sin(steep), std::cos(steep), 0.0f);
-    const DielectricScatter tir = scatter_dielectric(up, n, ior, false, 0.0f);
+    const WorldScatter tir = scatter(glass, up, n, 0.0f);
     EXPECT_FALSE(tir.transmitted);
-    EXPECT_TRUE(tir.total_internal_reflection);
+    EXPECT_EQ(tir.pdf, 1.0f);  // without Fresnel, reflecting at all means total reflection
     EXPECT_NEAR(tir.direction.y, -std::cos(steep), 1e-6f);
     // Just below the critical angle from inside: refracts out, grazing.
     const float below = std::asin(1.0f / ior) - 1e-3f;
-    const DielectricScatter out =
-        scatter_dielectric({std::sin(below), std::cos(below), 0.0f}, n, ior, false, 0.0f);
+    const WorldScatter out = scatter(glass, {std::sin(below), std::cos(below), 0.0f}, n, 0.0f);
     EXPECT_TRUE(out.transmitted);
     EXPECT_GT(out.direction.y, 0.0f);
 }
@@ -185,17 +203,21 @@ TEST(Scatter, FresnelReflectsWithProbabilitySchlick) {
     const glm::vec3 n(0, 0, 1);
     const glm::vec3 d = glm::normalize(glm::vec3(0.8f, 0.0f, -0.6f));
     const float f = schlick_fresnel(0.6f, 1.0f, 1.5f);
+    const Material glass = Material::dielectric(1.5f, true);
     // u on a regular grid: the reflected fraction is F up to the grid step.
     const int count = 100000;
     int reflected = 0;
-    for (int i = 0; i < count; ++i)
-        reflected +=
-            !scatter_dielectric(d, n, 1.5f, true, (float(i) + 0.5f) / float(count)).transmitted;
+    for (int i = 0; i < count; ++i) {
+        const WorldScatter s = scatter(glass, d, n, (float(i) + 0.5f) / float(count));
+        reflected += !s.transmitted;
+        // The probability of the lobe chosen, as sample() reports it.
+        ASSERT_NEAR(s.pdf, s.transmitted ? 1.0f - f : f, 1e-6f);
+    }
     EXPECT_NEAR(double(reflected) / count, f, 2.0 / count);
 }
 
 // A glass slab made of two parallel quads (top facing +y at y = 1, bottom facing -y at
-// y = 0): a ray traced through the scene with the integrators' dielectric logic leaves
+// y = 0): a ray traced through the scene with the dielectric BSDF leaves
 // with its original direction, shifted sideways by t sin(theta_i - theta_t) / cos(theta_t).
 TEST(Scatter, GlassSlabLeavesDirectionUnchanged) {
     Scene scene;
@@ -215,8 +237,7 @@ TEST(Scatter, GlassSlabLeavesDirectionUnchanged) {
         while (scene.intersect(ray, hit) && interfaces < 10) {
             const Material& m = scene.material(hit);
             ASSERT_EQ(m.kind, MaterialKind::Dielectric);
-            const DielectricScatter sc =
-                scatter_dielectric(ray.direction, hit.geometric_normal, m.ior, m.fresnel, 0.5f);
+            const WorldScatter sc = scatter(m, ray.direction, hit.geometric_normal, 0.5f);
             ASSERT_TRUE(sc.transmitted) << "theta_i " << theta_i;
             if (interfaces == 0) {
                 entry = hit.point;

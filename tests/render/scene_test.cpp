@@ -10,6 +10,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace librt {
@@ -306,11 +307,13 @@ TEST(Scene, SphereLightIsAnEmissiveObject) {
     const auto id = scene.add_sphere_light(light);
     scene.add_point_light({{1, 1, 1}, {1, 1, 1}});
     scene.commit();
-    ASSERT_EQ(scene.sphere_lights().size(), 1u);
-    ASSERT_EQ(scene.point_lights().size(), 1u);
-    EXPECT_EQ(scene.sphere_light_object(0), id);
-    EXPECT_TRUE(scene.is_sphere_light(id));
-    EXPECT_FALSE(scene.is_sphere_light(id + 1));
+    ASSERT_EQ(scene.lights().size(), 2u);
+    ASSERT_TRUE(std::holds_alternative<SphereLight>(scene.lights()[0].source));
+    ASSERT_TRUE(std::holds_alternative<PointLight>(scene.lights()[1].source));
+    EXPECT_EQ(scene.lights()[0].object, id);
+    EXPECT_EQ(scene.lights()[1].object, kInvalidId);
+    EXPECT_EQ(scene.light_of_object(id), 0u);
+    EXPECT_EQ(scene.light_of_object(id + 1), kInvalidId);
     Hit hit;
     ASSERT_TRUE(scene.intersect(Ray{{0, 0, 0}, {0, 1, 0}}, hit));
     EXPECT_EQ(hit.object_id, id);

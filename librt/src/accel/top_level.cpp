@@ -1,11 +1,11 @@
 // The top level's queries: the flat-list-or-BVH traversal (its flat list four boxes at a time), the
 // per-object tests and hit finishing. Adding objects and building: top_level_build.cpp.
 
+#include "accel/slab4.h"
+
 #include <librt/accel/bvh_traversal.h>
 #include <librt/accel/top_level.h>
 #include <librt/core/error.h>
-
-#include "accel/slab4.h"
 
 #include <glm/geometric.hpp>
 

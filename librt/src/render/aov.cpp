@@ -1,6 +1,6 @@
 #include "render/aov.h"
 
-#include <librt/render/scatter.h>
+#include <librt/render/bsdf.h>
 #include <librt/render/scene.h>
 #include <librt/sampling/rng.h>
 
@@ -37,31 +37,25 @@ AovSample sample_aovs(const Scene& scene, const Ray& camera_ray, std::uint32_t x
             out.depth = hit.t;
         }
         const Material& m = scene.material(hit);
-        if (!m.is_specular()) {
-            // Emitters reflect nothing; every other surface reflects its (textured) albedo.
-            out.albedo =
-                m.kind == MaterialKind::Emissive ? glm::vec3(0.0f) : tint * scene.albedo(hit);
+        const BsdfLobe lobe_flags = lobes(m);
+        const glm::vec3 albedo = lobe_flags == BsdfLobe::None ? glm::vec3(0.0f) : scene.albedo(hit);
+        if (!has(lobe_flags, BsdfLobe::Specular) || has_non_specular(lobe_flags)) {
+            // The first surface that is not purely specular: emitters (no lobes) reflect
+            // nothing; every other surface its (textured) albedo, tinted by the way here.
+            out.albedo = tint * albedo;
             out.normal = hit.shading_normal;
             return out;
         }
-        // Through a mirror or glass, as the path tracer goes: about the shading normal,
-        // falling back to the geometric one when the shading normal is too bent.
-        const glm::vec3& d = ray.direction;
-        const bool front = glm::dot(d, hit.geometric_normal) < 0.0f;
-        const glm::vec3 ng = front ? hit.geometric_normal : -hit.geometric_normal;
-        glm::vec3 wi;
-        if (m.kind == MaterialKind::Mirror) {
-            wi = reflect(d, front ? hit.shading_normal : -hit.shading_normal);
-            if (glm::dot(wi, ng) <= 0.0f) wi = reflect(d, ng);
-        } else {
-            const float u = m.fresnel ? rng.next_float() : 0.0f;
-            DielectricScatter sc = scatter_dielectric(d, hit.shading_normal, m.ior, m.fresnel, u);
-            if (sc.transmitted == (glm::dot(sc.direction, ng) > 0.0f))
-                sc = scatter_dielectric(d, hit.geometric_normal, m.ior, m.fresnel, u);
-            wi = sc.direction;
-        }
-        tint *= m.albedo;
-        ray = spawn_ray(hit.point, hit.geometric_normal, wi);
+        // Through a mirror or glass, as the path tracer goes: by the BSDF seam's sample.
+        const ShadingPoint sp{
+            ShadingFrame::at(hit.shading_normal, hit.geometric_normal, ray.direction), albedo};
+        const float uc = chooses_lobe(lobe_flags) ? rng.next_float() : 0.0f;
+        const BsdfSample bs =
+            librt::sample(m, sp, sp.frame.to_local(-ray.direction), uc, glm::vec2(0.5f));
+        if (!bs.valid()) return out;
+        // A specular lobe chosen with probability pdf has weight tint * pdf / pdf = tint.
+        tint *= bs.weight;
+        ray = spawn_ray(hit.point, hit.geometric_normal, sp.frame.to_world(bs.wi));
     }
     return out;  // too many specular bounces: albedo 0
 }

@@ -1,4 +1,5 @@
 #include <librt/core/error.h>
+#include <librt/render/bsdf.h>
 #include <librt/render/material.h>
 
 #include <cmath>
@@ -54,6 +55,11 @@ Material Material::emissive(const glm::vec3& radiance) {
     m.emission = radiance;
     validate(m);
     return m;
+}
+
+bool Material::is_specular() const {
+    const BsdfLobe l = lobes(*this);
+    return l != BsdfLobe::None && !has_non_specular(l);
 }
 
 void validate(const Material& material) {

@@ -37,7 +37,7 @@ std::uint32_t Scene::add_object(std::uint32_t top_id, std::uint32_t material) {
     // Every object is added to top_ and here in the same order, so the ids agree.
     assert(top_id == objects_.size());
     (void)top_id;
-    objects_.push_back({false, kInvalidId, material});
+    objects_.push_back({kInvalidId, material});
     return std::uint32_t(objects_.size() - 1);
 }
 
@@ -105,16 +105,17 @@ std::uint32_t Scene::add_mesh(TriangleMesh mesh, std::vector<std::uint32_t> tria
 
 void Scene::add_point_light(const PointLight& light) {
     validate(light);
-    point_lights_.push_back(light);
+    lights_.push_back({light, kInvalidId});
+    committed_ = false;
 }
 
 std::uint32_t Scene::add_sphere_light(const SphereLight& light) {
     validate(light);
     const std::uint32_t material = add_material(Material::emissive(light.radiance));
     const std::uint32_t object = add_sphere(light.sphere, material);
-    objects_[object].light = true;
-    sphere_lights_.push_back(light);
-    sphere_light_objects_.push_back(object);
+    if (light_of_object_.size() <= object) light_of_object_.resize(object + 1, kInvalidId);
+    light_of_object_[object] = std::uint32_t(lights_.size());
+    lights_.push_back({light, object});
     return object;
 }
 
@@ -122,8 +123,9 @@ void Scene::commit() {
     if (committed_) return;
     top_.build();
     unsampled_emitters_ = false;
-    for (const Object& o : objects_) {
-        if (o.light) continue;
+    for (std::uint32_t id = 0; id < objects_.size(); ++id) {
+        const Object& o = objects_[id];
+        if (light_of_object(id) != kInvalidId) continue;
         if (o.material != kInvalidId) {
             unsampled_emitters_ |= materials_[o.material].emits();
         } else {
@@ -131,6 +133,7 @@ void Scene::commit() {
                 unsampled_emitters_ |= materials_[m].emits();
         }
     }
+    light_sampler_ = LightSampler(lights_);
     committed_ = true;
 }
 

@@ -7,8 +7,11 @@
 #include <cstdint>
 
 // The report's rendering algorithms, from its hard-shadow figure to its full getColor, plus
-// a brute-force reference and a debug view. All iterate the path in a loop (no recursion),
-// allocate nothing per ray, and never return NaN or Inf.
+// a brute-force reference and a debug view. All run one path loop (no recursion) built of
+// the same pieces: the BSDF seam (bsdf.h) at every hit, one light chosen by the scene's
+// light sampler for next-event estimation (light.h, light_sampler.h), shadow rays from
+// shadow_ray.h. They differ only in which sampling strategies they use and how they weigh
+// them. They allocate nothing per ray and never return NaN or Inf.
 //
 // Depth convention, shared by all: max_depth counts scattering events (diffuse, mirror or
 // glass bounces) along the path. Emission seen by the camera counts at depth 0, so
@@ -40,10 +43,11 @@ struct DirectLightingSettings {
     int max_depth = 5;  ///< mirror and glass bounces followed, in [0, 1000]
 };
 
-/// The report's first figure: at a diffuse hit, the light of every point light (hard
-/// shadow ray, I cos(theta) / d^2 * albedo / pi) plus one cone sample of every sphere
-/// light; no indirect diffuse light. Mirrors and glass are followed up to max_depth;
-/// emitters seen directly or through mirrors and glass show their radiance.
+/// The report's first figure: at the first non-specular hit, next-event estimation of one
+/// light chosen by the scene's light sampler (a point light: hard shadow ray,
+/// I cos(theta) / d^2 * f; a sphere light: one sample of the cone it subtends), weight 1;
+/// no indirect light. Mirrors and glass are followed up to max_depth; emitters seen
+/// directly or through mirrors and glass show their radiance.
 class LIBRT_API DirectLighting final : public GuardedIntegrator {
 public:
     /// Throws librt::Error naming max_depth when it is outside [0, 1000].
@@ -62,18 +66,25 @@ struct PathTracerSettings {
     int max_depth = 5;               ///< scattering events per path, in [0, 1000] (report: 5)
     bool russian_roulette = false;   ///< randomly end paths after russian_roulette_depth
     int russian_roulette_depth = 3;  ///< bounces before roulette starts, >= 0
+    /// PathTracer only: weigh light and BSDF samples by the power heuristic (true), or give
+    /// light samples the whole weight and count nothing for light-sampled emitters that a
+    /// BSDF-sampled ray hits (false: next-event estimation only, the report's rule).
+    bool mis = true;
 };
 
-/// The report's full getColor as a loop: at a diffuse hit, next-event estimation of every
-/// point light and of each sphere light (one sample of the cone it subtends, where the
-/// report picked a point on its surface: lower variance, same expectation), then a
-/// cosine-weighted bounce (weight albedo); mirrors reflect, glass refracts (Snell, total
-/// internal reflection, Schlick reflection chosen with probability F when the material
-/// asks for it). Emission is never counted twice: a sphere light hit right after a
-/// diffuse bounce adds nothing (light sampling at that bounce already counted it), while
-/// one seen by the camera or through mirrors and glass adds its radiance; emitters that
-/// are not sphere lights (emissive meshes, glowing diffuse surfaces) are not sampled, so
-/// they always count when hit.
+/// The report's full getColor as a loop with multiple importance sampling: at every
+/// non-specular hit, next-event estimation of one light (chosen by the scene's light
+/// sampler; a sphere light sampled in the cone it subtends, where the report picked a
+/// point on its surface) and one BSDF sample (cosine-weighted at a diffuse surface), both
+/// weighted by the power heuristic (Veach 1997): a light-sampled emitter hit by the BSDF
+/// ray counts with the BSDF strategy's weight. Specular hits (mirror, glass) only sample
+/// their BSDF, and an emitter seen by the camera or through them counts fully. Emitters
+/// that are no light (emissive meshes, glowing diffuse surfaces) are not light-sampled,
+/// so they always count fully. At the last scattering event (depth = max_depth) the
+/// light sample takes the whole weight and hit lights count nothing (one strategy, so the
+/// weights still sum to 1), which lets the path stop without tracing that last ray
+/// unless some emitter is not light-sampled. With settings.mis = false every non-specular
+/// vertex is weighted like that last one (next-event estimation only).
 class LIBRT_API PathTracer final : public GuardedIntegrator {
 public:
     /// Throws librt::Error naming max_depth or russian_roulette_depth when out of range.
@@ -107,7 +118,7 @@ private:
 
 /// What AlbedoNormalIntegrator shows.
 enum class DebugView : std::uint8_t {
-    Albedo,  ///< diffuse albedo (texture applied), tint of mirrors and glass, emission of lights
+    Albedo,  ///< albedo (texture applied) of scattering surfaces, emission of pure emitters
     Normal,  ///< shading normal mapped from [-1, 1] to [0, 1] per axis
 };
 

@@ -1,58 +1,49 @@
 #pragma once
 
 #include <librt/export.h>
-#include <librt/geometry/sphere.h>
-#include <librt/sampling/warp.h>
+#include <librt/geometry/hit.h>
+#include <librt/render/light_sample.h>
+#include <librt/render/point_light.h>
+#include <librt/render/sphere_light.h>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <variant>
+
+// The light seam. A light type is a plain struct in its own header (point_light.h,
+// sphere_light.h) with three free functions: sample_li(light, ref, u) -> LightLiSample,
+// pdf_li(light, ref, wi) and power(light). Adding one (emissive triangle, quad, disk,
+// spot, directional, environment) is that header, its .cpp, and its name in LightSource.
 
 namespace librt {
 
-/// An isotropic point light (the report's first light). Not part of the geometry: no ray
-/// can hit it, only shadow rays aimed at it see it.
-struct PointLight {
-    glm::vec3 position{0.0f};  ///< where the light is
-    /// Radiant intensity I in W/sr per channel: a surface at distance d whose normal makes
-    /// angle theta with the light receives irradiance E = I cos(theta) / d^2.
-    glm::vec3 intensity{0.0f};
+/// Every kind of light, as a tagged union. Why not a virtual interface: lights are plain
+/// values the Scene stores contiguously and copies freely (no per-light allocation or
+/// pointer to own), std::visit dispatches with a jump table and no indirect call in the
+/// path loop, and a new type is registered by naming it here, after which the compiler
+/// checks that it has every function the seam needs.
+using LightSource = std::variant<PointLight, SphereLight>;
 
-    /// The light of total power `power` (W, per channel) emitted uniformly over the
-    /// sphere of directions: I = power / (4 pi). The report's formula
-    /// I / (4 pi d^2) uses its I = 2.14e8 as such a power.
-    [[nodiscard]] static PointLight from_power(const glm::vec3& position, const glm::vec3& power) {
-        return {position, power / (4.0f * k_pi)};
-    }
-    /// Grey version of from_power: the same power in every channel.
-    [[nodiscard]] static PointLight from_power(const glm::vec3& position, float power) {
-        return from_power(position, glm::vec3(power));
-    }
+/// A light of a Scene: its source and, when it is also geometry, the object that is its
+/// surface (so a BSDF-sampled ray that hits the object can find the light, and a shadow
+/// ray toward the light can skip its own surface).
+struct Light {
+    LightSource source;                 ///< what emits
+    std::uint32_t object = kInvalidId;  ///< the scene object that is its surface, if any
 };
 
-/// A spherical area light (the report's later light): a sphere whose surface emits a
-/// uniform radiance, equal in every outgoing direction. Scene::add_sphere_light also adds
-/// the sphere as an emissive object, so camera and bounce rays can hit it.
-struct SphereLight {
-    Sphere sphere;             ///< the emitting surface
-    glm::vec3 radiance{0.0f};  ///< emitted radiance L (W / (sr m^2)) per channel
-
-    /// The uniform radiance with which a sphere of the given radius emits `power` in
-    /// total: power = L * pi * (4 pi r^2), so L = power / (4 pi^2 r^2). Far away it then
-    /// lights a surface like PointLight::from_power(center, power).
-    [[nodiscard]] static glm::vec3 radiance_for_power(const glm::vec3& power, float radius) {
-        return power / (4.0f * k_pi * k_pi * radius * radius);
-    }
-    /// Grey version of radiance_for_power: the same power in every channel.
-    [[nodiscard]] static glm::vec3 radiance_for_power(float power, float radius) {
-        return radiance_for_power(glm::vec3(power), radius);
-    }
-};
-
-/// Throws librt::Error naming the parameter and value if position or intensity is not
-/// finite or intensity is negative.
-LIBRT_API void validate(const PointLight& light);
-
-/// Throws librt::Error naming the parameter and value if the sphere is not finite, its
-/// radius is not > 0, or the radiance is negative or not finite.
-LIBRT_API void validate(const SphereLight& light);
+/// One direction toward the light from ref, drawn from u in [0, 1)^2.
+[[nodiscard]] inline LightLiSample sample_li(const Light& light, const glm::vec3& ref,
+                                             glm::vec2 u) {
+    // Inline: the path loop calls it once per shading point.
+    return std::visit([&](const auto& source) { return sample_li(source, ref, u); }, light.source);
+}
+/// The solid-angle density with which sample_li picks unit direction wi from ref (0 for
+/// delta lights and for directions that miss the light).
+[[nodiscard]] LIBRT_API float pdf_li(const Light& light, const glm::vec3& ref, const glm::vec3& wi);
+/// Total emitted power per channel (W): what the light sampler weighs lights by.
+[[nodiscard]] LIBRT_API glm::vec3 power(const Light& light);
 
 }  // namespace librt

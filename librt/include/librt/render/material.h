@@ -8,7 +8,7 @@
 
 namespace librt {
 
-/// The report's closed set of surfaces (its getColor branches on exactly these).
+/// The kinds of surface: the report's four (its getColor branches on exactly these).
 enum class MaterialKind : std::uint8_t {
     Diffuse,     ///< Lambertian reflector: albedo / pi
     Mirror,      ///< perfect specular reflection, tinted by albedo
@@ -16,15 +16,16 @@ enum class MaterialKind : std::uint8_t {
     Emissive,    ///< a light's surface: emits, reflects nothing
 };
 
-/// A surface description as a tagged struct rather than a virtual BSDF hierarchy: the set
-/// of kinds is closed (the report's four), integrators switch on `kind` in their inner
-/// loop without an indirect call, materials are plain copyable values stored contiguously
-/// in the Scene, and a hit refers to one by a 32-bit id instead of a shared_ptr.
+/// A surface description as a tagged struct rather than a virtual BSDF hierarchy:
+/// materials are plain copyable values stored contiguously in the Scene, a hit refers to
+/// one by a 32-bit id instead of a shared_ptr, and the BSDF functions of bsdf.h dispatch
+/// on `kind` in one switch without an indirect call. A new kind adds its enumerator, its
+/// parameters here, its BSDF header in librt/src/render/ and one case in bsdf.cpp.
 ///
 /// Emission is honoured for every kind (a diffuse surface may also glow, which the white
 /// furnace test uses); Emissive only adds "reflects nothing".
 struct LIBRT_API Material {
-    MaterialKind kind = MaterialKind::Diffuse;  ///< which branch of the integrators applies
+    MaterialKind kind = MaterialKind::Diffuse;  ///< which BSDF applies (bsdf.h)
     /// Diffuse reflectance in [0, 1] per channel, or the tint of a mirror or dielectric
     /// (1 = colourless). Unused by Emissive.
     glm::vec3 albedo{0.8f};
@@ -53,10 +54,9 @@ struct LIBRT_API Material {
     [[nodiscard]] bool emits() const {
         return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f;
     }
-    /// True for the kinds whose scattering is a delta distribution (no light sampling there).
-    [[nodiscard]] bool is_specular() const {
-        return kind == MaterialKind::Mirror || kind == MaterialKind::Dielectric;
-    }
+    /// True when every lobe of the material's BSDF is a delta distribution (no light
+    /// sampling there); see lobes() in bsdf.h.
+    [[nodiscard]] bool is_specular() const;
 };
 
 /// Throws librt::Error naming the parameter and its value when an albedo component is

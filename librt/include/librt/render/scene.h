@@ -12,6 +12,7 @@
 #include <librt/geometry/sphere.h>
 #include <librt/geometry/triangle.h>
 #include <librt/render/light.h>
+#include <librt/render/light_sampler.h>
 #include <librt/render/material.h>
 #include <librt/render/texture.h>
 
@@ -86,10 +87,10 @@ public:
     /// not affine (bottom row 0 0 0 1) or singular.
     std::uint32_t add_instance(std::uint32_t prototype, const glm::mat4& object_to_world,
                                std::uint32_t material);
-    /// Adds a point light (validated). Point lights are not geometry.
+    /// Adds a point light (validated) to the light list. Point lights are not geometry.
     void add_point_light(const PointLight& light);
-    /// Adds a sphere light (validated) and the emissive sphere that is its surface;
-    /// returns that sphere's object id.
+    /// Adds a sphere light (validated) to the light list, and the emissive sphere that is
+    /// its surface; returns that sphere's object id.
     std::uint32_t add_sphere_light(const SphereLight& light);
 
     /// Builds the acceleration structures. Must be called after the last add_* and before
@@ -151,24 +152,20 @@ public:
     /// The geometry: objects, prototypes and the structure over them; built by commit().
     [[nodiscard]] const TopLevel& top_level() const { return top_; }
 
-    /// The point lights, in the order added.
-    [[nodiscard]] std::span<const PointLight> point_lights() const { return point_lights_; }
-    /// The sphere lights, in the order added.
-    [[nodiscard]] std::span<const SphereLight> sphere_lights() const { return sphere_lights_; }
-    /// Object id of sphere light i's surface.
-    [[nodiscard]] std::uint32_t sphere_light_object(std::size_t i) const {
-        return sphere_light_objects_.at(i);
-    }
-    /// True when the object is the surface of a sphere light, i.e. light sampling already
-    /// accounts for its emission at diffuse surfaces.
-    [[nodiscard]] bool is_sphere_light(std::uint32_t object_id) const {
-        return object_id < objects_.size() && objects_[object_id].light;
+    /// Every light, in the order added (point and sphere lights alike).
+    [[nodiscard]] std::span<const Light> lights() const { return lights_; }
+    /// Chooses the light a shading point samples; valid after commit().
+    [[nodiscard]] const LightSampler& light_sampler() const { return light_sampler_; }
+    /// Index in lights() of the light whose surface is object `object_id`, or kInvalidId
+    /// when the object is no light's surface (its emission, if any, is not light-sampled).
+    [[nodiscard]] std::uint32_t light_of_object(std::uint32_t object_id) const {
+        return object_id < light_of_object_.size() ? light_of_object_[object_id] : kInvalidId;
     }
 
     /// True when some surface emits light that light sampling does not account for: an
-    /// emissive material on anything but a sphere light's own sphere. When false, a path
-    /// that has just scattered off a diffuse surface for the last time can find nothing
-    /// more to add, so the integrator need not trace that last ray. Valid after commit().
+    /// emissive material on anything but a light's own surface. When false, a path that
+    /// has just scattered off a diffuse surface for the last time can find nothing more to
+    /// add, so the integrator need not trace that last ray. Valid after commit().
     [[nodiscard]] bool has_unsampled_emitters() const { return unsampled_emitters_; }
 
     /// Bounding box of all objects (empty if none); valid after commit().
@@ -177,7 +174,6 @@ public:
 private:
     /// What the scene adds to a geometric object of top_ (same id).
     struct Object {
-        bool light = false;      ///< surface of a sphere light
         std::uint32_t index;     ///< into triangle_materials_ when material is kInvalidId
         std::uint32_t material;  ///< uniform material, or kInvalidId for per-triangle ids
     };
@@ -197,9 +193,9 @@ private:
     std::vector<Object> objects_;
     std::vector<std::vector<std::uint32_t>> triangle_materials_;  ///< scene ids, per triangle
     std::uint32_t loose_object_ = kInvalidId;  ///< object of the add_triangle mesh
-    std::vector<PointLight> point_lights_;
-    std::vector<SphereLight> sphere_lights_;
-    std::vector<std::uint32_t> sphere_light_objects_;
+    std::vector<Light> lights_;
+    std::vector<std::uint32_t> light_of_object_;  ///< object id -> light index (kInvalidId)
+    LightSampler light_sampler_;                  ///< over lights_, built by commit()
 
     TopLevel top_;                     ///< the geometry and its acceleration structure
     bool unsampled_emitters_ = false;  ///< see has_unsampled_emitters()

@@ -1,0 +1,66 @@
+#pragma once
+
+#include <librt/geometry/hit.h>
+#include <librt/geometry/ray.h>
+#include <librt/render/scene.h>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+// Shadow rays, built one way (pbrt-v4's SpawnRayTo and Unoccluded): from a surface point,
+// moved off its surface by the self-intersection offset, toward a target point, stopping
+// a relative kShadowEpsilon short of it so that the surface the target lies on (an area
+// light's own geometry) does not hide it.
+
+namespace librt {
+
+/// Fraction of a shadow ray's length left out at its far end (pbrt's ShadowEpsilon).
+inline constexpr float kShadowEpsilon = 1e-4f;
+
+/// The shadow ray from surface point p (unit geometric normal n, either orientation) along
+/// unit direction wi to the point at `distance`: origin offset_ray_origin(p, n, wi),
+/// t_max = distance (1 - kShadowEpsilon). For a light sample, whose direction and distance
+/// are known: no square root.
+[[nodiscard]] inline Ray spawn_ray_to(const glm::vec3& p, const glm::vec3& n, const glm::vec3& wi,
+                                      float distance) {
+    Ray r;
+    r.origin = offset_ray_origin(p, n, wi);
+    r.direction = wi;
+    r.t_max = distance * (1.0f - kShadowEpsilon);
+    return r;
+}
+
+/// The shadow ray from surface point p (unit geometric normal n) to point target: unit
+/// direction from the offset origin to target, t_max that distance (1 - kShadowEpsilon);
+/// t_max 0 (an empty segment) when the two coincide.
+[[nodiscard]] inline Ray spawn_ray_to(const glm::vec3& p, const glm::vec3& n,
+                                      const glm::vec3& target) {
+    Ray r;
+    r.origin = offset_ray_origin(p, n, target - p);
+    const glm::vec3 rest = target - r.origin;
+    const float len = glm::length(rest);
+    if (!(len > 0.0f)) {
+        r.t_max = 0.0f;  // nothing in between
+        return r;
+    }
+    r.direction = rest / len;
+    r.t_max = len * (1.0f - kShadowEpsilon);
+    return r;
+}
+
+/// True when nothing blocks the shadow ray r (from spawn_ray_to), the object
+/// `ignored_object` (e.g. the sphere light being sampled) skipped.
+[[nodiscard]] inline bool unoccluded(const Scene& scene, const Ray& r,
+                                     std::uint32_t ignored_object = kInvalidId) {
+    return !(r.t_max > 0.0f) || !scene.occluded(r, ignored_object);
+}
+
+/// True when nothing lies between surface point p (geometric normal n) and target, the
+/// object `ignored_object` skipped.
+[[nodiscard]] inline bool unoccluded(const Scene& scene, const glm::vec3& p, const glm::vec3& n,
+                                     const glm::vec3& target,
+                                     std::uint32_t ignored_object = kInvalidId) {
+    return unoccluded(scene, spawn_ray_to(p, n, target), ignored_object);
+}
+
+}  // namespace librt

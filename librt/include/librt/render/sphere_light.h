@@ -1,0 +1,53 @@
+#pragma once
+
+#include <librt/export.h>
+#include <librt/geometry/sphere.h>
+#include <librt/render/light_sample.h>
+#include <librt/sampling/warp.h>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <limits>
+
+namespace librt {
+
+/// A spherical area light (the report's later light): a sphere whose surface emits a
+/// uniform radiance, equal in every outgoing direction. Scene::add_sphere_light also adds
+/// the sphere as an emissive object, so camera and bounce rays can hit it.
+struct SphereLight {
+    Sphere sphere;             ///< the emitting surface
+    glm::vec3 radiance{0.0f};  ///< emitted radiance L (W / (sr m^2)) per channel
+
+    /// The uniform radiance with which a sphere of the given radius emits `power` in
+    /// total: power = L * pi * (4 pi r^2), so L = power / (4 pi^2 r^2). Far away it then
+    /// lights a surface like PointLight::from_power(center, power).
+    [[nodiscard]] static glm::vec3 radiance_for_power(const glm::vec3& power, float radius) {
+        return power / (4.0f * k_pi * k_pi * radius * radius);
+    }
+    /// Grey version of radiance_for_power: the same power in every channel.
+    [[nodiscard]] static glm::vec3 radiance_for_power(float power, float radius) {
+        return radiance_for_power(glm::vec3(power), radius);
+    }
+};
+
+/// Throws librt::Error naming the parameter and value if the sphere is not finite, its
+/// radius is not > 0, or the radiance is negative or not finite.
+LIBRT_API void validate(const SphereLight& light);
+
+/// A direction toward the part of the sphere visible from ref, uniform in the cone it
+/// subtends (sample_sphere_direction), with the distance to the sphere along it.
+[[nodiscard]] inline LightLiSample sample_li(const SphereLight& light, const glm::vec3& ref,
+                                             glm::vec2 u) {
+    const SphereDirectionSample s =
+        sample_sphere_direction(light.sphere.center, light.sphere.radius, ref, u);
+    if (!(s.pdf > 0.0f) || !(s.pdf < std::numeric_limits<float>::infinity())) return {};
+    return {s.direction, light.radiance, s.pdf, s.distance, false};
+}
+/// The solid-angle density of sample_li at ref for unit direction wi; 0 if wi misses.
+[[nodiscard]] LIBRT_API float pdf_li(const SphereLight& light, const glm::vec3& ref,
+                                     const glm::vec3& wi);
+/// Total emitted power per channel: L pi (4 pi r^2).
+[[nodiscard]] LIBRT_API glm::vec3 power(const SphereLight& light);
+
+}  // namespace librt

@@ -1,0 +1,40 @@
+#pragma once
+
+// The Lambertian BSDF (MaterialKind::Diffuse): f = albedo / pi on wo's side of the surface.
+
+#include <librt/render/bsdf.h>
+#include <librt/sampling/warp.h>
+
+namespace librt::bsdfs {
+
+struct Diffuse {
+    static constexpr BsdfLobe kLobes = BsdfLobe::DiffuseReflection;
+
+    /// Reflects only where both the shading and the geometric normal say "above": a
+    /// direction under the real surface would leak light through it.
+    static bool reaches(const ShadingPoint& p, const glm::vec3& wi) {
+        return wi.z > 0.0f && p.frame.above_geometry(wi);
+    }
+
+    static BsdfSample sample(const Material& /*m*/, const ShadingPoint& p, const glm::vec3& /*wo*/,
+                             float /*uc*/, glm::vec2 u) {
+        const glm::vec3 wi = sample_cosine_hemisphere(u);
+        // Below the true surface (a bent shading normal): no sample, the path ends there.
+        if (!p.frame.above_geometry(wi)) return {};
+        // Cosine sampling: (albedo / pi) cos / (cos / pi) = albedo.
+        return {wi, p.albedo, cosine_hemisphere_pdf(wi.z), kLobes};
+    }
+
+    static glm::vec3 eval(const Material& /*m*/, const ShadingPoint& p, const glm::vec3& /*wo*/,
+                          const glm::vec3& wi) {
+        // Lambert: f = albedo / pi.
+        return reaches(p, wi) ? p.albedo * k_inv_pi : glm::vec3(0.0f);
+    }
+
+    static float pdf(const Material& /*m*/, const ShadingPoint& p, const glm::vec3& /*wo*/,
+                     const glm::vec3& wi) {
+        return reaches(p, wi) ? cosine_hemisphere_pdf(wi.z) : 0.0f;
+    }
+};
+
+}  // namespace librt::bsdfs
