@@ -15,6 +15,7 @@
 #include <librt/render/renderer.h>
 
 #include <mpi.h>
+#include <sys/resource.h>
 
 #include <atomic>
 #include <chrono>
@@ -56,6 +57,14 @@ private:
     long long after_;
     mutable std::atomic<long long> calls_{0};
 };
+
+// CPU seconds (user + system) this process has used so far.
+double cpu_seconds() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+           1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
 
 bool ends_with(const std::string& s, const std::string& suffix) {
     return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -167,6 +176,7 @@ int main(int argc, char** argv) {
         settings.root_renders = !root_schedules_only;
 
         const auto start = std::chrono::steady_clock::now();
+        const double cpu_start = cpu_seconds();
         Film film;
         MpiRenderStats stats;
         if (single) {
@@ -184,6 +194,10 @@ int main(int argc, char** argv) {
         }
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        // The render's CPU time over all ranks: what MPI costs beside the rendering itself.
+        const double cpu_mine = cpu_seconds() - cpu_start;
+        double cpu_all = cpu_mine;
+        if (!single) MPI_Reduce(&cpu_mine, &cpu_all, 1, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
         if (stats.cancelled || g_cancel.load()) {
             if (rank == 0) std::fprintf(stderr, "interrupted: nothing written\n");
             code = 130;
@@ -193,6 +207,7 @@ int main(int argc, char** argv) {
                 std::printf("%dx%d, %d spp, %d rank%s x %d threads: %.3f s\n", film.width,
                             film.height, options.spp, size, size == 1 ? "" : "s",
                             options.threads, seconds);
+                std::printf("render cpu: %.3f s over all ranks\n", cpu_all);
                 if (!single) {
                     std::printf("tiles: %d of %dx%d px; per rank:", stats.tiles, tile, tile);
                     for (const int n : stats.tiles_per_rank) std::printf(" %d", n);
