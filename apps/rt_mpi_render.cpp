@@ -67,7 +67,8 @@ double cpu_seconds() {
 }
 
 bool ends_with(const std::string& s, const std::string& suffix) {
-    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+    return s.size() >= suffix.size() &&
+           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 // Writes the film: EXR with every layer (beauty linear), PFM/HDR linear, PNG tone-mapped.
@@ -111,7 +112,8 @@ int main(int argc, char** argv) {
     app.add_flag("--root-schedules-only", root_schedules_only,
                  "Rank 0 only schedules and gathers, rendering nothing");
     app.add_option("--fail-rank", fail_rank, "Test only: make this rank fail");
-    app.add_option("--fail-how", fail_how, "Test only: setup (bad mesh file), render (throws) or kill")
+    app.add_option("--fail-how", fail_how,
+                   "Test only: setup (bad mesh file), render (throws) or kill")
         ->transform(CLI::CheckedTransformer(
             std::map<std::string, FailHow>{
                 {"setup", FailHow::Setup}, {"render", FailHow::Render}, {"kill", FailHow::Kill}},
@@ -157,8 +159,8 @@ int main(int argc, char** argv) {
 
         PathTracer tracer(apps::path_tracer_settings(options));
         FailingIntegrator failing(tracer, fail_how, fail_after);
-        Integrator& integrator =
-            rank == fail_rank ? static_cast<Integrator&>(failing) : static_cast<Integrator&>(tracer);
+        Integrator& integrator = rank == fail_rank ? static_cast<Integrator&>(failing)
+                                                   : static_cast<Integrator&>(tracer);
         CameraSettings camera_settings = apps::camera_of(options);
         camera_settings.pixel_jitter = PixelJitter::Gaussian;
         camera_settings.lens = LensModel::Gaussian;
@@ -205,8 +207,8 @@ int main(int argc, char** argv) {
             write_film(options.output, film, exr_float, tone);
             if (!options.quiet) {
                 std::printf("%dx%d, %d spp, %d rank%s x %d threads: %.3f s\n", film.width,
-                            film.height, options.spp, size, size == 1 ? "" : "s",
-                            options.threads, seconds);
+                            film.height, options.spp, size, size == 1 ? "" : "s", options.threads,
+                            seconds);
                 std::printf("render cpu: %.3f s over all ranks\n", cpu_all);
                 if (!single) {
                     std::printf("tiles: %d of %dx%d px; per rank:", stats.tiles, tile, tile);

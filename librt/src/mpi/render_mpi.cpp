@@ -68,7 +68,10 @@ struct Rect {
 struct Tiling {
     int width, height, side, columns, count;
     Tiling(int w, int h, int s)
-        : width(w), height(h), side(s), columns((w + s - 1) / s),
+        : width(w),
+          height(h),
+          side(s),
+          columns((w + s - 1) / s),
           count(columns * ((h + s - 1) / s)) {}
     [[nodiscard]] Rect rect(int index) const {
         const int x0 = (index % columns) * side;
@@ -107,16 +110,15 @@ std::vector<std::byte> pack(const Film& film, const Tiling& tiling, int index) {
 // Copies a kRequest's records into `film`; returns the tile index (-1 for none).
 int unpack(Film& film, const Tiling& tiling, const std::vector<std::byte>& message, int source) {
     std::int32_t index = -1;
-    if (message.size() < sizeof index) throw Error("render_mpi: short message from rank " +
-                                                   std::to_string(source));
+    if (message.size() < sizeof index)
+        throw Error("render_mpi: short message from rank " + std::to_string(source));
     std::memcpy(&index, message.data(), sizeof index);
     if (index < 0) return -1;
     const Rect r = tiling.rect(index);
-    if (index >= tiling.count ||
-        message.size() != sizeof index + r.pixels() * record_bytes(film)) {
+    if (index >= tiling.count || message.size() != sizeof index + r.pixels() * record_bytes(film)) {
         throw Error("render_mpi: rank " + std::to_string(source) + " sent tile " +
-                    std::to_string(index) + " in a message of " +
-                    std::to_string(message.size()) + " bytes (mismatched settings?)");
+                    std::to_string(index) + " in a message of " + std::to_string(message.size()) +
+                    " bytes (mismatched settings?)");
     }
     const std::byte* at = message.data() + sizeof index;
     const auto row = static_cast<std::size_t>(r.x1 - r.x0);
@@ -207,8 +209,8 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
                 for (int t = next_tile.fetch_add(1); t < tiling.count && !local_cancel.load();
                      t = next_tile.fetch_add(1)) {
                     const Rect r = tiling.rect(t);
-                    const RenderStats st =
-                        render_block(scene, camera, integrator, film, {r.x0, r.y0, r.x1, r.y1, 0, spp}, rs);
+                    const RenderStats st = render_block(scene, camera, integrator, film,
+                                                        {r.x0, r.y0, r.x1, r.y1, 0, spp}, rs);
                     stats.samples += st.samples;
                     stats.nonfinite_samples += st.nonfinite_samples;
                     if (st.cancelled) break;
@@ -282,8 +284,8 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
         if (s.render.progress && now - last_report >= 0.1) {
             last_report = now;
             const int done = gathered + local_tiles.load();
-            s.render.progress({tiling.count > 0 ? static_cast<double>(done) / tiling.count : 1.0,
-                               now, 0, 0});
+            s.render.progress(
+                {tiling.count > 0 ? static_cast<double>(done) / tiling.count : 1.0, now, 0, 0});
         }
         std::this_thread::sleep_for(size > 1 ? k_poll_interval : k_poll_interval_alone);
     }
@@ -341,8 +343,8 @@ Film run_worker(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
             std::memcpy(&t32, answer.data(), sizeof t32);
             tile = t32;
             const Rect r = tiling.rect(tile);
-            const RenderStats st = render_block(scene, camera, integrator, film,
-                                                {r.x0, r.y0, r.x1, r.y1, 0, spp}, rs);
+            const RenderStats st =
+                render_block(scene, camera, integrator, film, {r.x0, r.y0, r.x1, r.y1, 0, spp}, rs);
             stats.samples += st.samples;
             stats.nonfinite_samples += st.nonfinite_samples;
             if (st.cancelled) {
@@ -399,7 +401,8 @@ void check_all_ranks(MPI_Comm comm, const std::string& local_error) {
     if (first == size) return;
     int length = rank == first ? static_cast<int>(local_error.size()) : 0;
     check(MPI_Bcast(&length, 1, MPI_INT, first, comm), "MPI_Bcast");
-    std::string text = rank == first ? local_error : std::string(static_cast<std::size_t>(length), ' ');
+    std::string text =
+        rank == first ? local_error : std::string(static_cast<std::size_t>(length), ' ');
     check(MPI_Bcast(text.data(), length, MPI_CHAR, first, comm), "MPI_Bcast");
     throw Error("rank " + std::to_string(first) + ": " + text);
 }

@@ -43,11 +43,11 @@ struct MpiRenderSettings {
 
 /// What render_mpi did, as seen from the calling rank.
 struct MpiRenderStats {
-    double seconds = 0.0;             ///< wall-clock time of render_mpi on this rank
-    int tiles = 0;                    ///< tiles of the image
-    int tiles_rendered = 0;           ///< tiles this rank rendered
-    std::vector<int> tiles_per_rank;  ///< rank 0: tiles each rank rendered (others: empty)
-    std::uint64_t samples = 0;        ///< camera samples this rank took
+    double seconds = 0.0;                 ///< wall-clock time of render_mpi on this rank
+    int tiles = 0;                        ///< tiles of the image
+    int tiles_rendered = 0;               ///< tiles this rank rendered
+    std::vector<int> tiles_per_rank;      ///< rank 0: tiles each rank rendered (others: empty)
+    std::uint64_t samples = 0;            ///< camera samples this rank took
     std::uint64_t nonfinite_samples = 0;  ///< of which dropped as non-finite
     /// Rank 0: bytes of tile records received from the other ranks (others: bytes sent).
     std::uint64_t gather_bytes = 0;
@@ -74,7 +74,8 @@ LIBRT_API void validate(const MpiRenderSettings& settings);
 /// waiting. A rank that dies without a word (killed) is beyond this: MPI's default error
 /// handler (MPI_ERRORS_ARE_FATAL) and mpirun end the job. Cancellation (settings.render.cancel
 /// set on any rank) stops every rank within about a tile; stats->cancelled is then set and
-/// rank 0 returns the film with the tiles finished so far (the rest hold no samples).
+/// rank 0 returns the film as far as it got (tiles finished on rank 0 or received from the
+/// others; every other pixel holds fewer samples than asked, often none).
 [[nodiscard]] LIBRT_API Film render_mpi(MPI_Comm comm, const Scene& scene, const Camera& camera,
                                         Integrator& integrator, const MpiRenderSettings& settings,
                                         MpiRenderStats* stats = nullptr);
