@@ -55,5 +55,9 @@ foreach(_list IN LISTS _librt_example_lists)
     FIXTURES_REQUIRED librt_package_install
     LABELS package
     TIMEOUT 900)
+  if(_name MATCHES "^mpi_")  # Open MPI leaks at exit: see apps/CMakeLists.txt, mpi.*
+    set_tests_properties(package.example.${_name} PROPERTIES
+      ENVIRONMENT_MODIFICATION "ASAN_OPTIONS=string_append::detect_leaks=0")
+  endif()
 endforeach()
 set_tests_properties(package.install PROPERTIES LABELS package)
