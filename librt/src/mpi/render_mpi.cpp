@@ -9,7 +9,8 @@
 //   0 -> worker  kStop     the job failed or was cancelled (payload: why): return or throw
 // Every kRequest gets exactly one answer and every worker ends with exactly one of kFail,
 // kCancel, or a kRequest answered by kDone/kStop, so rank 0 knows when all have finished
-// and no rank waits for a message that never comes.
+// and no rank waits for a message that never comes. A little over 400 lines: both sides of
+// the protocol share its private message helpers, so they stay in one file.
 
 #include <librt/core/error.h>
 #include <librt/mpi/render_mpi.h>
