@@ -8,6 +8,7 @@
 #        accel     <- core, geometry, sampling, accel
 #        render    <- core, geometry, sampling, accel, render
 #        io        <- all of the above and io (a loader may build render types)
+#        mpi       <- core, geometry, sampling, accel, render, mpi (the optional librt::mpi)
 #      plus <librt/export.h> and <librt/version.h> everywhere.
 #   2. render/ does no file I/O: no <fstream>, <filesystem>, stb, fopen, std::ifstream /
 #      ofstream / fstream, std::filesystem. Files are read and written in io/.
@@ -20,13 +21,14 @@ if(NOT ROOT OR NOT EXISTS "${ROOT}/librt")
   message(FATAL_ERROR "ROOT='${ROOT}' is not the repository root")
 endif()
 
-set(_areas core geometry sampling accel render io)
+set(_areas core geometry sampling accel render io mpi)
 set(_uses_core core)
 set(_uses_geometry core geometry)
 set(_uses_sampling core geometry sampling)
 set(_uses_accel core geometry sampling accel)
 set(_uses_render core geometry sampling accel render)
 set(_uses_io core geometry sampling accel render io)
+set(_uses_mpi core geometry sampling accel render mpi)
 set(_file_io_patterns
   "#[ \t]*include[ \t]*<(fstream|filesystem|stb/[^>]*)>"
   "(^|[^A-Za-z0-9_])fopen[ \t]*\\("

@@ -16,10 +16,22 @@ install(TARGETS librt EXPORT librtTargets
           NAMELINK_COMPONENT librt_Development
   ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT librt_Development)
 
+# librt::mpi, when MPI was found (librt/CMakeLists.txt).
+if(LIBRT_WITH_MPI)
+  install(TARGETS librt_mpi EXPORT librtTargets
+    RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}" COMPONENT librt_Runtime
+    LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT librt_Runtime
+            NAMELINK_COMPONENT librt_Development
+    ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT librt_Development)
+  set(_librt_mpi_headers "")
+else()
+  set(_librt_mpi_headers PATTERN "mpi" EXCLUDE)  # no header without its library
+endif()
+
 # Public headers only: librt/src is private and never installed.
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/librt/include/librt"
   DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}" COMPONENT librt_Development
-  FILES_MATCHING PATTERN "*.h")
+  FILES_MATCHING PATTERN "*.h" ${_librt_mpi_headers})
 install(FILES ${LIBRT_GENERATED_HEADERS}
   DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/librt" COMPONENT librt_Development)
 

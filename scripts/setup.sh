@@ -8,6 +8,7 @@ packages=(
   libglm-dev libtinyobjloader-dev libstb-dev libtinygltf-dev nlohmann-json3-dev libtinyexr-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libembree-dev
+  libopenmpi-dev openmpi-bin
   clang libclang-rt-14-dev clang-format
   doxygen
 )

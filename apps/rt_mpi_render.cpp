@@ -1,0 +1,229 @@
+// The report's synthesis image rendered over the ranks of an MPI job (librt::mpi):
+//   mpirun -np 4 --hostfile hosts rt_mpi_render --size 1024 --spp 256 -o synthesis.exr
+// Every rank builds the scene itself; rank 0 hands out tiles, gathers them and writes the
+// image, byte-identical to a one-process render with the same seed and settings
+// (--single-process renders that reference without MPI scheduling). Runs without mpirun
+// too, as one rank. See docs/distributed.md.
+#include "common/cli.h"
+
+#include <librt/core/error.h>
+#include <librt/core/tone_map.h>
+#include <librt/io/exr.h>
+#include <librt/io/image_io.h>
+#include <librt/mpi/render_mpi.h>
+#include <librt/render/integrators.h>
+#include <librt/render/renderer.h>
+
+#include <mpi.h>
+#include <sys/resource.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <string>
+
+using namespace librt;
+
+namespace {
+
+std::atomic<bool> g_cancel{false};
+extern "C" void on_signal(int) { g_cancel = true; }
+
+// --fail-rank: how the chosen rank fails, for the failure tests (docs/distributed.md).
+enum class FailHow { Setup, Render, Kill };
+
+// Wraps the path tracer so that one rank fails part-way through its share of the frame:
+// after `after` samples it throws (FailHow::Render) or kills its own process (Kill).
+class FailingIntegrator final : public Integrator {
+public:
+    FailingIntegrator(Integrator& inner, FailHow how, long long after)
+        : inner_(inner), how_(how), after_(after) {}
+    void preprocess(const Scene& scene) override { inner_.preprocess(scene); }
+    [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray,
+                               Sampler& sampler) const override {
+        if (calls_.fetch_add(1) == after_) {
+            if (how_ == FailHow::Kill) std::raise(SIGKILL);
+            throw Error("--fail-rank: simulated failure after " + std::to_string(after_) +
+                        " samples");
+        }
+        return inner_.li(scene, ray, sampler);
+    }
+
+private:
+    Integrator& inner_;
+    FailHow how_;
+    long long after_;
+    mutable std::atomic<long long> calls_{0};
+};
+
+// CPU seconds (user + system) this process has used so far.
+double cpu_seconds() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+           1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+    return s.size() >= suffix.size() &&
+           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// Writes the film: EXR with every layer (beauty linear), PFM/HDR linear, PNG tone-mapped.
+void write_film(const std::string& path, const Film& film, bool exr_float, const ToneMap& tone) {
+    if (ends_with(path, ".exr")) {
+        write_exr(path, resolve_layers(film), exr_float ? ExrPixelType::Float : ExrPixelType::Half);
+    } else {
+        write_image(path, resolve(film), tone);
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int provided = 0;
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+    int rank = 0;
+    int size = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+
+    CLI::App app{"The report's synthesis image over the ranks of an MPI job", "rt_mpi_render"};
+    apps::AppOptions options;
+    options.spp = 80;
+    options.output = "synthesis.exr";
+    apps::add_common_options(app, options);
+    app.get_option("--output")->description("Output image: .exr (every layer), .png, .pfm or .hdr");
+    app.get_option("--threads")->description("Worker threads per rank, 0 = all cores");
+    int tile = 32;
+    bool single = false;
+    bool exr_float = false;
+    bool root_schedules_only = false;
+    int fail_rank = -1;
+    FailHow fail_how = FailHow::Render;
+    long long fail_after = 2000;
+    app.add_option("--tile", tile, "Side of the tiles rank 0 hands out")->capture_default_str();
+    app.add_flag("--single-process", single,
+                 "Render in this process with librt::render_block, no MPI scheduling (the "
+                 "reference the MPI render equals byte for byte)");
+    app.add_flag("--exr-float", exr_float, "EXR channels as 32-bit float (default: half)");
+    app.add_flag("--root-schedules-only", root_schedules_only,
+                 "Rank 0 only schedules and gathers, rendering nothing");
+    app.add_option("--fail-rank", fail_rank, "Test only: make this rank fail");
+    app.add_option("--fail-how", fail_how,
+                   "Test only: setup (bad mesh file), render (throws) or kill")
+        ->transform(CLI::CheckedTransformer(
+            std::map<std::string, FailHow>{
+                {"setup", FailHow::Setup}, {"render", FailHow::Render}, {"kill", FailHow::Kill}},
+            CLI::ignore_case));
+    app.add_option("--fail-after", fail_after, "Test only: samples the failing rank takes first")
+        ->capture_default_str();
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        // Every rank parsed the same line; one of them speaks.
+        const int code = rank == 0 ? app.exit(e) : e.get_exit_code();
+        MPI_Finalize();
+        return code;
+    }
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    const std::string who = "rt_mpi_render: rank " + std::to_string(rank) + ": ";
+
+    int code = 0;
+    try {
+        const ToneMap tone{options.exposure * kReportExposure, 0.45f};
+        validate(tone);
+        // Each rank builds the scene; a failure on any rank stops all before rendering.
+        Scene scene;
+        std::string setup_error;
+        try {
+            apps::add_room(scene);
+            apps::add_report_spheres(scene);
+            const bool fail_here = rank == fail_rank && fail_how == FailHow::Setup;
+            apps::add_report_mesh(
+                scene,
+                apps::load_report_mesh(fail_here ? "/nonexistent/rt_mpi_render_fail.obj" : "",
+                                       apps::MeshPlacement{}),
+                Material::diffuse({0.9f, 0.6f, 0.3f}));
+            apps::add_report_light(scene, apps::LightKind::Sphere, options.power);
+            scene.commit();
+        } catch (const std::exception& e) {
+            setup_error = e.what();
+        }
+        if (!single) check_all_ranks(MPI_COMM_WORLD, setup_error);
+        if (!setup_error.empty()) throw Error(setup_error);
+
+        PathTracer tracer(apps::path_tracer_settings(options));
+        FailingIntegrator failing(tracer, fail_how, fail_after);
+        Integrator& integrator = rank == fail_rank ? static_cast<Integrator&>(failing)
+                                                   : static_cast<Integrator&>(tracer);
+        CameraSettings camera_settings = apps::camera_of(options);
+        camera_settings.pixel_jitter = PixelJitter::Gaussian;
+        camera_settings.lens = LensModel::Gaussian;
+        camera_settings.lens_sigma = 1.0f;  // rt_synthesis's defaults
+        camera_settings.focal_distance = 55.0f;
+        const Camera camera(camera_settings);
+
+        MpiRenderSettings settings;
+        settings.render.samples_per_pixel = options.spp;
+        settings.render.threads = options.threads;
+        settings.render.seed = options.seed;
+        settings.render.cancel = &g_cancel;
+        settings.tile_size = tile;
+        settings.aovs = ends_with(options.output, ".exr");
+        settings.root_renders = !root_schedules_only;
+
+        const auto start = std::chrono::steady_clock::now();
+        const double cpu_start = cpu_seconds();
+        Film film;
+        MpiRenderStats stats;
+        if (single) {
+            if (rank != 0) throw Error("--single-process runs without mpirun (one rank)");
+            validate(settings);
+            film = Film(camera.width(), camera.height(), settings.aovs);
+            integrator.preprocess(scene);
+            const RenderStats rs = render_block(
+                scene, camera, integrator, film,
+                {0, 0, film.width, film.height, 0, static_cast<std::uint32_t>(options.spp)},
+                settings.render);
+            stats.cancelled = rs.cancelled;
+        } else {
+            film = render_mpi(MPI_COMM_WORLD, scene, camera, integrator, settings, &stats);
+        }
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        // The render's CPU time over all ranks: what MPI costs beside the rendering itself.
+        const double cpu_mine = cpu_seconds() - cpu_start;
+        double cpu_all = cpu_mine;
+        if (!single) MPI_Reduce(&cpu_mine, &cpu_all, 1, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
+        if (stats.cancelled || g_cancel.load()) {
+            if (rank == 0) std::fprintf(stderr, "interrupted: nothing written\n");
+            code = 130;
+        } else if (rank == 0) {
+            write_film(options.output, film, exr_float, tone);
+            if (!options.quiet) {
+                std::printf("%dx%d, %d spp, %d rank%s x %d threads: %.3f s\n", film.width,
+                            film.height, options.spp, size, size == 1 ? "" : "s", options.threads,
+                            seconds);
+                std::printf("render cpu: %.3f s over all ranks\n", cpu_all);
+                if (!single) {
+                    std::printf("tiles: %d of %dx%d px; per rank:", stats.tiles, tile, tile);
+                    for (const int n : stats.tiles_per_rank) std::printf(" %d", n);
+                    std::printf("\ngather: %llu bytes received, %.4f s receiving and copying\n",
+                                static_cast<unsigned long long>(stats.gather_bytes),
+                                stats.gather_seconds);
+                }
+                std::printf("wrote %s\n", options.output.c_str());
+            }
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s%s\n", who.c_str(), e.what());
+        code = 1;
+    }
+    MPI_Finalize();
+    return code;
+}

@@ -1,0 +1,89 @@
+#pragma once
+
+#include <librt/export.h>
+#include <librt/render/camera.h>
+#include <librt/render/film.h>
+#include <librt/render/integrator.h>
+#include <librt/render/renderer.h>
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+// One image over the ranks of an MPI communicator (the optional librt::mpi library, built
+// when CMake finds MPI). Rank 0 hands out square tiles on request (dynamic scheduling: a
+// slow machine takes fewer tiles instead of holding the frame) and renders tiles itself on
+// a thread of its own while its main thread answers requests; finished tiles stream back
+// to rank 0 as they are done. Every pixel is computed from (pixel, sample, seed) alone and
+// rendered onto an empty film region in sample order, so the film on rank 0 equals the one
+// of a one-process render() with the same settings bit for bit (film.h says why).
+//
+// Threads and MPI: only the thread that calls render_mpi makes MPI calls; initialise MPI
+// with MPI_Init_thread and at least MPI_THREAD_FUNNELED. Tile records travel as raw bytes:
+// every rank must run on the same architecture (as a render farm does).
+
+namespace librt {
+
+class Scene;
+
+/// How render_mpi spreads the image over the ranks.
+struct MpiRenderSettings {
+    /// samples_per_pixel, seed, threads (per rank), tile_size (threads' tiles within an MPI
+    /// tile), progress (called on rank 0 only, the fraction being tiles gathered), cancel
+    /// (on any rank: the whole job stops).
+    RenderSettings render;
+    int tile_size = 32;  ///< side of the square tiles rank 0 hands out, in [1, 1024]
+    bool aovs = false;   ///< the film keeps AOV sums (albedo, normal, depth)
+    /// Rank 0 renders tiles too (on one more thread, while its main thread schedules).
+    /// Off: rank 0 only schedules and gathers (for a head node without spare cores).
+    bool root_renders = true;
+};
+
+/// What render_mpi did, as seen from the calling rank.
+struct MpiRenderStats {
+    double seconds = 0.0;                 ///< wall-clock time of render_mpi on this rank
+    int tiles = 0;                        ///< tiles of the image
+    int tiles_rendered = 0;               ///< tiles this rank rendered
+    std::vector<int> tiles_per_rank;      ///< rank 0: tiles each rank rendered (others: empty)
+    std::uint64_t samples = 0;            ///< camera samples this rank took
+    std::uint64_t nonfinite_samples = 0;  ///< of which dropped as non-finite
+    /// Rank 0: bytes of tile records received from the other ranks (others: bytes sent).
+    std::uint64_t gather_bytes = 0;
+    /// Rank 0: seconds its main thread spent receiving tiles and copying them into the
+    /// film (the gather's cost; it overlaps the rendering). Others: seconds spent sending
+    /// tiles and waiting for the next one.
+    double gather_seconds = 0.0;
+    bool cancelled = false;  ///< a rank's `cancel` flag stopped the render
+};
+
+/// Throws librt::Error naming the first bad parameter of `settings` and its value.
+LIBRT_API void validate(const MpiRenderSettings& settings);
+
+/// Renders `scene` through `camera` with `integrator` over the ranks of `comm`, a
+/// collective call: every rank of `comm` must call it with the same scene, camera and
+/// settings (each rank builds or loads its own copy). Calls integrator.preprocess(scene)
+/// on each rank. Returns the whole film on rank 0 (every pixel holding
+/// settings.render.samples_per_pixel samples; resolve() or resolve_layers() it), an empty
+/// 0x0 film on the other ranks.
+///
+/// Failure: an exception on any rank (the integrator throws, bad settings, an allocation
+/// fails) is sent to rank 0, which stops the other ranks; then render_mpi throws
+/// librt::Error on every rank, on rank 0 "rank R failed: <its message>". No rank is left
+/// waiting. A rank that dies without a word (killed) is beyond this: MPI's default error
+/// handler (MPI_ERRORS_ARE_FATAL) and mpirun end the job. Cancellation (settings.render.cancel
+/// set on any rank) stops every rank within about a tile; stats->cancelled is then set and
+/// rank 0 returns the film as far as it got (tiles finished on rank 0 or received from the
+/// others; every other pixel holds fewer samples than asked, often none).
+[[nodiscard]] LIBRT_API Film render_mpi(MPI_Comm comm, const Scene& scene, const Camera& camera,
+                                        Integrator& integrator, const MpiRenderSettings& settings,
+                                        MpiRenderStats* stats = nullptr);
+
+/// A collective check after each rank's set-up (loading the scene, opening files): every
+/// rank passes its error message, empty when it succeeded. When any rank failed, throws
+/// librt::Error on every rank naming the lowest failing rank and its message ("rank R:
+/// ..."), so that no rank goes on into render_mpi waiting for one that never comes.
+LIBRT_API void check_all_ranks(MPI_Comm comm, const std::string& local_error);
+
+}  // namespace librt

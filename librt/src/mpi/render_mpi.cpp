@@ -1,0 +1,411 @@
+// render_mpi: rank 0 schedules tiles and gathers them; every rank renders (rank 0 on a
+// thread of its own). The protocol, all point-to-point on `comm`:
+//   worker -> 0  kRequest  int32 tile index (-1: none yet), then that tile's FilmPixel
+//                          records row by row, then its AovPixel records; "give me another"
+//   worker -> 0  kFail     the error message of an exception on the worker (its last word)
+//   worker -> 0  kCancel   the worker's cancel flag stopped it (its last word)
+//   0 -> worker  kAssign   int32 tile index to render next
+//   0 -> worker  kDone     no tiles left: return
+//   0 -> worker  kStop     the job failed or was cancelled (payload: why): return or throw
+// Every kRequest gets exactly one answer and every worker ends with exactly one of kFail,
+// kCancel, or a kRequest answered by kDone/kStop, so rank 0 knows when all have finished
+// and no rank waits for a message that never comes. A little over 400 lines: both sides of
+// the protocol share its private message helpers, so they stay in one file.
+
+#include <librt/core/error.h>
+#include <librt/mpi/render_mpi.h>
+#include <librt/render/scene.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstddef>
+#include <cstring>
+#include <exception>
+#include <string>
+#include <thread>
+#include <type_traits>
+#include <vector>
+
+namespace librt {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+enum Tag : int { kRequest = 1, kFail = 2, kCancel = 3, kAssign = 4, kDone = 5, kStop = 6 };
+
+// How long rank 0's main thread sleeps when no message is waiting. Open MPI's blocking
+// receive spins a core, which on a machine whose cores all render would steal one from
+// the renderer. A wake-up with its MPI_Iprobe costs ~5 us of CPU (measured here), so a
+// 500 us nap costs ~1% of a core and delays an answer by 250 us on average, against tiles
+// that take tens of milliseconds to seconds. Alone (one rank) it only watches its thread.
+constexpr auto k_poll_interval = std::chrono::microseconds(500);
+constexpr auto k_poll_interval_alone = std::chrono::milliseconds(5);
+
+static_assert(std::is_trivially_copyable_v<FilmPixel> && std::is_trivially_copyable_v<AovPixel>,
+              "tile records travel as raw bytes");
+
+void check(int rc, const char* call) {
+    if (rc != MPI_SUCCESS) {
+        char text[MPI_MAX_ERROR_STRING];
+        int length = 0;
+        MPI_Error_string(rc, text, &length);
+        throw Error(std::string("render_mpi: ") + call + " failed: " + std::string(text, length));
+    }
+}
+
+struct Rect {
+    int x0, y0, x1, y1;  // pixels [x0, x1) x [y0, y1)
+    [[nodiscard]] std::size_t pixels() const {
+        return static_cast<std::size_t>(x1 - x0) * static_cast<std::size_t>(y1 - y0);
+    }
+};
+
+struct Tiling {
+    int width, height, side, columns, count;
+    Tiling(int w, int h, int s)
+        : width(w),
+          height(h),
+          side(s),
+          columns((w + s - 1) / s),
+          count(columns * ((h + s - 1) / s)) {}
+    [[nodiscard]] Rect rect(int index) const {
+        const int x0 = (index % columns) * side;
+        const int y0 = (index / columns) * side;
+        return {x0, y0, std::min(x0 + side, width), std::min(y0 + side, height)};
+    }
+};
+
+std::size_t record_bytes(const Film& film) {
+    return sizeof(FilmPixel) + (film.has_aovs() ? sizeof(AovPixel) : 0);
+}
+
+// A kRequest message: the tile index, then the tile's records.
+std::vector<std::byte> pack(const Film& film, const Tiling& tiling, int index) {
+    std::vector<std::byte> out(sizeof(std::int32_t));
+    const auto index32 = static_cast<std::int32_t>(index);
+    std::memcpy(out.data(), &index32, sizeof index32);
+    if (index < 0) return out;
+    const Rect r = tiling.rect(index);
+    out.resize(out.size() + r.pixels() * record_bytes(film));
+    std::byte* at = out.data() + sizeof(std::int32_t);
+    const auto row = static_cast<std::size_t>(r.x1 - r.x0);
+    for (int y = r.y0; y < r.y1; ++y) {
+        std::memcpy(at, &film.pixels[film.index(r.x0, y)], row * sizeof(FilmPixel));
+        at += row * sizeof(FilmPixel);
+    }
+    if (film.has_aovs()) {
+        for (int y = r.y0; y < r.y1; ++y) {
+            std::memcpy(at, &film.aovs[film.index(r.x0, y)], row * sizeof(AovPixel));
+            at += row * sizeof(AovPixel);
+        }
+    }
+    return out;
+}
+
+// Copies a kRequest's records into `film`; returns the tile index (-1 for none).
+int unpack(Film& film, const Tiling& tiling, const std::vector<std::byte>& message, int source) {
+    std::int32_t index = -1;
+    if (message.size() < sizeof index)
+        throw Error("render_mpi: short message from rank " + std::to_string(source));
+    std::memcpy(&index, message.data(), sizeof index);
+    if (index < 0) return -1;
+    const Rect r = tiling.rect(index);
+    if (index >= tiling.count || message.size() != sizeof index + r.pixels() * record_bytes(film)) {
+        throw Error("render_mpi: rank " + std::to_string(source) + " sent tile " +
+                    std::to_string(index) + " in a message of " + std::to_string(message.size()) +
+                    " bytes (mismatched settings?)");
+    }
+    const std::byte* at = message.data() + sizeof index;
+    const auto row = static_cast<std::size_t>(r.x1 - r.x0);
+    for (int y = r.y0; y < r.y1; ++y) {
+        std::memcpy(&film.pixels[film.index(r.x0, y)], at, row * sizeof(FilmPixel));
+        at += row * sizeof(FilmPixel);
+    }
+    if (film.has_aovs()) {
+        for (int y = r.y0; y < r.y1; ++y) {
+            std::memcpy(&film.aovs[film.index(r.x0, y)], at, row * sizeof(AovPixel));
+            at += row * sizeof(AovPixel);
+        }
+    }
+    return index;
+}
+
+std::string message_of(const std::exception_ptr& error) {
+    try {
+        std::rethrow_exception(error);
+    } catch (const std::exception& e) {
+        return e.what();
+    } catch (...) {
+        return "unknown exception";
+    }
+}
+
+void send_bytes(const void* data, std::size_t size, int dest, int tag, MPI_Comm comm) {
+    check(MPI_Send(data, static_cast<int>(size), MPI_BYTE, dest, tag, comm), "MPI_Send");
+}
+
+void send_text(const std::string& text, int dest, int tag, MPI_Comm comm) {
+    send_bytes(text.data(), text.size(), dest, tag, comm);
+}
+
+// Receives the message `status` announced (from MPI_Probe / MPI_Iprobe).
+std::vector<std::byte> receive(const MPI_Status& status, MPI_Comm comm) {
+    int count = 0;
+    check(MPI_Get_count(&status, MPI_BYTE, &count), "MPI_Get_count");
+    std::vector<std::byte> data(static_cast<std::size_t>(count));
+    check(MPI_Recv(data.data(), count, MPI_BYTE, status.MPI_SOURCE, status.MPI_TAG, comm,
+                   MPI_STATUS_IGNORE),
+          "MPI_Recv");
+    return data;
+}
+
+std::string text_of(const std::vector<std::byte>& data) {
+    return {reinterpret_cast<const char*>(data.data()), data.size()};
+}
+
+RenderSettings block_settings(const MpiRenderSettings& s, const std::atomic<bool>* cancel) {
+    RenderSettings r = s.render;
+    r.progress = {};  // render_mpi reports progress itself, on rank 0's calling thread
+    r.cancel = cancel;
+    return r;
+}
+
+// Rank 0: schedules, gathers, and (unless told not to, or alone) renders on a thread.
+Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
+              Integrator& integrator, const MpiRenderSettings& s, MpiRenderStats& stats) {
+    const Clock::time_point start = Clock::now();
+    std::string failure;  // "rank R failed: ..." once something failed
+    bool stopping = false;
+    Film film;
+    Tiling tiling(camera.width(), camera.height(), std::max(1, s.tile_size));
+    try {
+        validate(s);
+        film = Film(camera.width(), camera.height(), s.aovs);
+        integrator.preprocess(scene);
+    } catch (...) {
+        failure = "rank 0 failed: " + message_of(std::current_exception());
+        stopping = true;
+    }
+    stats.tiles = tiling.count;
+    stats.tiles_per_rank.assign(static_cast<std::size_t>(size), 0);
+
+    std::atomic<int> next_tile{0};
+    std::atomic<bool> local_cancel{false};
+    std::atomic<bool> local_done{true};
+    std::atomic<int> local_tiles{0};
+    std::exception_ptr local_error;
+    std::thread local;
+    const auto spp = static_cast<std::uint32_t>(s.render.samples_per_pixel);
+    if (!stopping && (s.root_renders || size == 1)) {
+        local_done = false;
+        local = std::thread([&] {
+            try {
+                const RenderSettings rs = block_settings(s, &local_cancel);
+                for (int t = next_tile.fetch_add(1); t < tiling.count && !local_cancel.load();
+                     t = next_tile.fetch_add(1)) {
+                    const Rect r = tiling.rect(t);
+                    const RenderStats st = render_block(scene, camera, integrator, film,
+                                                        {r.x0, r.y0, r.x1, r.y1, 0, spp}, rs);
+                    stats.samples += st.samples;
+                    stats.nonfinite_samples += st.nonfinite_samples;
+                    if (st.cancelled) break;
+                    local_tiles.fetch_add(1);
+                }
+            } catch (...) {
+                local_error = std::current_exception();
+            }
+            local_done = true;
+        });
+    }
+    const auto stop = [&](std::string why) {
+        if (!stopping) failure = std::move(why);
+        stopping = true;
+        local_cancel = true;
+    };
+
+    int active = size - 1;  // workers that have not had their last word
+    int gathered = 0;
+    double last_report = -1.0;
+    std::exception_ptr gather_error;
+    while (active > 0 || !local_done.load()) {
+        int flag = 0;
+        MPI_Status status;
+        check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, comm, &flag, &status), "MPI_Iprobe");
+        if (flag) {
+            const int source = status.MPI_SOURCE;
+            const Clock::time_point t0 = Clock::now();
+            const std::vector<std::byte> message = receive(status, comm);
+            if (status.MPI_TAG == kRequest) {
+                try {
+                    if (!stopping && unpack(film, tiling, message, source) >= 0) ++gathered;
+                } catch (...) {
+                    stop(message_of(std::current_exception()));
+                }
+                stats.gather_bytes += message.size();
+                stats.gather_seconds += seconds_since(t0);
+                const int t = stopping ? tiling.count : next_tile.fetch_add(1);
+                if (stopping) {
+                    send_text(failure, source, kStop, comm);
+                    --active;
+                } else if (t < tiling.count) {
+                    const auto t32 = static_cast<std::int32_t>(t);
+                    send_bytes(&t32, sizeof t32, source, kAssign, comm);
+                    ++stats.tiles_per_rank[static_cast<std::size_t>(source)];
+                } else {
+                    send_bytes(nullptr, 0, source, kDone, comm);
+                    --active;
+                }
+            } else if (status.MPI_TAG == kFail) {
+                stop("rank " + std::to_string(source) + " failed: " + text_of(message));
+                --active;
+            } else if (status.MPI_TAG == kCancel) {
+                stats.cancelled = true;
+                stop("cancelled on rank " + std::to_string(source));
+                --active;
+            } else {
+                stop("render_mpi: unexpected message tag " + std::to_string(status.MPI_TAG) +
+                     " from rank " + std::to_string(source));
+            }
+            continue;  // drain every waiting message before napping
+        }
+        if (s.render.cancel != nullptr && s.render.cancel->load() && !stopping) {
+            stats.cancelled = true;
+            stop("cancelled on rank 0");
+        }
+        if (local_done.load() && local_error && !stopping) {
+            stop("rank 0 failed: " + message_of(local_error));
+        }
+        const double now = seconds_since(start);
+        if (s.render.progress && now - last_report >= 0.1) {
+            last_report = now;
+            const int done = gathered + local_tiles.load();
+            s.render.progress(
+                {tiling.count > 0 ? static_cast<double>(done) / tiling.count : 1.0, now, 0, 0});
+        }
+        std::this_thread::sleep_for(size > 1 ? k_poll_interval : k_poll_interval_alone);
+    }
+    if (local.joinable()) local.join();
+    if (local_error && failure.empty()) failure = "rank 0 failed: " + message_of(local_error);
+    stats.tiles_rendered = local_tiles.load();
+    stats.tiles_per_rank[0] = stats.tiles_rendered;
+    stats.seconds = seconds_since(start);
+    if (stats.cancelled) return film;
+    if (!failure.empty()) throw Error(failure);
+    if (s.render.progress) s.render.progress({1.0, stats.seconds, 1, spp});
+    return film;
+}
+
+// Any other rank: asks rank 0 for tiles until told there are none left.
+Film run_worker(MPI_Comm comm, const Scene& scene, const Camera& camera, Integrator& integrator,
+                const MpiRenderSettings& s, MpiRenderStats& stats) {
+    const Clock::time_point start = Clock::now();
+    const Tiling tiling(camera.width(), camera.height(), std::max(1, s.tile_size));
+    stats.tiles = tiling.count;
+    Film film;
+    int tile = -1;  // the finished tile the next request carries
+    try {
+        validate(s);
+        // render_block works on a film of the camera's size; only the tiles this rank
+        // renders are ever filled or sent.
+        film = Film(camera.width(), camera.height(), s.aovs);
+        integrator.preprocess(scene);
+        const RenderSettings rs = block_settings(s, s.render.cancel);
+        const auto spp = static_cast<std::uint32_t>(s.render.samples_per_pixel);
+        while (true) {
+            const Clock::time_point t0 = Clock::now();
+            const std::vector<std::byte> request = pack(film, tiling, tile);
+            send_bytes(request.data(), request.size(), 0, kRequest, comm);
+            stats.gather_bytes += request.size();
+            MPI_Status status;
+            check(MPI_Probe(0, MPI_ANY_TAG, comm, &status), "MPI_Probe");
+            const std::vector<std::byte> answer = receive(status, comm);
+            stats.gather_seconds += seconds_since(t0);
+            if (status.MPI_TAG == kDone) break;
+            if (status.MPI_TAG == kStop) {
+                const std::string why = text_of(answer);
+                if (why.rfind("cancelled", 0) == 0) {
+                    stats.cancelled = true;
+                    break;
+                }
+                stats.seconds = seconds_since(start);
+                throw Error("stopped by rank 0: " + why);
+            }
+            std::int32_t t32 = -1;
+            if (status.MPI_TAG != kAssign || answer.size() != sizeof t32) {
+                throw Error("render_mpi: unexpected message (tag " +
+                            std::to_string(status.MPI_TAG) + ") from rank 0");
+            }
+            std::memcpy(&t32, answer.data(), sizeof t32);
+            tile = t32;
+            const Rect r = tiling.rect(tile);
+            const RenderStats st =
+                render_block(scene, camera, integrator, film, {r.x0, r.y0, r.x1, r.y1, 0, spp}, rs);
+            stats.samples += st.samples;
+            stats.nonfinite_samples += st.nonfinite_samples;
+            if (st.cancelled) {
+                stats.cancelled = true;
+                send_bytes(nullptr, 0, 0, kCancel, comm);
+                break;
+            }
+            ++stats.tiles_rendered;
+        }
+    } catch (const Error& e) {
+        // Our own "stopped by rank 0" needs no report: rank 0 knows.
+        if (std::string(e.what()).rfind("stopped by rank 0: ", 0) != 0)
+            send_text(e.what(), 0, kFail, comm);
+        throw;
+    } catch (const std::exception& e) {
+        send_text(e.what(), 0, kFail, comm);
+        throw;
+    }
+    stats.seconds = seconds_since(start);
+    return {};
+}
+
+}  // namespace
+
+void validate(const MpiRenderSettings& s) {
+    if (s.tile_size < 1 || s.tile_size > 1024) {
+        throw Error("tile_size = " + std::to_string(s.tile_size) + ": must be in [1, 1024]");
+    }
+    validate(s.render);
+}
+
+Film render_mpi(MPI_Comm comm, const Scene& scene, const Camera& camera, Integrator& integrator,
+                const MpiRenderSettings& settings, MpiRenderStats* stats) {
+    int rank = 0;
+    int size = 1;
+    check(MPI_Comm_rank(comm, &rank), "MPI_Comm_rank");
+    check(MPI_Comm_size(comm, &size), "MPI_Comm_size");
+    MpiRenderStats local;
+    MpiRenderStats& out = stats != nullptr ? *stats : local;
+    out = MpiRenderStats{};
+    return rank == 0 ? run_root(comm, size, scene, camera, integrator, settings, out)
+                     : run_worker(comm, scene, camera, integrator, settings, out);
+}
+
+void check_all_ranks(MPI_Comm comm, const std::string& local_error) {
+    int rank = 0;
+    int size = 1;
+    check(MPI_Comm_rank(comm, &rank), "MPI_Comm_rank");
+    check(MPI_Comm_size(comm, &size), "MPI_Comm_size");
+    // The lowest failing rank (size when none failed), then its message broadcast from it.
+    const int mine = local_error.empty() ? size : rank;
+    int first = size;
+    check(MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm), "MPI_Allreduce");
+    if (first == size) return;
+    int length = rank == first ? static_cast<int>(local_error.size()) : 0;
+    check(MPI_Bcast(&length, 1, MPI_INT, first, comm), "MPI_Bcast");
+    std::string text =
+        rank == first ? local_error : std::string(static_cast<std::size_t>(length), ' ');
+    check(MPI_Bcast(text.data(), length, MPI_CHAR, first, comm), "MPI_Bcast");
+    throw Error("rank " + std::to_string(first) + ": " + text);
+}
+
+}  // namespace librt
