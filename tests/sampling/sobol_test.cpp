@@ -90,6 +90,20 @@ TEST(Sobol, SecondDimensionIsThePascalMatrixModTwo) {
     }
 }
 
+TEST(Sobol, ByteTablesAgreeWithTheDirectionNumbers) {
+    Pcg32 rng(5, 6);
+    for (int i = 0; i < 20000; ++i) {
+        const std::uint32_t index = i < 1000 ? static_cast<std::uint32_t>(i) : rng.next_u32();
+        for (int d = 0; d < k_sobol_dimensions; ++d) {
+            std::uint32_t x = 0;  // the defining sum: XOR of V_k over the set bits k of index
+            for (int k = 0; k < 32; ++k) {
+                if ((index >> k) & 1u) x ^= detail::k_sobol_matrices[d][k];
+            }
+            ASSERT_EQ(sobol_u32(index, d), x) << "index " << index << " dim " << d;
+        }
+    }
+}
+
 TEST(Sobol, EveryDimensionIsStratifiedAndTheFirstPairIsA02Sequence) {
     for (int d = 0; d < k_sobol_dimensions; ++d) {
         std::vector<float> values;
