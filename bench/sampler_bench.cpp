@@ -3,8 +3,8 @@
 // (pixel 2D, lens 2D, then per bounce light choice 1D, light 2D, BSDF 2D, roulette 1D).
 
 #include <librt/render/sampler.h>
-#include <librt/sampling/rng.h>
 #include <librt/sampling/filter.h>
+#include <librt/sampling/rng.h>
 
 #include <benchmark/benchmark.h>
 
@@ -43,8 +43,8 @@ void draw_paths(benchmark::State& state, MakeSampler make) {
         }
         benchmark::DoNotOptimize(acc);
     }
-    state.counters["draws/s"] = benchmark::Counter(
-        static_cast<double>(state.iterations()) * 18.0, benchmark::Counter::kIsRate);
+    state.counters["draws/s"] = benchmark::Counter(static_cast<double>(state.iterations()) * 18.0,
+                                                   benchmark::Counter::kIsRate);
 }
 
 void BM_LegacySamplerPath(benchmark::State& state) {

@@ -73,7 +73,8 @@ inline constexpr SobolMatrices k_sobol_matrices = make_sobol_matrices();
 /// For each dimension and each byte of the index, the XOR of the direction numbers that
 /// byte's 256 values select: 4 table lookups per point instead of a loop over 32 bits
 /// whose branches on random index bits the CPU cannot predict (4 KiB per dimension).
-using SobolByteTables = std::array<std::array<std::array<std::uint32_t, 256>, 4>, k_sobol_dimensions>;
+using SobolByteTables =
+    std::array<std::array<std::array<std::uint32_t, 256>, 4>, k_sobol_dimensions>;
 
 /// Builds SobolByteTables from k_sobol_matrices.
 constexpr SobolByteTables make_sobol_byte_tables() {
