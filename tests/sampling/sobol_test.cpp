@@ -1,9 +1,11 @@
 #include <librt/render/sampler.h>
 #include <librt/sampling/rng.h>
 #include <librt/sampling/sobol.h>
+#include <librt/sampling/warp.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <iostream>
@@ -212,6 +214,18 @@ constexpr double k_smooth_integral = (std::numbers::e - 1.0) * 2.0 / std::number
 double disk(glm::vec2 u) { return u.x * u.x + u.y * u.y < 0.5f ? 1.0 : 0.0; }
 constexpr double k_disk_integral = std::numbers::pi * 0.5 / 4.0;
 
+// Direct lighting with a closed form: irradiance at the origin (normal +z) from a unit-
+// radiance sphere of radius 1 at distance 3, 30 degrees off the normal, sampled by the
+// cone it subtends (sample_sphere_direction). Wholly above the horizon, its projected
+// solid angle is pi sin^2(alpha) cos(beta) with sin(alpha) = r / d (Nusselt analogue).
+const glm::vec3 k_light_center = 3.0f * glm::vec3(0.5f, 0.0f, 0.8660254f);
+double direct_light(glm::vec2 u) {
+    const SphereDirectionSample s =
+        sample_sphere_direction(k_light_center, 1.0f, glm::vec3(0.0f), u);
+    return s.pdf > 0.0f ? std::max(0.0f, s.direction.z) / s.pdf : 0.0;
+}
+constexpr double k_direct_light_integral = std::numbers::pi / 9.0 * 0.8660254037844386;
+
 // Per-pixel errors of an n-sample estimate of f drawn from a high sampler dimension (the
 // second bounce's BSDF pair), for `pixels` pixels along a row.
 template <typename F>
@@ -287,6 +301,10 @@ TEST(SobolSampler, ConvergenceFigure) {
         {"smooth sobol", smooth, k_smooth_integral, SamplerKind::Sobol, -1.7, -1.25},  // n^-1.5
         {"disk independent", disk, k_disk_integral, SamplerKind::Independent, -0.6, -0.4},
         {"disk sobol", disk, k_disk_integral, SamplerKind::Sobol, -0.95, -0.65},  // n^-0.75
+        {"sphere light independent", direct_light, k_direct_light_integral,
+         SamplerKind::Independent, -0.6, -0.4},
+        {"sphere light sobol", direct_light, k_direct_light_integral, SamplerKind::Sobol, -1.7,
+         -1.2},
     };
     for (const Case& c : cases) {
         std::vector<double> log_n, log_rmse;
