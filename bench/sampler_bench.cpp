@@ -54,6 +54,14 @@ void BM_LegacySamplerPath(benchmark::State& state) {
 }
 BENCHMARK(BM_LegacySamplerPath);
 
+// The new Sampler through the constructor the renderer calls today (independent).
+void BM_DefaultSamplerPath(benchmark::State& state) {
+    draw_paths(state, [](std::uint32_t x, std::uint32_t y, std::uint32_t s) {
+        return librt::Sampler(x, y, s, 1);
+    });
+}
+BENCHMARK(BM_DefaultSamplerPath);
+
 void BM_SamplerPath(benchmark::State& state) {
     const auto kind = static_cast<librt::SamplerKind>(state.range(0));
     draw_paths(state, [kind](std::uint32_t x, std::uint32_t y, std::uint32_t s) {

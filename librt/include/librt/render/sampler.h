@@ -1,7 +1,7 @@
 #pragma once
 
+#include <librt/export.h>
 #include <librt/sampling/rng.h>
-#include <librt/sampling/sobol.h>
 
 #include <glm/vec2.hpp>
 
@@ -59,7 +59,7 @@ struct SampleDimensions {
 /// shuffle (an Owen scramble of the sample index, seeded per pixel and dimension) and by
 /// independent Owen scrambles of the values. Joint stratification across pairs is given
 /// up, the trade Burley 2020 discusses for padding; no dimension ever runs out.
-class Sampler {
+class LIBRT_API Sampler {
 public:
     /// An independent sampler drawing from a copy of an already seeded generator.
     explicit Sampler(const Pcg32& rng) : rng_(rng) {}
@@ -83,27 +83,19 @@ public:
 
     /// Uniform in [0, 1); takes one dimension.
     [[nodiscard]] float next_1d() {
-        if (kind_ == SamplerKind::Independent) {
-            ++dimension_;
+        if (kind_ == SamplerKind::Independent) [[likely]] {
             return rng_.next_float();
         }
-        const std::uint64_t h = dimension_hash(dimension_++);
-        const std::uint32_t index = shuffled_index(h);
-        return u32_to_unit_float(owen_scramble(sobol_u32(index, 0), high_seed(h)));
+        return sobol_1d();
     }
 
     /// Uniform in [0, 1)^2; takes two dimensions.
     [[nodiscard]] glm::vec2 next_2d() {
-        dimension_ += 2;
-        if (kind_ == SamplerKind::Independent) {
+        if (kind_ == SamplerKind::Independent) [[likely]] {
             const float a = rng_.next_float();
             return {a, rng_.next_float()};
         }
-        const std::uint64_t h = dimension_hash(dimension_ - 2);
-        const std::uint32_t index = shuffled_index(h);
-        const std::uint64_t h2 = mix64(h);  // two more seeds for the two components
-        return {u32_to_unit_float(owen_scramble(sobol_u32(index, 0), low_seed(h2))),
-                u32_to_unit_float(owen_scramble(sobol_u32(index, 1), high_seed(h2)))};
+        return sobol_2d();
     }
 
     /// Jumps to the dimensions of bounce `bounce` (see SampleDimensions). Sobol samplers
@@ -114,29 +106,21 @@ public:
     /// Jumps to dimension `dimension` (the independent stream continues unchanged).
     void set_dimension(std::uint32_t dimension) { dimension_ = dimension; }
 
-    /// The next dimension to be drawn.
+    /// The next dimension a Sobol sampler draws (an independent sampler only counts the
+    /// jumps of start_bounce and set_dimension: its numbers have no dimensions).
     [[nodiscard]] std::uint32_t dimension() const { return dimension_; }
 
     /// Which kind of sampler this is.
     [[nodiscard]] SamplerKind kind() const { return kind_; }
 
 private:
-    static constexpr std::uint64_t k_sobol_salt = 0x5b0b01a5eedc0ffeULL;
+    // The Sobol' draws, out of line: inlined, their hashing would sit at every call site
+    // of the integrators and cost the independent sampler ~2.5% in registers and
+    // instruction cache (measured on rt_indirect).
+    [[nodiscard]] float sobol_1d();
+    [[nodiscard]] glm::vec2 sobol_2d();
 
-    // Seeds of one dimension of this pixel: a splitmix64 chain, bijective in the dimension.
-    [[nodiscard]] std::uint64_t dimension_hash(std::uint32_t dimension) const {
-        return mix64(pixel_key_ + 0x9e3779b97f4a7c15ULL * (std::uint64_t{dimension} + 1));
-    }
-    [[nodiscard]] static std::uint32_t low_seed(std::uint64_t h) {
-        return static_cast<std::uint32_t>(h);
-    }
-    [[nodiscard]] static std::uint32_t high_seed(std::uint64_t h) {
-        return static_cast<std::uint32_t>(h >> 32u);
-    }
-    // Burley's shuffle: this dimension's own permutation of the sample indices.
-    [[nodiscard]] std::uint32_t shuffled_index(std::uint64_t h) const {
-        return owen_scramble(sample_index_, low_seed(h));
-    }
+    static constexpr std::uint64_t k_sobol_salt = 0x5b0b01a5eedc0ffeULL;
 
     Pcg32 rng_;
     std::uint64_t pixel_key_ = 0;
