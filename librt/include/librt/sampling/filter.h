@@ -79,10 +79,11 @@ private:
     void build_table();
 
     FilterSettings settings_;
-    std::vector<double> edges_;      // cell boundaries, ascending, from -radius to radius
-    std::vector<double> cdf_;        // cdf_[i]: probability of the cells before i; back() = 1
-    std::vector<signed char> sign_;  // sign of f in each cell
-    float weight_scale_ = 1.0f;      // (integral |f| / integral f)^2, the 2D weight's size
+    std::vector<double> edges_;         // cell boundaries, ascending, from -radius to radius
+    std::vector<double> cdf_;           // cdf_[i]: probability of the cells before i; back() = 1
+    std::vector<signed char> sign_;     // sign of f in each cell
+    float weight_scale_ = 1.0f;         // (integral |f| / integral f)^2, the 2D weight's size
+    float gaussian_erf_radius_ = 1.0f;  // erf(radius / (sigma sqrt 2)): the truncation's mass
 };
 
 }  // namespace librt
