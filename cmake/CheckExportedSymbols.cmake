@@ -3,7 +3,8 @@
 #   (a) a symbol of the public API is missing (a LIBRT_API lost on the way), or
 #   (b) a symbol names something that must stay private: a nested namespace of librt
 #       (librt::detail::, librt::teapot_data::, ... apart from the few exported on purpose
-#       below), an anonymous namespace, or a private dependency (tinyobj, stb).
+#       below), an anonymous namespace, or a private dependency (tinyobj, tinygltf,
+#       nlohmann-json, stb).
 # Registered by tests/CMakeLists.txt only when librt is a shared library.
 #   LIBRARY: the shared library (e.g. $<TARGET_FILE:librt>)
 #   NM:      the nm program (CMAKE_NM; plain "nm" if empty)
@@ -27,6 +28,7 @@ set(required
   "librt::Camera::Camera("
   "librt::TriangleBvh::TriangleBvh("
   "librt::load_obj("
+  "librt::load_gltf("
   "librt::save_obj("
   "librt::render("
   "librt::make_teapot("
@@ -45,6 +47,8 @@ set(forbidden
   "librt::[a-z_][a-z0-9_]*::"   # a namespace nested in librt (classes are CamelCase)
   "\\(anonymous namespace\\)"
   "tinyobj::"
+  "tinygltf::"
+  "nlohmann::"
   "(^| |::)stbi")
 # ...except these symbols (matched as the start of a symbol), exported on purpose.
 set(allowed

@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   g++ cmake make pkg-config git
-  libglm-dev libtinyobjloader-dev libstb-dev
+  libglm-dev libtinyobjloader-dev libstb-dev libtinygltf-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libembree-dev
   clang libclang-rt-14-dev clang-format

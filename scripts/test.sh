@@ -5,7 +5,7 @@
 #   2. the same with librt as a shared library (preset release-shared)
 #   3. AddressSanitizer + UndefinedBehaviorSanitizer build, every unit test
 #   4. ThreadSanitizer build, the multithreaded renderer tests
-#   5. the OBJ and image fuzzers (libFuzzer, clang), each for a bounded time
+#   5. the OBJ, image and glTF fuzzers (libFuzzer, clang), each for a bounded time
 #      (LIBRT_FUZZ_SECONDS, default 60)
 # CI runs exactly this (.ci/run). `--quick` runs stage 1 only.
 set -euo pipefail
@@ -52,11 +52,11 @@ cmake --preset tsan
 cmake --build --preset tsan -j "$jobs" --target librt_tests
 run_ctest tsan
 
-stage "fuzzing load_obj + BVH build, and the image loaders, ${LIBRT_FUZZ_SECONDS:-60} s each"
+stage "fuzzing load_obj + BVH build, the image loaders and load_gltf, ${LIBRT_FUZZ_SECONDS:-60} s each"
 cmake --preset fuzz
 cmake --build --preset fuzz -j "$jobs"
 # Each target works on a copy of its seed corpus, so new inputs stay out of the tree.
-for target in obj:obj_fuzz image:image_fuzz; do
+for target in obj:obj_fuzz image:image_fuzz gltf:gltf_fuzz; do
   corpus="$logs/corpus_${target%%:*}"
   mkdir -p "$corpus"
   cp "tests/fuzz/corpus/${target%%:*}"/* "$corpus"/

@@ -1,10 +1,10 @@
 #include "cli.h"
 
 #include <librt/core/error.h>
+#include <librt/core/tone_map.h>
 #include <librt/io/image_io.h>
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
-#include <librt/core/tone_map.h>
 
 #include <algorithm>
 #include <atomic>

@@ -2,8 +2,8 @@
 
 #include "report_scene.h"
 
-#include <librt/render/camera.h>
 #include <librt/core/image.h>
+#include <librt/render/camera.h>
 #include <librt/render/integrator.h>
 #include <librt/render/integrators.h>
 #include <librt/render/scene.h>

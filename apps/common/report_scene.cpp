@@ -3,10 +3,13 @@
 #include <librt/core/error.h>
 #include <librt/geometry/procedural.h>
 #include <librt/io/obj.h>
+#include <librt/io/obj_materials.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <iostream>
+#include <string>
 
 namespace librt::apps {
 
@@ -16,7 +19,7 @@ void add_room(Scene& scene) {
         float radius;
         glm::vec3 albedo;
     };
-    // The report's room: (centre, radius, albedo), scenes.md.
+    // The report's room: (centre, radius, albedo), docs/scenes.md.
     const Wall walls[] = {
         {{0.0f, -1000.0f, 0.0f}, 990.0f, {0.0f, 0.0f, 1.0f}},  // floor, blue
         {{0.0f, 0.0f, -1050.0f}, 940.0f, {1.0f, 0.0f, 1.0f}},  // back wall, magenta
@@ -112,7 +115,9 @@ void add_report_mesh(Scene& scene, TriangleMesh mesh, const Material& fallback,
     if (!own_materials) {
         (void)scene.add_mesh(std::move(mesh), fallback_id, builder);
     } else {
-        (void)scene.add_mesh_with_mtl(std::move(mesh), fallback_id);
+        // The library returns its warnings (textures that failed to load); the app prints.
+        for (const std::string& w : add_mesh_with_mtl(scene, std::move(mesh), fallback_id).warnings)
+            std::cerr << "warning: " << w << '\n';
     }
 }
 

@@ -7,6 +7,7 @@
 #include <librt/geometry/procedural.h>
 #include <librt/io/image_io.h>
 #include <librt/io/obj.h>
+#include <librt/io/obj_materials.h>
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
 #include <librt/render/scene.h>
@@ -35,9 +36,11 @@ int main(int argc, char** argv) try {
     const std::size_t triangles = mesh.triangle_count();
 
     librt::Scene scene;
-    // Triangles with an MTL material keep it; the others are orange.
-    scene.add_mesh_with_mtl(std::move(mesh),
-                            scene.add_material(Material::diffuse({0.9f, 0.55f, 0.25f})));
+    // Triangles with an MTL material keep it; the others are orange. Textures that fail to
+    // load come back as warnings (the library never prints).
+    const librt::MtlMeshResult added = librt::add_mesh_with_mtl(
+        scene, std::move(mesh), scene.add_material(Material::diffuse({0.9f, 0.55f, 0.25f})));
+    for (const std::string& w : added.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     // A grey floor (a quad facing +y) and a sphere light above, in front, to the left.
     scene.add_mesh(librt::make_quad({-20, 0, 20}, {40, 0, 0}, {0, 0, -40}),
                    scene.add_material(Material::diffuse(glm::vec3(0.6f))));

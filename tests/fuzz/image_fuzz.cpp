@@ -1,4 +1,4 @@
-// libFuzzer target: arbitrary bytes as an image file -> ImageTexture::load (stb_image: PNG,
+// libFuzzer target: arbitrary bytes as an image file -> load_texture (stb_image: PNG,
 // JPEG, BMP, TGA, PPM, ...) and read_pfm; a texture that loads is looked up, a PFM that
 // reads is written back and compared. Any outcome but a result or a librt::Error is a bug.
 // The decoding itself happens in Debian's prebuilt libstb, which is not instrumented:
@@ -7,7 +7,7 @@
 
 #include <librt/core/error.h>
 #include <librt/io/image_io.h>
-#include <librt/render/texture.h>
+#include <librt/io/texture_io.h>
 
 #include <unistd.h>
 
@@ -38,7 +38,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     static const std::filesystem::path copy_path = scratch_file("_copy.pfm");
     write(image_path, data, size);
     try {
-        const librt::ImageTexture texture = librt::ImageTexture::load(image_path);
+        const librt::ImageTexture texture = librt::load_texture(image_path);
         if (texture.width() < 1 || texture.height() < 1) __builtin_trap();
         for (const float u : {0.0f, 0.37f, 1.0f, -2.5f, 1e9f, NAN}) {
             const glm::vec3 c = texture.lookup({u, 1.0f - u});

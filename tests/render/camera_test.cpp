@@ -17,7 +17,7 @@ using namespace librt;
 
 namespace {
 
-// The report's primary direction for pixel (i = row, j = column), straight from scenes.md.
+// The report's primary direction for pixel (i = row, j = column), from docs/scenes.md.
 glm::vec3 report_direction(int i, int j, int w, int h, float fov_degrees) {
     const double fov = fov_degrees * 3.14159265358979323846 / 180.0;
     const glm::dvec3 d(j - w / 2.0 + 0.5, -i + h / 2.0 - 0.5, -h / (2.0 * std::tan(fov / 2.0)));

@@ -3,6 +3,7 @@
 #include "robustness/robustness_util.h"
 
 #include <librt/core/error.h>
+#include <librt/io/texture_io.h>
 #include <librt/render/light.h>
 #include <librt/render/material.h>
 #include <librt/render/scatter.h>
@@ -135,15 +136,14 @@ TEST(Texture, LoadsAnImageAndNamesTheMissingPath) {
         const unsigned char px[6] = {255, 0, 0, 0, 128, 0};
         out.write(reinterpret_cast<const char*>(px), 6);
     }
-    const ImageTexture tex = ImageTexture::load(path);
+    const ImageTexture tex = load_texture(path);
     std::filesystem::remove(path);
     ASSERT_EQ(tex.width(), 2);
     ASSERT_EQ(tex.height(), 1);
     EXPECT_NEAR(tex.texel(0, 0).x, 1.0f, 1e-6f);
     EXPECT_NEAR(tex.texel(1, 0).y, srgb_to_linear(128.0f / 255.0f), 1e-6f);
     const std::string missing = "/nonexistent/librt/albedo.png";
-    EXPECT_NE(error_of([&] { (void)ImageTexture::load(missing); }).find(missing),
-              std::string::npos);
+    EXPECT_NE(error_of([&] { (void)load_texture(missing); }).find(missing), std::string::npos);
 }
 
 TEST(Scatter, ReflectAndSchlick) {

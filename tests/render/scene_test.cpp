@@ -8,8 +8,6 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -284,105 +282,6 @@ TEST(Scene, HitRecordOfTrianglesAndSpheres) {
     EXPECT_TRUE(scene.bounds().contains({12, 2, 2}));
 }
 
-TEST(Scene, PerTriangleMtlMaterials) {
-    Scene scene;
-    const auto fallback = scene.add_material(Material::diffuse(glm::vec3(0.1f, 0.2f, 0.3f)));
-    // Five triangles side by side along x, each its own material (last one: no valid id).
-    TriangleMesh mesh;
-    for (std::uint32_t i = 0; i < 5; ++i) {
-        const float x = float(i) * 2.0f;
-        mesh.positions.insert(mesh.positions.end(), {{x, 0, 0}, {x + 1, 0, 0}, {x, 1, 0}});
-        mesh.triangles.emplace_back(3 * i, 3 * i + 1, 3 * i + 2);
-    }
-    MeshMaterial red;
-    red.name = "red";
-    red.diffuse = {0.9f, 0.1f, 0.1f};
-    red.diffuse_texture = "/nonexistent/librt/texture.png";  // warned about, Kd kept
-    MeshMaterial lamp;
-    lamp.name = "lamp";
-    lamp.emission = {5, 5, 5};
-    MeshMaterial glass;
-    glass.name = "glass";
-    glass.illum = 4;
-    glass.ior = 1.33f;
-    MeshMaterial chrome;
-    chrome.name = "chrome";
-    chrome.illum = 3;
-    chrome.specular = glm::vec3(1.0f);
-    mesh.materials = {red, lamp, glass, chrome};
-    mesh.material_ids = {0, 1, 2, 3, 99};
-    EXPECT_NE(error_of([&] { scene.add_mesh_with_mtl(mesh, fallback); }).find("material id 99"),
-              std::string::npos);
-    mesh.material_ids.back() = 0;
-    const auto obj = scene.add_mesh_with_mtl(mesh, fallback);
-    // The same mesh with one material: its MTL ignored.
-    TriangleMesh moved = mesh;
-    for (glm::vec3& p : moved.positions) p.y += 5.0f;
-    const auto uniform = scene.add_mesh(moved, fallback);
-    // Without material ids: the fallback throughout.
-    TriangleMesh bare = moved;
-    for (glm::vec3& p : bare.positions) p.y += 5.0f;
-    bare.material_ids.clear();
-    const auto bare_id = scene.add_mesh_with_mtl(bare, fallback);
-    scene.commit();
-
-    auto material_at = [&](float x, float y) {
-        Hit hit;
-        EXPECT_TRUE(scene.intersect(Ray{{x, y, 1}, {0, 0, -1}}, hit));
-        return std::pair{hit.object_id, scene.material(hit)};
-    };
-    auto [o0, m0] = material_at(0.25f, 0.25f);
-    EXPECT_EQ(o0, obj);
-    EXPECT_EQ(m0.kind, MaterialKind::Diffuse);
-    EXPECT_EQ(m0.albedo, red.diffuse);
-    EXPECT_EQ(m0.albedo_texture, -1);
-    auto [o1, m1] = material_at(2.25f, 0.25f);
-    EXPECT_EQ(m1.kind, MaterialKind::Emissive);
-    EXPECT_EQ(m1.emission, glm::vec3(5.0f));
-    auto [o2, m2] = material_at(4.25f, 0.25f);
-    EXPECT_EQ(m2.kind, MaterialKind::Dielectric);
-    EXPECT_FLOAT_EQ(m2.ior, 1.33f);
-    auto [o3, m3] = material_at(6.25f, 0.25f);
-    EXPECT_EQ(m3.kind, MaterialKind::Mirror);
-    auto [o4, m4] = material_at(8.25f, 0.25f);
-    EXPECT_EQ(m4.albedo, red.diffuse);
-    auto [o5, m5] = material_at(4.25f, 5.25f);
-    EXPECT_EQ(o5, uniform);
-    EXPECT_EQ(m5.kind, MaterialKind::Diffuse);
-    EXPECT_EQ(m5.albedo, glm::vec3(0.1f, 0.2f, 0.3f));
-    auto [o6, m6] = material_at(2.25f, 10.25f);
-    EXPECT_EQ(o6, bare_id);
-    EXPECT_EQ(m6.kind, MaterialKind::Diffuse);
-    EXPECT_EQ(m6.albedo, glm::vec3(0.1f, 0.2f, 0.3f));
-}
-
-TEST(Scene, MtlTexturesAreLoadedOncePerPath) {
-    const auto path = std::filesystem::temp_directory_path() / "librt_scene_mtl_texture.ppm";
-    {
-        std::ofstream out(path, std::ios::binary);
-        out << "P6\n1 1\n255\n";
-        const unsigned char px[3] = {255, 255, 255};
-        out.write(reinterpret_cast<const char*>(px), 3);
-    }
-    Scene scene;
-    const auto fallback = scene.add_material(Material::diffuse(glm::vec3(0.5f)));
-    TriangleMesh mesh = quad_z(0, 0, 1, 1, 0);
-    MeshMaterial a, b;
-    a.name = "a";
-    b.name = "b";
-    a.diffuse_texture = b.diffuse_texture = path.string();
-    mesh.materials = {a, b};
-    mesh.material_ids = {0, 1};
-    scene.add_mesh_with_mtl(mesh, fallback);
-    std::filesystem::remove(path);
-    EXPECT_EQ(scene.texture_count(), 1u);
-    scene.commit();
-    Hit hit;
-    ASSERT_TRUE(scene.intersect(Ray{{0.7f, 0.2f, 1}, {0, 0, -1}}, hit));
-    EXPECT_EQ(scene.material(hit).albedo_texture, 0);
-    EXPECT_NEAR(scene.albedo(hit).x, 1.0f, 1e-6f);
-}
-
 TEST(Scene, TexturedAlbedo) {
     Scene scene;
     // 2 x 1 texture: left red, right green (linear values).
@@ -433,19 +332,15 @@ TEST(Scene, UnsampledEmittersAreAnyEmissionButTheSphereLights) {
     scene.commit();
     EXPECT_TRUE(scene.has_unsampled_emitters()) << "a loose emissive triangle";
 
-    // Per-triangle MTL materials: one emissive triangle (Ke) among diffuse ones.
+    // Per-triangle materials: one emissive triangle among diffuse ones.
     Scene mtl_scene;
-    const auto fallback = mtl_scene.add_material(Material::diffuse(glm::vec3(0.5f)));
-    TriangleMesh mesh = quad_z(0, 0, 1, 1, 0);
-    mesh.materials.resize(2);
-    mesh.materials[0].diffuse = glm::vec3(0.5f);
-    mesh.materials[1].emission = glm::vec3(4.0f);
-    mesh.material_ids = {0, 0};
-    mtl_scene.add_mesh_with_mtl(mesh, fallback);
+    const auto matte = mtl_scene.add_material(Material::diffuse(glm::vec3(0.5f)));
+    const auto lamp = mtl_scene.add_material(Material::emissive(glm::vec3(4.0f)));
+    const TriangleMesh mesh = quad_z(0, 0, 1, 1, 0);
+    mtl_scene.add_mesh(mesh, std::vector<std::uint32_t>{matte, matte});
     mtl_scene.commit();
     EXPECT_FALSE(mtl_scene.has_unsampled_emitters());
-    mesh.material_ids = {0, 1};
-    mtl_scene.add_mesh_with_mtl(mesh, fallback);
+    mtl_scene.add_mesh(mesh, std::vector<std::uint32_t>{matte, lamp});
     mtl_scene.commit();
     EXPECT_TRUE(mtl_scene.has_unsampled_emitters());
 }

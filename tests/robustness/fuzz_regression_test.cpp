@@ -5,7 +5,7 @@
 #include "robustness/robustness_util.h"
 
 #include <librt/io/image_io.h>
-#include <librt/render/texture.h>
+#include <librt/io/texture_io.h>
 
 #include <gtest/gtest.h>
 
@@ -21,7 +21,7 @@ namespace {
 
 double seconds_to_load_texture(const std::filesystem::path& p, std::string& message) {
     const auto start = std::chrono::steady_clock::now();
-    message = error_of([&] { (void)ImageTexture::load(p); });
+    message = error_of([&] { (void)load_texture(p); });
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -5,6 +5,7 @@
 #include "robustness/robustness_util.h"
 
 #include <librt/io/obj.h>
+#include <librt/io/obj_materials.h>
 #include <librt/render/scene.h>
 
 #include <gtest/gtest.h>
@@ -312,7 +313,7 @@ TEST(BadObj, MissingMtlGivesTheDefaultMaterial) {
     EXPECT_TRUE(has(joined(w), "gone.mtl")) << joined(w);
     Scene scene;
     const auto fallback = scene.add_material(Material::diffuse(glm::vec3(0.25f)));
-    (void)scene.add_mesh_with_mtl(m, fallback);
+    (void)add_mesh_with_mtl(scene, m, fallback);
     scene.commit();
     Hit hit;
     ASSERT_TRUE(scene.intersect(Ray{{0.2f, 0.2f, 1.0f}, {0, 0, -1}}, hit));
@@ -335,12 +336,14 @@ TEST(BadObj, MissingTextureIsAWarningAndKeepsKd) {
     ASSERT_EQ(m.materials.size(), 1u);
     Scene scene;
     const auto fallback = scene.add_material(Material::diffuse(glm::vec3(0.5f)));
+    // A warning in the returned list, not on stderr (the library never prints).
     ::testing::internal::CaptureStderr();
-    (void)scene.add_mesh_with_mtl(m, fallback);
-    const std::string err = ::testing::internal::GetCapturedStderr();
-    EXPECT_TRUE(has(err, "warning")) << err;
-    EXPECT_TRUE(has(err, "painted")) << err;
-    EXPECT_TRUE(has(err, "no_such_texture.png")) << err;
+    const MtlMeshResult added = add_mesh_with_mtl(scene, m, fallback);
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+    ASSERT_EQ(added.warnings.size(), 1u);
+    const std::string& warning = added.warnings[0];
+    EXPECT_TRUE(has(warning, "painted")) << warning;
+    EXPECT_TRUE(has(warning, "no_such_texture.png")) << warning;
     scene.commit();
     Hit hit;
     ASSERT_TRUE(scene.intersect(Ray{{0.2f, 0.2f, 1.0f}, {0, 0, -1}}, hit));
@@ -357,7 +360,7 @@ TEST(BadObj, ImpossibleMtlValuesNameTheMaterial) {
         w);
     Scene scene;
     const auto fallback = scene.add_material(Material::diffuse(glm::vec3(0.5f)));
-    const std::string msg = error_of([&] { (void)scene.add_mesh_with_mtl(m, fallback); });
+    const std::string msg = error_of([&] { (void)add_mesh_with_mtl(scene, m, fallback); });
     EXPECT_TRUE(has(msg, "MTL material 'too_bright'")) << msg;
     EXPECT_TRUE(has(msg, "albedo = (1.5, 0, 0)")) << msg;
 }

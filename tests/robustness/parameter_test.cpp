@@ -11,6 +11,8 @@
 #include <librt/geometry/mesh.h>
 #include <librt/geometry/procedural.h>
 #include <librt/io/image_io.h>
+#include <librt/io/obj_materials.h>
+#include <librt/io/texture_io.h>
 #include <librt/render/camera.h>
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
@@ -266,7 +268,7 @@ TEST(BadParameter, SceneGeometryNonFinite) {
     expect_error([&] { (void)scene.add_mesh(m, grey); }, {"normal 1 is not finite"});
     m = one_triangle();
     m.uvs = {{0, 0}, {1, 0}, {kInf, 1}};
-    expect_error([&] { (void)scene.add_mesh_with_mtl(m, grey); }, {"uv 2 is not finite"});
+    expect_error([&] { (void)add_mesh_with_mtl(scene, m, grey); }, {"uv 2 is not finite"});
     m = one_triangle();
     m.triangles.push_back({0, 1, 0xFFFFFFFFu});
     expect_error([&] { (void)scene.add_mesh(m, grey); }, {"triangle 1", "out of range"});
@@ -356,27 +358,25 @@ TEST(BadParameter, BvhBuilderInput) {
 
 TEST(BadFile, TextureMissingDirectoryEmptyGarbageHuge) {
     ScratchDir dir;
-    expect_error([&] { (void)ImageTexture::load(dir.path() / "absent.png"); },
+    expect_error([&] { (void)load_texture(dir.path() / "absent.png"); },
                  {"absent.png", "no such file"});
     fs::create_directory(dir.path() / "folder.png");
-    expect_error([&] { (void)ImageTexture::load(dir.path() / "folder.png"); },
+    expect_error([&] { (void)load_texture(dir.path() / "folder.png"); },
                  {"folder.png", "is a directory"});
-    expect_error([&] { (void)ImageTexture::load(dir.write("empty.png", "")); },
+    expect_error([&] { (void)load_texture(dir.write("empty.png", "")); },
                  {"cannot load texture", "empty.png"});
-    expect_error([&] { (void)ImageTexture::load(dir.write("junk.png", "this is not an image")); },
+    expect_error([&] { (void)load_texture(dir.write("junk.png", "this is not an image")); },
                  {"cannot load texture", "junk.png"});
     // A PNG cut short after its signature.
     expect_error(
-        [&] {
-            (void)ImageTexture::load(dir.write("cut.png", std::string("\x89PNG\r\n\x1a\n", 8)));
-        },
+        [&] { (void)load_texture(dir.write("cut.png", std::string("\x89PNG\r\n\x1a\n", 8))); },
         {"cut.png"});
     // A header claiming 20000 x 20000 texels: refused from the header, before decoding.
-    expect_error([&] { (void)ImageTexture::load(dir.write("huge.ppm", "P6\n20000 20000\n255\n")); },
+    expect_error([&] { (void)load_texture(dir.write("huge.ppm", "P6\n20000 20000\n255\n")); },
                  {"huge.ppm", "20000 x 20000", "more than the limit"});
     // A binary PPM cut short: stb would hand back uninitialised memory as texels.
     expect_error(
-        [&] { (void)ImageTexture::load(dir.write("short.ppm", "P6\n64 64\n255\n\x01\x02\x03")); },
+        [&] { (void)load_texture(dir.write("short.ppm", "P6\n64 64\n255\n\x01\x02\x03")); },
         {"short.ppm", "truncated"});
 }
 
@@ -385,7 +385,7 @@ TEST(BadFile, TextureUnreadable) {
     const fs::path locked = dir.write("locked.ppm", std::string("P6\n1 1\n255\n\xff\xff\xff", 14));
     fs::permissions(locked, fs::perms::none);
     LIBRT_SKIP_IF_PERMISSIONS_BYPASSED(locked);
-    expect_error([&] { (void)ImageTexture::load(locked); }, {"cannot load texture", "locked.ppm"});
+    expect_error([&] { (void)load_texture(locked); }, {"cannot load texture", "locked.ppm"});
 }
 
 TEST(BadFile, ImageOutputPaths) {

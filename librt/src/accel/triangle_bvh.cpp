@@ -72,11 +72,10 @@ std::span<const Triangle> checked(std::span<const Triangle> triangles) {
     return triangles;
 }
 
-/// Leaf callback shared by the BVH and the linear scan: tests the triangle in a slot
-/// and records it as the nearest so far.
+/// Leaf callback of the linear scan: tests the triangle in a slot (its index) and records
+/// it as the nearest so far.
 struct NearestTriangle {
     const Triangle* triangles;
-    const std::uint32_t* ids;  // slot -> caller's triangle index; null means identity
     WatertightRay prepared;
     PrimitiveHit hit;
 
@@ -84,7 +83,7 @@ struct NearestTriangle {
         const auto h = librt::intersect(triangles[slot], prepared, ray.t_min, ray.t_max);
         if (!h) return false;
         ray.t_max = h->t;
-        hit = {h->t, h->u, h->v, ids ? ids[slot] : slot};
+        hit = {h->t, h->u, h->v, slot};
         return true;
     }
 };
@@ -184,14 +183,14 @@ TriangleList::TriangleList(std::span<const Triangle> triangles)
 
 PrimitiveHit TriangleList::intersect(const Ray& ray) const {
     Ray r = ray;
-    NearestTriangle nearest{triangles_.data(), nullptr, prepare_watertight(ray), {}};
+    NearestTriangle nearest{triangles_.data(), prepare_watertight(ray), {}};
     traverse_linear<false>(static_cast<std::uint32_t>(triangles_.size()), r, nearest);
     return nearest.hit;
 }
 
 bool TriangleList::occluded(const Ray& ray) const {
     Ray r = ray;
-    NearestTriangle any{triangles_.data(), nullptr, prepare_watertight(ray), {}};
+    NearestTriangle any{triangles_.data(), prepare_watertight(ray), {}};
     return traverse_linear<true>(static_cast<std::uint32_t>(triangles_.size()), r, any);
 }
 

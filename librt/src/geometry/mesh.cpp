@@ -1,4 +1,5 @@
 #include <librt/core/error.h>
+#include <librt/core/finite.h>
 #include <librt/geometry/mesh.h>
 
 #include <glm/geometric.hpp>
@@ -13,12 +14,6 @@
 namespace librt {
 
 namespace {
-
-bool is_finite(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-bool is_finite(const glm::vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 
 std::string to_string(const glm::vec3& v) {
     return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) +
@@ -77,7 +72,7 @@ void transform(TriangleMesh& mesh, const glm::mat4& matrix) {
 glm::mat4 make_transform(const glm::vec3& scale, const glm::vec3& rotation_degrees,
                          const glm::vec3& translation) {
     const auto check = [](const char* name, const glm::vec3& v) {
-        if (!is_finite(v)) {
+        if (!finite(v)) {
             throw Error(std::string("make_transform: ") + name + " = " + to_string(v) +
                         ": must be finite");
         }
@@ -108,19 +103,19 @@ void validate(const TriangleMesh& mesh) {
                     std::to_string(mesh.triangles.size()) + " triangles (must be 0 or equal)");
     }
     for (std::size_t i = 0; i < n; ++i) {
-        if (!is_finite(mesh.positions[i])) {
+        if (!finite(mesh.positions[i])) {
             throw Error("mesh: position " + std::to_string(i) + " is not finite " +
                         to_string(mesh.positions[i]));
         }
     }
     for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
-        if (!is_finite(mesh.normals[i])) {
+        if (!finite(mesh.normals[i])) {
             throw Error("mesh: normal " + std::to_string(i) + " is not finite " +
                         to_string(mesh.normals[i]));
         }
     }
     for (std::size_t i = 0; i < mesh.uvs.size(); ++i) {
-        if (!is_finite(mesh.uvs[i])) {
+        if (!finite(mesh.uvs[i])) {
             throw Error("mesh: uv " + std::to_string(i) + " is not finite");
         }
     }

@@ -1,6 +1,7 @@
 #include "geometry/teapot_data.h"
 
 #include <librt/core/error.h>
+#include <librt/core/finite.h>
 #include <librt/geometry/procedural.h>
 
 #include <glm/geometric.hpp>
@@ -20,7 +21,7 @@ namespace librt {
 namespace {
 
 void check_center_radius(const char* fn, const glm::vec3& center, float radius) {
-    if (!std::isfinite(center.x) || !std::isfinite(center.y) || !std::isfinite(center.z)) {
+    if (!finite(center)) {
         throw Error(std::string(fn) + ": center is not finite");
     }
     if (!(radius > 0.0f) || !std::isfinite(radius)) {

@@ -1,4 +1,5 @@
 #include <librt/core/error.h>
+#include <librt/core/finite.h>
 #include <librt/render/camera.h>
 #include <librt/sampling/jitter.h>
 
@@ -28,10 +29,6 @@ std::string to_text(const glm::vec3& v) {
     return out.str();
 }
 
-bool is_finite(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 void validate(const CameraSettings& s) {
     constexpr int k_max_size = 65536;
     if (s.width < 1 || s.width > k_max_size) {
@@ -43,9 +40,9 @@ void validate(const CameraSettings& s) {
     if (!(s.vertical_fov_degrees > 0.0f && s.vertical_fov_degrees < 180.0f)) {
         fail("vertical_fov_degrees", to_text(s.vertical_fov_degrees), "must be in (0, 180)");
     }
-    if (!is_finite(s.position)) fail("position", to_text(s.position), "must be finite");
-    if (!is_finite(s.look_at)) fail("look_at", to_text(s.look_at), "must be finite");
-    if (!is_finite(s.up)) fail("up", to_text(s.up), "must be finite");
+    if (!finite(s.position)) fail("position", to_text(s.position), "must be finite");
+    if (!finite(s.look_at)) fail("look_at", to_text(s.look_at), "must be finite");
+    if (!finite(s.up)) fail("up", to_text(s.up), "must be finite");
     const glm::vec3 view = s.look_at - s.position;
     if (!std::isfinite(glm::length(view))) {
         fail("look_at", to_text(s.look_at), "is too far from position (overflows float)");

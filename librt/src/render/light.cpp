@@ -1,4 +1,5 @@
 #include <librt/core/error.h>
+#include <librt/core/finite.h>
 #include <librt/render/light.h>
 
 #include <cmath>
@@ -6,10 +7,6 @@
 
 namespace librt {
 namespace {
-
-bool finite(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 
 bool non_negative(const glm::vec3& v) { return v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f; }
 

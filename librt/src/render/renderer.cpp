@@ -1,4 +1,5 @@
 #include <librt/core/error.h>
+#include <librt/core/finite.h>
 #include <librt/render/renderer.h>
 
 #include <glm/vec3.hpp>
@@ -94,10 +95,6 @@ struct Tile {
     int x0, y0, x1, y1;  // pixel range [x0, x1) x [y0, y1)
 };
 
-bool is_finite(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 }  // namespace
 
 void validate(const RenderSettings& s) {
@@ -167,27 +164,27 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
         for (int y = t.y0; y < t.y1; ++y) {
             for (int x = t.x0; x < t.x1; ++x) {
                 glm::dvec3 sum(0.0);
-                std::uint32_t finite = 0;
+                std::uint32_t kept = 0;  // finite samples
                 for (int s = 0; s < settings.samples_per_pixel; ++s) {
                     if (s % kCancelCheckSamples == 0 && stop_requested()) {
                         samples += static_cast<std::uint64_t>(s);
-                        nonfinite += static_cast<std::uint64_t>(s) - finite;
+                        nonfinite += static_cast<std::uint64_t>(s) - kept;
                         return false;
                     }
                     Sampler sampler(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y),
                                     static_cast<std::uint32_t>(s), settings.seed);
                     const Ray ray = camera.generate_ray(x, y, sampler);
                     const glm::vec3 l = integrator.li(scene, ray, sampler);
-                    if (is_finite(l)) {
+                    if (finite(l)) {
                         sum += glm::dvec3(l);
-                        ++finite;
+                        ++kept;
                     }
                 }
                 samples += static_cast<std::uint64_t>(settings.samples_per_pixel);
-                nonfinite += static_cast<std::uint64_t>(settings.samples_per_pixel) - finite;
+                nonfinite += static_cast<std::uint64_t>(settings.samples_per_pixel) - kept;
                 // Pixel estimate: the mean of its finite samples.
                 image.at(x, y) =
-                    finite > 0 ? glm::vec3(sum / static_cast<double>(finite)) : glm::vec3(0.0f);
+                    kept > 0 ? glm::vec3(sum / static_cast<double>(kept)) : glm::vec3(0.0f);
             }
         }
         return true;

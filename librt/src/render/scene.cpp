@@ -5,7 +5,6 @@
 
 #include <bit>
 #include <cmath>
-#include <iostream>
 #include <limits>
 #include <sstream>
 
@@ -152,52 +151,15 @@ std::uint32_t Scene::add_mesh(TriangleMesh mesh, std::uint32_t material, BvhBuil
     return id;
 }
 
-std::uint32_t Scene::mtl_to_material(const MeshMaterial& mtl) {
-    const auto any_positive = [](const glm::vec3& v) {
-        return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f;
-    };
-    Material m;
-    try {
-        if (any_positive(mtl.emission)) {
-            m = Material::emissive(mtl.emission);
-        } else if (mtl.illum == 4 || mtl.illum == 6 || mtl.illum == 7 || mtl.dissolve < 1.0f) {
-            m = Material::dielectric(mtl.ior > 0.0f ? mtl.ior : 1.5f);
-        } else if (mtl.illum == 3 || mtl.illum == 5 || mtl.specular == glm::vec3(1.0f)) {
-            m = Material::mirror(any_positive(mtl.specular) ? mtl.specular : glm::vec3(1.0f));
-        } else {
-            m = Material::diffuse(mtl.diffuse);
-            if (!mtl.diffuse_texture.empty()) {
-                const auto it = texture_by_path_.find(mtl.diffuse_texture);
-                if (it != texture_by_path_.end()) {
-                    m.albedo_texture = it->second;
-                } else {
-                    try {
-                        m.albedo_texture = add_texture(ImageTexture::load(mtl.diffuse_texture));
-                        texture_by_path_.emplace(mtl.diffuse_texture, m.albedo_texture);
-                    } catch (const Error& e) {
-                        std::cerr << "librt: warning: material '" << mtl.name << "': " << e.what()
-                                  << "; using its Kd instead\n";
-                        texture_by_path_.emplace(mtl.diffuse_texture, -1);
-                    }
-                }
-            }
-        }
-    } catch (const Error& e) {
-        throw Error("MTL material '" + mtl.name + "': " + e.what());
-    }
-    return add_material(m);
-}
-
-std::uint32_t Scene::add_mesh_with_mtl(TriangleMesh mesh, std::uint32_t fallback_material) {
-    check_material_id(fallback_material);
+std::uint32_t Scene::add_mesh(TriangleMesh mesh, std::vector<std::uint32_t> triangle_materials,
+                              BvhBuilder builder) {
     validate(mesh);
-    std::vector<std::uint32_t> mapped(mesh.materials.size());
-    for (std::size_t i = 0; i < mesh.materials.size(); ++i)
-        mapped[i] = mtl_to_material(mesh.materials[i]);
-    std::vector<std::uint32_t> per_triangle(mesh.triangles.size(), fallback_material);
-    for (std::size_t i = 0; i < mesh.material_ids.size(); ++i)
-        per_triangle[i] = mapped[mesh.material_ids[i]];  // in range: validated
-    meshes_.push_back({std::move(mesh), {}, std::move(per_triangle)});
+    if (triangle_materials.size() != mesh.triangles.size()) {
+        throw Error("add_mesh: " + std::to_string(triangle_materials.size()) +
+                    " material ids for " + std::to_string(mesh.triangles.size()) + " triangles");
+    }
+    for (const std::uint32_t m : triangle_materials) check_material_id(m);
+    meshes_.push_back({std::move(mesh), {}, std::move(triangle_materials), builder});
     return add_object(ObjectKind::Mesh, std::uint32_t(meshes_.size() - 1), kInvalidId);
 }
 

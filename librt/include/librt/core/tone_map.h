@@ -1,7 +1,7 @@
 #pragma once
 
-#include <librt/export.h>
 #include <librt/core/image.h>
+#include <librt/export.h>
 
 #include <cstdint>
 #include <vector>

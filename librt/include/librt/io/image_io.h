@@ -1,8 +1,8 @@
 #pragma once
 
-#include <librt/export.h>
 #include <librt/core/image.h>
 #include <librt/core/tone_map.h>
+#include <librt/export.h>
 
 #include <filesystem>
 

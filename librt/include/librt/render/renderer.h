@@ -1,8 +1,8 @@
 #pragma once
 
+#include <librt/core/image.h>
 #include <librt/export.h>
 #include <librt/render/camera.h>
-#include <librt/core/image.h>
 #include <librt/render/integrator.h>
 
 #include <atomic>

@@ -21,7 +21,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <map>
 #include <span>
 #include <string>
 #include <vector>
@@ -72,7 +71,7 @@ inline constexpr float kRayOffsetAbsolute = 0x1p-20f;
 /// radius-1000 walls stay exact) and triangle meshes (each with its own SAH TriangleBvh);
 /// commit() builds a top-level SAH Bvh over the objects' boxes. Traversal dispatches on a
 /// per-object tag, not a virtual call, and queries never allocate. Object ids count the
-/// add_sphere / add_mesh / add_mesh_with_mtl / add_sphere_light calls from 0, the loose
+/// add_sphere / add_mesh / add_sphere_light calls from 0, the loose
 /// triangles of add_triangle taking the id given at the first such call.
 ///
 /// Normal conventions of Hit: geometric_normal is unit and points where the primitive
@@ -104,14 +103,13 @@ public:
     /// As add_mesh, with the builder of the mesh's BVH chosen (the report's median split
     /// for comparisons; SAH, the default, is faster to trace).
     std::uint32_t add_mesh(TriangleMesh mesh, std::uint32_t material, BvhBuilder builder);
-    /// Adds a mesh whose triangles use its MTL materials, mapped to scene materials:
-    /// Ke != 0 -> emissive; illum 4, 6, 7 or d < 1 -> dielectric of index Ni; illum 3, 5
-    /// or Ks = 1 -> mirror; otherwise diffuse Kd, with map_Kd as albedo texture (loaded once
-    /// per path; a texture that fails to load is reported on stderr and Kd kept).
-    /// A mesh without material_ids uses `fallback_material` throughout. Returns the object
-    /// id. Throws librt::Error for an invalid mesh (librt::validate: e.g. a material id out
-    /// of range), an unknown fallback id, or an MTL value no Material accepts.
-    std::uint32_t add_mesh_with_mtl(TriangleMesh mesh, std::uint32_t fallback_material);
+    /// Adds a mesh whose triangle i uses scene material triangle_materials[i] (the mesh's
+    /// own materials are ignored; io/obj_materials.h add_mesh_with_mtl maps them to scene
+    /// materials and calls this); returns its object id. Throws librt::Error for an invalid
+    /// mesh (librt::validate), a count of ids other than the triangle count, or an unknown
+    /// material id.
+    std::uint32_t add_mesh(TriangleMesh mesh, std::vector<std::uint32_t> triangle_materials,
+                           BvhBuilder builder = BvhBuilder::Sah);
     /// Adds a point light (validated). Point lights are not geometry.
     void add_point_light(const PointLight& light);
     /// Adds a sphere light (validated) and the emissive sphere that is its surface;
@@ -137,7 +135,7 @@ public:
     /// librt::Error before commit().
     [[nodiscard]] bool occluded(const Ray& ray, std::uint32_t ignored_object = kInvalidId) const;
 
-    /// The material of a hit's primitive (per-triangle MTL materials respected).
+    /// The material of a hit's primitive (per-triangle materials respected).
     [[nodiscard]] const Material& material(const Hit& hit) const {
         return materials_[material_id(hit)];
     }
@@ -208,7 +206,6 @@ private:
     void require_committed() const;
     void check_material_id(std::uint32_t material) const;
     std::uint32_t add_object(ObjectKind kind, std::uint32_t index, std::uint32_t material);
-    std::uint32_t mtl_to_material(const MeshMaterial& mtl);
     /// Calls test_object(object id, ray) -> bool for the objects the ray may hit, nearest
     /// box first, through flat_ or top_; stops at the first hit with AnyHit.
     template <bool AnyHit, class TestObject>
@@ -219,7 +216,6 @@ private:
 
     std::vector<Material> materials_;
     std::vector<ImageTexture> textures_;
-    std::map<std::string, std::int32_t> texture_by_path_;
     std::vector<Object> objects_;
     std::vector<SphereData> spheres_;
     std::vector<MeshData> meshes_;

@@ -1,0 +1,122 @@
+# Script (cmake -P) behind the ctest style.layering: the areas of librt depend on each
+# other in one direction only (docs/architecture.md), and the renderer reads no files.
+#   1. A file of area A (librt/include/librt/A/ or librt/src/A/) includes librt headers
+#      (<librt/B/...> or the private "B/...") only of the areas A may use:
+#        core      <- core
+#        geometry  <- core, geometry
+#        sampling  <- core, geometry, sampling
+#        accel     <- core, geometry, sampling, accel
+#        render    <- core, geometry, sampling, accel, render
+#        io        <- all of the above and io (a loader may build render types)
+#      plus <librt/export.h> and <librt/version.h> everywhere.
+#   2. render/ does no file I/O: no <fstream>, <filesystem>, stb, fopen, std::ifstream /
+#      ofstream / fstream, std::filesystem. Files are read and written in io/.
+# Fails naming file:line. Comments (from // to the end of the line) are ignored.
+#   ROOT: the repository root
+# It first checks itself on a scratch tree, so a broken rule cannot pass silently.
+cmake_minimum_required(VERSION 3.22)
+
+if(NOT ROOT OR NOT EXISTS "${ROOT}/librt")
+  message(FATAL_ERROR "ROOT='${ROOT}' is not the repository root")
+endif()
+
+set(_areas core geometry sampling accel render io)
+set(_uses_core core)
+set(_uses_geometry core geometry)
+set(_uses_sampling core geometry sampling)
+set(_uses_accel core geometry sampling accel)
+set(_uses_render core geometry sampling accel render)
+set(_uses_io core geometry sampling accel render io)
+set(_file_io_patterns
+  "#[ \t]*include[ \t]*<(fstream|filesystem|stb/[^>]*)>"
+  "(^|[^A-Za-z0-9_])fopen[ \t]*\\("
+  "std::(i|o)?fstream([^A-Za-z0-9_]|$)"
+  "std::filesystem::")
+
+# Sets out_var to one "\n  file:line: problem" per violation among `files` (paths relative
+# to `root`, each under librt/include/librt/<area>/ or librt/src/<area>/).
+function(librt_check_layering root files out_var)
+  set(found "")
+  foreach(rel IN LISTS files)
+    if(NOT rel MATCHES "^librt/(include/librt|src)/([a-z_]+)/")
+      continue()
+    endif()
+    set(area "${CMAKE_MATCH_2}")
+    if(NOT area IN_LIST _areas)
+      string(APPEND found "\n  ${rel}: area '${area}' is not in cmake/CheckLayering.cmake")
+      continue()
+    endif()
+    set(allowed ${_uses_${area}})
+    file(STRINGS "${root}/${rel}" lines)
+    set(number 0)
+    foreach(line IN LISTS lines)
+      math(EXPR number "${number} + 1")
+      string(FIND "${line}" "//" comment)
+      if(comment GREATER -1)
+        string(SUBSTRING "${line}" 0 ${comment} code)
+      else()
+        set(code "${line}")
+      endif()
+      set(used "")
+      if(code MATCHES "#[ \t]*include[ \t]*<librt/([a-z_]+)/")
+        set(used "${CMAKE_MATCH_1}")
+      elseif(code MATCHES "#[ \t]*include[ \t]*\"([a-z_]+)/")
+        set(used "${CMAKE_MATCH_1}")
+      endif()
+      if(used AND NOT used IN_LIST allowed)
+        string(STRIP "${line}" shown)
+        string(APPEND found "\n  ${rel}:${number}: ${area}/ may not include ${used}/: ${shown}")
+      endif()
+      if(area STREQUAL "render")
+        foreach(pattern IN LISTS _file_io_patterns)
+          if(code MATCHES "${pattern}")
+            string(STRIP "${line}" shown)
+            string(APPEND found "\n  ${rel}:${number}: file I/O belongs in io/: ${shown}")
+            break()
+          endif()
+        endforeach()
+      endif()
+    endforeach()
+  endforeach()
+  set(${out_var} "${found}" PARENT_SCOPE)
+endfunction()
+
+# Self-check on a scratch tree: each bad line must be reported once, no good line.
+string(RANDOM LENGTH 12 _tag)
+set(_scratch "${CMAKE_CURRENT_BINARY_DIR}/librt_layering_selftest_${_tag}")
+file(MAKE_DIRECTORY "${_scratch}/librt/src/render" "${_scratch}/librt/include/librt/accel"
+     "${_scratch}/librt/src/io")
+file(WRITE "${_scratch}/librt/src/render/bad.cpp"
+  "#include <librt/io/obj.h>\n#include <fstream>\n#include <filesystem>\n"
+  "#include <stb/stb_image.h>\nFILE* f = std::fopen(name, \"rb\")\nstd::ifstream in(p)\n"
+  "auto s = std::filesystem::status(p)\n")
+file(WRITE "${_scratch}/librt/include/librt/accel/bad.h"
+  "#include <librt/render/scene.h>\n#include \"io/obj_scan.h\"\n")
+file(WRITE "${_scratch}/librt/src/render/good.cpp"
+  "#include <librt/accel/bvh.h>\n#include <librt/export.h>\n#include <sstream>\n"
+  "// std::ifstream in a comment\nstd::ostringstream msg\nint my_fopen_count = 0\n")
+file(WRITE "${_scratch}/librt/src/io/good.cpp"
+  "#include <librt/render/scene.h>\n#include <fstream>\n#include \"io/obj_scan.h\"\n")
+librt_check_layering("${_scratch}"
+  "librt/src/render/bad.cpp;librt/include/librt/accel/bad.h;librt/src/render/good.cpp;librt/src/io/good.cpp"
+  _self)
+file(REMOVE_RECURSE "${_scratch}")
+string(REGEX MATCHALL "/bad\\.(cpp|h):" _bad_hits "${_self}")
+list(LENGTH _bad_hits _bad_count)
+if(_self MATCHES "good\\.cpp" OR NOT _bad_count EQUAL 9)
+  message(FATAL_ERROR "self-check: expected the 9 bad lines and no good one, found:${_self}")
+endif()
+
+file(GLOB_RECURSE _files RELATIVE "${ROOT}"
+  "${ROOT}/librt/src/*.h" "${ROOT}/librt/src/*.hpp" "${ROOT}/librt/src/*.cpp"
+  "${ROOT}/librt/src/*.inl" "${ROOT}/librt/include/*.h" "${ROOT}/librt/include/*.hpp")
+list(SORT _files)
+list(LENGTH _files _file_count)
+if(_file_count LESS 10)
+  message(FATAL_ERROR "only ${_file_count} library files found under ${ROOT}/librt")
+endif()
+librt_check_layering("${ROOT}" "${_files}" _found)
+if(_found)
+  message(FATAL_ERROR "layering broken (see docs/architecture.md):${_found}")
+endif()
+message(STATUS "layering holds in ${_file_count} library files")

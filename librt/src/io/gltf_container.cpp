@@ -1,0 +1,390 @@
+// The first two stages of load_gltf: the GLB container (header and chunk lengths), then a
+// pre-pass over the JSON with nlohmann-json that checks what tinygltf would trust or read
+// loosely (see check_json), so every such error names its JSON path.
+
+#include "io/gltf_internal.h"
+
+#include <librt/core/error.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <limits>
+#include <set>
+#include <string>
+#include <system_error>
+
+namespace librt::gltf_detail {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+constexpr std::uint32_t kGlbMagic = 0x46546C67u;   // "glTF"
+constexpr std::uint32_t kChunkJson = 0x4E4F534Au;  // "JSON"
+constexpr std::uint32_t kChunkBin = 0x004E4942u;   // "BIN\0"
+constexpr std::size_t kGlbHeader = 12, kChunkHeader = 8;
+
+std::uint32_t le32(const std::string& bytes, std::size_t at) {
+    // GLB fields are little-endian.
+    const auto* p = reinterpret_cast<const unsigned char*>(bytes.data() + at);
+    return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8u | std::uint32_t(p[2]) << 16u |
+           std::uint32_t(p[3]) << 24u;
+}
+
+/// The extensions whose absence would change the picture that librt reads.
+const std::set<std::string, std::less<>>& supported_extensions() {
+    static const std::set<std::string, std::less<>> names = {
+        "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_transmission",
+        "KHR_materials_ior",   "KHR_texture_transform",           "KHR_mesh_quantization"};
+    return names;
+}
+
+/// Keys tinygltf stores in an int: a larger JSON integer would wrap silently.
+bool is_int_field(std::string_view key) {
+    static const std::set<std::string, std::less<>> keys = {"bufferView", "buffer",
+                                                            "index",      "source",
+                                                            "sampler",    "texCoord",
+                                                            "material",   "indices",
+                                                            "mode",       "camera",
+                                                            "mesh",       "skin",
+                                                            "node",       "scene",
+                                                            "light",      "componentType",
+                                                            "minFilter",  "magFilter",
+                                                            "wrapS",      "wrapT",
+                                                            "input",      "output",
+                                                            "width",      "height",
+                                                            "skeleton",   "inverseBindMatrices"};
+    return keys.count(key) != 0;
+}
+
+/// Keys of arrays (or objects) whose members tinygltf stores as ints.
+bool is_int_container(std::string_view key) {
+    return key == "children" || key == "nodes" || key == "joints" || key == "attributes" ||
+           key == "targets";
+}
+
+/// Keys tinygltf reads as unsigned sizes (a negative value would be silently dropped).
+bool is_size_field(std::string_view key) {
+    return key == "byteLength" || key == "byteOffset" || key == "count" || key == "byteStride";
+}
+
+struct Frame {
+    const Json* value;
+    std::string path;
+    int depth;
+    bool free_form;  // inside extras or an extension: only the depth matters
+    bool ints;       // members must be ints (children, attributes...)
+    bool sparse;     // inside accessor.sparse: sizes are ints there
+};
+
+/// One pass over the whole document without recursion: nesting depth, and integers that
+/// tinygltf would truncate or drop.
+void check_structure(const Json& root, const Context& ctx) {
+    std::vector<Frame> stack{{&root, "", 1, false, false, false}};
+    // A member's path, built only when needed (an error, or a container to visit).
+    auto member_path = [](const Frame& parent, bool is_object, const std::string& key,
+                          std::size_t i) {
+        if (!is_object) return parent.path + "[" + std::to_string(i) + "]";
+        return parent.path.empty() ? key : parent.path + "." + key;
+    };
+    auto check_leaf = [&](const Json& v, const Frame& parent, bool is_object,
+                          const std::string& key, std::size_t i) {
+        if (parent.free_form || !v.is_number()) return;
+        auto path = [&] { return member_path(parent, is_object, key, i); };
+        const bool int_field = parent.ints || is_int_field(key) ||
+                               (parent.sparse && (key == "count" || key == "byteOffset"));
+        const bool size_field = !int_field && is_size_field(key);
+        if (!int_field && !size_field) return;
+        if (v.is_number_float()) {
+            ctx.fail(path(), "expected an integer, found " + v.dump());
+        }
+        if (v.is_number_unsigned()) {
+            const auto u = v.get<std::uint64_t>();
+            const std::uint64_t limit = int_field ? std::uint64_t(std::numeric_limits<int>::max())
+                                                  : (std::uint64_t{1} << 53u);
+            if (u > limit) ctx.fail(path(), v.dump() + " is too large");
+        } else if (size_field) {
+            ctx.fail(path(), v.dump() + ": must not be negative");
+        } else if (v.get<std::int64_t>() < std::numeric_limits<int>::min()) {
+            ctx.fail(path(), v.dump() + " is too small");
+        }
+    };
+    while (!stack.empty()) {
+        const Frame frame = std::move(stack.back());
+        stack.pop_back();
+        if (frame.depth > kMaxJsonDepth) {
+            ctx.fail(frame.path,
+                     "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+        }
+        const bool is_object = frame.value->is_object();
+        std::size_t i = 0;
+        for (auto it = frame.value->begin(); it != frame.value->end(); ++it, ++i) {
+            static const std::string no_key;
+            const std::string& key = is_object ? it.key() : no_key;
+            const Json& child = *it;
+            if (child.is_structured()) {
+                const bool free_form =
+                    frame.free_form || (is_object && (key == "extras" || key == "extensions"));
+                stack.push_back({&child, member_path(frame, is_object, key, i), frame.depth + 1,
+                                 free_form, is_object && is_int_container(key),
+                                 frame.sparse || (is_object && key == "sparse")});
+            } else {
+                check_leaf(child, frame, is_object, key, i);
+            }
+        }
+    }
+}
+
+void check_asset_and_extensions(const Json& doc, const Context& ctx) {
+    const auto asset = doc.find("asset");
+    if (asset == doc.end() || !asset->is_object())
+        ctx.fail("asset", "missing: not a glTF 2.0 file");
+    const auto version = asset->find("version");
+    if (version == asset->end() || !version->is_string())
+        ctx.fail("asset.version", "missing: not a glTF 2.0 file");
+    const std::string v = version->get<std::string>();
+    if (v.rfind("2.", 0) != 0) ctx.fail("asset.version", "'" + v + "': only glTF 2.x is read");
+    if (const auto min = asset->find("minVersion"); min != asset->end()) {
+        if (!min->is_string() || min->get<std::string>() != "2.0")
+            ctx.fail("asset.minVersion", min->dump() + ": only glTF 2.0 is read");
+    }
+    for (const char* list : {"extensionsRequired", "extensionsUsed"}) {
+        const auto names = doc.find(list);
+        if (names == doc.end()) continue;
+        if (!names->is_array()) ctx.fail(list, "must be an array of names");
+        const bool required = std::strcmp(list, "extensionsRequired") == 0;
+        for (std::size_t i = 0; i < names->size(); ++i) {
+            const Json& name = (*names)[i];
+            const std::string path = indexed(list, i);
+            if (!name.is_string()) ctx.fail(path, "must be a string");
+            const std::string n = name.get<std::string>();
+            if (supported_extensions().count(n) != 0) continue;
+            if (required) ctx.fail(path, "extension " + n + " is required but not supported");
+            // Required ones are listed in extensionsUsed too: warn only for the optional.
+            const auto req = doc.find("extensionsRequired");
+            const bool also_required = req != doc.end() && req->is_array() &&
+                                       std::find(req->begin(), req->end(), n) != req->end();
+            if (!also_required) ctx.warn(path, "extension " + n + " is not supported; ignored");
+        }
+    }
+}
+
+/// Decoded size of a base64 payload (RFC 4648: 3 bytes per 4 characters, less padding).
+std::uint64_t base64_size(std::string_view payload) {
+    std::uint64_t n = payload.size();
+    std::uint64_t pad = 0;
+    while (pad < 2 && pad < n && payload[n - 1 - pad] == '=') ++pad;
+    return n / 4 * 3 + (n % 4 == 0 ? 0 : (n % 4) * 3 / 4) - pad;
+}
+
+/// byteLength of every buffer, checked against its source.
+std::vector<std::uint64_t> check_buffers(const Json& doc, const Container& container,
+                                         const std::string& base_dir, std::uint64_t max_file_bytes,
+                                         const Context& ctx, JsonFacts& facts) {
+    std::vector<std::uint64_t> lengths;
+    const auto buffers = doc.find("buffers");
+    if (buffers == doc.end()) return lengths;
+    if (!buffers->is_array()) ctx.fail("buffers", "must be an array");
+    for (std::size_t i = 0; i < buffers->size(); ++i) {
+        const Json& b = (*buffers)[i];
+        const std::string path = indexed("buffers", i);
+        if (!b.is_object()) ctx.fail(path, "must be an object");
+        const auto len = b.find("byteLength");
+        if (len == b.end() || !len->is_number_unsigned())
+            ctx.fail(path + ".byteLength", "missing or not a non-negative integer");
+        const std::uint64_t byte_length = len->get<std::uint64_t>();
+        lengths.push_back(byte_length);
+        const auto uri = b.find("uri");
+        if (uri == b.end()) {
+            if (!container.binary || i != 0)
+                ctx.fail(path, "has no uri (only a .glb's first buffer may omit it)");
+            if (!container.has_bin) ctx.fail(path, "has no uri and the .glb has no BIN chunk");
+            if (byte_length > container.bin.size()) {
+                ctx.fail(path + ".byteLength", std::to_string(byte_length) +
+                                                   " exceeds the .glb's BIN chunk of " +
+                                                   std::to_string(container.bin.size()) + " bytes");
+            }
+            continue;
+        }
+        if (!uri->is_string()) ctx.fail(path + ".uri", "must be a string");
+        const std::string u = uri->get<std::string>();
+        if (u.rfind("data:", 0) == 0) {
+            if (!tinygltf::IsDataURI(u)) {
+                ctx.fail(path + ".uri",
+                         "a data: URI must be base64 application/octet-stream "
+                         "or application/gltf-buffer");
+            }
+            const std::uint64_t got = base64_size(std::string_view(u).substr(u.find(',') + 1));
+            if (got != byte_length) {
+                ctx.fail(path, "byteLength " + std::to_string(byte_length) +
+                                   " but its data: URI holds " + std::to_string(got) + " bytes");
+            }
+            continue;
+        }
+        const std::string file = resolve_uri(base_dir, u);
+        std::error_code ec;
+        const fs::file_status status = fs::status(file, ec);
+        const std::string where = path + ".uri";
+        if (status.type() == fs::file_type::not_found)
+            ctx.fail(where, "'" + u + "' (" + file + "): no such file");
+        if (status.type() != fs::file_type::regular)
+            ctx.fail(where, "'" + u + "' (" + file + "): not a regular file");
+        const std::uint64_t size = fs::file_size(file, ec);
+        if (ec) ctx.fail(where, "'" + u + "' (" + file + "): " + ec.message());
+        if (size > max_file_bytes) {
+            ctx.fail(where, "'" + u + "': " + std::to_string(size) +
+                                " bytes, more than the limit of " + std::to_string(max_file_bytes));
+        }
+        if (size < byte_length) {
+            ctx.fail(path, "byteLength " + std::to_string(byte_length) + " but '" + u +
+                               "' has only " + std::to_string(size) + " bytes");
+        }
+        facts.external_bytes += size;
+        auto [it, fresh] = facts.buffer_files.emplace(file, byte_length);
+        if (!fresh) it->second = std::max(it->second, byte_length);
+    }
+    return lengths;
+}
+
+void check_buffer_views(const Json& doc, const std::vector<std::uint64_t>& buffer_lengths,
+                        const Context& ctx) {
+    const auto views = doc.find("bufferViews");
+    if (views == doc.end()) return;
+    if (!views->is_array()) ctx.fail("bufferViews", "must be an array");
+    for (std::size_t i = 0; i < views->size(); ++i) {
+        const Json& v = (*views)[i];
+        const std::string path = indexed("bufferViews", i);
+        if (!v.is_object()) ctx.fail(path, "must be an object");
+        const auto buffer = v.find("buffer");
+        if (buffer == v.end() || !buffer->is_number_integer())
+            ctx.fail(path + ".buffer", "missing or not an integer");
+        check_index(ctx, path + ".buffer", buffer->get<int>(), buffer_lengths.size(), "buffer");
+        const auto len = v.find("byteLength");
+        if (len == v.end() || !len->is_number_unsigned() || len->get<std::uint64_t>() == 0)
+            ctx.fail(path + ".byteLength", "missing or not a positive integer");
+        std::uint64_t offset = 0;
+        if (const auto o = v.find("byteOffset"); o != v.end()) {
+            if (!o->is_number_unsigned())
+                ctx.fail(path + ".byteOffset", "not a non-negative integer");
+            offset = o->get<std::uint64_t>();
+        }
+        const std::uint64_t length = len->get<std::uint64_t>();
+        const std::uint64_t available = buffer_lengths[buffer->get<std::size_t>()];
+        // Both are below 2^53 (check_structure), so the sum cannot overflow.
+        if (offset + length > available) {
+            ctx.fail(path, "bytes [" + std::to_string(offset) + ", " +
+                               std::to_string(offset + length) + ") lie outside buffers[" +
+                               std::to_string(buffer->get<int>()) + "] (byteLength " +
+                               std::to_string(available) + ")");
+        }
+        if (const auto s = v.find("byteStride"); s != v.end()) {
+            if (!s->is_number_unsigned())
+                ctx.fail(path + ".byteStride", "not a non-negative integer");
+            const std::uint64_t stride = s->get<std::uint64_t>();
+            if (stride < 4 || stride > 252 || stride % 4 != 0)
+                ctx.fail(path + ".byteStride",
+                         std::to_string(stride) + ": must be a multiple of 4 in [4, 252]");
+        }
+    }
+    const auto images = doc.find("images");
+    if (images == doc.end() || !images->is_array()) return;
+    for (std::size_t i = 0; i < images->size(); ++i) {
+        const Json& img = (*images)[i];
+        if (!img.is_object()) continue;
+        if (const auto bv = img.find("bufferView"); bv != img.end() && bv->is_number_integer())
+            check_index(ctx, indexed("images", i) + ".bufferView", bv->get<int>(), views->size(),
+                        "buffer view");
+    }
+}
+
+}  // namespace
+
+Container split_container(const std::string& bytes, const Context& ctx) {
+    Container c;
+    if (bytes.size() < 4 || le32(bytes, 0) != kGlbMagic) {
+        // Not a .glb: it must be JSON text, an object (after optional BOM and spaces).
+        std::size_t first = bytes.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
+        first = bytes.find_first_not_of(" \t\r\n", first);
+        if (first == std::string::npos || bytes[first] != '{')
+            ctx.fail("", "not a glTF file: neither a .glb (magic 'glTF') nor JSON text");
+        c.json = bytes;
+        return c;
+    }
+    c.binary = true;
+    if (bytes.size() < kGlbHeader + kChunkHeader) {
+        ctx.fail("", "truncated .glb: " + std::to_string(bytes.size()) +
+                         " bytes, less than the 20 of its header and first chunk header");
+    }
+    const std::uint32_t version = le32(bytes, 4), length = le32(bytes, 8);
+    if (version != 2) ctx.fail("", ".glb version " + std::to_string(version) + ": only 2 is read");
+    if (length > bytes.size()) {
+        ctx.fail("", "truncated .glb: its header declares " + std::to_string(length) +
+                         " bytes, the file has " + std::to_string(bytes.size()));
+    }
+    if (length < bytes.size()) {
+        ctx.warn("", std::to_string(bytes.size() - length) +
+                         " bytes after the .glb's declared length ignored");
+    }
+    c.length = length;
+    // Chunk 0 must be JSON; a BIN chunk may follow. Each: u32 length, u32 type, payload.
+    const std::uint64_t json_length = le32(bytes, 12);
+    if (le32(bytes, 16) != kChunkJson) ctx.fail("", ".glb chunk 0 is not of type JSON");
+    if (kGlbHeader + kChunkHeader + json_length > length) {
+        ctx.fail("", ".glb chunk 0 (JSON) declares " + std::to_string(json_length) +
+                         " bytes but only " + std::to_string(length - 20) +
+                         " follow: truncated, or a wrong chunk length");
+    }
+    if (json_length == 0 || json_length % 4 != 0) {
+        ctx.fail("", ".glb chunk 0 (JSON) length " + std::to_string(json_length) +
+                         " is not a positive multiple of 4");
+    }
+    c.json = std::string_view(bytes).substr(20, json_length);
+    const std::uint64_t bin_at = 20 + json_length;
+    if (bin_at == length) return c;
+    if (bin_at + kChunkHeader > length) ctx.fail("", "truncated .glb: chunk 1 header cut short");
+    const std::uint64_t bin_length = le32(bytes, bin_at);
+    if (le32(bytes, bin_at + 4) != kChunkBin) ctx.fail("", ".glb chunk 1 is not of type BIN");
+    if (bin_at + kChunkHeader + bin_length > length) {
+        ctx.fail("", ".glb chunk 1 (BIN) declares " + std::to_string(bin_length) +
+                         " bytes but only " + std::to_string(length - bin_at - kChunkHeader) +
+                         " follow: truncated, or a wrong chunk length");
+    }
+    if (bin_length == 0 || bin_length % 4 != 0) {
+        ctx.fail("", ".glb chunk 1 (BIN) length " + std::to_string(bin_length) +
+                         " is not a positive multiple of 4");
+    }
+    c.has_bin = true;
+    c.bin = std::string_view(bytes).substr(bin_at + kChunkHeader, bin_length);
+    return c;
+}
+
+JsonFacts check_json(const Container& container, const std::string& base_dir,
+                     std::uint64_t max_file_bytes, const Context& ctx) {
+    Json doc;
+    try {
+        doc = Json::parse(container.json.begin(), container.json.end());
+    } catch (const Json::exception& e) {
+        // "[json.exception.parse_error.101] parse error at line 3, column 7: ..." -> from "parse".
+        std::string what = e.what();
+        if (const auto at = what.find("] "); at != std::string::npos) what.erase(0, at + 2);
+        ctx.fail("", "broken JSON: " + what);
+    }
+    if (!doc.is_object()) ctx.fail("", "not a glTF file: the JSON is not an object");
+    JsonFacts facts;
+    try {
+        check_structure(doc, ctx);
+        check_asset_and_extensions(doc, ctx);
+        const auto lengths = check_buffers(doc, container, base_dir, max_file_bytes, ctx, facts);
+        check_buffer_views(doc, lengths, ctx);
+    } catch (const Json::exception& e) {
+        // A member of an unexpected JSON type that a check above did not test first.
+        ctx.fail("", std::string("unexpected JSON: ") + e.what());
+    }
+    return facts;
+}
+
+}  // namespace librt::gltf_detail

@@ -1,0 +1,312 @@
+// Materials (metallic-roughness and the KHR_materials_* / KHR_texture_transform extensions
+// librt reads), textures, samplers and image decoding (stb_image, PNG and JPEG only).
+
+#include "io/gltf_internal.h"
+
+#include <stb/stb_image.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <string>
+
+namespace librt::gltf_detail {
+
+namespace {
+
+using tinygltf::ExtensionMap;
+using tinygltf::Value;
+
+/// A finite number in [lo, hi]; out-of-range values are clamped with a warning.
+float unit_factor(double v, float lo, float hi, const std::string& path, const Context& ctx) {
+    if (!std::isfinite(v)) ctx.fail(path, "is not finite");
+    if (v < lo || v > hi) {
+        ctx.warn(path, std::to_string(v) + " outside [" + std::to_string(lo) + ", " +
+                           std::to_string(hi) + "]; clamped");
+        v = std::clamp(v, double(lo), double(hi));
+    }
+    return float(v);
+}
+
+/// An optional number member of an extension object.
+bool ext_number(const Value& ext, const char* key, double* out) {
+    if (!ext.IsObject() || !ext.Has(key) || !ext.Get(key).IsNumber()) return false;
+    *out = ext.Get(key).GetNumberAsDouble();
+    return true;
+}
+
+/// KHR_texture_transform of a texture info's extensions, when present.
+void read_transform(const ExtensionMap& extensions, GltfTextureRef& ref, const std::string& path,
+                    const Context& ctx) {
+    const auto it = extensions.find("KHR_texture_transform");
+    if (it == extensions.end()) return;
+    const Value& t = it->second;
+    const std::string at = path + ".extensions.KHR_texture_transform";
+    ref.has_transform = true;
+    auto vec2 = [&](const char* key, glm::vec2& out) {
+        if (!t.IsObject() || !t.Has(key)) return;
+        const Value& v = t.Get(key);
+        if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
+            ctx.fail(at + "." + key, "must be 2 numbers");
+        out = glm::vec2(float(v.Get(0).GetNumberAsDouble()), float(v.Get(1).GetNumberAsDouble()));
+        if (!std::isfinite(out.x) || !std::isfinite(out.y))
+            ctx.fail(at + "." + key, "is not finite");
+    };
+    vec2("offset", ref.transform.offset);
+    vec2("scale", ref.transform.scale);
+    double rotation = 0.0;
+    if (ext_number(t, "rotation", &rotation)) {
+        if (!std::isfinite(rotation)) ctx.fail(at + ".rotation", "is not finite");
+        ref.transform.rotation = float(rotation);
+    }
+    if (t.IsObject() && t.Has("texCoord")) {
+        if (!t.Get("texCoord").IsInt()) ctx.fail(at + ".texCoord", "must be an integer");
+        ref.tex_coord = t.Get("texCoord").Get<int>();
+    }
+}
+
+GltfTextureRef texture_ref(int index, int tex_coord, double scale, const ExtensionMap& extensions,
+                           const std::string& path, std::size_t texture_count, const Context& ctx) {
+    GltfTextureRef ref;
+    if (index == -1) return ref;
+    check_index(ctx, path + ".index", index, texture_count, "texture");
+    ref.texture = index;
+    ref.tex_coord = tex_coord;
+    if (!std::isfinite(scale)) ctx.fail(path, "scale or strength is not finite");
+    ref.scale = float(scale);
+    read_transform(extensions, ref, path, ctx);
+    if (ref.tex_coord < 0 || ref.tex_coord > 1) {
+        ctx.warn(path + ".texCoord", std::to_string(ref.tex_coord) +
+                                         ": only TEXCOORD_0 and _1 are read; texture ignored");
+        ref = GltfTextureRef{};
+    }
+    return ref;
+}
+
+GltfMaterial read_material(const tinygltf::Material& m, const std::string& path,
+                           std::size_t textures, const Context& ctx) {
+    GltfMaterial g;
+    g.name = m.name;
+    const auto& pbr = m.pbrMetallicRoughness;
+    const std::string pp = path + ".pbrMetallicRoughness";
+    if (pbr.baseColorFactor.size() != 4) ctx.fail(pp + ".baseColorFactor", "must have 4 numbers");
+    for (int i = 0; i < 4; ++i)
+        g.base_color_factor[i] = unit_factor(pbr.baseColorFactor[std::size_t(i)], 0, 1,
+                                             indexed(pp + ".baseColorFactor", std::size_t(i)), ctx);
+    g.base_color_texture =
+        texture_ref(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, 1.0,
+                    pbr.baseColorTexture.extensions, pp + ".baseColorTexture", textures, ctx);
+    g.metallic_factor = unit_factor(pbr.metallicFactor, 0, 1, pp + ".metallicFactor", ctx);
+    g.roughness_factor = unit_factor(pbr.roughnessFactor, 0, 1, pp + ".roughnessFactor", ctx);
+    const auto& mr = pbr.metallicRoughnessTexture;
+    g.metallic_roughness_texture = texture_ref(mr.index, mr.texCoord, 1.0, mr.extensions,
+                                               pp + ".metallicRoughnessTexture", textures, ctx);
+    const auto& nt = m.normalTexture;
+    g.normal_texture = texture_ref(nt.index, nt.texCoord, nt.scale, nt.extensions,
+                                   path + ".normalTexture", textures, ctx);
+    const auto& ot = m.occlusionTexture;
+    g.occlusion_texture = texture_ref(ot.index, ot.texCoord, ot.strength, ot.extensions,
+                                      path + ".occlusionTexture", textures, ctx);
+    if (m.emissiveFactor.size() != 3) ctx.fail(path + ".emissiveFactor", "must have 3 numbers");
+    for (int i = 0; i < 3; ++i)
+        g.emissive_factor[i] = unit_factor(m.emissiveFactor[std::size_t(i)], 0, 1,
+                                           indexed(path + ".emissiveFactor", std::size_t(i)), ctx);
+    const auto& et = m.emissiveTexture;
+    g.emissive_texture = texture_ref(et.index, et.texCoord, 1.0, et.extensions,
+                                     path + ".emissiveTexture", textures, ctx);
+    if (m.alphaMode == "OPAQUE")
+        g.alpha_mode = GltfAlphaMode::Opaque;
+    else if (m.alphaMode == "MASK")
+        g.alpha_mode = GltfAlphaMode::Mask;
+    else if (m.alphaMode == "BLEND")
+        g.alpha_mode = GltfAlphaMode::Blend;
+    else
+        ctx.fail(path + ".alphaMode", "'" + m.alphaMode + "': must be OPAQUE, MASK or BLEND");
+    if (!std::isfinite(m.alphaCutoff) || m.alphaCutoff < 0)
+        ctx.fail(path + ".alphaCutoff", "must be finite and >= 0");
+    g.alpha_cutoff = float(m.alphaCutoff);
+    g.double_sided = m.doubleSided;
+
+    const std::string ep = path + ".extensions.";
+    double v = 0.0;
+    if (const auto it = m.extensions.find("KHR_materials_emissive_strength");
+        it != m.extensions.end() && ext_number(it->second, "emissiveStrength", &v)) {
+        if (!std::isfinite(v) || v < 0)
+            ctx.fail(ep + "KHR_materials_emissive_strength.emissiveStrength",
+                     "must be finite and >= 0");
+        g.emissive_strength = float(v);
+    }
+    if (const auto it = m.extensions.find("KHR_materials_transmission"); it != m.extensions.end()) {
+        const std::string tp = ep + "KHR_materials_transmission";
+        if (ext_number(it->second, "transmissionFactor", &v))
+            g.transmission_factor = unit_factor(v, 0, 1, tp + ".transmissionFactor", ctx);
+        if (it->second.IsObject() && it->second.Has("transmissionTexture")) {
+            const Value& t = it->second.Get("transmissionTexture");
+            if (!t.IsObject() || !t.Has("index") || !t.Get("index").IsInt())
+                ctx.fail(tp + ".transmissionTexture.index", "missing or not an integer");
+            const int tc =
+                t.Has("texCoord") && t.Get("texCoord").IsInt() ? t.Get("texCoord").Get<int>() : 0;
+            ExtensionMap nested;
+            if (t.Has("extensions") && t.Get("extensions").IsObject())
+                for (const std::string& k : t.Get("extensions").Keys())
+                    nested[k] = t.Get("extensions").Get(k);
+            g.transmission_texture = texture_ref(t.Get("index").Get<int>(), tc, 1.0, nested,
+                                                 tp + ".transmissionTexture", textures, ctx);
+        }
+    }
+    if (const auto it = m.extensions.find("KHR_materials_ior");
+        it != m.extensions.end() && ext_number(it->second, "ior", &v)) {
+        // The extension allows 0 (a reflection-only limit) or >= 1.
+        if (!std::isfinite(v) || (v != 0.0 && v < 1.0))
+            ctx.fail(ep + "KHR_materials_ior.ior", std::to_string(v) + ": must be 0 or >= 1");
+        g.ior = float(v);
+    }
+    return g;
+}
+
+GltfWrap wrap_mode(int mode, const std::string& path, const Context& ctx) {
+    switch (mode) {
+        case TINYGLTF_TEXTURE_WRAP_REPEAT:
+            return GltfWrap::Repeat;
+        case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+            return GltfWrap::ClampToEdge;
+        case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+            return GltfWrap::MirroredRepeat;
+        default:
+            ctx.fail(path, std::to_string(mode) + " is not a glTF wrap mode");
+    }
+}
+
+GltfFilter filter_mode(int mode, const std::string& path, const Context& ctx) {
+    switch (mode) {
+        case -1:
+            return GltfFilter::Unset;
+        case TINYGLTF_TEXTURE_FILTER_NEAREST:
+            return GltfFilter::Nearest;
+        case TINYGLTF_TEXTURE_FILTER_LINEAR:
+            return GltfFilter::Linear;
+        case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST:
+            return GltfFilter::NearestMipmapNearest;
+        case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST:
+            return GltfFilter::LinearMipmapNearest;
+        case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR:
+            return GltfFilter::NearestMipmapLinear;
+        case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR:
+            return GltfFilter::LinearMipmapLinear;
+        default:
+            ctx.fail(path, std::to_string(mode) + " is not a glTF filter");
+    }
+}
+
+/// Most texels an image may decode to: 2^26 (ImageTexture's limit: 8192 x 8192).
+constexpr std::uint64_t kMaxTexels = std::uint64_t{1} << 26u;
+
+/// Decodes PNG or JPEG bytes into RGBA8, or returns the reason it cannot.
+std::string decode(const unsigned char* bytes, std::size_t size, GltfImage& image, Context& ctx,
+                   const std::string& path) {
+    const bool png = size >= 8 && std::memcmp(bytes, "\x89PNG\r\n\x1a\n", 8) == 0;
+    const bool jpeg = size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
+    if (!png && !jpeg) return "not a PNG or JPEG image";
+    if (size > std::size_t(std::numeric_limits<int>::max())) return "larger than 2 GiB";
+    int w = 0, h = 0, channels = 0;
+    if (stbi_info_from_memory(bytes, int(size), &w, &h, &channels) == 0 || w <= 0 || h <= 0)
+        return std::string("cannot decode: ") +
+               (stbi_failure_reason() ? stbi_failure_reason() : "?");
+    const std::uint64_t texels = std::uint64_t(w) * std::uint64_t(h);
+    if (texels > kMaxTexels)
+        return std::to_string(w) + " x " + std::to_string(h) + " texels, more than the limit";
+    // No format compresses a texel below 1/4096 byte: a larger claim is corrupt (as in
+    // load_texture).
+    if (texels > 4096u * std::uint64_t(size) + 65536u)
+        return "its header claims more texels than the data can hold";
+    ctx.spend(texels * 4, path);
+    std::unique_ptr<stbi_uc, void (*)(void*)> data(
+        stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4), stbi_image_free);
+    if (!data)
+        return std::string("cannot decode: ") +
+               (stbi_failure_reason() ? stbi_failure_reason() : "?");
+    image.width = w;
+    image.height = h;
+    image.rgba.assign(data.get(), data.get() + texels * 4);
+    return {};
+}
+
+}  // namespace
+
+void read_materials(const tinygltf::Model& model, Context& ctx, GltfScene& scene) {
+    for (std::size_t i = 0; i < model.images.size(); ++i) {
+        GltfImage image;
+        image.name = model.images[i].name;
+        if (model.images[i].uri.rfind("data:", 0) != 0) image.uri = model.images[i].uri;
+        scene.images.push_back(std::move(image));
+    }
+    for (std::size_t i = 0; i < model.textures.size(); ++i) {
+        const tinygltf::Texture& t = model.textures[i];
+        const std::string path = indexed("textures", i);
+        GltfTexture g;
+        g.name = t.name;
+        if (t.source == -1) {
+            ctx.warn(path, "no source image (or only an unsupported extension's); texture ignored");
+        } else {
+            check_index(ctx, path + ".source", t.source, model.images.size(), "image");
+            g.image = t.source;
+        }
+        if (t.sampler != -1) {
+            check_index(ctx, path + ".sampler", t.sampler, model.samplers.size(), "sampler");
+            const tinygltf::Sampler& s = model.samplers[std::size_t(t.sampler)];
+            const std::string sp = indexed("samplers", std::size_t(t.sampler));
+            g.wrap_s = wrap_mode(s.wrapS, sp + ".wrapS", ctx);
+            g.wrap_t = wrap_mode(s.wrapT, sp + ".wrapT", ctx);
+            g.mag_filter = filter_mode(s.magFilter, sp + ".magFilter", ctx);
+            g.min_filter = filter_mode(s.minFilter, sp + ".minFilter", ctx);
+        }
+        scene.textures.push_back(std::move(g));
+    }
+    for (std::size_t i = 0; i < model.materials.size(); ++i)
+        scene.materials.push_back(
+            read_material(model.materials[i], indexed("materials", i), model.textures.size(), ctx));
+}
+
+void decode_images(const tinygltf::Model& model, const ReadFailures& failures, Context& ctx,
+                   GltfScene& scene) {
+    std::vector<unsigned char> used(model.images.size(), 0);
+    for (const GltfTexture& t : scene.textures)
+        if (t.image >= 0) used[std::size_t(t.image)] = 1;
+    std::vector<unsigned char> ok(model.images.size(), 0);
+    for (std::size_t i = 0; i < model.images.size(); ++i) {
+        if (!used[i]) continue;
+        const tinygltf::Image& img = model.images[i];
+        const std::string path = indexed("images", i);
+        std::string problem;
+        if (img.bufferView >= 0) {
+            // In range: the pre-pass checked the view against its buffer.
+            const tinygltf::BufferView& bv = model.bufferViews[std::size_t(img.bufferView)];
+            const tinygltf::Buffer& b = model.buffers[std::size_t(bv.buffer)];
+            if (bv.byteOffset + bv.byteLength > b.data.size())
+                problem = "its buffer view lies outside the buffer";
+            else
+                problem = decode(b.data.data() + bv.byteOffset, bv.byteLength, scene.images[i], ctx,
+                                 path);
+        } else if (!img.image.empty()) {
+            problem = decode(img.image.data(), img.image.size(), scene.images[i], ctx, path);
+        } else {
+            const std::string file = resolve_uri("", img.uri);
+            problem = "'" + img.uri + "' could not be read";
+            for (const auto& [p, why] : failures)
+                if (p.size() >= file.size() &&
+                    p.compare(p.size() - file.size(), file.size(), file) == 0)
+                    problem = why;
+            if (failures.empty()) problem += " (no such file)";
+        }
+        if (problem.empty()) {
+            ok[i] = 1;
+        } else {
+            ctx.warn(path, problem + "; textures using it are ignored (factors alone)");
+        }
+    }
+    for (GltfTexture& t : scene.textures)
+        if (t.image >= 0 && !ok[std::size_t(t.image)]) t.image = -1;
+}
+
+}  // namespace librt::gltf_detail

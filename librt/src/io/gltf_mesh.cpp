@@ -1,0 +1,146 @@
+// glTF meshes to GltfMesh: attributes read and checked, indices range-checked, strips and
+// fans turned into triangles.
+
+#include "io/gltf_internal.h"
+
+#include <string>
+
+namespace librt::gltf_detail {
+
+namespace {
+
+template <int N>
+std::vector<glm::vec<N, float>> to_vectors(const std::vector<float>& flat) {
+    std::vector<glm::vec<N, float>> out(flat.size() / N);
+    for (std::size_t i = 0; i < out.size(); ++i)
+        for (int j = 0; j < N; ++j) out[i][j] = flat[i * N + std::size_t(j)];
+    return out;
+}
+
+/// Reads attribute `name` when present, checking its count; empty when absent.
+template <int N>
+std::vector<glm::vec<N, float>> attribute(const tinygltf::Model& model,
+                                          const tinygltf::Primitive& prim, const char* name,
+                                          const std::vector<int>& types, std::size_t count,
+                                          const std::string& path, Context& ctx) {
+    const auto it = prim.attributes.find(name);
+    if (it == prim.attributes.end()) return {};
+    const std::string at = path + ".attributes." + name;
+    check_index(ctx, at, it->second, model.accessors.size(), "accessor");
+    if (accessor_count(model, it->second) != count) {
+        ctx.fail(at, "count " + std::to_string(accessor_count(model, it->second)) +
+                         " differs from POSITION's " + std::to_string(count));
+    }
+    int components = 0;
+    const std::vector<float> flat =
+        read_float_accessor(model, it->second, types, at, ctx, &components);
+    if (N == 4 && components == 3) {  // COLOR_0 as RGB: alpha 1
+        std::vector<glm::vec<N, float>> out(count);
+        for (std::size_t i = 0; i < count; ++i)
+            for (int j = 0; j < N; ++j) out[i][j] = j < 3 ? flat[i * 3 + std::size_t(j)] : 1.0f;
+        return out;
+    }
+    return to_vectors<N>(flat);
+}
+
+/// Triangles of `mode` from the vertex sequence `order` (indices, or 0..n-1).
+std::vector<glm::uvec3> assemble(int mode, const std::vector<std::uint32_t>& order,
+                                 const std::string& path, Context& ctx) {
+    const std::size_t n = order.size();
+    std::vector<glm::uvec3> tris;
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+        if (n % 3 != 0) {
+            ctx.warn(path, std::to_string(n) + " vertices is not a multiple of 3: the last " +
+                               std::to_string(n % 3) + " ignored");
+        }
+        ctx.spend(n / 3 * sizeof(glm::uvec3), path);
+        tris.reserve(n / 3);
+        for (std::size_t i = 0; i + 2 < n; i += 3)
+            tris.push_back({order[i], order[i + 1], order[i + 2]});
+        return tris;
+    }
+    if (n < 3) return tris;
+    ctx.spend((n - 2) * sizeof(glm::uvec3), path);
+    tris.reserve(n - 2);
+    for (std::size_t i = 0; i + 2 < n; ++i) {
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            // glTF 2.0 spec 3.7.2.1: triangle i is {v_i, v_(i+1+i%2), v_(i+2-i%2)}, which keeps
+            // every triangle's winding the same as the first one's.
+            const std::size_t odd = i % 2;
+            tris.push_back({order[i], order[i + 1 + odd], order[i + 2 - odd]});
+        } else {
+            // Fan, same section: triangle i is {v_(i+1), v_(i+2), v_0}.
+            tris.push_back({order[i + 1], order[i + 2], order[0]});
+        }
+    }
+    return tris;
+}
+
+const std::vector<int> kVec2{TINYGLTF_TYPE_VEC2};
+const std::vector<int> kVec3{TINYGLTF_TYPE_VEC3};
+const std::vector<int> kVec4{TINYGLTF_TYPE_VEC4};
+const std::vector<int> kVec34{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4};
+
+}  // namespace
+
+void read_meshes(const tinygltf::Model& model, Context& ctx, GltfScene& scene) {
+    scene.meshes.reserve(model.meshes.size());
+    for (std::size_t m = 0; m < model.meshes.size(); ++m) {
+        const tinygltf::Mesh& mesh = model.meshes[m];
+        GltfMesh out;
+        out.name = mesh.name;
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const tinygltf::Primitive& prim = mesh.primitives[p];
+            const std::string path = indexed(indexed("meshes", m) + ".primitives", p);
+            const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+            if (mode < TINYGLTF_MODE_TRIANGLES) {
+                ctx.warn(path, "points and lines are not rendered; primitive skipped");
+                continue;
+            }
+            if (mode > TINYGLTF_MODE_TRIANGLE_FAN)
+                ctx.fail(path + ".mode", std::to_string(mode) + " is not a glTF mode");
+            if (prim.material != -1)
+                check_index(ctx, path + ".material", prim.material, model.materials.size(),
+                            "material");
+            const auto pos = prim.attributes.find("POSITION");
+            if (pos == prim.attributes.end()) {
+                ctx.warn(path, "no POSITION attribute; primitive skipped");
+                continue;
+            }
+            if (!prim.targets.empty()) ctx.warn(path, "morph targets ignored (base shape used)");
+            GltfPrimitive g;
+            g.material = prim.material;
+            int components = 0;
+            const std::string pos_path = path + ".attributes.POSITION";
+            g.positions = to_vectors<3>(
+                read_float_accessor(model, pos->second, kVec3, pos_path, ctx, &components));
+            const std::size_t count = g.positions.size();
+            g.normals = attribute<3>(model, prim, "NORMAL", kVec3, count, path, ctx);
+            g.tangents = attribute<4>(model, prim, "TANGENT", kVec4, count, path, ctx);
+            g.uv0 = attribute<2>(model, prim, "TEXCOORD_0", kVec2, count, path, ctx);
+            g.uv1 = attribute<2>(model, prim, "TEXCOORD_1", kVec2, count, path, ctx);
+            g.colors = attribute<4>(model, prim, "COLOR_0", kVec34, count, path, ctx);
+            std::vector<std::uint32_t> order;
+            if (prim.indices != -1) {
+                const std::string ip = path + ".indices";
+                order = read_index_accessor(model, prim.indices, ip, ctx);
+                for (std::size_t i = 0; i < order.size(); ++i) {
+                    if (order[i] >= count) {
+                        ctx.fail(ip, "index " + std::to_string(order[i]) + " >= vertex count " +
+                                         std::to_string(count) + " (at position " +
+                                         std::to_string(i) + ")");
+                    }
+                }
+            } else {
+                ctx.spend(count * sizeof(std::uint32_t), path);
+                order.resize(count);
+                for (std::size_t i = 0; i < count; ++i) order[i] = static_cast<std::uint32_t>(i);
+            }
+            g.triangles = assemble(mode, order, path, ctx);
+            out.primitives.push_back(std::move(g));
+        }
+        scene.meshes.push_back(std::move(out));
+    }
+}
+
+}  // namespace librt::gltf_detail

@@ -1,0 +1,288 @@
+// The node graph: checked to be a forest (no cycles, one parent per node), then walked
+// from the chosen scene's roots without recursion, composing transforms into the world
+// matrices of instances, cameras and lights.
+
+#include "io/gltf_internal.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <utility>
+
+namespace librt::gltf_detail {
+
+namespace {
+
+bool finite(const std::vector<double>& values) {
+    for (const double v : values)
+        if (!std::isfinite(v)) return false;
+    return true;
+}
+
+/// The node's local matrix: its matrix, else T * R * S (glTF 2.0 spec 3.5.3).
+glm::mat4 local_matrix(const tinygltf::Node& node, const std::string& path, const Context& ctx) {
+    const bool trs = !node.translation.empty() || !node.rotation.empty() || !node.scale.empty();
+    if (!node.matrix.empty()) {
+        if (node.matrix.size() != 16) ctx.fail(path + ".matrix", "must have 16 numbers");
+        if (!finite(node.matrix)) ctx.fail(path + ".matrix", "has a number that is not finite");
+        if (trs) ctx.warn(path, "both matrix and translation/rotation/scale given; matrix used");
+        glm::mat4 m;
+        // glTF stores matrices column by column, as glm does.
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                m[c][r] = static_cast<float>(node.matrix[std::size_t(c * 4 + r)]);
+        return m;
+    }
+    glm::mat4 m(1.0f);
+    if (!node.translation.empty()) {
+        if (node.translation.size() != 3 || !finite(node.translation))
+            ctx.fail(path + ".translation", "must be 3 finite numbers");
+        m = glm::translate(glm::mat4(1.0f),
+                           glm::vec3(float(node.translation[0]), float(node.translation[1]),
+                                     float(node.translation[2])));
+    }
+    if (!node.rotation.empty()) {
+        if (node.rotation.size() != 4 || !finite(node.rotation))
+            ctx.fail(path + ".rotation", "must be 4 finite numbers (x, y, z, w)");
+        const double len =
+            std::sqrt(node.rotation[0] * node.rotation[0] + node.rotation[1] * node.rotation[1] +
+                      node.rotation[2] * node.rotation[2] + node.rotation[3] * node.rotation[3]);
+        if (!(len > 0.0) || !std::isfinite(len))
+            ctx.fail(path + ".rotation", "is a zero quaternion");
+        // glTF gives (x, y, z, w); glm::quat takes (w, x, y, z). Renormalised: exporters
+        // write unit quaternions rounded to a few digits.
+        const glm::quat q(float(node.rotation[3] / len), float(node.rotation[0] / len),
+                          float(node.rotation[1] / len), float(node.rotation[2] / len));
+        m = m * glm::mat4_cast(q);
+    }
+    if (!node.scale.empty()) {
+        if (node.scale.size() != 3 || !finite(node.scale))
+            ctx.fail(path + ".scale", "must be 3 finite numbers");
+        m = glm::scale(m,
+                       glm::vec3(float(node.scale[0]), float(node.scale[1]), float(node.scale[2])));
+    }
+    return m;
+}
+
+/// Parent of every node (-1 for roots), after checking the children lists form a forest.
+std::vector<int> check_forest(const tinygltf::Model& model, const Context& ctx) {
+    const std::size_t n = model.nodes.size();
+    std::vector<int> parent(n, -1);
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto& children = model.nodes[i].children;
+        for (std::size_t k = 0; k < children.size(); ++k) {
+            const std::string path = indexed(indexed("nodes", i) + ".children", k);
+            const int c = children[k];
+            check_index(ctx, path, c, n, "node");
+            if (std::size_t(c) == i)
+                ctx.fail(path, "node " + std::to_string(c) + " is its own child");
+            if (parent[std::size_t(c)] != -1) {
+                ctx.fail(path, "node " + std::to_string(c) + " is already a child of nodes[" +
+                                   std::to_string(parent[std::size_t(c)]) +
+                                   "] (a node has at most one parent)");
+            }
+            parent[std::size_t(c)] = int(i);
+        }
+    }
+    // With one parent each, a cycle is a parent chain that comes back to itself.
+    enum : unsigned char { Unknown, OnChain, Done };
+    std::vector<unsigned char> state(n, Unknown);
+    std::vector<int> chain;
+    for (std::size_t i = 0; i < n; ++i) {
+        chain.clear();
+        int v = int(i);
+        while (v != -1 && state[std::size_t(v)] == Unknown) {
+            state[std::size_t(v)] = OnChain;
+            chain.push_back(v);
+            v = parent[std::size_t(v)];
+        }
+        if (v != -1 && state[std::size_t(v)] == OnChain) {
+            std::string loop = std::to_string(v);
+            for (int w = parent[std::size_t(v)]; w != v && loop.size() < 200;
+                 w = parent[std::size_t(w)])
+                loop = std::to_string(w) + " -> " + loop;
+            ctx.fail(indexed("nodes", std::size_t(v)),
+                     "the node graph has a cycle (child -> parent: " + std::to_string(v) + " -> " +
+                         loop + ")");
+        }
+        for (const int w : chain) state[std::size_t(w)] = Done;
+    }
+    return parent;
+}
+
+GltfCamera read_camera(const tinygltf::Camera& cam, const std::string& path, const Context& ctx) {
+    GltfCamera c;
+    c.name = cam.name;
+    auto positive = [&](double v, const std::string& where) {
+        if (!(v > 0.0) || !std::isfinite(v)) ctx.fail(where, std::to_string(v) + ": must be > 0");
+        return float(v);
+    };
+    if (cam.type == "perspective") {
+        const auto& p = cam.perspective;
+        c.type = GltfCamera::Type::Perspective;
+        c.yfov = positive(p.yfov, path + ".perspective.yfov");
+        if (p.yfov >= std::numbers::pi)
+            ctx.fail(path + ".perspective.yfov", std::to_string(p.yfov) + ": must be < pi");
+        c.znear = positive(p.znear, path + ".perspective.znear");
+        if (p.aspectRatio != 0.0)
+            c.aspect_ratio = positive(p.aspectRatio, path + ".perspective.aspectRatio");
+        if (p.zfar != 0.0 && (!std::isfinite(p.zfar) || p.zfar <= p.znear))
+            ctx.fail(path + ".perspective.zfar", std::to_string(p.zfar) + ": must be > znear");
+        c.zfar = float(p.zfar);
+    } else if (cam.type == "orthographic") {
+        const auto& o = cam.orthographic;
+        c.type = GltfCamera::Type::Orthographic;
+        if (o.xmag == 0.0 || !std::isfinite(o.xmag))
+            ctx.fail(path + ".orthographic.xmag", "must be finite and not 0");
+        if (o.ymag == 0.0 || !std::isfinite(o.ymag))
+            ctx.fail(path + ".orthographic.ymag", "must be finite and not 0");
+        if (!(o.znear >= 0.0) || !std::isfinite(o.zfar) || !(o.zfar > o.znear))
+            ctx.fail(path + ".orthographic", "needs 0 <= znear < zfar");
+        c.xmag = float(o.xmag);
+        c.ymag = float(o.ymag);
+        c.znear = float(o.znear);
+        c.zfar = float(o.zfar);
+    } else {
+        ctx.fail(path + ".type", "'" + cam.type + "': must be perspective or orthographic");
+    }
+    return c;
+}
+
+GltfLight read_light(const tinygltf::Light& light, const std::string& path, const Context& ctx) {
+    GltfLight l;
+    l.name = light.name;
+    if (light.type == "point")
+        l.type = GltfLight::Type::Point;
+    else if (light.type == "spot")
+        l.type = GltfLight::Type::Spot;
+    else if (light.type == "directional")
+        l.type = GltfLight::Type::Directional;
+    else
+        ctx.fail(path + ".type", "'" + light.type + "': must be point, spot or directional");
+    if (!light.color.empty()) {
+        if (light.color.size() != 3 || !finite(light.color) || light.color[0] < 0 ||
+            light.color[1] < 0 || light.color[2] < 0)
+            ctx.fail(path + ".color", "must be 3 finite numbers >= 0");
+        l.color = glm::vec3(float(light.color[0]), float(light.color[1]), float(light.color[2]));
+    }
+    if (!std::isfinite(light.intensity) || light.intensity < 0)
+        ctx.fail(path + ".intensity",
+                 std::to_string(light.intensity) + ": must be finite and >= 0");
+    l.intensity = float(light.intensity);
+    if (!std::isfinite(light.range) || light.range < 0)
+        ctx.fail(path + ".range", std::to_string(light.range) + ": must be > 0");
+    l.range = float(light.range);
+    if (l.type == GltfLight::Type::Spot) {
+        const double inner = light.spot.innerConeAngle, outer = light.spot.outerConeAngle;
+        if (!(inner >= 0.0) || !(inner < outer) || !(outer <= std::numbers::pi / 2 + 1e-6))
+            ctx.fail(path + ".spot", "needs 0 <= innerConeAngle < outerConeAngle <= pi/2");
+        l.inner_cone_angle = float(inner);
+        l.outer_cone_angle = float(outer);
+    }
+    return l;
+}
+
+/// The node's KHR_lights_punctual light index, or -1.
+int node_light(const tinygltf::Node& node, const std::string& path, std::size_t light_count,
+               const Context& ctx) {
+    const auto ext = node.extensions.find("KHR_lights_punctual");
+    if (ext == node.extensions.end()) return -1;
+    const std::string where = path + ".extensions.KHR_lights_punctual.light";
+    if (!ext->second.IsObject() || !ext->second.Has("light") || !ext->second.Get("light").IsInt())
+        ctx.fail(where, "missing or not an integer");
+    const int index = ext->second.Get("light").Get<int>();
+    check_index(ctx, where, index, light_count, "light");
+    return index;
+}
+
+}  // namespace
+
+void read_nodes(const tinygltf::Model& model, int scene_index, Context& ctx, GltfScene& scene) {
+    std::vector<GltfCamera> cameras;
+    for (std::size_t i = 0; i < model.cameras.size(); ++i)
+        cameras.push_back(read_camera(model.cameras[i], indexed("cameras", i), ctx));
+    std::vector<GltfLight> lights;
+    for (std::size_t i = 0; i < model.lights.size(); ++i)
+        lights.push_back(
+            read_light(model.lights[i], indexed("extensions.KHR_lights_punctual.lights", i), ctx));
+    const std::vector<int> parent = check_forest(model, ctx);
+
+    std::vector<int> roots;
+    std::string roots_path;
+    if (scene_index < 0 && model.defaultScene != -1) {
+        check_index(ctx, "scene", model.defaultScene, model.scenes.size(), "scene");
+        scene_index = model.defaultScene;
+    }
+    if (scene_index < 0 && !model.scenes.empty()) scene_index = 0;
+    if (scene_index >= 0) {
+        if (std::size_t(scene_index) >= model.scenes.size()) {
+            ctx.fail("", "scene " + std::to_string(scene_index) + " requested, the file has " +
+                             std::to_string(model.scenes.size()));
+        }
+        roots = model.scenes[std::size_t(scene_index)].nodes;
+        roots_path = indexed("scenes", std::size_t(scene_index)) + ".nodes";
+    } else {
+        ctx.warn("scenes", "none in the file: every root node is placed");
+        for (std::size_t i = 0; i < parent.size(); ++i)
+            if (parent[i] == -1) roots.push_back(int(i));
+        roots_path = "nodes";
+    }
+    std::vector<unsigned char> seen(model.nodes.size(), 0);
+    std::vector<std::pair<int, glm::mat4>> stack;
+    for (std::size_t k = 0; k < roots.size(); ++k) {
+        const std::string path = indexed(roots_path, k);
+        const int r = roots[k];
+        check_index(ctx, path, r, model.nodes.size(), "node");
+        if (parent[std::size_t(r)] != -1) {
+            ctx.fail(path, "node " + std::to_string(r) + " is a child of nodes[" +
+                               std::to_string(parent[std::size_t(r)]) + "], not a root");
+        }
+        if (seen[std::size_t(r)]) ctx.fail(path, "node " + std::to_string(r) + " is listed twice");
+        seen[std::size_t(r)] = 1;
+    }
+    // Roots pushed last-first, as children below, so nodes are visited in file order.
+    for (auto r = roots.rbegin(); r != roots.rend(); ++r) stack.emplace_back(*r, glm::mat4(1.0f));
+    while (!stack.empty()) {
+        const auto [index, parent_world] = stack.back();
+        stack.pop_back();
+        const tinygltf::Node& node = model.nodes[std::size_t(index)];
+        const std::string path = indexed("nodes", std::size_t(index));
+        const glm::mat4 world = parent_world * local_matrix(node, path, ctx);
+        const float* w = glm::value_ptr(world);
+        for (int i = 0; i < 16; ++i)
+            if (!std::isfinite(w[i])) ctx.fail(path, "its world transform is not finite");
+        if (node.skin != -1)
+            ctx.warn(path + ".skin", "skinning ignored: the mesh is placed by the node");
+        if (node.mesh != -1) {
+            check_index(ctx, path + ".mesh", node.mesh, model.meshes.size(), "mesh");
+            scene.instances.push_back({node.mesh, index, world, node.name});
+        }
+        if (node.camera != -1) {
+            check_index(ctx, path + ".camera", node.camera, cameras.size(), "camera");
+            GltfCamera c = cameras[std::size_t(node.camera)];
+            if (c.name.empty()) c.name = node.name;
+            c.camera = node.camera;
+            c.node = index;
+            c.world = world;
+            scene.cameras.push_back(std::move(c));
+        }
+        if (const int li = node_light(node, path, lights.size(), ctx); li >= 0) {
+            GltfLight l = lights[std::size_t(li)];
+            if (l.name.empty()) l.name = node.name;
+            l.light = li;
+            l.node = index;
+            l.world = world;
+            scene.lights.push_back(std::move(l));
+        }
+        // Children pushed last-first so they are visited in file order. Each node has one
+        // parent and the graph no cycle (check_forest), so every node is visited once.
+        for (auto c = node.children.rbegin(); c != node.children.rend(); ++c)
+            stack.emplace_back(*c, world);
+    }
+}
+
+}  // namespace librt::gltf_detail

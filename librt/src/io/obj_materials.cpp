@@ -1,0 +1,65 @@
+#include <librt/core/error.h>
+#include <librt/io/obj_materials.h>
+#include <librt/io/texture_io.h>
+
+#include <string>
+#include <utility>
+
+namespace librt {
+namespace {
+
+bool any_positive(const glm::vec3& v) { return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f; }
+
+}  // namespace
+
+Material material_from_mtl(const MeshMaterial& mtl) {
+    try {
+        if (any_positive(mtl.emission)) return Material::emissive(mtl.emission);
+        if (mtl.illum == 4 || mtl.illum == 6 || mtl.illum == 7 || mtl.dissolve < 1.0f)
+            return Material::dielectric(mtl.ior > 0.0f ? mtl.ior : 1.5f);
+        if (mtl.illum == 3 || mtl.illum == 5 || mtl.specular == glm::vec3(1.0f))
+            return Material::mirror(any_positive(mtl.specular) ? mtl.specular : glm::vec3(1.0f));
+        return Material::diffuse(mtl.diffuse);
+    } catch (const Error& e) {
+        throw Error("MTL material '" + mtl.name + "': " + e.what());
+    }
+}
+
+MtlMeshResult add_mesh_with_mtl(Scene& scene, TriangleMesh mesh, std::uint32_t fallback_material,
+                                TextureIdsByPath* textures) {
+    if (fallback_material >= scene.material_count()) {
+        throw Error("material id " + std::to_string(fallback_material) + ": the scene has " +
+                    std::to_string(scene.material_count()) + " materials");
+    }
+    validate(mesh);
+    MtlMeshResult result;
+    std::vector<std::uint32_t> per_triangle(mesh.triangles.size(), fallback_material);
+    if (!mesh.material_ids.empty()) {
+        TextureIdsByPath local;
+        TextureIdsByPath& loaded = textures ? *textures : local;
+        std::vector<std::uint32_t> mapped(mesh.materials.size());
+        for (std::size_t i = 0; i < mesh.materials.size(); ++i) {
+            const MeshMaterial& mtl = mesh.materials[i];
+            Material m = material_from_mtl(mtl);
+            if (m.kind == MaterialKind::Diffuse && !mtl.diffuse_texture.empty()) {
+                const auto [it, added] = loaded.try_emplace(mtl.diffuse_texture, -1);
+                if (added) {
+                    try {
+                        it->second = scene.add_texture(load_texture(mtl.diffuse_texture));
+                    } catch (const Error& e) {
+                        result.warnings.push_back("MTL material '" + mtl.name + "': " + e.what() +
+                                                  "; using its Kd instead");
+                    }
+                }
+                m.albedo_texture = it->second;
+            }
+            mapped[i] = scene.add_material(m);
+        }
+        for (std::size_t i = 0; i < per_triangle.size(); ++i)
+            per_triangle[i] = mapped[mesh.material_ids[i]];  // in range: validated
+    }
+    result.object_id = scene.add_mesh(std::move(mesh), std::move(per_triangle));
+    return result;
+}
+
+}  // namespace librt

@@ -1,0 +1,69 @@
+// libFuzzer target: arbitrary bytes as a glTF file (.glb or .gltf, told apart by content)
+// -> load_gltf -> consistency of what it returns. Any outcome but a consistent GltfScene
+// or a librt::Error is a bug (crash, hang, sanitizer report, huge allocation).
+// Run: ./build/fuzz/tests/fuzz/gltf_fuzz -max_total_time=60 tests/fuzz/corpus/gltf
+
+#include <librt/core/error.h>
+#include <librt/io/gltf.h>
+
+#include <unistd.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+std::filesystem::path scratch_file() {
+    // One directory per process (relative URIs in an input resolve inside it), one file
+    // reused: load_gltf reads from a path.
+    static const std::filesystem::path path = [] {
+        const auto dir = std::filesystem::temp_directory_path() /
+                         ("librt_gltf_fuzz_" + std::to_string(::getpid()));
+        std::filesystem::create_directories(dir);
+        return dir / "input.glb";
+    }();
+    return path;
+}
+
+void check(bool ok) {
+    if (!ok) __builtin_trap();
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const auto path = scratch_file();
+    {
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);
+        out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+    }
+    librt::GltfLoadOptions options;
+    options.max_file_bytes = 1u << 20u;
+    try {
+        const librt::GltfScene scene = librt::load_gltf(path, options);
+        for (const librt::GltfMesh& mesh : scene.meshes) {
+            for (const librt::GltfPrimitive& p : mesh.primitives) {
+                const std::size_t n = p.positions.size();
+                for (const glm::uvec3& t : p.triangles) check(t.x < n && t.y < n && t.z < n);
+                for (const std::size_t m : {p.normals.size(), p.tangents.size(), p.uv0.size(),
+                                            p.uv1.size(), p.colors.size()})
+                    check(m == 0 || m == n);
+                check(p.material < int(scene.materials.size()));
+            }
+        }
+        for (const librt::GltfInstance& i : scene.instances)
+            check(i.mesh >= 0 && std::size_t(i.mesh) < scene.meshes.size());
+        for (const librt::GltfTexture& t : scene.textures) {
+            if (t.image < 0) continue;
+            check(std::size_t(t.image) < scene.images.size());
+            const librt::GltfImage& img = scene.images[std::size_t(t.image)];
+            check(img.rgba.size() == std::size_t(img.width) * std::size_t(img.height) * 4);
+        }
+        (void)scene.triangles_placed();
+    } catch (const librt::Error&) {
+        // Rejected with a message: the expected outcome for bad input.
+    }
+    return 0;
+}
