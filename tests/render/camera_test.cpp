@@ -6,8 +6,12 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <string>
+#include <vector>
 
 using namespace librt;
 
@@ -190,4 +194,133 @@ TEST(Camera, InvalidSettingsNameTheParameter) {
         s.width = 1;
         s.height = 65536;
     })));
+}
+
+TEST(Camera, WithoutClipsRaysSpanTheWholeLine) {
+    const Camera camera(CameraSettings{});
+    Sampler sampler(1, 2, 3, 4);
+    const Ray ray = camera.generate_ray(10, 20, sampler);
+    EXPECT_EQ(ray.t_min, 0.0f);
+    EXPECT_EQ(ray.t_max, std::numeric_limits<float>::infinity());
+}
+
+TEST(Camera, NearAndFarClipAreDepthPlanesInFrontOfTheLens) {
+    // smallpt's camera: the scene starts 140 units in front of it along the view axis.
+    for (const LensModel lens : {LensModel::Pinhole, LensModel::Disk, LensModel::Gaussian}) {
+        CameraSettings s;
+        s.position = {50.0f, 52.0f, 295.6f};
+        s.look_at = {50.0f, 52.0f - 0.042612f, 294.6f};
+        s.vertical_fov_degrees = 54.4f;
+        s.width = 256;
+        s.height = 192;
+        s.pixel_jitter = PixelJitter::Gaussian;
+        s.lens = lens;
+        s.lens_radius = 3.0f;
+        s.near_clip = 140.0f;
+        s.far_clip = 300.0f;
+        const Camera camera(s);
+        for (const auto& [x, y] : {std::pair{0, 0}, {255, 191}, {128, 96}, {3, 180}}) {
+            Sampler sampler(SamplerKind::Sobol, std::uint32_t(x), std::uint32_t(y), 5, 1);
+            const Ray ray = camera.generate_ray(x, y, sampler);
+            EXPECT_NEAR(glm::length(ray.direction), 1.0f, 1e-6f);
+            // The depth of the clip points, measured along the axis from the lens plane
+            // (the origin lies in it), is near and far; t is their distance from the origin.
+            EXPECT_NEAR(glm::dot(ray.origin - s.position, camera.forward()), 0.0f, 1e-4f);
+            EXPECT_NEAR(glm::dot(ray.at(ray.t_min) - ray.origin, camera.forward()), 140.0f, 1e-3f);
+            EXPECT_NEAR(glm::dot(ray.at(ray.t_max) - ray.origin, camera.forward()), 300.0f, 2e-3f);
+            EXPECT_GE(ray.t_min, 140.0f);  // off-axis rays travel further to reach the plane
+        }
+    }
+    // Only a far clip: t_min stays exactly 0.
+    CameraSettings far_only;
+    far_only.far_clip = 10.0f;
+    Sampler sampler(0, 0, 0, 0);
+    const Ray ray = Camera(far_only).generate_ray(256, 256, sampler);
+    EXPECT_EQ(ray.t_min, 0.0f);
+    EXPECT_NEAR(ray.t_max * glm::dot(ray.direction, glm::vec3(0, 0, -1)), 10.0f, 1e-5f);
+}
+
+TEST(Camera, ClipAndFilterSettingsAreValidated) {
+    const auto with = [](auto change) {
+        CameraSettings s;
+        change(s);
+        return s;
+    };
+    expect_rejects(with([](CameraSettings& s) { s.near_clip = -1.0f; }), "near_clip = -1");
+    expect_rejects(with([](CameraSettings& s) { s.near_clip = NAN; }), "near_clip");
+    expect_rejects(with([](CameraSettings& s) { s.near_clip = INFINITY; }), "near_clip");
+    expect_rejects(with([](CameraSettings& s) { s.far_clip = 0.0f; }), "far_clip = 0");
+    expect_rejects(with([](CameraSettings& s) { s.far_clip = NAN; }), "far_clip");
+    expect_rejects(with([](CameraSettings& s) {
+                       s.near_clip = 5.0f;
+                       s.far_clip = 5.0f;
+                   }),
+                   "far_clip = 5");
+    expect_rejects(with([](CameraSettings& s) { s.pixel_jitter = static_cast<PixelJitter>(9); }),
+                   "pixel_jitter = 9");
+    expect_rejects(with([](CameraSettings& s) {
+                       s.pixel_jitter = PixelJitter::Filter;
+                       s.pixel_filter.radius = -2.0f;
+                   }),
+                   "pixel_filter: filter radius = -2");
+    // A bad filter is not an error while it is not used.
+    EXPECT_NO_THROW(Camera(with([](CameraSettings& s) { s.pixel_filter.radius = -2.0f; })));
+}
+
+TEST(Camera, GaussianJitterIsTheUntruncatedGaussianFilter) {
+    CameraSettings jitter;
+    jitter.pixel_jitter = PixelJitter::Gaussian;
+    jitter.pixel_sigma = 0.5f;
+    CameraSettings filter = jitter;
+    filter.pixel_jitter = PixelJitter::Filter;
+    filter.pixel_filter.kind = FilterKind::Gaussian;
+    filter.pixel_filter.sigma = 0.5f;
+    filter.pixel_filter.radius = std::numeric_limits<float>::infinity();
+    const Camera a(jitter), b(filter);
+    for (std::uint32_t k = 0; k < 200; ++k) {
+        Sampler sa(3, 4, k, 5), sb(3, 4, k, 5);
+        const CameraRay ra = a.sample_ray(3, 4, sa);
+        const CameraRay rb = b.sample_ray(3, 4, sb);
+        EXPECT_EQ(ra.ray.direction, rb.ray.direction);
+        EXPECT_EQ(ra.weight, 1.0f);
+        EXPECT_EQ(rb.weight, 1.0f);
+    }
+}
+
+TEST(Camera, FilterOffsetsComeFromTheSamplersFirstPair) {
+    // A box filter of radius 0.5 with the Sobol sampler: the first 16 samples of a pixel
+    // land one in each of the 4x4 sub-pixel cells (the sampler's first pair is stratified
+    // and the box's inversion is monotone).
+    CameraSettings s;
+    s.pixel_jitter = PixelJitter::Filter;
+    s.pixel_filter = default_filter_settings(FilterKind::Box);
+    const Camera camera(s);
+    const float d = 512.0f / (2.0f * std::tan(glm::radians(30.0f)));
+    std::vector<int> cells(16, 0);
+    for (std::uint32_t k = 0; k < 16; ++k) {
+        Sampler sampler(SamplerKind::Sobol, 256, 256, k, 3);
+        const CameraRay r = camera.sample_ray(256, 256, sampler);
+        EXPECT_EQ(sampler.dimension(), 4u);  // pixel and lens pairs, drawn either way
+        // Back to the image plane, as offsets from the pixel centre (0.5, -0.5).
+        const double x = -d * r.ray.direction.x / r.ray.direction.z - 0.5;
+        const double y = -d * r.ray.direction.y / r.ray.direction.z + 0.5;
+        ASSERT_LT(std::abs(x), 0.5 + 1e-3);
+        ASSERT_LT(std::abs(y), 0.5 + 1e-3);
+        const int cx = std::clamp(static_cast<int>((x + 0.5) * 4.0), 0, 3);
+        const int cy = std::clamp(static_cast<int>((y + 0.5) * 4.0), 0, 3);
+        ++cells[cx * 4 + cy];
+    }
+    for (const int c : cells) EXPECT_EQ(c, 1);
+    // A Mitchell filter hands its signed weight to sample_ray.
+    CameraSettings m = s;
+    m.pixel_filter = default_filter_settings(FilterKind::Mitchell);
+    const Camera mitchell(m);
+    bool negative = false;
+    for (std::uint32_t k = 0; k < 256; ++k) {
+        Sampler sampler(7, 7, k, 1);
+        const CameraRay r = mitchell.sample_ray(7, 7, sampler);
+        negative = negative || r.weight < 0.0f;
+        EXPECT_GT(std::abs(r.weight), 1.0f);  // (integral |f| / integral f)^2 > 1
+    }
+    EXPECT_TRUE(negative);
 }

@@ -70,12 +70,33 @@ void validate(const CameraSettings& s) {
     if (!(s.focal_distance > 0.0f) || !std::isfinite(s.focal_distance)) {
         fail("focal_distance", to_text(s.focal_distance), "must be finite and > 0");
     }
+    const int jitter = static_cast<int>(s.pixel_jitter);
+    if (jitter < static_cast<int>(PixelJitter::None) ||
+        jitter > static_cast<int>(PixelJitter::Filter)) {
+        fail("pixel_jitter", std::to_string(jitter), "is not a PixelJitter");
+    }
+    if (!(s.near_clip >= 0.0f) || !std::isfinite(s.near_clip)) {
+        fail("near_clip", to_text(s.near_clip), "must be finite and >= 0");
+    }
+    if (!(s.far_clip > s.near_clip)) {
+        fail("far_clip", to_text(s.far_clip), "must be > near_clip (+inf for no far clip)");
+    }
+}
+
+PixelFilter make_filter(const CameraSettings& s) {
+    if (s.pixel_jitter != PixelJitter::Filter) return PixelFilter{};
+    try {
+        return PixelFilter(s.pixel_filter);
+    } catch (const Error& e) {
+        throw Error(std::string("camera pixel_filter: ") + e.what());
+    }
 }
 
 }  // namespace
 
 Camera::Camera(const CameraSettings& settings) : settings_(settings) {
     validate(settings_);
+    filter_ = make_filter(settings_);
     // Look-at basis: forward, right = forward x up, true up = right x forward.
     forward_ = glm::normalize(settings_.look_at - settings_.position);
     right_ = glm::normalize(glm::cross(forward_, settings_.up));
@@ -87,13 +108,18 @@ Camera::Camera(const CameraSettings& settings) : settings_(settings) {
         static_cast<float>(static_cast<double>(settings_.height) / (2.0 * std::tan(half_fov)));
 }
 
-Ray Camera::generate_ray(int px, int py, Sampler& sampler) const {
+CameraRay Camera::sample_ray(int px, int py, Sampler& sampler) const {
     const glm::vec2 pixel_u = sampler.next_2d();
     const glm::vec2 lens_u = sampler.next_2d();
 
     glm::vec2 offset{0.0f};
+    float weight = 1.0f;
     if (settings_.pixel_jitter == PixelJitter::Gaussian) {
         offset = gaussian_pixel_jitter(pixel_u, settings_.pixel_sigma);
+    } else if (settings_.pixel_jitter == PixelJitter::Filter) {
+        const FilterSample f = filter_.sample(pixel_u);
+        offset = f.offset;
+        weight = f.weight;
     }
     const float half_w = 0.5f * static_cast<float>(settings_.width);
     const float half_h = 0.5f * static_cast<float>(settings_.height);
@@ -102,20 +128,30 @@ Ray Camera::generate_ray(int px, int py, Sampler& sampler) const {
     const float cy = -static_cast<float>(py) + half_h - 0.5f + offset.y;
     const glm::vec3 u = glm::normalize(cx * right_ + cy * up_ + image_plane_distance_ * forward_);
 
-    Ray ray;
+    CameraRay out;
+    out.weight = weight;
+    Ray& ray = out.ray;
     ray.origin = settings_.position;
     ray.direction = u;
-    if (settings_.lens == LensModel::Pinhole) return ray;
-
-    const glm::vec2 lens = settings_.lens == LensModel::Gaussian
-                               ? gaussian_lens_jitter(lens_u, settings_.lens_sigma)
-                               : disk_lens_jitter(lens_u, settings_.lens_radius);
-    // The report's depth of field: C' = C + lens offset in the camera's x-y plane,
-    // aimed at the focal point C + focal_distance * u.
-    const glm::vec3 focal_point = settings_.position + settings_.focal_distance * u;
-    ray.origin = settings_.position + lens.x * right_ + lens.y * up_;
-    ray.direction = glm::normalize(focal_point - ray.origin);
-    return ray;
+    if (settings_.lens != LensModel::Pinhole) {
+        const glm::vec2 lens = settings_.lens == LensModel::Gaussian
+                                   ? gaussian_lens_jitter(lens_u, settings_.lens_sigma)
+                                   : disk_lens_jitter(lens_u, settings_.lens_radius);
+        // The report's depth of field: C' = C + lens offset in the camera's x-y plane,
+        // aimed at the focal point C + focal_distance * u.
+        const glm::vec3 focal_point = settings_.position + settings_.focal_distance * u;
+        ray.origin = settings_.position + lens.x * right_ + lens.y * up_;
+        ray.direction = glm::normalize(focal_point - ray.origin);
+    }
+    // Clip planes at depth near/far from the lens plane: along the unit direction that is
+    // t = depth / cos(angle to the view axis). Skipped without clips so that t_min = 0 and
+    // t_max = inf stay exact.
+    if (settings_.near_clip > 0.0f || std::isfinite(settings_.far_clip)) {
+        const float cos_axis = glm::dot(ray.direction, forward_);
+        ray.t_min = settings_.near_clip / cos_axis;
+        ray.t_max = settings_.far_clip / cos_axis;
+    }
+    return out;
 }
 
 }  // namespace librt

@@ -4,14 +4,6 @@ namespace librt {
 
 namespace {
 
-// splitmix64 finaliser (Steele, Lea and Flood 2014): a bijection on 64 bits with full
-// avalanche, so inputs differing in one bit give unrelated outputs.
-constexpr std::uint64_t mix64(std::uint64_t z) {
-    z = (z ^ (z >> 30u)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27u)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31u);
-}
-
 constexpr std::uint64_t k_golden = 0x9e3779b97f4a7c15ULL;  // 2^64 / golden ratio
 
 }  // namespace

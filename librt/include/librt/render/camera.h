@@ -3,8 +3,11 @@
 #include <librt/export.h>
 #include <librt/geometry/ray.h>
 #include <librt/render/sampler.h>
+#include <librt/sampling/filter.h>
 
 #include <glm/vec3.hpp>
+
+#include <limits>
 
 namespace librt {
 
@@ -12,6 +15,10 @@ namespace librt {
 enum class PixelJitter {
     None,      ///< always the pixel centre (aliased edges, as the report's first figures)
     Gaussian,  ///< centre plus a Box-Muller Gaussian offset (the report's anti-aliasing)
+    /// Centre plus an offset drawn from CameraSettings::pixel_filter (filter importance
+    /// sampling). Gaussian above is this with a Gaussian of sigma = pixel_sigma and an
+    /// infinite radius, drawing the same bits.
+    Filter,
 };
 
 /// How the camera origin is spread for depth of field.
@@ -22,7 +29,7 @@ enum class LensModel {
 };
 
 /// Everything that defines a camera. Defaults are the report's camera: at (0, 0, 55)
-/// looking down -z, 60 degree vertical field of view, 512x512, no jitter, pinhole.
+/// looking down -z, 60 degree vertical field of view, 512x512, no jitter, pinhole, no clip.
 struct CameraSettings {
     glm::vec3 position{0.0f, 0.0f, 55.0f};         ///< centre of projection (the report's C)
     glm::vec3 look_at{0.0f, 0.0f, 0.0f};           ///< a point the optical axis passes through
@@ -36,6 +43,21 @@ struct CameraSettings {
     float lens_sigma = 1.0f;              ///< Gaussian lens's sigma in scene units (>= 0)
     float lens_radius = 1.0f;             ///< disk lens's radius in scene units (>= 0)
     float focal_distance = 55.0f;         ///< distance along each ray that stays sharp (> 0)
+    /// The filter PixelJitter::Filter samples offsets from (validated only when used).
+    FilterSettings pixel_filter{};
+    /// Near clip plane: hits closer than this depth in front of the lens plane are
+    /// ignored (finite, >= 0). A plane perpendicular to the view, as smallpt's "start 140
+    /// units in front of the camera" is. Named near_clip, not near: windows.h defines
+    /// `near` and `far` as macros.
+    float near_clip = 0.0f;
+    /// Far clip plane: hits beyond this depth are ignored (> near_clip; +inf: none).
+    float far_clip = std::numeric_limits<float>::infinity();
+};
+
+/// A primary ray and the weight its radiance takes in the pixel's plain mean.
+struct CameraRay {
+    Ray ray;              ///< unit direction; t_min and t_max set by the clip planes
+    float weight = 1.0f;  ///< the pixel filter's FilterSample::weight (1 unless Mitchell)
 };
 
 /// The report's perspective camera. Pixel (x, y) = (column j, row i), rows top to
@@ -52,8 +74,19 @@ public:
     /// The primary ray for one sample of pixel (px, py). Always draws exactly two 2D
     /// samples from `sampler` (pixel jitter, then lens), used or not, so an integrator's
     /// random numbers do not change when jitter or depth of field is switched off.
-    /// The direction is unit length; t_min = 0.
-    [[nodiscard]] Ray generate_ray(int px, int py, Sampler& sampler) const;
+    /// The direction is unit length. The clip planes at depths near_clip and far_clip
+    /// (measured along the optical axis from the lens plane, which holds every ray
+    /// origin) become, for a unit direction d, the distances t_min = near_clip /
+    /// dot(d, forward) and t_max = far_clip / dot(d, forward) from the ray's origin (the
+    /// lens point); dot(d, forward) > 0 for every camera ray. Without clips t_min = 0 and
+    /// t_max = +inf, exactly as before. The filter weight is dropped: see sample_ray.
+    [[nodiscard]] Ray generate_ray(int px, int py, Sampler& sampler) const {
+        return sample_ray(px, py, sampler).ray;
+    }
+
+    /// generate_ray with the filter weight the sample's radiance must be multiplied by
+    /// (not 1 only for a Mitchell pixel filter, whose negative lobes give negative weights).
+    [[nodiscard]] CameraRay sample_ray(int px, int py, Sampler& sampler) const;
 
     /// The settings the camera was built from.
     [[nodiscard]] const CameraSettings& settings() const { return settings_; }
@@ -74,6 +107,7 @@ private:
     glm::vec3 up_{0.0f, 1.0f, 0.0f};
     glm::vec3 forward_{0.0f, 0.0f, -1.0f};
     float image_plane_distance_ = 1.0f;  // H / (2 tan(fov/2)), in pixels
+    PixelFilter filter_;                 // settings_.pixel_filter when it is used, else a box
 };
 
 }  // namespace librt

@@ -8,6 +8,14 @@
 
 namespace librt {
 
+/// The splitmix64 finaliser (Steele, Lea and Flood 2014): a bijection on 64 bits with full
+/// avalanche, so keys differing in one bit give unrelated outputs. Used to hash seeds.
+[[nodiscard]] constexpr std::uint64_t mix64(std::uint64_t z) {
+    z = (z ^ (z >> 30u)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27u)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31u);
+}
+
 /// Maps 32 random bits to a float in [0, 1): the top 24 bits times 2^-24, so every
 /// value is exact and the largest is 1 - 2^-24 (never 1.0, which rounding would give).
 [[nodiscard]] constexpr float u32_to_unit_float(std::uint32_t bits) {
