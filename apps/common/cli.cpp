@@ -5,6 +5,7 @@
 #include <librt/io/image_io.h>
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
+#include <librt/version.h>
 
 #include <algorithm>
 #include <atomic>
