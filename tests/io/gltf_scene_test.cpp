@@ -348,3 +348,19 @@ TEST(SceneFile, ObjBecomesASceneFramedAndLit) {
     ASSERT_TRUE(loaded.scene.intersect(camera.generate_ray(5, 5, sampler), hit));
     EXPECT_NEAR(glm::length(hit.point), 0.0f, 1e-4f);
 }
+
+TEST(GltfToScene, ANodeScaledToZeroIsWarnedAboutNotPlaced) {
+    GltfBuilder b = lt::one_triangle();
+    b.doc["nodes"] = {{{"mesh", 0}}, {{"mesh", 0}, {"scale", {0, 0, 0}}, {"name", "hidden"}}};
+    b.doc["scenes"] = {{{"nodes", {0, 1}}}};
+    ScratchDir dir;
+    const fs::path p = dir.path() / "hidden.gltf";
+    lt::write_file(p, b.gltf());
+    const LoadedScene loaded = load_scene_file(p);
+    EXPECT_EQ(loaded.scene.instance_count(), 1u);
+    EXPECT_EQ(loaded.triangles_placed, 1u);
+    bool warned = false;
+    for (const std::string& w : loaded.warnings)
+        warned = warned || w.find("'hidden': singular transform") != std::string::npos;
+    EXPECT_TRUE(warned);
+}

@@ -3,6 +3,7 @@
 #include <librt/render/texture.h>
 
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
@@ -225,8 +226,19 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
             prim = GltfPrimitive{};  // free the attributes librt does not use
         }
     }
-    for (const GltfInstance& inst : gltf.instances) {
+    std::vector<bool> placed(gltf.instances.size(), false);
+    for (std::size_t ii = 0; ii < gltf.instances.size(); ++ii) {
+        const GltfInstance& inst = gltf.instances[ii];
         if (inst.mesh < 0 || std::size_t(inst.mesh) >= prototypes.size()) continue;
+        // A node scaled to zero (a common way to hide an object) places nothing; librt's
+        // instances need an invertible transform.
+        const float det = glm::determinant(glm::mat3(inst.world));
+        if (!std::isfinite(det) || std::abs(det) < 1e-30f) {
+            out.warnings.push_back("nodes[" + std::to_string(inst.node) + "] '" + inst.node_name +
+                                   "': singular transform (zero scale): not placed");
+            continue;
+        }
+        placed[ii] = true;
         for (const Prototype& p : prototypes[std::size_t(inst.mesh)]) {
             (void)scene.add_instance(p.id, inst.world, p.material);
             out.bounds.extend(transformed(p.bounds, inst.world));
@@ -239,9 +251,8 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
             for (const Prototype& p : prototypes[mi])
                 per_mesh[mi] += scene.top_level().prototype_mesh(p.id).triangle_count();
         }
-        for (const GltfInstance& inst : gltf.instances) {
-            if (inst.mesh >= 0 && std::size_t(inst.mesh) < per_mesh.size())
-                out.triangles_placed += per_mesh[std::size_t(inst.mesh)];
+        for (std::size_t ii = 0; ii < gltf.instances.size(); ++ii) {
+            if (placed[ii]) out.triangles_placed += per_mesh[std::size_t(gltf.instances[ii].mesh)];
         }
     }
 
