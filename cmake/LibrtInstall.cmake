@@ -65,3 +65,22 @@ install(FILES
   "${PROJECT_BINARY_DIR}/librtConfig.cmake"
   "${PROJECT_BINARY_DIR}/librtConfigVersion.cmake"
   DESTINATION "${LIBRT_INSTALL_CMAKEDIR}" COMPONENT librt_Development)
+
+# pkg-config: librt.pc beside the CMake package, in <libdir>/pkgconfig, for projects that do
+# not use CMake:  g++ -o app app.cpp $(pkg-config --cflags --libs librt)
+file(RELATIVE_PATH LIBRT_PC_PREFIX_FROM_PCDIR "/prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/prefix")
+string(REGEX REPLACE "/$" "" LIBRT_PC_PREFIX_FROM_PCDIR "${LIBRT_PC_PREFIX_FROM_PCDIR}")
+# A static librt needs its private dependencies on the link line; a shared one hides them.
+set(_librt_pc_deps "-ltinyobjloader -lstb -ltinygltf -ltinyexr")
+if(LIBRT_CONFIG_STATIC)
+  set(LIBRT_PC_CFLAGS " -DLIBRT_STATIC_DEFINE")
+  set(LIBRT_PC_LIBS " ${_librt_pc_deps}")
+  set(LIBRT_PC_LIBS_PRIVATE "")
+else()
+  set(LIBRT_PC_CFLAGS "")
+  set(LIBRT_PC_LIBS "")
+  set(LIBRT_PC_LIBS_PRIVATE "${_librt_pc_deps}")
+endif()
+configure_file("${PROJECT_SOURCE_DIR}/cmake/librt.pc.in" "${PROJECT_BINARY_DIR}/librt.pc" @ONLY)
+install(FILES "${PROJECT_BINARY_DIR}/librt.pc"
+  DESTINATION "${CMAKE_INSTALL_LIBDIR}/pkgconfig" COMPONENT librt_Development)

@@ -60,4 +60,22 @@ foreach(_list IN LISTS _librt_example_lists)
       ENVIRONMENT_MODIFICATION "ASAN_OPTIONS=string_append::detect_leaks=0")
   endif()
 endforeach()
+
+# The pkg-config file, used alone (no CMake), and the installed apps.
+if(LIBRT_BUILD_APPS)
+  set(_librt_installed_app rt_render)
+else()
+  set(_librt_installed_app "")
+endif()
+add_test(NAME package.pkgconfig
+  COMMAND "${CMAKE_COMMAND}"
+    -D MODE=pkgconfig
+    -D PREFIX=${LIBRT_PACKAGE_TEST_PREFIX}
+    -D SOURCE=${PROJECT_SOURCE_DIR}/examples/bvh_only/main.cpp
+    -D BINARY_DIR=${LIBRT_PACKAGE_TEST_DIR}/pkgconfig
+    -D CXX_COMPILER=${CMAKE_CXX_COMPILER}
+    -D APP=${_librt_installed_app}
+    -P "${_librt_package_script}")
+set_tests_properties(package.pkgconfig PROPERTIES
+  FIXTURES_REQUIRED librt_package_install LABELS package TIMEOUT 900)
 set_tests_properties(package.install PROPERTIES LABELS package)

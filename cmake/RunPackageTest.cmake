@@ -1,5 +1,9 @@
 # Script (cmake -P) behind the package tests of cmake/LibrtPackageTests.cmake.
 #   MODE=install: BUILD_DIR, PREFIX, CONFIG. Installs the build into an emptied PREFIX.
+#   MODE=pkgconfig: PREFIX, SOURCE (a .cpp), BINARY_DIR, CXX_COMPILER, APP (an installed
+#                 app name, or empty). Compiles SOURCE with the flags
+#                 `pkg-config --cflags --libs librt` gives from PREFIX's librt.pc alone, runs
+#                 it, and runs PREFIX/bin/APP --version.
 #   MODE=example: NAME, SOURCE_DIR, BINARY_DIR, PREFIX, CONFIG, GENERATOR, MAKE_PROGRAM,
 #                 CXX_COMPILER, CXX_FLAGS, EXE_LINKER_FLAGS. Configures SOURCE_DIR afresh
 #                 against PREFIX only, builds it, checks that librt came from PREFIX, runs
@@ -26,6 +30,31 @@ if(MODE STREQUAL "install")
     message(FATAL_ERROR "no librtConfig.cmake under ${PREFIX}")
   endif()
   message(STATUS "installed librt into ${PREFIX}: ${config_files}")
+
+elseif(MODE STREQUAL "pkgconfig")
+  file(GLOB_RECURSE pc_files "${PREFIX}/*/pkgconfig/librt.pc")
+  if(NOT pc_files)
+    message(FATAL_ERROR "no librt.pc under ${PREFIX}")
+  endif()
+  list(GET pc_files 0 pc_file)
+  get_filename_component(pc_dir "${pc_file}" DIRECTORY)
+  find_program(PKG_CONFIG pkg-config REQUIRED)
+  set(ENV{PKG_CONFIG_PATH} "${pc_dir}")
+  execute_process(COMMAND "${PKG_CONFIG}" --cflags --libs librt RESULT_VARIABLE rc
+                  OUTPUT_VARIABLE flags OUTPUT_STRIP_TRAILING_WHITESPACE)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "pkg-config --cflags --libs librt failed (${rc})")
+  endif()
+  separate_arguments(flags UNIX_COMMAND "${flags}")
+  file(REMOVE_RECURSE "${BINARY_DIR}")
+  file(MAKE_DIRECTORY "${BINARY_DIR}")
+  run_step("compiling with pkg-config's flags" "${CXX_COMPILER}" "${SOURCE}" -o
+           "${BINARY_DIR}/pc_example" ${flags})
+  set(_librt_step_options WORKING_DIRECTORY "${BINARY_DIR}")
+  run_step("running the pkg-config example" "${BINARY_DIR}/pc_example")
+  if(APP)
+    run_step("running the installed ${APP}" "${PREFIX}/bin/${APP}" --version)
+  endif()
 
 elseif(MODE STREQUAL "example")
   if(NOT EXISTS "${PREFIX}")

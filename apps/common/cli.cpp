@@ -5,6 +5,7 @@
 #include <librt/io/image_io.h>
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
+#include <librt/version.h>
 
 #include <algorithm>
 #include <atomic>
@@ -73,56 +74,45 @@ std::string format_duration(double seconds) {
     return buffer;
 }
 
-// A one-line progress bar on stderr fed by the renderer's progress callback, shown only
-// on a terminal once the render has run for more than a second, redrawn at most ten
-// times a second.
-class ProgressBar {
-public:
-    explicit ProgressBar(bool wanted) : enabled_(wanted && stderr_is_terminal()) {}
-    ~ProgressBar() { finish(); }  // also when the render throws: the error gets its own line
-    ProgressBar(const ProgressBar&) = delete;
-    ProgressBar& operator=(const ProgressBar&) = delete;
-
-    void update(const RenderProgress& p) {
-        if (!enabled_) return;
-        last_ = p;
-        if (p.seconds < 1.0 || p.seconds - last_draw_ < 0.1) return;
-        draw(p);
-    }
-
-    void finish() {
-        if (!drawn_) return;
-        draw(last_);
-        std::fputc('\n', stderr);
-        std::fflush(stderr);
-        drawn_ = false;
-    }
-
-private:
-    void draw(const RenderProgress& p) {
-        constexpr int k_width = 30;
-        const double fraction = std::clamp(p.fraction, 0.0, 1.0);
-        const int filled = static_cast<int>(fraction * k_width);
-        std::string bar(static_cast<std::size_t>(filled), '#');
-        bar.resize(k_width, '.');
-        // Remaining time by linear extrapolation: elapsed * (1 - f) / f.
-        const std::string remaining =
-            fraction > 0.0 ? format_duration(p.seconds * (1.0 - fraction) / fraction) : "?";
-        std::fprintf(stderr, "\r[%s] %3d%%  elapsed %s  remaining %s ", bar.c_str(),
-                     static_cast<int>(fraction * 100.0), format_duration(p.seconds).c_str(),
-                     remaining.c_str());
-        std::fflush(stderr);
-        last_draw_ = p.seconds;
-        drawn_ = true;
-    }
-
-    bool enabled_;
-    RenderProgress last_;
-    double last_draw_ = 0.0;
-    bool drawn_ = false;
-};
-
 }  // namespace
+
+ProgressBar::ProgressBar(bool wanted) : enabled_(wanted && stderr_is_terminal()) {}
+
+ProgressBar::~ProgressBar() { finish(); }
+
+void ProgressBar::update(const RenderProgress& p) {
+    if (!enabled_) return;
+    last_ = p;
+    if (p.seconds < 1.0 || p.seconds - last_draw_ < 0.1) return;
+    draw(p);
+}
+
+void ProgressBar::finish() {
+    if (!drawn_) return;
+    draw(last_);
+    std::fputc('\n', stderr);
+    std::fflush(stderr);
+    drawn_ = false;
+}
+
+void ProgressBar::draw(const RenderProgress& p) {
+    constexpr int k_width = 30;
+    const double fraction = std::clamp(p.fraction, 0.0, 1.0);
+    const int filled = static_cast<int>(fraction * k_width);
+    std::string bar(static_cast<std::size_t>(filled), '#');
+    bar.resize(k_width, '.');
+    // Remaining time by linear extrapolation: elapsed * (1 - f) / f.
+    const std::string remaining =
+        fraction > 0.0 ? format_duration(p.seconds * (1.0 - fraction) / fraction) : "?";
+    std::fprintf(stderr, "\r[%s] %3d%%  elapsed %s  remaining %s ", bar.c_str(),
+                 static_cast<int>(fraction * 100.0), format_duration(p.seconds).c_str(),
+                 remaining.c_str());
+    std::fflush(stderr);
+    last_draw_ = p.seconds;
+    drawn_ = true;
+}
+
+const std::atomic<bool>* interrupt_flag() { return &g_cancel; }
 
 void add_common_options(CLI::App& app, AppOptions& o) {
     app.add_option("--width", o.width, "Image width in pixels")->capture_default_str();
@@ -260,6 +250,13 @@ void validate(const MeshOptions& o) {
 }
 
 int run(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
+    app.set_version_flag("--version",
+                         std::string(app.get_name()) + " (librt " LIBRT_VERSION_STRING ")");
+    // A repeated option takes its last value (`scripts/render.sh -o mine.png` appends to
+    // the script's own -o), as most command-line tools do, instead of failing.
+    for (CLI::Option* option : app.get_options()) {
+        option->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

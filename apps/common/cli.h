@@ -6,10 +6,12 @@
 #include <librt/render/camera.h>
 #include <librt/render/integrator.h>
 #include <librt/render/integrators.h>
+#include <librt/render/renderer.h>
 #include <librt/render/scene.h>
 
 #include <CLI/CLI.hpp>
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -44,6 +46,32 @@ struct MeshOptions {
     std::vector<float> offset{0.0f, -10.0f, 0.0f};  ///< --mesh-offset x y z
 };
 
+/// A one-line progress bar on stderr fed by the renderer's progress callback, shown only
+/// on a terminal once the render has run for more than a second, redrawn at most ten times
+/// a second; finish() (or the destructor) ends its line.
+class ProgressBar {
+public:
+    /// A bar that draws when `wanted` and stderr is a terminal.
+    explicit ProgressBar(bool wanted);
+    ~ProgressBar();
+    ProgressBar(const ProgressBar&) = delete;
+    ProgressBar& operator=(const ProgressBar&) = delete;
+    /// Records a report and redraws when due.
+    void update(const RenderProgress& p);
+    /// Draws the last report and ends the line, if anything was drawn.
+    void finish();
+
+private:
+    void draw(const RenderProgress& p);
+    bool enabled_;
+    RenderProgress last_;
+    double last_draw_ = 0.0;
+    bool drawn_ = false;
+};
+
+/// The flag SIGINT / SIGTERM set while run()'s body runs: a render's `cancel`.
+[[nodiscard]] const std::atomic<bool>* interrupt_flag();
+
 /// Registers the common options on `app`, with `options`' current values as defaults.
 void add_common_options(CLI::App& app, AppOptions& options);
 
@@ -67,7 +95,8 @@ void validate(const MeshOptions& options);
 /// The path tracer's settings from the command line (--bounces).
 [[nodiscard]] PathTracerSettings path_tracer_settings(const AppOptions& options);
 
-/// Parses the command line and runs `body`. A librt::Error (or any other exception) is
+/// Parses the command line (adding --version, and making every option take its last value
+/// when repeated) and runs `body`. A librt::Error (or any other exception) is
 /// printed on stderr and gives exit code 1; command-line errors give CLI11's code.
 /// Returns body's exit code otherwise. While body runs, SIGINT and SIGTERM request a
 /// clean stop (render_and_write then returns 130 without writing); a second one kills.

@@ -1,6 +1,7 @@
 #include "io/file_io.h"
 
 #include <librt/core/error.h>
+#include <librt/io/exr.h>
 #include <librt/io/image_io.h>
 
 #include <stb/stb_image_write.h>
@@ -16,6 +17,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 namespace librt {
@@ -214,23 +216,50 @@ void write_hdr(const fs::path& path, const Image& image) {
     write_file_atomically(path, encoded);
 }
 
-void write_image(const fs::path& path, const Image& image, const ToneMap& tone_map) {
+namespace {
+
+std::string lower_extension(const fs::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+}  // namespace
+
+void check_image_path(const fs::path& path) {
+    const std::string ext = lower_extension(path);
+    if (ext != ".png" && ext != ".pfm" && ext != ".hdr" && ext != ".exr") {
+        throw Error("cannot write " + quoted(path) +
+                    ": unknown image format (use .png, .pfm, .hdr or .exr)");
+    }
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw Error("cannot write " + quoted(path) + ": a directory");
+    const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    if (!fs::is_directory(dir, ec)) {
+        throw Error("cannot write " + quoted(path) + ": no directory " + quoted(dir));
+    }
+}
+
+void write_image(const fs::path& path, const Image& image, const ToneMap& tone_map) {
+    const std::string ext = lower_extension(path);
     if (ext == ".png") {
         write_png(path, image, tone_map);
-    } else if (ext == ".pfm" || ext == ".hdr") {
+    } else if (ext == ".pfm" || ext == ".hdr" || ext == ".exr") {
         validate(tone_map);
-        const Image out = tone_map.exposure == 1.0f ? image : scaled(image, tone_map.exposure);
+        Image out = tone_map.exposure == 1.0f ? image : scaled(image, tone_map.exposure);
         if (ext == ".pfm") {
             write_pfm(path, out);
-        } else {
+        } else if (ext == ".hdr") {
             write_hdr(path, out);
+        } else {
+            ImageLayers layers;
+            layers.beauty = std::move(out);
+            write_exr(path, layers);
         }
     } else {
         throw Error("cannot write " + quoted(path) +
-                    ": unknown image format (use .png, .pfm or .hdr)");
+                    ": unknown image format (use .png, .pfm, .hdr or .exr)");
     }
 }
 

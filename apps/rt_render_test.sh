@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# rt_render end to end on a scene written here (an OBJ quad, lit by the default light):
+# 1. a bad output extension fails in under a second with a clear message, writing nothing;
+# 2. SIGINT mid-render writes a complete image of the finished passes (exit 130, flagged);
+# 3. --time-limit stops the render and writes the finished passes (exit 0, flagged).
+# Usage: rt_render_test.sh <rt_render> <scratch directory>
+set -euo pipefail
+set -m  # job control: a background job of a non-interactive shell would ignore SIGINT
+app=$1
+dir=$2
+rm -rf "$dir"
+mkdir -p "$dir/out"
+scene="$dir/quad.obj"
+printf 'v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n' >"$scene"
+fail() { echo "FAIL: $*" >&2; exit 1; }
+now_ms() { echo $(( $(date +%s%N) / 1000000 )); }
+# A PNG is complete when it starts with the signature and ends with the IEND chunk.
+complete_png() {
+    [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] &&
+        [ "$(tail -c 12 "$1" | od -An -tx1 | tr -d ' \n')" = "0000000049454e44ae426082" ]
+}
+
+# 1. Bad extension: checked before the scene is even looked at (it does not exist).
+start=$(now_ms)
+status=0
+"$app" "$dir/missing.glb" -o "$dir/out/image.xyz" 2>"$dir/err.txt" >/dev/null || status=$?
+elapsed=$(( $(now_ms) - start ))
+[ "$status" -eq 1 ] || fail "bad extension: exit status $status, expected 1"
+grep -q "unknown image format" "$dir/err.txt" || fail "bad extension: message: $(cat "$dir/err.txt")"
+bad_ms=$elapsed
+[ "$bad_ms" -lt 1000 ] || fail "bad extension took ${bad_ms} ms"
+[ -z "$(ls -A "$dir/out")" ] || fail "bad extension wrote $(ls -A "$dir/out")"
+
+# 2. SIGINT during a render that would take hours.
+out="$dir/out/interrupted.png"
+"$app" "$scene" --size 256x256 --spp 1000000 --threads 2 -o "$out" 2>"$dir/err.txt" >/dev/null &
+pid=$!
+sleep 2
+kill -INT "$pid"
+status=0
+wait "$pid" || status=$?
+[ "$status" -eq 130 ] || fail "SIGINT: exit status $status, expected 130: $(cat "$dir/err.txt")"
+grep -q "interrupted: wrote partial image" "$dir/err.txt" || fail "SIGINT: message: $(cat "$dir/err.txt")"
+complete_png "$out" || fail "SIGINT: $out is not a complete PNG"
+[ "$(ls -A "$dir/out")" = "interrupted.png" ] || fail "SIGINT left $(ls -A "$dir/out")"
+
+# 3. The time limit ends a render that would take hours, within a pass of it.
+out="$dir/out/limited.png"
+start=$(now_ms)
+status=0
+"$app" "$scene" --size 256x256 --spp 1000000 --threads 2 --time-limit 1 -o "$out" \
+    2>"$dir/err.txt" >/dev/null || status=$?
+elapsed=$(( $(now_ms) - start ))
+[ "$status" -eq 0 ] || fail "time limit: exit status $status: $(cat "$dir/err.txt")"
+grep -q "time limit reached: wrote partial image" "$dir/err.txt" ||
+    fail "time limit: message: $(cat "$dir/err.txt")"
+complete_png "$out" || fail "time limit: $out is not a complete PNG"
+# A pass here takes milliseconds; allow loading and a slow shared machine.
+[ "$elapsed" -lt 4000 ] || fail "time limit 1 s took ${elapsed} ms"
+rm -rf "$dir"
+echo "bad extension rejected in ${bad_ms} ms; SIGINT and the time limit (${elapsed} ms) wrote complete partial images"

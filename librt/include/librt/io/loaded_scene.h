@@ -1,0 +1,52 @@
+#pragma once
+
+#include <librt/export.h>
+#include <librt/geometry/bbox.h>
+#include <librt/render/camera.h>
+#include <librt/render/point_light.h>
+#include <librt/render/scene.h>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+// What a scene file (glTF or OBJ) becomes: a Scene ready to commit, the camera to render
+// it through, and what had to be left out. io/gltf_scene.h and io/scene_file.h fill it.
+
+namespace librt {
+
+/// How a scene file is turned into a Scene and a camera.
+struct SceneFileOptions {
+    /// The file's camera to use: empty = the first perspective camera; all digits = the
+    /// index among the cameras the scene places (node order); else a camera (or its
+    /// node's) name. A file without cameras gets default_camera().
+    std::string camera;
+    int width = 0;   ///< image width; 0 (with height 0) = from the camera's aspect ratio
+    int height = 0;  ///< image height; 0 (with width 0) = from the camera's aspect ratio
+    /// Longest image side when the size follows the camera's aspect ratio.
+    int default_long_side = 640;
+};
+
+/// A scene file as librt renders it.
+struct LoadedScene {
+    Scene scene;                        ///< geometry, materials, lights; not yet committed
+    CameraSettings camera;              ///< pinhole, no pixel jitter (the app chooses that)
+    std::string camera_name;            ///< which camera: the file's name for it, or "default"
+    std::vector<std::string> warnings;  ///< what was skipped or replaced, one line each
+    std::size_t triangles_stored = 0;   ///< triangles held once per prototype / mesh
+    std::size_t triangles_placed = 0;   ///< triangles over all instances
+    BBox bounds;                        ///< world bounds of the geometry
+};
+
+/// A camera framing `bounds` (its bounding sphere fills the vertical field of view of
+/// 40 degrees) from the front (+z), a little above and to the right, y up, at the given
+/// image size. Throws librt::Error for an empty or non-finite box.
+[[nodiscard]] LIBRT_API CameraSettings default_camera(const BBox& bounds, int width, int height);
+
+/// The light a file without light gets: a point light above, left of and in front of the
+/// bounds' centre, at three bounding-sphere radii, whose irradiance at the centre is pi
+/// W/m^2 (a white Lambertian surface facing it has radiance 1). Throws librt::Error for an
+/// empty or non-finite box.
+[[nodiscard]] LIBRT_API PointLight default_light(const BBox& bounds);
+
+}  // namespace librt

@@ -1,0 +1,26 @@
+#pragma once
+
+#include <librt/export.h>
+#include <librt/io/loaded_scene.h>
+
+#include <filesystem>
+
+// One entry point for "render this file": glTF (.gltf, .glb) through io/gltf_scene.h, or a
+// Wavefront OBJ with its MTL materials as a whole scene.
+
+namespace librt {
+
+/// An OBJ (and its MTL) as a scene: one mesh with its MTL materials (io/obj_materials.h
+/// add_mesh_with_mtl; faces without a material are diffuse 0.8), default_camera() framing
+/// it and, unless some MTL material emits, default_light(). Throws librt::Error from
+/// load_obj, or for a mesh with no triangles.
+[[nodiscard]] LIBRT_API LoadedScene scene_from_obj(const std::filesystem::path& path,
+                                                   const SceneFileOptions& options = {});
+
+/// Loads a scene file chosen by extension (case-insensitive): .obj through scene_from_obj,
+/// .gltf and .glb through load_gltf and scene_from_gltf. Throws librt::Error naming the
+/// path for any other extension, and the loaders' errors.
+[[nodiscard]] LIBRT_API LoadedScene load_scene_file(const std::filesystem::path& path,
+                                                    const SceneFileOptions& options = {});
+
+}  // namespace librt

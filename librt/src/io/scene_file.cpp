@@ -1,0 +1,105 @@
+#include <librt/core/error.h>
+#include <librt/io/gltf.h>
+#include <librt/io/gltf_scene.h>
+#include <librt/io/obj.h>
+#include <librt/io/obj_materials.h>
+#include <librt/io/scene_file.h>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <string>
+#include <utility>
+
+namespace librt {
+
+namespace {
+
+/// Vertical field of view of the default camera, degrees.
+constexpr float kDefaultFov = 40.0f;
+
+void check_bounds(const BBox& b, const char* what) {
+    const bool finite = std::isfinite(b.lo.x) && std::isfinite(b.lo.y) && std::isfinite(b.lo.z) &&
+                        std::isfinite(b.hi.x) && std::isfinite(b.hi.y) && std::isfinite(b.hi.z);
+    if (b.empty() || !finite) throw Error(std::string(what) + ": bounds empty or not finite");
+}
+
+/// Radius of the sphere around the box (half its diagonal), at least a tiny positive size
+/// so a single point or flat box still gives a usable camera.
+float radius_of(const BBox& b) { return std::max(0.5f * glm::length(b.diagonal()), 1e-6f); }
+
+std::string lower_extension(const std::filesystem::path& p) {
+    std::string e = p.extension().string();
+    std::transform(e.begin(), e.end(), e.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return e;
+}
+
+}  // namespace
+
+CameraSettings default_camera(const BBox& bounds, int width, int height) {
+    check_bounds(bounds, "default_camera");
+    CameraSettings c;
+    c.width = width;
+    c.height = height;
+    c.vertical_fov_degrees = kDefaultFov;
+    const float r = radius_of(bounds);
+    // The bounding sphere touches the vertical field of view: d = r / sin(fov / 2).
+    const float d = r / std::sin(glm::radians(0.5f * kDefaultFov));
+    c.look_at = bounds.center();
+    c.position = c.look_at + d * glm::normalize(glm::vec3(0.35f, 0.35f, 1.0f));
+    c.up = {0.0f, 1.0f, 0.0f};
+    c.focal_distance = d;
+    return c;
+}
+
+PointLight default_light(const BBox& bounds) {
+    check_bounds(bounds, "default_light");
+    const float distance = 3.0f * radius_of(bounds);
+    PointLight light;
+    light.position = bounds.center() + distance * glm::normalize(glm::vec3(-0.5f, 1.0f, 0.8f));
+    // Irradiance at normal incidence E = I / d^2 (inverse square law); I = pi d^2 gives pi.
+    light.intensity = glm::vec3(3.14159265f * distance * distance);
+    return light;
+}
+
+LoadedScene scene_from_obj(const std::filesystem::path& path, const SceneFileOptions& options) {
+    LoadedScene out;
+    ObjLoadOptions obj;
+    obj.warnings = &out.warnings;
+    TriangleMesh mesh = load_obj(path, obj);
+    if (mesh.triangle_count() == 0) throw Error(path.string() + ": no triangles to render");
+    out.bounds = mesh.bounds();
+    out.triangles_stored = out.triangles_placed = mesh.triangle_count();
+    const bool emits =
+        std::any_of(mesh.materials.begin(), mesh.materials.end(), [](const MeshMaterial& m) {
+            return m.emission.x > 0.0f || m.emission.y > 0.0f || m.emission.z > 0.0f;
+        });
+    const std::uint32_t fallback = out.scene.add_material(Material::diffuse(glm::vec3(0.8f)));
+    MtlMeshResult added = add_mesh_with_mtl(out.scene, std::move(mesh), fallback);
+    for (std::string& w : added.warnings) out.warnings.push_back(std::move(w));
+    if (!emits) out.scene.add_point_light(default_light(out.bounds));
+    if (!options.camera.empty()) {
+        out.warnings.push_back("camera = " + options.camera +
+                               ": an OBJ has no cameras, using the default");
+    }
+    const int side = std::max(1, options.default_long_side);
+    const bool sized = options.width > 0 && options.height > 0;
+    out.camera = default_camera(out.bounds, sized ? options.width : side,
+                                sized ? options.height : std::max(1, side * 3 / 4));
+    out.camera_name = "default";
+    return out;
+}
+
+LoadedScene load_scene_file(const std::filesystem::path& path, const SceneFileOptions& options) {
+    const std::string ext = lower_extension(path);
+    if (ext == ".obj") return scene_from_obj(path, options);
+    if (ext == ".gltf" || ext == ".glb") return scene_from_gltf(load_gltf(path), options);
+    throw Error(path.string() + ": unknown scene format '" + ext +
+                "' (expected .gltf, .glb or .obj)");
+}
+
+}  // namespace librt

@@ -1,0 +1,366 @@
+// scene_from_gltf / load_scene_file: the project's glTF scenes build a Scene with the counts
+// their JSON states (computed here with nlohmann-json, not by the loader) and render to a
+// finite, non-black image; nested transforms place a triangle where the composed transform
+// says; a file's camera looks where its node points, with the predicted pixel for a known
+// point; the one material mapping and the light units.
+
+#include "io/gltf_test_util.h"
+#include "robustness/robustness_util.h"
+#include "test_support.h"
+
+#include <librt/core/error.h>
+#include <librt/io/gltf.h>
+#include <librt/io/gltf_scene.h>
+#include <librt/io/scene_file.h>
+#include <librt/render/integrators.h>
+#include <librt/render/renderer.h>
+#include <librt/sampling/warp.h>
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <string>
+
+using namespace librt;
+using librt::testing::GltfBuilder;
+using librt::testing::ScratchDir;
+using nlohmann::json;
+namespace fs = std::filesystem;
+namespace lt = librt::testing;
+
+namespace {
+
+json glb_json(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);  // little-endian host (x86-64)
+    return json::parse(bytes.substr(20, length));
+}
+
+struct Expected {
+    std::size_t stored = 0, placed = 0, instances = 0, prototypes = 0, point_lights = 0,
+                other_lights = 0;
+    bool emissive = false;
+};
+
+/// From the JSON by the spec: n/3 triangles for mode 4 (n = indices' count, else
+/// POSITION's), n - 2 for strips and fans; an instance per (node, primitive).
+Expected expected_of(const json& doc) {
+    Expected e;
+    std::vector<std::size_t> tris, prims;
+    for (const json& mesh : doc["meshes"]) {
+        std::size_t t = 0;
+        for (const json& prim : mesh["primitives"]) {
+            const int mode = prim.value("mode", 4);
+            const int acc = prim.contains("indices") ? prim["indices"].get<int>()
+                                                     : prim["attributes"]["POSITION"].get<int>();
+            const auto n = doc["accessors"][acc]["count"].get<std::size_t>();
+            t += mode == 4 ? n / 3 : n - 2;
+        }
+        tris.push_back(t);
+        prims.push_back(mesh["primitives"].size());
+        e.stored += t;
+        e.prototypes += mesh["primitives"].size();
+    }
+    for (const json& m : doc.value("materials", json::array())) {
+        const json f = m.value("emissiveFactor", json::array({0, 0, 0}));
+        if (f[0].get<float>() + f[1].get<float>() + f[2].get<float>() > 0.0f) e.emissive = true;
+    }
+    std::function<void(int)> visit = [&](int n) {
+        const json& node = doc["nodes"][n];
+        if (node.contains("mesh")) {
+            const auto m = node["mesh"].get<std::size_t>();
+            e.placed += tris[m];
+            e.instances += prims[m];
+        }
+        if (node.contains("extensions") && node["extensions"].contains("KHR_lights_punctual")) {
+            const int l = node["extensions"]["KHR_lights_punctual"]["light"].get<int>();
+            const json& light = doc["extensions"]["KHR_lights_punctual"]["lights"][l];
+            (light["type"] == "point" ? e.point_lights : e.other_lights) += 1;
+        }
+        for (const json& c : node.value("children", json::array())) visit(c.get<int>());
+    };
+    for (const json& r : doc["scenes"][doc.value("scene", 0)]["nodes"]) visit(r.get<int>());
+    return e;
+}
+
+void check_data_file(const fs::path& p) {
+    const json doc = glb_json(p);
+    const Expected want = expected_of(doc);
+    SceneFileOptions options;
+    options.width = options.height = 64;
+    LoadedScene loaded = load_scene_file(p, options);
+    EXPECT_EQ(loaded.triangles_stored, want.stored);
+    EXPECT_EQ(loaded.triangles_placed, want.placed);
+    EXPECT_EQ(loaded.scene.instance_count(), want.instances);
+    // Stored once: one prototype per primitive, however many nodes place it.
+    EXPECT_EQ(loaded.scene.top_level().prototype_count(), want.prototypes);
+    const bool default_light = want.point_lights == 0 && !want.emissive;
+    EXPECT_EQ(loaded.scene.lights().size(), want.point_lights + (default_light ? 1 : 0));
+    std::size_t unsupported = 0;
+    for (const std::string& w : loaded.warnings)
+        if (w.find("not yet supported") != std::string::npos) ++unsupported;
+    EXPECT_EQ(unsupported, want.other_lights);
+    EXPECT_EQ(loaded.camera.width, 64);
+    EXPECT_EQ(loaded.camera_name == "default", !doc.contains("cameras"));
+
+    loaded.scene.commit();
+    PathTracerSettings pts;
+    pts.max_depth = 3;
+    PathTracer integrator(pts);
+    RenderSettings settings;
+    settings.samples_per_pixel = 4;
+    settings.seed = 7;
+    const Image image = render(loaded.scene, Camera(loaded.camera), integrator, settings);
+    float brightest = 0.0f;
+    for (const glm::vec3& px : image.pixels) {
+        ASSERT_TRUE(std::isfinite(px.x) && std::isfinite(px.y) && std::isfinite(px.z));
+        brightest = std::max({brightest, px.x, px.y, px.z});
+    }
+    EXPECT_GT(brightest, 0.0f) << p << " rendered black";
+}
+
+/// A big triangle in the plane x = -4 (covers y, z in [-100, 100] near the origin).
+GltfBuilder wall_and_camera(double yfov, double aspect) {
+    GltfBuilder b;
+    const std::vector<float> p = {-4, -100, -100, -4, -100, 300, -4, 300, -100};
+    const int pos = b.add_accessor(p, lt::kFloat, "VEC3", 3);
+    b.doc["accessors"][pos]["min"] = {-4, -100, -100};
+    b.doc["accessors"][pos]["max"] = {-4, 300, 300};
+    b.doc["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", pos}}}}}}}};
+    b.doc["cameras"] = {
+        {{"type", "perspective"},
+         {"name", "side"},
+         {"perspective", {{"yfov", yfov}, {"aspectRatio", aspect}, {"znear", 0.1}}}}};
+    const double h = std::sqrt(0.5);  // 90 degrees about +y: looking down -z turns to -x
+    b.doc["nodes"] = {{{"mesh", 0}},
+                      {{"camera", 0}, {"translation", {1, 2, 3}}, {"rotation", {0, h, 0, h}}}};
+    b.doc["scenes"] = {{{"nodes", {0, 1}}}};
+    b.doc["scene"] = 0;
+    return b;
+}
+
+}  // namespace
+
+TEST(GltfToSceneData, CornellPbr) {
+    LIBRT_REQUIRE_DATA_FILE(p, "gltf/cornell_pbr.glb");
+    check_data_file(p);
+}
+TEST(GltfToSceneData, MaterialSpheres) {
+    LIBRT_REQUIRE_DATA_FILE(p, "gltf/material_spheres.glb");
+    check_data_file(p);
+}
+TEST(GltfToSceneData, Textures) {
+    LIBRT_REQUIRE_DATA_FILE(p, "gltf/textures.glb");
+    check_data_file(p);
+}
+TEST(GltfToSceneData, DragonsInstanced) {
+    LIBRT_REQUIRE_DATA_FILE(p, "gltf/dragons_instanced.glb");
+    check_data_file(p);
+}
+
+TEST(GltfToScene, NestedTransformsPlaceTheTriangleWhereTheyComposeTo) {
+    GltfBuilder b = lt::one_triangle();
+    const double h = std::sqrt(0.5);  // 90 degrees about z: (0, 0, sin 45, cos 45)
+    b.doc["nodes"] = json::array();
+    b.doc["nodes"].push_back({{"translation", {1, 2, 3}},
+                              {"rotation", {0, 0, h, h}},
+                              {"scale", {2, 3, 4}},
+                              {"children", {1}}});
+    b.doc["nodes"].push_back(
+        {{"matrix", {1, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1}}, {"children", {2}}});
+    b.doc["nodes"].push_back({{"translation", {0, 0, 1}}, {"scale", {1, 1, 0.5}}, {"mesh", 0}});
+    b.doc["scenes"] = {{{"nodes", {0}}}};
+    ScratchDir dir;
+    const fs::path p = dir.path() / "nested.gltf";
+    lt::write_file(p, b.gltf());
+    LoadedScene loaded = load_scene_file(p);
+    loaded.scene.commit();
+    // By hand, innermost first: z * 0.5 + 1; x + 5, y * 2; scale (2, 3, 4); 90 degrees
+    // about z ((x, y) -> (-y, x)); + (1, 2, 3).
+    auto predict = [](glm::vec3 v) {
+        v = {v.x, v.y, v.z * 0.5f + 1.0f};
+        v = {v.x + 5.0f, v.y * 2.0f, v.z};
+        v = {v.x * 2.0f, v.y * 3.0f, v.z * 4.0f};
+        v = {-v.y, v.x, v.z};
+        return v + glm::vec3(1, 2, 3);
+    };
+    const glm::vec3 a = predict({0, 0, 0}), bb = predict({1, 0, 0}), c = predict({0, 1, 0});
+    const glm::vec3 n = glm::normalize(glm::cross(bb - a, c - a));
+    for (const glm::vec3 bary : {glm::vec3(1, 1, 1) / 3.0f, glm::vec3(0.6f, 0.2f, 0.2f)}) {
+        const glm::vec3 target = bary.x * a + bary.y * bb + bary.z * c;
+        const Ray ray(target + 3.0f * n, -n);
+        Hit hit;
+        ASSERT_TRUE(loaded.scene.intersect(ray, hit));
+        EXPECT_NEAR(hit.t, 3.0f, 1e-4f);
+        EXPECT_NEAR(glm::length(hit.point - target), 0.0f, 1e-4f);
+    }
+    // Off the triangle (beyond its hypotenuse) nothing is hit.
+    const glm::vec3 outside = 0.1f * a + 0.6f * bb + 0.6f * c - 0.3f * a;
+    Hit miss;
+    EXPECT_FALSE(loaded.scene.intersect(Ray(outside + 3.0f * n, -n), miss));
+}
+
+TEST(GltfToScene, CameraLooksWhereItsNodePoints) {
+    ScratchDir dir;
+    const fs::path p = dir.path() / "camera.glb";
+    lt::write_file(p, wall_and_camera(1.0, 2.0).glb());
+    SceneFileOptions options;
+    options.width = 101;  // odd sizes: pixel (50, 25) is exactly the image centre
+    options.height = 51;
+    LoadedScene loaded = load_scene_file(p, options);
+    loaded.scene.commit();
+    EXPECT_EQ(loaded.camera_name, "side");
+    const Camera camera(loaded.camera);
+    Sampler sampler(50, 25, 0, 1);
+    const Ray ray = camera.generate_ray(50, 25, sampler);
+    Hit hit;
+    ASSERT_TRUE(loaded.scene.intersect(ray, hit));
+    // Camera at (1, 2, 3) turned to look down -x: the centre ray meets x = -4 at (-4, 2, 3).
+    EXPECT_NEAR(hit.point.x, -4.0f, 1e-4f);
+    EXPECT_NEAR(hit.point.y, 2.0f, 1e-4f);
+    EXPECT_NEAR(hit.point.z, 3.0f, 1e-4f);
+}
+
+TEST(GltfToScene, AspectAndYfovGiveThePredictedPixel) {
+    ScratchDir dir;
+    const fs::path p = dir.path() / "camera.glb";
+    const double yfov = 60.0 * k_pi / 180.0;
+    lt::write_file(p, wall_and_camera(yfov, 2.0).glb());
+    SceneFileOptions options;
+    options.default_long_side = 200;  // the size follows aspectRatio 2: 200 x 100
+    LoadedScene loaded = load_scene_file(p, options);
+    loaded.scene.commit();
+    ASSERT_EQ(loaded.camera.width, 200);
+    ASSERT_EQ(loaded.camera.height, 100);
+    // Q is 5 ahead, 2 to the right (camera right = world -z) and 1 up. A pinhole of
+    // vertical fov yfov over H rows has focal length f = H / (2 tan(yfov / 2)) pixels;
+    // Q projects to column W/2 - 0.5 + f dx / 5, row H/2 - 0.5 - f dy / 5.
+    const glm::vec3 q(-4.0f, 3.0f, 1.0f);
+    const double f = 100.0 / (2.0 * std::tan(yfov / 2.0));
+    const double col = 99.5 + f * 2.0 / 5.0, row = 49.5 - f * 1.0 / 5.0;
+    const int px = int(std::lround(col)), py = int(std::lround(row));
+    const Camera camera(loaded.camera);
+    Sampler sampler(px, py, 0, 1);
+    Hit hit;
+    ASSERT_TRUE(loaded.scene.intersect(camera.generate_ray(px, py, sampler), hit));
+    // The pixel centre's ray lands within the rounding distance (in pixels, times the
+    // pixel's footprint 5 / f at the wall) of Q.
+    const double footprint = 5.0 / f;
+    EXPECT_NEAR(hit.point.z, q.z, (std::abs(col - px) + 1e-3) * footprint);
+    EXPECT_NEAR(hit.point.y, q.y, (std::abs(row - py) + 1e-3) * footprint);
+}
+
+TEST(GltfToScene, UnknownCameraIsAnErrorListingTheCameras) {
+    ScratchDir dir;
+    const fs::path p = dir.path() / "camera.glb";
+    lt::write_file(p, wall_and_camera(1.0, 1.0).glb());
+    SceneFileOptions options;
+    options.camera = "front";
+    try {
+        (void)load_scene_file(p, options);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("camera = front"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("'side'"), std::string::npos) << e.what();
+    }
+    options.camera = "0";
+    EXPECT_EQ(load_scene_file(p, options).camera_name, "side");
+}
+
+TEST(GltfToScene, MaterialMapping) {
+    GltfMaterial m;
+    m.base_color_factor = {0.5f, 0.25f, 1.0f, 1.0f};
+    m.metallic_factor = 0.0f;
+    m.emissive_factor = {1.0f, 0.5f, 0.0f};
+    m.emissive_strength = 15.0f;
+    Material d = material_from_gltf(m, 3);
+    EXPECT_EQ(d.kind, MaterialKind::Diffuse);
+    EXPECT_EQ(d.albedo_texture, 3);
+    EXPECT_FLOAT_EQ(d.albedo.y, 0.25f);
+    EXPECT_FLOAT_EQ(d.emission.x, 15.0f);
+    EXPECT_FLOAT_EQ(d.emission.y, 7.5f);
+    m.transmission_factor = 1.0f;
+    m.ior = 1.33f;
+    EXPECT_EQ(material_from_gltf(m).kind, MaterialKind::Dielectric);
+    EXPECT_FLOAT_EQ(material_from_gltf(m).ior, 1.33f);
+    m.transmission_factor = 0.0f;
+    m.metallic_factor = 1.0f;
+    m.roughness_factor = 0.05f;
+    EXPECT_EQ(material_from_gltf(m).kind, MaterialKind::Mirror);
+    m.roughness_factor = 0.5f;  // a rough metal: diffuse until GGX lands
+    EXPECT_EQ(material_from_gltf(m).kind, MaterialKind::Diffuse);
+}
+
+TEST(GltfToScene, PointLightCandelaBecomeWattsPerSteradian) {
+    GltfBuilder b = lt::one_triangle();
+    b.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+    b.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
+        {{"type", "point"}, {"intensity", 1366.0}, {"color", {1.0, 0.5, 0.25}}},
+        {{"type", "directional"}, {"intensity", 100.0}}};
+    b.doc["nodes"].push_back(
+        {{"translation", {0, 0, 2}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    b.doc["nodes"].push_back({{"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+    b.doc["scenes"] = {{{"nodes", {0, 1, 2}}}};
+    ScratchDir dir;
+    const fs::path p = dir.path() / "lights.gltf";
+    lt::write_file(p, b.gltf());
+    const LoadedScene loaded = load_scene_file(p);
+    ASSERT_EQ(loaded.scene.lights().size(), 1u);
+    const auto* point = std::get_if<PointLight>(&loaded.scene.lights()[0].source);
+    ASSERT_NE(point, nullptr);
+    // 1366 cd / 683 lm/W = 2 W/sr, times the colour.
+    EXPECT_FLOAT_EQ(point->intensity.x, 2.0f);
+    EXPECT_FLOAT_EQ(point->intensity.z, 0.5f);
+    EXPECT_FLOAT_EQ(point->position.z, 2.0f);
+    bool warned = false;
+    for (const std::string& w : loaded.warnings)
+        warned = warned || w.find("directional lights are not yet supported") != std::string::npos;
+    EXPECT_TRUE(warned);
+}
+
+TEST(SceneFile, UnknownExtensionIsAnError) {
+    EXPECT_THROW((void)load_scene_file("scene.fbx"), Error);
+}
+
+TEST(SceneFile, ObjBecomesASceneFramedAndLit) {
+    ScratchDir dir;
+    const fs::path p = dir.path() / "quad.obj";
+    lt::write_file(p, "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+    LoadedScene loaded = load_scene_file(p);
+    EXPECT_EQ(loaded.triangles_stored, 2u);
+    EXPECT_EQ(loaded.scene.lights().size(), 1u);  // the default light
+    EXPECT_EQ(loaded.camera_name, "default");
+    loaded.scene.commit();
+    // The default camera looks at the bounds' centre: the image centre sees the quad's.
+    CameraSettings s = loaded.camera;
+    s.width = s.height = 11;
+    const Camera camera(s);
+    Sampler sampler(5, 5, 0, 1);
+    Hit hit;
+    ASSERT_TRUE(loaded.scene.intersect(camera.generate_ray(5, 5, sampler), hit));
+    EXPECT_NEAR(glm::length(hit.point), 0.0f, 1e-4f);
+}
+
+TEST(GltfToScene, ANodeScaledToZeroIsWarnedAboutNotPlaced) {
+    GltfBuilder b = lt::one_triangle();
+    b.doc["nodes"] = {{{"mesh", 0}}, {{"mesh", 0}, {"scale", {0, 0, 0}}, {"name", "hidden"}}};
+    b.doc["scenes"] = {{{"nodes", {0, 1}}}};
+    ScratchDir dir;
+    const fs::path p = dir.path() / "hidden.gltf";
+    lt::write_file(p, b.gltf());
+    const LoadedScene loaded = load_scene_file(p);
+    EXPECT_EQ(loaded.scene.instance_count(), 1u);
+    EXPECT_EQ(loaded.triangles_placed, 1u);
+    bool warned = false;
+    for (const std::string& w : loaded.warnings)
+        warned = warned || w.find("'hidden': singular transform") != std::string::npos;
+    EXPECT_TRUE(warned);
+}
