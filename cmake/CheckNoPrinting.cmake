@@ -11,10 +11,8 @@
 # Before scanning the library it checks itself on a scratch file (one violation of each
 # kind must be found, the harmless look-alikes must not), so a broken pattern cannot pass.
 cmake_minimum_required(VERSION 3.22)
-
-if(NOT ROOT OR NOT EXISTS "${ROOT}/librt")
-  message(FATAL_ERROR "ROOT='${ROOT}' is not the repository root")
-endif()
+include("${CMAKE_CURRENT_LIST_DIR}/LibrtSourceScan.cmake")
+librt_require_root()
 
 # One printing construct at a word start (no identifier character before it, so snprintf,
 # my_puts or fprintf_like are not matched). CMake regexes have no \b.
@@ -43,12 +41,7 @@ function(librt_find_printing root files out_var)
     set(number 0)
     foreach(line IN LISTS lines)
       math(EXPR number "${number} + 1")
-      string(FIND "${line}" "//" comment)
-      if(comment GREATER -1)
-        string(SUBSTRING "${line}" 0 ${comment} code)
-      else()
-        set(code "${line}")
-      endif()
+      librt_code_of_line("${line}" code)
       set(prints FALSE)
       foreach(pattern IN LISTS _printing)
         if(code MATCHES "${pattern}")
@@ -81,9 +74,7 @@ function(librt_find_printing root files out_var)
 endfunction()
 
 # Self-check: every construct above must be caught, and look-alikes must not be.
-string(RANDOM LENGTH 12 _tag)
-set(_scratch "${CMAKE_CURRENT_BINARY_DIR}/librt_no_printing_selftest_${_tag}")
-file(MAKE_DIRECTORY "${_scratch}")
+librt_scratch_folder(librt_no_printing_selftest _scratch)
 # (No semicolons in these lines: they would split the CMake list.)
 set(_bad
   "std::cerr << x" "std::cout << x" "std::clog << x" "std::printf(\"%d\", 1)"
@@ -110,14 +101,7 @@ if(_self MATCHES "good.cpp" OR NOT _self_count EQUAL _bad_count)
 endif()
 
 # The library itself.
-file(GLOB_RECURSE _files RELATIVE "${ROOT}"
-  "${ROOT}/librt/src/*.h" "${ROOT}/librt/src/*.hpp" "${ROOT}/librt/src/*.cpp"
-  "${ROOT}/librt/src/*.inl" "${ROOT}/librt/include/*.h" "${ROOT}/librt/include/*.hpp")
-list(SORT _files)
-list(LENGTH _files _file_count)
-if(_file_count LESS 10)
-  message(FATAL_ERROR "only ${_file_count} library files found under ${ROOT}/librt")
-endif()
+librt_library_files("${ROOT}" _files _file_count)
 librt_find_printing("${ROOT}" "${_files}" _found)
 set(_index 0)
 foreach(entry IN LISTS _exemptions)
