@@ -24,12 +24,8 @@ set(_printing
   "#[ \t]*include[ \t]*<iostream>")
 
 # Lines allowed to print, as "path relative to ROOT|substring of the line|why". Keep this
-# list short: each entry is a place where the library still talks to the console.
-set(_exemptions
-  # LIBRT_SIMD naming a path this CPU lacks, read once at start-up before any caller can
-  # be told. To become a query (e.g. the chosen path and why) in the accel/ work.
-  "librt/src/accel/simd.cpp|stderr|LIBRT_SIMD warning"
-  "librt/src/accel/simd.cpp|std::fprintf(|LIBRT_SIMD warning")
+# list empty: an entry is a place where the library talks to the console (none today).
+set(_exemptions)
 
 # Sets out_var to one "\n  file:line: text" per printing line of `files` (paths relative
 # to `root`) that no exemption covers (a string, not a list: code holds semicolons), and

@@ -1,6 +1,6 @@
-#include <librt/render/point_light.h>
-
 #include "light_validation.h"
+
+#include <librt/render/point_light.h>
 
 #include <glm/geometric.hpp>
 

@@ -1,7 +1,7 @@
+#include "light_validation.h"
+
 #include <librt/core/error.h>
 #include <librt/render/sphere_light.h>
-
-#include "light_validation.h"
 
 #include <cmath>
 #include <sstream>
