@@ -6,6 +6,7 @@
 // too, as one rank. See docs/distributed.md.
 #include "common/cli.h"
 
+#include <librt/accel/simd.h>
 #include <librt/core/error.h>
 #include <librt/core/tone_map.h>
 #include <librt/io/exr.h>
@@ -22,6 +23,7 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <iostream>
 #include <string>
 
 using namespace librt;
@@ -132,6 +134,9 @@ int main(int argc, char** argv) {
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     const std::string who = "rt_mpi_render: rank " + std::to_string(rank) + ": ";
+    // A refused LIBRT_SIMD (every rank reads the same environment): rank 0 says it.
+    if (rank == 0 && !librt::simd_path_note().empty())
+        std::cerr << who << librt::simd_path_note() << '\n';
 
     int code = 0;
     try {

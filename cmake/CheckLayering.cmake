@@ -16,10 +16,8 @@
 #   ROOT: the repository root
 # It first checks itself on a scratch tree, so a broken rule cannot pass silently.
 cmake_minimum_required(VERSION 3.22)
-
-if(NOT ROOT OR NOT EXISTS "${ROOT}/librt")
-  message(FATAL_ERROR "ROOT='${ROOT}' is not the repository root")
-endif()
+include("${CMAKE_CURRENT_LIST_DIR}/LibrtSourceScan.cmake")
+librt_require_root()
 
 set(_areas core geometry sampling accel render io mpi)
 set(_uses_core core)
@@ -53,12 +51,7 @@ function(librt_check_layering root files out_var)
     set(number 0)
     foreach(line IN LISTS lines)
       math(EXPR number "${number} + 1")
-      string(FIND "${line}" "//" comment)
-      if(comment GREATER -1)
-        string(SUBSTRING "${line}" 0 ${comment} code)
-      else()
-        set(code "${line}")
-      endif()
+      librt_code_of_line("${line}" code)
       set(used "")
       if(code MATCHES "#[ \t]*include[ \t]*<librt/([a-z_]+)/")
         set(used "${CMAKE_MATCH_1}")
@@ -84,8 +77,7 @@ function(librt_check_layering root files out_var)
 endfunction()
 
 # Self-check on a scratch tree: each bad line must be reported once, no good line.
-string(RANDOM LENGTH 12 _tag)
-set(_scratch "${CMAKE_CURRENT_BINARY_DIR}/librt_layering_selftest_${_tag}")
+librt_scratch_folder(librt_layering_selftest _scratch)
 file(MAKE_DIRECTORY "${_scratch}/librt/src/render" "${_scratch}/librt/include/librt/accel"
      "${_scratch}/librt/src/io")
 file(WRITE "${_scratch}/librt/src/render/bad.cpp"
@@ -109,14 +101,7 @@ if(_self MATCHES "good\\.cpp" OR NOT _bad_count EQUAL 9)
   message(FATAL_ERROR "self-check: expected the 9 bad lines and no good one, found:${_self}")
 endif()
 
-file(GLOB_RECURSE _files RELATIVE "${ROOT}"
-  "${ROOT}/librt/src/*.h" "${ROOT}/librt/src/*.hpp" "${ROOT}/librt/src/*.cpp"
-  "${ROOT}/librt/src/*.inl" "${ROOT}/librt/include/*.h" "${ROOT}/librt/include/*.hpp")
-list(SORT _files)
-list(LENGTH _files _file_count)
-if(_file_count LESS 10)
-  message(FATAL_ERROR "only ${_file_count} library files found under ${ROOT}/librt")
-endif()
+librt_library_files("${ROOT}" _files _file_count)
 librt_check_layering("${ROOT}" "${_files}" _found)
 if(_found)
   message(FATAL_ERROR "layering broken (see docs/architecture.md):${_found}")

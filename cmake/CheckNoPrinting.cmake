@@ -11,10 +11,8 @@
 # Before scanning the library it checks itself on a scratch file (one violation of each
 # kind must be found, the harmless look-alikes must not), so a broken pattern cannot pass.
 cmake_minimum_required(VERSION 3.22)
-
-if(NOT ROOT OR NOT EXISTS "${ROOT}/librt")
-  message(FATAL_ERROR "ROOT='${ROOT}' is not the repository root")
-endif()
+include("${CMAKE_CURRENT_LIST_DIR}/LibrtSourceScan.cmake")
+librt_require_root()
 
 # One printing construct at a word start (no identifier character before it, so snprintf,
 # my_puts or fprintf_like are not matched). CMake regexes have no \b.
@@ -26,12 +24,8 @@ set(_printing
   "#[ \t]*include[ \t]*<iostream>")
 
 # Lines allowed to print, as "path relative to ROOT|substring of the line|why". Keep this
-# list short: each entry is a place where the library still talks to the console.
-set(_exemptions
-  # LIBRT_SIMD naming a path this CPU lacks, read once at start-up before any caller can
-  # be told. To become a query (e.g. the chosen path and why) in the accel/ work.
-  "librt/src/accel/simd.cpp|stderr|LIBRT_SIMD warning"
-  "librt/src/accel/simd.cpp|std::fprintf(|LIBRT_SIMD warning")
+# list empty: an entry is a place where the library talks to the console (none today).
+set(_exemptions)
 
 # Sets out_var to one "\n  file:line: text" per printing line of `files` (paths relative
 # to `root`) that no exemption covers (a string, not a list: code holds semicolons), and
@@ -43,12 +37,7 @@ function(librt_find_printing root files out_var)
     set(number 0)
     foreach(line IN LISTS lines)
       math(EXPR number "${number} + 1")
-      string(FIND "${line}" "//" comment)
-      if(comment GREATER -1)
-        string(SUBSTRING "${line}" 0 ${comment} code)
-      else()
-        set(code "${line}")
-      endif()
+      librt_code_of_line("${line}" code)
       set(prints FALSE)
       foreach(pattern IN LISTS _printing)
         if(code MATCHES "${pattern}")
@@ -81,9 +70,7 @@ function(librt_find_printing root files out_var)
 endfunction()
 
 # Self-check: every construct above must be caught, and look-alikes must not be.
-string(RANDOM LENGTH 12 _tag)
-set(_scratch "${CMAKE_CURRENT_BINARY_DIR}/librt_no_printing_selftest_${_tag}")
-file(MAKE_DIRECTORY "${_scratch}")
+librt_scratch_folder(librt_no_printing_selftest _scratch)
 # (No semicolons in these lines: they would split the CMake list.)
 set(_bad
   "std::cerr << x" "std::cout << x" "std::clog << x" "std::printf(\"%d\", 1)"
@@ -110,14 +97,7 @@ if(_self MATCHES "good.cpp" OR NOT _self_count EQUAL _bad_count)
 endif()
 
 # The library itself.
-file(GLOB_RECURSE _files RELATIVE "${ROOT}"
-  "${ROOT}/librt/src/*.h" "${ROOT}/librt/src/*.hpp" "${ROOT}/librt/src/*.cpp"
-  "${ROOT}/librt/src/*.inl" "${ROOT}/librt/include/*.h" "${ROOT}/librt/include/*.hpp")
-list(SORT _files)
-list(LENGTH _files _file_count)
-if(_file_count LESS 10)
-  message(FATAL_ERROR "only ${_file_count} library files found under ${ROOT}/librt")
-endif()
+librt_library_files("${ROOT}" _files _file_count)
 librt_find_printing("${ROOT}" "${_files}" _found)
 set(_index 0)
 foreach(entry IN LISTS _exemptions)

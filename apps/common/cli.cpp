@@ -1,5 +1,6 @@
 #include "cli.h"
 
+#include <librt/accel/simd.h>
 #include <librt/core/error.h>
 #include <librt/core/tone_map.h>
 #include <librt/io/image_io.h>
@@ -262,6 +263,9 @@ int run(CLI::App& app, int argc, char** argv, const std::function<int()>& body) 
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     }
+    // The library chose its SIMD path without printing; a refused LIBRT_SIMD is said here.
+    if (const std::string& note = librt::simd_path_note(); !note.empty())
+        std::cerr << app.get_name() << ": " << note << '\n';
     // From here on Ctrl-C / SIGTERM only set g_cancel: a render in progress (or the next
     // one) stops at once, render_and_write writes nothing and returns 130.
     const InterruptGuard interrupts;

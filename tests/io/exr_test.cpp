@@ -1,6 +1,7 @@
 // EXR output: every layer read back with the same library (tinyexr) exactly for float,
 // within half precision for half; bad input refused without leaving a file behind.
 
+#include "io/temp_dir_test.h"
 #include "render/film_test_util.h"
 
 #include <librt/core/error.h>
@@ -21,25 +22,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-class ExrTest : public ::testing::Test {
-protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               (std::string("librt_exr_") + info->name() + "_" +
-                std::to_string(std::hash<std::string>{}(fs::current_path().string())));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    [[nodiscard]] std::size_t entries() const {
-        return static_cast<std::size_t>(
-            std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
-    }
-
-    fs::path dir_;
-};
+class ExrTest : public librt::testing::TempDirTest {};
 
 // Layers of random values spanning many binades (and signs, for normals), with an
 // infinite depth where nothing was hit.

@@ -53,12 +53,6 @@ GltfScene load_text(const ScratchDir& dir, const std::string& name, const std::s
     return load_gltf(p);
 }
 
-std::string all(const std::vector<std::string>& warnings) {
-    std::string s;
-    for (const std::string& w : warnings) s += w + "\n";
-    return s;
-}
-
 /// A 2 x 1 RGBA PNG: red, then half-transparent blue.
 std::string tiny_png() {
     const unsigned char px[8] = {255, 0, 0, 255, 0, 0, 255, 128};
@@ -92,7 +86,8 @@ TEST(GltfMeshes, StripsFansAndTrianglesWithEveryIndexType) {
         // Triangles: 5 vertices make one triangle and a warning about the 2 left over.
         s = load_text(dir, "tri.glb", five_vertices(4, type).glb());
         EXPECT_EQ(s.meshes[0].primitives[0].triangles.size(), 1u);
-        EXPECT_TRUE(lt::has(all(s.warnings), "meshes[0].primitives[0]")) << all(s.warnings);
+        EXPECT_TRUE(lt::has(lt::joined(s.warnings), "meshes[0].primitives[0]"))
+            << lt::joined(s.warnings);
     }
 }
 
@@ -101,9 +96,9 @@ TEST(GltfMeshes, PointsAndLinesAreSkippedWithAWarning) {
     for (const int mode : {0, 1, 2, 3}) {
         const GltfScene s = load_text(dir, "lines.gltf", five_vertices(mode, 0).gltf());
         EXPECT_TRUE(s.meshes[0].primitives.empty());
-        EXPECT_TRUE(
-            lt::has(all(s.warnings), "lines.gltf: meshes[0].primitives[0]: points and lines"))
-            << all(s.warnings);
+        EXPECT_TRUE(lt::has(lt::joined(s.warnings),
+                            "lines.gltf: meshes[0].primitives[0]: points and lines"))
+            << lt::joined(s.warnings);
     }
 }
 
@@ -198,7 +193,8 @@ TEST(GltfFiles, ExternalBinAndImagesDataUriImagesAndAMissingImage) {
     EXPECT_EQ(s.textures[0].min_filter, GltfFilter::Unset);
     // The missing image: a warning naming it; the texture is unusable, the material kept.
     EXPECT_EQ(s.textures[2].image, -1);
-    EXPECT_TRUE(lt::has(all(s.warnings), p.string() + ": images[2]")) << all(s.warnings);
+    EXPECT_TRUE(lt::has(lt::joined(s.warnings), p.string() + ": images[2]"))
+        << lt::joined(s.warnings);
     EXPECT_EQ(s.materials[1].emissive_factor, glm::vec3(1.0f));
 }
 
@@ -304,7 +300,7 @@ TEST(GltfScene, MaterialsWithTheirExtensions) {
     EXPECT_FLOAT_EQ(m.alpha_cutoff, 0.3f);
     EXPECT_TRUE(m.double_sided);
     // Only the unknown optional extension is a warning.
-    ASSERT_EQ(s.warnings.size(), 1u) << all(s.warnings);
+    ASSERT_EQ(s.warnings.size(), 1u) << lt::joined(s.warnings);
     EXPECT_TRUE(lt::has(s.warnings[0], "extensionsUsed[4]: extension EXT_unknown_thing"));
 }
 
@@ -314,17 +310,17 @@ TEST(GltfFuzzSeeds, EverySeedLoads) {
     const fs::path dir = fs::path(LIBRT_FUZZ_CORPUS_DIR) / "gltf";
     GltfScene s = load_gltf(dir / "quad_indexed.glb");
     EXPECT_EQ(s.triangles_placed(), 2u);
-    EXPECT_TRUE(s.warnings.empty()) << all(s.warnings);
+    EXPECT_TRUE(s.warnings.empty()) << lt::joined(s.warnings);
     s = load_gltf(dir / "strip_sparse.gltf");
     EXPECT_EQ(s.triangles_placed(), 3u);  // the strip; the lines skipped
     EXPECT_EQ(s.meshes[0].primitives[0].positions[3], glm::vec3(2, 2, 0));  // sparse
-    EXPECT_EQ(s.warnings.size(), 1u) << all(s.warnings);
+    EXPECT_EQ(s.warnings.size(), 1u) << lt::joined(s.warnings);
     s = load_gltf(dir / "scene_features.gltf");
     EXPECT_EQ(s.cameras.size(), 2u);
     EXPECT_EQ(s.lights.size(), 3u);
     ASSERT_EQ(s.textures.size(), 1u);
     EXPECT_EQ(s.textures[0].image, 0);
-    EXPECT_TRUE(s.warnings.empty()) << all(s.warnings);
+    EXPECT_TRUE(s.warnings.empty()) << lt::joined(s.warnings);
     s = load_gltf(dir / "fan_quantized.glb");
     EXPECT_EQ(s.triangles_placed(), 2u);
     EXPECT_EQ(s.meshes[0].primitives[0].positions[2], glm::vec3(100, 100, 0));

@@ -23,6 +23,7 @@
 #include <vector>
 
 using namespace librt;
+using librt::testing::glb_json;
 using librt::testing::GltfBuilder;
 using librt::testing::ScratchDir;
 using nlohmann::json;
@@ -30,15 +31,6 @@ namespace fs = std::filesystem;
 namespace lt = librt::testing;
 
 namespace {
-
-/// The JSON chunk of a .glb, parsed.
-json glb_json(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::uint32_t length = 0;
-    std::memcpy(&length, bytes.data() + 12, 4);  // little-endian host (x86-64)
-    return json::parse(bytes.substr(20, length));
-}
 
 struct Counts {
     std::size_t meshes = 0, triangles_stored = 0, triangles_placed = 0, instances = 0,

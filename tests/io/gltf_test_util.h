@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -114,6 +115,31 @@ struct GltfBuilder {
 inline void write_file(const std::filesystem::path& p, const std::string& bytes) {
     std::ofstream out(p, std::ios::binary | std::ios::trunc);
     out.write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+/// The whole content of a file ("" when it cannot be read).
+inline std::string read_file(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Overwrites the little-endian u32 at `at` (.glb header and chunk fields).
+inline void set_u32(std::string& bytes, std::size_t at, std::uint32_t v) {
+    for (unsigned k = 0; k < 4; ++k) bytes[at + k] = char((v >> (8u * k)) & 0xFFu);
+}
+
+/// The little-endian u32 at `at`.
+inline std::uint32_t get_u32(const std::string& bytes, std::size_t at) {
+    std::uint32_t v = 0;
+    for (unsigned k = 0; k < 4; ++k) v |= std::uint32_t(std::uint8_t(bytes[at + k])) << (8u * k);
+    return v;
+}
+
+/// The JSON chunk of a .glb file, parsed (header 12 bytes, then the chunk's length at 12
+/// and its data from 20, per the glTF 2.0 GLB layout).
+inline nlohmann::json glb_json(const std::filesystem::path& p) {
+    const std::string bytes = read_file(p);
+    return nlohmann::json::parse(bytes.substr(20, get_u32(bytes, 12)));
 }
 
 /// A builder holding one triangle (positions only) in mesh 0, placed by node 0 of scene 0.

@@ -1,3 +1,5 @@
+#include "io/temp_dir_test.h"
+
 #include <librt/core/error.h>
 #include <librt/io/image_io.h>
 
@@ -14,30 +16,12 @@
 #include <string>
 
 using namespace librt;
+using librt::testing::read_all;
 namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh empty directory under the system temp dir, removed at the end of the test.
-class ImageIoTest : public ::testing::Test {
-protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               (std::string("librt_image_io_") + info->name() + "_" +
-                std::to_string(std::hash<std::string>{}(fs::current_path().string())));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    [[nodiscard]] std::size_t entries() const {
-        return static_cast<std::size_t>(
-            std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
-    }
-
-    fs::path dir_;
-};
+class ImageIoTest : public librt::testing::TempDirTest {};
 
 Image test_image() {
     Image image(5, 3);
@@ -50,11 +34,6 @@ Image test_image() {
     image.at(0, 0) = {std::numeric_limits<float>::infinity(), -2.5f, 1e30f};
     image.at(1, 0) = {std::numeric_limits<float>::denorm_min(), -0.0f, 123456.789f};
     return image;
-}
-
-std::string read_all(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 }  // namespace

@@ -16,9 +16,11 @@
 
 using namespace librt;
 using librt::testing::error_of;
+using librt::testing::get_u32;
 using librt::testing::GltfBuilder;
 using librt::testing::has;
 using librt::testing::ScratchDir;
+using librt::testing::set_u32;
 using nlohmann::json;
 namespace fs = std::filesystem;
 namespace lt = librt::testing;
@@ -34,17 +36,6 @@ std::string load_error(const ScratchDir& dir, const std::string& name, const std
     EXPECT_TRUE(has(msg, p.string() + ": ")) << "file not named in: " << msg;
     EXPECT_TRUE(has(msg, part)) << "expected '" << part << "' in: " << msg;
     return msg;
-}
-
-/// Overwrites the little-endian u32 at `at`.
-void set_u32(std::string& bytes, std::size_t at, std::uint32_t v) {
-    for (unsigned k = 0; k < 4; ++k) bytes[at + k] = char((v >> (8u * k)) & 0xFFu);
-}
-
-std::uint32_t get_u32(const std::string& bytes, std::size_t at) {
-    std::uint32_t v = 0;
-    for (unsigned k = 0; k < 4; ++k) v |= std::uint32_t(std::uint8_t(bytes[at + k])) << (8u * k);
-    return v;
 }
 
 }  // namespace

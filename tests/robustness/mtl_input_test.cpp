@@ -2,6 +2,7 @@
 // files, material names with spaces match, face lines may end in comments, Windows paths
 // in map_Kd are found, and tinyobjloader's warnings come with a line, once.
 
+#include "robustness/obj_input_util.h"
 #include "robustness/robustness_util.h"
 
 #include <librt/io/obj.h>
@@ -19,24 +20,14 @@
 using namespace librt;
 using librt::testing::error_of;
 using librt::testing::has;
+using librt::testing::joined;
 using librt::testing::ScratchDir;
 namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
-
-TriangleMesh load(const fs::path& p, std::vector<std::string>& warnings) {
-    ObjLoadOptions options;
-    options.warnings = &warnings;
-    return load_obj(p, options);
-}
-
-std::string joined(const std::vector<std::string>& warnings) {
-    std::string out;
-    for (const std::string& w : warnings) out += w + "\n";
-    return out;
-}
+const std::string& kTriangle = librt::testing::kObjTriangle;
+constexpr auto load = librt::testing::load_with_warnings;
 
 /// The one material the triangle of `m.obj` (with `mtl` as its MTL) gets.
 MeshMaterial material_of(const ScratchDir& dir, const std::string& mtl,

@@ -2,6 +2,7 @@
 // something was dropped) or throws librt::Error "path:line: what". See the table in
 // docs/robustness.md.
 
+#include "robustness/obj_input_util.h"
 #include "robustness/robustness_util.h"
 
 #include <librt/io/obj.h>
@@ -17,19 +18,14 @@
 using namespace librt;
 using librt::testing::error_of;
 using librt::testing::has;
+using librt::testing::joined;
 using librt::testing::ScratchDir;
 namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
-
-/// Loads with warnings collected.
-TriangleMesh load(const fs::path& p, std::vector<std::string>& warnings) {
-    ObjLoadOptions options;
-    options.warnings = &warnings;
-    return load_obj(p, options);
-}
+const std::string& kTriangle = librt::testing::kObjTriangle;
+constexpr auto load = librt::testing::load_with_warnings;
 
 /// The error loading `text` (written as name) gives; checks it names the file and line.
 std::string load_error(const ScratchDir& dir, const std::string& name, const std::string& text,
@@ -40,16 +36,6 @@ std::string load_error(const ScratchDir& dir, const std::string& name, const std
     EXPECT_TRUE(has(msg, p.string() + ":" + std::to_string(line) + ":"))
         << "expected " << name << ":" << line << " in: " << msg;
     return msg;
-}
-
-/// All warnings as one string, for searching.
-std::string joined(const std::vector<std::string>& warnings) {
-    std::string all;
-    for (const std::string& w : warnings) {
-        all += w;
-        all += '\n';
-    }
-    return all;
 }
 
 }  // namespace

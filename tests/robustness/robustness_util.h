@@ -82,6 +82,16 @@ std::string error_of(F&& f) {
     return "";
 }
 
+/// All warnings as one string, one a line, for searching and for failure messages.
+inline std::string joined(const std::vector<std::string>& warnings) {
+    std::string all;
+    for (const std::string& w : warnings) {
+        all += w;
+        all += '\n';
+    }
+    return all;
+}
+
 /// True when `text` contains `part`.
 inline bool has(const std::string& text, std::string_view part) {
     return text.find(part) != std::string::npos;

@@ -1,6 +1,5 @@
 #include <librt/accel/simd.h>
 
-#include <cstdio>
 #include <cstdlib>
 #include <string_view>
 
@@ -50,26 +49,38 @@ std::vector<SimdPath> supported_simd_paths() {
     return paths;
 }
 
-SimdPath default_simd_path() {
-    static const SimdPath chosen = [] {
-        const SimdPath best = supported_simd_paths().back();
-        const char* env = std::getenv("LIBRT_SIMD");
-        if (!env || !*env || std::string_view(env) == "auto") return best;
-        for (const SimdPath p :
-             {SimdPath::Scalar, SimdPath::Sse, SimdPath::Avx2, SimdPath::Avx512}) {
-            if (std::string_view(env) != to_string(p)) continue;
-            if (simd_path_supported(p)) return p;
-            std::fprintf(stderr, "librt: LIBRT_SIMD=%s is not supported here, using %s\n", env,
-                         to_string(best));
-            return best;
+SimdSelection select_simd_path(std::string_view requested) {
+    SimdSelection s;
+    s.requested = std::string(requested);
+    const SimdPath best = supported_simd_paths().back();
+    s.path = best;
+    if (requested.empty() || requested == "auto") return s;
+    for (const SimdPath p : {SimdPath::Scalar, SimdPath::Sse, SimdPath::Avx2, SimdPath::Avx512}) {
+        if (requested != to_string(p)) continue;
+        if (simd_path_supported(p)) {
+            s.path = p;
+        } else {
+            s.note =
+                "LIBRT_SIMD=" + s.requested + " is not supported here, using " + to_string(best);
         }
-        std::fprintf(
-            stderr,
-            "librt: LIBRT_SIMD=%s is not one of auto, scalar, sse, avx2, avx512; using %s\n", env,
-            to_string(best));
-        return best;
-    }();
-    return chosen;
+        return s;
+    }
+    s.note = "LIBRT_SIMD=" + s.requested +
+             " is not one of auto, scalar, sse, avx2, avx512; using " + to_string(best);
+    return s;
 }
+
+const SimdSelection& simd_selection() {
+    // Read once: every TriangleBvh built in this process starts on the same path.
+    static const SimdSelection selection = [] {
+        const char* env = std::getenv("LIBRT_SIMD");
+        return select_simd_path(env ? std::string_view(env) : std::string_view());
+    }();
+    return selection;
+}
+
+SimdPath default_simd_path() { return simd_selection().path; }
+
+const std::string& simd_path_note() { return simd_selection().note; }
 
 }  // namespace librt

@@ -65,6 +65,15 @@ inline void slab_test8(const WideBvhNode& node, const SlabRay8& r, float t_min, 
     _mm256_store_ps(t_enter, enter);
 }
 
+/// The node half of the AVX2 and AVX-512 WideKernel policies (see wide_traversal.h) that
+/// both share: the per-ray constants. Each kernel adds its own intersect_node, the one
+/// place they differ (how slab_test8's lanes become a bit mask).
+struct Slab8Nodes {
+    using NodeRay = SlabRay8;
+
+    static NodeRay prepare_nodes(const Ray& ray) { return prepare_slab8(ray); }
+};
+
 }  // namespace librt::detail
 
 #if defined(__clang__)

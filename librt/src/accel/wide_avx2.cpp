@@ -4,6 +4,11 @@
 // so nothing leaks into baseline code); it runs only when simd_path_supported() says the
 // CPU has it. The entry points are flatten: the baseline traversal template and the
 // block test are inlined into them, so all of it is compiled for AVX2.
+// Why this file and wide_avx512.cpp still repeat their pragmas and entry points: a target
+// applies to the functions defined under it, so each instruction set's entry points must
+// be defined in its own file under its own pragma (a template entry point in a shared
+// header would be compiled for baseline x86-64, and flatten could not inline AVX code into
+// it); sharing the pragma text itself would take a macro or a textual include.
 
 #include "wide_kernels.h"
 
@@ -27,11 +32,7 @@ namespace librt::detail {
 namespace {
 
 /// The WideKernel policy of the AVX2 path.
-struct Avx2Kernel : Block4Triangles {
-    using NodeRay = SlabRay8;
-
-    static NodeRay prepare_nodes(const Ray& ray) { return prepare_slab8(ray); }
-
+struct Avx2Kernel : Block4Triangles, Slab8Nodes {
     /// slab_test8, its hit lanes gathered by movemask.
     static std::uint32_t intersect_node(const WideBvhNode& node, const NodeRay& r, float t_min,
                                         float t_max, float* t_enter) {

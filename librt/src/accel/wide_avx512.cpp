@@ -29,11 +29,7 @@ namespace librt::detail {
 namespace {
 
 /// The WideKernel policy of the AVX-512 path.
-struct Avx512Kernel : Block4Triangles {
-    using NodeRay = SlabRay8;
-
-    static NodeRay prepare_nodes(const Ray& ray) { return prepare_slab8(ray); }
-
+struct Avx512Kernel : Block4Triangles, Slab8Nodes {
     /// slab_test8, its hit lanes straight from a compare into a mask register.
     static std::uint32_t intersect_node(const WideBvhNode& node, const NodeRay& r, float t_min,
                                         float t_max, float* t_enter) {

@@ -1,6 +1,12 @@
+// load_obj: a strict pre-pass (obj_scan), tinyobjloader, then faces checked, triangulated
+// (obj_polygon) and their corners unified into vertices (obj_vertices). save_obj is in
+// obj_save.cpp.
+
 #include "io/file_io.h"
 #include "io/obj_mtl.h"
+#include "io/obj_polygon.h"
 #include "io/obj_scan.h"
+#include "io/obj_vertices.h"
 
 #include <librt/core/error.h>
 #include <librt/io/obj.h>
@@ -11,10 +17,8 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <istream>
 #include <limits>
 #include <streambuf>
@@ -30,7 +34,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::int32_t kAbsent = -1;  // tinyobjloader's "no vt / vn" index
 constexpr std::size_t npos = std::string::npos;
 
 // ---------------------------------------------------------------------------------------------
@@ -64,198 +67,12 @@ std::vector<std::string> split_lines(const std::string& text) {
     return lines;
 }
 
-/// One face corner as OBJ indexes it, after tinyobjloader made the indices 0-based.
-struct Corner {
-    std::int32_t v, vt, vn;
-    bool operator==(const Corner&) const = default;
-};
-
-struct CornerHash {
-    std::size_t operator()(const Corner& c) const noexcept {
-        // splitmix64 finaliser over the packed indices: cheap and well mixed.
-        std::uint64_t h = (std::uint64_t(std::uint32_t(c.v)) << 32) ^ std::uint32_t(c.vt);
-        h ^= std::uint64_t(std::uint32_t(c.vn)) * 0x9E3779B97F4A7C15ull;
-        h ^= h >> 30;
-        h *= 0xBF58476D1CE4E5B9ull;
-        h ^= h >> 27;
-        h *= 0x94D049BB133111EBull;
-        h ^= h >> 31;
-        return static_cast<std::size_t>(h);
-    }
-};
-
-/// Maps (v, vt, vn) corners to mesh vertices. Vertex i is OBJ position i with the first
-/// (vt, vn) it is used with, so positions-only files need no hashing and keep their order;
-/// every further distinct pair for a position gets a new vertex, found again by hash.
-class VertexUnifier {
-public:
-    /// positions holds the OBJ's positions; vertices for further (vt, vn) pairs are appended.
-    explicit VertexUnifier(std::vector<glm::vec3>& positions)
-        : positions_(positions),
-          vt_(positions.size(), kAbsent),
-          vn_(positions.size(), kAbsent),
-          claimed_(positions.size(), 0) {}
-
-    /// The vertex for a corner whose indices were checked.
-    std::uint32_t vertex(const Corner& c) {
-        const auto v = static_cast<std::size_t>(c.v);
-        if (!claimed_[v]) {
-            claimed_[v] = 1;
-            vt_[v] = c.vt;
-            vn_[v] = c.vn;
-            return static_cast<std::uint32_t>(v);
-        }
-        if (vt_[v] == c.vt && vn_[v] == c.vn) return static_cast<std::uint32_t>(v);
-        const auto [it, inserted] =
-            extra_.try_emplace(c, static_cast<std::uint32_t>(positions_.size()));
-        if (inserted) {
-            if (positions_.size() >= std::numeric_limits<std::uint32_t>::max()) {
-                throw Error("more than 2^32 - 1 vertices");
-            }
-            positions_.push_back(positions_[v]);
-            vt_.push_back(c.vt);
-            vn_.push_back(c.vn);
-        }
-        return it->second;
-    }
-
-    /// Per vertex: the vt index, or kAbsent.
-    [[nodiscard]] const std::vector<std::int32_t>& vt() const { return vt_; }
-    /// Per vertex: the vn index, or kAbsent.
-    [[nodiscard]] const std::vector<std::int32_t>& vn() const { return vn_; }
-
-private:
-    std::vector<glm::vec3>& positions_;
-    std::vector<std::int32_t> vt_, vn_;
-    std::vector<std::uint8_t> claimed_;
-    std::unordered_map<Corner, std::uint32_t, CornerHash> extra_;
-};
-
-/// Reusable buffers for triangulate_polygon, so faces allocate nothing once warmed up.
-struct PolygonScratch {
-    std::vector<glm::dvec2> points;
-    std::vector<std::size_t> remaining;
-};
-
-/// Twice the signed area of the 2D triangle (a, b, c): positive when counter-clockwise.
-double orient2d(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
-    return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-}
-
-/// What triangulate_polygon made of a polygon.
-enum class Polygon {
-    Triangulated,  ///< triangles appended, covering exactly the polygon's area
-    ZeroArea,      ///< nothing appended: the polygon has no area
-    NotSimple,     ///< nothing appended: self-overlapping, no area-preserving triangulation
-};
-
-/// Ear clipping (Meisters' two-ears theorem: a simple polygon always has an ear to cut) in the
-/// polygon's own plane, appending triangles with the polygon's winding. Corners that add no
-/// area are dropped first: repeats of the previous corner and the tips of zero-width spikes
-/// (the boundary running out and back along one line), so weakly simple polygons triangulate
-/// too. A polygon that is not simple may run out of ears; the rest is then fanned, and if the
-/// triangles' total area differs from the polygon's (they overlap) nothing is appended.
-Polygon triangulate_polygon(const std::vector<glm::vec3>& positions,
-                            const std::vector<std::uint32_t>& corners, PolygonScratch& scratch,
-                            std::vector<glm::uvec3>& out) {
-    const std::size_t n = corners.size();
-    const glm::dvec3 p0(positions[corners[0]]);
-    // Newell's normal: the sum of (p_i - p0) x (p_i+1 - p0) is twice the vector area.
-    glm::dvec3 normal(0.0);
-    double extent2 = 0.0;
-    for (std::size_t i = 1; i + 1 < n; ++i) {
-        const glm::dvec3 a = glm::dvec3(positions[corners[i]]) - p0;
-        const glm::dvec3 b = glm::dvec3(positions[corners[i + 1]]) - p0;
-        normal += glm::cross(a, b);
-        extent2 = std::max(extent2, glm::dot(a, a));
-    }
-    const double len = glm::length(normal);
-    if (!(len > 1e-12 * extent2)) return Polygon::ZeroArea;  // zero (or NaN) area
-
-    // A right-handed orthonormal frame (u, v, n): the polygon runs counter-clockwise in (u, v).
-    const glm::dvec3 nz = normal / len;
-    const glm::dvec3 helper = std::abs(nz.x) > 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
-    const glm::dvec3 u = glm::normalize(glm::cross(helper, nz));
-    const glm::dvec3 v = glm::cross(nz, u);
-    auto& pts = scratch.points;
-    auto& rem = scratch.remaining;
-    pts.resize(n);
-    rem.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const glm::dvec3 d = glm::dvec3(positions[corners[i]]) - p0;
-        pts[i] = {glm::dot(d, u), glm::dot(d, v)};
-        rem[i] = i;
-    }
-
-    // Drop corners that add no area (see above); each leaves the signed area unchanged,
-    // since the triangle (previous, corner, next) it removes is flat.
-    const double tiny = 1e-12 * extent2;
-    for (bool changed = true; changed && rem.size() > 3;) {
-        changed = false;
-        for (std::size_t k = 0; k < rem.size() && rem.size() > 3;) {
-            const std::size_t m = rem.size();
-            const glm::dvec2 a = pts[rem[(k + m - 1) % m]], b = pts[rem[k]],
-                             c = pts[rem[(k + 1) % m]];
-            const glm::dvec2 ab = b - a, bc = c - b;
-            const bool repeat = glm::dot(ab, ab) <= tiny;
-            // Collinear (|ab x bc| tiny against |ab| |bc|) and turning back (ab . bc < 0).
-            const bool spike =
-                std::abs(orient2d(a, b, c)) <= 1e-12 * glm::length(ab) * glm::length(bc) &&
-                glm::dot(ab, bc) < 0.0;
-            if (repeat || spike) {
-                rem.erase(rem.begin() + static_cast<std::ptrdiff_t>(k));
-                changed = true;
-            } else {
-                ++k;
-            }
-        }
-    }
-
-    // Twice the polygon's signed area (shoelace), to check the triangulation against.
-    double polygon_area2 = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-        const glm::dvec2& p = pts[i];
-        const glm::dvec2& q = pts[(i + 1) % n];
-        polygon_area2 += p.x * q.y - p.y * q.x;
-    }
-    const std::size_t first = out.size();
-    double triangles_area2 = 0.0;  // sum of |twice the area| of the triangles emitted
-    auto emit = [&](std::size_t a, std::size_t b, std::size_t c) {
-        triangles_area2 += std::abs(orient2d(pts[a], pts[b], pts[c]));
-        out.emplace_back(corners[a], corners[b], corners[c]);
-    };
-    while (rem.size() > 3) {
-        const std::size_t m = rem.size();
-        bool clipped = false;
-        for (std::size_t k = 0; k < m && !clipped; ++k) {
-            const std::size_t a = rem[(k + m - 1) % m], b = rem[k], c = rem[(k + 1) % m];
-            if (orient2d(pts[a], pts[b], pts[c]) <= 0.0) continue;  // reflex or flat corner
-            // An ear: no other corner inside or on the triangle (copies of its corners aside).
-            bool empty = true;
-            for (const std::size_t j : rem) {
-                const glm::dvec2& q = pts[j];
-                if (q == pts[a] || q == pts[b] || q == pts[c]) continue;
-                if (orient2d(pts[a], pts[b], q) >= 0.0 && orient2d(pts[b], pts[c], q) >= 0.0 &&
-                    orient2d(pts[c], pts[a], q) >= 0.0) {
-                    empty = false;
-                    break;
-                }
-            }
-            if (!empty) continue;
-            emit(a, b, c);
-            rem.erase(rem.begin() + static_cast<std::ptrdiff_t>(k));
-            clipped = true;
-        }
-        if (!clipped) break;
-    }
-    for (std::size_t i = 1; i + 1 < rem.size(); ++i) emit(rem[0], rem[i], rem[i + 1]);
-    // Overlapping triangles cover more than the polygon: refuse rather than double the area.
-    if (std::abs(triangles_area2 - std::abs(polygon_area2)) > 1e-6 * std::abs(polygon_area2)) {
-        out.resize(first);
-        return Polygon::NotSimple;
-    }
-    return Polygon::Triangulated;
-}
+using detail::Corner;
+using detail::kAbsent;
+using detail::Polygon;
+using detail::PolygonScratch;
+using detail::triangulate_polygon;
+using detail::VertexUnifier;
 
 /// "" when the corner's indices are in range, else what is wrong with them.
 std::string check_corner(const Corner& c, std::size_t nv, std::size_t nvt, std::size_t nvn) {
@@ -350,89 +167,6 @@ void load_mtllibs(const detail::ObjScanResult& scan, const fs::path& dir,
             }
         }
     }
-}
-
-// ---------------------------------------------------------------------------------------------
-// Saving
-
-/// Appends text and numbers to a buffer flushed to a stream in large blocks.
-class Writer {
-public:
-    explicit Writer(detail::AtomicFile& out) : out_(out) { buffer_.reserve(kBlock + 256); }
-    ~Writer() = default;
-    Writer(const Writer&) = delete;
-    Writer& operator=(const Writer&) = delete;
-
-    Writer& operator<<(std::string_view s) {
-        buffer_.append(s);
-        if (buffer_.size() >= kBlock) flush();
-        return *this;
-    }
-    Writer& operator<<(char c) {
-        buffer_.push_back(c);
-        return *this;
-    }
-    /// Shortest decimal that reads back as the same float.
-    Writer& operator<<(float x) { return put(x); }
-    Writer& operator<<(std::uint64_t x) { return put(x); }
-    Writer& operator<<(int x) { return put(x); }
-    void flush() {
-        out_.write(buffer_);
-        buffer_.clear();
-    }
-
-private:
-    static constexpr std::size_t kBlock = std::size_t{1} << 20;
-
-    template <class T>
-    Writer& put(T x) {
-        char tmp[32];
-        const auto result = std::to_chars(tmp, tmp + sizeof(tmp), x);
-        return *this << std::string_view(tmp, static_cast<std::size_t>(result.ptr - tmp));
-    }
-
-    detail::AtomicFile& out_;
-    std::string buffer_;
-};
-
-/// Runs body on the library's one atomic writer (io/file_io.h): readers see the old file
-/// or the complete new one, and a kill during the write leaves no temporary.
-void write_atomically(const fs::path& path, const std::function<void(Writer&)>& body) {
-    detail::AtomicFile file(path);
-    Writer w(file);
-    body(w);
-    w.flush();
-    file.commit();
-}
-
-std::string material_name(const TriangleMesh& mesh, std::size_t i) {
-    const std::string& name = mesh.materials[i].name;
-    return name.empty() ? "material_" + std::to_string(i) : name;
-}
-
-void write_mtl(const TriangleMesh& mesh, const fs::path& path) {
-    const fs::path dir = fs::absolute(path).parent_path();
-    write_atomically(path, [&](Writer& w) {
-        w << "# written by librt save_obj\n";
-        auto rgb = [&](std::string_view key, const glm::vec3& c) {
-            w << key << ' ' << c.x << ' ' << c.y << ' ' << c.z << '\n';
-        };
-        for (std::size_t i = 0; i < mesh.materials.size(); ++i) {
-            const MeshMaterial& m = mesh.materials[i];
-            w << "newmtl " << material_name(mesh, i) << '\n';
-            rgb("Kd", m.diffuse);
-            rgb("Ks", m.specular);
-            rgb("Ke", m.emission);
-            w << "Ni " << m.ior << "\nd " << m.dissolve << "\nillum " << m.illum << '\n';
-            if (!m.diffuse_texture.empty()) {
-                // The texture is stored relative to the working directory; MTL wants it
-                // relative to the MTL's own directory.
-                const fs::path tex = fs::absolute(m.diffuse_texture).lexically_proximate(dir);
-                w << "map_Kd " << tex.generic_string() << '\n';
-            }
-            w << '\n';
-        }
-    });
 }
 
 }  // namespace
@@ -669,49 +403,6 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
         throw Error(path.string() + ": " + e.what());
     }
     return mesh;
-}
-
-void save_obj(const TriangleMesh& mesh, const fs::path& path) {
-    try {
-        validate(mesh);
-    } catch (const Error& e) {
-        throw Error(path.string() + ": cannot save: " + e.what());
-    }
-    const bool with_materials = !mesh.materials.empty();
-    fs::path mtl_path = path;
-    mtl_path.replace_extension(".mtl");
-    if (with_materials) write_mtl(mesh, mtl_path);
-
-    write_atomically(path, [&](Writer& w) {
-        w << "# written by librt save_obj: " << std::uint64_t{mesh.vertex_count()} << " vertices, "
-          << std::uint64_t{mesh.triangle_count()} << " triangles\n";
-        if (with_materials) w << "mtllib " << mtl_path.filename().string() << '\n';
-        for (const glm::vec3& p : mesh.positions) {
-            w << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
-        }
-        for (const glm::vec2& t : mesh.uvs) w << "vt " << t.x << ' ' << t.y << '\n';
-        for (const glm::vec3& n : mesh.normals) {
-            w << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
-        }
-        const bool uvs = !mesh.uvs.empty(), normals = !mesh.normals.empty();
-        const bool ids = with_materials && !mesh.material_ids.empty();
-        std::size_t current = std::numeric_limits<std::size_t>::max();
-        for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-            if (ids && mesh.material_ids[i] != current) {
-                current = mesh.material_ids[i];
-                w << "usemtl " << material_name(mesh, current) << '\n';
-            }
-            w << 'f';
-            for (int k = 0; k < 3; ++k) {
-                const std::uint64_t index = std::uint64_t{mesh.triangles[i][k]} + 1;
-                w << ' ' << index;
-                if (uvs || normals) w << '/';
-                if (uvs) w << index;
-                if (normals) w << '/' << index;
-            }
-            w << '\n';
-        }
-    });
 }
 
 }  // namespace librt

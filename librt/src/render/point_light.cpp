@@ -1,28 +1,15 @@
-#include <librt/core/error.h>
-#include <librt/core/finite.h>
+#include "light_validation.h"
+
 #include <librt/render/point_light.h>
 
 #include <glm/geometric.hpp>
 
 #include <cmath>
-#include <sstream>
 
 namespace librt {
-namespace {
-
-[[noreturn]] void fail(const char* what, const glm::vec3& v, const char* rule) {
-    std::ostringstream msg;
-    msg << what << " = (" << v.x << ", " << v.y << ", " << v.z << "): " << rule;
-    throw Error(msg.str());
-}
-
-}  // namespace
-
 void validate(const PointLight& light) {
-    if (!finite(light.position)) fail("point light position", light.position, "must be finite");
-    if (!finite(light.intensity) || light.intensity.x < 0.0f || light.intensity.y < 0.0f ||
-        light.intensity.z < 0.0f)
-        fail("point light intensity", light.intensity, "must be finite and >= 0");
+    detail::require_finite("point light position", light.position);
+    detail::require_finite_non_negative("point light intensity", light.intensity);
 }
 
 LightLiSample sample_li(const PointLight& light, const glm::vec3& ref, glm::vec2 /*u*/) {

@@ -1,32 +1,20 @@
+#include "light_validation.h"
+
 #include <librt/core/error.h>
-#include <librt/core/finite.h>
 #include <librt/render/sphere_light.h>
 
 #include <cmath>
 #include <sstream>
 
 namespace librt {
-namespace {
-
-[[noreturn]] void fail(const char* what, const glm::vec3& v, const char* rule) {
-    std::ostringstream msg;
-    msg << what << " = (" << v.x << ", " << v.y << ", " << v.z << "): " << rule;
-    throw Error(msg.str());
-}
-
-}  // namespace
-
 void validate(const SphereLight& light) {
-    if (!finite(light.sphere.center))
-        fail("sphere light center", light.sphere.center, "must be finite");
+    detail::require_finite("sphere light center", light.sphere.center);
     if (!std::isfinite(light.sphere.radius) || !(light.sphere.radius > 0.0f)) {
         std::ostringstream msg;
         msg << "sphere light radius = " << light.sphere.radius << ": must be finite and > 0";
         throw Error(msg.str());
     }
-    if (!finite(light.radiance) || light.radiance.x < 0.0f || light.radiance.y < 0.0f ||
-        light.radiance.z < 0.0f)
-        fail("sphere light radiance", light.radiance, "must be finite and >= 0");
+    detail::require_finite_non_negative("sphere light radiance", light.radiance);
 }
 
 float pdf_li(const SphereLight& light, const glm::vec3& ref, const glm::vec3& wi) {

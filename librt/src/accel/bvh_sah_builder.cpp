@@ -1,0 +1,411 @@
+// build_sah_bvh: the parallel binned SAH builder. Its own file, a little over 400 lines:
+// it is one class (SahBuilder) whose binning, sweep, partition and task queue share its
+// state; the median builder shares only the input check (bvh_build_input.h).
+
+#include "accel/bvh_build_input.h"
+#include "core/parallel.h"
+
+#include <librt/accel/bvh_builder.h>
+#include <librt/core/error.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <condition_variable>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <numeric>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace librt {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+/// Four floats handled as one SIMD register where the compiler can (GCC/Clang vector
+/// extension: SSE on x86-64, NEON on aarch64); lane 3 is unused padding.
+using V4 = float __attribute__((vector_size(16)));
+using V4i = std::int32_t __attribute__((vector_size(16)));
+
+inline V4 vmin(V4 a, V4 b) { return a < b ? a : b; }
+inline V4 vmax(V4 a, V4 b) { return a > b ? a : b; }
+inline V4 splat(float x) { return V4{x, x, x, x}; }
+inline V4 load3(const glm::vec3& v) { return V4{v.x, v.y, v.z, 0.0f}; }
+
+/// An axis-aligned box as two V4s (lane 3 unused).
+struct Box4 {
+    V4 lo = splat(kInf);
+    V4 hi = splat(-kInf);
+
+    void grow(V4 l, V4 h) {
+        lo = vmin(lo, l);
+        hi = vmax(hi, h);
+    }
+    void grow(const Box4& b) { grow(b.lo, b.hi); }
+    /// Half the surface area, dx dy + dy dz + dz dx: the SAH only uses ratios of areas.
+    [[nodiscard]] float half_area() const {
+        const V4 d = hi - lo;
+        if (d[0] < 0.0f || d[1] < 0.0f || d[2] < 0.0f) return 0.0f;
+        return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
+    }
+    [[nodiscard]] BBox to_bbox() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
+};
+
+/// A primitive as the SAH builder sees it; the array of them is partitioned in place,
+/// so each level streams contiguous memory:
+///   bytes  0..15  box lo.xyz, padding
+///   bytes 16..31  box hi.xyz, padding
+///   bytes 32..47  centre.xyz (what is binned), padding
+/// (the primitive index lives in a parallel array, swapped along).
+struct BuildRef {
+    Box4 box;
+    V4 c;
+};
+static_assert(sizeof(BuildRef) == 48, "BuildRef must stay 48 bytes");
+
+/// A node under construction (trivially default-constructible, so the buffer of them is
+/// allocated untouched):
+///   bytes  0..31  box (Box4: lo.xyz + padding, hi.xyz + padding)
+///   bytes 32..35  first slot (leaf) or first child (interior)
+///   bytes 36..39  primitive count (leaf) or 0 (interior)
+///   bytes 40..47  padding to Box4's 16-byte alignment
+struct RawNode {
+    Box4 box;
+    std::uint32_t index;
+    std::uint32_t count;
+};
+static_assert(sizeof(RawNode) == 48, "RawNode must stay 48 bytes");
+
+/// A node whose primitives are refs_[begin, end), with the bounds of their centres.
+struct SahTask {
+    std::uint32_t node = 0;
+    std::uint32_t begin = 0;
+    std::uint32_t end = 0;
+    std::uint32_t depth = 0;
+    Box4 centroid_bounds;
+};
+
+/// Parallel binned SAH builder. Workers take subtrees from a shared queue; a subtree
+/// of at least kGrain primitives is offered back to the queue, smaller ones are built
+/// on the worker's own stack. Node slots come from an atomic counter and are renumbered
+/// depth first at the end, so the result does not depend on scheduling.
+class SahBuilder {
+public:
+    SahBuilder(std::span<const BBox> boxes, std::span<const glm::vec3> centers,
+               const SahConfig& config)
+        : boxes_(boxes), centers_(centers), config_(config) {
+        bin_count_ = std::clamp(config.bin_count, 2u, 256u);
+        max_leaf_ = std::max(config.max_leaf_size, 1u);
+        block_ = std::max(config.leaf_block_size, 1u);
+        threads_ = config.thread_count ? config.thread_count
+                                       : std::max(1u, std::thread::hardware_concurrency());
+        // B(n) for every n a node can hold is looked up, not divided, in the sweep.
+        blocks_.resize(boxes.size() + 1);
+        for (std::size_t k = 0; k < blocks_.size(); ++k)
+            blocks_[k] = static_cast<float>((k + block_ - 1) / block_);
+    }
+
+    Bvh run() {
+        const auto n = static_cast<std::uint32_t>(boxes_.size());
+        if (n == 0) return {};
+        refs_ = detail::make_large_buffer<BuildRef>(n);
+        ids_ = detail::make_large_buffer<std::uint32_t>(n);
+        nodes_ = detail::make_large_buffer<RawNode>(2 * std::size_t{n} - 1);
+        // The references and the root's bounds, in parallel parts merged in part order.
+        const unsigned parts = std::min(threads_, detail::threads_for(n));
+        std::vector<Box4> part_boxes(parts), part_centroids(parts);
+        detail::parallel_parts(n, parts, [&](unsigned p, std::size_t begin, std::size_t end) {
+            Box4 box, centroids;
+            for (std::size_t i = begin; i < end; ++i) {
+                BuildRef& r = refs_[i];
+                r.box = Box4{load3(boxes_[i].lo), load3(boxes_[i].hi)};
+                r.c = load3(centers_[i]);
+                ids_[i] = static_cast<std::uint32_t>(i);
+                box.grow(r.box);
+                centroids.grow(r.c, r.c);
+            }
+            part_boxes[p] = box;
+            part_centroids[p] = centroids;
+        });
+        SahTask root{0, 0, n, 0, {}};
+        Box4 root_box;
+        for (unsigned p = 0; p < parts; ++p) {
+            root_box.grow(part_boxes[p]);
+            root.centroid_bounds.grow(part_centroids[p]);
+        }
+        nodes_[0].box = root_box;
+        next_node_ = 1;
+        queue_.push_back(root);
+        pending_ = 1;
+
+        const unsigned threads = n >= 2 * kGrain ? threads_ : 1u;
+        std::vector<std::thread> helpers;
+        for (unsigned t = 1; t < threads; ++t) helpers.emplace_back([this] { worker(); });
+        worker();
+        for (std::thread& t : helpers) t.join();
+        return finish(n);
+    }
+
+private:
+    static constexpr std::uint32_t kGrain = 4096;
+
+    /// Per-worker scratch space.
+    struct Scratch {
+        std::vector<Box4> bins;             // 3 axes x bin_count_
+        std::vector<std::uint32_t> counts;  // 3 axes x bin_count_
+        std::vector<float> right_cost;      // per bin: A_R B(N_R) right of its left plane
+        std::vector<SahTask> stack;
+    };
+
+    void worker() {
+        Scratch s;
+        s.bins.resize(3 * std::size_t{bin_count_});
+        s.counts.resize(3 * std::size_t{bin_count_});
+        s.right_cost.resize(bin_count_);
+        for (;;) {
+            SahTask task;
+            {
+                std::unique_lock lock(mutex_);
+                ready_.wait(lock, [&] { return !queue_.empty() || pending_ == 0; });
+                if (queue_.empty()) return;
+                task = queue_.back();
+                queue_.pop_back();
+            }
+            run_subtree(task, s);
+            const std::lock_guard lock(mutex_);
+            if (--pending_ == 0) ready_.notify_all();
+        }
+    }
+
+    void run_subtree(const SahTask& root, Scratch& s) {
+        s.stack.clear();
+        s.stack.push_back(root);
+        while (!s.stack.empty()) {
+            const SahTask task = s.stack.back();
+            s.stack.pop_back();
+            SahTask children[2];
+            if (!split(task, s, children)) continue;
+            for (const SahTask& child : children) {
+                if (threads_ > 1 && child.end - child.begin >= kGrain) {
+                    const std::lock_guard lock(mutex_);
+                    queue_.push_back(child);
+                    ++pending_;
+                    ready_.notify_one();
+                } else {
+                    s.stack.push_back(child);
+                }
+            }
+        }
+    }
+
+    /// Splits one node, or makes it a leaf (returns false).
+    bool split(const SahTask& task, Scratch& s, SahTask children[2]) {
+        RawNode& node = nodes_[task.node];
+        const std::uint32_t n = task.end - task.begin;
+        auto make_leaf = [&] {
+            node.index = task.begin;
+            node.count = n;
+            return false;
+        };
+        if (n <= 1 || task.depth >= kMaxBvhDepth) return make_leaf();
+
+        // Fewer bins for small nodes: binning a few primitives into 32 bins mostly
+        // sweeps empty ones.
+        const std::uint32_t bin_count = std::min(bin_count_, std::max(4u, n));
+        const Box4& cb = task.centroid_bounds;
+        // Bin of a centre on an axis: (c - lo) * bins / extent, clamped to [0, bins - 1]
+        // while still a float, so the float -> int conversion is always in range. The scale
+        // comes from the extent in double, where it cannot overflow (lo, hi of +-3e38) nor
+        // underflow; a tiny positive extent (denormal centroids, 1e-40 apart) gives an
+        // infinite scale: then c == lo makes 0 * inf = NaN, which the clamp sends to bin 0,
+        // and every other centre goes to the last bin. The bin stays monotonic in c, which
+        // the partition below relies on.
+        bool usable[3];
+        V4 scale = splat(0.0f);
+        for (int a = 0; a < 3; ++a) {
+            const double extent = double(cb.hi[a]) - double(cb.lo[a]);
+            usable[a] = extent > 0.0;
+            if (!usable[a]) continue;
+            const double axis_scale = double(bin_count) / extent;
+            scale[a] = axis_scale <= double(std::numeric_limits<float>::max())
+                           ? static_cast<float>(axis_scale)
+                           : kInf;
+        }
+        const float last_bin = static_cast<float>(bin_count - 1);
+        const V4 zero = splat(0.0f), last = splat(last_bin);
+        auto bins_of = [&](const BuildRef& r) {
+            V4 f = (r.c - cb.lo) * scale;
+            f = f > zero ? f : zero;  // NaN fails the comparison: bin 0
+            f = f < last ? f : last;
+            return __builtin_convertvector(f, V4i);
+        };
+        auto bin_on = [&](const BuildRef& r, int a) {
+            // The same operations as bins_of, one lane: both must put a centre in one bin.
+            float f = (r.c[a] - cb.lo[a]) * scale[a];
+            f = f > 0.0f ? f : 0.0f;
+            f = f < last_bin ? f : last_bin;
+            return static_cast<std::int32_t>(f);
+        };
+
+        float best_cost = kInf;
+        int best_axis = -1;
+        std::int32_t best_bin = 0;
+        if (usable[0] || usable[1] || usable[2]) {
+            Box4* bins = s.bins.data();
+            std::uint32_t* counts = s.counts.data();
+            std::fill(bins, bins + 3 * bin_count, Box4{});
+            std::fill(counts, counts + 3 * bin_count, 0u);
+            for (std::uint32_t i = task.begin; i < task.end; ++i) {
+                const BuildRef& r = refs_[i];
+                const V4i b = bins_of(r);
+                for (int a = 0; a < 3; ++a) {
+                    const std::uint32_t k = a * bin_count + static_cast<std::uint32_t>(b[a]);
+                    bins[k].grow(r.box);
+                    counts[k]++;
+                }
+            }
+            for (int a = 0; a < 3; ++a) {
+                if (!usable[a]) continue;
+                const Box4* axis_bins = bins + a * bin_count;
+                const std::uint32_t* axis_counts = counts + a * bin_count;
+                // Sweep from the right for A_R B(N_R) right of each plane...
+                Box4 acc;
+                std::uint32_t acc_count = 0;
+                for (std::uint32_t b = bin_count - 1; b > 0; --b) {
+                    acc.grow(axis_bins[b]);
+                    acc_count += axis_counts[b];
+                    s.right_cost[b] = acc_count ? acc.half_area() * blocks_[acc_count] : kInf;
+                }
+                // ...then from the left, evaluating A_L B(N_L) + A_R B(N_R) at each plane.
+                acc = Box4{};
+                acc_count = 0;
+                for (std::uint32_t b = 0; b + 1 < bin_count; ++b) {
+                    acc.grow(axis_bins[b]);
+                    acc_count += axis_counts[b];
+                    if (acc_count == 0 || acc_count == n) continue;
+                    const float cost = acc.half_area() * blocks_[acc_count] + s.right_cost[b + 1];
+                    if (cost < best_cost) {
+                        best_cost = cost;
+                        best_axis = a;
+                        best_bin = static_cast<std::int32_t>(b + 1);
+                    }
+                }
+            }
+        }
+
+        const float node_area = node.box.half_area();
+        if (best_axis >= 0 && node_area > 0.0f) {
+            // Full SAH cost of splitting against the cost of a leaf.
+            const float split_cost =
+                config_.traversal_cost + config_.intersection_cost * best_cost / node_area;
+            const float leaf_cost = config_.intersection_cost * blocks_[n];
+            if (split_cost >= leaf_cost && n <= max_leaf_) return make_leaf();
+        } else if (best_axis < 0 && n <= max_leaf_) {
+            return make_leaf();
+        }
+        // (A flat node, of zero area, takes any valid split.)
+
+        std::uint32_t mid;
+        Box4 left_box, right_box, left_cb, right_cb;
+        if (best_axis < 0) {
+            // All centroids coincide: split the range in half so leaves stay small.
+            mid = task.begin + n / 2;
+            for (std::uint32_t i = task.begin; i < task.end; ++i) {
+                const BuildRef& r = refs_[i];
+                (i < mid ? left_box : right_box).grow(r.box);
+                (i < mid ? left_cb : right_cb).grow(r.c, r.c);
+            }
+        } else {
+            const Box4* axis_bins = s.bins.data() + best_axis * bin_count;
+            for (std::int32_t b = 0; b < std::int32_t(bin_count); ++b)
+                (b < best_bin ? left_box : right_box).grow(axis_bins[b]);
+            // Two-pointer partition by bin, gathering each side's centroid bounds.
+            std::uint32_t i = task.begin, j = task.end;
+            for (;;) {
+                while (i < j && bin_on(refs_[i], best_axis) < best_bin) {
+                    left_cb.grow(refs_[i].c, refs_[i].c);
+                    ++i;
+                }
+                while (i < j && bin_on(refs_[j - 1], best_axis) >= best_bin) {
+                    --j;
+                    right_cb.grow(refs_[j].c, refs_[j].c);
+                }
+                if (i >= j) break;
+                std::swap(refs_[i], refs_[j - 1]);
+                std::swap(ids_[i], ids_[j - 1]);
+            }
+            mid = i;
+        }
+
+        const std::uint32_t left = next_node_.fetch_add(2, std::memory_order_relaxed);
+        nodes_[left].box = left_box;
+        nodes_[left + 1].box = right_box;
+        node.index = left;
+        node.count = 0;
+        children[0] = {left, task.begin, mid, task.depth + 1, left_cb};
+        children[1] = {left + 1, mid, task.end, task.depth + 1, right_cb};
+        return true;
+    }
+
+    /// Renumbers the nodes depth first (siblings stay adjacent) into a Bvh.
+    Bvh finish(std::uint32_t n) {
+        Bvh bvh;
+        bvh.nodes.resize(next_node_.load());
+        bvh.prim_indices.assign(ids_.get(), ids_.get() + n);
+        struct Item {
+            std::uint32_t raw, out, depth;
+        };
+        std::vector<Item> stack{{0, 0, 0}};
+        std::uint32_t next = 1;
+        while (!stack.empty()) {
+            const Item item = stack.back();
+            stack.pop_back();
+            const RawNode& raw = nodes_[item.raw];
+            BvhNode& out = bvh.nodes[item.out];
+            out.bounds = raw.box.to_bbox();
+            bvh.depth = std::max(bvh.depth, item.depth);
+            if (raw.count != 0) {
+                out.index = raw.index;
+                out.prim_count = raw.count;
+                continue;
+            }
+            out.index = next;
+            out.prim_count = 0;
+            next += 2;
+            stack.push_back({raw.index + 1, out.index + 1, item.depth + 1});
+            stack.push_back({raw.index, out.index, item.depth + 1});
+        }
+        return bvh;
+    }
+
+    std::span<const BBox> boxes_;
+    std::span<const glm::vec3> centers_;
+    SahConfig config_;
+    std::uint32_t bin_count_, max_leaf_, block_;
+    unsigned threads_;
+    std::vector<float> blocks_;  // B(n) = ceil(n / block_)
+
+    detail::LargeBuffer<BuildRef> refs_;
+    detail::LargeBuffer<std::uint32_t> ids_;  // primitive index of each ref
+    detail::LargeBuffer<RawNode> nodes_;
+    std::atomic<std::uint32_t> next_node_{0};
+
+    std::mutex mutex_;  // guards queue_ and pending_
+    std::condition_variable ready_;
+    std::vector<SahTask> queue_;
+    std::size_t pending_ = 0;  // tasks queued or running
+};
+
+}  // namespace
+
+Bvh build_sah_bvh(std::span<const BBox> boxes, std::span<const glm::vec3> centers,
+                  const SahConfig& config) {
+    detail::check_build_input(boxes, centers);
+    SahBuilder builder(boxes, centers, config);
+    return builder.run();
+}
+
+}  // namespace librt
