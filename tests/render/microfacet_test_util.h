@@ -70,15 +70,15 @@ inline double ref_lambda(const glm::dvec3& w, double alpha) {
     return 0.5 * (std::sqrt(1.0 + alpha * alpha * t2) - 1.0);
 }
 
-/// Integral over microfacet normals h (upper hemisphere) of g(h) d omega_h, by the
-/// midpoint rule in (psi, phi) with theta_h = atan(alpha tan psi): the substitution
-/// spreads GGX's peak (width ~alpha) over the whole psi range, so one grid serves every
-/// roughness.
-inline double integrate_over_normals(double alpha,
-                                     const std::function<double(const glm::dvec3&)>& g,
-                                     int n_psi = 1200, int n_phi = 480) {
+/// Calls visit(h, w) for the nodes of a quadrature over microfacet normals h (upper
+/// hemisphere, weights w in steradians): the midpoint rule in (psi, phi) with
+/// theta_h = atan(alpha tan psi), which spreads GGX's peak (width ~alpha) over the whole
+/// psi range, so one grid serves every roughness.
+inline void for_each_normal(double alpha,
+                            const std::function<void(const glm::dvec3&, double)>& visit,
+                            int n_psi = 1200, int n_phi = 480) {
     const double half_pi = 0.5 * std::numbers::pi, two_pi = 2.0 * std::numbers::pi;
-    double sum = 0.0;
+    const double cell = (half_pi / n_psi) * (two_pi / n_phi);
     for (int i = 0; i < n_psi; ++i) {
         const double psi = (i + 0.5) * half_pi / n_psi;
         const double tp = std::tan(psi);
@@ -89,11 +89,19 @@ inline double integrate_over_normals(double alpha,
         const double st = std::sin(theta), ct = std::cos(theta);
         for (int j = 0; j < n_phi; ++j) {
             const double phi = (j + 0.5) * two_pi / n_phi;
-            const glm::dvec3 h(st * std::cos(phi), st * std::sin(phi), ct);
-            sum += g(h) * st * jac;
+            visit(glm::dvec3(st * std::cos(phi), st * std::sin(phi), ct), st * jac * cell);
         }
     }
-    return sum * (half_pi / n_psi) * (two_pi / n_phi);
+}
+
+/// Integral over microfacet normals of g(h) d omega_h (for_each_normal's quadrature).
+inline double integrate_over_normals(double alpha,
+                                     const std::function<double(const glm::dvec3&)>& g,
+                                     int n_psi = 1200, int n_phi = 480) {
+    double sum = 0.0;
+    for_each_normal(
+        alpha, [&](const glm::dvec3& h, double w) { sum += g(h) * w; }, n_psi, n_phi);
+    return sum;
 }
 
 /// Directional albedo of a white (F = 1) GGX reflector, integral of D G2 / (4 cos_o)

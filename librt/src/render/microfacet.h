@@ -23,12 +23,14 @@ inline constexpr float kMinAlpha = 1e-3f;
     return std::max(roughness * roughness, kMinAlpha);
 }
 
-/// GGX normal distribution D(m) = alpha^2 / (pi ((m.z^2 (alpha^2 - 1) + 1)^2) for m.z > 0
+/// GGX normal distribution D(m) = alpha^2 / (pi (m.z^2 (alpha^2 - 1) + 1)^2) for m.z > 0
 /// (Trowbridge & Reitz 1975; Walter et al. 2007, eq. 33, in cosine form).
 [[nodiscard]] inline float ggx_d(const glm::vec3& m, float alpha) {
     if (m.z <= 0.0f) return 0.0f;
+    // For unit m the denominator is (alpha^2 m.z^2 + m.x^2 + m.y^2)^2: written so, without
+    // 1 - m.z^2, it keeps float precision at the peak of a narrow lobe (alpha ~ 1e-3).
     const float a2 = alpha * alpha;
-    const float t = m.z * m.z * (a2 - 1.0f) + 1.0f;
+    const float t = a2 * m.z * m.z + (m.x * m.x + m.y * m.y);
     return a2 / (k_pi * t * t);
 }
 
@@ -36,7 +38,7 @@ inline constexpr float kMinAlpha = 1e-3f;
 [[nodiscard]] inline float ggx_lambda(const glm::vec3& w, float alpha) {
     const float c2 = w.z * w.z;
     if (c2 <= 0.0f) return 1e30f;
-    const float t2 = std::max(0.0f, 1.0f - c2) / c2;
+    const float t2 = (w.x * w.x + w.y * w.y) / c2;  // tan^2, from components (precision)
     return 0.5f * (std::sqrt(1.0f + alpha * alpha * t2) - 1.0f);
 }
 
