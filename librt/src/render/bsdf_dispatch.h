@@ -5,9 +5,12 @@
 // and one case in dispatch(). Private, and inline so that the integrators' path loop
 // calls the BSDFs without a call through the public, out-of-line functions of bsdf.h.
 
+#include "bsdf_conductor.h"
 #include "bsdf_dielectric.h"
 #include "bsdf_diffuse.h"
+#include "bsdf_metallic_roughness.h"
 #include "bsdf_mirror.h"
+#include "bsdf_rough_dielectric.h"
 
 #include <librt/render/bsdf.h>
 
@@ -41,15 +44,28 @@ inline decltype(auto) dispatch(MaterialKind kind, Fn&& fn) {
             return fn(bsdfs::Mirror{});
         case MaterialKind::Dielectric:
             return fn(bsdfs::Dielectric{});
+        case MaterialKind::Conductor:
+            return fn(bsdfs::Conductor{});
+        case MaterialKind::RoughDielectric:
+            return fn(bsdfs::RoughDielectric{});
+        case MaterialKind::MetallicRoughness:
+            return fn(bsdfs::MetallicRoughness{});
         case MaterialKind::Emissive:
             break;
     }
     return fn(bsdfs::Black{});
 }
 
-/// lobes() of bsdf.h, inline.
+/// lobes() of bsdf.h, inline: a type whose lobes depend on its parameters (a rough kind
+/// at roughness 0 is specular) provides static lobes(m); the others their kLobes.
 [[nodiscard]] inline BsdfLobe lobes_of(const Material& m) {
-    return dispatch(m.kind, [](auto bsdf) { return decltype(bsdf)::kLobes; });
+    return dispatch(m.kind, [&](auto bsdf) {
+        using T = decltype(bsdf);
+        if constexpr (requires { T::lobes(m); })
+            return T::lobes(m);
+        else
+            return T::kLobes;
+    });
 }
 /// sample() of bsdf.h, inline (forced: g++ keeps the call in the path loop otherwise).
 [[nodiscard, gnu::always_inline]] inline BsdfSample sample_bsdf(const Material& m,

@@ -2,8 +2,10 @@
 #include <librt/render/bsdf.h>
 #include <librt/render/material.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
 
 namespace librt {
 namespace {
@@ -17,6 +19,15 @@ void check_colour(const char* name, const glm::vec3& c, bool at_most_one) {
                 << "): every component must be " << (at_most_one ? "in [0, 1]" : "finite and >= 0");
             throw Error(msg.str());
         }
+    }
+}
+
+// A scalar in [0, 1] (NaN fails).
+void check_unit(const char* name, float v) {
+    if (!(v >= 0.0f && v <= 1.0f)) {
+        std::ostringstream msg;
+        msg << "material " << name << " = " << v << ": must be in [0, 1]";
+        throw Error(msg.str());
     }
 }
 
@@ -48,6 +59,76 @@ Material Material::dielectric(float ior, bool fresnel, const glm::vec3& tint) {
     return m;
 }
 
+Material Material::conductor(const glm::vec3& eta, const glm::vec3& k, float roughness) {
+    Material m;
+    m.kind = MaterialKind::Conductor;
+    m.albedo = glm::vec3(1.0f);
+    m.eta = eta;
+    m.k = k;
+    m.roughness = roughness;
+    validate(m);
+    return m;
+}
+
+Material Material::conductor(Metal metal, float roughness) {
+    // (n, k) at about 650, 550 and 450 nm (R, G, B), read from the tables of Johnson &
+    // Christy, Phys. Rev. B 6, 4370 (1972) for Au, Ag, Cu and of Rakic, Appl. Opt. 34,
+    // 4755 (1995) for Al, as listed by refractiveindex.info (rounded).
+    switch (metal) {
+        case Metal::Gold:
+            return conductor({0.166f, 0.430f, 1.380f}, {3.150f, 2.455f, 1.880f}, roughness);
+        case Metal::Silver:
+            return conductor({0.140f, 0.120f, 0.040f}, {4.150f, 3.340f, 2.650f}, roughness);
+        case Metal::Copper:
+            return conductor({0.214f, 1.020f, 1.240f}, {3.670f, 2.580f, 2.400f}, roughness);
+        case Metal::Aluminium:
+            return conductor({1.490f, 0.960f, 0.620f}, {7.820f, 6.690f, 5.470f}, roughness);
+    }
+    throw Error("material metal: unknown Metal value " + std::to_string(int(metal)));
+}
+
+Material Material::conductor_artist(const glm::vec3& reflectance, const glm::vec3& edge_tint,
+                                    float roughness) {
+    check_colour("reflectance", reflectance, true);
+    check_colour("edge_tint", edge_tint, true);
+    glm::vec3 eta, k;
+    for (int c = 0; c < 3; ++c) {
+        // Gulbrandsen 2014, eqs. for n(r, g) and k(r, n): n interpolates by g between the
+        // n that gives r with k = 0 and the one that gives r with k -> its limit.
+        const float r = std::min(reflectance[c], 0.999f), g = edge_tint[c];
+        const float sr = std::sqrt(r);
+        const float n_min = (1.0f - r) / (1.0f + r);
+        const float n_max = (1.0f + sr) / (1.0f - sr);
+        const float n = g * n_min + (1.0f - g) * n_max;
+        const float k2 = ((n + 1.0f) * (n + 1.0f) * r - (n - 1.0f) * (n - 1.0f)) / (1.0f - r);
+        eta[c] = n;
+        k[c] = std::sqrt(std::max(0.0f, k2));
+    }
+    return conductor(eta, k, roughness);
+}
+
+Material Material::rough_dielectric(float ior, float roughness, const glm::vec3& tint) {
+    Material m = dielectric(ior, true, tint);
+    m.kind = MaterialKind::RoughDielectric;
+    m.roughness = roughness;
+    validate(m);
+    return m;
+}
+
+Material Material::metallic_roughness(const glm::vec3& base_color, float metallic, float roughness,
+                                      float ior, float transmission) {
+    Material m;
+    m.kind = MaterialKind::MetallicRoughness;
+    m.albedo = glm::vec3(1.0f);  // colours are the material's own (bsdf.h's albedo contract)
+    m.base_color = base_color;
+    m.metallic = metallic;
+    m.roughness = roughness;
+    m.ior = ior;
+    m.transmission = transmission;
+    validate(m);
+    return m;
+}
+
 Material Material::emissive(const glm::vec3& radiance) {
     Material m;
     m.kind = MaterialKind::Emissive;
@@ -71,6 +152,12 @@ void validate(const Material& material) {
         msg << "material ior = " << material.ior << ": must be finite and > 0";
         throw Error(msg.str());
     }
+    check_colour("base_color", material.base_color, true);
+    check_colour("eta", material.eta, false);
+    check_colour("k", material.k, false);
+    check_unit("roughness", material.roughness);
+    check_unit("metallic", material.metallic);
+    check_unit("transmission", material.transmission);
     if (material.albedo_texture < -1) {
         std::ostringstream msg;
         msg << "material albedo_texture = " << material.albedo_texture

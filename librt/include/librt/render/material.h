@@ -8,12 +8,24 @@
 
 namespace librt {
 
-/// The kinds of surface: the report's four (its getColor branches on exactly these).
+/// The kinds of surface: the report's four (its getColor branches on exactly these), then
+/// the microfacet kinds (docs/materials-and-lights.md gives their formulas).
 enum class MaterialKind : std::uint8_t {
     Diffuse,     ///< Lambertian reflector: albedo / pi
     Mirror,      ///< perfect specular reflection, tinted by albedo
     Dielectric,  ///< smooth glass: Snell refraction, total internal reflection, Schlick Fresnel
     Emissive,    ///< a light's surface: emits, reflects nothing
+    Conductor,   ///< rough metal: GGX, Smith G2, Fresnel of the complex index eta + i k
+    RoughDielectric,    ///< rough glass: GGX reflection and transmission (Walter et al. 2007)
+    MetallicRoughness,  ///< the glTF 2.0 metallic-roughness material (spec Appendix B)
+};
+
+/// Metals with tabulated complex indices of refraction (Material::conductor).
+enum class Metal : std::uint8_t {
+    Gold,       ///< Au
+    Silver,     ///< Ag
+    Copper,     ///< Cu
+    Aluminium,  ///< Al
 };
 
 /// A surface description as a tagged struct rather than a virtual BSDF hierarchy:
@@ -39,6 +51,19 @@ struct LIBRT_API Material {
     bool fresnel = true;
     /// Emitted radiance (W / (sr m^2) in scene units), the same on both sides of the surface.
     glm::vec3 emission{0.0f};
+    /// Perceptual roughness in [0, 1] of the microfacet kinds: GGX alpha = roughness^2
+    /// (clamped to >= 1e-3); 0 makes Conductor and RoughDielectric perfectly smooth.
+    float roughness = 0.0f;
+    /// Conductor: real part of the complex index of refraction per RGB channel.
+    glm::vec3 eta{1.0f};
+    /// Conductor: imaginary part (extinction coefficient) of the index per RGB channel.
+    glm::vec3 k{0.0f};
+    /// MetallicRoughness: glTF baseColorFactor (linear), the diffuse colour and metal F0.
+    glm::vec3 base_color{1.0f};
+    /// MetallicRoughness: glTF metallicFactor in [0, 1].
+    float metallic = 0.0f;
+    /// MetallicRoughness: KHR_materials_transmission factor in [0, 1] (thin-walled).
+    float transmission = 0.0f;
 
     /// A Lambertian surface of the given reflectance.
     [[nodiscard]] static Material diffuse(const glm::vec3& albedo);
@@ -47,6 +72,23 @@ struct LIBRT_API Material {
     /// Smooth glass of the given index of refraction (the report's 1.4 sphere: dielectric(1.4f)).
     [[nodiscard]] static Material dielectric(float ior, bool fresnel = true,
                                              const glm::vec3& tint = glm::vec3(1.0f));
+    /// A rough conductor of complex index eta + i k per channel (relative to the outside).
+    [[nodiscard]] static Material conductor(const glm::vec3& eta, const glm::vec3& k,
+                                            float roughness);
+    /// A rough conductor of a tabulated metal (n, k near 650 / 550 / 450 nm).
+    [[nodiscard]] static Material conductor(Metal metal, float roughness);
+    /// A rough conductor from the artist form of Gulbrandsen 2014 ("Artist Friendly
+    /// Metallic Fresnel"): reflectance at normal incidence and edge tint, each in [0, 1],
+    /// mapped to eta and k (reflectance is clamped to 0.999).
+    [[nodiscard]] static Material conductor_artist(const glm::vec3& reflectance,
+                                                   const glm::vec3& edge_tint, float roughness);
+    /// Rough glass of the given index and roughness; roughness 0 is dielectric(ior, true, tint).
+    [[nodiscard]] static Material rough_dielectric(float ior, float roughness,
+                                                   const glm::vec3& tint = glm::vec3(1.0f));
+    /// The glTF 2.0 metallic-roughness material (ior 1.5 gives the spec's F0 = 0.04).
+    [[nodiscard]] static Material metallic_roughness(const glm::vec3& base_color, float metallic,
+                                                     float roughness, float ior = 1.5f,
+                                                     float transmission = 0.0f);
     /// A pure emitter of the given radiance (what a sphere light's surface is made of).
     [[nodiscard]] static Material emissive(const glm::vec3& radiance);
 
@@ -61,7 +103,9 @@ struct LIBRT_API Material {
 
 /// Throws librt::Error naming the parameter and its value when an albedo component is
 /// outside [0, 1] (or NaN), emission has a negative or non-finite component, ior is not
-/// finite and positive, or albedo_texture is below -1.
+/// finite and positive, albedo_texture is below -1, roughness, metallic, transmission or
+/// a base_color component is outside [0, 1], or eta or k has a negative or non-finite
+/// component.
 LIBRT_API void validate(const Material& material);
 
 }  // namespace librt
