@@ -194,8 +194,8 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
     ray.t_min *= len;
     ray.t_max *= len;
     Bounce bounce;  // the camera ray: emission counts fully
+    Hit hit;        // out of the loop: every intersection that returns true rewrites it whole
     for (int depth = 0;;) {
-        Hit hit;
         if (!scene.intersect_for_shading(ray, hit)) break;
         const Material& m = scene.material(hit);
         if (m.emits()) {
