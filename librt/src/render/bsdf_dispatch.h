@@ -32,10 +32,8 @@ struct Black {
 
 /// The one dispatch point from MaterialKind to its BSDF type: each type provides kLobes
 /// and static sample / eval / pdf. A new kind adds its header and one case here.
-// Forced inline: g++ otherwise keeps the path loop's sample dispatch as a call (callgrind
-// on the synthesis: ~20 instructions per vertex).
 template <class Fn>
-[[gnu::always_inline]] inline decltype(auto) dispatch(MaterialKind kind, Fn&& fn) {
+inline decltype(auto) dispatch(MaterialKind kind, Fn&& fn) {
     switch (kind) {
         case MaterialKind::Diffuse:
             return fn(bsdfs::Diffuse{});
