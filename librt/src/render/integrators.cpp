@@ -91,8 +91,7 @@ struct Vertex {
     ShadingPoint sp;     ///< albedo set at once; frame valid once `framed`
     bool framed = false;
 
-    Vertex(const Material& material, const Hit& hit, const glm::vec3& dir,
-           const glm::vec3& albedo)
+    Vertex(const Material& material, const Hit& hit, const glm::vec3& dir, const glm::vec3& albedo)
         : m(material), incoming(dir), front(glm::dot(dir, hit.geometric_normal) < 0.0f) {
         n = front ? hit.shading_normal : -hit.shading_normal;
         g = front ? hit.geometric_normal : -hit.geometric_normal;
@@ -139,9 +138,9 @@ struct Vertex {
 /// throughput: no shadow ray is spent on a contribution it zeroes.
 // Forced inline: called once per non-specular vertex, and g++ otherwise keeps the call
 // (callgrind on the synthesis: -1.6% instructions in the path loop).
-[[gnu::always_inline]] inline glm::vec3 sample_direct(const Scene& scene, const Hit& hit,
-                                                      Vertex& v, const glm::vec3& beta,
-                                                      Sampler& sampler, bool mis) {
+[[gnu::always_inline]] inline glm::vec3 sample_direct(const Scene& scene, const Hit& hit, Vertex& v,
+                                                      const glm::vec3& beta, Sampler& sampler,
+                                                      bool mis) {
     const LightSampler& lights = scene.light_sampler();
     // Drawn even when unused, so later decisions of the path keep their numbers; no
     // number chooses among a single light.
