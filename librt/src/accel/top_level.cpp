@@ -24,8 +24,8 @@ glm::vec3 unit_or(const glm::vec3& v, const glm::vec3& fallback) {
 
 }  // namespace
 
-void TopLevel::require_built() const {
-    if (!built_) throw Error("TopLevel queried before build(): call build() after adding objects");
+void TopLevel::throw_not_built() {
+    throw Error("TopLevel queried before build(): call build() after adding objects");
 }
 
 template <bool AnyHit, class TestObject>
@@ -70,20 +70,10 @@ bool TopLevel::visit_objects(Ray& ray, TestObject&& test_object) const {
     return found;
 }
 
-bool TopLevel::intersect(const Ray& ray, ObjectHit& hit) const {
-    require_built();
-    return closest(ray, hit);
-}
-
-bool TopLevel::intersect(const Ray& ray, Hit& hit, bool every_sphere_uv) const {
-    require_built();
-    ObjectHit h;
-    if (!closest(ray, h)) return false;
-    finish(ray, h, every_sphere_uv, hit);
-    return true;
-}
-
-bool TopLevel::closest(const Ray& ray, ObjectHit& hit) const {
+// Forced inline into both intersect()s: the one that finishes the hit then works on
+// registers instead of an ObjectHit passed through memory (the renderers' query, ~1.3% of
+// the synthesis' instructions as a separate call).
+[[gnu::always_inline]] inline bool TopLevel::closest(const Ray& ray, ObjectHit& hit) const {
     Ray r = ray;
     const DoubleRay dray(ray);
     std::uint32_t best_object = kInvalidId;
@@ -121,6 +111,19 @@ bool TopLevel::closest(const Ray& ray, ObjectHit& hit) const {
     if (best_object == kInvalidId) return false;
     hit.object_id = best_object;
     hit.primitive = best;
+    return true;
+}
+
+bool TopLevel::intersect(const Ray& ray, ObjectHit& hit) const {
+    require_built();
+    return closest(ray, hit);
+}
+
+bool TopLevel::intersect(const Ray& ray, Hit& hit, bool every_sphere_uv) const {
+    require_built();
+    ObjectHit h;
+    if (!closest(ray, h)) return false;
+    finish(ray, h, every_sphere_uv, hit);
     return true;
 }
 

@@ -35,6 +35,18 @@ struct Diffuse {
                      const glm::vec3& wi) {
         return reaches(p, wi) ? cosine_hemisphere_pdf(wi.z) : 0.0f;
     }
+
+    /// Lambert depends on wi only through its cosines with the shading normal (cos_s, wi.z
+    /// in the local frame) and the geometric normal (cos_g), both turned to wo's side: eval()
+    /// and pdf() from those, so that the path loop weighs a light sample with world-space
+    /// dot products and builds no local frame for it (bsdf_dispatch.h's eval_pdf_cosines).
+    static bool reaches_cos(float cos_s, float cos_g) { return cos_s > 0.0f && cos_g > 0.0f; }
+    static glm::vec3 eval_cos(const ShadingPoint& p, float cos_s, float cos_g) {
+        return reaches_cos(cos_s, cos_g) ? p.albedo * k_inv_pi : glm::vec3(0.0f);
+    }
+    static float pdf_cos(float cos_s, float cos_g) {
+        return reaches_cos(cos_s, cos_g) ? cosine_hemisphere_pdf(cos_s) : 0.0f;
+    }
 };
 
 }  // namespace librt::bsdfs

@@ -77,6 +77,60 @@ float emitter_weight(const Scene& scene, const Hit& hit, const glm::vec3& dir,
     return power_heuristic(bounce.pdf, light_pdf);
 }
 
+/// A scattering vertex: the normals turned to the incoming ray's side, in world space, and
+/// the local frame built from them only when a BSDF needs local directions. Why lazy: a
+/// Lambertian light sample needs only two cosines, and the last vertex of a path samples
+/// no direction, so there the frame (and the conversions into and out of it) would be
+/// pure cost (callgrind on the synthesis: ~9% of the path loop's instructions).
+struct Vertex {
+    const Material& m;
+    glm::vec3 incoming;  ///< unit direction of the ray that arrived (toward the surface)
+    glm::vec3 n;         ///< unit shading normal on the incoming side
+    glm::vec3 g;         ///< unit geometric normal on the incoming side
+    bool front;          ///< the incoming side is the one the primitive faces
+    ShadingPoint sp;     ///< albedo set at once; frame valid once `framed`
+    bool framed = false;
+
+    Vertex(const Material& material, const Hit& hit, const glm::vec3& dir, const glm::vec3& albedo)
+        : m(material), incoming(dir), front(glm::dot(dir, hit.geometric_normal) < 0.0f) {
+        n = front ? hit.shading_normal : -hit.shading_normal;
+        g = front ? hit.geometric_normal : -hit.geometric_normal;
+        sp.albedo = albedo;
+    }
+    /// The ShadingPoint with its frame (ShadingFrame::at's, built on first use).
+    const ShadingPoint& point() {
+        if (!framed) {
+            sp.frame = ShadingFrame::facing(n, g, front);
+            framed = true;
+        }
+        return sp;
+    }
+    /// wo in the local frame.
+    glm::vec3 wo() { return point().frame.to_local(-incoming); }
+};
+
+/// The BSDF's f and pdf toward world direction wi, with |cos(theta_i)| in `cos_i`: from
+/// world-space cosines for a kind that depends on nothing else (it provides pdf_cos, e.g.
+/// Lambert), else through the local frame. The same values as eval_pdf_bsdf() up to the
+/// rounding of the geometric-side test.
+[[gnu::always_inline]] inline bsdfs::EvalPdf light_eval(Vertex& v, const glm::vec3& wi,
+                                                        float& cos_i) {
+    return bsdfs::dispatch(v.m.kind, [&](auto bsdf) {
+        using T = decltype(bsdf);
+        if constexpr (requires { T::pdf_cos(0.0f, 0.0f); }) {
+            // wi.z in the local frame is exactly dot(n, wi): to_local's third component.
+            const float cos_s = glm::dot(v.n, wi), cos_g = glm::dot(v.g, wi);
+            cos_i = std::fabs(cos_s);
+            return bsdfs::EvalPdf{T::eval_cos(v.sp, cos_s, cos_g), T::pdf_cos(cos_s, cos_g)};
+        } else {
+            const ShadingPoint& p = v.point();
+            const glm::vec3 wo = v.wo(), wl = p.frame.to_local(wi);
+            cos_i = std::fabs(wl.z);
+            return bsdfs::EvalPdf{T::eval(v.m, p, wo, wl), T::pdf(v.m, p, wo, wl)};
+        }
+    });
+}
+
 /// Next-event estimation at a non-specular hit: the light sampler chooses a light, a
 /// direction toward it is drawn, and its contribution f L |cos| / pdf is returned if a
 /// shadow ray finds it unoccluded, times the power heuristic against BSDF sampling when
@@ -84,10 +138,9 @@ float emitter_weight(const Scene& scene, const Hit& hit, const glm::vec3& dir,
 /// throughput: no shadow ray is spent on a contribution it zeroes.
 // Forced inline: called once per non-specular vertex, and g++ otherwise keeps the call
 // (callgrind on the synthesis: -1.6% instructions in the path loop).
-[[gnu::always_inline]] inline glm::vec3 sample_direct(const Scene& scene, const Hit& hit,
-                                                      const Material& m, const ShadingPoint& sp,
-                                                      const glm::vec3& wo, const glm::vec3& beta,
-                                                      Sampler& sampler, bool mis) {
+[[gnu::always_inline]] inline glm::vec3 sample_direct(const Scene& scene, const Hit& hit, Vertex& v,
+                                                      const glm::vec3& beta, Sampler& sampler,
+                                                      bool mis) {
     const LightSampler& lights = scene.light_sampler();
     // Drawn even when unused, so later decisions of the path keep their numbers; no
     // number chooses among a single light.
@@ -98,10 +151,10 @@ float emitter_weight(const Scene& scene, const Hit& hit, const glm::vec3& dir,
     const Light& light = scene.lights()[chosen.light];
     const LightLiSample s = sample_li(light, hit.point, u);
     if (!s.valid()) return glm::vec3(0.0f);
-    const glm::vec3 wi = sp.frame.to_local(s.wi);
     // The unshadowed integrand f L |cos(theta_i)|; no shadow ray when it is 0.
-    const bsdfs::EvalPdf bsdf = bsdfs::eval_pdf_bsdf(m, sp, wo, wi);
-    const glm::vec3 fl = bsdf.f * s.radiance * std::fabs(wi.z);
+    float cos_i = 0.0f;
+    const bsdfs::EvalPdf bsdf = light_eval(v, s.wi, cos_i);
+    const glm::vec3 fl = bsdf.f * s.radiance * cos_i;
     if (!(max_component(beta * fl) > 0.0f)) return glm::vec3(0.0f);
     // The light's own surface is skipped: the segment ends on it.
     if (!unoccluded(scene, spawn_ray_to(hit.point, hit.geometric_normal, s.wi, s.distance),
@@ -140,8 +193,8 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
     ray.t_min *= len;
     ray.t_max *= len;
     Bounce bounce;  // the camera ray: emission counts fully
+    Hit hit;        // out of the loop: every intersection that returns true rewrites it whole
     for (int depth = 0;;) {
-        Hit hit;
         if (!scene.intersect_for_shading(ray, hit)) break;
         const Material& m = scene.material(hit);
         if (m.emits()) {
@@ -158,15 +211,13 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         // blue floor's path meeting the red wall) the vertex can add and pass on nothing,
         // so stop without spending a light sample and shadow ray on it.
         if (!(max_component(beta * albedo) > 0.0f)) break;
-        const ShadingPoint sp{
-            ShadingFrame::at(hit.shading_normal, hit.geometric_normal, ray.direction), albedo};
-        const glm::vec3 wo = sp.frame.to_local(-ray.direction);
+        Vertex v(m, hit, ray.direction, albedo);  // its frame built when first needed
         // Light sampling alone takes the whole weight for direct lighting, without MIS, and
         // at the last scattering event, where no BSDF sample will be weighed against it.
         const bool light_only =
             S == Strategy::Direct || !settings.mis || depth >= settings.max_depth;
         if (S != Strategy::Brute && has_non_specular(material_lobes)) {
-            radiance += beta * sample_direct(scene, hit, m, sp, wo, beta, sampler, !light_only);
+            radiance += beta * sample_direct(scene, hit, v, beta, sampler, !light_only);
             if constexpr (S == Strategy::Direct) return radiance;
             // The last bounce: what it finds counts only if it emits without being a light
             // (lights got weight 1 from the light sample just taken). With no such emitter,
@@ -175,7 +226,11 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         }
         const float uc = chooses_lobe(material_lobes) ? sampler.next_1d() : 0.0f;
         const glm::vec2 u = sampler.next_2d();
-        const BsdfSample bs = bsdfs::sample_bsdf(m, sp, wo, uc, u);
+        const ShadingPoint& sp = v.point();
+        const BsdfSample bs = bsdfs::dispatch(m.kind, [&](auto bsdf) {
+            // wo converted inside each kind's case: Lambert ignores it, and there it is dropped.
+            return decltype(bsdf)::sample(m, sp, v.wo(), uc, u);
+        });
         if (!bs.valid()) break;  // absorbed, or below the real surface
         beta *= bs.weight;
         if (has(bs.lobe, BsdfLobe::Specular))

@@ -175,7 +175,11 @@ private:
         std::uint32_t count = 0;                               ///< 0: use top_
     };
 
-    void require_built() const;
+    /// Inline, since every query starts with it; the throw is out of line.
+    void require_built() const {
+        if (!built_) throw_not_built();
+    }
+    [[noreturn]] static void throw_not_built();
     bool closest(const Ray& ray, ObjectHit& hit) const;
     void check_prototype(std::uint32_t prototype) const;
     std::uint32_t add_object(ObjectKind kind, std::uint32_t index);

@@ -67,11 +67,17 @@ struct ShadingFrame {
     /// the surface, need not be unit).
     [[nodiscard]] static ShadingFrame at(const glm::vec3& ns, const glm::vec3& ng,
                                          const glm::vec3& incoming) {
+        const bool front = glm::dot(incoming, ng) < 0.0f;
+        return facing(front ? ns : -ns, front ? ng : -ng, front);
+    }
+    /// The frame from unit normals already turned to wo's side (n shading, g geometric) and
+    /// the side they were turned to: at()'s second half, for a caller that has used the
+    /// world-space normals before deciding it needs the frame (the path loop).
+    [[nodiscard]] static ShadingFrame facing(const glm::vec3& n, const glm::vec3& g, bool front) {
         ShadingFrame f;
-        f.front = glm::dot(incoming, ng) < 0.0f;
-        const glm::vec3 n = f.front ? ns : -ns;
+        f.front = front;
         f.shading = Frame::from_normal(n);
-        f.geometric = f.shading.to_local(f.front ? ng : -ng);
+        f.geometric = f.shading.to_local(g);
         return f;
     }
     /// World direction to local.
