@@ -171,12 +171,13 @@ int main(int argc, char** argv) {
         camera_settings.lens = LensModel::Gaussian;
         camera_settings.lens_sigma = 1.0f;  // rt_synthesis's defaults
         camera_settings.focal_distance = 55.0f;
-        const Camera camera(camera_settings);
+        const Camera camera(apps::with_filter(camera_settings, options));
 
         MpiRenderSettings settings;
         settings.render.samples_per_pixel = options.spp;
         settings.render.threads = options.threads;
         settings.render.seed = options.seed;
+        settings.render.sampler = apps::sampler_kind(options);
         settings.render.cancel = &g_cancel;
         settings.tile_size = tile;
         settings.aovs = ends_with(options.output, ".exr");

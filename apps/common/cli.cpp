@@ -18,6 +18,7 @@
 #include <iostream>
 #include <string>
 #include <thread>
+#include <utility>
 
 #if defined(__unix__) || defined(__APPLE__)
 #include <unistd.h>
@@ -138,6 +139,49 @@ void add_common_options(CLI::App& app, AppOptions& o) {
     app.add_flag("--check", o.check,
                  "Exit with code 2 if the image is all black or has NaN/Inf pixels");
     app.add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
+    app.add_option("--sampler", o.sampler,
+                   "Random numbers: independent (PCG32 streams) or sobol (Owen-scrambled Sobol')")
+        ->capture_default_str();
+    app.add_option("--filter", o.filter,
+                   "Pixel filter by importance sampling: box, tent, gaussian, mitchell or "
+                   "blackman-harris (default: the app's own sub-pixel jitter)");
+    app.add_option("--filter-radius", o.filter_radius,
+                   "The filter's radius in pixels (default: box 0.5, tent 1, gaussian 1.5, "
+                   "mitchell 2, blackman-harris 1.5)");
+}
+
+namespace {
+
+/// The filter kind named by --filter; false when the name is unknown.
+bool filter_kind_of(const std::string& name, FilterKind& kind) {
+    static constexpr std::pair<const char*, FilterKind> kNames[] = {
+        {"box", FilterKind::Box},
+        {"tent", FilterKind::Tent},
+        {"gaussian", FilterKind::Gaussian},
+        {"mitchell", FilterKind::Mitchell},
+        {"blackman-harris", FilterKind::BlackmanHarris}};
+    for (const auto& [n, k] : kNames) {
+        if (name == n) {
+            kind = k;
+            return true;
+        }
+    }
+    return false;
+}
+
+}  // namespace
+
+SamplerKind sampler_kind(const AppOptions& o) {
+    return o.sampler == "sobol" ? SamplerKind::Sobol : SamplerKind::Independent;
+}
+
+CameraSettings with_filter(CameraSettings camera, const AppOptions& o) {
+    FilterKind kind{};
+    if (o.filter.empty() || !filter_kind_of(o.filter, kind)) return camera;
+    camera.pixel_jitter = PixelJitter::Filter;
+    camera.pixel_filter = default_filter_settings(kind);
+    if (o.filter_radius) camera.pixel_filter.radius = *o.filter_radius;
+    return camera;
 }
 
 void add_mesh_options(CLI::App& app, MeshOptions& o) {
@@ -165,7 +209,9 @@ MeshPlacement placement_of(const MeshOptions& o) {
 
 PathTracerSettings path_tracer_settings(const AppOptions& options) {
     PathTracerSettings settings;
+    // The report's paths, explicitly: the library's defaults (long paths, roulette) differ.
     settings.max_depth = options.bounces;
+    settings.russian_roulette = false;
     return settings;
 }
 
@@ -212,6 +258,21 @@ void validate(const AppOptions& o) {
     settings.samples_per_pixel = o.spp;
     settings.threads = o.threads;
     librt::validate(settings);
+    if (o.sampler != "independent" && o.sampler != "sobol") {
+        bad_option("--sampler", o.sampler, "must be independent or sobol");
+    }
+    FilterKind kind{};
+    if (!o.filter.empty() && !filter_kind_of(o.filter, kind)) {
+        bad_option("--filter", o.filter,
+                   "must be box, tent, gaussian, mitchell or blackman-harris");
+    }
+    if (o.filter_radius) {
+        if (o.filter.empty())
+            bad_option("--filter-radius", typed(*o.filter_radius), "needs --filter");
+        if (!std::isfinite(*o.filter_radius) || !(*o.filter_radius > 0.0f)) {
+            bad_option("--filter-radius", typed(*o.filter_radius), "must be finite and > 0");
+        }
+    }
     if (o.bounces < 0 || o.bounces > 1000) {
         bad_option("--bounces", std::to_string(o.bounces), "must be in [0, 1000]");
     }
@@ -282,7 +343,7 @@ int run(CLI::App& app, int argc, char** argv, const std::function<int()>& body) 
 int render_and_write(const Scene& scene, const CameraSettings& camera_settings,
                      Integrator& integrator, const AppOptions& o,
                      const std::function<void(const Image&)>& after_write) {
-    const Camera camera(camera_settings);
+    const Camera camera(with_filter(camera_settings, o));
     const ToneMap tone_map{o.exposure * kReportExposure, 0.45f};
     validate(tone_map);  // fail before a long render, not after
 
@@ -290,6 +351,7 @@ int render_and_write(const Scene& scene, const CameraSettings& camera_settings,
     settings.samples_per_pixel = o.spp;
     settings.threads = o.threads;
     settings.seed = o.seed;
+    settings.sampler = sampler_kind(o);
     ProgressBar progress(!o.quiet);
     settings.progress = [&progress](const RenderProgress& p) { progress.update(p); };
     settings.cancel = &g_cancel;
@@ -311,11 +373,11 @@ int render_and_write(const Scene& scene, const CameraSettings& camera_settings,
     if (!o.quiet) {
         const double rate =
             stats.seconds > 0.0 ? static_cast<double>(stats.samples) / stats.seconds : 0.0;
-        std::printf("%dx%d, %d spp, %u threads: %.2f s (%.2f M samples/s)\n", image.width,
-                    image.height, o.spp,
+        std::printf("%dx%d, %d spp, %u threads: %.2f s, %.2f CPU s (%.2f M samples/s)\n",
+                    image.width, image.height, o.spp,
                     o.threads > 0 ? static_cast<unsigned>(o.threads)
                                   : std::max(1u, std::thread::hardware_concurrency()),
-                    stats.seconds, rate * 1e-6);
+                    stats.seconds, stats.cpu_seconds, rate * 1e-6);
     }
     if (stats.nonfinite_samples + guarded > 0) {
         std::fprintf(stderr, "warning: %llu non-finite samples dropped\n",

@@ -7,6 +7,7 @@
 #include <librt/render/integrator.h>
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
+#include <librt/render/sampler.h>
 #include <librt/render/scene.h>
 
 #include <CLI/CLI.hpp>
@@ -25,18 +26,23 @@ namespace librt::apps {
 
 /// Options every app has.
 struct AppOptions {
-    int width = 512;              ///< --width
-    int height = 512;             ///< --height
-    std::optional<int> size;      ///< --size: sets width and height when given
-    int spp = 1;                  ///< --spp, samples per pixel
-    int bounces = 5;              ///< --bounces, scattering events per path
-    int threads = 0;              ///< --threads, 0 = all cores
-    std::uint64_t seed = 0;       ///< --seed
-    std::string output;           ///< -o/--output: .png, .pfm or .hdr
-    float exposure = 1.0f;        ///< --exposure: multiplies kReportExposure
-    float power = kDefaultPower;  ///< --power: total light power
-    bool check = false;           ///< --check: exit 2 if the image is black or has NaN/Inf
-    bool quiet = false;           ///< --quiet: no progress bar, no summary
+    int width = 512;                      ///< --width
+    int height = 512;                     ///< --height
+    std::optional<int> size;              ///< --size: sets width and height when given
+    int spp = 1;                          ///< --spp, samples per pixel
+    int bounces = 5;                      ///< --bounces, scattering events per path
+    int threads = 0;                      ///< --threads, 0 = all cores
+    std::uint64_t seed = 0;               ///< --seed
+    std::string output;                   ///< -o/--output: .png, .pfm or .hdr
+    float exposure = 1.0f;                ///< --exposure: multiplies kReportExposure
+    float power = kDefaultPower;          ///< --power: total light power
+    bool check = false;                   ///< --check: exit 2 if the image is black or has NaN/Inf
+    bool quiet = false;                   ///< --quiet: no progress bar, no summary
+    std::string sampler = "independent";  ///< --sampler: independent | sobol
+    /// --filter: box | tent | gaussian | mitchell | blackman-harris; empty = the app's own
+    /// sub-pixel jitter (unchanged images).
+    std::string filter;
+    std::optional<float> filter_radius;  ///< --filter-radius in pixels; default: the filter's
 };
 
 /// Options of the apps that show a mesh.
@@ -91,6 +97,13 @@ void validate(const MeshOptions& options);
 
 /// The report's camera at the size given on the command line.
 [[nodiscard]] CameraSettings camera_of(const AppOptions& options);
+
+/// The sampler named by --sampler (validate() has checked it).
+[[nodiscard]] SamplerKind sampler_kind(const AppOptions& options);
+
+/// `camera` with the pixel filter of --filter / --filter-radius when given (filter
+/// importance sampling, PixelJitter::Filter); unchanged otherwise.
+[[nodiscard]] CameraSettings with_filter(CameraSettings camera, const AppOptions& options);
 
 /// The path tracer's settings from the command line (--bounces).
 [[nodiscard]] PathTracerSettings path_tracer_settings(const AppOptions& options);

@@ -121,7 +121,7 @@ TEST_F(ExrTest, OptionalLayersAreOmitted) {
 TEST_F(ExrTest, RenderedFilmLayersRoundTrip) {
     const Scene scene = librt::testing::film_test_scene();
     const Camera camera = librt::testing::film_test_camera(12, 8);
-    PathTracer integrator(PathTracerSettings{3});
+    PathTracer integrator(PathTracerSettings{3, false});
     ProgressiveSettings s;
     s.render.samples_per_pixel = 3;
     s.aovs = true;

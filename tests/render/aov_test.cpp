@@ -33,7 +33,7 @@ TriangleMesh slab(float z0, float z1) { return make_box({-50.0f, -50.0f, z0}, {5
 
 ImageLayers render_layers(const Scene& scene, const CameraSettings& cs) {
     const Camera camera(cs);
-    PathTracer integrator(PathTracerSettings{3});
+    PathTracer integrator(PathTracerSettings{3, false});
     integrator.preprocess(scene);
     Film film(cs.width, cs.height, true);
     (void)render_block(scene, camera, integrator, film, {0, 0, cs.width, cs.height, 0, kSpp},
@@ -137,7 +137,7 @@ TEST(Aov, FresnelGlassMixesReflectionAndRefraction) {
     CameraSettings cs = axis_camera(1, 1);
     cs.vertical_fov_degrees = 1.0f;  // close to normal incidence
     const Camera camera(cs);
-    PathTracer integrator(PathTracerSettings{1});
+    PathTracer integrator(PathTracerSettings{1, false});
     Film film(1, 1, true);
     const std::uint32_t n = 20000;
     (void)render_block(scene, camera, integrator, film, {0, 0, 1, 1, 0, n}, RenderSettings{});

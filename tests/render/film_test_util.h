@@ -44,7 +44,7 @@ public:
     }
 
 private:
-    PathTracer inner_{PathTracerSettings{4}};
+    PathTracer inner_{PathTracerSettings{4, false}};
 };
 
 inline Camera film_test_camera(int width = 29, int height = 19) {

@@ -61,8 +61,8 @@ TEST(Integrators, SettingsAreValidated) {
               }).find("russian_roulette_depth"),
               std::string::npos);
     EXPECT_NO_THROW(PathTracer({1000}));
-    EXPECT_EQ(PathTracer().settings().max_depth, 5);
-    EXPECT_FALSE(PathTracer().settings().russian_roulette);
+    EXPECT_EQ(PathTracer().settings().max_depth, 1000);  // issue 15: converging defaults
+    EXPECT_TRUE(PathTracer().settings().russian_roulette);
 }
 
 // White furnace: the camera inside a closed sphere of albedo a emitting Le everywhere.
@@ -83,8 +83,8 @@ TEST(Integrators, WhiteFurnace) {
     cam.width = cam.height = 8;
     for (const int depth : {0, 1, 5, 200}) {
         const double expected = le * (1.0 - std::pow(double(a), depth + 1)) / (1.0 - a);
-        BruteForcePathTracer brute({depth});
-        PathTracer path({depth});
+        BruteForcePathTracer brute({depth, false});
+        PathTracer path({depth, false});
         for (Integrator* integrator :
              {static_cast<Integrator*>(&brute), static_cast<Integrator*>(&path)}) {
             const StatImage img = render_stats(scene, *integrator, cam, 4, 1);
@@ -164,9 +164,9 @@ TEST(Integrators, EmissionSeenThroughMirrorIsTinted) {
     q.triangles = {{0, 1, 2}, {0, 2, 3}};
     scene.add_mesh(q, lamp);
     scene.commit();
-    PathTracer path;
+    PathTracer path(PathTracerSettings{5, false});
     DirectLighting direct;
-    BruteForcePathTracer brute;
+    BruteForcePathTracer brute(PathTracerSettings{5, false});
     for (Integrator* integ : {static_cast<Integrator*>(&path), static_cast<Integrator*>(&direct),
                               static_cast<Integrator*>(&brute)}) {
         Sampler sampler(1, 2, 3, 4);
@@ -187,8 +187,8 @@ TEST(Integrators, PathTracerAgreesWithBruteForceOnTheRoom) {
     scene.add_sphere_light({{{-10, 20, 40}, 10}, glm::vec3(50.0f)});
     scene.commit();
     const Pinhole cam = room_camera(24);
-    PathTracer path;
-    BruteForcePathTracer brute;
+    PathTracer path(PathTracerSettings{5, false});
+    BruteForcePathTracer brute(PathTracerSettings{5, false});
     const StatImage a = render_stats(scene, path, cam, 48, 1);
     const StatImage b = render_stats(scene, brute, cam, 600, 2);
     EXPECT_EQ(path.nonfinite_count(), 0u);
@@ -232,7 +232,7 @@ TEST(Integrators, TinySphereLightMatchesPointLightOfTheSamePower) {
     cam.up = {0, 0, -1};
     cam.width = cam.height = 16;
     DirectLighting direct;
-    PathTracer path({3});
+    PathTracer path({3, false});
     for (Integrator* integ : {static_cast<Integrator*>(&direct), static_cast<Integrator*>(&path)}) {
         const StatImage a = render_stats(point_scene, *integ, cam, 32, 5);
         const StatImage b = render_stats(sphere_scene, *integ, cam, 32, 6);
@@ -270,10 +270,10 @@ TEST(Integrators, FiniteOnHostileScenes) {
     scene.add_sphere_light({{{3, 6, 3}, 0.5f}, glm::vec3(10.0f)});
     scene.commit();
 
-    PathTracer path({8});
+    PathTracer path({8, false});
     PathTracer roulette({50, true, 2});
     DirectLighting direct;
-    BruteForcePathTracer brute({8});
+    BruteForcePathTracer brute({8, false});
     AlbedoNormalIntegrator albedo(DebugView::Albedo), normal(DebugView::Normal);
     const std::vector<GuardedIntegrator*> integrators = {&path,  &roulette, &direct,
                                                          &brute, &albedo,   &normal};
@@ -360,10 +360,10 @@ TEST(Integrators, FiniteOnDegenerateGeometry) {
     scene.add_point_light({{0, 0, 1}, glm::vec3(50.0f)});  // exactly on a degenerate triangle
     scene.commit();
 
-    PathTracer path({6});
+    PathTracer path({6, false});
     PathTracer roulette({30, true, 1});
     DirectLighting direct;
-    BruteForcePathTracer brute({6});
+    BruteForcePathTracer brute({6, false});
     AlbedoNormalIntegrator normal(DebugView::Normal);
     const std::vector<GuardedIntegrator*> integrators = {&path, &roulette, &direct, &brute,
                                                          &normal};
@@ -409,7 +409,7 @@ TEST(Integrators, GuardCountsNonFiniteSamples) {
     m.emission = glm::vec3(3e38f);
     scene.add_sphere({{0, 0, 0}, 1.0f}, scene.add_material(m));
     scene.commit();
-    PathTracer path;
+    PathTracer path(PathTracerSettings{5, false});
     Sampler sampler(0, 0, 0, 0);
     EXPECT_EQ(path.li(scene, Ray{{0, 0, 0}, {0, 0, 1}}, sampler), glm::vec3(0.0f));
     EXPECT_EQ(path.nonfinite_count(), 1u);

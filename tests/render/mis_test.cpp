@@ -58,11 +58,11 @@ TEST(Mis, AgreesWithBruteForceAndWithLightSamplingAlone) {
     Scene scene;
     build_soft_shadow_room(scene);
     const Pinhole cam = room_camera(24);
-    PathTracer mis;
-    PathTracerSettings nee_settings;
+    PathTracer mis(PathTracerSettings{5, false});
+    PathTracerSettings nee_settings{5, false};
     nee_settings.mis = false;
     PathTracer nee(nee_settings);
-    BruteForcePathTracer brute;
+    BruteForcePathTracer brute(PathTracerSettings{5, false});
     ASSERT_TRUE(mis.settings().mis);
     const StatImage a = render_stats(scene, mis, cam, 96, 21);
     const StatImage b = render_stats(scene, nee, cam, 96, 22);
@@ -122,8 +122,8 @@ TEST(Mis, VarianceNoWorseThanLightSamplingAloneOnSoftShadows) {
     Scene scene;
     build_soft_shadow_room(scene);
     const Pinhole cam = room_camera(32);
-    PathTracer mis;
-    PathTracerSettings nee_settings;
+    PathTracer mis(PathTracerSettings{5, false});
+    PathTracerSettings nee_settings{5, false};
     nee_settings.mis = false;
     PathTracer nee(nee_settings);
     const int n = 64;

@@ -45,6 +45,11 @@ expect_error "--power = -2: must be finite and >= 0" rt_synthesis --power -2 -q
 expect_error "--bounces = -1: must be in [0, 1000]" rt_depth_of_field --bounces -1 -q
 expect_error "samples_per_pixel = 0" rt_antialiasing --spp 0 -q
 expect_error "--mesh-scale = 0: must be finite and > 0" rt_mesh --mesh-scale 0 -q
+# Issue 15: the sampler and pixel filter options.
+expect_error "--sampler = halton: must be independent or sobol" rt_indirect --sampler halton -q
+expect_error "--filter = lanczos: must be box, tent" rt_synthesis --filter lanczos -q
+expect_error "--filter-radius = 0: must be finite and > 0" rt_synthesis --filter tent --filter-radius 0 -q
+expect_error "--filter-radius = 1: needs --filter" rt_synthesis --filter-radius 1 -q
 # Placement overflow names the options, not an internal matrix.
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > one.obj
 expect_error "one.obj: --mesh-fit = 10, --mesh-scale = 1e+38: the placed mesh's coordinates overflow float" \

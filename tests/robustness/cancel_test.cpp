@@ -55,7 +55,7 @@ CameraSettings inside_camera(int size) {
 TEST(Cancellation, ASlowRenderStopsPromptly) {
     const Scene scene = slow_scene();
     const Camera camera(inside_camera(4));  // one tile, so only the per-pixel checks can stop it
-    PathTracer integrator(PathTracerSettings{100});
+    PathTracer integrator(PathTracerSettings{100, false});
     std::atomic<bool> cancel{false};
     RenderSettings settings;
     settings.samples_per_pixel = 1 << 20;
@@ -81,7 +81,7 @@ TEST(Cancellation, ASlowRenderStopsPromptly) {
 
 TEST(Cancellation, CancelledBeforeTheStartRendersNothing) {
     const Scene scene = slow_scene();
-    PathTracer integrator;
+    PathTracer integrator(PathTracerSettings{5, false});
     std::atomic<bool> cancel{true};
     RenderSettings settings;
     settings.samples_per_pixel = 64;
@@ -99,7 +99,7 @@ TEST(Cancellation, CancelledBeforeTheStartRendersNothing) {
 
 TEST(Cancellation, ManyThreadsCancelledMidTile) {
     const Scene scene = slow_scene();
-    PathTracer integrator(PathTracerSettings{20});
+    PathTracer integrator(PathTracerSettings{20, false});
     std::atomic<bool> cancel{false};
     RenderSettings settings;
     settings.samples_per_pixel = 4096;

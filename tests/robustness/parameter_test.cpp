@@ -111,7 +111,7 @@ TEST(BadParameter, RenderSettingsAndFilmSize) {
     CameraSettings cs;
     cs.width = cs.height = 4;
     const Camera camera(cs);
-    PathTracer integrator;
+    PathTracer integrator(PathTracerSettings{5, false});
     const auto render_with = [&](auto change) {
         return [&, change] {
             RenderSettings s;
@@ -157,10 +157,16 @@ TEST(BadParameter, RenderSettingsAndFilmSize) {
 TEST(BadParameter, BounceCounts) {
     for (const int depth : {-1, 1001, INT_MAX, INT_MIN}) {
         const std::string value = "max_depth = " + std::to_string(depth);
-        expect_error([&] { (void)PathTracer(PathTracerSettings{depth}); },
-                     {value.c_str(), "[0, 1000]"});
-        expect_error([&] { (void)BruteForcePathTracer(PathTracerSettings{depth}); },
-                     {value.c_str()});
+        expect_error(
+            [&] {
+                (void)PathTracer(PathTracerSettings{depth, false});
+            },
+            {value.c_str(), "[0, 1000]"});
+        expect_error(
+            [&] {
+                (void)BruteForcePathTracer(PathTracerSettings{depth, false});
+            },
+            {value.c_str()});
         expect_error([&] { (void)DirectLighting(DirectLightingSettings{depth}); }, {value.c_str()});
     }
     expect_error(
@@ -169,8 +175,8 @@ TEST(BadParameter, BounceCounts) {
         },
         {"russian_roulette_depth = -2"});
     // The extremes that are allowed work: no bounce at all, and the maximum.
-    EXPECT_NO_THROW((void)PathTracer(PathTracerSettings{0}));
-    EXPECT_NO_THROW((void)PathTracer(PathTracerSettings{1000}));
+    EXPECT_NO_THROW((void)PathTracer(PathTracerSettings{0, false}));
+    EXPECT_NO_THROW((void)PathTracer(PathTracerSettings{1000, false}));
 }
 
 TEST(BadParameter, MaterialNonFiniteAndOutOfRange) {

@@ -23,10 +23,10 @@ namespace {
 
 /// One of each integrator, owned.
 struct AllIntegrators {
-    PathTracer path{PathTracerSettings{5}};
+    PathTracer path{PathTracerSettings{5, false}};
     PathTracer roulette{PathTracerSettings{20, true, 2}};
     DirectLighting direct;
-    BruteForcePathTracer brute{PathTracerSettings{5}};
+    BruteForcePathTracer brute{PathTracerSettings{5, false}};
     AlbedoNormalIntegrator albedo{DebugView::Albedo};
     AlbedoNormalIntegrator normal{DebugView::Normal};
     std::vector<GuardedIntegrator*> all() {
@@ -87,7 +87,7 @@ TEST(OddScene, EmptySceneRendersBlack) {
     }
     // An uncommitted scene cannot be rendered: an error, not a crash.
     Scene uncommitted;
-    PathTracer path;
+    PathTracer path(PathTracerSettings{5, false});
     EXPECT_TRUE(librt::testing::has(librt::testing::error_of([&] {
                                         (void)render_small(uncommitted, path, {0, 0, 5}, {0, 0, 0});
                                     }),

@@ -52,7 +52,28 @@ std::uint32_t TopLevel::add_sphere(const Sphere& sphere, bool uv) {
         msg << "sphere radius = " << sphere.radius << ": must be finite and > 0";
         throw Error(msg.str());
     }
-    spheres_.push_back({sphere, DoubleSphere(sphere), uv});
+    spheres_.push_back({sphere, DoubleSphere(sphere), uv, librt::bounds(sphere)});
+    return add_object(ObjectKind::Sphere, std::uint32_t(spheres_.size() - 1));
+}
+
+std::uint32_t TopLevel::add_sphere(const glm::dvec3& center, double radius, bool uv) {
+    const Sphere rounded{glm::vec3(center), static_cast<float>(radius)};
+    if (!std::isfinite(center.x) || !std::isfinite(center.y) || !std::isfinite(center.z) ||
+        !finite(rounded.center)) {
+        std::ostringstream msg;
+        msg.precision(17);
+        msg << "sphere center = (" << center.x << ", " << center.y << ", " << center.z
+            << "): must be finite (in float too)";
+        throw Error(msg.str());
+    }
+    if (!std::isfinite(radius) || !(radius > 0.0) || !std::isfinite(rounded.radius) ||
+        !(rounded.radius > 0.0f)) {
+        std::ostringstream msg;
+        msg.precision(17);
+        msg << "sphere radius = " << radius << ": must be finite and > 0 (in float too)";
+        throw Error(msg.str());
+    }
+    spheres_.push_back({rounded, DoubleSphere(center, radius), uv, librt::bounds(center, radius)});
     return add_object(ObjectKind::Sphere, std::uint32_t(spheres_.size() - 1));
 }
 
@@ -139,7 +160,7 @@ std::uint32_t TopLevel::prototype_of(std::uint32_t id) const {
 BBox TopLevel::object_bounds(const Object& o) const {
     switch (o.kind) {
         case ObjectKind::Sphere:
-            return librt::bounds(spheres_[o.index].sphere);
+            return spheres_[o.index].box;
         case ObjectKind::Mesh:
             return prototypes_[o.index].bvh.bounds();
         case ObjectKind::Instance:

@@ -143,8 +143,11 @@ struct Vertex {
                                                       bool mis) {
     const LightSampler& lights = scene.light_sampler();
     // Drawn even when unused, so later decisions of the path keep their numbers; no
-    // number chooses among a single light.
+    // number chooses among a single light. The caller's start_bounce put the sampler on
+    // the light choice's dimension; the light's 2D keeps its own (SampleDimensions).
+    const std::uint32_t first = sampler.dimension();
     const float u_light = lights.size() > 1 ? sampler.next_1d() : 0.0f;
+    sampler.set_dimension(first + SampleDimensions::k_bounce_light);
     const glm::vec2 u = sampler.next_2d();
     const SampledLight chosen = lights.sample(u_light);
     if (!chosen.valid()) return glm::vec3(0.0f);
@@ -204,6 +207,9 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         }
         const BsdfLobe material_lobes = bsdfs::lobes_of(m);
         if (depth >= settings.max_depth || material_lobes == BsdfLobe::None) break;
+        // This bounce's dimensions (SampleDimensions); the independent stream is unchanged.
+        const std::uint32_t dim = SampleDimensions::bounce(static_cast<std::uint32_t>(depth));
+        sampler.start_bounce(static_cast<std::uint32_t>(depth));
         ++depth;
 
         const glm::vec3 albedo = scene.albedo(hit);
@@ -224,7 +230,9 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             // save the ray.
             if (depth >= settings.max_depth && !scene.has_unsampled_emitters()) return radiance;
         }
+        sampler.set_dimension(dim + SampleDimensions::k_bounce_lobe);
         const float uc = chooses_lobe(material_lobes) ? sampler.next_1d() : 0.0f;
+        sampler.set_dimension(dim + SampleDimensions::k_bounce_bsdf);
         const glm::vec2 u = sampler.next_2d();
         const ShadingPoint& sp = v.point();
         const BsdfSample bs = bsdfs::dispatch(m.kind, [&](auto bsdf) {
@@ -237,9 +245,12 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             bounce = {EmitterWeight::Full, 0.0f, hit.point};
         else
             bounce = {light_only ? EmitterWeight::Zero : EmitterWeight::Mis, bs.pdf, hit.point};
-        if (settings.russian_roulette && depth >= settings.roulette_depth) {
+        // Roulette from bounce roulette_depth on (bounce depth - 1 was just sampled; 0 is
+        // the camera ray's first hit), so depth d leaves d bounces untouched.
+        if (settings.russian_roulette && depth > settings.roulette_depth) {
             // Survive with probability q, reweighted by 1/q: unbiased, fewer long paths.
             const float q = std::min(0.95f, max_component(beta));
+            sampler.set_dimension(dim + SampleDimensions::k_bounce_roulette);
             if (!(q > 0.0f) || sampler.next_1d() >= q) break;
             beta /= q;
         }

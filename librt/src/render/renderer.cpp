@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <ctime>
 #include <exception>
 #include <mutex>
 #include <string>
@@ -32,6 +33,10 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+/// CPU seconds the process has used (all threads). std::clock, not clock_gettime's
+/// CLOCK_PROCESS_CPUTIME_ID: the same on Linux and portable.
+double cpu_now() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
 struct Tile {
     int x0, y0, x1, y1;  // pixel range [x0, x1) x [y0, y1)
 };
@@ -42,6 +47,10 @@ void validate_threads_and_tiles(const RenderSettings& s) {
     }
     if (s.tile_size < 1) {
         throw Error("tile_size = " + std::to_string(s.tile_size) + ": must be >= 1");
+    }
+    if (s.sampler != SamplerKind::Independent && s.sampler != SamplerKind::Sobol) {
+        throw Error("sampler = " + std::to_string(static_cast<int>(s.sampler)) +
+                    ": must be SamplerKind::Independent or SamplerKind::Sobol");
     }
 }
 
@@ -133,8 +142,9 @@ BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrato
                         stopped = true;
                         break;
                     }
-                    Sampler sampler(px, py, s, settings.seed);
-                    const Ray ray = camera.generate_ray(x, y, sampler);
+                    Sampler sampler(settings.sampler, px, py, s, settings.seed);
+                    const CameraRay camera_ray = camera.sample_ray(x, y, sampler);
+                    const Ray& ray = camera_ray.ray;
                     if (with_aovs) {
                         const AovSample a = sample_aovs(scene, ray, px, py, s, settings.seed);
                         aov.albedo += glm::dvec3(a.albedo);
@@ -144,7 +154,9 @@ BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrato
                             ++aov.hits;
                         }
                     }
-                    const glm::vec3 l = integrator.li(scene, ray, sampler);
+                    // The filter weight makes the plain mean the filter's estimate (Mitchell's
+                    // signed weights); x 1.0f is exact, so other filters are unchanged.
+                    const glm::vec3 l = integrator.li(scene, ray, sampler) * camera_ray.weight;
                     ++pixel.samples;
                     ++samples;
                     if (finite(l)) {
@@ -260,6 +272,7 @@ void validate(const ProgressiveSettings& s) {
 Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
              const RenderSettings& settings, RenderStats* stats) {
     const Clock::time_point start = Clock::now();
+    const double cpu_start = cpu_now();
     validate(settings);
     check_image_size(camera.width(), camera.height());  // before allocating anything
     Film film(camera.width(), camera.height());
@@ -288,6 +301,7 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
     if (stats != nullptr) {
         *stats = RenderStats{};
         stats->seconds = seconds_since(start);
+        stats->cpu_seconds = cpu_now() - cpu_start;
         stats->samples = outcome.samples;
         stats->nonfinite_samples = outcome.nonfinite;
         stats->cancelled = outcome.cancelled;
@@ -300,6 +314,7 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
 RenderStats render_block(const Scene& scene, const Camera& camera, const Integrator& integrator,
                          Film& film, const RenderBlock& block, const RenderSettings& settings) {
     const Clock::time_point start = Clock::now();
+    const double cpu_start = cpu_now();
     validate_threads_and_tiles(settings);
     check_film_matches(film, camera);
     if (block.x0 < 0 || block.x0 > block.x1 || block.x1 > film.width || block.y0 < 0 ||
@@ -334,6 +349,7 @@ RenderStats render_block(const Scene& scene, const Camera& camera, const Integra
     const BlockOutcome outcome = run_block(scene, camera, integrator, film, block, settings, tick);
     RenderStats stats;
     stats.seconds = seconds_since(start);
+    stats.cpu_seconds = cpu_now() - cpu_start;
     stats.samples = outcome.samples;
     stats.nonfinite_samples = outcome.nonfinite;
     stats.cancelled = outcome.cancelled;
@@ -351,6 +367,7 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
     };
     const double start = clock();
+    const double cpu_start = cpu_now();
     const auto elapsed = [&] { return clock() - start; };
     if (film.width == 0 && film.height == 0) {
         check_image_size(camera.width(), camera.height());
@@ -413,6 +430,7 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         }
     }
     stats.seconds = elapsed();
+    stats.cpu_seconds = cpu_now() - cpu_start;
     return stats;
 }
 

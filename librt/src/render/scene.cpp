@@ -59,6 +59,12 @@ std::uint32_t Scene::add_sphere(const Sphere& sphere, std::uint32_t material) {
     return add_object(top_.add_sphere(sphere, materials_[material].albedo_texture >= 0), material);
 }
 
+std::uint32_t Scene::add_sphere(const glm::dvec3& center, double radius, std::uint32_t material) {
+    check_material_id(material);
+    return add_object(top_.add_sphere(center, radius, materials_[material].albedo_texture >= 0),
+                      material);
+}
+
 std::uint32_t Scene::add_triangle(const Triangle& triangle, std::uint32_t material) {
     check_material_id(material);
     const std::uint32_t id = top_.add_triangle(triangle);

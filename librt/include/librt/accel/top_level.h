@@ -75,6 +75,9 @@ public:
     /// computes the sphere's uv (two inverse trigonometric calls) or leaves it (0, 0).
     /// Throws librt::Error for a non-finite centre or a radius not > 0.
     std::uint32_t add_sphere(const Sphere& sphere, bool uv = true);
+    /// Adds a sphere given in double: its intersection test uses exactly these values,
+    /// its normal and uv the float-rounded sphere. Throws as add_sphere(Sphere).
+    std::uint32_t add_sphere(const glm::dvec3& center, double radius, bool uv = true);
     /// Adds a mesh prototype (its BVH built by build(), with `builder`); returns its
     /// prototype id. A prototype alone is not geometry: add_mesh or add_instance shows it.
     /// Throws librt::Error for an invalid mesh (librt::validate).
@@ -150,7 +153,8 @@ private:
     struct SphereData {
         Sphere sphere;
         DoubleSphere prepared;
-        bool uv;  ///< see add_sphere
+        bool uv;   ///< see add_sphere
+        BBox box;  ///< holds the sphere `prepared` describes
     };
     struct Prototype {
         TriangleMesh mesh;

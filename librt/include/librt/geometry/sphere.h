@@ -51,7 +51,25 @@ struct DoubleSphere {
     /// Converts the sphere to double.
     explicit DoubleSphere(const Sphere& s)
         : center(s.center), radius2(double(s.radius) * double(s.radius)) {}
+    /// A sphere given in double: no float rounding of its inputs (smallpt's walls of
+    /// radius 1e5, whose centres float would move by up to 0.004).
+    DoubleSphere(const glm::dvec3& c, double radius) : center(c), radius2(radius * radius) {}
 };
+
+/// Bounding box of a sphere given in double, rounded outward to float so that it holds
+/// the exact sphere.
+[[nodiscard]] inline BBox bounds(const glm::dvec3& center, double radius) {
+    const auto down = [](double v) {
+        const auto f = static_cast<float>(v);
+        return double(f) <= v ? f : std::nextafter(f, -std::numeric_limits<float>::infinity());
+    };
+    const auto up = [](double v) {
+        const auto f = static_cast<float>(v);
+        return double(f) >= v ? f : std::nextafter(f, std::numeric_limits<float>::infinity());
+    };
+    return {{down(center.x - radius), down(center.y - radius), down(center.z - radius)},
+            {up(center.x + radius), up(center.y + radius), up(center.z + radius)}};
+}
 
 /// Nearest root in (t_min, t_max) of the ray-sphere quadratic, in double, or NaN for none;
 /// what the scene's top level runs per sphere.

@@ -24,11 +24,14 @@ struct SampleDimensions {
     static constexpr std::uint32_t k_pixel = 0;                ///< 2D: position in the pixel filter
     static constexpr std::uint32_t k_lens = 2;                 ///< 2D: point on the lens
     static constexpr std::uint32_t k_first_bounce = 4;         ///< first dimension of bounce 0
-    static constexpr std::uint32_t k_per_bounce = 6;           ///< dimensions each bounce owns
+    static constexpr std::uint32_t k_per_bounce = 7;           ///< dimensions each bounce owns
     static constexpr std::uint32_t k_bounce_light_choice = 0;  ///< 1D: which light
     static constexpr std::uint32_t k_bounce_light = 1;         ///< 2D: point on the light
     static constexpr std::uint32_t k_bounce_bsdf = 3;          ///< 2D: BSDF direction
     static constexpr std::uint32_t k_bounce_roulette = 5;      ///< 1D: Russian roulette
+    /// 1D: which BSDF lobe (materials with several); last, so the 2D direction keeps its
+    /// dimension whether or not the material hit in this sample chooses a lobe.
+    static constexpr std::uint32_t k_bounce_lobe = 6;
 
     /// First dimension of bounce `bounce` (0 = the camera ray's first hit).
     [[nodiscard]] static constexpr std::uint32_t bounce(std::uint32_t bounce) {

@@ -58,6 +58,10 @@ public:
     /// Adds a sphere of the given material; returns its object id. Throws librt::Error
     /// for a non-finite centre, a radius not > 0, or an unknown material id.
     std::uint32_t add_sphere(const Sphere& sphere, std::uint32_t material);
+    /// Adds a sphere given in double (centre, radius): rays meet exactly this sphere, not
+    /// its float rounding, so a wall of radius 1e5 stays where its author put it (normals
+    /// and uv use the float sphere). Throws librt::Error as add_sphere(Sphere) does.
+    std::uint32_t add_sphere(const glm::dvec3& center, double radius, std::uint32_t material);
     /// Adds a loose triangle; all loose triangles form one mesh object whose id is
     /// returned (the triangle's primitive id is its rank among loose triangles).
     std::uint32_t add_triangle(const Triangle& triangle, std::uint32_t material);
