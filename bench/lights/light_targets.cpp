@@ -45,17 +45,16 @@ void build_panel_box(Scene& scene, bool sampled, float edge) {
     const auto white = scene.add_material(Material::diffuse(glm::vec3(0.73f)));
     const auto red = scene.add_material(Material::diffuse({0.65f, 0.05f, 0.05f}));
     const auto green = scene.add_material(Material::diffuse({0.12f, 0.45f, 0.15f}));
-    scene.add_mesh(quad({-1, 0, -1}, {0, 0, 2}, {2, 0, 0}), white);   // floor, up
-    scene.add_mesh(quad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}), white);   // ceiling, down
-    scene.add_mesh(quad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}), white);   // back
-    scene.add_mesh(quad({-1, 0, -1}, {0, 2, 0}, {0, 0, 2}), red);     // left
-    scene.add_mesh(quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0}), green);    // right
+    scene.add_mesh(quad({-1, 0, -1}, {0, 0, 2}, {2, 0, 0}), white);  // floor, up
+    scene.add_mesh(quad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}), white);  // ceiling, down
+    scene.add_mesh(quad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}), white);  // back
+    scene.add_mesh(quad({-1, 0, -1}, {0, 2, 0}, {0, 0, 2}), red);    // left
+    scene.add_mesh(quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0}), green);   // right
     scene.add_sphere({{-0.4f, 0.4f, -0.3f}, 0.4f}, white);
     scene.add_sphere({{0.45f, 0.3f, 0.3f}, 0.3f}, white);
     const float k = 0.25f / (edge * edge);  // the same power as the 0.5 x 0.5 panel
     const auto lamp = scene.add_material(Material::emissive(k * glm::vec3(17.0f, 12.0f, 4.0f)));
-    TriangleMesh panel =
-        quad({-0.5f * edge, 1.99f, -0.5f * edge}, {edge, 0, 0}, {0, 0, edge});
+    TriangleMesh panel = quad({-0.5f * edge, 1.99f, -0.5f * edge}, {edge, 0, 0}, {0, 0, edge});
     if (sampled) {
         scene.add_mesh(panel, lamp);
     } else {
@@ -91,9 +90,8 @@ struct Camera {
 /// Renders passes of one sample per pixel, through the pixel centre (no anti-aliasing:
 /// the panel seen directly would otherwise add the same coverage noise to both
 /// estimators and hide the lighting's), until `seconds` pass; the mean image.
-std::vector<glm::dvec3> render(const Scene& scene, const Integrator& integrator,
-                               const Camera& cam, double seconds, std::uint64_t seed,
-                               int* passes) {
+std::vector<glm::dvec3> render(const Scene& scene, const Integrator& integrator, const Camera& cam,
+                               double seconds, std::uint64_t seed, int* passes) {
     std::vector<glm::dvec3> sum(kSize * kSize, glm::dvec3(0.0));
     const auto start = Clock::now();
     int n = 0;
@@ -120,17 +118,17 @@ double rmse(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) 
     return std::sqrt(s / double(a.size()));
 }
 
-void compare(const char* name, const Scene& sampled, const Integrator& good,
-             const Scene& plain, const Integrator& base, const Camera& cam, double seconds,
-             double ref_seconds) {
+void compare(const char* name, const Scene& sampled, const Integrator& good, const Scene& plain,
+             const Integrator& base, const Camera& cam, double seconds, double ref_seconds) {
     int nr = 0, ng = 0, nb = 0;
     const auto ref = render(sampled, good, cam, ref_seconds, 1000, &nr);
     const auto g = render(sampled, good, cam, seconds, 1, &ng);
     const auto b = render(plain, base, cam, seconds, 2, &nb);
     const double rg = rmse(g, ref), rb = rmse(b, ref);
-    std::printf("%s: reference %d spp; sampled %d spp RMSE %.5f; baseline %d spp RMSE %.5f; "
-                "ratio %.1fx\n",
-                name, nr, ng, rg, nb, rb, rb / rg);
+    std::printf(
+        "%s: reference %d spp; sampled %d spp RMSE %.5f; baseline %d spp RMSE %.5f; "
+        "ratio %.1fx\n",
+        name, nr, ng, rg, nb, rb, rb / rg);
 }
 
 }  // namespace
