@@ -8,6 +8,7 @@
 //          (BruteForcePathTracer: the diffuse BSDF samples the cosine).
 // Usage: librt_light_targets [seconds per candidate = 2] [reference seconds = 40]
 //                            [panel edge = 0.5 (its power is kept: radiance / edge^2)]
+//                            [max depth = 5]
 
 #include <librt/io/hdr_image.h>
 #include <librt/render/integrators.h>
@@ -138,7 +139,7 @@ int main(int argc, char** argv) {
     const double ref_seconds = argc > 2 ? std::atof(argv[2]) : 40.0;
     const float edge = argc > 3 ? float(std::atof(argv[3])) : 0.5f;
     PathTracerSettings settings;
-    settings.max_depth = 5;
+    settings.max_depth = argc > 4 ? std::atoi(argv[4]) : 5;
     settings.russian_roulette = true;
     const PathTracer pt(settings);
     const BruteForcePathTracer brute(settings);
