@@ -333,7 +333,11 @@ TEST(Scene, UnsampledEmittersAreAnyEmissionButTheSphereLights) {
     glowing.emission = glm::vec3(0.1f);
     scene.add_triangle({{0, 0, 3}, {1, 0, 3}, {0, 1, 3}}, scene.add_material(glowing));
     scene.commit();
-    EXPECT_TRUE(scene.has_unsampled_emitters()) << "a loose emissive triangle";
+    // Issue 12 item 6: emissive triangles are lights now, so their emission is sampled.
+    EXPECT_FALSE(scene.has_unsampled_emitters()) << "a loose emissive triangle is a light";
+    scene.add_sphere({{0, 0, 9}, 1.0f}, scene.add_material(glowing));
+    scene.commit();
+    EXPECT_TRUE(scene.has_unsampled_emitters()) << "an emissive sphere that is no light";
 
     // Per-triangle materials: one emissive triangle among diffuse ones.
     Scene mtl_scene;
@@ -345,7 +349,8 @@ TEST(Scene, UnsampledEmittersAreAnyEmissionButTheSphereLights) {
     EXPECT_FALSE(mtl_scene.has_unsampled_emitters());
     mtl_scene.add_mesh(mesh, std::vector<std::uint32_t>{matte, lamp});
     mtl_scene.commit();
-    EXPECT_TRUE(mtl_scene.has_unsampled_emitters());
+    EXPECT_FALSE(mtl_scene.has_unsampled_emitters()) << "the emissive triangle is a light";
+    EXPECT_EQ(mtl_scene.lights().size(), 1u);
 }
 
 TEST(Scene, OffsetScalesWithPositionAndFollowsDirection) {

@@ -64,11 +64,11 @@ struct Bounce {
     glm::vec3 point{0.0f};  ///< where it was taken: the light's reference point
 };
 
-/// The weight of the emission of the object hit along unit direction `dir` after `bounce`.
-float emitter_weight(const Scene& scene, const Hit& hit, const glm::vec3& dir,
-                     const Bounce& bounce) {
+/// The weight of the emission of light `light` (kInvalidId: an emitter no light samples)
+/// found along unit direction `dir` after `bounce`.
+float light_weight(const Scene& scene, std::uint32_t light, const glm::vec3& dir,
+                   const Bounce& bounce) {
     if (bounce.weight == EmitterWeight::Full) return 1.0f;
-    const std::uint32_t light = scene.light_of_object(hit.object_id);
     if (light == kInvalidId) return 1.0f;  // no light strategy could have found it
     if (bounce.weight == EmitterWeight::Zero) return 0.0f;
     // Density with which the light strategy at the previous vertex picks this direction.
@@ -129,6 +129,32 @@ struct Vertex {
             return bsdfs::EvalPdf{T::eval(v.m, p, wo, wl), T::pdf(v.m, p, wo, wl)};
         }
     });
+}
+
+/// The weight of the emission of the object hit along unit direction `dir` after `bounce`:
+/// 0 from the back of a one-sided light.
+float emitter_weight(const Scene& scene, const Hit& hit, const glm::vec3& dir,
+                     const Bounce& bounce) {
+    const std::uint32_t light = scene.light_of_hit(hit);
+    if (light != kInvalidId && scene.lights()[light].one_sided &&
+        !(glm::dot(dir, hit.geometric_normal) < 0.0f))
+        return 0.0f;
+    return light_weight(scene, light, dir, bounce);
+}
+
+/// What a ray leaving the scene along unit direction `dir` after `bounce` receives from
+/// the lights at infinity, each with its MIS weight (all of them fully when `brute`).
+glm::vec3 escaped(const Scene& scene, const glm::vec3& dir, const Bounce& bounce, bool brute,
+                  bool camera_ray) {
+    glm::vec3 sum(0.0f);
+    for (const std::uint32_t i : scene.infinite_lights()) {
+        const Light& light = scene.lights()[i];
+        if (camera_ray && !light.camera_visible) continue;
+        const glm::vec3 le = escaped_radiance(light, dir);
+        if (!(max_component(le) > 0.0f)) continue;
+        sum += le * (brute ? 1.0f : light_weight(scene, i, dir, bounce));
+    }
+    return sum;
 }
 
 /// Next-event estimation at a non-specular hit: the light sampler chooses a light, a
@@ -195,14 +221,27 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
     ray.direction /= len;
     ray.t_min *= len;
     ray.t_max *= len;
-    Bounce bounce;  // the camera ray: emission counts fully
-    Hit hit;        // out of the loop: every intersection that returns true rewrites it whole
+    Bounce bounce;   // the camera ray: emission counts fully
+    int hidden = 0;  // objects hidden from the camera that the camera ray passed through
+    Hit hit;  // out of the loop: every intersection that returns true rewrites it whole
     for (int depth = 0;;) {
-        if (!scene.intersect_for_shading(ray, hit)) break;
+        if (!scene.intersect_for_shading(ray, hit)) {
+            radiance +=
+                beta * escaped(scene, ray.direction, bounce, S == Strategy::Brute, depth == 0);
+            break;
+        }
+        if (depth == 0 && !scene.camera_visible(hit.object_id)) {
+            // Camera rays go on through hidden objects (bounded: a ray grazing a hidden
+            // surface many times must still end).
+            if (++hidden > 64) break;
+            ray = spawn_ray(hit.point, hit.geometric_normal, ray.direction);
+            continue;
+        }
         const Material& m = scene.material(hit);
         if (m.emits()) {
+            // Brute force weighs every emitter fully (a one-sided light's back stays dark).
             const float w =
-                S == Strategy::Brute ? 1.0f : emitter_weight(scene, hit, ray.direction, bounce);
+                emitter_weight(scene, hit, ray.direction, S == Strategy::Brute ? Bounce{} : bounce);
             if (w > 0.0f) radiance += beta * m.emission * w;
         }
         const BsdfLobe material_lobes = bsdfs::lobes_of(m);

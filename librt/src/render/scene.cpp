@@ -1,7 +1,11 @@
 #include <librt/core/error.h>
 #include <librt/render/scene.h>
 
+#include <glm/geometric.hpp>
+
 #include <sstream>
+#include <string>
+#include <variant>
 
 namespace librt {
 
@@ -109,10 +113,18 @@ std::uint32_t Scene::add_mesh(TriangleMesh mesh, std::vector<std::uint32_t> tria
     return add_mesh_object(std::move(mesh), builder, kInvalidId, std::move(triangle_materials));
 }
 
+std::uint32_t Scene::add_light(Light light) {
+    // commit()'s triangle lights go after the added ones: drop them, commit() remakes them.
+    lights_.resize(added_lights_);
+    lights_.push_back(std::move(light));
+    ++added_lights_;
+    committed_ = false;
+    return std::uint32_t(lights_.size() - 1);
+}
+
 void Scene::add_point_light(const PointLight& light) {
     validate(light);
-    lights_.push_back({light, kInvalidId});
-    committed_ = false;
+    add_light({light, kInvalidId});
 }
 
 std::uint32_t Scene::add_sphere_light(const SphereLight& light) {
@@ -120,25 +132,121 @@ std::uint32_t Scene::add_sphere_light(const SphereLight& light) {
     const std::uint32_t material = add_material(Material::emissive(light.radiance));
     const std::uint32_t object = add_sphere(light.sphere, material);
     if (light_of_object_.size() <= object) light_of_object_.resize(object + 1, kInvalidId);
-    light_of_object_[object] = std::uint32_t(lights_.size());
-    lights_.push_back({light, object});
+    light_of_object_[object] = add_light({light, object});
     return object;
+}
+
+std::uint32_t Scene::add_surface_light(Light light, TriangleMesh surface,
+                                       const glm::vec3& radiance) {
+    const std::uint32_t material = add_material(Material::emissive(radiance));
+    const std::uint32_t object = add_mesh(std::move(surface), material);
+    if (light_of_object_.size() <= object) light_of_object_.resize(object + 1, kInvalidId);
+    light.object = object;
+    light_of_object_[object] = add_light(std::move(light));
+    return object;
+}
+
+std::uint32_t Scene::add_quad_light(const QuadLight& light) {
+    validate(light);
+    TriangleMesh mesh;
+    const glm::vec3 c = light.corner, a = c + light.edge0, b = a + light.edge1;
+    mesh.positions = {c, a, b, c + light.edge1};
+    // (a - c) x (b - c) = edge0 x edge1: both triangles face the light's front.
+    mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    Light l{light, kInvalidId};
+    l.one_sided = !light.two_sided;
+    return add_surface_light(std::move(l), std::move(mesh), light.radiance);
+}
+
+std::uint32_t Scene::add_disk_light(const DiskLight& light) {
+    validate(light);
+    TriangleMesh mesh;
+    mesh.positions.push_back(light.center);
+    for (int i = 0; i < kDiskLightSides; ++i) mesh.positions.push_back(disk_light_corner(light, i));
+    // Corners run counter-clockwise seen from the front, so each fan triangle faces it.
+    for (std::uint32_t i = 0; i < std::uint32_t(kDiskLightSides); ++i)
+        mesh.triangles.push_back({0u, 1u + i, 1u + (i + 1) % std::uint32_t(kDiskLightSides)});
+    Light l{light, kInvalidId};
+    l.one_sided = !light.two_sided;
+    return add_surface_light(std::move(l), std::move(mesh), light.radiance);
+}
+
+std::uint32_t Scene::add_spot_light(const SpotLight& light) {
+    validate(light);
+    return add_light({light, kInvalidId});
+}
+
+std::uint32_t Scene::add_directional_light(const DirectionalLight& light) {
+    validate(light);
+    return add_light({light, kInvalidId});
+}
+
+std::uint32_t Scene::add_environment_light(const EnvironmentLight& light, bool camera_visible) {
+    validate(light);
+    Light l{light, kInvalidId};
+    l.camera_visible = camera_visible;
+    return add_light(std::move(l));
+}
+
+void Scene::set_camera_visible(std::uint32_t object_id, bool visible) {
+    if (object_id >= objects_.size())
+        throw Error("set_camera_visible: object id " + std::to_string(object_id) +
+                    ", the scene has " + std::to_string(objects_.size()) + " objects");
+    objects_[object_id].camera_visible = visible;
+}
+
+void Scene::make_triangle_lights() {
+    lights_.resize(added_lights_);
+    triangle_light_base_.assign(objects_.size(), kInvalidId);
+    triangle_light_.clear();
+    unsampled_emitters_ = false;
+    for (std::uint32_t id = 0; id < objects_.size(); ++id) {
+        const Object& o = objects_[id];
+        if (light_of_object(id) != kInvalidId) continue;
+        auto material_of = [&](std::size_t tri) {
+            return o.material != kInvalidId ? o.material : triangle_materials_[o.index][tri];
+        };
+        const ObjectKind kind = top_.kind(id);
+        if (kind != ObjectKind::Mesh) {
+            // Spheres and instances: their emission is left to BSDF sampling.
+            unsampled_emitters_ |= o.material != kInvalidId && materials_[o.material].emits();
+            continue;
+        }
+        const TriangleMesh& mesh = top_.prototype_mesh(top_.prototype_of(id));
+        bool any = false;
+        for (std::size_t t = 0; t < mesh.triangles.size() && !any; ++t)
+            any = materials_[material_of(t)].emits();
+        if (!any) continue;
+        triangle_light_base_[id] = std::uint32_t(triangle_light_.size());
+        for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+            const Material& m = materials_[material_of(t)];
+            if (!m.emits()) {
+                triangle_light_.push_back(kInvalidId);
+                continue;
+            }
+            const glm::uvec3& i = mesh.triangles[t];
+            const TriangleLight tl{mesh.positions[i.x], mesh.positions[i.y], mesh.positions[i.z],
+                                   m.emission};
+            triangle_light_.push_back(std::uint32_t(lights_.size()));
+            lights_.push_back({tl, kInvalidId});
+            lights_.back().camera_visible = o.camera_visible;
+        }
+    }
+    // Lights at infinity need the scene's size for their power (what the sampler weighs).
+    const BBox b = top_.bounds();
+    const float radius = b.empty() ? 1.0f : 0.5f * glm::length(b.hi - b.lo);
+    infinite_lights_.clear();
+    for (std::uint32_t i = 0; i < lights_.size(); ++i) {
+        if (auto* e = std::get_if<EnvironmentLight>(&lights_[i].source)) e->scene_radius = radius;
+        if (auto* d = std::get_if<DirectionalLight>(&lights_[i].source)) d->scene_radius = radius;
+        if (is_infinite(lights_[i])) infinite_lights_.push_back(i);
+    }
 }
 
 void Scene::commit() {
     if (committed_) return;
     top_.build();
-    unsampled_emitters_ = false;
-    for (std::uint32_t id = 0; id < objects_.size(); ++id) {
-        const Object& o = objects_[id];
-        if (light_of_object(id) != kInvalidId) continue;
-        if (o.material != kInvalidId) {
-            unsampled_emitters_ |= materials_[o.material].emits();
-        } else {
-            for (const std::uint32_t m : triangle_materials_[o.index])
-                unsampled_emitters_ |= materials_[m].emits();
-        }
-    }
+    make_triangle_lights();
     light_sampler_ = LightSampler(lights_);
     committed_ = true;
 }

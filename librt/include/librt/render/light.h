@@ -2,9 +2,15 @@
 
 #include <librt/export.h>
 #include <librt/geometry/hit.h>
+#include <librt/render/directional_light.h>
+#include <librt/render/disk_light.h>
+#include <librt/render/environment_light.h>
 #include <librt/render/light_sample.h>
 #include <librt/render/point_light.h>
+#include <librt/render/quad_light.h>
 #include <librt/render/sphere_light.h>
+#include <librt/render/spot_light.h>
+#include <librt/render/triangle_light.h>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -14,8 +20,9 @@
 
 // The light seam. A light type is a plain struct in its own header (point_light.h,
 // sphere_light.h) with three free functions: sample_li(light, ref, u) -> LightLiSample,
-// pdf_li(light, ref, wi) and power(light). Adding one (emissive triangle, quad, disk,
-// spot, directional, environment) is that header, its .cpp, and its name in LightSource.
+// pdf_li(light, ref, wi) and power(light). Adding one is that header, its .cpp, and its
+// name in LightSource. A light at infinity that escaping rays see (environment, sun with
+// an angular radius) also has escaped_radiance(light, dir).
 
 namespace librt {
 
@@ -24,15 +31,43 @@ namespace librt {
 /// pointer to own), std::visit dispatches with a jump table and no indirect call in the
 /// path loop, and a new type is registered by naming it here, after which the compiler
 /// checks that it has every function the seam needs.
-using LightSource = std::variant<PointLight, SphereLight>;
+using LightSource = std::variant<PointLight, SphereLight, TriangleLight, QuadLight, DiskLight,
+                                 SpotLight, DirectionalLight, EnvironmentLight>;
 
 /// A light of a Scene: its source and, when it is also geometry, the object that is its
 /// surface (so a BSDF-sampled ray that hits the object can find the light, and a shadow
 /// ray toward the light can skip its own surface).
 struct Light {
-    LightSource source;                 ///< what emits
-    std::uint32_t object = kInvalidId;  ///< the scene object that is its surface, if any
+    LightSource source;  ///< what emits
+    /// The scene object a shadow ray toward it skips (its own surface), if any. Emissive
+    /// triangles of a mesh leave it kInvalidId: the mesh's other triangles may occlude.
+    std::uint32_t object = kInvalidId;
+    /// Emits only toward the side its surface's geometric normal faces (one-sided quad and
+    /// disk lights, whose triangles are wound to face front).
+    bool one_sided = false;
+    /// Seen by camera rays; when false, camera rays pass through its surface (or, for a
+    /// light at infinity, see black) while it still lights the scene.
+    bool camera_visible = true;
 };
+
+/// True for lights at infinity, which rays that leave the scene may see.
+[[nodiscard]] inline bool is_infinite(const Light& light) {
+    return std::holds_alternative<EnvironmentLight>(light.source) ||
+           std::holds_alternative<DirectionalLight>(light.source);
+}
+
+/// The radiance a ray escaping the scene along unit direction dir receives from the light
+/// (0 for every light not at infinity).
+[[nodiscard]] inline glm::vec3 escaped_radiance(const Light& light, const glm::vec3& dir) {
+    return std::visit(
+        [&](const auto& source) -> glm::vec3 {
+            if constexpr (requires { escaped_radiance(source, dir); })
+                return escaped_radiance(source, dir);
+            else
+                return glm::vec3(0.0f);
+        },
+        light.source);
+}
 
 /// One direction toward the light from ref, drawn from u in [0, 1)^2.
 [[nodiscard]] inline LightLiSample sample_li(const Light& light, const glm::vec3& ref,

@@ -94,8 +94,31 @@ public:
     /// Adds a point light (validated) to the light list. Point lights are not geometry.
     void add_point_light(const PointLight& light);
     /// Adds a sphere light (validated) to the light list, and the emissive sphere that is
-    /// its surface; returns that sphere's object id.
+    /// its surface; returns that sphere's object id. The sphere is an opaque emitter on
+    /// both sides: a ray from inside sees its radiance too, and light sampling from inside
+    /// samples its area (sample_sphere_direction), so MIS stays consistent there.
     std::uint32_t add_sphere_light(const SphereLight& light);
+    /// Adds a quad light (validated) and the two emissive triangles that are its surface,
+    /// wound to face along edge0 x edge1; returns that mesh's object id.
+    std::uint32_t add_quad_light(const QuadLight& light);
+    /// Adds a disk light (validated) and the emissive triangle fan (kDiskLightSides
+    /// triangles) that is its surface; returns that mesh's object id.
+    std::uint32_t add_disk_light(const DiskLight& light);
+    /// Adds a spot light (validated); not geometry. Returns its index in lights().
+    std::uint32_t add_spot_light(const SpotLight& light);
+    /// Adds a directional (sun) light (validated); returns its index in lights().
+    std::uint32_t add_directional_light(const DirectionalLight& light);
+    /// Adds an environment light (validated): what rays leaving the scene see; when
+    /// camera_visible is false, camera rays that leave see black. Returns its index.
+    std::uint32_t add_environment_light(const EnvironmentLight& light, bool camera_visible = true);
+    /// Hides object `object_id` from camera rays (or shows it again): they pass through it
+    /// as if it were not there, while every other ray still hits it (an emitter keeps
+    /// lighting the scene). Throws librt::Error for an unknown object id.
+    void set_camera_visible(std::uint32_t object_id, bool visible);
+    /// False when camera rays pass through object `object_id`.
+    [[nodiscard]] bool camera_visible(std::uint32_t object_id) const {
+        return object_id >= objects_.size() || objects_[object_id].camera_visible;
+    }
 
     /// Builds the acceleration structures. Must be called after the last add_* and before
     /// any query; calling it again without changes does nothing.
@@ -156,7 +179,10 @@ public:
     /// The geometry: objects, prototypes and the structure over them; built by commit().
     [[nodiscard]] const TopLevel& top_level() const { return top_; }
 
-    /// Every light, in the order added (point and sphere lights alike).
+    /// Every light: those added, in the order added, then (after commit()) one
+    /// TriangleLight per emissive triangle of the mesh objects, object by object.
+    /// Emissive instances are not made lights (their emission is found only by BSDF
+    /// sampling; has_unsampled_emitters() says so).
     [[nodiscard]] std::span<const Light> lights() const { return lights_; }
     /// Chooses the light a shading point samples; valid after commit().
     [[nodiscard]] const LightSampler& light_sampler() const { return light_sampler_; }
@@ -164,6 +190,19 @@ public:
     /// when the object is no light's surface (its emission, if any, is not light-sampled).
     [[nodiscard]] std::uint32_t light_of_object(std::uint32_t object_id) const {
         return object_id < light_of_object_.size() ? light_of_object_[object_id] : kInvalidId;
+    }
+    /// Index in lights() of the light whose surface a hit is on: the object's light, else
+    /// the TriangleLight of the hit triangle of an emissive mesh (valid after commit()),
+    /// else kInvalidId.
+    [[nodiscard]] std::uint32_t light_of_hit(const Hit& hit) const {
+        const std::uint32_t l = light_of_object(hit.object_id);
+        if (l != kInvalidId || hit.object_id >= triangle_light_base_.size()) return l;
+        const std::uint32_t base = triangle_light_base_[hit.object_id];
+        return base == kInvalidId ? kInvalidId : triangle_light_[base + hit.primitive_id];
+    }
+    /// Indices in lights() of the lights at infinity (see is_infinite), after commit().
+    [[nodiscard]] std::span<const std::uint32_t> infinite_lights() const {
+        return infinite_lights_;
     }
 
     /// True when some surface emits light that light sampling does not account for: an
@@ -178,8 +217,9 @@ public:
 private:
     /// What the scene adds to a geometric object of top_ (same id).
     struct Object {
-        std::uint32_t index;     ///< into triangle_materials_ when material is kInvalidId
-        std::uint32_t material;  ///< uniform material, or kInvalidId for per-triangle ids
+        std::uint32_t index;         ///< into triangle_materials_ when material is kInvalidId
+        std::uint32_t material;      ///< uniform material, or kInvalidId for per-triangle ids
+        bool camera_visible = true;  ///< see set_camera_visible
     };
 
     /// Inline, since every query starts with it; the throw is out of line.
@@ -191,6 +231,9 @@ private:
     std::uint32_t add_object(std::uint32_t top_id, std::uint32_t material);
     std::uint32_t add_mesh_object(TriangleMesh mesh, BvhBuilder builder, std::uint32_t material,
                                   std::vector<std::uint32_t> per_triangle);
+    std::uint32_t add_light(Light light);
+    std::uint32_t add_surface_light(Light light, TriangleMesh surface, const glm::vec3& radiance);
+    void make_triangle_lights();
 
     std::vector<Material> materials_;
     std::vector<ImageTexture> textures_;
@@ -198,7 +241,12 @@ private:
     std::vector<std::vector<std::uint32_t>> triangle_materials_;  ///< scene ids, per triangle
     std::uint32_t loose_object_ = kInvalidId;  ///< object of the add_triangle mesh
     std::vector<Light> lights_;
+    std::size_t added_lights_ = 0;  ///< lights_[0, added_lights_) were added; the rest commit()'s
     std::vector<std::uint32_t> light_of_object_;  ///< object id -> light index (kInvalidId)
+    /// Object id -> start in triangle_light_ of its triangles' light indices (kInvalidId).
+    std::vector<std::uint32_t> triangle_light_base_;
+    std::vector<std::uint32_t> triangle_light_;   ///< per triangle: light index or kInvalidId
+    std::vector<std::uint32_t> infinite_lights_;  ///< see infinite_lights()
     LightSampler light_sampler_;                  ///< over lights_, built by commit()
 
     TopLevel top_;                     ///< the geometry and its acceleration structure

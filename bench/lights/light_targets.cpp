@@ -1,0 +1,167 @@
+// Issue 12's light targets, measured as RMSE against a high-sample reference at equal
+// render time (one thread):
+//   panel: a box lit by an emissive ceiling panel, the panel sampled as triangle lights
+//          (PathTracer) against the same panel unsampled (placed as an instance, whose
+//          emission only BSDF sampling finds: the behaviour before triangle lights);
+//   sky:   a floor, a ball and a block lit only by sky.hdr, environment importance
+//          sampling with MIS (PathTracer) against cosine sampling of the sky
+//          (BruteForcePathTracer: the diffuse BSDF samples the cosine).
+// Usage: librt_light_targets [seconds per candidate = 2] [reference seconds = 40]
+//                            [panel edge = 0.5 (its power is kept: radiance / edge^2)]
+//                            [max depth = 5]
+
+#include <librt/io/hdr_image.h>
+#include <librt/render/integrators.h>
+#include <librt/render/sampler.h>
+#include <librt/render/scene.h>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace librt;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kSize = 32;
+
+TriangleMesh quad(const glm::vec3& c, const glm::vec3& e0, const glm::vec3& e1) {
+    TriangleMesh m;
+    m.positions = {c, c + e0, c + e0 + e1, c + e1};
+    m.triangles = {{0, 1, 2}, {0, 2, 3}};
+    return m;
+}
+
+/// A 2 x 2 x 2 box open at +z, two blocks in it, and a 0.5 x 0.5 emissive ceiling panel
+/// just below the ceiling (as a mesh when `sampled`, else as an instance).
+void build_panel_box(Scene& scene, bool sampled, float edge) {
+    const auto white = scene.add_material(Material::diffuse(glm::vec3(0.73f)));
+    const auto red = scene.add_material(Material::diffuse({0.65f, 0.05f, 0.05f}));
+    const auto green = scene.add_material(Material::diffuse({0.12f, 0.45f, 0.15f}));
+    scene.add_mesh(quad({-1, 0, -1}, {0, 0, 2}, {2, 0, 0}), white);  // floor, up
+    scene.add_mesh(quad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}), white);  // ceiling, down
+    scene.add_mesh(quad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}), white);  // back
+    scene.add_mesh(quad({-1, 0, -1}, {0, 2, 0}, {0, 0, 2}), red);    // left
+    scene.add_mesh(quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0}), green);   // right
+    scene.add_sphere({{-0.4f, 0.4f, -0.3f}, 0.4f}, white);
+    scene.add_sphere({{0.45f, 0.3f, 0.3f}, 0.3f}, white);
+    const float k = 0.25f / (edge * edge);  // the same power as the 0.5 x 0.5 panel
+    const auto lamp = scene.add_material(Material::emissive(k * glm::vec3(17.0f, 12.0f, 4.0f)));
+    TriangleMesh panel = quad({-0.5f * edge, 1.99f, -0.5f * edge}, {edge, 0, 0}, {0, 0, edge});
+    if (sampled) {
+        scene.add_mesh(panel, lamp);
+    } else {
+        const std::uint32_t proto = scene.add_mesh_prototype(panel);
+        scene.add_instance(proto, glm::mat4(1.0f), lamp);
+    }
+    scene.commit();
+}
+
+void build_sky(Scene& scene, const EnvironmentImage& sky) {
+    const auto white = scene.add_material(Material::diffuse(glm::vec3(0.7f)));
+    scene.add_mesh(quad({-3, 0, -3}, {0, 0, 6}, {6, 0, 0}), white);
+    scene.add_sphere({{-0.5f, 0.5f, -0.3f}, 0.5f}, white);
+    scene.add_mesh(quad({0.2f, 0, -1}, {0, 1.2f, 0}, {0.8f, 0, 0}), white);
+    scene.add_environment_light(EnvironmentLight::from_image(sky));
+    scene.commit();
+}
+
+struct Camera {
+    glm::vec3 eye, forward, up;
+    float fov;
+    [[nodiscard]] Ray ray(int x, int y, float jx, float jy) const {
+        const glm::vec3 right = glm::cross(forward, up);
+        const float depth = float(kSize) / (2.0f * std::tan(glm::radians(fov) * 0.5f));
+        Ray r;
+        r.origin = eye;
+        r.direction = glm::normalize((float(x) + jx - kSize / 2.0f) * right +
+                                     (kSize / 2.0f - float(y) - jy) * up + depth * forward);
+        return r;
+    }
+};
+
+/// Renders passes of one sample per pixel, through the pixel centre (no anti-aliasing:
+/// the panel seen directly would otherwise add the same coverage noise to both
+/// estimators and hide the lighting's), until `seconds` pass; the mean image.
+std::vector<glm::dvec3> render(const Scene& scene, const Integrator& integrator, const Camera& cam,
+                               double seconds, std::uint64_t seed, int* passes) {
+    std::vector<glm::dvec3> sum(kSize * kSize, glm::dvec3(0.0));
+    const auto start = Clock::now();
+    int n = 0;
+    do {
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x) {
+                Sampler s(std::uint32_t(x), std::uint32_t(y), std::uint32_t(n), seed);
+                sum[std::size_t(y * kSize + x)] +=
+                    glm::dvec3(integrator.li(scene, cam.ray(x, y, 0.5f, 0.5f), s));
+            }
+        ++n;
+    } while (std::chrono::duration<double>(Clock::now() - start).count() < seconds);
+    for (auto& v : sum) v /= double(n);
+    *passes = n;
+    return sum;
+}
+
+double rmse(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) {
+    double s = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const glm::dvec3 d = a[i] - b[i];
+        s += glm::dot(d, d) / 3.0;
+    }
+    return std::sqrt(s / double(a.size()));
+}
+
+void compare(const char* name, const Scene& sampled, const Integrator& good, const Scene& plain,
+             const Integrator& base, const Camera& cam, double seconds, double ref_seconds) {
+    int nr = 0, ng = 0, nb = 0;
+    const auto ref = render(sampled, good, cam, ref_seconds, 1000, &nr);
+    const auto g = render(sampled, good, cam, seconds, 1, &ng);
+    const auto b = render(plain, base, cam, seconds, 2, &nb);
+    const double rg = rmse(g, ref), rb = rmse(b, ref);
+    std::printf(
+        "%s: reference %d spp; sampled %d spp RMSE %.5f; baseline %d spp RMSE %.5f; "
+        "ratio %.1fx\n",
+        name, nr, ng, rg, nb, rb, rb / rg);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const double seconds = argc > 1 ? std::atof(argv[1]) : 2.0;
+    const double ref_seconds = argc > 2 ? std::atof(argv[2]) : 40.0;
+    const float edge = argc > 3 ? float(std::atof(argv[3])) : 0.5f;
+    PathTracerSettings settings;
+    settings.max_depth = argc > 4 ? std::atoi(argv[4]) : 5;
+    settings.russian_roulette = true;
+    const PathTracer pt(settings);
+    const BruteForcePathTracer brute(settings);
+
+    Scene lit, unlit;
+    build_panel_box(lit, true, edge);
+    build_panel_box(unlit, false, edge);
+    const Camera box_cam{{0, 1, 3.4f}, {0, 0, -1}, {0, 1, 0}, 40.0f};
+    compare("panel (triangle lights vs unsampled instance panel)", lit, pt, unlit, pt, box_cam,
+            seconds, ref_seconds);
+
+    const char* dir = std::getenv("LIBRT_DATA_DIR");
+    const std::filesystem::path path =
+        std::filesystem::path(dir ? dir : LIBRT_DEFAULT_DATA_DIR) / "sky.hdr";
+    const EnvironmentImage sky = load_hdr_image(path);
+    Scene sky_scene;
+    build_sky(sky_scene, sky);
+    const Camera sky_cam{{0, 1.2f, 3.5f},
+                         glm::normalize(glm::vec3(0, -0.25f, -1)),
+                         glm::normalize(glm::vec3(0, 1, -0.25f)),
+                         50.0f};
+    compare("sky.hdr (environment sampling + MIS vs cosine sampling)", sky_scene, pt, sky_scene,
+            brute, sky_cam, seconds, ref_seconds);
+    return 0;
+}

@@ -1,0 +1,16 @@
+#pragma once
+
+#include <librt/export.h>
+#include <librt/render/environment_light.h>
+
+#include <filesystem>
+
+namespace librt {
+
+/// Loads a Radiance .hdr (RGBE) file as linear radiance, rows top to bottom, for
+/// EnvironmentLight::from_image. Throws librt::Error naming the file for a missing,
+/// unreadable, oversized (more than 2^26 pixels) or undecodable file, or for a pixel that
+/// is not finite.
+[[nodiscard]] LIBRT_API EnvironmentImage load_hdr_image(const std::filesystem::path& path);
+
+}  // namespace librt

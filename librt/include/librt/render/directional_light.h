@@ -1,0 +1,40 @@
+#pragma once
+
+#include <librt/export.h>
+#include <librt/render/light_sample.h>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace librt {
+
+/// A directional (sun) light: light arriving from `to_light` with irradiance E (W/m^2) on
+/// a surface facing it. With angular_radius 0 it is a delta light; with angular_radius
+/// theta > 0 it is a disk of directions of uniform radiance L = E / (pi sin^2 theta)
+/// (E = L pi sin^2 theta for a uniform cone), sampled uniformly in the cone, and a ray
+/// that escapes the scene inside the cone sees it (soft sun shadows).
+struct DirectionalLight {
+    glm::vec3 to_light{0.0f, 1.0f, 0.0f};  ///< toward the sun (need not be unit)
+    glm::vec3 irradiance{0.0f};            ///< W/m^2 on a surface facing the sun
+    float angular_radius = 0.0f;           ///< radians; the real sun's is about 0.00465
+    float scene_radius = 0.0f;             ///< set by Scene::commit, for power()
+};
+
+/// Throws librt::Error naming the parameter and value for a non-finite or zero direction,
+/// negative irradiance, or an angular radius not in [0, pi/2).
+LIBRT_API void validate(const DirectionalLight& light);
+
+/// A direction toward the sun (the axis when delta, else uniform in the cone) at infinite
+/// distance.
+[[nodiscard]] LIBRT_API LightLiSample sample_li(const DirectionalLight& light, const glm::vec3& ref,
+                                                glm::vec2 u);
+/// 1 / (cone solid angle) inside the cone; 0 outside or for a delta sun.
+[[nodiscard]] LIBRT_API float pdf_li(const DirectionalLight& light, const glm::vec3& ref,
+                                     const glm::vec3& wi);
+/// What a ray escaping along unit direction dir sees of the sun: L inside the cone.
+[[nodiscard]] LIBRT_API glm::vec3 escaped_radiance(const DirectionalLight& light,
+                                                   const glm::vec3& dir);
+/// Power falling on the scene's bounding disk: E pi R^2 (for the light sampler).
+[[nodiscard]] LIBRT_API glm::vec3 power(const DirectionalLight& light);
+
+}  // namespace librt

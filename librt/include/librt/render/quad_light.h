@@ -1,0 +1,37 @@
+#pragma once
+
+#include <librt/export.h>
+#include <librt/render/light_sample.h>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace librt {
+
+/// A parallelogram area light: the points corner + s edge0 + t edge1 for s, t in [0, 1],
+/// emitting a uniform radiance. Its front faces along edge0 x edge1; a one-sided light
+/// emits from the front only. Scene::add_quad_light also adds the two triangles that are
+/// its surface. Sampled uniformly by area: pdf per solid angle d^2 / (A |cos|).
+struct QuadLight {
+    glm::vec3 corner{0.0f};    ///< one corner
+    glm::vec3 edge0{0.0f};     ///< first edge from the corner
+    glm::vec3 edge1{0.0f};     ///< second edge from the corner
+    glm::vec3 radiance{0.0f};  ///< emitted radiance L (W / (sr m^2)) per channel
+    bool two_sided = false;    ///< emits from the back as well
+};
+
+/// Throws librt::Error naming the parameter and value if a vector is not finite, the
+/// edges span no area, or the radiance is negative or not finite.
+LIBRT_API void validate(const QuadLight& light);
+
+/// A point drawn uniformly on the parallelogram, as a direction from ref; invalid when
+/// ref is behind a one-sided light or in its plane.
+[[nodiscard]] LIBRT_API LightLiSample sample_li(const QuadLight& light, const glm::vec3& ref,
+                                                glm::vec2 u);
+/// The solid-angle density of sample_li at ref for unit direction wi; 0 if wi misses.
+[[nodiscard]] LIBRT_API float pdf_li(const QuadLight& light, const glm::vec3& ref,
+                                     const glm::vec3& wi);
+/// Total emitted power per channel: L pi A (times 2 when two-sided).
+[[nodiscard]] LIBRT_API glm::vec3 power(const QuadLight& light);
+
+}  // namespace librt

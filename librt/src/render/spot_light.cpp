@@ -1,0 +1,66 @@
+#include <librt/core/error.h>
+#include <librt/core/finite.h>
+#include <librt/render/spot_light.h>
+#include <librt/sampling/warp.h>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace librt {
+namespace {
+
+[[noreturn]] void fail(const char* what, const glm::vec3& v, const char* rule) {
+    std::ostringstream msg;
+    msg << what << " = (" << v.x << ", " << v.y << ", " << v.z << "): " << rule;
+    throw Error(msg.str());
+}
+
+}  // namespace
+
+void validate(const SpotLight& light) {
+    if (!finite(light.position)) fail("spot light position", light.position, "must be finite");
+    if (!finite(light.direction) || !(glm::length(light.direction) > 0.0f))
+        fail("spot light direction", light.direction, "must be finite and non-zero");
+    if (!finite(light.intensity) || light.intensity.x < 0.0f || light.intensity.y < 0.0f ||
+        light.intensity.z < 0.0f)
+        fail("spot light intensity", light.intensity, "must be finite and >= 0");
+    if (!(light.inner_angle >= 0.0f) || !(light.inner_angle < light.outer_angle) ||
+        !(light.outer_angle <= 0.5f * k_pi)) {
+        std::ostringstream msg;
+        msg << "spot light angles inner = " << light.inner_angle
+            << ", outer = " << light.outer_angle << ": need 0 <= inner < outer <= pi/2";
+        throw Error(msg.str());
+    }
+}
+
+float spot_falloff(const SpotLight& light, float cos_theta) {
+    // KHR_lights_punctual's "Inner and Outer Cone Angles" implementation note.
+    const float cos_outer = std::cos(light.outer_angle);
+    const float scale = 1.0f / std::max(0.001f, std::cos(light.inner_angle) - cos_outer);
+    const float a = std::clamp((cos_theta - cos_outer) * scale, 0.0f, 1.0f);
+    return a * a;
+}
+
+LightLiSample sample_li(const SpotLight& light, const glm::vec3& ref, glm::vec2 /*u*/) {
+    const glm::vec3 to_light = light.position - ref;
+    const float d2 = glm::dot(to_light, to_light);
+    if (!(d2 > 0.0f) || !std::isfinite(d2)) return {};
+    const float d = std::sqrt(d2);
+    const glm::vec3 wi = to_light / d;
+    const float f = spot_falloff(light, glm::dot(-wi, glm::normalize(light.direction)));
+    if (!(f > 0.0f)) return {};
+    // Inverse-square law with the cone's falloff: E = I f cos(theta) / d^2.
+    return {wi, light.intensity * (f / d2), 1.0f, d, true};
+}
+
+glm::vec3 power(const SpotLight& light) {
+    // 2 pi I times the integral of the falloff over cos(theta): 1 - cos(inner) at full
+    // strength, plus the quadratic ramp's (cos(inner) - cos(outer)) / 3.
+    const float ci = std::cos(light.inner_angle), co = std::cos(light.outer_angle);
+    return light.intensity * (2.0f * k_pi * ((1.0f - ci) + (ci - co) / 3.0f));
+}
+
+}  // namespace librt
