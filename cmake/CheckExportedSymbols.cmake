@@ -22,8 +22,10 @@ endif()
 set(required
   "librt::Scene::add_sphere("
   "librt::Scene::commit()"
-  "librt::Scene::intersect("
-  "librt::Scene::occluded("
+  "librt::TopLevel::intersect("
+  "librt::TopLevel::occluded("
+  "librt::render_progressive("
+  "librt::write_exr("
   "librt::Camera::Camera("
   "librt::TriangleBvh::TriangleBvh("
   "librt::load_obj("

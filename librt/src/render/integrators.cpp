@@ -223,7 +223,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
     ray.t_max *= len;
     Bounce bounce;   // the camera ray: emission counts fully
     int hidden = 0;  // objects hidden from the camera that the camera ray passed through
-    Hit hit;  // out of the loop: every intersection that returns true rewrites it whole
+    Hit hit;         // out of the loop: every intersection that returns true rewrites it whole
     for (int depth = 0;;) {
         if (!scene.intersect_for_shading(ray, hit)) {
             radiance +=
