@@ -45,8 +45,7 @@ json glb_json(const fs::path& p) {
 }
 
 struct Expected {
-    std::size_t stored = 0, placed = 0, instances = 0, prototypes = 0, point_lights = 0,
-                other_lights = 0;
+    std::size_t stored = 0, placed = 0, instances = 0, prototypes = 0, lights = 0;
     bool emissive = false;
 };
 
@@ -81,9 +80,7 @@ Expected expected_of(const json& doc) {
             e.instances += prims[m];
         }
         if (node.contains("extensions") && node["extensions"].contains("KHR_lights_punctual")) {
-            const int l = node["extensions"]["KHR_lights_punctual"]["light"].get<int>();
-            const json& light = doc["extensions"]["KHR_lights_punctual"]["lights"][l];
-            (light["type"] == "point" ? e.point_lights : e.other_lights) += 1;
+            e.lights += 1;  // point, spot and directional are all placed
         }
         for (const json& c : node.value("children", json::array())) visit(c.get<int>());
     };
@@ -102,12 +99,10 @@ void check_data_file(const fs::path& p) {
     EXPECT_EQ(loaded.scene.instance_count(), want.instances);
     // Stored once: one prototype per primitive, however many nodes place it.
     EXPECT_EQ(loaded.scene.top_level().prototype_count(), want.prototypes);
-    const bool default_light = want.point_lights == 0 && !want.emissive;
-    EXPECT_EQ(loaded.scene.lights().size(), want.point_lights + (default_light ? 1 : 0));
-    std::size_t unsupported = 0;
+    const bool default_light = want.lights == 0 && !want.emissive;
+    EXPECT_EQ(loaded.scene.lights().size(), want.lights + (default_light ? 1 : 0));
     for (const std::string& w : loaded.warnings)
-        if (w.find("not yet supported") != std::string::npos) ++unsupported;
-    EXPECT_EQ(unsupported, want.other_lights);
+        EXPECT_EQ(w.find("not yet supported"), std::string::npos) << w;
     EXPECT_EQ(loaded.camera.width, 64);
     EXPECT_EQ(loaded.camera_name == "default", !doc.contains("cameras"));
 
@@ -227,6 +222,10 @@ TEST(GltfToScene, CameraLooksWhereItsNodePoints) {
     EXPECT_NEAR(hit.point.x, -4.0f, 1e-4f);
     EXPECT_NEAR(hit.point.y, 2.0f, 1e-4f);
     EXPECT_NEAR(hit.point.z, 3.0f, 1e-4f);
+    // znear 0.1 is the camera's near clip; no zfar: no far clip.
+    EXPECT_FLOAT_EQ(loaded.camera.near_clip, 0.1f);
+    EXPECT_TRUE(std::isinf(loaded.camera.far_clip));
+    EXPECT_FLOAT_EQ(ray.t_min, 0.1f);  // the centre ray runs along the view axis
 }
 
 TEST(GltfToScene, AspectAndYfovGiveThePredictedPixel) {
@@ -299,31 +298,49 @@ TEST(GltfToScene, MaterialMapping) {
     EXPECT_EQ(material_from_gltf(m).kind, MaterialKind::Diffuse);
 }
 
-TEST(GltfToScene, PointLightCandelaBecomeWattsPerSteradian) {
+TEST(GltfToScene, PunctualLightsBecomeRadiometricBy683) {
     GltfBuilder b = lt::one_triangle();
     b.doc["extensionsUsed"] = {"KHR_lights_punctual"};
     b.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
         {{"type", "point"}, {"intensity", 1366.0}, {"color", {1.0, 0.5, 0.25}}},
-        {{"type", "directional"}, {"intensity", 100.0}}};
+        {{"type", "directional"}, {"intensity", 100.0}},
+        {{"type", "spot"},
+         {"intensity", 683.0},
+         {"spot", {{"innerConeAngle", 0.1}, {"outerConeAngle", 0.5}}}}};
     b.doc["nodes"].push_back(
         {{"translation", {0, 0, 2}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
     b.doc["nodes"].push_back({{"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
-    b.doc["scenes"] = {{{"nodes", {0, 1, 2}}}};
+    // A spot at (1, 0, 0) turned by 90 degrees about y: local -z becomes world -x.
+    b.doc["nodes"].push_back({{"translation", {1, 0, 0}},
+                              {"rotation", {0.0, 0.70710678, 0.0, 0.70710678}},
+                              {"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}});
+    b.doc["scenes"] = {{{"nodes", {0, 1, 2, 3}}}};
     ScratchDir dir;
     const fs::path p = dir.path() / "lights.gltf";
     lt::write_file(p, b.gltf());
     const LoadedScene loaded = load_scene_file(p);
-    ASSERT_EQ(loaded.scene.lights().size(), 1u);
+    ASSERT_EQ(loaded.scene.lights().size(), 3u);
     const auto* point = std::get_if<PointLight>(&loaded.scene.lights()[0].source);
     ASSERT_NE(point, nullptr);
     // 1366 cd / 683 lm/W = 2 W/sr, times the colour.
     EXPECT_FLOAT_EQ(point->intensity.x, 2.0f);
     EXPECT_FLOAT_EQ(point->intensity.z, 0.5f);
     EXPECT_FLOAT_EQ(point->position.z, 2.0f);
-    bool warned = false;
+    // 100 lux / 683 lm/W of irradiance, from +z (the sun shines down its node's -z).
+    const auto* sun = std::get_if<DirectionalLight>(&loaded.scene.lights()[1].source);
+    ASSERT_NE(sun, nullptr);
+    EXPECT_FLOAT_EQ(sun->irradiance.y, 100.0f / 683.0f);
+    EXPECT_NEAR(glm::normalize(sun->to_light).z, 1.0f, 1e-6f);
+    // 683 cd -> 1 W/sr on the axis, the cone angles kept, the axis along world -x.
+    const auto* spot = std::get_if<SpotLight>(&loaded.scene.lights()[2].source);
+    ASSERT_NE(spot, nullptr);
+    EXPECT_FLOAT_EQ(spot->intensity.x, 1.0f);
+    EXPECT_FLOAT_EQ(spot->inner_angle, 0.1f);
+    EXPECT_FLOAT_EQ(spot->outer_angle, 0.5f);
+    EXPECT_NEAR(spot->position.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(glm::normalize(spot->direction).x, -1.0f, 1e-6f);
     for (const std::string& w : loaded.warnings)
-        warned = warned || w.find("directional lights are not yet supported") != std::string::npos;
-    EXPECT_TRUE(warned);
+        EXPECT_EQ(w.find("not yet supported"), std::string::npos) << w;
 }
 
 TEST(SceneFile, UnknownExtensionIsAnError) {

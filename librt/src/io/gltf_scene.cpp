@@ -256,22 +256,42 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
         }
     }
 
-    // Lights: point lights now; spot and directional when their light types land.
+    // Lights (KHR_lights_punctual). Photometric to radiometric by 683 lm/W: candela -> W/sr
+    // for point and spot, lux -> W/m^2 for directional (Blender's export convention, see
+    // docs/render-your-own-scene.md). Spot and sun shine down the node's local -z.
     std::size_t lights = 0;
     for (const GltfLight& l : gltf.lights) {
         const std::string who = "light '" + l.name + "'";
-        if (l.type != GltfLight::Type::Point) {
-            out.warnings.push_back(who + ": " +
-                                   (l.type == GltfLight::Type::Spot ? "spot" : "directional") +
-                                   " lights are not yet supported: ignored");
+        if (l.range > 0.0f && l.type != GltfLight::Type::Directional)
+            out.warnings.push_back(who + ": range ignored (infinite)");
+        const glm::vec3 position = glm::vec3(l.world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+        const glm::vec3 down_z = glm::vec3(l.world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
+        const glm::vec3 radiometric = l.color * (l.intensity / kLumensPerWatt);
+        try {
+            if (l.type == GltfLight::Type::Point) {
+                PointLight p;
+                p.position = position;
+                p.intensity = radiometric;
+                scene.add_point_light(p);
+            } else if (l.type == GltfLight::Type::Spot) {
+                SpotLight spot;
+                spot.position = position;
+                spot.direction = down_z;
+                spot.intensity = radiometric;
+                spot.inner_angle = l.inner_cone_angle;
+                spot.outer_angle = l.outer_cone_angle;
+                scene.add_spot_light(spot);
+            } else {
+                DirectionalLight sun;
+                sun.to_light = -down_z;
+                sun.irradiance = radiometric;
+                scene.add_directional_light(sun);
+            }
+        } catch (const Error& e) {
+            // A degenerate node transform (e.g. scaled to zero) gives no direction.
+            out.warnings.push_back(who + ": " + e.what() + ": ignored");
             continue;
         }
-        if (l.range > 0.0f) out.warnings.push_back(who + ": range ignored (infinite)");
-        PointLight p;
-        p.position = glm::vec3(l.world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-        // KHR_lights_punctual: candela; / 683 lm/W gives radiant intensity in W/sr.
-        p.intensity = l.color * (l.intensity / kLumensPerWatt);
-        scene.add_point_light(p);
         ++lights;
     }
     if (lights == 0 && !emissive && !out.bounds.empty()) {
@@ -291,8 +311,10 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
         c.up = glm::normalize(glm::vec3(camera->world * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f)));
         c.vertical_fov_degrees = glm::degrees(camera->yfov);
         c.focal_distance = 1.0f;  // pinhole: unused
-        // znear: ignored for now (a near clip is being added to the camera on another
-        // branch); zfar: librt renders to infinity.
+        // znear is a plane at that depth along the view axis, as CameraSettings::near_clip;
+        // zfar (optional in glTF) likewise.
+        c.near_clip = camera->znear;
+        if (camera->zfar > camera->znear) c.far_clip = camera->zfar;
         out.camera_name =
             camera->name.empty() ? "camera " + std::to_string(camera->camera) : camera->name;
     } else {
