@@ -8,9 +8,11 @@
 #include <librt/core/error.h>
 #include <librt/core/image.h>
 #include <librt/io/exr.h>
+#include <librt/io/hdr_image.h>
 #include <librt/io/image_io.h>
 #include <librt/io/scene_file.h>
 #include <librt/render/film.h>
+#include <librt/render/environment_light.h>
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
 
@@ -21,6 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -39,6 +42,8 @@ struct Options {
     std::uint64_t seed = 0;
     double time_limit = 0.0;
     float exposure_ev = 0.0f;
+    std::string env;          // equirectangular .hdr lighting the scene; empty = none
+    float env_strength = 1.0f;  // scale of the environment's radiance
     bool quiet = false;
 };
 
@@ -128,11 +133,21 @@ int render_file(const Options& o) {
     if (!std::isfinite(o.exposure_ev) || std::abs(o.exposure_ev) > 64.0f)
         bad("--exposure", std::to_string(o.exposure_ev), "must be in [-64, 64] (EV stops)");
     const float scale = std::exp2(o.exposure_ev);
+    if (!std::isfinite(o.env_strength) || o.env_strength < 0.0f)
+        bad("--env-strength", std::to_string(o.env_strength), "must be finite and >= 0");
+    if (o.env.empty() && o.env_strength != 1.0f)
+        bad("--env-strength", std::to_string(o.env_strength), "needs --env");
+    // The sky is read before the scene, so a bad file fails before the long load.
+    std::optional<EnvironmentLight> environment;
+    if (!o.env.empty())
+        environment = EnvironmentLight::from_image(load_hdr_image(o.env), glm::mat3(1.0f),
+                                                   o.env_strength);
 
     const auto t0 = std::chrono::steady_clock::now();
     LoadedScene loaded = load_scene_file(o.scene, file_options);
     const double load_seconds = seconds_since(t0);
     for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << '\n';
+    if (environment) loaded.scene.add_environment_light(*environment);
     const auto t1 = std::chrono::steady_clock::now();
     loaded.scene.commit();
     const double build_seconds = seconds_since(t1);
@@ -226,6 +241,11 @@ int main(int argc, char** argv) {
                    "Stop after this many seconds and write the finished passes (0 = none)")
         ->capture_default_str();
     app.add_option("--exposure", o.exposure_ev, "Exposure in stops: the image is scaled by 2^EV")
+        ->capture_default_str();
+    app.add_option("--env", o.env,
+                   "Equirectangular Radiance .hdr lighting the scene from every direction "
+                   "(importance-sampled; seen by rays that leave the scene)");
+    app.add_option("--env-strength", o.env_strength, "Scale of the --env radiance")
         ->capture_default_str();
     app.add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
     return apps::run(app, argc, argv, [&] { return render_file(o); });
