@@ -11,8 +11,8 @@
 #include <librt/io/hdr_image.h>
 #include <librt/io/image_io.h>
 #include <librt/io/scene_file.h>
-#include <librt/render/film.h>
 #include <librt/render/environment_light.h>
+#include <librt/render/film.h>
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
 
@@ -42,7 +42,7 @@ struct Options {
     std::uint64_t seed = 0;
     double time_limit = 0.0;
     float exposure_ev = 0.0f;
-    std::string env;          // equirectangular .hdr lighting the scene; empty = none
+    std::string env;            // equirectangular .hdr lighting the scene; empty = none
     float env_strength = 1.0f;  // scale of the environment's radiance
     bool quiet = false;
 };
@@ -140,8 +140,8 @@ int render_file(const Options& o) {
     // The sky is read before the scene, so a bad file fails before the long load.
     std::optional<EnvironmentLight> environment;
     if (!o.env.empty())
-        environment = EnvironmentLight::from_image(load_hdr_image(o.env), glm::mat3(1.0f),
-                                                   o.env_strength);
+        environment =
+            EnvironmentLight::from_image(load_hdr_image(o.env), glm::mat3(1.0f), o.env_strength);
 
     const auto t0 = std::chrono::steady_clock::now();
     LoadedScene loaded = load_scene_file(o.scene, file_options);
