@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <array>
 #include <cmath>
@@ -67,6 +68,46 @@ TEST(AreaLights, EmissiveMeshMisEqualsBruteForce) {
     EXPECT_EQ(scene.lights().size(), 2u);
     EXPECT_FALSE(scene.has_unsampled_emitters());
     expect_mis_equals_brute(scene, testing::top_camera(), 32, 256, "emissive mesh");
+}
+
+TEST(AreaLights, EmissiveInstancesAreLightsPlacedByTheirMatrix) {
+    Scene scene;
+    add_floor_and_ball(scene);
+    // A unit panel facing +y, placed twice: turned face down (x mirrored by the half turn
+    // about z), scaled by 1.2 and lifted to y = 2.2, and a second, smaller copy beside it.
+    TriangleMesh panel;
+    panel.positions = {{-0.5f, 0, -0.5f}, {-0.5f, 0, 0.5f}, {0.5f, 0, 0.5f}, {0.5f, 0, -0.5f}};
+    panel.triangles = {{0, 1, 2}, {0, 2, 3}};
+    const std::uint32_t proto = scene.add_mesh_prototype(panel);
+    const auto lamp = scene.add_material(Material::emissive(glm::vec3(4.0f, 3.0f, 2.0f)));
+    const glm::mat4 down = glm::rotate(glm::mat4(1.0f), k_pi, glm::vec3(0, 0, 1));
+    const glm::mat4 m1 = glm::translate(glm::mat4(1.0f), {0.0f, 2.2f, 0.0f}) *
+                         glm::scale(glm::mat4(1.0f), glm::vec3(1.2f)) * down;
+    const glm::mat4 m2 = glm::translate(glm::mat4(1.0f), {-1.2f, 2.0f, 0.8f}) *
+                         glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)) * down;
+    const std::uint32_t first = scene.add_instance(proto, m1, lamp);
+    scene.add_instance(proto, m2, lamp);
+    scene.commit();
+    ASSERT_EQ(scene.lights().size(), 4u);  // two triangles per instance
+    EXPECT_FALSE(scene.has_unsampled_emitters());
+    // The lights are the instance's world triangles: those of the baked copy.
+    Hit hit;
+    hit.object_id = first;
+    hit.primitive_id = 1;
+    const std::uint32_t li = scene.light_of_hit(hit);
+    ASSERT_NE(li, kInvalidId);
+    const auto& tl = std::get<TriangleLight>(scene.lights()[li].source);
+    const glm::uvec3& t = panel.triangles[1];
+    const glm::vec3 want[3] = {glm::vec3(m1 * glm::vec4(panel.positions[t.x], 1.0f)),
+                               glm::vec3(m1 * glm::vec4(panel.positions[t.y], 1.0f)),
+                               glm::vec3(m1 * glm::vec4(panel.positions[t.z], 1.0f))};
+    const glm::vec3 got[3] = {tl.p0, tl.p1, tl.p2};
+    for (int i = 0; i < 3; ++i) EXPECT_LT(glm::length(got[i] - want[i]), 1e-5f) << i;
+    // Power of two-sided triangles: L pi A 2, area (1.2^2 + 0.5^2) / 2 per triangle.
+    glm::vec3 total(0.0f);
+    for (const Light& l : scene.lights()) total += power(l);
+    EXPECT_NEAR(total.x, 4.0f * k_pi * 2.0f * (1.44f + 0.25f), 1e-3f);
+    expect_mis_equals_brute(scene, testing::top_camera(), 32, 256, "emissive instances");
 }
 
 TEST(AreaLights, QuadMisEqualsBruteForce) {

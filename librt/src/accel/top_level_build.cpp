@@ -144,6 +144,12 @@ std::uint32_t TopLevel::add_instance(std::uint32_t prototype, const glm::mat4& o
     return add_object(ObjectKind::Instance, std::uint32_t(instances_.size() - 1));
 }
 
+std::pair<glm::mat3, glm::vec3> TopLevel::object_to_world(std::uint32_t id) const {
+    const Object& o = objects_.at(id);
+    if (o.kind != ObjectKind::Instance) return {glm::mat3(1.0f), glm::vec3(0.0f)};
+    return {instances_[o.index].to_world, instances_[o.index].to_world_shift};
+}
+
 std::uint32_t TopLevel::prototype_of(std::uint32_t id) const {
     const Object& o = objects_.at(id);
     switch (o.kind) {

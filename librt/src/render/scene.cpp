@@ -207,11 +207,16 @@ void Scene::make_triangle_lights() {
             return o.material != kInvalidId ? o.material : triangle_materials_[o.index][tri];
         };
         const ObjectKind kind = top_.kind(id);
-        if (kind != ObjectKind::Mesh) {
-            // Spheres and instances: their emission is left to BSDF sampling.
+        if (kind == ObjectKind::Sphere) {
+            // Spheres that are no sphere light's: their emission is left to BSDF sampling.
             unsampled_emitters_ |= o.material != kInvalidId && materials_[o.material].emits();
             continue;
         }
+        // A mesh's triangles as they are; an instance's mapped to the world (the same
+        // triangles its hits report, up to rounding), so a placed panel is a light too.
+        const bool placed = kind == ObjectKind::Instance;
+        const auto [linear, shift] = top_.object_to_world(id);
+        const auto world = [&](const glm::vec3& p) { return placed ? linear * p + shift : p; };
         const TriangleMesh& mesh = top_.prototype_mesh(top_.prototype_of(id));
         bool any = false;
         for (std::size_t t = 0; t < mesh.triangles.size() && !any; ++t)
@@ -225,8 +230,8 @@ void Scene::make_triangle_lights() {
                 continue;
             }
             const glm::uvec3& i = mesh.triangles[t];
-            const TriangleLight tl{mesh.positions[i.x], mesh.positions[i.y], mesh.positions[i.z],
-                                   m.emission};
+            const TriangleLight tl{world(mesh.positions[i.x]), world(mesh.positions[i.y]),
+                                   world(mesh.positions[i.z]), m.emission};
             triangle_light_.push_back(std::uint32_t(lights_.size()));
             lights_.push_back({tl, kInvalidId});
             lights_.back().camera_visible = o.camera_visible;

@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace librt {
@@ -129,6 +130,9 @@ public:
     [[nodiscard]] ObjectKind kind(std::uint32_t id) const { return objects_.at(id).kind; }
     /// The prototype a mesh or instance object shows; kInvalidId for a sphere.
     [[nodiscard]] std::uint32_t prototype_of(std::uint32_t id) const;
+    /// Where instance object `id` puts a prototype-space point: (linear part, translation)
+    /// of its object-to-world matrix; identity and zero for every other object.
+    [[nodiscard]] std::pair<glm::mat3, glm::vec3> object_to_world(std::uint32_t id) const;
     /// The mesh of a prototype.
     [[nodiscard]] const TriangleMesh& prototype_mesh(std::uint32_t prototype) const {
         return prototypes_.at(prototype).mesh;

@@ -180,9 +180,8 @@ public:
     [[nodiscard]] const TopLevel& top_level() const { return top_; }
 
     /// Every light: those added, in the order added, then (after commit()) one
-    /// TriangleLight per emissive triangle of the mesh objects, object by object.
-    /// Emissive instances are not made lights (their emission is found only by BSDF
-    /// sampling; has_unsampled_emitters() says so).
+    /// TriangleLight per emissive triangle of the mesh and instance objects, object by
+    /// object (an instance's triangles mapped to the world by its matrix).
     [[nodiscard]] std::span<const Light> lights() const { return lights_; }
     /// Chooses the light a shading point samples; valid after commit().
     [[nodiscard]] const LightSampler& light_sampler() const { return light_sampler_; }
