@@ -46,6 +46,14 @@ elseif(MODE STREQUAL "pkgconfig")
     message(FATAL_ERROR "pkg-config --cflags --libs librt failed (${rc})")
   endif()
   separate_arguments(flags UNIX_COMMAND "${flags}")
+  # A shared librt in a prefix the loader does not search: run as a user of such a prefix
+  # would, with the .pc file's libdir on LD_LIBRARY_PATH (a static librt ignores it).
+  execute_process(COMMAND "${PKG_CONFIG}" --variable=libdir librt RESULT_VARIABLE rc
+                  OUTPUT_VARIABLE pc_libdir OUTPUT_STRIP_TRAILING_WHITESPACE)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "pkg-config --variable=libdir librt failed (${rc})")
+  endif()
+  set(ENV{LD_LIBRARY_PATH} "${pc_libdir}")
   file(REMOVE_RECURSE "${BINARY_DIR}")
   file(MAKE_DIRECTORY "${BINARY_DIR}")
   run_step("compiling with pkg-config's flags" "${CXX_COMPILER}" "${SOURCE}" -o
