@@ -115,6 +115,15 @@ struct Vertex {
 /// rounding of the geometric-side test.
 [[gnu::always_inline]] inline bsdfs::EvalPdf light_eval(Vertex& v, const glm::vec3& wi,
                                                         float& cos_i) {
+    // Lambert first, outside dispatch(): g++ keeps dispatch() with this lambda out of line
+    // (a call and an EvalPdf through memory per light sample: callgrind on the synthesis,
+    // 46M instructions); the same expressions as its Diffuse case below.
+    if (v.m.kind == MaterialKind::Diffuse) [[likely]] {
+        const float cos_s = glm::dot(v.n, wi), cos_g = glm::dot(v.g, wi);
+        cos_i = std::fabs(cos_s);
+        return bsdfs::EvalPdf{bsdfs::Diffuse::eval_cos(v.sp, cos_s, cos_g),
+                              bsdfs::Diffuse::pdf_cos(cos_s, cos_g)};
+    }
     return bsdfs::dispatch(v.m.kind, [&](auto bsdf) {
         using T = decltype(bsdf);
         if constexpr (requires { T::pdf_cos(0.0f, 0.0f); }) {
