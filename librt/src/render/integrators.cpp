@@ -13,6 +13,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <string>
 
 namespace librt {
@@ -87,20 +88,26 @@ struct Vertex {
     glm::vec3 incoming;  ///< unit direction of the ray that arrived (toward the surface)
     glm::vec3 n;         ///< unit shading normal on the incoming side
     glm::vec3 g;         ///< unit geometric normal on the incoming side
+    glm::vec3 albedo;    ///< the BSDF's albedo here (Scene::albedo)
     bool front;          ///< the incoming side is the one the primitive faces
-    ShadingPoint sp;     ///< albedo set at once; frame valid once `framed`
     bool framed = false;
+    // Constructed only by point(): a member ShadingPoint would have its defaulted frame
+    // written at every vertex, and Lambertian vertices never read it.
+    union {
+        ShadingPoint sp;  ///< valid once `framed`
+    };
 
-    Vertex(const Material& material, const Hit& hit, const glm::vec3& dir, const glm::vec3& albedo)
-        : m(material), incoming(dir), front(glm::dot(dir, hit.geometric_normal) < 0.0f) {
+    Vertex(const Material& material, const Hit& hit, const glm::vec3& dir,
+           const glm::vec3& albedo_at_hit)
+        : m(material), incoming(dir), albedo(albedo_at_hit),
+          front(glm::dot(dir, hit.geometric_normal) < 0.0f) {
         n = front ? hit.shading_normal : -hit.shading_normal;
         g = front ? hit.geometric_normal : -hit.geometric_normal;
-        sp.albedo = albedo;
     }
     /// The ShadingPoint with its frame (ShadingFrame::at's, built on first use).
     const ShadingPoint& point() {
         if (!framed) {
-            sp.frame = ShadingFrame::facing(n, g, front);
+            new (&sp) ShadingPoint{ShadingFrame::facing(n, g, front), albedo};
             framed = true;
         }
         return sp;
@@ -121,7 +128,9 @@ struct Vertex {
     if (v.m.kind == MaterialKind::Diffuse) [[likely]] {
         const float cos_s = glm::dot(v.n, wi), cos_g = glm::dot(v.g, wi);
         cos_i = std::fabs(cos_s);
-        return bsdfs::EvalPdf{bsdfs::Diffuse::eval_cos(v.sp, cos_s, cos_g),
+        // Diffuse::eval_cos, from the albedo alone (no ShadingPoint built).
+        return bsdfs::EvalPdf{bsdfs::Diffuse::reaches_cos(cos_s, cos_g) ? v.albedo * k_inv_pi
+                                                                        : glm::vec3(0.0f),
                               bsdfs::Diffuse::pdf_cos(cos_s, cos_g)};
     }
     return bsdfs::dispatch(v.m.kind, [&](auto bsdf) {
@@ -130,7 +139,7 @@ struct Vertex {
             // wi.z in the local frame is exactly dot(n, wi): to_local's third component.
             const float cos_s = glm::dot(v.n, wi), cos_g = glm::dot(v.g, wi);
             cos_i = std::fabs(cos_s);
-            return bsdfs::EvalPdf{T::eval_cos(v.sp, cos_s, cos_g), T::pdf_cos(cos_s, cos_g)};
+            return bsdfs::EvalPdf{T::eval_cos(v.point(), cos_s, cos_g), T::pdf_cos(cos_s, cos_g)};
         } else {
             const ShadingPoint& p = v.point();
             const glm::vec3 wo = v.wo(), wl = p.frame.to_local(wi);
@@ -294,7 +303,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             wi_world = frame.to_world(wl);
             if (!(glm::dot(wi_world, v.g) > 0.0f)) break;
             // Cosine sampling: (albedo / pi) cos / (cos / pi) = albedo.
-            bs = {wl, v.sp.albedo, cosine_hemisphere_pdf(wl.z), bsdfs::Diffuse::kLobes};
+            bs = {wl, v.albedo, cosine_hemisphere_pdf(wl.z), bsdfs::Diffuse::kLobes};
             if (!bs.valid()) break;
         } else {
             const ShadingPoint& sp = v.point();
