@@ -248,7 +248,9 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                 beta * escaped(scene, ray.direction, bounce, S == Strategy::Brute, depth == 0);
             break;
         }
-        if (depth == 0 && !scene.camera_visible(hit.object_id)) {
+        // may_hide_objects() first: a flag, where camera_visible() is a bounds-checked
+        // lookup per camera hit that no scene without hidden objects needs.
+        if (depth == 0 && scene.may_hide_objects() && !scene.camera_visible(hit.object_id)) {
             // Camera rays go on through hidden objects (bounded: a ray grazing a hidden
             // surface many times must still end).
             if (++hidden > 64) break;
