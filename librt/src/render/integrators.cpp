@@ -99,7 +99,9 @@ struct Vertex {
 
     Vertex(const Material& material, const Hit& hit, const glm::vec3& dir,
            const glm::vec3& albedo_at_hit)
-        : m(material), incoming(dir), albedo(albedo_at_hit),
+        : m(material),
+          incoming(dir),
+          albedo(albedo_at_hit),
           front(glm::dot(dir, hit.geometric_normal) < 0.0f) {
         n = front ? hit.shading_normal : -hit.shading_normal;
         g = front ? hit.geometric_normal : -hit.geometric_normal;
@@ -129,9 +131,9 @@ struct Vertex {
         const float cos_s = glm::dot(v.n, wi), cos_g = glm::dot(v.g, wi);
         cos_i = std::fabs(cos_s);
         // Diffuse::eval_cos, from the albedo alone (no ShadingPoint built).
-        return bsdfs::EvalPdf{bsdfs::Diffuse::reaches_cos(cos_s, cos_g) ? v.albedo * k_inv_pi
-                                                                        : glm::vec3(0.0f),
-                              bsdfs::Diffuse::pdf_cos(cos_s, cos_g)};
+        return bsdfs::EvalPdf{
+            bsdfs::Diffuse::reaches_cos(cos_s, cos_g) ? v.albedo * k_inv_pi : glm::vec3(0.0f),
+            bsdfs::Diffuse::pdf_cos(cos_s, cos_g)};
     }
     return bsdfs::dispatch(v.m.kind, [&](auto bsdf) {
         using T = decltype(bsdf);
