@@ -292,7 +292,11 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             if (depth >= settings.max_depth && !scene.has_unsampled_emitters()) return radiance;
         }
         sampler.set_dimension(dim + SampleDimensions::k_bounce_lobe);
-        const float uc = chooses_lobe(material_lobes) ? sampler.next_1d() : 0.0f;
+        // Lambert's one lobe needs no choice: its kind test first spares the lobe count.
+        static_assert(!chooses_lobe(bsdfs::Diffuse::kLobes));
+        const float uc = m.kind != MaterialKind::Diffuse && chooses_lobe(material_lobes)
+                             ? sampler.next_1d()
+                             : 0.0f;
         sampler.set_dimension(dim + SampleDimensions::k_bounce_bsdf);
         const glm::vec2 u = sampler.next_2d();
         glm::vec3 wi_world;
