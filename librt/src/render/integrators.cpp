@@ -266,7 +266,9 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                 emitter_weight(scene, hit, ray.direction, S == Strategy::Brute ? Bounce{} : bounce);
             if (w > 0.0f) radiance += beta * m.emission * w;
         }
-        const BsdfLobe material_lobes = bsdfs::lobes_of(m);
+        // Lambert's lobes are a constant: no dispatch for the common kind.
+        const BsdfLobe material_lobes =
+            m.kind == MaterialKind::Diffuse ? bsdfs::Diffuse::kLobes : bsdfs::lobes_of(m);
         if (depth >= settings.max_depth || material_lobes == BsdfLobe::None) break;
         // This bounce's dimensions (SampleDimensions); the independent stream is unchanged.
         const std::uint32_t dim = SampleDimensions::bounce(static_cast<std::uint32_t>(depth));
