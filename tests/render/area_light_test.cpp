@@ -215,7 +215,9 @@ TEST(LightVisibility, HiddenSphereLightLetsCameraRaysThroughButStillLights) {
     Sampler sampler(0, 0, 0, 1);
     const glm::vec3 seen = direct.li(scene, cam.ray(0, 0), sampler);
     EXPECT_FLOAT_EQ(seen.x, 8.0f) << "visible: the camera sees the light's radiance";
+    EXPECT_FALSE(scene.may_hide_objects()) << "nothing hidden yet: the path loop skips the lookup";
     scene.set_camera_visible(obj, false);
+    EXPECT_TRUE(scene.may_hide_objects());
     const glm::vec3 hidden = direct.li(scene, cam.ray(0, 0), sampler);
     EXPECT_LT(hidden.x, 8.0f);
     EXPECT_GT(hidden.x, 0.0f) << "behind the hidden light: the ball, lit by that light";

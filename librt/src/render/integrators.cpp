@@ -13,7 +13,9 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <string>
+#include <variant>
 
 namespace librt {
 namespace {
@@ -87,20 +89,28 @@ struct Vertex {
     glm::vec3 incoming;  ///< unit direction of the ray that arrived (toward the surface)
     glm::vec3 n;         ///< unit shading normal on the incoming side
     glm::vec3 g;         ///< unit geometric normal on the incoming side
+    glm::vec3 albedo;    ///< the BSDF's albedo here (Scene::albedo)
     bool front;          ///< the incoming side is the one the primitive faces
-    ShadingPoint sp;     ///< albedo set at once; frame valid once `framed`
     bool framed = false;
+    // Constructed only by point(): a member ShadingPoint would have its defaulted frame
+    // written at every vertex, and Lambertian vertices never read it.
+    union {
+        ShadingPoint sp;  ///< valid once `framed`
+    };
 
-    Vertex(const Material& material, const Hit& hit, const glm::vec3& dir, const glm::vec3& albedo)
-        : m(material), incoming(dir), front(glm::dot(dir, hit.geometric_normal) < 0.0f) {
+    Vertex(const Material& material, const Hit& hit, const glm::vec3& dir,
+           const glm::vec3& albedo_at_hit)
+        : m(material),
+          incoming(dir),
+          albedo(albedo_at_hit),
+          front(glm::dot(dir, hit.geometric_normal) < 0.0f) {
         n = front ? hit.shading_normal : -hit.shading_normal;
         g = front ? hit.geometric_normal : -hit.geometric_normal;
-        sp.albedo = albedo;
     }
     /// The ShadingPoint with its frame (ShadingFrame::at's, built on first use).
     const ShadingPoint& point() {
         if (!framed) {
-            sp.frame = ShadingFrame::facing(n, g, front);
+            new (&sp) ShadingPoint{ShadingFrame::facing(n, g, front), albedo};
             framed = true;
         }
         return sp;
@@ -115,13 +125,24 @@ struct Vertex {
 /// rounding of the geometric-side test.
 [[gnu::always_inline]] inline bsdfs::EvalPdf light_eval(Vertex& v, const glm::vec3& wi,
                                                         float& cos_i) {
+    // Lambert first, outside dispatch(): g++ keeps dispatch() with this lambda out of line
+    // (a call and an EvalPdf through memory per light sample: callgrind on the synthesis,
+    // 46M instructions); the same expressions as its Diffuse case below.
+    if (v.m.kind == MaterialKind::Diffuse) [[likely]] {
+        const float cos_s = glm::dot(v.n, wi), cos_g = glm::dot(v.g, wi);
+        cos_i = std::fabs(cos_s);
+        // Diffuse::eval_cos, from the albedo alone (no ShadingPoint built).
+        return bsdfs::EvalPdf{
+            bsdfs::Diffuse::reaches_cos(cos_s, cos_g) ? v.albedo * k_inv_pi : glm::vec3(0.0f),
+            bsdfs::Diffuse::pdf_cos(cos_s, cos_g)};
+    }
     return bsdfs::dispatch(v.m.kind, [&](auto bsdf) {
         using T = decltype(bsdf);
         if constexpr (requires { T::pdf_cos(0.0f, 0.0f); }) {
             // wi.z in the local frame is exactly dot(n, wi): to_local's third component.
             const float cos_s = glm::dot(v.n, wi), cos_g = glm::dot(v.g, wi);
             cos_i = std::fabs(cos_s);
-            return bsdfs::EvalPdf{T::eval_cos(v.sp, cos_s, cos_g), T::pdf_cos(cos_s, cos_g)};
+            return bsdfs::EvalPdf{T::eval_cos(v.point(), cos_s, cos_g), T::pdf_cos(cos_s, cos_g)};
         } else {
             const ShadingPoint& p = v.point();
             const glm::vec3 wo = v.wo(), wl = p.frame.to_local(wi);
@@ -178,7 +199,11 @@ glm::vec3 escaped(const Scene& scene, const glm::vec3& dir, const Bounce& bounce
     const SampledLight chosen = lights.sample(u_light);
     if (!chosen.valid()) return glm::vec3(0.0f);
     const Light& light = scene.lights()[chosen.light];
-    const LightLiSample s = sample_li(light, hit.point, u);
+    // Sphere lights (the report scenes' kind) called directly: std::visit over all the
+    // light types costs a dispatch per sample; the same sample_li either way.
+    const SphereLight* sphere = std::get_if<SphereLight>(&light.source);
+    const LightLiSample s =
+        sphere != nullptr ? sample_li(*sphere, hit.point, u) : sample_li(light, hit.point, u);
     if (!s.valid()) return glm::vec3(0.0f);
     // The unshadowed integrand f L |cos(theta_i)|; no shadow ray when it is 0.
     float cos_i = 0.0f;
@@ -230,7 +255,9 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                 beta * escaped(scene, ray.direction, bounce, S == Strategy::Brute, depth == 0);
             break;
         }
-        if (depth == 0 && !scene.camera_visible(hit.object_id)) {
+        // may_hide_objects() first: a flag, where camera_visible() is a bounds-checked
+        // lookup per camera hit that no scene without hidden objects needs.
+        if (depth == 0 && scene.may_hide_objects() && !scene.camera_visible(hit.object_id)) {
             // Camera rays go on through hidden objects (bounded: a ray grazing a hidden
             // surface many times must still end).
             if (++hidden > 64) break;
@@ -244,7 +271,9 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                 emitter_weight(scene, hit, ray.direction, S == Strategy::Brute ? Bounce{} : bounce);
             if (w > 0.0f) radiance += beta * m.emission * w;
         }
-        const BsdfLobe material_lobes = bsdfs::lobes_of(m);
+        // Lambert's lobes are a constant: no dispatch for the common kind.
+        const BsdfLobe material_lobes =
+            m.kind == MaterialKind::Diffuse ? bsdfs::Diffuse::kLobes : bsdfs::lobes_of(m);
         if (depth >= settings.max_depth || material_lobes == BsdfLobe::None) break;
         // This bounce's dimensions (SampleDimensions); the independent stream is unchanged.
         const std::uint32_t dim = SampleDimensions::bounce(static_cast<std::uint32_t>(depth));
@@ -270,15 +299,37 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             if (depth >= settings.max_depth && !scene.has_unsampled_emitters()) return radiance;
         }
         sampler.set_dimension(dim + SampleDimensions::k_bounce_lobe);
-        const float uc = chooses_lobe(material_lobes) ? sampler.next_1d() : 0.0f;
+        // Lambert's one lobe needs no choice: its kind test first spares the lobe count.
+        static_assert(!chooses_lobe(bsdfs::Diffuse::kLobes));
+        const float uc = m.kind != MaterialKind::Diffuse && chooses_lobe(material_lobes)
+                             ? sampler.next_1d()
+                             : 0.0f;
         sampler.set_dimension(dim + SampleDimensions::k_bounce_bsdf);
         const glm::vec2 u = sampler.next_2d();
-        const ShadingPoint& sp = v.point();
-        const BsdfSample bs = bsdfs::dispatch(m.kind, [&](auto bsdf) {
-            // wo converted inside each kind's case: Lambert ignores it, and there it is dropped.
-            return decltype(bsdf)::sample(m, sp, v.wo(), uc, u);
-        });
-        if (!bs.valid()) break;  // absorbed, or below the real surface
+        glm::vec3 wi_world;
+        BsdfSample bs;
+        if (m.kind == MaterialKind::Diffuse) [[likely]] {
+            // Lambert in world space, as before the BSDF seam: its sample needs only the
+            // shading frame's to_world, so neither the geometric normal's local copy nor
+            // the ShadingPoint is built (callgrind on the synthesis: fewer instructions
+            // per vertex). Below the real surface ends the path, as Diffuse::sample does.
+            const Frame frame = Frame::from_normal(v.n);
+            const glm::vec3 wl = sample_cosine_hemisphere(u);
+            wi_world = frame.to_world(wl);
+            if (!(glm::dot(wi_world, v.g) > 0.0f)) break;
+            // Cosine sampling: (albedo / pi) cos / (cos / pi) = albedo.
+            bs = {wl, v.albedo, cosine_hemisphere_pdf(wl.z), bsdfs::Diffuse::kLobes};
+            if (!bs.valid()) break;
+        } else {
+            const ShadingPoint& sp = v.point();
+            bs = bsdfs::dispatch(m.kind, [&](auto bsdf) {
+                // wo converted inside each kind's case: Lambert ignores it, and there it is
+                // dropped.
+                return decltype(bsdf)::sample(m, sp, v.wo(), uc, u);
+            });
+            if (!bs.valid()) break;  // absorbed, or below the real surface
+            wi_world = sp.frame.to_world(bs.wi);
+        }
         beta *= bs.weight;
         if (has(bs.lobe, BsdfLobe::Specular))
             bounce = {EmitterWeight::Full, 0.0f, hit.point};
@@ -294,7 +345,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             beta /= q;
         }
         if (!(max_component(beta) > 0.0f)) break;
-        ray = spawn_ray(hit.point, hit.geometric_normal, sp.frame.to_world(bs.wi));
+        ray = spawn_ray(hit.point, hit.geometric_normal, wi_world);
     }
     return radiance;
 }

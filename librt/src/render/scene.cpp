@@ -193,6 +193,8 @@ void Scene::set_camera_visible(std::uint32_t object_id, bool visible) {
         throw Error("set_camera_visible: object id " + std::to_string(object_id) +
                     ", the scene has " + std::to_string(objects_.size()) + " objects");
     objects_[object_id].camera_visible = visible;
+    // Stays set once any object was hidden: a conservative hint (see may_hide_objects).
+    if (!visible) hidden_objects_ = true;
 }
 
 void Scene::make_triangle_lights() {

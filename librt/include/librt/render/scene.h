@@ -119,6 +119,9 @@ public:
     [[nodiscard]] bool camera_visible(std::uint32_t object_id) const {
         return object_id >= objects_.size() || objects_[object_id].camera_visible;
     }
+    /// False when no object was ever hidden from the camera: camera_visible() is then true
+    /// for every id, and the path loop skips that lookup at each camera hit.
+    [[nodiscard]] bool may_hide_objects() const { return hidden_objects_; }
 
     /// Builds the acceleration structures. Must be called after the last add_* and before
     /// any query; calling it again without changes does nothing.
@@ -250,6 +253,7 @@ private:
 
     TopLevel top_;                     ///< the geometry and its acceleration structure
     bool unsampled_emitters_ = false;  ///< see has_unsampled_emitters()
+    bool hidden_objects_ = false;      ///< see may_hide_objects()
     bool committed_ = false;
 };
 
