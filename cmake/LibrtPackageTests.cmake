@@ -74,6 +74,8 @@ add_test(NAME package.pkgconfig
     -D SOURCE=${PROJECT_SOURCE_DIR}/examples/bvh_only/main.cpp
     -D BINARY_DIR=${LIBRT_PACKAGE_TEST_DIR}/pkgconfig
     -D CXX_COMPILER=${CMAKE_CXX_COMPILER}
+    "-DCXX_FLAGS=${CMAKE_CXX_FLAGS} ${LIBRT_EXAMPLE_CXX_FLAGS}"
+    "-DEXE_LINKER_FLAGS=${CMAKE_EXE_LINKER_FLAGS}"
     -D APP=${_librt_installed_app}
     -P "${_librt_package_script}")
 set_tests_properties(package.pkgconfig PROPERTIES

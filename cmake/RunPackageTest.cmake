@@ -1,6 +1,7 @@
 # Script (cmake -P) behind the package tests of cmake/LibrtPackageTests.cmake.
 #   MODE=install: BUILD_DIR, PREFIX, CONFIG. Installs the build into an emptied PREFIX.
-#   MODE=pkgconfig: PREFIX, SOURCE (a .cpp), BINARY_DIR, CXX_COMPILER, APP (an installed
+#   MODE=pkgconfig: PREFIX, SOURCE (a .cpp), BINARY_DIR, CXX_COMPILER, CXX_FLAGS and
+#                 EXE_LINKER_FLAGS (the build's, e.g. the sanitizers), APP (an installed
 #                 app name, or empty). Compiles SOURCE with the flags
 #                 `pkg-config --cflags --libs librt` gives from PREFIX's librt.pc alone, runs
 #                 it, and runs PREFIX/bin/APP --version.
@@ -56,7 +57,10 @@ elseif(MODE STREQUAL "pkgconfig")
   set(ENV{LD_LIBRARY_PATH} "${pc_libdir}")
   file(REMOVE_RECURSE "${BINARY_DIR}")
   file(MAKE_DIRECTORY "${BINARY_DIR}")
-  run_step("compiling with pkg-config's flags" "${CXX_COMPILER}" "${SOURCE}" -o
+  # The build's own compile and link flags too: an instrumented (sanitizer) librt needs
+  # its runtime in the program that links it.
+  separate_arguments(build_flags UNIX_COMMAND "${CXX_FLAGS} ${EXE_LINKER_FLAGS}")
+  run_step("compiling with pkg-config's flags" "${CXX_COMPILER}" ${build_flags} "${SOURCE}" -o
            "${BINARY_DIR}/pc_example" ${flags})
   set(_librt_step_options WORKING_DIRECTORY "${BINARY_DIR}")
   run_step("running the pkg-config example" "${BINARY_DIR}/pc_example")
