@@ -217,8 +217,10 @@ void Scene::make_triangle_lights() {
         // A mesh's triangles as they are; an instance's mapped to the world (the same
         // triangles its hits report, up to rounding), so a placed panel is a light too.
         const bool placed = kind == ObjectKind::Instance;
-        const std::pair<glm::mat3, glm::vec3> m = top_.object_to_world(id);
-        const auto world = [&](const glm::vec3& p) { return placed ? m.first * p + m.second : p; };
+        const std::pair<glm::mat3, glm::vec3> to_world = top_.object_to_world(id);
+        const auto world = [&](const glm::vec3& p) {
+            return placed ? to_world.first * p + to_world.second : p;
+        };
         const TriangleMesh& mesh = top_.prototype_mesh(top_.prototype_of(id));
         bool any = false;
         for (std::size_t t = 0; t < mesh.triangles.size() && !any; ++t)
