@@ -1,3 +1,4 @@
+#include "light_validation.h"
 #include "planar_light.h"
 
 #include <librt/core/error.h>
@@ -12,13 +13,10 @@
 #include <sstream>
 
 namespace librt {
-namespace {
 
-[[noreturn]] void fail(const char* what, const glm::vec3& v, const char* rule) {
-    std::ostringstream msg;
-    msg << what << " = (" << v.x << ", " << v.y << ", " << v.z << "): " << rule;
-    throw Error(msg.str());
-}
+using detail::fail_light_parameter;
+
+namespace {
 
 /// An orthonormal frame (t, b, n) of the disk, n its unit front normal.
 struct DiskFrame {
@@ -40,9 +38,10 @@ float polygon_area(float r) { return 0.5f * float(kDiskLightSides) * r * r * std
 }  // namespace
 
 void validate(const DiskLight& light) {
-    if (!finite(light.center)) fail("disk light center", light.center, "must be finite");
+    if (!finite(light.center))
+        fail_light_parameter("disk light center", light.center, "must be finite");
     if (!finite(light.normal) || !(glm::length(light.normal) > 0.0f))
-        fail("disk light normal", light.normal, "must be finite and non-zero");
+        fail_light_parameter("disk light normal", light.normal, "must be finite and non-zero");
     if (!std::isfinite(light.radius) || !(light.radius > 0.0f)) {
         std::ostringstream msg;
         msg << "disk light radius = " << light.radius << ": must be finite and > 0";
@@ -50,7 +49,7 @@ void validate(const DiskLight& light) {
     }
     if (!finite(light.radiance) || light.radiance.x < 0.0f || light.radiance.y < 0.0f ||
         light.radiance.z < 0.0f)
-        fail("disk light radiance", light.radiance, "must be finite and >= 0");
+        fail_light_parameter("disk light radiance", light.radiance, "must be finite and >= 0");
 }
 
 glm::vec3 disk_light_corner(const DiskLight& light, int i) {

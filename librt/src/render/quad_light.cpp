@@ -1,3 +1,4 @@
+#include "light_validation.h"
 #include "planar_light.h"
 
 #include <librt/core/error.h>
@@ -7,29 +8,23 @@
 
 #include <glm/geometric.hpp>
 
-#include <sstream>
-
 namespace librt {
-namespace {
 
-[[noreturn]] void fail(const char* what, const glm::vec3& v, const char* rule) {
-    std::ostringstream msg;
-    msg << what << " = (" << v.x << ", " << v.y << ", " << v.z << "): " << rule;
-    throw Error(msg.str());
-}
-
-}  // namespace
+using detail::fail_light_parameter;
 
 void validate(const QuadLight& light) {
-    if (!finite(light.corner)) fail("quad light corner", light.corner, "must be finite");
-    if (!finite(light.edge0)) fail("quad light edge0", light.edge0, "must be finite");
-    if (!finite(light.edge1)) fail("quad light edge1", light.edge1, "must be finite");
+    if (!finite(light.corner))
+        fail_light_parameter("quad light corner", light.corner, "must be finite");
+    if (!finite(light.edge0))
+        fail_light_parameter("quad light edge0", light.edge0, "must be finite");
+    if (!finite(light.edge1))
+        fail_light_parameter("quad light edge1", light.edge1, "must be finite");
     const float area = glm::length(glm::cross(light.edge0, light.edge1));
     if (!(area > 0.0f) || !std::isfinite(area))
-        fail("quad light edge1", light.edge1, "spans no area with edge0");
+        fail_light_parameter("quad light edge1", light.edge1, "spans no area with edge0");
     if (!finite(light.radiance) || light.radiance.x < 0.0f || light.radiance.y < 0.0f ||
         light.radiance.z < 0.0f)
-        fail("quad light radiance", light.radiance, "must be finite and >= 0");
+        fail_light_parameter("quad light radiance", light.radiance, "must be finite and >= 0");
 }
 
 LightLiSample sample_li(const QuadLight& light, const glm::vec3& ref, glm::vec2 u) {

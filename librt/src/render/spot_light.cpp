@@ -1,3 +1,5 @@
+#include "light_validation.h"
+
 #include <librt/core/error.h>
 #include <librt/core/finite.h>
 #include <librt/render/spot_light.h>
@@ -10,23 +12,18 @@
 #include <sstream>
 
 namespace librt {
-namespace {
 
-[[noreturn]] void fail(const char* what, const glm::vec3& v, const char* rule) {
-    std::ostringstream msg;
-    msg << what << " = (" << v.x << ", " << v.y << ", " << v.z << "): " << rule;
-    throw Error(msg.str());
-}
-
-}  // namespace
+using detail::fail_light_parameter;
 
 void validate(const SpotLight& light) {
-    if (!finite(light.position)) fail("spot light position", light.position, "must be finite");
+    if (!finite(light.position))
+        fail_light_parameter("spot light position", light.position, "must be finite");
     if (!finite(light.direction) || !(glm::length(light.direction) > 0.0f))
-        fail("spot light direction", light.direction, "must be finite and non-zero");
+        fail_light_parameter("spot light direction", light.direction,
+                             "must be finite and non-zero");
     if (!finite(light.intensity) || light.intensity.x < 0.0f || light.intensity.y < 0.0f ||
         light.intensity.z < 0.0f)
-        fail("spot light intensity", light.intensity, "must be finite and >= 0");
+        fail_light_parameter("spot light intensity", light.intensity, "must be finite and >= 0");
     if (!(light.inner_angle >= 0.0f) || !(light.inner_angle < light.outer_angle) ||
         !(light.outer_angle <= 0.5f * k_pi)) {
         std::ostringstream msg;
