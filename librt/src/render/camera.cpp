@@ -37,8 +37,28 @@ void validate(const CameraSettings& s) {
     if (s.height < 1 || s.height > k_max_size) {
         fail("height", std::to_string(s.height), "must be in [1, 65536]");
     }
-    if (!(s.vertical_fov_degrees > 0.0f && s.vertical_fov_degrees < 180.0f)) {
-        fail("vertical_fov_degrees", to_text(s.vertical_fov_degrees), "must be in (0, 180)");
+    const int projection = static_cast<int>(s.projection);
+    if (projection < static_cast<int>(Projection::Perspective) ||
+        projection > static_cast<int>(Projection::Orthographic)) {
+        fail("projection", std::to_string(projection), "is not a Projection");
+    }
+    if (s.projection == Projection::Perspective) {
+        if (!(s.vertical_fov_degrees > 0.0f && s.vertical_fov_degrees < 180.0f)) {
+            fail("vertical_fov_degrees", to_text(s.vertical_fov_degrees), "must be in (0, 180)");
+        }
+    } else {
+        // 2 xmag must stay finite too: it is the image's width in scene units.
+        if (!(s.xmag > 0.0f) || !std::isfinite(2.0f * s.xmag)) {
+            fail("xmag", to_text(s.xmag), "must be finite and > 0 (orthographic half width)");
+        }
+        if (!(s.ymag > 0.0f) || !std::isfinite(2.0f * s.ymag)) {
+            fail("ymag", to_text(s.ymag), "must be finite and > 0 (orthographic half height)");
+        }
+        // Parallel rays have no centre of projection to focus through.
+        if (s.lens != LensModel::Pinhole) {
+            fail("lens", std::to_string(static_cast<int>(s.lens)),
+                 "must be Pinhole for an orthographic camera (no depth of field)");
+        }
     }
     if (!finite(s.position)) fail("position", to_text(s.position), "must be finite");
     if (!finite(s.look_at)) fail("look_at", to_text(s.look_at), "must be finite");
@@ -106,6 +126,9 @@ Camera::Camera(const CameraSettings& settings) : settings_(settings) {
     // The report's image-plane distance: H / (2 tan(fov/2)) pixels.
     image_plane_distance_ =
         static_cast<float>(static_cast<double>(settings_.height) / (2.0 * std::tan(half_fov)));
+    // glTF's orthographic projection maps [-xmag, xmag] x [-ymag, ymag] onto the image.
+    ortho_pixel_size_ = {2.0f * settings_.xmag / static_cast<float>(settings_.width),
+                         2.0f * settings_.ymag / static_cast<float>(settings_.height)};
 }
 
 CameraRay Camera::sample_ray(int px, int py, Sampler& sampler) const {
@@ -126,6 +149,7 @@ CameraRay Camera::sample_ray(int px, int py, Sampler& sampler) const {
     // The report's camera-space direction: (j - W/2 + 0.5 + dx, -i + H/2 - 0.5 + dy, -d).
     const float cx = static_cast<float>(px) - half_w + 0.5f + offset.x;
     const float cy = -static_cast<float>(py) + half_h - 0.5f + offset.y;
+    if (settings_.projection == Projection::Orthographic) return orthographic_ray(cx, cy, weight);
     const glm::vec3 u = glm::normalize(cx * right_ + cy * up_ + image_plane_distance_ * forward_);
 
     CameraRay out;
@@ -151,6 +175,20 @@ CameraRay Camera::sample_ray(int px, int py, Sampler& sampler) const {
         ray.t_min = settings_.near_clip / cos_axis;
         ray.t_max = settings_.far_clip / cos_axis;
     }
+    return out;
+}
+
+CameraRay Camera::orthographic_ray(float cx, float cy, float weight) const {
+    CameraRay out;
+    out.weight = weight;
+    Ray& ray = out.ray;
+    // Pixel offsets (cx, cy) from the image centre, scaled to scene units on the camera plane.
+    ray.origin =
+        settings_.position + (cx * ortho_pixel_size_.x) * right_ + (cy * ortho_pixel_size_.y) * up_;
+    ray.direction = forward_;
+    // The direction is the optical axis: depths are distances.
+    ray.t_min = settings_.near_clip;
+    ray.t_max = settings_.far_clip;
     return out;
 }
 
