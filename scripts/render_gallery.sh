@@ -3,9 +3,11 @@
 # gallery (rt_materials, under its built-in sky and under the data's sky.hdr) and every
 # glTF scene of the data directory through rt_render, into docs/gallery/ (or OUTDIR):
 #
-#   bash scripts/render_gallery.sh [DATA_DIR [OUTDIR]]
+#   bash scripts/render_gallery.sh [DATA_DIR [OUTDIR [app options...]]]
 #
-# DATA_DIR defaults to ../shared/data (relative to the repository root). Sizes and sample
+# DATA_DIR defaults to ../shared/data (relative to the repository root). Extra options go
+# last to every command and so win over the script's (e.g. `--size 64x36 --spp 2` for a
+# quick look; the ctest smoke.render_gallery_script runs it so). Sizes and sample
 # counts are the gallery's: each image takes under a minute on two busy cores, the
 # material gallery under two. Re-run it after the glTF materials and textures change, so
 # the gallery shows what main renders. Builds the apps first when they are missing.
@@ -13,6 +15,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 data=${1:-../shared/data}
 out=${2:-docs/gallery}
+extra=("${@:3}")
 apps=${LIBRT_APPS_DIR:-build/release/apps}
 if [ ! -x "$apps/rt_render" ] || [ ! -x "$apps/rt_materials" ]; then
   cmake --preset release
@@ -20,7 +23,7 @@ if [ ! -x "$apps/rt_render" ] || [ ! -x "$apps/rt_materials" ]; then
 fi
 mkdir -p "$out"
 TIMEFORMAT='   %R s wall, %U s user'
-run() { echo "== $*"; time "$@"; }
+run() { echo "== $* ${extra[*]}"; time "$@" "${extra[@]}"; }
 
 # The material gallery.
 run "$apps/rt_materials" --size 800 --spp 64 -q -o "$out/materials.png"
