@@ -144,11 +144,11 @@ private:
     [[nodiscard]] CameraRay orthographic_ray(int px, int py, Sampler& sampler) const;
 
     CameraSettings settings_;
+    glm::vec2 ortho_pixel_size_{1.0f};  // (2 xmag / W, 2 ymag / H): scene units per pixel
     glm::vec3 right_{1.0f, 0.0f, 0.0f};
     glm::vec3 up_{0.0f, 1.0f, 0.0f};
     glm::vec3 forward_{0.0f, 0.0f, -1.0f};
     float image_plane_distance_ = 1.0f;  // H / (2 tan(fov/2)), in pixels
-    glm::vec2 ortho_pixel_size_{1.0f};   // (2 xmag / W, 2 ymag / H): scene units per pixel
     PixelFilter filter_;                 // settings_.pixel_filter when it is used, else a box
 };
 
