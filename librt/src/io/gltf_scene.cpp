@@ -32,8 +32,7 @@ bool all_digits(const std::string& s) {
 }
 
 /// The camera the options choose, or nullptr for "none in the file: use the default".
-const GltfCamera* choose_camera(const GltfScene& gltf, const std::string& wanted,
-                                std::vector<std::string>& warnings) {
+const GltfCamera* choose_camera(const GltfScene& gltf, const std::string& wanted) {
     auto list = [&gltf]() {
         std::string names;
         for (std::size_t i = 0; i < gltf.cameras.size(); ++i) {
@@ -41,16 +40,7 @@ const GltfCamera* choose_camera(const GltfScene& gltf, const std::string& wanted
         }
         return names.empty() ? std::string("none") : names;
     };
-    if (wanted.empty()) {
-        for (const GltfCamera& c : gltf.cameras) {
-            if (c.type == GltfCamera::Type::Perspective) return &c;
-        }
-        if (!gltf.cameras.empty()) {
-            warnings.push_back(
-                "orthographic cameras are not supported yet: using a default camera");
-        }
-        return nullptr;
-    }
+    if (wanted.empty()) return gltf.cameras.empty() ? nullptr : &gltf.cameras.front();
     const GltfCamera* found = nullptr;
     if (all_digits(wanted) && wanted.size() < 9) {
         const std::size_t i = std::stoul(wanted);
@@ -66,9 +56,6 @@ const GltfCamera* choose_camera(const GltfScene& gltf, const std::string& wanted
     if (found == nullptr) {
         throw Error("camera = " + wanted + ": no such camera in the file (cameras: " + list() +
                     ")");
-    }
-    if (found->type != GltfCamera::Type::Perspective) {
-        throw Error("camera = " + wanted + ": orthographic cameras are not supported yet");
     }
     return found;
 }
@@ -301,22 +288,38 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
     }
 
     // Camera: the file's (placed by its node), else one framing the bounds.
-    const GltfCamera* camera = choose_camera(gltf, options.camera, out.warnings);
+    const GltfCamera* camera = choose_camera(gltf, options.camera);
     if (camera != nullptr) {
         CameraSettings& c = out.camera;
-        choose_size(options, camera->aspect_ratio, c);
+        out.camera_name =
+            camera->name.empty() ? "camera " + std::to_string(camera->camera) : camera->name;
+        const bool ortho = camera->type == GltfCamera::Type::Orthographic;
+        choose_size(options, ortho ? camera->xmag / camera->ymag : camera->aspect_ratio, c);
         c.position = glm::vec3(camera->world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
         const glm::vec3 forward = glm::vec3(camera->world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
         c.look_at = c.position + glm::normalize(forward);
         c.up = glm::normalize(glm::vec3(camera->world * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f)));
-        c.vertical_fov_degrees = glm::degrees(camera->yfov);
+        if (ortho) {
+            c.projection = Projection::Orthographic;
+            c.xmag = camera->xmag;
+            c.ymag = camera->ymag;
+            // glTF's projection puts +-xmag and +-ymag at the image edges whatever its size.
+            const float image_aspect = float(c.width) / float(c.height);
+            if (std::abs(image_aspect * camera->ymag / camera->xmag - 1.0f) > 0.01f) {
+                out.warnings.push_back(
+                    "orthographic camera '" + out.camera_name +
+                    "': xmag / ymag = " + std::to_string(camera->xmag / camera->ymag) +
+                    " differs from the image's " + std::to_string(image_aspect) +
+                    ": the image is stretched, as glTF's projection does");
+            }
+        } else {
+            c.vertical_fov_degrees = glm::degrees(camera->yfov);
+        }
         c.focal_distance = 1.0f;  // pinhole: unused
         // znear is a plane at that depth along the view axis, as CameraSettings::near_clip;
         // zfar (optional in glTF) likewise.
         c.near_clip = camera->znear;
         if (camera->zfar > camera->znear) c.far_clip = camera->zfar;
-        out.camera_name =
-            camera->name.empty() ? "camera " + std::to_string(camera->camera) : camera->name;
     } else {
         CameraSettings size;
         choose_size(options, 4.0f / 3.0f, size);
