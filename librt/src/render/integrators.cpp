@@ -282,7 +282,9 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         sampler.start_bounce(static_cast<std::uint32_t>(depth));
         ++depth;
 
-        const glm::vec3 albedo = scene.albedo(hit);
+        // Scene::albedo's texture lookup only for a map_Kd material: the others' albedo is
+        // m's own (inline: no call per hit).
+        const glm::vec3 albedo = m.albedo_texture < 0 ? m.albedo : scene.albedo(hit);
         // Every lobe is scaled by the albedo (bsdf.h): when throughput * albedo is 0 (the
         // blue floor's path meeting the red wall) the vertex can add and pass on nothing,
         // so stop without spending a light sample and shadow ray on it.

@@ -44,7 +44,6 @@ std::uint32_t Scene::add_material(const Material& material) {
     validate(material);
     check_texture_ids(material);
     materials_.push_back(material);
-    varying_materials_ = varying_materials_ || material.varies_per_hit();
     cut_outs_ = cut_outs_ || material.cuts_out();
     return std::uint32_t(materials_.size() - 1);
 }
@@ -69,7 +68,8 @@ std::uint32_t Scene::add_object(std::uint32_t top_id, std::uint32_t material) {
     // Every object is added to top_ and here in the same order, so the ids agree.
     assert(top_id == objects_.size());
     (void)top_id;
-    objects_.push_back({kInvalidId, material});
+    const bool plain = material != kInvalidId && !materials_[material].varies_per_hit();
+    objects_.push_back({kInvalidId, material, plain ? material : kInvalidId});
     return std::uint32_t(objects_.size() - 1);
 }
 

@@ -191,9 +191,12 @@ public:
     /// scene and `scratch`.
     [[nodiscard]] const Material& shade(Hit& hit, const glm::vec3& direction,
                                         ShadedMaterial& scratch) const {
-        if (varying_materials_) [[unlikely]]
-            return shade_varying(hit, direction, scratch);
-        return material(hit);
+        // Inline and one load for the common object (a uniform, plain material): cheaper
+        // than material(hit)'s call; per-triangle and textured materials go out of line.
+        const std::uint32_t plain = objects_[hit.object_id].plain_material;
+        if (plain != kInvalidId) [[likely]]
+            return materials_[plain];
+        return shade_varying(hit, direction, scratch);
     }
     /// The coverage at a hit: the material's alpha times its base colour texture's alpha
     /// at hit.uv (1 for a material without alpha test or texture alpha).
@@ -262,8 +265,11 @@ public:
 private:
     /// What the scene adds to a geometric object of top_ (same id).
     struct Object {
-        std::uint32_t index;         ///< into triangle_materials_ when material is kInvalidId
-        std::uint32_t material;      ///< uniform material, or kInvalidId for per-triangle ids
+        std::uint32_t index;     ///< into triangle_materials_ when material is kInvalidId
+        std::uint32_t material;  ///< uniform material, or kInvalidId for per-triangle ids
+        /// `material` when it is uniform and has no per-hit inputs (shade()'s one-load path),
+        /// else kInvalidId.
+        std::uint32_t plain_material;
         bool camera_visible = true;  ///< see set_camera_visible
     };
 
@@ -301,7 +307,6 @@ private:
 
     TopLevel top_;                     ///< the geometry and its acceleration structure
     bool unsampled_emitters_ = false;  ///< see has_unsampled_emitters()
-    bool varying_materials_ = false;   ///< some material varies_per_hit()
     bool cut_outs_ = false;            ///< some material cuts_out()
     bool hidden_objects_ = false;      ///< see may_hide_objects()
     bool committed_ = false;
