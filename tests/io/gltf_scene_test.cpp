@@ -12,6 +12,7 @@
 #include <librt/io/gltf.h>
 #include <librt/io/gltf_scene.h>
 #include <librt/io/scene_file.h>
+#include <librt/render/bsdf.h>
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
 #include <librt/sampling/warp.h>
@@ -375,6 +376,55 @@ TEST(GltfToScene, MaterialMapping) {
     EXPECT_FLOAT_EQ(material_from_gltf(m).alpha_cutoff, 0.5f);
     m.double_sided = true;
     EXPECT_TRUE(material_from_gltf(m).double_sided);
+}
+
+TEST(GltfToScene, AlphaModesAndDoubleSidedFromTheFile) {
+    // One triangle in z = 0 facing +z (counter-clockwise seen from +z), its material's
+    // alpha as the file states; a ray from +z through its middle.
+    const auto load = [](const json& material) {
+        GltfBuilder b = lt::one_triangle();
+        b.doc["materials"] = {material};
+        b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+        ScratchDir dir;
+        const fs::path p = dir.path() / "alpha.gltf";
+        lt::write_file(p, b.gltf());
+        LoadedScene loaded = load_scene_file(p);
+        loaded.scene.commit();
+        return loaded;
+    };
+    const Ray down({0.25f, 0.25f, 1.0f}, {0, 0, -1}), up({0.25f, 0.25f, -1.0f}, {0, 0, 1});
+    Hit hit;
+    json m = {{"alphaMode", "MASK"},
+              {"alphaCutoff", 0.5},
+              {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 0.3}}}}};
+    EXPECT_FALSE(load(m).scene.intersect(down, hit));  // 0.3 < 0.5: cut out
+    m["pbrMetallicRoughness"]["baseColorFactor"] = {1, 1, 1, 0.7};
+    EXPECT_TRUE(load(m).scene.intersect(down, hit));
+    m["alphaMode"] = "OPAQUE";
+    m["pbrMetallicRoughness"]["baseColorFactor"] = {1, 1, 1, 0.0};
+    EXPECT_TRUE(load(m).scene.intersect(down, hit));  // alpha ignored
+    // BLEND: drawn as MASK 0.5, with one warning naming it.
+    m["alphaMode"] = "BLEND";
+    m["pbrMetallicRoughness"]["baseColorFactor"] = {1, 1, 1, 0.4};
+    const LoadedScene blend = load(m);
+    EXPECT_FALSE(blend.scene.intersect(down, hit));
+    std::size_t blend_warnings = 0;
+    for (const std::string& w : blend.warnings)
+        blend_warnings += w.find("BLEND") != std::string::npos;
+    EXPECT_EQ(blend_warnings, 1u);
+    // doubleSided false (glTF's default): the back is black; true: both sides as stated.
+    const json one_sided = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}}}};
+    LoadedScene s = load(one_sided);
+    ShadedMaterial scratch;
+    ASSERT_TRUE(s.scene.intersect(up, hit));
+    EXPECT_EQ(lobes(s.scene.shade(hit, up.direction, scratch)), BsdfLobe::None);
+    ASSERT_TRUE(s.scene.intersect(down, hit));
+    EXPECT_EQ(s.scene.shade(hit, down.direction, scratch).kind, MaterialKind::MetallicRoughness);
+    json two_sided = one_sided;
+    two_sided["doubleSided"] = true;
+    s = load(two_sided);
+    ASSERT_TRUE(s.scene.intersect(up, hit));
+    EXPECT_EQ(s.scene.shade(hit, up.direction, scratch).kind, MaterialKind::MetallicRoughness);
 }
 
 TEST(GltfToScene, PunctualLightsBecomeRadiometricBy683) {
