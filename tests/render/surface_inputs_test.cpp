@@ -229,6 +229,31 @@ TEST(SurfaceInputs, TexturesMultiplyTheFactorsAndUntexturedMaterialsAreReturnedA
     EXPECT_EQ(&untextured.shade(hit, {0, 0, -1}, scratch), &untextured.material(id));
 }
 
+TEST(SurfaceInputs, VertexColorsMultiplyTheBaseColourWhereTheHitLands) {
+    // Colours at the quad's corners; the hit's barycentrics weigh them.
+    TriangleMesh mesh = unit_quad();
+    mesh.colors = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 0.5f}, {1, 1, 1, 1}};
+    Scene scene;
+    const std::uint32_t id =
+        scene.add_material(Material::metallic_roughness({0.5f, 0.5f, 0.5f}, 0.0f, 0.5f));
+    const glm::mat4 shift = glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -3));
+    (void)scene.add_mesh(mesh, id);
+    (void)scene.add_instance(scene.add_mesh_prototype(mesh), shift, id);
+    scene.commit();
+    // (0.5, -0.5) lies in triangle 0 (corners 0, 1, 2): barycentrics b1 = 0.5, b2 = 0.25.
+    const glm::vec4 want = 0.25f * mesh.colors[0] + 0.5f * mesh.colors[1] + 0.25f * mesh.colors[2];
+    for (const float z : {2.0f, -2.5f}) {  // the mesh, then (below it) the instance
+        Hit hit;
+        const Ray ray({0.5f, -0.5f, z}, {0, 0, -1});
+        ASSERT_TRUE(scene.intersect_for_shading(ray, hit));
+        if (z < 0.0f) ASSERT_NE(hit.instance_id, kInvalidId);
+        ShadedMaterial scratch;
+        const Material& m = scene.shade(hit, ray.direction, scratch);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(m.base_color[c], 0.5f * want[c], 1e-6f) << c;
+        EXPECT_NEAR(scene.coverage(hit), want.w, 1e-6f);
+    }
+}
+
 TEST(SurfaceInputs, OneSidedBacksAreBlackAndFrontsAsStored) {
     Scene scene;
     Material m = Material::diffuse(glm::vec3(0.6f));

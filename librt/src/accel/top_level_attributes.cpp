@@ -54,4 +54,24 @@ glm::vec4 TopLevel::tangent(const Hit& hit) const {
     return glm::vec4(t, sign);
 }
 
+bool TopLevel::has_colors(std::uint32_t id) const {
+    const Object& o = objects_.at(id);
+    if (o.kind == ObjectKind::Sphere) return false;
+    const std::uint32_t p =
+        o.kind == ObjectKind::Instance ? instances_[o.index].prototype : o.index;
+    return !prototypes_[p].mesh.colors.empty();
+}
+
+glm::vec4 TopLevel::color(const Hit& hit) const {
+    if (!has_colors(hit.object_id)) return glm::vec4(1.0f);
+    const Object& o = objects_[hit.object_id];
+    const std::uint32_t p =
+        o.kind == ObjectKind::Instance ? instances_[o.index].prototype : o.index;
+    const TriangleMesh& mesh = prototypes_[p].mesh;
+    const glm::vec2 b = barycentrics(hit);
+    const glm::uvec3& idx = mesh.triangles.at(hit.primitive_id);
+    return (1.0f - b.x - b.y) * mesh.colors[idx.x] + b.x * mesh.colors[idx.y] +
+           b.y * mesh.colors[idx.z];
+}
+
 }  // namespace librt

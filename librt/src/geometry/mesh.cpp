@@ -107,6 +107,10 @@ void validate(const TriangleMesh& mesh) {
         throw Error("mesh: " + std::to_string(mesh.uvs.size()) + " uvs for " + std::to_string(n) +
                     " positions (must be 0 or equal)");
     }
+    if (!mesh.colors.empty() && mesh.colors.size() != n) {
+        throw Error("mesh: " + std::to_string(mesh.colors.size()) + " colors for " +
+                    std::to_string(n) + " positions (must be 0 or equal)");
+    }
     if (!mesh.tangents.empty() && mesh.tangents.size() != n) {
         throw Error("mesh: " + std::to_string(mesh.tangents.size()) + " tangents for " +
                     std::to_string(n) + " positions (must be 0 or equal)");
@@ -137,6 +141,13 @@ void validate(const TriangleMesh& mesh) {
     for (std::size_t i = 0; i < mesh.uvs.size(); ++i) {
         if (!finite(mesh.uvs[i])) {
             throw Error("mesh: uv " + std::to_string(i) + " is not finite");
+        }
+    }
+    for (std::size_t i = 0; i < mesh.colors.size(); ++i) {
+        const glm::vec4& c = mesh.colors[i];
+        if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z) ||
+            !std::isfinite(c.w)) {
+            throw Error("mesh: color " + std::to_string(i) + " is not finite");
         }
     }
     for (std::size_t i = 0; i < mesh.tangents.size(); ++i) {

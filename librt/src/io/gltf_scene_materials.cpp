@@ -150,6 +150,11 @@ const SceneMaterial& MaterialBuilder::material(int index) {
 
 void MaterialBuilder::attributes(const GltfPrimitive& prim, const SceneMaterial& m,
                                  TriangleMesh& mesh, const std::string& who) {
+    // COLOR_0 multiplies the base colour (glTF 2.0 sec. 3.9.2); kept unless all white.
+    if (prim.colors.size() == mesh.positions.size() &&
+        std::any_of(prim.colors.begin(), prim.colors.end(),
+                    [](const glm::vec4& c) { return c != glm::vec4(1.0f); }))
+        mesh.colors = prim.colors;
     if (m.uv_set < 0) return;
     const std::vector<glm::vec2>& uvs = m.uv_set == 1 ? prim.uv1 : prim.uv0;
     if (uvs.size() != mesh.positions.size()) {

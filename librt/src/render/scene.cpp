@@ -77,6 +77,8 @@ std::uint32_t Scene::add_mesh_object(TriangleMesh mesh, BvhBuilder builder, std:
                                      std::vector<std::uint32_t> per_triangle) {
     const std::uint32_t prototype = top_.add_prototype(std::move(mesh), builder);
     const std::uint32_t id = add_object(top_.add_mesh(prototype), material);
+    // Vertex colors are a per-hit input: shade() evaluates them out of line.
+    if (top_.has_colors(id)) objects_[id].plain_material = kInvalidId;
     if (material == kInvalidId) {
         objects_[id].index = std::uint32_t(triangle_materials_.size());
         triangle_materials_.push_back(std::move(per_triangle));
@@ -126,7 +128,9 @@ std::uint32_t Scene::add_mesh_prototype(TriangleMesh mesh, BvhBuilder builder) {
 std::uint32_t Scene::add_instance(std::uint32_t prototype, const glm::mat4& object_to_world,
                                   std::uint32_t material) {
     check_material_id(material);
-    return add_object(top_.add_instance(prototype, object_to_world), material);
+    const std::uint32_t id = add_object(top_.add_instance(prototype, object_to_world), material);
+    if (top_.has_colors(id)) objects_[id].plain_material = kInvalidId;  // see add_mesh_object
+    return id;
 }
 
 std::uint32_t Scene::add_mesh(TriangleMesh mesh, std::vector<std::uint32_t> triangle_materials,

@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <new>
 
@@ -43,7 +44,8 @@ glm::vec3 apply_normal_map(const glm::vec3& texel, float scale, const glm::vec3&
 const Material& Scene::shade_varying(Hit& hit, const glm::vec3& direction,
                                      ShadedMaterial& scratch) const {
     const Material& stored = material(hit);
-    if (!stored.varies_per_hit()) return stored;
+    const bool colored = top_.has_colors(hit.object_id);
+    if (!stored.varies_per_hit() && !colored) return stored;
     if (!stored.double_sided && !(glm::dot(direction, hit.geometric_normal) < 0.0f)) {
         // The back of a one-sided surface: absorbs, emits nothing.
         return *new (&scratch.material_) Material(Material::emissive(glm::vec3(0.0f)));
@@ -54,6 +56,14 @@ const Material& Scene::shade_varying(Hit& hit, const glm::vec3& direction,
         return textures_[std::size_t(s.texture)].lookup(s.map(hit.uv));
     };
     if (m.base_color_texture.bound()) m.base_color *= lookup(m.base_color_texture);
+    if (colored) {
+        // glTF COLOR_0 multiplies the base colour; for librt's other kinds, the albedo.
+        const glm::vec3 c = glm::clamp(glm::vec3(top_.color(hit)), 0.0f, 1.0f);
+        if (m.kind == MaterialKind::MetallicRoughness)
+            m.base_color *= c;
+        else
+            m.albedo *= c;
+    }
     if (m.metallic_roughness_texture.bound()) {
         // glTF: roughness in the green channel, metalness in the blue one (both linear).
         const glm::vec3 mr = lookup(m.metallic_roughness_texture);
@@ -71,7 +81,7 @@ const Material& Scene::shade_varying(Hit& hit, const glm::vec3& direction,
 
 float Scene::coverage(const Hit& hit) const {
     const Material& m = material(hit);
-    float a = m.alpha;
+    float a = m.alpha * std::clamp(top_.color(hit).w, 0.0f, 1.0f);
     if (m.base_color_texture.bound()) {
         const TextureSlot& s = m.base_color_texture;
         a *= textures_[std::size_t(s.texture)].lookup_alpha(s.map(hit.uv));

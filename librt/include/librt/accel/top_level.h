@@ -130,6 +130,11 @@ public:
     /// interpolated, in world space: xyz by the object-to-world matrix (unnormalised), w
     /// the bitangent sign (negated by a mirroring instance). (0, 0, 0, 0) otherwise.
     [[nodiscard]] glm::vec4 tangent(const Hit& hit) const;
+    /// True when object `id` is a mesh or instance whose prototype has vertex colors.
+    [[nodiscard]] bool has_colors(std::uint32_t id) const;
+    /// The vertex color interpolated at a finished hit on a mesh or instance whose
+    /// prototype has colors; (1, 1, 1, 1) otherwise.
+    [[nodiscard]] glm::vec4 color(const Hit& hit) const;
 
     /// Number of objects.
     [[nodiscard]] std::size_t object_count() const { return objects_.size(); }

@@ -38,6 +38,9 @@ struct LIBRT_API TriangleMesh {
     /// Optional, one per position: tangent xyz (along increasing u) and w = +-1, the
     /// bitangent's sign: bitangent = w cross(normal, tangent) (glTF TANGENT). For normal maps.
     std::vector<glm::vec4> tangents;
+    /// Optional, one per position: a linear RGBA colour (glTF COLOR_0) that multiplies the
+    /// material's base colour (its albedo for other kinds) and coverage where a hit lands.
+    std::vector<glm::vec4> colors;
     std::vector<std::uint32_t> material_ids;  ///< optional, one per triangle, into materials
     std::vector<MeshMaterial> materials;      ///< from the MTL file, may be empty
 
@@ -78,8 +81,8 @@ LIBRT_API void transform(TriangleMesh& mesh, const glm::mat4& matrix);
 inline constexpr float kMaxMeshCoordinate = 1099511627776.0f;  // 2^40
 
 /// Throws librt::Error naming the problem (and the offending index) when triangle or material
-/// indices are out of range, optional arrays have the wrong length, positions, normals, uvs or
-/// tangents are not finite, or a position lies outside +-kMaxMeshCoordinate.
+/// indices are out of range, optional arrays have the wrong length, positions, normals, uvs,
+/// tangents or colors are not finite, or a position lies outside +-kMaxMeshCoordinate.
 LIBRT_API void validate(const TriangleMesh& mesh);
 
 }  // namespace librt

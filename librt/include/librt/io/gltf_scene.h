@@ -46,7 +46,8 @@ struct GltfMaterialTextures {
 /// with glTF's v; a normal-mapped primitive keeps its TANGENTs, or gets generate_tangents'
 /// (geometry/tangents.h). KHR_lights_punctual point lights become PointLights of intensity
 /// candela / 683 W/sr (Blender's convention, see docs/render-your-own-scene.md); spot and
-/// directional lights likewise; orthographic cameras, COLOR_0, occlusion and
+/// directional lights likewise; COLOR_0 (unless all white) is kept as the mesh's vertex
+/// colours (Scene::shade multiplies them in); orthographic cameras, occlusion and
 /// transmission textures are warned about or ignored. A scene with no supported light and no
 /// emissive surface gets default_light() (warned). Throws librt::Error for a camera option
 /// naming no camera ("camera = NAME: ..."), or a value Scene refuses.

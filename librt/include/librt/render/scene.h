@@ -185,7 +185,8 @@ public:
     /// The material at a hit with its per-hit inputs evaluated: the stored material itself
     /// when it has none (Material::varies_per_hit false: no cost), else `scratch` filled
     /// with it, its textures looked up at hit.uv (base colour, metallic-roughness,
-    /// emission), and hit.shading_normal bent by its normal map. A one-sided material seen
+    /// emission), the mesh's vertex colour multiplied in (base colour, else albedo), and
+    /// hit.shading_normal bent by its normal map. A one-sided material seen
     /// from its back (`direction`, the ray's, against the geometric normal) gives a black
     /// material: no scattering, no emission. The returned reference lives as long as the
     /// scene and `scratch`.
@@ -199,7 +200,7 @@ public:
         return shade_varying(hit, direction, scratch);
     }
     /// The coverage at a hit: the material's alpha times its base colour texture's alpha
-    /// at hit.uv (1 for a material without alpha test or texture alpha).
+    /// at hit.uv and the vertex colour's alpha (1 without any of them).
     [[nodiscard]] float coverage(const Hit& hit) const;
     /// The scene material id of a hit's primitive.
     [[nodiscard]] std::uint32_t material_id(const Hit& hit) const;
