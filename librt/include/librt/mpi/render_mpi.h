@@ -18,7 +18,9 @@
 // a thread of its own while its main thread answers requests; finished tiles stream back
 // to rank 0 as they are done. Every pixel is computed from (pixel, sample, seed) alone and
 // rendered onto an empty film region in sample order, so the film on rank 0 equals the one
-// of a one-process render() with the same settings bit for bit (film.h says why).
+// of a one-process render() with the same settings bit for bit (film.h says why). Only
+// rank 0 holds a film of the whole frame; the others render each tile onto a film of the
+// tile's size (render_block with a FilmOrigin), so their memory is the scene's.
 //
 // Threads and MPI: only the thread that calls render_mpi makes MPI calls; initialise MPI
 // with MPI_Init_thread and at least MPI_THREAD_FUNNELED. Tile records travel as raw bytes:
