@@ -379,8 +379,19 @@ Film render_mpi(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
     MpiRenderStats local;
     MpiRenderStats& out = stats != nullptr ? *stats : local;
     out = MpiRenderStats{};
-    return rank == 0 ? run_root(comm, size, scene, camera, integrator, settings, out)
-                     : run_worker(comm, scene, camera, integrator, settings, out);
+    // The protocol runs on a communicator of this call's own. On `comm` itself, a worker
+    // that finished the call and went on to the next (the next frame) would send its first
+    // request while rank 0 still waits for its own thread's last tile, and rank 0 would
+    // answer it as part of this call; the caller's own messages could be taken too.
+    // MPI_Comm_dup is collective, so no rank starts a call before all have reached it.
+    MPI_Comm own = MPI_COMM_NULL;
+    check(MPI_Comm_dup(comm, &own), "MPI_Comm_dup");
+    struct Free {
+        MPI_Comm& comm;
+        ~Free() { MPI_Comm_free(&comm); }
+    } const free_own{own};
+    return rank == 0 ? run_root(own, size, scene, camera, integrator, settings, out)
+                     : run_worker(own, scene, camera, integrator, settings, out);
 }
 
 void check_all_ranks(MPI_Comm comm, const std::string& local_error) {
