@@ -65,7 +65,9 @@ LIBRT_API void validate(const MpiRenderSettings& settings);
 
 /// Renders `scene` through `camera` with `integrator` over the ranks of `comm`, a
 /// collective call: every rank of `comm` must call it with the same scene, camera and
-/// settings (each rank builds or loads its own copy). Calls integrator.preprocess(scene)
+/// settings (each rank builds or loads its own copy). Its messages travel on a duplicate
+/// of `comm` (MPI_Comm_dup), so they never mix with the caller's or with those of the
+/// next call (calls in a row, e.g. the frames of an animation, are safe). Calls integrator.preprocess(scene)
 /// on each rank. Returns the whole film on rank 0 (every pixel holding
 /// settings.render.samples_per_pixel samples; resolve() or resolve_layers() it), an empty
 /// 0x0 film on the other ranks.
