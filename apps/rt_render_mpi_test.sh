@@ -8,7 +8,8 @@
 #              message when the data is missing; a failure when LIBRT_REQUIRE_DATA=1);
 #   failures   one rank whose scene file is missing, and one rank killed by SIGKILL while
 #              rendering, each end the job with a non-zero exit, a message naming that rank
-#              and no output file (nor temporary); --time-limit is refused under mpirun.
+#              and no output file (nor temporary); Ctrl-C (SIGINT to mpirun) stops every
+#              rank and writes nothing; --time-limit is refused under mpirun.
 # Usage: rt_render_mpi_test.sh identical|gltf|failures <rt_render> <mpirun> <scratch dir> <data dir>
 set -euo pipefail
 mode=$1
@@ -116,6 +117,28 @@ kill -9 $pid; wait $pid; kill -9 $$'
 expect_failure "rank 2 killed while rendering" "process rank 2 .*signal 9" "$out" \
   -np 2 "$app" "$scene" --spp 100000 "${common[@]}" : \
   -np 1 bash -c "$killer" "$app" "$scene" --spp 100000 "${common[@]}"
+
+# Ctrl-C: mpirun forwards SIGINT to every rank once rank 0 has used 0.3 s of CPU
+# rendering; every rank stops, nothing is written, rank 0 says so.
+status=0
+"$mpirun" "${flags[@]}" -np 2 "$app" "$scene" --spp 100000 "${common[@]}" >"$dir/log" 2>&1 &
+job=$!
+rank0=""
+for _ in $(seq 1 600); do
+  rank0=$(pgrep -P "$job" -f "$(basename "$app")" | head -1 || true)
+  if [ -n "$rank0" ]; then
+    t=$(awk '{print $14 + $15}' "/proc/$rank0/stat" 2>/dev/null || echo 0)
+    [ "$t" -lt 30 ] || break
+  fi
+  sleep 0.05
+done
+kill -INT "$job"
+wait "$job" || status=$?
+log=$(cat "$dir/log")
+[ "$status" -ne 0 ] || fail "Ctrl-C: exit status 0; output: $log"
+grep -q "interrupted: nothing written" <<<"$log" || fail "Ctrl-C: no message: $log"
+[ -z "$(ls -A "$dir/out")" ] || fail "Ctrl-C: files left behind: $(ls -A "$dir/out")"
+echo "Ctrl-C under mpirun: exit $status, 'interrupted: nothing written', nothing written"
 
 # A time limit cannot stop ranks at the same pass: refused before anything is loaded.
 expect_failure "--time-limit under mpirun" "time-limit = .* not available under mpirun" "$out" \
