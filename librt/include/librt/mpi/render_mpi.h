@@ -67,10 +67,10 @@ LIBRT_API void validate(const MpiRenderSettings& settings);
 /// collective call: every rank of `comm` must call it with the same scene, camera and
 /// settings (each rank builds or loads its own copy). Its messages travel on a duplicate
 /// of `comm` (MPI_Comm_dup), so they never mix with the caller's or with those of the
-/// next call (calls in a row, e.g. the frames of an animation, are safe). Calls integrator.preprocess(scene)
-/// on each rank. Returns the whole film on rank 0 (every pixel holding
-/// settings.render.samples_per_pixel samples; resolve() or resolve_layers() it), an empty
-/// 0x0 film on the other ranks.
+/// next call (calls in a row, e.g. the frames of an animation, are safe). Calls
+/// integrator.preprocess(scene) on each rank. Returns the whole film on rank 0 (every
+/// pixel holding settings.render.samples_per_pixel samples; resolve() or resolve_layers()
+/// it), an empty 0x0 film on the other ranks.
 ///
 /// Failure: an exception on any rank (the integrator throws, bad settings, an allocation
 /// fails) is sent to rank 0, which stops the other ranks; then render_mpi throws
