@@ -2,8 +2,11 @@
 // MTL), through io/scene_file.h, progressively (render_progressive): Ctrl-C or the time
 // limit ends the render and the finished passes are written, flagged as partial. PNG is
 // sRGB-encoded after clamping (exposure 2^EV first); .hdr, .pfm and .exr stay linear
-// (times 2^EV), .exr with AOV layers (albedo, normal, depth, sample count).
+// (times 2^EV), .exr with AOV layers (albedo, normal, depth, sample count). Under mpirun
+// (a build with MPI) every rank loads the scene and the frame is shared by the ranks, byte
+// for byte the one-process image (common/mpi_job.h, docs/distributed.md).
 #include "common/cli.h"
+#include "common/mpi_job.h"
 #include "common/scene_app.h"
 
 #include <librt/core/error.h>
@@ -39,6 +42,8 @@ struct Options {
     std::string env;            // equirectangular .hdr lighting the scene; empty = none
     float env_strength = 1.0f;  // scale of the environment's radiance
     bool quiet = false;
+    apps::AppOptions sampling;  // --sampler, --filter, --filter-radius (those fields only)
+    int mpi_tile = 32;          // under mpirun: side of the tiles rank 0 hands out
 };
 
 [[noreturn]] void bad(const std::string& option, const std::string& value, const char* rule) {
@@ -49,9 +54,10 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-int render_file(const Options& o) {
+int render_file(const Options& o, const apps::MpiJob& job) {
+    const bool root = job.rank() == 0;  // alone, or the rank that writes
     // Everything the user typed is checked before the scene is loaded.
-    check_image_path(o.output);
+    if (root) check_image_path(o.output);
     SceneFileOptions file_options;
     file_options.camera = o.camera;
     if (!o.size.empty()) apps::parse_size(o.size, 0.0f, file_options.width, file_options.height);
@@ -63,6 +69,14 @@ int render_file(const Options& o) {
         bad("--max-depth", std::to_string(o.max_depth), "must be in [0, 1000]");
     if (!std::isfinite(o.time_limit) || o.time_limit < 0.0)
         bad("--time-limit", std::to_string(o.time_limit), "must be finite and >= 0 (0 = none)");
+    // Ranks render whole tiles with all their samples, not passes over the image: a frame
+    // stopped by the clock would hold different sample counts in different tiles.
+    if (job.distributed() && o.time_limit > 0.0)
+        bad("--time-limit", std::to_string(o.time_limit),
+            "is not available under mpirun (use --spp)");
+    apps::validate_sampling(o.sampling);
+    if (o.mpi_tile < 1 || o.mpi_tile > 1024)
+        bad("--mpi-tile", std::to_string(o.mpi_tile), "must be in [1, 1024]");
     if (!std::isfinite(o.exposure_ev) || std::abs(o.exposure_ev) > 64.0f)
         bad("--exposure", std::to_string(o.exposure_ev), "must be in [-64, 64] (EV stops)");
     const float scale = std::exp2(o.exposure_ev);
@@ -79,15 +93,18 @@ int render_file(const Options& o) {
     const auto t0 = std::chrono::steady_clock::now();
     LoadedScene loaded = load_scene_file(o.scene, file_options);
     const double load_seconds = seconds_since(t0);
-    for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << '\n';
+    if (root) {
+        for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << '\n';
+    }
     if (environment) loaded.scene.add_environment_light(*environment);
     const auto t1 = std::chrono::steady_clock::now();
     loaded.scene.commit();
     const double build_seconds = seconds_since(t1);
     CameraSettings camera_settings = loaded.camera;
     camera_settings.pixel_jitter = PixelJitter::Gaussian;  // anti-aliasing
-    const Camera camera(camera_settings);
-    if (!o.quiet) {
+    const Camera camera(apps::with_filter(camera_settings, o.sampling));
+    job.setup_succeeded();  // under mpirun: every rank's set-up worked (else this throws)
+    if (!o.quiet && root) {
         std::printf(
             "%s: %zu triangles stored, %zu placed, %zu instances, %zu lights, BVH %.1f MiB; "
             "load %.2f s, build %.2f s; camera '%s' (%s) %dx%d\n",
@@ -103,11 +120,24 @@ int render_file(const Options& o) {
     PathTracerSettings pt;
     pt.max_depth = o.max_depth;
     PathTracer integrator(pt);
+    if (job.distributed()) {
+        apps::MpiJobSettings ms;
+        ms.render.samples_per_pixel = o.spp;
+        ms.render.threads = o.threads;
+        ms.render.seed = o.seed;
+        ms.render.sampler = apps::sampler_kind(o.sampling);
+        ms.tile_size = o.mpi_tile;
+        ms.aovs = apps::lower_extension(o.output) == ".exr";
+        return apps::render_over_ranks(
+            job, loaded.scene, camera, integrator, ms, o.quiet, o.output,
+            [&](const Film& film) { apps::write_output(o.output, film, scale); });
+    }
     apps::ProgressiveOutput out;
     out.output = o.output;
     out.spp = o.spp;
     out.threads = o.threads;
     out.seed = o.seed;
+    out.sampler = apps::sampler_kind(o.sampling);
     out.time_limit = o.time_limit;
     out.scale = scale;
     out.quiet = o.quiet;
@@ -118,6 +148,8 @@ int render_file(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Joins the MPI job when started by mpirun (a build with MPI), before anything else.
+    apps::MpiJob job(argc, argv);
     CLI::App app{"Renders a glTF 2.0 (.gltf, .glb) or OBJ scene file with librt's path tracer",
                  "rt_render"};
     Options o;
@@ -145,5 +177,9 @@ int main(int argc, char** argv) {
     app.add_option("--env-strength", o.env_strength, "Scale of the --env radiance")
         ->capture_default_str();
     app.add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
-    return apps::run(app, argc, argv, [&] { return render_file(o); });
+    apps::add_sampling_options(app, o.sampling);
+    app.add_option("--mpi-tile", o.mpi_tile,
+                   "Under mpirun: side of the square tiles rank 0 hands out to the ranks")
+        ->capture_default_str();
+    return apps::run(app, argc, argv, [&] { return job.run([&] { return render_file(o, job); }); });
 }

@@ -25,6 +25,7 @@ set(required
   "librt::TopLevel::intersect("
   "librt::TopLevel::occluded("
   "librt::render_progressive("
+  "librt::render_block("
   "librt::write_exr("
   "librt::Camera::Camera("
   "librt::TriangleBvh::TriangleBvh("

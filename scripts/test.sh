@@ -4,7 +4,7 @@
 #      install into a scratch prefix, then build and run examples/* against it)
 #   2. the same with librt as a shared library (preset release-shared)
 #   3. AddressSanitizer + UndefinedBehaviorSanitizer (with float-cast-overflow) build, every unit test
-#   4. ThreadSanitizer build, the multithreaded renderer tests
+#   4. ThreadSanitizer build, the multithreaded renderer, film and render_mpi tests
 #   5. the OBJ, image, glTF and BVH fuzzers (libFuzzer, clang), each for a bounded time
 #      (LIBRT_FUZZ_SECONDS, default 60)
 # CI runs exactly this (.ci/run). `--quick` runs stage 1 only.
@@ -49,7 +49,7 @@ run_ctest asan
 
 stage "ThreadSanitizer (renderer)"
 cmake --preset tsan
-cmake --build --preset tsan -j "$jobs" --target librt_tests
+cmake --build --preset tsan -j "$jobs" --target librt_all_tests
 run_ctest tsan
 
 stage "fuzzing load_obj + BVH build, the image loaders, load_gltf and the BVH builders, ${LIBRT_FUZZ_SECONDS:-60} s each"

@@ -139,6 +139,10 @@ void add_common_options(CLI::App& app, AppOptions& o) {
     app.add_flag("--check", o.check,
                  "Exit with code 2 if the image is all black or has NaN/Inf pixels");
     app.add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
+    add_sampling_options(app, o);
+}
+
+void add_sampling_options(CLI::App& app, AppOptions& o) {
     app.add_option("--sampler", o.sampler,
                    "Random numbers: independent (PCG32 streams) or sobol (Owen-scrambled Sobol')")
         ->capture_default_str();
@@ -239,6 +243,24 @@ std::string typed(float x) {
 
 }  // namespace
 
+void validate_sampling(const AppOptions& o) {
+    if (o.sampler != "independent" && o.sampler != "sobol") {
+        bad_option("--sampler", o.sampler, "must be independent or sobol");
+    }
+    FilterKind kind{};
+    if (!o.filter.empty() && !filter_kind_of(o.filter, kind)) {
+        bad_option("--filter", o.filter,
+                   "must be box, tent, gaussian, mitchell or blackman-harris");
+    }
+    if (o.filter_radius) {
+        if (o.filter.empty())
+            bad_option("--filter-radius", typed(*o.filter_radius), "needs --filter");
+        if (!std::isfinite(*o.filter_radius) || !(*o.filter_radius > 0.0f)) {
+            bad_option("--filter-radius", typed(*o.filter_radius), "must be finite and > 0");
+        }
+    }
+}
+
 void validate(const AppOptions& o) {
     constexpr int kMaxSide = 65536;  // the camera's limit
     const auto side = [&](const char* option, int v) {
@@ -258,21 +280,7 @@ void validate(const AppOptions& o) {
     settings.samples_per_pixel = o.spp;
     settings.threads = o.threads;
     librt::validate(settings);
-    if (o.sampler != "independent" && o.sampler != "sobol") {
-        bad_option("--sampler", o.sampler, "must be independent or sobol");
-    }
-    FilterKind kind{};
-    if (!o.filter.empty() && !filter_kind_of(o.filter, kind)) {
-        bad_option("--filter", o.filter,
-                   "must be box, tent, gaussian, mitchell or blackman-harris");
-    }
-    if (o.filter_radius) {
-        if (o.filter.empty())
-            bad_option("--filter-radius", typed(*o.filter_radius), "needs --filter");
-        if (!std::isfinite(*o.filter_radius) || !(*o.filter_radius > 0.0f)) {
-            bad_option("--filter-radius", typed(*o.filter_radius), "must be finite and > 0");
-        }
-    }
+    validate_sampling(o);
     if (o.bounces < 0 || o.bounces > 1000) {
         bad_option("--bounces", std::to_string(o.bounces), "must be in [0, 1000]");
     }

@@ -81,6 +81,14 @@ private:
 /// Registers the common options on `app`, with `options`' current values as defaults.
 void add_common_options(CLI::App& app, AppOptions& options);
 
+/// Registers --sampler, --filter and --filter-radius (add_common_options does too), for an
+/// app with options of its own.
+void add_sampling_options(CLI::App& app, AppOptions& options);
+
+/// Throws librt::Error "--option = value: rule" for a --sampler, --filter or
+/// --filter-radius that cannot be used (validate() checks these too).
+void validate_sampling(const AppOptions& options);
+
 /// Registers --mesh, --mesh-fit, --mesh-scale, --mesh-offset and --mesh-rotate.
 void add_mesh_options(CLI::App& app, MeshOptions& options);
 

@@ -91,6 +91,7 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera, Pat
     ps.render.samples_per_pixel = o.spp;
     ps.render.threads = o.threads;
     ps.render.seed = o.seed;
+    ps.render.sampler = o.sampler;
     ps.render.cancel = interrupt_flag();
     ProgressBar progress(!o.quiet);
     ps.render.progress = [&progress](const RenderProgress& p) { progress.update(p); };

@@ -4,6 +4,7 @@
 #include <librt/render/camera.h>
 #include <librt/render/film.h>
 #include <librt/render/integrators.h>
+#include <librt/render/sampler.h>
 #include <librt/render/scene.h>
 
 #include <chrono>
@@ -23,6 +24,7 @@ struct ProgressiveOutput {
     int spp = 16;             ///< samples per pixel
     int threads = 0;          ///< worker threads, 0 = all cores
     std::uint64_t seed = 0;   ///< random seed
+    SamplerKind sampler = SamplerKind::Independent;  ///< --sampler
     double time_limit = 0.0;  ///< seconds, 0 = none
     float scale = 1.0f;       ///< exposure: the linear image is multiplied by this
     bool quiet = false;       ///< no progress bar and no summary

@@ -1,5 +1,5 @@
 // Cancellation from another thread, and many threads rendering one real scene. These are
-// the ThreadSanitizer preset's targets (its filter: ^(Renderer|Cancellation|Multithreaded)\.).
+// among the ThreadSanitizer preset's targets (its filter in CMakePresets.json).
 
 #include <librt/geometry/procedural.h>
 #include <librt/render/camera.h>

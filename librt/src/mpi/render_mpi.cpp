@@ -85,26 +85,19 @@ std::size_t record_bytes(const Film& film) {
     return sizeof(FilmPixel) + (film.has_aovs() ? sizeof(AovPixel) : 0);
 }
 
-// A kRequest message: the tile index, then the tile's records.
-std::vector<std::byte> pack(const Film& film, const Tiling& tiling, int index) {
+// A kRequest message: the tile index, then the tile's records (`tile` is a film of the
+// tile's size, so its records are the tile's rows in order), then its AOV records.
+std::vector<std::byte> pack(const Film& tile, int index) {
     std::vector<std::byte> out(sizeof(std::int32_t));
     const auto index32 = static_cast<std::int32_t>(index);
     std::memcpy(out.data(), &index32, sizeof index32);
     if (index < 0) return out;
-    const Rect r = tiling.rect(index);
-    out.resize(out.size() + r.pixels() * record_bytes(film));
+    const std::size_t pixels = tile.pixels.size();
+    out.resize(out.size() + pixels * record_bytes(tile));
     std::byte* at = out.data() + sizeof(std::int32_t);
-    const auto row = static_cast<std::size_t>(r.x1 - r.x0);
-    for (int y = r.y0; y < r.y1; ++y) {
-        std::memcpy(at, &film.pixels[film.index(r.x0, y)], row * sizeof(FilmPixel));
-        at += row * sizeof(FilmPixel);
-    }
-    if (film.has_aovs()) {
-        for (int y = r.y0; y < r.y1; ++y) {
-            std::memcpy(at, &film.aovs[film.index(r.x0, y)], row * sizeof(AovPixel));
-            at += row * sizeof(AovPixel);
-        }
-    }
+    std::memcpy(at, tile.pixels.data(), pixels * sizeof(FilmPixel));
+    if (tile.has_aovs())
+        std::memcpy(at + pixels * sizeof(FilmPixel), tile.aovs.data(), pixels * sizeof(AovPixel));
     return out;
 }
 
@@ -307,19 +300,18 @@ Film run_worker(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
     const Clock::time_point start = Clock::now();
     const Tiling tiling(camera.width(), camera.height(), std::max(1, s.tile_size));
     stats.tiles = tiling.count;
+    // The finished tile the next request carries, on a film of the tile's size only: a
+    // worker never holds the whole frame (32 x 32 x 96 bytes with AOVs, not 796 MB at 4K).
     Film film;
-    int tile = -1;  // the finished tile the next request carries
+    int tile = -1;
     try {
         validate(s);
-        // render_block works on a film of the camera's size; only the tiles this rank
-        // renders are ever filled or sent.
-        film = Film(camera.width(), camera.height(), s.aovs);
         integrator.preprocess(scene);
         const RenderSettings rs = block_settings(s, s.render.cancel);
         const auto spp = static_cast<std::uint32_t>(s.render.samples_per_pixel);
         while (true) {
             const Clock::time_point t0 = Clock::now();
-            const std::vector<std::byte> request = pack(film, tiling, tile);
+            const std::vector<std::byte> request = pack(film, tile);
             send_bytes(request.data(), request.size(), 0, kRequest, comm);
             stats.gather_bytes += request.size();
             MPI_Status status;
@@ -344,8 +336,9 @@ Film run_worker(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
             std::memcpy(&t32, answer.data(), sizeof t32);
             tile = t32;
             const Rect r = tiling.rect(tile);
-            const RenderStats st =
-                render_block(scene, camera, integrator, film, {r.x0, r.y0, r.x1, r.y1, 0, spp}, rs);
+            film = Film(r.x1 - r.x0, r.y1 - r.y0, s.aovs);
+            const RenderStats st = render_block(scene, camera, integrator, film, {r.x0, r.y0},
+                                                {r.x0, r.y0, r.x1, r.y1, 0, spp}, rs);
             stats.samples += st.samples;
             stats.nonfinite_samples += st.nonfinite_samples;
             if (st.cancelled) {
@@ -386,8 +379,19 @@ Film render_mpi(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
     MpiRenderStats local;
     MpiRenderStats& out = stats != nullptr ? *stats : local;
     out = MpiRenderStats{};
-    return rank == 0 ? run_root(comm, size, scene, camera, integrator, settings, out)
-                     : run_worker(comm, scene, camera, integrator, settings, out);
+    // The protocol runs on a communicator of this call's own. On `comm` itself, a worker
+    // that finished the call and went on to the next (the next frame) would send its first
+    // request while rank 0 still waits for its own thread's last tile, and rank 0 would
+    // answer it as part of this call; the caller's own messages could be taken too.
+    // MPI_Comm_dup is collective, so no rank starts a call before all have reached it.
+    MPI_Comm own = MPI_COMM_NULL;
+    check(MPI_Comm_dup(comm, &own), "MPI_Comm_dup");
+    struct Free {
+        MPI_Comm& comm;
+        ~Free() { MPI_Comm_free(&comm); }
+    } const free_own{own};
+    return rank == 0 ? run_root(own, size, scene, camera, integrator, settings, out)
+                     : run_worker(own, scene, camera, integrator, settings, out);
 }
 
 void check_all_ranks(MPI_Comm comm, const std::string& local_error) {

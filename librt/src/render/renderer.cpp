@@ -71,8 +71,8 @@ using Tick = std::function<bool(double fraction)>;
 // atomic counter and render each pixel's samples onto its film record, in sample order.
 // The calling thread watches (ticks) until the workers are done.
 BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrator& integrator,
-                       Film& film, const RenderBlock& block, const RenderSettings& settings,
-                       const Tick& tick) {
+                       Film& film, FilmOrigin origin, const RenderBlock& block,
+                       const RenderSettings& settings, const Tick& tick) {
     BlockOutcome outcome;
     const int width = block.x1 - block.x0;
     const int height = block.y1 - block.y0;
@@ -130,7 +130,7 @@ BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrato
     const auto render_tile = [&](const Tile& t, std::uint64_t& samples, std::uint64_t& nonfinite) {
         for (int y = t.y0; y < t.y1; ++y) {
             for (int x = t.x0; x < t.x1; ++x) {
-                const std::size_t index = film.index(x, y);
+                const std::size_t index = film.index(x - origin.x, y - origin.y);
                 // The running sums, continued in sample order (see film.h).
                 FilmPixel pixel = film.pixels[index];
                 AovPixel aov = with_aovs ? film.aovs[index] : AovPixel{};
@@ -287,7 +287,8 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
             return false;
         };
     }
-    const BlockOutcome outcome = run_block(scene, camera, integrator, film, whole, settings, tick);
+    const BlockOutcome outcome =
+        run_block(scene, camera, integrator, film, {}, whole, settings, tick);
     if (settings.progress && outcome.complete)
         settings.progress({1.0, seconds_since(start), 1, spp});
 
@@ -313,16 +314,36 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
 
 RenderStats render_block(const Scene& scene, const Camera& camera, const Integrator& integrator,
                          Film& film, const RenderBlock& block, const RenderSettings& settings) {
+    check_film_matches(film, camera);
+    return render_block(scene, camera, integrator, film, FilmOrigin{}, block, settings);
+}
+
+RenderStats render_block(const Scene& scene, const Camera& camera, const Integrator& integrator,
+                         Film& film, FilmOrigin origin, const RenderBlock& block,
+                         const RenderSettings& settings) {
     const Clock::time_point start = Clock::now();
     const double cpu_start = cpu_now();
     validate_threads_and_tiles(settings);
-    check_film_matches(film, camera);
-    if (block.x0 < 0 || block.x0 > block.x1 || block.x1 > film.width || block.y0 < 0 ||
-        block.y0 > block.y1 || block.y1 > film.height) {
-        throw Error("block [" + std::to_string(block.x0) + ", " + std::to_string(block.x1) +
-                    ") x [" + std::to_string(block.y0) + ", " + std::to_string(block.y1) +
-                    "): must lie in the " + std::to_string(film.width) + " x " +
-                    std::to_string(film.height) + " film");
+    // The film's region, in 64 bits: origin + size cannot overflow.
+    const std::int64_t rx0 = origin.x;
+    const std::int64_t ry0 = origin.y;
+    const std::int64_t rx1 = rx0 + film.width;
+    const std::int64_t ry1 = ry0 + film.height;
+    if (rx0 < 0 || ry0 < 0 || rx1 > camera.width() || ry1 > camera.height()) {
+        throw Error("film region [" + std::to_string(rx0) + ", " + std::to_string(rx1) + ") x [" +
+                    std::to_string(ry0) + ", " + std::to_string(ry1) +
+                    "): must lie in the camera's " + std::to_string(camera.width()) + " x " +
+                    std::to_string(camera.height()) + " image");
+    }
+    if (block.x0 < rx0 || block.x0 > block.x1 || block.x1 > rx1 || block.y0 < ry0 ||
+        block.y0 > block.y1 || block.y1 > ry1) {
+        throw Error(
+            "block [" + std::to_string(block.x0) + ", " + std::to_string(block.x1) + ") x [" +
+            std::to_string(block.y0) + ", " + std::to_string(block.y1) + "): must lie in the " +
+            std::to_string(film.width) + " x " + std::to_string(film.height) + " film" +
+            (rx0 == 0 && ry0 == 0
+                 ? std::string()
+                 : " placed at (" + std::to_string(rx0) + ", " + std::to_string(ry0) + ")"));
     }
     if (std::uint64_t{block.first} + block.count > kMaxSamplesPerPixel) {
         throw Error("block samples [" + std::to_string(block.first) + ", " +
@@ -331,10 +352,11 @@ RenderStats render_block(const Scene& scene, const Camera& camera, const Integra
     }
     for (int y = block.y0; y < block.y1; ++y) {
         for (int x = block.x0; x < block.x1; ++x) {
-            if (film.at(x, y).samples != block.first) {
+            const FilmPixel& pixel = film.at(x - origin.x, y - origin.y);
+            if (pixel.samples != block.first) {
                 throw Error("block.first = " + std::to_string(block.first) + ": film pixel (" +
                             std::to_string(x) + ", " + std::to_string(y) + ") holds " +
-                            std::to_string(film.at(x, y).samples) +
+                            std::to_string(pixel.samples) +
                             " samples (a block continues a pixel's samples in order)");
             }
         }
@@ -346,7 +368,8 @@ RenderStats render_block(const Scene& scene, const Camera& camera, const Integra
             return false;
         };
     }
-    const BlockOutcome outcome = run_block(scene, camera, integrator, film, block, settings, tick);
+    const BlockOutcome outcome =
+        run_block(scene, camera, integrator, film, origin, block, settings, tick);
     RenderStats stats;
     stats.seconds = seconds_since(start);
     stats.cpu_seconds = cpu_now() - cpu_start;
@@ -412,7 +435,8 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
             }
             return limit > 0.0 && n > 0 && elapsed() >= limit;
         };
-        const BlockOutcome outcome = run_block(scene, camera, integrator, work, block, rs, tick);
+        const BlockOutcome outcome =
+            run_block(scene, camera, integrator, work, {}, block, rs, tick);
         stats.samples += outcome.samples;
         stats.nonfinite_samples += outcome.nonfinite;
         if (!outcome.complete) {  // the unfinished pass is dropped with `work`

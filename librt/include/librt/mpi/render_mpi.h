@@ -18,7 +18,9 @@
 // a thread of its own while its main thread answers requests; finished tiles stream back
 // to rank 0 as they are done. Every pixel is computed from (pixel, sample, seed) alone and
 // rendered onto an empty film region in sample order, so the film on rank 0 equals the one
-// of a one-process render() with the same settings bit for bit (film.h says why).
+// of a one-process render() with the same settings bit for bit (film.h says why). Only
+// rank 0 holds a film of the whole frame; the others render each tile onto a film of the
+// tile's size (render_block with a FilmOrigin), so their memory is the scene's.
 //
 // Threads and MPI: only the thread that calls render_mpi makes MPI calls; initialise MPI
 // with MPI_Init_thread and at least MPI_THREAD_FUNNELED. Tile records travel as raw bytes:
@@ -63,10 +65,12 @@ LIBRT_API void validate(const MpiRenderSettings& settings);
 
 /// Renders `scene` through `camera` with `integrator` over the ranks of `comm`, a
 /// collective call: every rank of `comm` must call it with the same scene, camera and
-/// settings (each rank builds or loads its own copy). Calls integrator.preprocess(scene)
-/// on each rank. Returns the whole film on rank 0 (every pixel holding
-/// settings.render.samples_per_pixel samples; resolve() or resolve_layers() it), an empty
-/// 0x0 film on the other ranks.
+/// settings (each rank builds or loads its own copy). Its messages travel on a duplicate
+/// of `comm` (MPI_Comm_dup), so they never mix with the caller's or with those of the
+/// next call (calls in a row, e.g. the frames of an animation, are safe). Calls
+/// integrator.preprocess(scene) on each rank. Returns the whole film on rank 0 (every
+/// pixel holding settings.render.samples_per_pixel samples; resolve() or resolve_layers()
+/// it), an empty 0x0 film on the other ranks.
 ///
 /// Failure: an exception on any rank (the integrator throws, bad settings, an allocation
 /// fails) is sent to rank 0, which stops the other ranks; then render_mpi throws

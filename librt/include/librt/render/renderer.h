@@ -105,6 +105,26 @@ LIBRT_API RenderStats render_block(const Scene& scene, const Camera& camera,
                                    const Integrator& integrator, Film& film,
                                    const RenderBlock& block, const RenderSettings& settings);
 
+/// Where a film smaller than the image lies in it: the film's pixel (0, 0) is image pixel
+/// (x, y), so it covers [x, x + film.width) x [y, y + film.height).
+struct FilmOrigin {
+    int x = 0;  ///< image column of the film's first column
+    int y = 0;  ///< image row of the film's first row
+};
+
+/// render_block onto a film that holds only a region of the image (a tile), so that a
+/// process rendering a few tiles of a large frame needs memory for those tiles only
+/// (render_mpi's workers). `block` is in image pixels and must lie within the region
+/// [origin.x, origin.x + film.width) x [origin.y, origin.y + film.height), which must lie
+/// within the camera's image. Pixel (x, y) of the image is film.at(x - origin.x, y -
+/// origin.y) and gets exactly the samples and sums it gets in a film of the whole image.
+/// Everything else (threads, seeding, progress, cancellation, errors) is as in
+/// render_block above, which is this function with origin (0, 0) and a film of the
+/// camera's size.
+LIBRT_API RenderStats render_block(const Scene& scene, const Camera& camera,
+                                   const Integrator& integrator, Film& film, FilmOrigin origin,
+                                   const RenderBlock& block, const RenderSettings& settings);
+
 /// A render in passes, until a sample count or a time limit is reached.
 struct ProgressiveSettings {
     /// Threads, seed, tile size, progress and cancellation; samples_per_pixel is the total

@@ -1,0 +1,146 @@
+#!/usr/bin/env bash
+# rt_render under mpirun (ctest mpi.rt_render_*, registered when librt::mpi is built):
+#   identical  mpirun -np 1, 2, 3, 4 give files byte-identical (cmp) to the one-process
+#              rt_render: a PNG (default sampler and pixel jitter) and an EXR with every
+#              layer rendered with --sampler sobol --filter mitchell, on an OBJ this script
+#              writes (rt_render has no built-in scene; this mode needs no data);
+#   gltf       the same on the data's glTF scene gltf/textures.glb (exit 77, a skip, with a
+#              message when the data is missing; a failure when LIBRT_REQUIRE_DATA=1);
+#   failures   one rank whose scene file is missing, and one rank killed by SIGKILL while
+#              rendering, each end the job with a non-zero exit, a message naming that rank
+#              and no output file (nor temporary); Ctrl-C (SIGINT to mpirun) stops every
+#              rank and writes nothing; --time-limit is refused under mpirun.
+# Usage: rt_render_mpi_test.sh identical|gltf|failures <rt_render> <mpirun> <scratch dir> <data dir>
+set -euo pipefail
+mode=$1
+app=$2
+mpirun=$3
+dir=$4
+data=$5
+rm -rf "$dir"
+mkdir -p "$dir"
+
+# Root (CI) needs --allow-run-as-root; 4 ranks on 2 cores need --oversubscribe.
+flags=(--oversubscribe)
+[ "$(id -u)" -ne 0 ] || flags+=(--allow-run-as-root)
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+# A floor and a tetrahedron, no MTL: the default material, camera and light.
+scene="$dir/tetra.obj"
+cat >"$scene" <<'EOF'
+v -4 0 -4
+v 4 0 -4
+v 4 0 4
+v -4 0 4
+v -1 0 -1
+v 1 0 -1
+v 0 0 1
+v 0 1.5 0
+f 1 3 2
+f 1 4 3
+f 5 6 8
+f 6 7 8
+f 7 5 8
+f 5 7 6
+EOF
+
+# Renders $1 with the rest of the arguments by one process and by -np 1..4, comparing files.
+identical() {
+  local name=$1 file=$2
+  shift 2
+  local ext=${name##*.}
+  "$app" "$file" "$@" --threads 2 --quiet -o "$dir/one.$ext"
+  for n in 1 2 3 4; do
+    # Tiles of 16 px: 12 of a 64 x 40 frame, so every rank of 4 has some to do.
+    "$mpirun" "${flags[@]}" -np "$n" "$app" "$file" "$@" --threads 1 --mpi-tile 16 --quiet \
+      -o "$dir/np$n.$ext"
+    cmp "$dir/one.$ext" "$dir/np$n.$ext" || fail "$name: -np $n differs from one process"
+  done
+  echo "$name: -np 1, 2, 3, 4 byte-identical to the one-process rt_render"
+  rm -f "$dir"/one.* "$dir"/np*.*
+}
+
+frame=(--size 64x40 --spp 4 --seed 7)
+if [ "$mode" = identical ]; then
+  identical obj.png "$scene" "${frame[@]}"
+  identical obj-sobol-mitchell.exr "$scene" "${frame[@]}" --sampler sobol --filter mitchell \
+    --filter-radius 2
+  rm -rf "$dir"
+  exit 0
+fi
+if [ "$mode" = gltf ]; then
+  gltf="$data/gltf/textures.glb"
+  if [ ! -f "$gltf" ]; then
+    [ "${LIBRT_REQUIRE_DATA:-0}" != 1 ] || fail "$gltf is missing and LIBRT_REQUIRE_DATA=1"
+    echo "SKIPPED: $gltf is missing (set LIBRT_DATA_DIR)"
+    exit 77  # ctest's SKIP_RETURN_CODE
+  fi
+  identical gltf.png "$gltf" "${frame[@]}"
+  identical gltf-sobol-mitchell.exr "$gltf" "${frame[@]}" --sampler sobol --filter mitchell
+  rm -rf "$dir"
+  exit 0
+fi
+
+[ "$mode" = failures ] || fail "unknown mode $mode"
+# Runs mpirun with the given arguments; checks a non-zero exit, the message and no file.
+expect_failure() {
+  local what=$1 pattern=$2 out=$3
+  shift 3
+  local status=0
+  "$mpirun" "${flags[@]}" "$@" >"$dir/log" 2>&1 || status=$?
+  local log
+  log=$(cat "$dir/log")
+  [ "$status" -ne 0 ] || fail "$what: exit status 0; output: $log"
+  grep -Eq "$pattern" <<<"$log" || fail "$what: no message matching '$pattern': $log"
+  local leftovers
+  leftovers=$(ls -A "$(dirname "$out")")
+  [ -z "$leftovers" ] || fail "$what: files left behind: $leftovers"
+  echo "$what: exit $status, '$(grep -Eo "$pattern" <<<"$log" | head -1)', nothing written"
+}
+mkdir -p "$dir/out"
+out="$dir/out/frame.exr"
+common=(--size 64x40 --threads 1 --mpi-tile 16 --quiet -o "$out")
+
+# Rank 2 of 3 is given a scene file that is not there (as on a machine without the share).
+expect_failure "missing scene on rank 2" "rank 2: .*no_such_scene\.obj" "$out" \
+  -np 2 "$app" "$scene" --spp 4 "${common[@]}" : \
+  -np 1 "$app" "$dir/no_such_scene.obj" --spp 4 "${common[@]}"
+
+# Rank 2 of 3 is killed once it has used 0.3 s of CPU (rendering: loading this scene takes
+# milliseconds); 100000 spp keep every rank busy for a minute. The wrapper then dies of
+# SIGKILL too, so that mpirun sees rank 2 killed.
+killer='"$0" "$@" & pid=$!
+while t=$(awk "{print \$14 + \$15}" /proc/$pid/stat 2>/dev/null) && [ "$t" -lt 30 ]; do
+  sleep 0.05
+done
+kill -9 $pid; wait $pid; kill -9 $$'
+expect_failure "rank 2 killed while rendering" "process rank 2 .*signal 9" "$out" \
+  -np 2 "$app" "$scene" --spp 100000 "${common[@]}" : \
+  -np 1 bash -c "$killer" "$app" "$scene" --spp 100000 "${common[@]}"
+
+# Ctrl-C: mpirun forwards SIGINT to every rank once rank 0 has used 0.3 s of CPU
+# rendering; every rank stops, nothing is written, rank 0 says so.
+status=0
+"$mpirun" "${flags[@]}" -np 2 "$app" "$scene" --spp 100000 "${common[@]}" >"$dir/log" 2>&1 &
+job=$!
+rank0=""
+for _ in $(seq 1 600); do
+  rank0=$(pgrep -P "$job" -f "$(basename "$app")" | head -1 || true)
+  if [ -n "$rank0" ]; then
+    t=$(awk '{print $14 + $15}' "/proc/$rank0/stat" 2>/dev/null || echo 0)
+    [ "$t" -lt 30 ] || break
+  fi
+  sleep 0.05
+done
+kill -INT "$job"
+wait "$job" || status=$?
+log=$(cat "$dir/log")
+[ "$status" -ne 0 ] || fail "Ctrl-C: exit status 0; output: $log"
+grep -q "interrupted: nothing written" <<<"$log" || fail "Ctrl-C: no message: $log"
+[ -z "$(ls -A "$dir/out")" ] || fail "Ctrl-C: files left behind: $(ls -A "$dir/out")"
+echo "Ctrl-C under mpirun: exit $status, 'interrupted: nothing written', nothing written"
+
+# A time limit cannot stop ranks at the same pass: refused before anything is loaded.
+expect_failure "--time-limit under mpirun" "time-limit = .* not available under mpirun" "$out" \
+  -np 2 "$app" "$scene" --spp 4 --time-limit 5 "${common[@]}"
+rm -rf "$dir"

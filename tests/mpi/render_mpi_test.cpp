@@ -1,0 +1,135 @@
+// librt::render_mpi inside whatever MPI job runs this binary: alone (ctest's RenderMpi.*,
+// also under ThreadSanitizer, where rank 0 renders on its own thread while its main thread
+// polls, the part of render_mpi that has threads) and under mpirun -np 3 (ctest
+// mpi.render_mpi_np3). On rank 0 the film must equal a one-process render_block film bit
+// for bit; the other ranks get an empty film.
+#include "render/film_test_util.h"
+
+#include <librt/core/error.h>
+#include <librt/mpi/render_mpi.h>
+#include <librt/render/renderer.h>
+
+#include <gtest/gtest.h>
+
+#include <mpi.h>
+
+#include <chrono>
+#include <string>
+#include <thread>
+
+using namespace librt;
+using librt::testing::film_test_camera;
+using librt::testing::film_test_scene;
+using librt::testing::same_records;
+
+namespace {
+
+int world_rank() {
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    return rank;
+}
+
+}  // namespace
+
+TEST(RenderMpi, FilmEqualsTheOneProcessFilmForAnyTileAndThreadCount) {
+    const Scene scene = film_test_scene();
+    const Camera camera = film_test_camera();
+    librt::testing::WideRangeIntegrator integrator;
+    constexpr std::uint32_t kSpp = 5;
+    Film reference(camera.width(), camera.height(), true);
+    integrator.preprocess(scene);
+    RenderSettings one;
+    one.threads = 2;
+    one.seed = 11;
+    (void)render_block(scene, camera, integrator, reference,
+                       {0, 0, camera.width(), camera.height(), 0, kSpp}, one);
+    for (const int tile : {1, 7, 32}) {
+        for (const int threads : {1, 2}) {
+            MpiRenderSettings s;
+            s.render.samples_per_pixel = static_cast<int>(kSpp);
+            s.render.seed = 11;
+            s.render.threads = threads;
+            s.render.tile_size = 3;
+            s.tile_size = tile;
+            s.aovs = true;
+            MpiRenderStats stats;
+            const Film film = render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s, &stats);
+            EXPECT_FALSE(stats.cancelled);
+            if (world_rank() == 0) {
+                EXPECT_TRUE(same_records(film, reference))
+                    << "tile " << tile << ", threads " << threads;
+                int sum = 0;
+                for (const int n : stats.tiles_per_rank) sum += n;
+                EXPECT_EQ(sum, stats.tiles);
+            } else {
+                EXPECT_EQ(film.width, 0);
+                EXPECT_TRUE(film.pixels.empty());
+            }
+        }
+    }
+}
+
+// A bad setting is found on every rank, and rank 0 names itself (the lowest failing rank).
+TEST(RenderMpi, BadSettingsThrowOnEveryRank) {
+    const Scene scene = film_test_scene();
+    const Camera camera = film_test_camera(8, 8);
+    PathTracer integrator;
+    MpiRenderSettings s;
+    s.tile_size = 0;
+    try {
+        (void)render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s);
+        ADD_FAILURE() << "no exception";
+    } catch (const Error& e) {
+        const std::string text = e.what();
+        if (world_rank() == 0) {
+            EXPECT_NE(text.find("rank 0 failed: tile_size = 0"), std::string::npos) << text;
+        }
+    }
+}
+
+namespace {
+
+// The path tracer, slowed down on rank 0 only: rank 0's own rendering thread finishes its
+// tile long after the other ranks have finished theirs and gone on to the next call.
+class SlowOnRankZero final : public Integrator {
+public:
+    void preprocess(const Scene& scene) override { inner_.preprocess(scene); }
+    [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray,
+                               Sampler& sampler) const override {
+        if (world_rank() == 0) std::this_thread::sleep_for(std::chrono::milliseconds(3));
+        return inner_.li(scene, ray, sampler);
+    }
+
+private:
+    PathTracer inner_;
+};
+
+}  // namespace
+
+// Calls in a row (frames of an animation): a worker's first request of the next call must
+// not be taken by rank 0 for the call it is still finishing (it used to be, and the next
+// call then waited for a request that had already been answered "done").
+TEST(RenderMpi, CallsInARowKeepTheirMessagesApart) {
+    const Scene scene = film_test_scene();
+    const Camera camera = film_test_camera(8, 8);
+    SlowOnRankZero integrator;
+    MpiRenderSettings s;
+    s.render.threads = 1;
+    s.tile_size = 4;  // 4 tiles: with 3 ranks, rank 0 renders one slowly
+    Film first;
+    for (int call = 0; call < 3; ++call) {
+        s.render.seed = static_cast<std::uint64_t>(call);
+        const Film film = render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s);
+        if (world_rank() == 0) {
+            EXPECT_EQ(uniform_sample_count(film), 1u) << "call " << call;
+            if (call == 0) first = film;
+        }
+    }
+    // The same settings again give the same film.
+    s.render.seed = 0;
+    const Film again = render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s);
+    if (world_rank() == 0) {
+        EXPECT_TRUE(same_records(again, first));
+    }
+}
