@@ -71,8 +71,8 @@ void build_panel_box(Scene& scene, float edge) {
     if (std::getenv("LIBRT_PANEL_ONE_SIDED") != nullptr) {
         // The panel as a one-sided quad light facing down (edge0 x edge1 = -y): no light
         // into the gap between it and the ceiling (docs/materials-and-lights.md, Measured).
-        (void)scene.add_quad_light(QuadLight{corner, {edge, 0, 0}, {0, 0, edge},
-                                             k * glm::vec3(17.0f, 12.0f, 4.0f), false});
+        (void)scene.add_quad_light(QuadLight{
+            corner, {edge, 0, 0}, {0, 0, edge}, k * glm::vec3(17.0f, 12.0f, 4.0f), false});
     } else {
         scene.add_mesh(quad(corner, {edge, 0, 0}, {0, 0, edge}), lamp);  // two-sided triangles
     }
@@ -156,8 +156,8 @@ int main(int argc, char** argv) {
     const float edge = argc > 3 ? float(std::atof(argv[3])) : 0.5f;
     PathTracerSettings settings;
     settings.max_depth = argc > 4 ? std::atoi(argv[4]) : 5;
-    const SamplerKind kind = argc > 5 && std::string(argv[5]) == "sobol" ? SamplerKind::Sobol
-                                                                         : SamplerKind::Independent;
+    const SamplerKind kind =
+        argc > 5 && std::string(argv[5]) == "sobol" ? SamplerKind::Sobol : SamplerKind::Independent;
     settings.russian_roulette = argc > 6 ? std::atoi(argv[6]) != 0 : true;
     const std::string which = argc > 7 ? argv[7] : "both";
     const PathTracer pt(settings);

@@ -37,12 +37,13 @@ enum class LightMode { Mis, Bounded, Emitter };
 void build_scene(Scene& scene, LightMode mode) {
     const auto diffuse = [&](glm::vec3 c) { return scene.add_material(Material::diffuse(c)); };
     // The walls in double: smallpt's centres -1e5 + 81.6 and 1e5 + 1 are not floats.
-    scene.add_sphere(glm::dvec3(1e5 + 1, 40.8, 81.6), 1e5, diffuse({0.75f, 0.25f, 0.25f}));   // left
-    scene.add_sphere(glm::dvec3(-1e5 + 99, 40.8, 81.6), 1e5, diffuse({0.25f, 0.25f, 0.75f})); // right
-    scene.add_sphere(glm::dvec3(50, 40.8, 1e5), 1e5, diffuse(glm::vec3(0.75f)));              // back
-    scene.add_sphere(glm::dvec3(50, 40.8, -1e5 + 170), 1e5, diffuse(glm::vec3(0.0f)));        // front
-    scene.add_sphere(glm::dvec3(50, 1e5, 81.6), 1e5, diffuse(glm::vec3(0.75f)));              // floor
-    scene.add_sphere(glm::dvec3(50, -1e5 + 81.6, 81.6), 1e5, diffuse(glm::vec3(0.75f)));      // ceiling
+    scene.add_sphere(glm::dvec3(1e5 + 1, 40.8, 81.6), 1e5, diffuse({0.75f, 0.25f, 0.25f}));  // left
+    scene.add_sphere(glm::dvec3(-1e5 + 99, 40.8, 81.6), 1e5,
+                     diffuse({0.25f, 0.25f, 0.75f}));                                     // right
+    scene.add_sphere(glm::dvec3(50, 40.8, 1e5), 1e5, diffuse(glm::vec3(0.75f)));          // back
+    scene.add_sphere(glm::dvec3(50, 40.8, -1e5 + 170), 1e5, diffuse(glm::vec3(0.0f)));    // front
+    scene.add_sphere(glm::dvec3(50, 1e5, 81.6), 1e5, diffuse(glm::vec3(0.75f)));          // floor
+    scene.add_sphere(glm::dvec3(50, -1e5 + 81.6, 81.6), 1e5, diffuse(glm::vec3(0.75f)));  // ceiling
     scene.add_sphere(glm::dvec3(27, 16.5, 47), 16.5,
                      scene.add_material(Material::mirror(glm::vec3(0.999f))));
     scene.add_sphere(glm::dvec3(73, 16.5, 78), 16.5,
@@ -74,8 +75,9 @@ CameraSettings smallpt_camera(int width, int height) {
 
 int render_command(int argc, char** argv) {
     if (argc < 6) {
-        std::fprintf(stderr, "usage: librt_smallpt render SPP SAMPLER LIGHT OUT.pfm [THREADS] "
-                             "[SEED] [WIDTH HEIGHT]\n");
+        std::fprintf(stderr,
+                     "usage: librt_smallpt render SPP SAMPLER LIGHT OUT.pfm [THREADS] "
+                     "[SEED] [WIDTH HEIGHT]\n");
         return 2;
     }
     const int spp = std::atoi(argv[2]);
@@ -85,11 +87,11 @@ int render_command(int argc, char** argv) {
     const auto seed = std::uint64_t(argc > 7 ? std::atoll(argv[7]) : 1);
     const int width = argc > 9 ? std::atoi(argv[8]) : 256;
     const int height = argc > 9 ? std::atoi(argv[9]) : 192;
-    const LightMode mode = light == "emitter"   ? LightMode::Emitter
-                           : light == "bounded" ? LightMode::Bounded
-                           : light == "mis"     ? LightMode::Mis
-                                                : throw Error("LIGHT = " + light +
-                                                              ": must be mis, bounded or emitter");
+    const LightMode mode =
+        light == "emitter"   ? LightMode::Emitter
+        : light == "bounded" ? LightMode::Bounded
+        : light == "mis"     ? LightMode::Mis
+                         : throw Error("LIGHT = " + light + ": must be mis, bounded or emitter");
     Scene scene;
     build_scene(scene, mode);
     const Camera camera(smallpt_camera(width, height));

@@ -39,10 +39,16 @@ std::vector<Light> every_kind() {
     std::vector<Light> lights;
     lights.push_back(light_of(PointLight{{0.5f, 2.0f, 0.0f}, glm::vec3(3.0f)}));
     lights.push_back(light_of(SphereLight{Sphere{{-1.0f, 1.5f, 1.0f}, 0.3f}, glm::vec3(5.0f)}));
-    QuadLight down{{-0.5f, 2.5f, -0.5f}, {1.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 1.0f}, glm::vec3(4.0f),
+    QuadLight down{{-0.5f, 2.5f, -0.5f},
+                   {1.0f, 0.0f, 0.0f},
+                   {0.0f, 0.0f, 1.0f},
+                   glm::vec3(4.0f),
                    false};  // edge0 x edge1 = -y: faces down
     lights.push_back(light_of(down, true));
-    QuadLight wall{{2.0f, 0.0f, -1.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 2.0f}, glm::vec3(2.0f),
+    QuadLight wall{{2.0f, 0.0f, -1.0f},
+                   {0.0f, 1.0f, 0.0f},
+                   {0.0f, 0.0f, 2.0f},
+                   glm::vec3(2.0f),
                    true};  // two-sided, vertical
     lights.push_back(light_of(wall));
     DiskLight up{{0.0f, -1.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 0.4f, glm::vec3(6.0f), false};
@@ -54,8 +60,8 @@ std::vector<Light> every_kind() {
     spot.inner_angle = 0.2f;
     spot.outer_angle = 0.5f;
     lights.push_back(light_of(spot));
-    lights.push_back(light_of(
-        TriangleLight{{1.0f, 0.5f, 1.5f}, {1.5f, 0.5f, 1.5f}, {1.0f, 1.2f, 1.8f}, glm::vec3(7.0f)}));
+    lights.push_back(light_of(TriangleLight{
+        {1.0f, 0.5f, 1.5f}, {1.5f, 0.5f, 1.5f}, {1.0f, 1.2f, 1.8f}, glm::vec3(7.0f)}));
     DirectionalLight sun{{0.2f, 1.0f, 0.1f}, glm::vec3(1.5f), 0.05f, 10.0f};
     lights.push_back(light_of(sun));
     EnvironmentLight sky = EnvironmentLight::constant(glm::vec3(0.2f));
@@ -69,8 +75,7 @@ std::vector<Light> every_kind() {
 bool any_sample_arrives(const Light& light, const LightChoicePoint& at, Pcg32& rng, int count) {
     for (int i = 0; i < count; ++i) {
         const LightLiSample s = sample_li(light, at.point, {rng.next_float(), rng.next_float()});
-        if (!s.valid() || !(std::max({s.radiance.x, s.radiance.y, s.radiance.z}) > 0.0f))
-            continue;
+        if (!s.valid() || !(std::max({s.radiance.x, s.radiance.y, s.radiance.z}) > 0.0f)) continue;
         if (at.reflect_only && !(glm::dot(s.wi, at.normal) > 0.0f)) continue;
         return true;
     }
@@ -190,12 +195,15 @@ TEST(BoundedLightChoice, MisWithPerPointPmfEqualsBruteForce) {
     // would show. Also a disk under the floor facing up (ruled out above the floor) and a
     // side panel at x = 1.2 facing away from the ball (+x: ruled out left of it).
     (void)scene.add_sphere_light(SphereLight{Sphere{{-4.0f, 6.0f, 3.0f}, 0.6f}, glm::vec3(60.0f)});
-    (void)scene.add_quad_light(QuadLight{{-0.9f, 1.2f, -0.9f}, {1.8f, 0.0f, 0.0f},
-                                         {0.0f, 0.0f, 1.8f}, glm::vec3(2.5f, 2.2f, 2.0f), false});
+    (void)scene.add_quad_light(QuadLight{{-0.9f, 1.2f, -0.9f},
+                                         {1.8f, 0.0f, 0.0f},
+                                         {0.0f, 0.0f, 1.8f},
+                                         glm::vec3(2.5f, 2.2f, 2.0f),
+                                         false});
     (void)scene.add_disk_light(
         DiskLight{{0.0f, -0.5f, 0.0f}, {0.0f, 1.0f, 0.0f}, 0.5f, glm::vec3(8.0f), false});
-    (void)scene.add_quad_light(QuadLight{{1.2f, 0.2f, -1.0f}, {0.0f, 0.8f, 0.0f},
-                                         {0.0f, 0.0f, 0.8f}, glm::vec3(3.0f), false});
+    (void)scene.add_quad_light(QuadLight{
+        {1.2f, 0.2f, -1.0f}, {0.0f, 0.8f, 0.0f}, {0.0f, 0.0f, 0.8f}, glm::vec3(3.0f), false});
     scene.commit();
     ASSERT_EQ(scene.lights().size(), 4u);
     // The power table gives the panel little; the bound, under it, much more.

@@ -158,8 +158,8 @@ struct Vertex {
 
 /// The weight of the emission of the object hit along unit direction `dir` after `bounce`:
 /// 0 from the back of a one-sided light.
-float emitter_weight(const Scene& scene, const Hit& hit, const glm::vec3& dir,
-                     const Bounce& bounce, const LightChoicePoint* chosen_at) {
+float emitter_weight(const Scene& scene, const Hit& hit, const glm::vec3& dir, const Bounce& bounce,
+                     const LightChoicePoint* chosen_at) {
     const std::uint32_t light = scene.light_of_hit(hit);
     if (light != kInvalidId && scene.lights()[light].one_sided &&
         !(glm::dot(dir, hit.geometric_normal) < 0.0f))
@@ -201,7 +201,8 @@ glm::vec3 escaped(const Scene& scene, const glm::vec3& dir, const Bounce& bounce
     const float u_light = lights.size() > 1 ? sampler.next_1d() : 0.0f;
     sampler.set_dimension(first + SampleDimensions::k_bounce_light);
     const glm::vec2 u = sampler.next_2d();
-    const SampledLight chosen = at != nullptr ? lights.sample(u_light, *at) : lights.sample(u_light);
+    const SampledLight chosen =
+        at != nullptr ? lights.sample(u_light, *at) : lights.sample(u_light);
     if (!chosen.valid()) return glm::vec3(0.0f);
     const Light& light = scene.lights()[chosen.light];
     // Sphere lights (the report scenes' kind) called directly: std::visit over all the
@@ -253,7 +254,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
     ray.direction /= len;
     ray.t_min *= len;
     ray.t_max *= len;
-    Bounce bounce;   // the camera ray: emission counts fully
+    Bounce bounce;  // the camera ray: emission counts fully
     // Bounded: where the light of the last vertex was chosen (its pmf depends on it).
     LightChoicePoint chosen_at;
     const LightChoicePoint* const chosen = Bounded ? &chosen_at : nullptr;

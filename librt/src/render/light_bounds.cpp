@@ -16,8 +16,8 @@ float mean(const glm::vec3& v) { return (v.x + v.y + v.z) / 3.0f; }
 /// directions are computed in float) can never put an emitting point outside the sphere:
 /// a relative 1e-4 of the radius plus 1e-5 of the coordinates' magnitude.
 float padded(const glm::vec3& centre, float radius) {
-    const float magnitude = std::max({std::fabs(centre.x), std::fabs(centre.y),
-                                      std::fabs(centre.z), radius});
+    const float magnitude =
+        std::max({std::fabs(centre.x), std::fabs(centre.y), std::fabs(centre.z), radius});
     return radius * (1.0f + 1e-4f) + 1e-5f * magnitude;
 }
 
@@ -55,8 +55,7 @@ LightBounds bounds_of(const TriangleLight& l, float phi) {
 LightBounds bounds_of(const QuadLight& l, float phi) {
     const glm::vec3 c = l.corner + 0.5f * (l.edge0 + l.edge1);
     // Half the longer diagonal reaches every corner from the centre.
-    const float r =
-        0.5f * std::max(glm::length(l.edge0 + l.edge1), glm::length(l.edge0 - l.edge1));
+    const float r = 0.5f * std::max(glm::length(l.edge0 + l.edge1), glm::length(l.edge0 - l.edge1));
     LightBounds b = finite(c, r, phi);
     planar(b, glm::cross(l.edge0, l.edge1), !l.two_sided);
     return b;
@@ -108,8 +107,8 @@ float cos_minus(float cos_theta, float cos_alpha, float sin_alpha) {
 
 LightBounds light_bounds(const Light& light) {
     const float phi = std::max(0.0f, mean(power(light)));
-    LightBounds b = std::visit([&](const auto& source) { return bounds_of(source, phi); },
-                               light.source);
+    LightBounds b =
+        std::visit([&](const auto& source) { return bounds_of(source, phi); }, light.source);
     if (!std::isfinite(b.phi)) b.phi = 0.0f;
     return b;
 }

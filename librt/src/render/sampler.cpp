@@ -27,18 +27,20 @@ std::uint32_t Sampler::reversed(std::uint32_t index) { return reverse_bits(index
 float Sampler::sobol_1d() {
     const std::uint64_t h = dimension_hash(pixel_key_, dimension_++);
     // Burley's shuffle: this dimension's own permutation of the sample indices.
-    const std::uint32_t index = reverse_bits(laine_karras_permutation(reversed_index_, low_seed(h)));
+    const std::uint32_t index =
+        reverse_bits(laine_karras_permutation(reversed_index_, low_seed(h)));
     return u32_to_unit_float(reverse_bits(laine_karras_permutation(index, high_seed(h))));
 }
 
 glm::vec2 Sampler::sobol_2d() {
     const std::uint64_t h = dimension_hash(pixel_key_, dimension_);
     dimension_ += 2;
-    const std::uint32_t index = reverse_bits(laine_karras_permutation(reversed_index_, low_seed(h)));
+    const std::uint32_t index =
+        reverse_bits(laine_karras_permutation(reversed_index_, low_seed(h)));
     const std::uint64_t h2 = mix64(h);  // two more seeds for the two components
     return {u32_to_unit_float(reverse_bits(laine_karras_permutation(index, low_seed(h2)))),
-            u32_to_unit_float(
-                reverse_bits(laine_karras_permutation(sobol_reversed_u32(index, 1), high_seed(h2))))};
+            u32_to_unit_float(reverse_bits(
+                laine_karras_permutation(sobol_reversed_u32(index, 1), high_seed(h2))))};
 }
 
 }  // namespace librt
