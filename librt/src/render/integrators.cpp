@@ -119,8 +119,7 @@ struct Vertex {
         return sp;
     }
     /// wo in the local frame.
-    // Forced inline: with two instantiations of trace() g++ otherwise keeps it out of line.
-    [[gnu::always_inline]] glm::vec3 wo() { return point().frame.to_local(-incoming); }
+    glm::vec3 wo() { return point().frame.to_local(-incoming); }
 };
 
 /// The BSDF's f and pdf toward world direction wi, with |cos(theta_i)| in `cos_i`: from
