@@ -35,6 +35,7 @@ struct Options {
     std::string size;  // "WxH"; empty = the camera's aspect, long side 640
     std::string camera;
     int max_depth = 5;
+    std::string light_choice = "power";  // power | bounded (LightChoice)
     int threads = 0;
     std::uint64_t seed = 0;
     double time_limit = 0.0;
@@ -67,6 +68,8 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     validate(check);
     if (o.max_depth < 0 || o.max_depth > 1000)
         bad("--max-depth", std::to_string(o.max_depth), "must be in [0, 1000]");
+    if (o.light_choice != "power" && o.light_choice != "bounded")
+        bad("--light-choice", o.light_choice, "must be power or bounded");
     if (!std::isfinite(o.time_limit) || o.time_limit < 0.0)
         bad("--time-limit", std::to_string(o.time_limit), "must be finite and >= 0 (0 = none)");
     // Ranks render whole tiles with all their samples, not passes over the image: a frame
@@ -119,6 +122,7 @@ int render_file(const Options& o, const apps::MpiJob& job) {
 
     PathTracerSettings pt;
     pt.max_depth = o.max_depth;
+    pt.light_choice = o.light_choice == "bounded" ? LightChoice::Bounded : LightChoice::Power;
     PathTracer integrator(pt);
     if (job.distributed()) {
         apps::MpiJobSettings ms;
@@ -164,6 +168,10 @@ int main(int argc, char** argv) {
     app.add_option("--camera", o.camera,
                    "The file's camera: index (in node order) or name; default: the first");
     app.add_option("--max-depth", o.max_depth, "Scattering events per path")->capture_default_str();
+    app.add_option("--light-choice", o.light_choice,
+                   "How a shading point chooses the light it samples: power (by power alone) or "
+                   "bounded (by power times a bound of its contribution there)")
+        ->capture_default_str();
     app.add_option("--threads", o.threads, "Worker threads, 0 = all cores")->capture_default_str();
     app.add_option("--seed", o.seed, "Random seed")->capture_default_str();
     app.add_option("--time-limit", o.time_limit,

@@ -7,9 +7,14 @@
 //   sky:   a floor, a ball and a block lit only by sky.hdr, environment importance
 //          sampling with MIS (PathTracer) against cosine sampling of the sky
 //          (BruteForcePathTracer: the diffuse BSDF samples the cosine).
+// Environment, for the panel's diagnosis: LIBRT_PANEL_Y (its height, default 1.99 under a
+// ceiling at 2), LIBRT_PANEL_ONE_SIDED (a one-sided quad light instead of two-sided
+// emissive triangles).
 // Usage: librt_light_targets [seconds per candidate = 2] [reference seconds = 40]
 //                            [panel edge = 0.5 (its power is kept: radiance / edge^2)]
-//                            [max depth = 5]
+//                            [max depth = 5] [sampler of the sampled candidate and the
+//                            reference = independent | sobol] [roulette = 1 | 0]
+//                            [scene = both | panel | sky]
 
 #include <librt/io/hdr_image.h>
 #include <librt/render/integrators.h>
@@ -41,6 +46,12 @@ TriangleMesh quad(const glm::vec3& c, const glm::vec3& e0, const glm::vec3& e1) 
     return m;
 }
 
+/// Height of the panel: 1.99 (0.01 under the ceiling), or LIBRT_PANEL_Y for experiments.
+float panel_y() {
+    const char* y = std::getenv("LIBRT_PANEL_Y");
+    return y != nullptr ? float(std::atof(y)) : 1.99f;
+}
+
 /// A 2 x 2 x 2 box open at +z, two blocks in it, and a 0.5 x 0.5 emissive ceiling panel
 /// just below the ceiling.
 void build_panel_box(Scene& scene, float edge) {
@@ -56,8 +67,15 @@ void build_panel_box(Scene& scene, float edge) {
     scene.add_sphere({{0.45f, 0.3f, 0.3f}, 0.3f}, white);
     const float k = 0.25f / (edge * edge);  // the same power as the 0.5 x 0.5 panel
     const auto lamp = scene.add_material(Material::emissive(k * glm::vec3(17.0f, 12.0f, 4.0f)));
-    TriangleMesh panel = quad({-0.5f * edge, 1.99f, -0.5f * edge}, {edge, 0, 0}, {0, 0, edge});
-    scene.add_mesh(panel, lamp);
+    const glm::vec3 corner{-0.5f * edge, panel_y(), -0.5f * edge};
+    if (std::getenv("LIBRT_PANEL_ONE_SIDED") != nullptr) {
+        // The panel as a one-sided quad light facing down (edge0 x edge1 = -y): no light
+        // into the gap between it and the ceiling (docs/materials-and-lights.md, Measured).
+        (void)scene.add_quad_light(QuadLight{
+            corner, {edge, 0, 0}, {0, 0, edge}, k * glm::vec3(17.0f, 12.0f, 4.0f), false});
+    } else {
+        scene.add_mesh(quad(corner, {edge, 0, 0}, {0, 0, edge}), lamp);  // two-sided triangles
+    }
     scene.commit();
 }
 
@@ -88,14 +106,15 @@ struct Camera {
 /// the panel seen directly would otherwise add the same coverage noise to both
 /// estimators and hide the lighting's), until `seconds` pass; the mean image.
 std::vector<glm::dvec3> render(const Scene& scene, const Integrator& integrator, const Camera& cam,
-                               double seconds, std::uint64_t seed, int* passes) {
+                               double seconds, std::uint64_t seed, int* passes,
+                               SamplerKind kind = SamplerKind::Independent) {
     std::vector<glm::dvec3> sum(kSize * kSize, glm::dvec3(0.0));
     const auto start = Clock::now();
     int n = 0;
     do {
         for (int y = 0; y < kSize; ++y)
             for (int x = 0; x < kSize; ++x) {
-                Sampler s(std::uint32_t(x), std::uint32_t(y), std::uint32_t(n), seed);
+                Sampler s(kind, std::uint32_t(x), std::uint32_t(y), std::uint32_t(n), seed);
                 sum[std::size_t(y * kSize + x)] +=
                     glm::dvec3(integrator.li(scene, cam.ray(x, y, 0.5f, 0.5f), s));
             }
@@ -116,10 +135,11 @@ double rmse(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) 
 }
 
 void compare(const char* name, const Scene& sampled, const Integrator& good, const Scene& plain,
-             const Integrator& base, const Camera& cam, double seconds, double ref_seconds) {
+             const Integrator& base, const Camera& cam, double seconds, double ref_seconds,
+             SamplerKind kind) {
     int nr = 0, ng = 0, nb = 0;
-    const auto ref = render(sampled, good, cam, ref_seconds, 1000, &nr);
-    const auto g = render(sampled, good, cam, seconds, 1, &ng);
+    const auto ref = render(sampled, good, cam, ref_seconds, 1000, &nr, kind);
+    const auto g = render(sampled, good, cam, seconds, 1, &ng, kind);
     const auto b = render(plain, base, cam, seconds, 2, &nb);
     const double rg = rmse(g, ref), rb = rmse(b, ref);
     std::printf(
@@ -136,15 +156,21 @@ int main(int argc, char** argv) {
     const float edge = argc > 3 ? float(std::atof(argv[3])) : 0.5f;
     PathTracerSettings settings;
     settings.max_depth = argc > 4 ? std::atoi(argv[4]) : 5;
-    settings.russian_roulette = true;
+    const SamplerKind kind =
+        argc > 5 && std::string(argv[5]) == "sobol" ? SamplerKind::Sobol : SamplerKind::Independent;
+    settings.russian_roulette = argc > 6 ? std::atoi(argv[6]) != 0 : true;
+    const std::string which = argc > 7 ? argv[7] : "both";
     const PathTracer pt(settings);
     const BruteForcePathTracer brute(settings);
 
-    Scene lit;
-    build_panel_box(lit, edge);
-    const Camera box_cam{{0, 1, 3.4f}, {0, 0, -1}, {0, 1, 0}, 40.0f};
-    compare("panel (triangle lights vs the panel unsampled)", lit, pt, lit, brute, box_cam, seconds,
-            ref_seconds);
+    if (which != "sky") {
+        Scene lit;
+        build_panel_box(lit, edge);
+        const Camera box_cam{{0, 1, 3.4f}, {0, 0, -1}, {0, 1, 0}, 40.0f};
+        compare("panel (triangle lights vs the panel unsampled)", lit, pt, lit, brute, box_cam,
+                seconds, ref_seconds, kind);
+    }
+    if (which == "panel") return 0;
 
     const char* dir = std::getenv("LIBRT_DATA_DIR");
     const std::filesystem::path path =
@@ -157,6 +183,6 @@ int main(int argc, char** argv) {
                          glm::normalize(glm::vec3(0, 1, -0.25f)),
                          50.0f};
     compare("sky.hdr (environment sampling + MIS vs cosine sampling)", sky_scene, pt, sky_scene,
-            brute, sky_cam, seconds, ref_seconds);
+            brute, sky_cam, seconds, ref_seconds, kind);
     return 0;
 }

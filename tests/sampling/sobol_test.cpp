@@ -102,6 +102,11 @@ TEST(Sobol, ByteTablesAgreeWithTheDirectionNumbers) {
                 if ((index >> k) & 1u) x ^= detail::k_sobol_matrices[d][k];
             }
             ASSERT_EQ(sobol_u32(index, d), x) << "index " << index << " dim " << d;
+            // The reversed tables give the same bits in reverse order.
+            std::uint32_t reversed = 0;
+            for (int k = 0; k < 32; ++k) reversed |= ((x >> k) & 1u) << (31 - k);
+            ASSERT_EQ(sobol_reversed_u32(index, d), reversed) << "index " << index << " dim " << d;
+            ASSERT_EQ(reverse_bits(x), reversed);
         }
     }
 }

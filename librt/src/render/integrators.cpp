@@ -67,15 +67,18 @@ struct Bounce {
 };
 
 /// The weight of the emission of light `light` (kInvalidId: an emitter no light samples)
-/// found along unit direction `dir` after `bounce`.
+/// found along unit direction `dir` after `bounce`; `chosen_at` set when the light there
+/// was chosen per point (LightChoice::Bounded): that choice's pmf depends on it.
 float light_weight(const Scene& scene, std::uint32_t light, const glm::vec3& dir,
-                   const Bounce& bounce) {
+                   const Bounce& bounce, const LightChoicePoint* chosen_at) {
     if (bounce.weight == EmitterWeight::Full) return 1.0f;
     if (light == kInvalidId) return 1.0f;  // no light strategy could have found it
     if (bounce.weight == EmitterWeight::Zero) return 0.0f;
     // Density with which the light strategy at the previous vertex picks this direction.
-    const float light_pdf =
-        scene.light_sampler().pmf(light) * pdf_li(scene.lights()[light], bounce.point, dir);
+    // The light choice's pmf as it was at that vertex: per point when chosen by bounds.
+    const float pmf = chosen_at != nullptr ? scene.light_sampler().pmf(light, *chosen_at)
+                                           : scene.light_sampler().pmf(light);
+    const float light_pdf = pmf * pdf_li(scene.lights()[light], bounce.point, dir);
     return power_heuristic(bounce.pdf, light_pdf);
 }
 
@@ -154,26 +157,26 @@ struct Vertex {
 
 /// The weight of the emission of the object hit along unit direction `dir` after `bounce`:
 /// 0 from the back of a one-sided light.
-float emitter_weight(const Scene& scene, const Hit& hit, const glm::vec3& dir,
-                     const Bounce& bounce) {
+float emitter_weight(const Scene& scene, const Hit& hit, const glm::vec3& dir, const Bounce& bounce,
+                     const LightChoicePoint* chosen_at) {
     const std::uint32_t light = scene.light_of_hit(hit);
     if (light != kInvalidId && scene.lights()[light].one_sided &&
         !(glm::dot(dir, hit.geometric_normal) < 0.0f))
         return 0.0f;
-    return light_weight(scene, light, dir, bounce);
+    return light_weight(scene, light, dir, bounce, chosen_at);
 }
 
 /// What a ray leaving the scene along unit direction `dir` after `bounce` receives from
 /// the lights at infinity, each with its MIS weight (all of them fully when `brute`).
 glm::vec3 escaped(const Scene& scene, const glm::vec3& dir, const Bounce& bounce, bool brute,
-                  bool camera_ray) {
+                  bool camera_ray, const LightChoicePoint* chosen_at) {
     glm::vec3 sum(0.0f);
     for (const std::uint32_t i : scene.infinite_lights()) {
         const Light& light = scene.lights()[i];
         if (camera_ray && !light.camera_visible) continue;
         const glm::vec3 le = escaped_radiance(light, dir);
         if (!(max_component(le) > 0.0f)) continue;
-        sum += le * (brute ? 1.0f : light_weight(scene, i, dir, bounce));
+        sum += le * (brute ? 1.0f : light_weight(scene, i, dir, bounce, chosen_at));
     }
     return sum;
 }
@@ -182,12 +185,13 @@ glm::vec3 escaped(const Scene& scene, const glm::vec3& dir, const Bounce& bounce
 /// direction toward it is drawn, and its contribution f L |cos| / pdf is returned if a
 /// shadow ray finds it unoccluded, times the power heuristic against BSDF sampling when
 /// `mis` (delta lights: weight 1, no BSDF sample can find them). `beta` is the path's
-/// throughput: no shadow ray is spent on a contribution it zeroes.
+/// throughput: no shadow ray is spent on a contribution it zeroes. `at` set: the light is
+/// chosen by its bound there (LightChoice::Bounded), else by power.
 // Forced inline: called once per non-specular vertex, and g++ otherwise keeps the call
 // (callgrind on the synthesis: -1.6% instructions in the path loop).
 [[gnu::always_inline]] inline glm::vec3 sample_direct(const Scene& scene, const Hit& hit, Vertex& v,
                                                       const glm::vec3& beta, Sampler& sampler,
-                                                      bool mis) {
+                                                      bool mis, const LightChoicePoint* at) {
     const LightSampler& lights = scene.light_sampler();
     // Drawn even when unused, so later decisions of the path keep their numbers; no
     // number chooses among a single light. The caller's start_bounce put the sampler on
@@ -196,7 +200,8 @@ glm::vec3 escaped(const Scene& scene, const glm::vec3& dir, const Bounce& bounce
     const float u_light = lights.size() > 1 ? sampler.next_1d() : 0.0f;
     sampler.set_dimension(first + SampleDimensions::k_bounce_light);
     const glm::vec2 u = sampler.next_2d();
-    const SampledLight chosen = lights.sample(u_light);
+    const SampledLight chosen =
+        at != nullptr ? lights.sample(u_light, *at) : lights.sample(u_light);
     if (!chosen.valid()) return glm::vec3(0.0f);
     const Light& light = scene.lights()[chosen.light];
     // Sphere lights (the report scenes' kind) called directly: std::visit over all the
@@ -234,7 +239,9 @@ struct TraceSettings {
 };
 
 /// One path from `camera_ray` following `S`; see the class comments in integrators.h.
-template <Strategy S>
+/// `Bounded`: lights are chosen by LightChoice::Bounded. A template parameter, so that the
+/// default (power) loop keeps its code and registers unchanged (callgrind on the synthesis).
+template <Strategy S, bool Bounded>
 glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                 const TraceSettings& settings) {
     glm::vec3 radiance(0.0f);
@@ -246,14 +253,17 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
     ray.direction /= len;
     ray.t_min *= len;
     ray.t_max *= len;
-    Bounce bounce;   // the camera ray: emission counts fully
+    Bounce bounce;  // the camera ray: emission counts fully
+    // Bounded: where the light of the last vertex was chosen (its pmf depends on it).
+    LightChoicePoint chosen_at;
+    const LightChoicePoint* const chosen = Bounded ? &chosen_at : nullptr;
     int hidden = 0;  // objects hidden from the camera that the camera ray passed through
     Hit hit;         // out of the loop: every intersection that returns true rewrites it whole
     ShadedMaterial shaded;  // a textured hit's material (Scene::shade); unused otherwise
     for (int depth = 0;;) {
         if (!scene.intersect_for_shading(ray, hit)) {
-            radiance +=
-                beta * escaped(scene, ray.direction, bounce, S == Strategy::Brute, depth == 0);
+            radiance += beta * escaped(scene, ray.direction, bounce, S == Strategy::Brute,
+                                       depth == 0, chosen);
             break;
         }
         // may_hide_objects() first: a flag, where camera_visible() is a bounds-checked
@@ -269,8 +279,8 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         const Material& m = scene.shade(hit, ray.direction, shaded);
         if (m.emits()) {
             // Brute force weighs every emitter fully (a one-sided light's back stays dark).
-            const float w =
-                emitter_weight(scene, hit, ray.direction, S == Strategy::Brute ? Bounce{} : bounce);
+            const float w = emitter_weight(scene, hit, ray.direction,
+                                           S == Strategy::Brute ? Bounce{} : bounce, chosen);
             if (w > 0.0f) radiance += beta * m.emission * w;
         }
         // Lambert's lobes are a constant: no dispatch for the common kind.
@@ -294,8 +304,12 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         // at the last scattering event, where no BSDF sample will be weighed against it.
         const bool light_only =
             S == Strategy::Direct || !settings.mis || depth >= settings.max_depth;
+        if constexpr (Bounded) {
+            // The point, its normal and whether light from below its plane can count.
+            chosen_at = {hit.point, v.g, !has(material_lobes, BsdfLobe::Transmission)};
+        }
         if (S != Strategy::Brute && has_non_specular(material_lobes)) {
-            radiance += beta * sample_direct(scene, hit, v, beta, sampler, !light_only);
+            radiance += beta * sample_direct(scene, hit, v, beta, sampler, !light_only, chosen);
             if constexpr (S == Strategy::Direct) return radiance;
             // The last bounce: what it finds counts only if it emits without being a light
             // (lights got weight 1 from the light sample just taken). With no such emitter,
@@ -375,7 +389,9 @@ DirectLighting::DirectLighting(const DirectLightingSettings& settings) : setting
 glm::vec3 DirectLighting::li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
     TraceSettings s;
     s.max_depth = settings_.max_depth;
-    return guard(trace<Strategy::Direct>(scene, ray, sampler, s));
+    if (settings_.light_choice == LightChoice::Bounded)
+        return guard(trace<Strategy::Direct, true>(scene, ray, sampler, s));
+    return guard(trace<Strategy::Direct, false>(scene, ray, sampler, s));
 }
 
 PathTracer::PathTracer(const PathTracerSettings& settings) : settings_(settings) {
@@ -383,7 +399,9 @@ PathTracer::PathTracer(const PathTracerSettings& settings) : settings_(settings)
 }
 
 glm::vec3 PathTracer::li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
-    return guard(trace<Strategy::Path>(scene, ray, sampler, trace_settings(settings_)));
+    if (settings_.light_choice == LightChoice::Bounded)
+        return guard(trace<Strategy::Path, true>(scene, ray, sampler, trace_settings(settings_)));
+    return guard(trace<Strategy::Path, false>(scene, ray, sampler, trace_settings(settings_)));
 }
 
 BruteForcePathTracer::BruteForcePathTracer(const PathTracerSettings& settings)
@@ -392,7 +410,7 @@ BruteForcePathTracer::BruteForcePathTracer(const PathTracerSettings& settings)
 }
 
 glm::vec3 BruteForcePathTracer::li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
-    return guard(trace<Strategy::Brute>(scene, ray, sampler, trace_settings(settings_)));
+    return guard(trace<Strategy::Brute, false>(scene, ray, sampler, trace_settings(settings_)));
 }
 
 glm::vec3 AlbedoNormalIntegrator::li(const Scene& scene, const Ray& ray,

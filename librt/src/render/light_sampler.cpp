@@ -15,6 +15,8 @@ LightSampler::LightSampler(std::span<const Light> lights) {
         weight[i] = std::isfinite(w) && w > 0.0 ? w : 0.0;
         total += weight[i];
     }
+    bounds_.reserve(lights.size());
+    for (const Light& light : lights) bounds_.push_back(light_bounds(light));
     pmf_.assign(lights.size(), 0.0f);
     cdf_.assign(lights.size(), 0.0f);
     if (!(total > 0.0) || !std::isfinite(total)) {
@@ -25,6 +27,7 @@ LightSampler::LightSampler(std::span<const Light> lights) {
     std::size_t last = 0;
     for (std::size_t i = 0; i < lights.size(); ++i) {
         pmf_[i] = float(weight[i] / total);
+        if (!bounds_[i].infinite) finite_share_ += weight[i] / total;
         sum += weight[i] / total;
         cdf_[i] = float(sum);
         if (weight[i] > 0.0) last = i;
@@ -41,6 +44,61 @@ SampledLight LightSampler::search(float u) const {
     const auto i =
         std::uint32_t(std::min<std::ptrdiff_t>(it - cdf_.begin(), std::ptrdiff_t(cdf_.size()) - 1));
     return {i, pmf_[i]};
+}
+
+double LightSampler::point_weights(const LightChoicePoint& at, double* w) const {
+    double finite_sum = 0.0;
+    for (std::size_t i = 0; i < bounds_.size(); ++i) {
+        const float imp = importance(bounds_[i], at);
+        w[i] = double(imp);
+        if (!bounds_[i].infinite) finite_sum += w[i];
+    }
+    // Finite lights share finite_share_ by their bounds; lights at infinity keep their
+    // power-table probability unless their bound rules them out.
+    const double scale = finite_sum > 0.0 ? finite_share_ / finite_sum : 0.0;
+    double total = 0.0;
+    for (std::size_t i = 0; i < bounds_.size(); ++i) {
+        if (bounds_[i].infinite)
+            w[i] = w[i] > 0.0 ? double(pmf_[i]) : 0.0;
+        else
+            w[i] *= scale;
+        if (!std::isfinite(w[i])) w[i] = 0.0;
+        total += w[i];
+    }
+    return total;
+}
+
+SampledLight LightSampler::sample(float u, const LightChoicePoint& at) const {
+    if (bounds_.size() > k_max_bounded) {
+        const SampledLight s = sample(u);
+        // Chosen by power; a light its bound rules out here would give a zero sample.
+        if (s.valid() && !(importance(bounds_[s.light], at) > 0.0f)) return {};
+        return s;
+    }
+    double w[k_max_bounded];
+    const double total = point_weights(at, w);
+    if (!(total > 0.0)) return {};
+    // The first light whose cumulative weight exceeds u * total; lights of weight 0 have an
+    // empty interval. Rounding can leave u * total at the end: the last positive light.
+    const double target = double(u) * total;
+    double sum = 0.0;
+    std::size_t chosen = bounds_.size();
+    for (std::size_t i = 0; i < bounds_.size(); ++i) {
+        if (!(w[i] > 0.0)) continue;
+        chosen = i;
+        sum += w[i];
+        if (target < sum) break;
+    }
+    return {std::uint32_t(chosen), float(w[chosen] / total)};
+}
+
+float LightSampler::pmf(std::uint32_t light, const LightChoicePoint& at) const {
+    if (light >= bounds_.size()) return 0.0f;
+    if (bounds_.size() > k_max_bounded) return pmf_[light];
+    double w[k_max_bounded];
+    const double total = point_weights(at, w);
+    if (!(total > 0.0)) return 0.0f;
+    return float(w[light] / total);
 }
 
 }  // namespace librt

@@ -2,6 +2,7 @@
 
 #include <librt/export.h>
 #include <librt/render/integrator.h>
+#include <librt/render/light_sampler.h>
 
 #include <atomic>
 #include <cstdint>
@@ -41,6 +42,8 @@ private:
 /// Settings of DirectLighting.
 struct DirectLightingSettings {
     int max_depth = 5;  ///< mirror and glass bounces followed, in [0, 1000]
+    /// How the light sampled at a hit is chosen (Power: the report's images, bit for bit).
+    LightChoice light_choice = LightChoice::Power;
 };
 
 /// The report's first figure: at the first non-specular hit, next-event estimation of one
@@ -76,6 +79,10 @@ struct PathTracerSettings {
     /// light samples the whole weight and count nothing for light-sampled emitters that a
     /// BSDF-sampled ray hits (false: next-event estimation only, the report's rule).
     bool mis = true;
+    /// PathTracer only: how the light sampled at a vertex is chosen. Bounded spends no
+    /// sample on lights that cannot reach the point and favours near ones; Power (the
+    /// default) keeps images bit-identical to before.
+    LightChoice light_choice = LightChoice::Power;
 };
 
 /// The report's full getColor as a loop with multiple importance sampling: at every

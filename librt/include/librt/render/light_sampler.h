@@ -3,6 +3,7 @@
 #include <librt/export.h>
 #include <librt/geometry/hit.h>
 #include <librt/render/light.h>
+#include <librt/render/light_bounds.h>
 
 #include <cstddef>
 #include <cstdint>
@@ -10,6 +11,12 @@
 #include <vector>
 
 namespace librt {
+
+/// How a path tracer chooses the light it samples at a shading point.
+enum class LightChoice : std::uint8_t {
+    Power,    ///< by power alone, the same table everywhere (LightSampler::sample(u))
+    Bounded,  ///< by power times a bound of the contribution at the point (light_bounds.h)
+};
 
 /// One light chosen by a LightSampler, with the probability of that choice.
 struct SampledLight {
@@ -27,6 +34,18 @@ struct SampledLight {
 /// bright panel; the pmf does not depend on the shading point, so an emitter hit by a BSDF
 /// ray gets its MIS weight from pmf(light) alone. Lights of zero power are never chosen
 /// (they add nothing). Choosing is a binary search in the cumulative distribution.
+///
+/// The overloads taking a LightChoicePoint choose by power times a bound of each light's
+/// contribution at that point instead (light_bounds.h): a light wholly below a reflecting
+/// surface, or one facing away, gets probability 0 and costs no sample and no shadow ray;
+/// near lights get more samples than far ones. With at most k_max_bounded lights the pmf
+/// is computed per point (one bound per light: cheap, and exact to renormalise). Above
+/// that it stays the power table's, to keep the cost per shading point bounded: a light
+/// the power table chose but whose bound is 0 there is returned invalid (its sample would
+/// be 0), so shadow rays are still skipped. A light tree (pbrt-v4's BVHLightSampler) would
+/// extend the bound to many lights. Lights at infinity keep their share of the power
+/// table (their power has no distance to compare with a finite light's), finite lights
+/// share the rest in proportion to their bounds; both then renormalised over what is left.
 class LIBRT_API LightSampler {
 public:
     /// A sampler with no lights: sample() always returns an invalid choice.
@@ -43,6 +62,16 @@ public:
     [[nodiscard]] float pmf(std::uint32_t light) const {
         return light < pmf_.size() ? pmf_[light] : 0.0f;
     }
+    /// The light chosen by u in [0, 1) for shading point `at`, by power times its bound.
+    [[nodiscard]] SampledLight sample(float u, const LightChoicePoint& at) const;
+    /// Probability that sample(u, at) chooses light `light` (0 for an unknown index):
+    /// what the MIS weight of a BSDF-sampled ray that hits it from `at` must use.
+    [[nodiscard]] float pmf(std::uint32_t light, const LightChoicePoint& at) const;
+    /// The bounds of light `light` (index < size()).
+    [[nodiscard]] const LightBounds& bounds(std::uint32_t light) const { return bounds_[light]; }
+    /// Up to this many lights the per-point choice renormalises over every light.
+    static constexpr std::size_t k_max_bounded = 16;
+
     /// Number of lights, chosen or not.
     [[nodiscard]] std::size_t size() const { return pmf_.size(); }
     /// True when some light can be chosen.
@@ -50,9 +79,13 @@ public:
 
 private:
     [[nodiscard]] SampledLight search(float u) const;
+    /// Per-point weights of every light into w (size() <= k_max_bounded); their sum.
+    double point_weights(const LightChoicePoint& at, double* w) const;
 
     std::vector<float> pmf_;  ///< per light
     std::vector<float> cdf_;  ///< cdf_[i] = pmf_[0] + ... + pmf_[i]; the last positive is 1
+    std::vector<LightBounds> bounds_;  ///< per light
+    double finite_share_ = 0.0;        ///< sum of pmf_ over the lights not at infinity
 };
 
 }  // namespace librt

@@ -80,7 +80,7 @@ public:
             // A pixel key distinct from make_sample_rng's chain (another salt), so the two
             // kinds never share structure.
             pixel_key_ = mix64(mix64(seed ^ k_sobol_salt) ^ ((std::uint64_t{x} << 32u) | y));
-            sample_index_ = sample_index;
+            reversed_index_ = reversed(sample_index);
         }
     }
 
@@ -122,12 +122,15 @@ private:
     // instruction cache (measured on rt_indirect).
     [[nodiscard]] float sobol_1d();
     [[nodiscard]] glm::vec2 sobol_2d();
+    /// reverse_bits(index) (sobol.h), out of line: sampler.h stays free of the tables.
+    [[nodiscard]] static std::uint32_t reversed(std::uint32_t index);
 
     static constexpr std::uint64_t k_sobol_salt = 0x5b0b01a5eedc0ffeULL;
 
     Pcg32 rng_;
     std::uint64_t pixel_key_ = 0;
-    std::uint32_t sample_index_ = 0;
+    /// reverse_bits(sample index), computed once: every draw's Burley shuffle starts there.
+    std::uint32_t reversed_index_ = 0;
     std::uint32_t dimension_ = 0;
     SamplerKind kind_ = SamplerKind::Independent;
 };
