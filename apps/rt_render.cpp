@@ -45,6 +45,8 @@ struct Options {
     std::string env;            // equirectangular .hdr lighting the scene; empty = none
     float env_strength = 1.0f;  // scale of the environment's radiance
     bool quiet = false;
+    bool guiding = false;    // path guiding
+    int guiding_passes = 5;  // its training passes
 };
 
 [[noreturn]] void bad(const std::string& option, const std::string& value, const char* rule) {
@@ -128,6 +130,8 @@ int render_file(const Options& o) {
     validate(check);
     if (o.max_depth < 0 || o.max_depth > 1000)
         bad("--max-depth", std::to_string(o.max_depth), "must be in [0, 1000]");
+    if (o.guiding_passes < 1 || o.guiding_passes > 20)
+        bad("--guiding-passes", std::to_string(o.guiding_passes), "must be in [1, 20]");
     if (!std::isfinite(o.time_limit) || o.time_limit < 0.0)
         bad("--time-limit", std::to_string(o.time_limit), "must be finite and >= 0 (0 = none)");
     if (!std::isfinite(o.exposure_ev) || std::abs(o.exposure_ev) > 64.0f)
@@ -167,6 +171,8 @@ int render_file(const Options& o) {
 
     PathTracerSettings pt;
     pt.max_depth = o.max_depth;
+    pt.guiding.enabled = o.guiding;
+    pt.guiding.training_passes = o.guiding_passes;
     PathTracer integrator(pt);
     ProgressiveSettings ps;
     ps.render.samples_per_pixel = o.spp;
@@ -246,6 +252,12 @@ int main(int argc, char** argv) {
                    "Equirectangular Radiance .hdr lighting the scene from every direction "
                    "(importance-sampled; seen by rays that leave the scene)");
     app.add_option("--env-strength", o.env_strength, "Scale of the --env radiance")
+        ->capture_default_str();
+    app.add_flag("--guiding", o.guiding,
+                 "Path guiding: learn the incident light in training passes (discarded), then "
+                 "sample directions from it");
+    app.add_option("--guiding-passes", o.guiding_passes,
+                   "Training passes of --guiding; pass k renders 2^k spp (5: 31 spp)")
         ->capture_default_str();
     app.add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
     return apps::run(app, argc, argv, [&] { return render_file(o); });

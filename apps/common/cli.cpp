@@ -145,6 +145,12 @@ void add_common_options(CLI::App& app, AppOptions& o) {
     app.add_option("--filter", o.filter,
                    "Pixel filter by importance sampling: box, tent, gaussian, mitchell or "
                    "blackman-harris (default: the app's own sub-pixel jitter)");
+    app.add_flag("--guiding", o.guiding,
+                 "Path guiding: learn the incident light in training passes, then sample "
+                 "directions from it (path-traced apps)");
+    app.add_option("--guiding-passes", o.guiding_passes,
+                   "Training passes of --guiding; pass k renders 2^k spp (5: 31 spp)")
+        ->capture_default_str();
     app.add_option("--filter-radius", o.filter_radius,
                    "The filter's radius in pixels (default: box 0.5, tent 1, gaussian 1.5, "
                    "mitchell 2, blackman-harris 1.5)");
@@ -212,6 +218,8 @@ PathTracerSettings path_tracer_settings(const AppOptions& options) {
     // The report's paths, explicitly: the library's defaults (long paths, roulette) differ.
     settings.max_depth = options.bounces;
     settings.russian_roulette = false;
+    settings.guiding.enabled = options.guiding;
+    settings.guiding.training_passes = options.guiding_passes;
     return settings;
 }
 
@@ -261,6 +269,8 @@ void validate(const AppOptions& o) {
     if (o.sampler != "independent" && o.sampler != "sobol") {
         bad_option("--sampler", o.sampler, "must be independent or sobol");
     }
+    if (o.guiding_passes < 1 || o.guiding_passes > 20)
+        bad_option("--guiding-passes", std::to_string(o.guiding_passes), "must be in [1, 20]");
     FilterKind kind{};
     if (!o.filter.empty() && !filter_kind_of(o.filter, kind)) {
         bad_option("--filter", o.filter,

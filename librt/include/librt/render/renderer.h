@@ -56,6 +56,7 @@ struct RenderStats {
     std::uint64_t samples = 0;            ///< camera samples taken (Integrator::li calls)
     std::uint64_t nonfinite_samples = 0;  ///< samples dropped because a channel was NaN or infinite
     bool cancelled = false;               ///< true when `cancel` stopped the render before the end
+    int training_passes = 0;  ///< learning passes run before the image (train(): path guiding)
     bool time_limit_reached = false;      ///< render_progressive: stopped by its time limit
     int passes = 0;                       ///< passes finished and kept in the film
     std::uint32_t samples_per_pixel = 0;  ///< samples every pixel holds after a complete pass
@@ -64,8 +65,20 @@ struct RenderStats {
 /// Throws librt::Error naming the first bad parameter of `settings` and its value.
 LIBRT_API void validate(const RenderSettings& settings);
 
-/// Renders `scene` through `camera` with `integrator`: calls integrator.preprocess(scene),
-/// then threads take tiles from an atomic counter. Sample s of pixel (x, y) uses
+/// Runs the integrator's learning passes (Integrator::begin_training_pass; path guiding):
+/// pass k renders integrator.begin_training_pass(k) samples per pixel of the whole image
+/// with settings' threads, tile size and sampler onto a scratch film that is discarded,
+/// then calls end_training_pass(k), until begin_training_pass returns 0. Pass k's seed is
+/// derived from (settings.seed, k), so no training sample shares random numbers with the
+/// image's samples (whose guide would otherwise be correlated with them). For an
+/// integrator that learns nothing it does nothing. Call it after preprocess() and before
+/// render_block; render() and render_progressive() call it themselves. Honours
+/// settings.cancel (stats.cancelled); progress is not reported.
+LIBRT_API RenderStats train(const Scene& scene, const Camera& camera, Integrator& integrator,
+                            const RenderSettings& settings);
+
+/// Renders `scene` through `camera` with `integrator`: calls integrator.preprocess(scene)
+/// and train(), then threads take tiles from an atomic counter. Sample s of pixel (x, y) uses
 /// Sampler(settings.sampler, x, y, s, seed) and Camera::sample_ray, whose filter weight
 /// multiplies the sample's radiance (1 except for a Mitchell pixel filter), and each
 /// pixel is the mean of its finite weighted samples (non-finite
@@ -133,7 +146,7 @@ LIBRT_API void validate(const ProgressiveSettings& settings);
 /// about ten times a second: a pass still running at the limit is abandoned, except that
 /// a film holding no samples always gets its first pass. The film equals a one-shot
 /// render of the same total sample count bit for bit. Calls integrator.preprocess(scene)
-/// once.
+/// and train() once, when there is something to render.
 LIBRT_API RenderStats render_progressive(const Scene& scene, const Camera& camera,
                                          Integrator& integrator, Film& film,
                                          const ProgressiveSettings& settings);
