@@ -72,7 +72,9 @@ private:
         glm::vec3 beta;
         glm::vec3 radiance;
     };
-    std::array<Vertex, kMaxVertices> vertices_{};
+    // Not value-initialised: only the first count_ entries are ever read, and zeroing
+    // 32 of them per training path showed in profiles.
+    std::array<Vertex, kMaxVertices> vertices_;
     std::size_t count_ = 0;
 };
 

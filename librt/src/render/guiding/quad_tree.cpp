@@ -77,11 +77,9 @@ float QuadTree::pdf_square(glm::vec2 p) const {
     std::uint32_t node = 0;
     for (;;) {
         const QuadNode& n = nodes_[node];
-        const float sum = (n.flux[0] + n.flux[1]) + (n.flux[2] + n.flux[3]);
-        if (!(sum > 0.0f)) return 0.0f;
         const std::uint32_t q = descend(p);
         // A quadrant has a quarter of its node's area: density ratio 4 flux_q / sum.
-        pdf *= 4.0f * n.flux[q] / sum;
+        pdf *= 4.0f * n.share[q];
         if (n.child[q] == 0 || !(pdf > 0.0f)) return pdf;
         node = n.child[q];
     }
@@ -149,6 +147,8 @@ void QuadTree::set_leaf_flux(const std::vector<double>& flux) {
                 n.flux[q] = (c.flux[0] + c.flux[1]) + (c.flux[2] + c.flux[3]);
             }
         }
+        const float sum = (n.flux[0] + n.flux[1]) + (n.flux[2] + n.flux[3]);
+        for (std::uint32_t q = 0; q < 4; ++q) n.share[q] = sum > 0.0f ? n.flux[q] / sum : 0.0f;
     }
 }
 
@@ -157,7 +157,10 @@ QuadTree QuadTree::refined(float threshold, int max_depth) const {
     QuadTree out;
     if (!(sum > 0.0f)) {
         out.nodes_ = nodes_;
-        for (QuadNode& n : out.nodes_) n.flux.fill(0.0f);
+        for (QuadNode& n : out.nodes_) {
+            n.flux.fill(0.0f);
+            n.share.fill(0.0f);
+        }
         return out;
     }
     Fractions root;

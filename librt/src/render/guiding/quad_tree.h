@@ -28,7 +28,10 @@ namespace librt::guiding {
 /// One quadtree node: four quadrants, quadrant q = (x >= 1/2) + 2 (y >= 1/2) of the
 /// node's square, each either a leaf cell or an inner node.
 struct QuadNode {
-    std::array<float, 4> flux{};           ///< flux through each quadrant (its subtree's sum)
+    std::array<float, 4> flux{};  ///< flux through each quadrant (its subtree's sum)
+    /// Each quadrant's share of the node's flux (0 when the node has none): set by
+    /// set_leaf_flux, so pdf() multiplies instead of dividing at every level.
+    std::array<float, 4> share{};
     std::array<std::uint32_t, 4> child{};  ///< node index of an inner quadrant; 0 = leaf cell
 };
 
