@@ -12,6 +12,7 @@
 #include <librt/core/error.h>
 #include <librt/geometry/mesh.h>
 #include <librt/render/camera.h>
+#include <librt/render/film.h>
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
 #include <librt/render/scene.h>
@@ -347,6 +348,33 @@ TEST(Guiding, BitIdenticalAcrossRunsThreadsAndTiles) {
         EXPECT_TRUE(same_bits(one, guided_render(scene, 2, 16, kind))) << "1 vs 2 threads";
         EXPECT_TRUE(same_bits(one, guided_render(scene, 2, 5, kind))) << "tile 16 vs 5";
     }
+}
+
+// render_progressive trains the same guide as render() (training depends only on the seed),
+// so its film in passes of 3 samples equals the one-shot render bit for bit, and a film
+// continued by a second call (which trains again, identically) does too.
+TEST(Guiding, ProgressiveEqualsOneShot) {
+    Scene scene;
+    build_lamp_room(scene);
+    CameraSettings c = lamp_room_camera(20);
+    c.pixel_jitter = PixelJitter::Gaussian;
+    const Camera camera(c);
+    PathTracer one_shot(guided_settings());
+    RenderSettings rs;
+    rs.samples_per_pixel = 8;
+    rs.seed = 9;
+    const Image image = render(scene, camera, one_shot, rs);
+    PathTracer progressive(guided_settings());
+    ProgressiveSettings ps;
+    ps.render = rs;
+    ps.render.samples_per_pixel = 5;
+    ps.pass_samples = 3;
+    Film film;
+    RenderStats first = render_progressive(scene, camera, progressive, film, ps);
+    EXPECT_EQ(first.training_passes, 5);
+    ps.render.samples_per_pixel = 8;
+    (void)render_progressive(scene, camera, progressive, film, ps);
+    EXPECT_TRUE(same_bits(image, resolve(film)));
 }
 
 // Guiding off (the default) is the unguided integrator: no training pass, no tree, and the
