@@ -59,7 +59,7 @@ QuadTree trained_quadtree() {
         for (int i = 0; i < 20000; ++i)
             flux[tree.leaf_slot(guiding::direction_to_square(peaked_direction(rng, axis)))] += 1.0;
         tree.set_leaf_flux(flux);
-        if (round < 3) tree = tree.refined(0.01f, 12);
+        if (round < 3) tree = tree.refined(0.01f, 12, 1u << 16u);
     }
     return tree;
 }
@@ -71,6 +71,16 @@ TEST(GuidingQuadTree, CylindricalMapRoundTrips) {
         const glm::vec3 back = guiding::square_to_direction(guiding::direction_to_square(d));
         EXPECT_NEAR(glm::length(back - d), 0.0f, 1e-5f) << i;
     }
+}
+
+// The node cap bounds memory whatever the threshold: a threshold far below one sample's
+// flux would split every cell down to max_depth, 4^12 cells, without it.
+TEST(GuidingQuadTree, RefinementStopsAtTheNodeCap) {
+    const QuadTree tree = trained_quadtree();
+    const QuadTree capped = tree.refined(1e-9f, 12, 500);
+    EXPECT_LE(capped.nodes().size(), 500u);
+    EXPECT_GE(capped.nodes().size(), 400u);
+    EXPECT_EQ(capped.total(), 0.0f);
 }
 
 TEST(GuidingQuadTree, RefinementFollowsTheFlux) {

@@ -31,9 +31,10 @@ struct Fractions {
 };
 
 void refine_node(const std::vector<QuadNode>& old, const Fractions& here, int level,
-                 float threshold, int max_depth, std::vector<QuadNode>& out, std::uint32_t index) {
+                 float threshold, int max_depth, std::size_t max_nodes, std::vector<QuadNode>& out,
+                 std::uint32_t index) {
     for (std::uint32_t q = 0; q < 4; ++q) {
-        if (!(here.f[q] > threshold) || level >= max_depth) continue;
+        if (!(here.f[q] > threshold) || level >= max_depth || out.size() >= max_nodes) continue;
         Fractions next;
         if (here.old_child[q] != 0) {
             const QuadNode& c = old[here.old_child[q]];
@@ -49,7 +50,7 @@ void refine_node(const std::vector<QuadNode>& old, const Fractions& here, int le
         const auto child = static_cast<std::uint32_t>(out.size());
         out.push_back(QuadNode{});
         out[index].child[q] = child;
-        refine_node(old, next, level + 1, threshold, max_depth, out, child);
+        refine_node(old, next, level + 1, threshold, max_depth, max_nodes, out, child);
     }
 }
 
@@ -152,7 +153,7 @@ void QuadTree::set_leaf_flux(const std::vector<double>& flux) {
     }
 }
 
-QuadTree QuadTree::refined(float threshold, int max_depth) const {
+QuadTree QuadTree::refined(float threshold, int max_depth, std::size_t max_nodes) const {
     const float sum = total();
     QuadTree out;
     if (!(sum > 0.0f)) {
@@ -168,7 +169,7 @@ QuadTree QuadTree::refined(float threshold, int max_depth) const {
         root.f[q] = nodes_[0].flux[q] / sum;
         root.old_child[q] = nodes_[0].child[q];
     }
-    refine_node(nodes_, root, 1, threshold, max_depth, out.nodes_, 0);
+    refine_node(nodes_, root, 1, threshold, max_depth, max_nodes, out.nodes_, 0);
     return out;
 }
 

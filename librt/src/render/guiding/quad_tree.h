@@ -77,9 +77,10 @@ public:
     /// The same cells with zero flux, refined for the next pass (the paper's section 3.3):
     /// a cell holding more than `threshold` of total() is split into four (its flux shared
     /// equally among them, to decide on further splits), down to `max_depth` levels (the
-    /// root is level 1); inner nodes holding less are merged into one leaf cell. With
-    /// total() = 0 the cells are kept.
-    [[nodiscard]] QuadTree refined(float threshold, int max_depth) const;
+    /// root is level 1); inner nodes holding less are merged into one leaf cell. No split
+    /// is made once the tree has `max_nodes` nodes (depth first, so the same cells are
+    /// split every time). With total() = 0 the cells are kept.
+    [[nodiscard]] QuadTree refined(float threshold, int max_depth, std::size_t max_nodes) const;
 
     /// The nodes, root first.
     [[nodiscard]] const std::vector<QuadNode>& nodes() const { return nodes_; }

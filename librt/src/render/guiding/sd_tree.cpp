@@ -10,9 +10,13 @@
 namespace librt::guiding {
 namespace {
 
-/// Most spatial leaves: bounds the memory whatever spatial_threshold says (a leaf holds
-/// two quadtrees of at most ~4 max_depth / flux_threshold nodes each).
-constexpr std::size_t kMaxLeaves = std::size_t{1} << 16u;
+/// Most spatial leaves, and most recording quadtree nodes over all leaves: they bound the
+/// memory whatever spatial_threshold and flux_threshold say. A node costs 128 bytes (48 in
+/// the sampling tree, 48 in the recording tree, 4 x 8 of counters), so 2^22 nodes are
+/// 512 MiB at worst. The paper's settings stay far below: ~1000 leaves of a few hundred
+/// nodes on a 1280 x 720 image.
+constexpr std::size_t kMaxLeaves = std::size_t{1} << 15u;
+constexpr std::size_t kMaxTotalNodes = std::size_t{1} << 22u;
 /// Deepest spatial level: far below float's resolution of any scene's bounds.
 constexpr std::uint32_t kMaxSpatialDepth = 60;
 /// Fixed point: the previous pass's mean record maps to 2^24 units, and a record is
@@ -182,10 +186,12 @@ void SdTree::end_pass(int pass) {
     }
 
     // Pass k's records guide pass k + 1; the recording cells follow the flux.
+    const std::size_t max_nodes = std::max<std::size_t>(64, kMaxTotalNodes / leaves_.size());
     for (std::size_t i = 0; i < leaves_.size(); ++i) {
         DirLeaf& leaf = *leaves_[i];
         leaf.sampling = learned[i];
-        leaf.recording = learned[i].refined(settings_.flux_threshold, settings_.max_quadtree_depth);
+        leaf.recording =
+            learned[i].refined(settings_.flux_threshold, settings_.max_quadtree_depth, max_nodes);
         leaf.reset_counters();
     }
 
