@@ -56,10 +56,10 @@ struct RenderStats {
     std::uint64_t samples = 0;            ///< camera samples taken (Integrator::li calls)
     std::uint64_t nonfinite_samples = 0;  ///< samples dropped because a channel was NaN or infinite
     bool cancelled = false;               ///< true when `cancel` stopped the render before the end
-    int training_passes = 0;  ///< learning passes run before the image (train(): path guiding)
     bool time_limit_reached = false;      ///< render_progressive: stopped by its time limit
     int passes = 0;                       ///< passes finished and kept in the film
     std::uint32_t samples_per_pixel = 0;  ///< samples every pixel holds after a complete pass
+    int training_passes = 0;  ///< learning passes run before the image (train(): path guiding)
 };
 
 /// Throws librt::Error naming the first bad parameter of `settings` and its value.
@@ -104,16 +104,16 @@ struct RenderBlock {
     std::uint32_t count = 0;  ///< number of samples per pixel
 };
 
-/// Renders `block` onto `film`, continuing each pixel's sums: every pixel of the block
-/// must hold exactly block.first samples (the film header explains why this makes any
-/// split bit-identical to the one-shot render). `integrator` must have been preprocessed
-/// for `scene`; settings.samples_per_pixel is not used. The film must have the camera's
-/// size; with AOVs, its AOV sums are rendered in the same pass. Threads, seeding, progress
-/// and cancellation work as in render(); a cancelled block leaves every pixel holding
-/// some number of samples in [first, first + count], its sums consistent with that count.
-/// Throws librt::Error naming the parameter for an invalid block (outside the film,
-/// first + count > 2^20) or a pixel holding a different number of samples, before
-/// rendering anything.
+/// Renders `block` onto `film`, continuing each pixel's sums: every pixel of the block must
+/// hold exactly block.first samples (the film header explains why this makes any split bit-
+/// identical to the one-shot render). `integrator` must have been preprocessed (and, for
+/// path guiding, trained by train()) for `scene`; settings.samples_per_pixel is not used.
+/// The film must have the camera's size; with AOVs, its AOV sums are rendered in the same
+/// pass. Threads, seeding, progress and cancellation work as in render(); a cancelled block
+/// leaves every pixel holding some number of samples in [first, first + count], its sums
+/// consistent with that count. Throws librt::Error naming the parameter for an invalid
+/// block (outside the film, first + count > 2^20) or a pixel holding a different number of
+/// samples, before rendering anything.
 LIBRT_API RenderStats render_block(const Scene& scene, const Camera& camera,
                                    const Integrator& integrator, Film& film,
                                    const RenderBlock& block, const RenderSettings& settings);
