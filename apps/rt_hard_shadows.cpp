@@ -2,6 +2,7 @@
 // direct light only (one shadow ray per hit), one sample per pixel.
 #include "common/cli.h"
 
+#include <librt/core/error.h>
 #include <librt/render/integrators.h>
 
 using namespace librt;
@@ -15,6 +16,8 @@ int main(int argc, char** argv) {
     return apps::run(app, argc, argv, [&] {
         // Every parameter is checked before anything is loaded or allocated.
         apps::validate(options);
+        if (options.guiding)
+            throw Error("--guiding: rt_hard_shadows traces no paths to guide (direct light only)");
         Scene scene;
         apps::add_report_scene(scene, apps::LightKind::Point, options.power);
         scene.commit();

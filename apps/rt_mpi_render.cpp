@@ -43,6 +43,10 @@ public:
     FailingIntegrator(Integrator& inner, FailHow how, long long after)
         : inner_(inner), how_(how), after_(after) {}
     void preprocess(const Scene& scene) override { inner_.preprocess(scene); }
+    [[nodiscard]] std::uint32_t begin_training_pass(int pass) override {
+        return inner_.begin_training_pass(pass);
+    }
+    void end_training_pass(int pass) override { inner_.end_training_pass(pass); }
     [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray,
                                Sampler& sampler) const override {
         if (calls_.fetch_add(1) == after_) {
@@ -192,6 +196,7 @@ int main(int argc, char** argv) {
             validate(settings);
             film = Film(camera.width(), camera.height(), settings.aovs);
             integrator.preprocess(scene);
+            train(scene, camera, integrator, settings.render);
             const RenderStats rs = render_block(
                 scene, camera, integrator, film,
                 {0, 0, film.width, film.height, 0, static_cast<std::uint32_t>(options.spp)},

@@ -149,6 +149,12 @@ void add_sampling_options(CLI::App& app, AppOptions& o) {
     app.add_option("--filter", o.filter,
                    "Pixel filter by importance sampling: box, tent, gaussian, mitchell or "
                    "blackman-harris (default: the app's own sub-pixel jitter)");
+    app.add_flag("--guiding", o.guiding,
+                 "Path guiding: learn the incident light in training passes, then sample "
+                 "directions from it (path-traced apps)");
+    app.add_option("--guiding-passes", o.guiding_passes,
+                   "Training passes of --guiding; pass k renders 2^k spp (5: 31 spp)")
+        ->capture_default_str();
     app.add_option("--filter-radius", o.filter_radius,
                    "The filter's radius in pixels (default: box 0.5, tent 1, gaussian 1.5, "
                    "mitchell 2, blackman-harris 1.5)");
@@ -216,6 +222,8 @@ PathTracerSettings path_tracer_settings(const AppOptions& options) {
     // The report's paths, explicitly: the library's defaults (long paths, roulette) differ.
     settings.max_depth = options.bounces;
     settings.russian_roulette = false;
+    settings.guiding.enabled = options.guiding;
+    settings.guiding.training_passes = options.guiding_passes;
     return settings;
 }
 
@@ -281,6 +289,8 @@ void validate(const AppOptions& o) {
     settings.threads = o.threads;
     librt::validate(settings);
     validate_sampling(o);
+    if (o.guiding_passes < 1 || o.guiding_passes > 20)
+        bad_option("--guiding-passes", std::to_string(o.guiding_passes), "must be in [1, 20]");
     if (o.bounces < 0 || o.bounces > 1000) {
         bad_option("--bounces", std::to_string(o.bounces), "must be in [0, 1000]");
     }

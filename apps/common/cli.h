@@ -43,6 +43,8 @@ struct AppOptions {
     /// sub-pixel jitter (unchanged images).
     std::string filter;
     std::optional<float> filter_radius;  ///< --filter-radius in pixels; default: the filter's
+    bool guiding = false;                ///< --guiding: path guiding (PathTracer apps)
+    int guiding_passes = 5;              ///< --guiding-passes: training passes (1, 2, 4... spp)
 };
 
 /// Options of the apps that show a mesh.

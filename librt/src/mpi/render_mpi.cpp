@@ -181,6 +181,9 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
         validate(s);
         film = Film(camera.width(), camera.height(), s.aovs);
         integrator.preprocess(scene);
+        // Every rank learns the same guide (training is deterministic), so the tiles
+        // merge into the one-process image.
+        train(scene, camera, integrator, block_settings(s, s.render.cancel));
     } catch (...) {
         failure = "rank 0 failed: " + message_of(std::current_exception());
         stopping = true;
@@ -308,6 +311,7 @@ Film run_worker(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
         validate(s);
         integrator.preprocess(scene);
         const RenderSettings rs = block_settings(s, s.render.cancel);
+        train(scene, camera, integrator, rs);
         const auto spp = static_cast<std::uint32_t>(s.render.samples_per_pixel);
         while (true) {
             const Clock::time_point t0 = Clock::now();

@@ -1,4 +1,10 @@
+// The integrators' one path loop (trace) and the pieces it forces inline. Over 400 lines
+// because those pieces share the loop's private types (Vertex, Bounce) and must inline
+// into it for speed; guiding's own code is in guiding/.
+
 #include "bsdf_dispatch.h"
+#include "render/guiding/path_recorder.h"
+#include "render/guiding/sd_tree.h"
 
 #include <librt/core/error.h>
 #include <librt/render/bsdf.h>
@@ -31,6 +37,7 @@ void check_depth(const char* name, int value, int lo, int hi) {
 void check(const PathTracerSettings& s) {
     check_depth("max_depth", s.max_depth, 0, kMaxDepthLimit);
     check_depth("russian_roulette_depth", s.russian_roulette_depth, 0, kMaxDepthLimit);
+    guiding::validate(s.guiding);
 }
 
 float max_component(const glm::vec3& v) { return std::max(std::max(v.x, v.y), v.z); }
@@ -189,9 +196,15 @@ glm::vec3 escaped(const Scene& scene, const glm::vec3& dir, const Bounce& bounce
 /// chosen by its bound there (LightChoice::Bounded), else by power.
 // Forced inline: called once per non-specular vertex, and g++ otherwise keeps the call
 // (callgrind on the synthesis: -1.6% instructions in the path loop).
+// With Guided, `leaf` is the vertex's SD-tree leaf and `alpha` the BSDF's share of the
+// mixture the BSDF-side direction is drawn from: that mixture's density weighs the light
+// sample (nullptr: the vertex is not guided).
+template <bool Guided = false>
 [[gnu::always_inline]] inline glm::vec3 sample_direct(const Scene& scene, const Hit& hit, Vertex& v,
                                                       const glm::vec3& beta, Sampler& sampler,
-                                                      bool mis, const LightChoicePoint* at) {
+                                                      bool mis, const LightChoicePoint* at,
+                                                      const guiding::DirLeaf* leaf = nullptr,
+                                                      float alpha = 1.0f) {
     const LightSampler& lights = scene.light_sampler();
     // Drawn even when unused, so later decisions of the path keep their numbers; no
     // number chooses among a single light. The caller's start_bounce put the sampler on
@@ -222,12 +235,68 @@ glm::vec3 escaped(const Scene& scene, const glm::vec3& dir, const Bounce& bounce
     // Monte Carlo estimate f L |cos| / p_light, times the MIS weight when asked.
     const float a = chosen.pmf * s.pdf;
     if (!mis || s.is_delta) return fl / a;
-    const float b = bsdf.pdf;
+    float b = bsdf.pdf;
+    if constexpr (Guided) {
+        if (leaf != nullptr && alpha < 1.0f)
+            b = alpha * b + (1.0f - alpha) * leaf->sampling.pdf(s.wi);
+    }
     // Power heuristic folded into the estimate: (a^2 / (a^2 + b^2)) / a = a / (a^2 + b^2),
     // one division; the general form when the squares overflow (tiny lights).
     const float denom = a * a + b * b;
     if (denom < std::numeric_limits<float>::infinity()) return fl * (a / denom);
     return fl * (power_heuristic(a, b) / a);
+}
+
+/// What a guided path needs: the learned field, the recorder of a training path (nullptr
+/// when not training) and the BSDF's share of the sampling mixture.
+struct GuideContext {
+    const guiding::SdTree* tree = nullptr;
+    guiding::PathRecorder* recorder = nullptr;
+    float bsdf_fraction = 0.5f;
+};
+
+/// A direction drawn at a guided vertex: wi (world), f |cos| / pdf and the mixture's pdf.
+struct GuidedSample {
+    glm::vec3 wi{0.0f};
+    glm::vec3 weight{0.0f};
+    float pdf = 0.0f;
+};
+
+/// One-sample MIS over BSDF and guide sampling (Müller et al. 2017, section 4; Veach 1997,
+/// the balance heuristic as one sample of a mixture): with probability alpha the BSDF's
+/// sample(), else the leaf's quadtree; either way the weight is f |cos| divided by the
+/// mixture density alpha pdf_bsdf + (1 - alpha) pdf_guide, which is unbiased for any
+/// learned distribution while alpha > 0. The choice takes the lobe dimension's number,
+/// rescaled to choose the lobe after it (the sampler keeps 7 dimensions per bounce). A
+/// weight of 0 (no valid direction) ends the path, as an invalid BSDF sample does.
+GuidedSample sample_guided(Vertex& v, const guiding::DirLeaf& leaf, float alpha, Sampler& sampler,
+                           std::uint32_t dim) {
+    sampler.set_dimension(dim + SampleDimensions::k_bounce_lobe);
+    float uc = sampler.next_1d();
+    sampler.set_dimension(dim + SampleDimensions::k_bounce_bsdf);
+    const glm::vec2 u = sampler.next_2d();
+    GuidedSample g;
+    if (uc < alpha) {
+        uc = std::min(uc / alpha, 0x1.fffffep-1f);
+        if (v.m.kind == MaterialKind::Diffuse) {
+            g.wi = Frame::from_normal(v.n).to_world(sample_cosine_hemisphere(u));
+        } else {
+            const ShadingPoint& sp = v.point();
+            const BsdfSample bs = bsdfs::dispatch(v.m.kind, [&](auto bsdf) {
+                return decltype(bsdf)::sample(v.m, sp, v.wo(), uc, u);
+            });
+            if (!bs.valid()) return g;
+            g.wi = sp.frame.to_world(bs.wi);
+        }
+    } else {
+        g.wi = leaf.sampling.sample(u);
+    }
+    float cos_i = 0.0f;
+    const bsdfs::EvalPdf e = light_eval(v, g.wi, cos_i);
+    g.pdf = alpha < 1.0f ? alpha * e.pdf + (1.0f - alpha) * leaf.sampling.pdf(g.wi) : e.pdf;
+    if (!(g.pdf > 0.0f)) return g;
+    g.weight = e.f * (cos_i / g.pdf);
+    return g;
 }
 
 /// What a path needs besides the scene: depth limit, roulette and MIS choices.
@@ -238,13 +307,39 @@ struct TraceSettings {
     bool mis = true;
 };
 
+/// Russian roulette after bounce depth - 1 (its dimensions from `dim`), and the end of a
+/// path whose throughput is 0: false when the path ends here.
+[[gnu::always_inline]] inline bool survives_roulette(const TraceSettings& settings, int depth,
+                                                     std::uint32_t dim, glm::vec3& beta,
+                                                     Sampler& sampler) {
+    // Roulette from bounce roulette_depth on (bounce depth - 1 was just sampled; 0 is
+    // the camera ray's first hit), so depth d leaves d bounces untouched.
+    if (settings.russian_roulette && depth > settings.roulette_depth) {
+        // Survive with probability q, reweighted by 1/q: unbiased, fewer long paths.
+        const float q = std::min(0.95f, max_component(beta));
+        sampler.set_dimension(dim + SampleDimensions::k_bounce_roulette);
+        if (!(q > 0.0f) || sampler.next_1d() >= q) return false;
+        beta /= q;
+    }
+    return max_component(beta) > 0.0f;
+}
+
 /// One path from `camera_ray` following `S`; see the class comments in integrators.h.
 /// `Bounded`: lights are chosen by LightChoice::Bounded. A template parameter, so that the
 /// default (power) loop keeps its code and registers unchanged (callgrind on the synthesis).
-template <Strategy S, bool Bounded>
+/// Guided (PathTracer with a trained SD-tree) is a separate instantiation too, so the
+/// unguided loop carries none of its code.
+template <Strategy S, bool Bounded, bool Guided = false>
 glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
-                const TraceSettings& settings) {
+                const TraceSettings& settings, const GuideContext& guide = {}) {
     glm::vec3 radiance(0.0f);
+    // Every contribution goes through here: a training path shares it out to its vertices.
+    const auto add = [&](const glm::vec3& c) {
+        radiance += c;
+        if constexpr (Guided) {
+            if (guide.recorder != nullptr) guide.recorder->add(c);
+        }
+    };
     glm::vec3 beta(1.0f);  // path throughput
     Ray ray = camera_ray;
     // Work with unit directions (the BSDF frames need them); rescale t's range.
@@ -262,8 +357,14 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
     ShadedMaterial shaded;  // a textured hit's material (Scene::shade); unused otherwise
     for (int depth = 0;;) {
         if (!scene.intersect_for_shading(ray, hit)) {
-            radiance += beta * escaped(scene, ray.direction, bounce, S == Strategy::Brute,
-                                       depth == 0, chosen);
+            add(beta * escaped(scene, ray.direction, bounce, S == Strategy::Brute, depth == 0,
+                               chosen));
+            if constexpr (Guided) {
+                if (guide.recorder != nullptr && depth > 0)
+                    guide.recorder->add_to_last(
+                        beta * (escaped(scene, ray.direction, bounce, true, false, chosen) -
+                                escaped(scene, ray.direction, bounce, false, false, chosen)));
+            }
             break;
         }
         // may_hide_objects() first: a flag, where camera_visible() is a bounds-checked
@@ -281,7 +382,13 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             // Brute force weighs every emitter fully (a one-sided light's back stays dark).
             const float w = emitter_weight(scene, hit, ray.direction,
                                            S == Strategy::Brute ? Bounce{} : bounce, chosen);
-            if (w > 0.0f) radiance += beta * m.emission * w;
+            if (w > 0.0f) add(beta * m.emission * w);
+            if constexpr (Guided) {
+                if (guide.recorder != nullptr) {
+                    const float full = emitter_weight(scene, hit, ray.direction, Bounce{}, chosen);
+                    if (full > w) guide.recorder->add_to_last(beta * m.emission * (full - w));
+                }
+            }
         }
         // Lambert's lobes are a constant: no dispatch for the common kind.
         const BsdfLobe material_lobes =
@@ -308,13 +415,36 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             // The point, its normal and whether light from below its plane can count.
             chosen_at = {hit.point, v.g, !has(material_lobes, BsdfLobe::Transmission)};
         }
+        // A guided vertex: no specular lobe (a delta has no density to mix).
+        const guiding::DirLeaf* leaf = nullptr;
+        float alpha = 1.0f;
+        if constexpr (Guided) {
+            if (has_non_specular(material_lobes) && !has(material_lobes, BsdfLobe::Specular)) {
+                leaf = &guide.tree->leaf_at(hit.point);
+                alpha = leaf->sampling.total() > 0.0f ? guide.bsdf_fraction : 1.0f;
+            }
+        }
         if (S != Strategy::Brute && has_non_specular(material_lobes)) {
-            radiance += beta * sample_direct(scene, hit, v, beta, sampler, !light_only, chosen);
+            add(beta * sample_direct<Guided>(scene, hit, v, beta, sampler, !light_only, chosen,
+                                             leaf, alpha));
             if constexpr (S == Strategy::Direct) return radiance;
             // The last bounce: what it finds counts only if it emits without being a light
             // (lights got weight 1 from the light sample just taken). With no such emitter,
             // save the ray.
             if (depth >= settings.max_depth && !scene.has_unsampled_emitters()) return radiance;
+        }
+        if constexpr (Guided) {
+            if (leaf != nullptr) {
+                const GuidedSample g = sample_guided(v, *leaf, alpha, sampler, dim);
+                if (!(max_component(g.weight) > 0.0f)) break;
+                beta *= g.weight;
+                bounce = {light_only ? EmitterWeight::Zero : EmitterWeight::Mis, g.pdf, hit.point};
+                if (guide.recorder != nullptr)
+                    guide.recorder->push(*leaf, hit.point, g.wi, g.pdf, beta);
+                if (!survives_roulette(settings, depth, dim, beta, sampler)) break;
+                ray = spawn_ray(hit.point, hit.geometric_normal, g.wi);
+                continue;
+            }
         }
         sampler.set_dimension(dim + SampleDimensions::k_bounce_lobe);
         // Lambert's one lobe needs no choice: its kind test first spares the lobe count.
@@ -353,16 +483,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             bounce = {EmitterWeight::Full, 0.0f, hit.point};
         else
             bounce = {light_only ? EmitterWeight::Zero : EmitterWeight::Mis, bs.pdf, hit.point};
-        // Roulette from bounce roulette_depth on (bounce depth - 1 was just sampled; 0 is
-        // the camera ray's first hit), so depth d leaves d bounces untouched.
-        if (settings.russian_roulette && depth > settings.roulette_depth) {
-            // Survive with probability q, reweighted by 1/q: unbiased, fewer long paths.
-            const float q = std::min(0.95f, max_component(beta));
-            sampler.set_dimension(dim + SampleDimensions::k_bounce_roulette);
-            if (!(q > 0.0f) || sampler.next_1d() >= q) break;
-            beta /= q;
-        }
-        if (!(max_component(beta) > 0.0f)) break;
+        if (!survives_roulette(settings, depth, dim, beta, sampler)) break;
         ray = spawn_ray(hit.point, hit.geometric_normal, wi_world);
     }
     return radiance;
@@ -399,9 +520,34 @@ PathTracer::PathTracer(const PathTracerSettings& settings) : settings_(settings)
 }
 
 glm::vec3 PathTracer::li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
-    if (settings_.light_choice == LightChoice::Bounded)
-        return guard(trace<Strategy::Path, true>(scene, ray, sampler, trace_settings(settings_)));
-    return guard(trace<Strategy::Path, false>(scene, ray, sampler, trace_settings(settings_)));
+    if (guide_ == nullptr) [[likely]] {
+        if (settings_.light_choice == LightChoice::Bounded)
+            return guard(
+                trace<Strategy::Path, true>(scene, ray, sampler, trace_settings(settings_)));
+        return guard(trace<Strategy::Path, false>(scene, ray, sampler, trace_settings(settings_)));
+    }
+    return li_guided(scene, ray, sampler);
+}
+
+namespace {
+/// The guided path of li_guided, its light choice a template parameter as in trace.
+glm::vec3 trace_guided(const Scene& scene, const Ray& ray, Sampler& sampler,
+                       const TraceSettings& settings, const GuideContext& guide, bool bounded) {
+    if (bounded) return trace<Strategy::Path, true, true>(scene, ray, sampler, settings, guide);
+    return trace<Strategy::Path, false, true>(scene, ray, sampler, settings, guide);
+}
+}  // namespace
+
+glm::vec3 PathTracer::li_guided(const Scene& scene, const Ray& ray, Sampler& sampler) const {
+    GuideContext guide{guide_.get(), nullptr, settings_.guiding.bsdf_fraction};
+    const bool bounded = settings_.light_choice == LightChoice::Bounded;
+    if (!recording_)
+        return guard(trace_guided(scene, ray, sampler, trace_settings(settings_), guide, bounded));
+    guiding::PathRecorder recorder;
+    guide.recorder = &recorder;
+    const glm::vec3 l = trace_guided(scene, ray, sampler, trace_settings(settings_), guide, bounded);
+    recorder.commit(*guide_);
+    return guard(l);
 }
 
 BruteForcePathTracer::BruteForcePathTracer(const PathTracerSettings& settings)

@@ -269,6 +269,44 @@ void validate(const ProgressiveSettings& s) {
     }
 }
 
+RenderStats train(const Scene& scene, const Camera& camera, Integrator& integrator,
+                  const RenderSettings& settings) {
+    const Clock::time_point start = Clock::now();
+    const double cpu_start = cpu_now();
+    validate_threads_and_tiles(settings);
+    RenderStats stats;
+    Film scratch;
+    for (int pass = 0;; ++pass) {
+        const std::uint32_t spp =
+            std::min(integrator.begin_training_pass(pass), kMaxSamplesPerPixel);
+        if (spp == 0) break;
+        if (scratch.width == 0) {
+            check_image_size(camera.width(), camera.height());
+            scratch = Film(camera.width(), camera.height());
+        } else {
+            std::fill(scratch.pixels.begin(), scratch.pixels.end(), FilmPixel{});
+        }
+        RenderSettings rs = settings;
+        rs.progress = nullptr;
+        // A seed of its own per pass (splitmix64 of seed and pass, salted): the image's
+        // samples (seed itself) never reuse a training sample's numbers.
+        rs.seed = mix64(mix64(settings.seed ^ 0x7a11ed6a1de5eedULL) + std::uint64_t(pass));
+        const RenderBlock whole{0, 0, scratch.width, scratch.height, 0, spp};
+        const BlockOutcome outcome = run_block(scene, camera, integrator, scratch, whole, rs, {});
+        stats.samples += outcome.samples;
+        stats.nonfinite_samples += outcome.nonfinite;
+        integrator.end_training_pass(pass);
+        if (!outcome.complete) {
+            stats.cancelled = outcome.cancelled;
+            break;
+        }
+        ++stats.training_passes;
+    }
+    stats.seconds = seconds_since(start);
+    stats.cpu_seconds = cpu_now() - cpu_start;
+    return stats;
+}
+
 Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
              const RenderSettings& settings, RenderStats* stats) {
     const Clock::time_point start = Clock::now();
@@ -278,6 +316,7 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
     Film film(camera.width(), camera.height());
 
     integrator.preprocess(scene);
+    const RenderStats training = train(scene, camera, integrator, settings);
     const auto spp = static_cast<std::uint32_t>(settings.samples_per_pixel);
     const RenderBlock whole{0, 0, film.width, film.height, 0, spp};
     Tick tick;
@@ -308,6 +347,7 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
         stats->cancelled = outcome.cancelled;
         stats->passes = outcome.complete ? 1 : 0;
         stats->samples_per_pixel = outcome.complete ? spp : 0;
+        stats->training_passes = training.training_passes;
     }
     return image;
 }
@@ -413,7 +453,12 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         if (limit > 0.0) f = std::max(f, seconds / limit);
         return std::clamp(f, 0.0, 1.0);
     };
-    if (n < target) integrator.preprocess(scene);
+    if (n < target) {
+        integrator.preprocess(scene);
+        const RenderStats training = train(scene, camera, integrator, rs);
+        stats.training_passes = training.training_passes;
+        stats.cancelled = training.cancelled;
+    }
     Film work;  // the pass in progress: a copy of `film` that replaces it once complete
     while (n < target) {
         // A film holding no samples always gets its first pass, whatever the limit.

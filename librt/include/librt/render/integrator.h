@@ -6,6 +6,8 @@
 
 #include <glm/vec3.hpp>
 
+#include <cstdint>
+
 namespace librt {
 
 class Scene;
@@ -18,6 +20,14 @@ public:
     virtual ~Integrator() = default;
     /// Called once before a render, e.g. to inspect the scene's lights.
     virtual void preprocess(const Scene& /*scene*/) {}
+    /// Starts learning pass `pass` (0, 1, ...) of an integrator that learns from its own
+    /// samples before rendering the image (path guiding); train() in renderer.h calls it
+    /// after preprocess(). Returns the samples per pixel the pass renders (and discards),
+    /// 0 when there is nothing (more) to learn, which is the default.
+    [[nodiscard]] virtual std::uint32_t begin_training_pass(int /*pass*/) { return 0; }
+    /// Ends the pass begin_training_pass(pass) started: what its samples taught the
+    /// integrator is used from the next pass (or the image) on.
+    virtual void end_training_pass(int /*pass*/) {}
     /// One sample of the radiance (linear RGB) travelling back along `ray`.
     [[nodiscard]] virtual glm::vec3 li(const Scene& scene, const Ray& ray,
                                        Sampler& sampler) const = 0;

@@ -1,11 +1,14 @@
 #pragma once
 
 #include <librt/export.h>
+#include <librt/render/guiding.h>
 #include <librt/render/integrator.h>
 #include <librt/render/light_sampler.h>
 
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 
 // The report's rendering algorithms, from its hard-shadow figure to its full getColor, plus
 // a brute-force reference and a debug view. All run one path loop (no recursion) built of
@@ -20,6 +23,10 @@
 // surface; light sampling at a diffuse hit is part of that hit's scattering event.
 
 namespace librt {
+
+namespace guiding {
+class SdTree;
+}
 
 /// Common base: guards every estimate against NaN and Inf. A non-finite sample is
 /// replaced by 0 and counted (atomically, as li() runs on many threads); a debug build
@@ -83,6 +90,8 @@ struct PathTracerSettings {
     /// sample on lights that cannot reach the point and favours near ones; Power (the
     /// default) keeps images bit-identical to before.
     LightChoice light_choice = LightChoice::Power;
+    /// PathTracer only: path guiding (guiding.h), off by default.
+    GuidingSettings guiding{};
 };
 
 /// The report's full getColor as a loop with multiple importance sampling: at every
@@ -98,17 +107,37 @@ struct PathTracerSettings {
 /// weights still sum to 1), which lets the path stop without tracing that last ray
 /// unless some emitter is not light-sampled. With settings.mis = false every non-specular
 /// vertex is weighted like that last one (next-event estimation only).
+///
+/// With settings.guiding.enabled, preprocess() builds an empty SD-tree over the scene and
+/// the training passes (train() in renderer.h) teach it the incident radiance; at a vertex
+/// with no specular lobe the direction is then drawn from the BSDF with probability
+/// guiding.bsdf_fraction and from the learned distribution otherwise, weighted by the
+/// mixture's density (docs/sampling.md). Without training it renders unguided.
 class LIBRT_API PathTracer final : public GuardedIntegrator {
 public:
-    /// Throws librt::Error naming max_depth or russian_roulette_depth when out of range.
+    /// Throws librt::Error naming max_depth, russian_roulette_depth or the guiding
+    /// parameter out of range.
     explicit PathTracer(const PathTracerSettings& settings = {});
+    ~PathTracer() override;
+    /// With guiding: an empty SD-tree over the scene's bounds (what was learned is dropped).
+    void preprocess(const Scene& scene) override;
+    /// With guiding: 2^pass samples per pixel for pass < training_passes, recorded.
+    [[nodiscard]] std::uint32_t begin_training_pass(int pass) override;
+    /// With guiding: what the pass recorded guides the next pass (or the image).
+    void end_training_pass(int pass) override;
     /// One sample of the radiance along ray.
     [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray, Sampler& sampler) const override;
     /// The settings in use.
     [[nodiscard]] const PathTracerSettings& settings() const { return settings_; }
+    /// Spatial leaves of the SD-tree (0 without guiding or before preprocess()).
+    [[nodiscard]] std::size_t guiding_leaf_count() const;
 
 private:
+    [[nodiscard]] glm::vec3 li_guided(const Scene& scene, const Ray& ray, Sampler& sampler) const;
+
     PathTracerSettings settings_;
+    std::unique_ptr<guiding::SdTree> guide_;  // with guiding, after preprocess()
+    bool recording_ = false;                  // a training pass is running
 };
 
 /// The reference: the same paths as PathTracer with no light sampling at all; emission

@@ -59,13 +59,26 @@ struct RenderStats {
     bool time_limit_reached = false;      ///< render_progressive: stopped by its time limit
     int passes = 0;                       ///< passes finished and kept in the film
     std::uint32_t samples_per_pixel = 0;  ///< samples every pixel holds after a complete pass
+    int training_passes = 0;  ///< learning passes run before the image (train(): path guiding)
 };
 
 /// Throws librt::Error naming the first bad parameter of `settings` and its value.
 LIBRT_API void validate(const RenderSettings& settings);
 
-/// Renders `scene` through `camera` with `integrator`: calls integrator.preprocess(scene),
-/// then threads take tiles from an atomic counter. Sample s of pixel (x, y) uses
+/// Runs the integrator's learning passes (Integrator::begin_training_pass; path guiding):
+/// pass k renders integrator.begin_training_pass(k) samples per pixel of the whole image
+/// with settings' threads, tile size and sampler onto a scratch film that is discarded,
+/// then calls end_training_pass(k), until begin_training_pass returns 0. Pass k's seed is
+/// derived from (settings.seed, k), so no training sample shares random numbers with the
+/// image's samples (whose guide would otherwise be correlated with them). For an
+/// integrator that learns nothing it does nothing. Call it after preprocess() and before
+/// render_block; render() and render_progressive() call it themselves. Honours
+/// settings.cancel (stats.cancelled); progress is not reported.
+LIBRT_API RenderStats train(const Scene& scene, const Camera& camera, Integrator& integrator,
+                            const RenderSettings& settings);
+
+/// Renders `scene` through `camera` with `integrator`: calls integrator.preprocess(scene)
+/// and train(), then threads take tiles from an atomic counter. Sample s of pixel (x, y) uses
 /// Sampler(settings.sampler, x, y, s, seed) and Camera::sample_ray, whose filter weight
 /// multiplies the sample's radiance (1 except for a Mitchell pixel filter), and each
 /// pixel is the mean of its finite weighted samples (non-finite
@@ -91,16 +104,16 @@ struct RenderBlock {
     std::uint32_t count = 0;  ///< number of samples per pixel
 };
 
-/// Renders `block` onto `film`, continuing each pixel's sums: every pixel of the block
-/// must hold exactly block.first samples (the film header explains why this makes any
-/// split bit-identical to the one-shot render). `integrator` must have been preprocessed
-/// for `scene`; settings.samples_per_pixel is not used. The film must have the camera's
-/// size; with AOVs, its AOV sums are rendered in the same pass. Threads, seeding, progress
-/// and cancellation work as in render(); a cancelled block leaves every pixel holding
-/// some number of samples in [first, first + count], its sums consistent with that count.
-/// Throws librt::Error naming the parameter for an invalid block (outside the film,
-/// first + count > 2^20) or a pixel holding a different number of samples, before
-/// rendering anything.
+/// Renders `block` onto `film`, continuing each pixel's sums: every pixel of the block must
+/// hold exactly block.first samples (the film header explains why this makes any split bit-
+/// identical to the one-shot render). `integrator` must have been preprocessed (and, for
+/// path guiding, trained by train()) for `scene`; settings.samples_per_pixel is not used.
+/// The film must have the camera's size; with AOVs, its AOV sums are rendered in the same
+/// pass. Threads, seeding, progress and cancellation work as in render(); a cancelled block
+/// leaves every pixel holding some number of samples in [first, first + count], its sums
+/// consistent with that count. Throws librt::Error naming the parameter for an invalid
+/// block (outside the film, first + count > 2^20) or a pixel holding a different number of
+/// samples, before rendering anything.
 LIBRT_API RenderStats render_block(const Scene& scene, const Camera& camera,
                                    const Integrator& integrator, Film& film,
                                    const RenderBlock& block, const RenderSettings& settings);
@@ -153,7 +166,7 @@ LIBRT_API void validate(const ProgressiveSettings& settings);
 /// about ten times a second: a pass still running at the limit is abandoned, except that
 /// a film holding no samples always gets its first pass. The film equals a one-shot
 /// render of the same total sample count bit for bit. Calls integrator.preprocess(scene)
-/// once.
+/// and train() once, when there is something to render.
 LIBRT_API RenderStats render_progressive(const Scene& scene, const Camera& camera,
                                          Integrator& integrator, Film& film,
                                          const ProgressiveSettings& settings);
