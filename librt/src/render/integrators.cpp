@@ -280,7 +280,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         sampler.start_bounce(static_cast<std::uint32_t>(depth));
         ++depth;
 
-        const glm::vec3 albedo = scene.albedo(hit);
+        const glm::vec3 albedo = scene.albedo(hit, m);
         // Every lobe is scaled by the albedo (bsdf.h): when throughput * albedo is 0 (the
         // blue floor's path meeting the red wall) the vertex can add and pass on nothing,
         // so stop without spending a light sample and shadow ray on it.

@@ -264,16 +264,8 @@ void Scene::throw_not_committed() {
     throw Error("Scene queried before commit(): call commit() after adding objects");
 }
 
-std::uint32_t Scene::material_id(const Hit& hit) const {
-    const Object& o = objects_[hit.object_id];
-    if (o.material != kInvalidId) return o.material;
-    return triangle_materials_[o.index][hit.primitive_id];
-}
-
-glm::vec3 Scene::albedo(const Hit& hit) const {
-    const Material& m = material(hit);
-    if (m.albedo_texture >= 0) return textures_[std::size_t(m.albedo_texture)].lookup(hit.uv);
-    return m.albedo;
+glm::vec3 Scene::texture_albedo(const Hit& hit, const Material& m) const {
+    return textures_[std::size_t(m.albedo_texture)].lookup(hit.uv);
 }
 
 }  // namespace librt
