@@ -97,6 +97,7 @@ PixelFilter make_filter(const CameraSettings& s) {
 Camera::Camera(const CameraSettings& settings) : settings_(settings) {
     validate(settings_);
     filter_ = make_filter(settings_);
+    clipped_ = settings_.near_clip > 0.0f || std::isfinite(settings_.far_clip);
     // Look-at basis: forward, right = forward x up, true up = right x forward.
     forward_ = glm::normalize(settings_.look_at - settings_.position);
     right_ = glm::normalize(glm::cross(forward_, settings_.up));
@@ -146,7 +147,7 @@ CameraRay Camera::sample_ray(int px, int py, Sampler& sampler) const {
     // Clip planes at depth near/far from the lens plane: along the unit direction that is
     // t = depth / cos(angle to the view axis). Skipped without clips so that t_min = 0 and
     // t_max = inf stay exact.
-    if (settings_.near_clip > 0.0f || std::isfinite(settings_.far_clip)) {
+    if (clipped_) {
         const float cos_axis = glm::dot(ray.direction, forward_);
         ray.t_min = settings_.near_clip / cos_axis;
         ray.t_max = settings_.far_clip / cos_axis;

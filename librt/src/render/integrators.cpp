@@ -35,6 +35,10 @@ void check(const PathTracerSettings& s) {
 
 float max_component(const glm::vec3& v) { return std::max(std::max(v.x, v.y), v.z); }
 
+/// Material::emits() for a material of a scene (validated: emission finite and >= 0), as
+/// one comparison of the largest component instead of three (asked at every hit).
+bool emits(const Material& m) { return max_component(m.emission) > 0.0f; }
+
 /// The power heuristic with exponent 2 (Veach 1997, eq. 9.13, one sample per strategy):
 /// the weight a^2 / (a^2 + b^2) of the strategy of density a against the one of density b,
 /// written as 1 / (1 + (b/a)^2) so that huge densities (tiny lights) do not overflow.
@@ -265,7 +269,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             continue;
         }
         const Material& m = scene.material(hit);
-        if (m.emits()) {
+        if (emits(m)) {
             // Brute force weighs every emitter fully (a one-sided light's back stays dark).
             const float w =
                 emitter_weight(scene, hit, ray.direction, S == Strategy::Brute ? Bounce{} : bounce);
