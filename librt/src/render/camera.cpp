@@ -122,6 +122,15 @@ CameraRay Camera::sample_ray(int px, int py, Sampler& sampler) const {
         offset = f.offset;
         weight = f.weight;
     }
+    // The lens offset before the direction: its log and sincos calls then come before the
+    // camera's vectors are loaded, which would otherwise be saved and restored around each
+    // call (callgrind on the synthesis: ~50 instructions per ray). The same values.
+    glm::vec2 lens{0.0f};
+    if (settings_.lens != LensModel::Pinhole) {
+        lens = settings_.lens == LensModel::Gaussian
+                   ? gaussian_lens_jitter(lens_u, settings_.lens_sigma)
+                   : disk_lens_jitter(lens_u, settings_.lens_radius);
+    }
     const float half_w = 0.5f * static_cast<float>(settings_.width);
     const float half_h = 0.5f * static_cast<float>(settings_.height);
     // The report's camera-space direction: (j - W/2 + 0.5 + dx, -i + H/2 - 0.5 + dy, -d).
@@ -135,9 +144,6 @@ CameraRay Camera::sample_ray(int px, int py, Sampler& sampler) const {
     ray.origin = settings_.position;
     ray.direction = u;
     if (settings_.lens != LensModel::Pinhole) {
-        const glm::vec2 lens = settings_.lens == LensModel::Gaussian
-                                   ? gaussian_lens_jitter(lens_u, settings_.lens_sigma)
-                                   : disk_lens_jitter(lens_u, settings_.lens_radius);
         // The report's depth of field: C' = C + lens offset in the camera's x-y plane,
         // aimed at the focal point C + focal_distance * u.
         const glm::vec3 focal_point = settings_.position + settings_.focal_distance * u;
