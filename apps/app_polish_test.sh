@@ -11,11 +11,13 @@ cd "$dir"
 fail() { echo "FAIL: $*" >&2; exit 1; }
 printf 'v -1 -1 0\nv 1 -1 0\nv 1 1 0\nf 1 2 3\n' >tri.obj
 for app in rt_hard_shadows rt_indirect rt_soft_shadows rt_antialiasing rt_depth_of_field \
-           rt_mesh rt_synthesis rt_render; do
+           rt_mesh rt_synthesis rt_render rt_materials; do
     version=$("$apps/$app" --version) || fail "$app --version failed"
     grep -q "^$app (librt [0-9]*\.[0-9]*\.[0-9]*)$" <<<"$version" || fail "$app --version: $version"
     if [ "$app" = rt_render ]; then
         args=(tri.obj --size 8x8 --size 16x16 --spp 1 --threads 1 -q)
+    elif [ "$app" = rt_materials ]; then
+        args=(--size 8x8 --size 16x16 --spp 1 --threads 1 -q)
     else
         args=(--size 8 --size 16 --spp 1 --threads 1 -q)
     fi

@@ -12,6 +12,7 @@
 #include <librt/io/gltf.h>
 #include <librt/io/gltf_scene.h>
 #include <librt/io/scene_file.h>
+#include <librt/render/bsdf.h>
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
 #include <librt/sampling/warp.h>
@@ -25,7 +26,9 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <set>
 #include <string>
+#include <utility>
 
 using namespace librt;
 using librt::testing::GltfBuilder;
@@ -47,6 +50,12 @@ json glb_json(const fs::path& p) {
 struct Expected {
     std::size_t stored = 0, placed = 0, instances = 0, prototypes = 0, lights = 0;
     bool emissive = false;
+    /// glTF materials some primitive uses, and scene textures: one per (texture, colour
+    /// space) those materials reference (base colour and emissive sRGB, the others linear).
+    std::set<int> used_materials;
+    std::set<std::pair<int, bool>> textures;
+    std::size_t normal_mapped = 0, base_textured = 0, mr_textured = 0;  ///< used materials
+    std::size_t prototypes_with_tangents = 0;  ///< primitives whose material has a normal map
 };
 
 /// From the JSON by the spec: n/3 triangles for mode 4 (n = indices' count, else
@@ -71,6 +80,26 @@ Expected expected_of(const json& doc) {
     for (const json& m : doc.value("materials", json::array())) {
         const json f = m.value("emissiveFactor", json::array({0, 0, 0}));
         if (f[0].get<float>() + f[1].get<float>() + f[2].get<float>() > 0.0f) e.emissive = true;
+    }
+    for (const json& mesh : doc["meshes"])
+        for (const json& prim : mesh["primitives"])
+            if (prim.contains("material")) {
+                const int mi = prim["material"].get<int>();
+                e.used_materials.insert(mi);
+                if (doc["materials"][mi].contains("normalTexture")) ++e.prototypes_with_tangents;
+            }
+    for (const int mi : e.used_materials) {
+        const json& m = doc["materials"][mi];
+        const json pbr = m.value("pbrMetallicRoughness", json::object());
+        const auto ref = [&](const json& owner, const char* key, bool srgb) {
+            if (!owner.contains(key)) return false;
+            e.textures.insert({owner[key]["index"].get<int>(), srgb});
+            return true;
+        };
+        e.base_textured += ref(pbr, "baseColorTexture", true);
+        e.mr_textured += ref(pbr, "metallicRoughnessTexture", false);
+        ref(m, "emissiveTexture", true);
+        e.normal_mapped += ref(m, "normalTexture", false);
     }
     std::function<void(int)> visit = [&](int n) {
         const json& node = doc["nodes"][n];
@@ -105,6 +134,30 @@ void check_data_file(const fs::path& p) {
         EXPECT_EQ(w.find("not yet supported"), std::string::npos) << w;
     EXPECT_EQ(loaded.camera.width, 64);
     EXPECT_EQ(loaded.camera_name == "default", !doc.contains("cameras"));
+    // Materials: every used glTF material is a MetallicRoughness one (after the default);
+    // textures and normal maps as the JSON references them.
+    const Scene& scene = loaded.scene;
+    std::size_t kinds = 0, normal = 0, base = 0, mr = 0;
+    for (std::size_t i = 0; i < scene.material_count(); ++i) {
+        const Material& m = scene.material(std::uint32_t(i));
+        kinds += m.kind == MaterialKind::MetallicRoughness;
+        normal += m.normal_texture.bound();
+        base += m.base_color_texture.bound();
+        mr += m.metallic_roughness_texture.bound();
+    }
+    EXPECT_EQ(scene.material_count(), want.used_materials.size() + 1);  // + the default
+    EXPECT_EQ(kinds, want.used_materials.size());
+    EXPECT_EQ(scene.texture_count(), want.textures.size());
+    EXPECT_EQ(normal, want.normal_mapped);
+    EXPECT_EQ(base, want.base_textured);
+    EXPECT_EQ(mr, want.mr_textured);
+    std::size_t with_tangents = 0;
+    for (std::size_t i = 0; i < scene.top_level().prototype_count(); ++i) {
+        const TriangleMesh& mesh = scene.top_level().prototype_mesh(std::uint32_t(i));
+        with_tangents += !mesh.tangents.empty();
+        if (!mesh.tangents.empty()) EXPECT_EQ(mesh.tangents.size(), mesh.positions.size());
+    }
+    EXPECT_EQ(with_tangents, want.prototypes_with_tangents);
 
     loaded.scene.commit();
     PathTracerSettings pts;
@@ -275,27 +328,103 @@ TEST(GltfToScene, UnknownCameraIsAnErrorListingTheCameras) {
 }
 
 TEST(GltfToScene, MaterialMapping) {
+    // Every glTF material is the metallic-roughness kind, its factors as stated.
     GltfMaterial m;
-    m.base_color_factor = {0.5f, 0.25f, 1.0f, 1.0f};
+    m.base_color_factor = {0.5f, 0.25f, 1.0f, 0.75f};
     m.metallic_factor = 0.0f;
+    m.roughness_factor = 0.4f;
     m.emissive_factor = {1.0f, 0.5f, 0.0f};
     m.emissive_strength = 15.0f;
-    Material d = material_from_gltf(m, 3);
-    EXPECT_EQ(d.kind, MaterialKind::Diffuse);
-    EXPECT_EQ(d.albedo_texture, 3);
-    EXPECT_FLOAT_EQ(d.albedo.y, 0.25f);
+    GltfMaterialTextures ids;
+    ids.base_color = 3;
+    ids.normal = 5;
+    m.base_color_texture.texture = 0;
+    m.normal_texture.texture = 1;
+    m.normal_texture.scale = 0.5f;
+    Material d = material_from_gltf(m, ids);
+    EXPECT_EQ(d.kind, MaterialKind::MetallicRoughness);
+    EXPECT_EQ(d.base_color, glm::vec3(0.5f, 0.25f, 1.0f));
+    EXPECT_EQ(d.albedo, glm::vec3(1.0f));
+    EXPECT_FLOAT_EQ(d.roughness, 0.4f);
+    EXPECT_FLOAT_EQ(d.metallic, 0.0f);
+    EXPECT_FLOAT_EQ(d.ior, 1.5f);
     EXPECT_FLOAT_EQ(d.emission.x, 15.0f);
     EXPECT_FLOAT_EQ(d.emission.y, 7.5f);
+    EXPECT_EQ(d.base_color_texture.texture, 3);
+    EXPECT_EQ(d.normal_texture.texture, 5);
+    EXPECT_FALSE(d.metallic_roughness_texture.bound());
+    EXPECT_FLOAT_EQ(d.normal_scale, 0.5f);
+    EXPECT_FLOAT_EQ(d.alpha, 0.75f);
+    EXPECT_EQ(d.alpha_cutoff, 0.0f);  // OPAQUE: no alpha test
+    EXPECT_FALSE(d.double_sided);     // glTF's default
+    // The slot maps glTF uvs (v down) to ImageTexture's (v up).
+    EXPECT_EQ(d.base_color_texture.map({0.25f, 0.25f}), glm::vec2(0.25f, 0.75f));
+    // Transmission and KHR_materials_ior: thin transmission, double-sided.
     m.transmission_factor = 1.0f;
     m.ior = 1.33f;
-    EXPECT_EQ(material_from_gltf(m).kind, MaterialKind::Dielectric);
-    EXPECT_FLOAT_EQ(material_from_gltf(m).ior, 1.33f);
+    d = material_from_gltf(m);
+    EXPECT_EQ(d.kind, MaterialKind::MetallicRoughness);
+    EXPECT_FLOAT_EQ(d.transmission, 1.0f);
+    EXPECT_FLOAT_EQ(d.ior, 1.33f);
+    EXPECT_TRUE(d.double_sided);
+    // MASK with its cut-off; BLEND drawn as MASK 0.5.
     m.transmission_factor = 0.0f;
-    m.metallic_factor = 1.0f;
-    m.roughness_factor = 0.05f;
-    EXPECT_EQ(material_from_gltf(m).kind, MaterialKind::Mirror);
-    m.roughness_factor = 0.5f;  // a rough metal: diffuse until GGX lands
-    EXPECT_EQ(material_from_gltf(m).kind, MaterialKind::Diffuse);
+    m.alpha_mode = GltfAlphaMode::Mask;
+    m.alpha_cutoff = 0.3f;
+    EXPECT_FLOAT_EQ(material_from_gltf(m).alpha_cutoff, 0.3f);
+    m.alpha_mode = GltfAlphaMode::Blend;
+    EXPECT_FLOAT_EQ(material_from_gltf(m).alpha_cutoff, 0.5f);
+    m.double_sided = true;
+    EXPECT_TRUE(material_from_gltf(m).double_sided);
+}
+
+TEST(GltfToScene, AlphaModesAndDoubleSidedFromTheFile) {
+    // One triangle in z = 0 facing +z (counter-clockwise seen from +z), its material's
+    // alpha as the file states; a ray from +z through its middle.
+    const auto load = [](const json& material) {
+        GltfBuilder b = lt::one_triangle();
+        b.doc["materials"] = {material};
+        b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+        ScratchDir dir;
+        const fs::path p = dir.path() / "alpha.gltf";
+        lt::write_file(p, b.gltf());
+        LoadedScene loaded = load_scene_file(p);
+        loaded.scene.commit();
+        return loaded;
+    };
+    const Ray down({0.25f, 0.25f, 1.0f}, {0, 0, -1}), up({0.25f, 0.25f, -1.0f}, {0, 0, 1});
+    Hit hit;
+    json m = {{"alphaMode", "MASK"},
+              {"alphaCutoff", 0.5},
+              {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 0.3}}}}};
+    EXPECT_FALSE(load(m).scene.intersect(down, hit));  // 0.3 < 0.5: cut out
+    m["pbrMetallicRoughness"]["baseColorFactor"] = {1, 1, 1, 0.7};
+    EXPECT_TRUE(load(m).scene.intersect(down, hit));
+    m["alphaMode"] = "OPAQUE";
+    m["pbrMetallicRoughness"]["baseColorFactor"] = {1, 1, 1, 0.0};
+    EXPECT_TRUE(load(m).scene.intersect(down, hit));  // alpha ignored
+    // BLEND: drawn as MASK 0.5, with one warning naming it.
+    m["alphaMode"] = "BLEND";
+    m["pbrMetallicRoughness"]["baseColorFactor"] = {1, 1, 1, 0.4};
+    const LoadedScene blend = load(m);
+    EXPECT_FALSE(blend.scene.intersect(down, hit));
+    std::size_t blend_warnings = 0;
+    for (const std::string& w : blend.warnings)
+        blend_warnings += w.find("BLEND") != std::string::npos;
+    EXPECT_EQ(blend_warnings, 1u);
+    // doubleSided false (glTF's default): the back is black; true: both sides as stated.
+    const json one_sided = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}}}};
+    LoadedScene s = load(one_sided);
+    ShadedMaterial scratch;
+    ASSERT_TRUE(s.scene.intersect(up, hit));
+    EXPECT_EQ(lobes(s.scene.shade(hit, up.direction, scratch)), BsdfLobe::None);
+    ASSERT_TRUE(s.scene.intersect(down, hit));
+    EXPECT_EQ(s.scene.shade(hit, down.direction, scratch).kind, MaterialKind::MetallicRoughness);
+    json two_sided = one_sided;
+    two_sided["doubleSided"] = true;
+    s = load(two_sided);
+    ASSERT_TRUE(s.scene.intersect(up, hit));
+    EXPECT_EQ(s.scene.shade(hit, up.direction, scratch).kind, MaterialKind::MetallicRoughness);
 }
 
 TEST(GltfToScene, PunctualLightsBecomeRadiometricBy683) {

@@ -50,6 +50,18 @@ expect_error "--sampler = halton: must be independent or sobol" rt_indirect --sa
 expect_error "--filter = lanczos: must be box, tent" rt_synthesis --filter lanczos -q
 expect_error "--filter-radius = 0: must be finite and > 0" rt_synthesis --filter tent --filter-radius 0 -q
 expect_error "--filter-radius = 1: needs --filter" rt_synthesis --filter-radius 1 -q
+# rt_materials (the material gallery): every option checked before the sky is built or a
+# sphere placed; a sky file that is not there is named.
+expect_error "rt_materials: --size = 0: each side must be in [1, 65536]" rt_materials --size 0 -q
+expect_error "--size = 12x: must be WIDTHxHEIGHT or WIDTH" rt_materials --size 12x -q
+expect_error "image size 65536 x 65536: the film would need 48 GiB" rt_materials --size 65536x65536 -q
+expect_error "samples_per_pixel = 0" rt_materials --spp 0 -q
+expect_error "--max-depth = -1: must be in [0, 1000]" rt_materials --max-depth -1 -q
+expect_error "--exposure = 100: must be in [-64, 64]" rt_materials --exposure 100 -q
+expect_error "--env-strength = -0.5: must be finite and >= 0" rt_materials --env-strength -0.5 -q
+expect_error "--env-rotate = inf: must be finite" rt_materials --env-rotate inf -q
+expect_error "--time-limit = -1: must be finite and >= 0" rt_materials --time-limit -1 -q
+expect_error "no_sky.hdr" rt_materials --env no_sky.hdr --size 8 -q
 # Placement overflow names the options, not an internal matrix.
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > one.obj
 expect_error "one.obj: --mesh-fit = 10, --mesh-scale = 1e+38: the placed mesh's coordinates overflow float" \

@@ -64,6 +64,13 @@ void transform(TriangleMesh& mesh, const glm::mat4& matrix) {
             n = len > 0.0f ? m / len : m;  // a zero normal stays zero rather than NaN
         }
     }
+    for (glm::vec4& t : mesh.tangents) {
+        // Tangents are directions in the surface: they map by the matrix itself. A mirror
+        // flips cross(normal, tangent) against the mapped bitangent, hence w's sign.
+        const glm::vec3 m = linear * glm::vec3(t);
+        const float len = glm::length(m);
+        t = glm::vec4(len > 0.0f ? m / len : m, det < 0.0f ? -t.w : t.w);
+    }
     // A mirror reverses the winding; swap two corners so the geometric normal
     // (p1 - p0) x (p2 - p0) keeps agreeing with the shading normals.
     if (det < 0.0f) {
@@ -100,6 +107,14 @@ void validate(const TriangleMesh& mesh) {
         throw Error("mesh: " + std::to_string(mesh.uvs.size()) + " uvs for " + std::to_string(n) +
                     " positions (must be 0 or equal)");
     }
+    if (!mesh.colors.empty() && mesh.colors.size() != n) {
+        throw Error("mesh: " + std::to_string(mesh.colors.size()) + " colors for " +
+                    std::to_string(n) + " positions (must be 0 or equal)");
+    }
+    if (!mesh.tangents.empty() && mesh.tangents.size() != n) {
+        throw Error("mesh: " + std::to_string(mesh.tangents.size()) + " tangents for " +
+                    std::to_string(n) + " positions (must be 0 or equal)");
+    }
     if (!mesh.material_ids.empty() && mesh.material_ids.size() != mesh.triangles.size()) {
         throw Error("mesh: " + std::to_string(mesh.material_ids.size()) + " material ids for " +
                     std::to_string(mesh.triangles.size()) + " triangles (must be 0 or equal)");
@@ -126,6 +141,20 @@ void validate(const TriangleMesh& mesh) {
     for (std::size_t i = 0; i < mesh.uvs.size(); ++i) {
         if (!finite(mesh.uvs[i])) {
             throw Error("mesh: uv " + std::to_string(i) + " is not finite");
+        }
+    }
+    for (std::size_t i = 0; i < mesh.colors.size(); ++i) {
+        const glm::vec4& c = mesh.colors[i];
+        if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z) ||
+            !std::isfinite(c.w)) {
+            throw Error("mesh: color " + std::to_string(i) + " is not finite");
+        }
+    }
+    for (std::size_t i = 0; i < mesh.tangents.size(); ++i) {
+        const glm::vec4& t = mesh.tangents[i];
+        if (!std::isfinite(t.x) || !std::isfinite(t.y) || !std::isfinite(t.z) ||
+            !std::isfinite(t.w)) {
+            throw Error("mesh: tangent " + std::to_string(i) + " is not finite");
         }
     }
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {

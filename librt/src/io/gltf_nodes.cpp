@@ -136,14 +136,22 @@ GltfCamera read_camera(const tinygltf::Camera& cam, const std::string& path, con
     } else if (cam.type == "orthographic") {
         const auto& o = cam.orthographic;
         c.type = GltfCamera::Type::Orthographic;
-        if (o.xmag == 0.0 || !std::isfinite(o.xmag))
-            ctx.fail(path + ".orthographic.xmag", "must be finite and not 0");
-        if (o.ymag == 0.0 || !std::isfinite(o.ymag))
-            ctx.fail(path + ".orthographic.ymag", "must be finite and not 0");
-        if (!(o.znear >= 0.0) || !std::isfinite(o.zfar) || !(o.zfar > o.znear))
-            ctx.fail(path + ".orthographic", "needs 0 <= znear < zfar");
-        c.xmag = float(o.xmag);
-        c.ymag = float(o.ymag);
+        // The spec: xmag and ymag MUST NOT be zero and SHOULD NOT be negative (a negative
+        // one mirrors the image, which librt does not do: it takes the magnitude).
+        const auto magnitude = [&](double v, const char* name) {
+            const std::string where = path + ".orthographic." + name;
+            if (v == 0.0 || !std::isfinite(v) || !std::isfinite(float(v)) || float(v) == 0.0f)
+                ctx.fail(where, std::to_string(v) + ": must be finite and not 0");
+            if (v < 0.0) ctx.warn(where, std::to_string(v) + ": negative, its magnitude is used");
+            return std::abs(float(v));
+        };
+        c.xmag = magnitude(o.xmag, "xmag");
+        c.ymag = magnitude(o.ymag, "ymag");
+        if (!(o.znear >= 0.0) || !std::isfinite(o.zfar) || !(o.zfar > o.znear)) {
+            ctx.fail(path + ".orthographic", "znear = " + std::to_string(o.znear) +
+                                                 ", zfar = " + std::to_string(o.zfar) +
+                                                 ": needs 0 <= znear < zfar");
+        }
         c.znear = float(o.znear);
         c.zfar = float(o.zfar);
     } else {

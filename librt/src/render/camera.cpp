@@ -37,8 +37,28 @@ void validate(const CameraSettings& s) {
     if (s.height < 1 || s.height > k_max_size) {
         fail("height", std::to_string(s.height), "must be in [1, 65536]");
     }
-    if (!(s.vertical_fov_degrees > 0.0f && s.vertical_fov_degrees < 180.0f)) {
-        fail("vertical_fov_degrees", to_text(s.vertical_fov_degrees), "must be in (0, 180)");
+    const int projection = static_cast<int>(s.projection);
+    if (projection < static_cast<int>(Projection::Perspective) ||
+        projection > static_cast<int>(Projection::Orthographic)) {
+        fail("projection", std::to_string(projection), "is not a Projection");
+    }
+    if (s.projection == Projection::Perspective) {
+        if (!(s.vertical_fov_degrees > 0.0f && s.vertical_fov_degrees < 180.0f)) {
+            fail("vertical_fov_degrees", to_text(s.vertical_fov_degrees), "must be in (0, 180)");
+        }
+    } else {
+        // 2 xmag must stay finite too: it is the image's width in scene units.
+        if (!(s.xmag > 0.0f) || !std::isfinite(2.0f * s.xmag)) {
+            fail("xmag", to_text(s.xmag), "must be finite and > 0 (orthographic half width)");
+        }
+        if (!(s.ymag > 0.0f) || !std::isfinite(2.0f * s.ymag)) {
+            fail("ymag", to_text(s.ymag), "must be finite and > 0 (orthographic half height)");
+        }
+        // Parallel rays have no centre of projection to focus through.
+        if (s.lens != LensModel::Pinhole) {
+            fail("lens", std::to_string(static_cast<int>(s.lens)),
+                 "must be Pinhole for an orthographic camera (no depth of field)");
+        }
     }
     if (!finite(s.position)) fail("position", to_text(s.position), "must be finite");
     if (!finite(s.look_at)) fail("look_at", to_text(s.look_at), "must be finite");
@@ -94,6 +114,20 @@ PixelFilter make_filter(const CameraSettings& s) {
 
 }  // namespace
 
+// Inlined into both callers: a call here cost the report's scenes 1.4% of their camera time.
+[[gnu::always_inline]] inline glm::vec2 Camera::pixel_offset(glm::vec2 pixel_u,
+                                                             float& weight) const {
+    if (settings_.pixel_jitter == PixelJitter::Gaussian) {
+        return gaussian_pixel_jitter(pixel_u, settings_.pixel_sigma);
+    }
+    if (settings_.pixel_jitter == PixelJitter::Filter) {
+        const FilterSample f = filter_.sample(pixel_u);
+        weight = f.weight;
+        return f.offset;
+    }
+    return glm::vec2(0.0f);
+}
+
 Camera::Camera(const CameraSettings& settings) : settings_(settings) {
     validate(settings_);
     filter_ = make_filter(settings_);
@@ -107,21 +141,17 @@ Camera::Camera(const CameraSettings& settings) : settings_(settings) {
     // The report's image-plane distance: H / (2 tan(fov/2)) pixels.
     image_plane_distance_ =
         static_cast<float>(static_cast<double>(settings_.height) / (2.0 * std::tan(half_fov)));
+    // glTF's orthographic projection maps [-xmag, xmag] x [-ymag, ymag] onto the image.
+    ortho_pixel_size_ = {2.0f * settings_.xmag / static_cast<float>(settings_.width),
+                         2.0f * settings_.ymag / static_cast<float>(settings_.height)};
 }
 
-CameraRay Camera::sample_ray(int px, int py, Sampler& sampler) const {
+CameraRay Camera::perspective_ray(int px, int py, Sampler& sampler) const {
     const glm::vec2 pixel_u = sampler.next_2d();
     const glm::vec2 lens_u = sampler.next_2d();
 
-    glm::vec2 offset{0.0f};
     float weight = 1.0f;
-    if (settings_.pixel_jitter == PixelJitter::Gaussian) {
-        offset = gaussian_pixel_jitter(pixel_u, settings_.pixel_sigma);
-    } else if (settings_.pixel_jitter == PixelJitter::Filter) {
-        const FilterSample f = filter_.sample(pixel_u);
-        offset = f.offset;
-        weight = f.weight;
-    }
+    const glm::vec2 offset = pixel_offset(pixel_u, weight);
     // The lens offset before the direction: its log and sincos calls then come before the
     // camera's vectors are loaded, which would otherwise be saved and restored around each
     // call (callgrind on the synthesis: ~50 instructions per ray). The same values.
@@ -158,6 +188,27 @@ CameraRay Camera::sample_ray(int px, int py, Sampler& sampler) const {
         ray.t_min = settings_.near_clip / cos_axis;
         ray.t_max = settings_.far_clip / cos_axis;
     }
+    return out;
+}
+
+CameraRay Camera::orthographic_ray(int px, int py, Sampler& sampler) const {
+    const glm::vec2 pixel_u = sampler.next_2d();
+    (void)sampler.next_2d();  // the lens sample, drawn as by a perspective camera
+    CameraRay out;
+    const glm::vec2 offset = pixel_offset(pixel_u, out.weight);
+    // The pixel's offset from the image centre, (j - W/2 + 0.5 + dx, -i + H/2 - 0.5 + dy),
+    // in scene units on the camera plane.
+    const float cx =
+        static_cast<float>(px) - 0.5f * static_cast<float>(settings_.width) + 0.5f + offset.x;
+    const float cy =
+        -static_cast<float>(py) + 0.5f * static_cast<float>(settings_.height) - 0.5f + offset.y;
+    Ray& ray = out.ray;
+    ray.origin =
+        settings_.position + (cx * ortho_pixel_size_.x) * right_ + (cy * ortho_pixel_size_.y) * up_;
+    ray.direction = forward_;
+    // The direction is the optical axis: depths are distances.
+    ray.t_min = settings_.near_clip;
+    ray.t_max = settings_.far_clip;
     return out;
 }
 

@@ -35,10 +35,6 @@ void check(const PathTracerSettings& s) {
 
 float max_component(const glm::vec3& v) { return std::max(std::max(v.x, v.y), v.z); }
 
-/// Material::emits() for a material of a scene (validated: emission finite and >= 0), as
-/// one comparison of the largest component instead of three (asked at every hit).
-bool emits(const Material& m) { return max_component(m.emission) > 0.0f; }
-
 /// The power heuristic with exponent 2 (Veach 1997, eq. 9.13, one sample per strategy):
 /// the weight a^2 / (a^2 + b^2) of the strategy of density a against the one of density b,
 /// written as 1 / (1 + (b/a)^2) so that huge densities (tiny lights) do not overflow.
@@ -253,6 +249,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
     Bounce bounce;   // the camera ray: emission counts fully
     int hidden = 0;  // objects hidden from the camera that the camera ray passed through
     Hit hit;         // out of the loop: every intersection that returns true rewrites it whole
+    ShadedMaterial shaded;  // a textured hit's material (Scene::shade); unused otherwise
     for (int depth = 0;;) {
         if (!scene.intersect_for_shading(ray, hit)) {
             radiance +=
@@ -268,8 +265,9 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             ray = spawn_ray(hit.point, hit.geometric_normal, ray.direction);
             continue;
         }
-        const Material& m = scene.material(hit);
-        if (emits(m)) {
+        // Textures looked up and the normal map applied here, so the BSDFs get plain values.
+        const Material& m = scene.shade(hit, ray.direction, shaded);
+        if (m.emits()) {
             // Brute force weighs every emitter fully (a one-sided light's back stays dark).
             const float w =
                 emitter_weight(scene, hit, ray.direction, S == Strategy::Brute ? Bounce{} : bounce);
@@ -284,7 +282,9 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         sampler.start_bounce(static_cast<std::uint32_t>(depth));
         ++depth;
 
-        const glm::vec3 albedo = scene.albedo(hit, m);
+        // Scene::albedo's texture lookup only for a map_Kd material: the others' albedo is
+        // m's own (inline: no call per hit).
+        const glm::vec3 albedo = m.albedo_texture < 0 ? m.albedo : scene.albedo(hit);
         // Every lobe is scaled by the albedo (bsdf.h): when throughput * albedo is 0 (the
         // blue floor's path meeting the red wall) the vertex can add and pass on nothing,
         // so stop without spending a light sample and shadow ray on it.
@@ -401,8 +401,9 @@ glm::vec3 AlbedoNormalIntegrator::li(const Scene& scene, const Ray& ray,
                                      Sampler& /*sampler*/) const {
     Hit hit;
     if (!scene.intersect(ray, hit)) return glm::vec3(0.0f);
+    ShadedMaterial shaded;
+    const Material& m = scene.shade(hit, ray.direction, shaded);  // normal map applied
     if (view_ == DebugView::Normal) return guard(0.5f * hit.shading_normal + 0.5f);
-    const Material& m = scene.material(hit);
     // A surface that scatters nothing shows what it emits; the others their albedo, as the
     // BSDF sees it (texture applied).
     return guard(bsdfs::lobes_of(m) == BsdfLobe::None ? m.emission : scene.albedo(hit));

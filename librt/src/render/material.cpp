@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace librt {
 namespace {
@@ -158,6 +159,30 @@ void validate(const Material& material) {
     check_unit("roughness", material.roughness);
     check_unit("metallic", material.metallic);
     check_unit("transmission", material.transmission);
+    check_unit("alpha", material.alpha);
+    check_unit("alpha_cutoff", material.alpha_cutoff);
+    if (!std::isfinite(material.normal_scale)) {
+        std::ostringstream msg;
+        msg << "material normal_scale = " << material.normal_scale << ": must be finite";
+        throw Error(msg.str());
+    }
+    const std::pair<const char*, const TextureSlot*> slots[] = {
+        {"base_color_texture", &material.base_color_texture},
+        {"metallic_roughness_texture", &material.metallic_roughness_texture},
+        {"emission_texture", &material.emission_texture},
+        {"normal_texture", &material.normal_texture}};
+    for (const auto& [name, slot] : slots) {
+        bool finite_map = true;
+        for (int c = 0; c < 3; ++c)
+            finite_map = finite_map && std::isfinite(slot->transform[c].x) &&
+                         std::isfinite(slot->transform[c].y);
+        if (slot->texture < -1 || !finite_map) {
+            std::ostringstream msg;
+            msg << "material " << name << " = texture " << slot->texture
+                << (finite_map ? ": must be a texture id or -1" : ": its transform is not finite");
+            throw Error(msg.str());
+        }
+    }
     if (material.albedo_texture < -1) {
         std::ostringstream msg;
         msg << "material albedo_texture = " << material.albedo_texture

@@ -5,19 +5,46 @@
 
 #include <sstream>
 #include <string>
+#include <utility>
 #include <variant>
 
 namespace librt {
+namespace {
+
+// Whether hits on a sphere of this material need its uv: for a texture lookup.
+bool needs_uv(const Material& m) { return m.albedo_texture >= 0 || m.varies_per_hit(); }
+
+// Whether a triangle of this material is light-sampled: it emits the same radiance all
+// over and on both sides, as a TriangleLight does (a textured or one-sided emitter is
+// left to BSDF sampling, which sees its texture and its back).
+bool light_sampled(const Material& m) {
+    return m.emits() && !m.emission_texture.bound() && m.double_sided;
+}
+
+}  // namespace
+
+void Scene::check_texture_ids(const Material& material) const {
+    const std::pair<const char*, std::int32_t> ids[] = {
+        {"albedo_texture", material.albedo_texture},
+        {"base_color_texture", material.base_color_texture.texture},
+        {"metallic_roughness_texture", material.metallic_roughness_texture.texture},
+        {"emission_texture", material.emission_texture.texture},
+        {"normal_texture", material.normal_texture.texture}};
+    for (const auto& [name, id] : ids) {
+        if (id >= 0 && std::size_t(id) >= textures_.size()) {
+            std::ostringstream msg;
+            msg << "material " << name << " = " << id << ": only " << textures_.size()
+                << " textures in the scene";
+            throw Error(msg.str());
+        }
+    }
+}
 
 std::uint32_t Scene::add_material(const Material& material) {
     validate(material);
-    if (material.albedo_texture >= 0 && std::size_t(material.albedo_texture) >= textures_.size()) {
-        std::ostringstream msg;
-        msg << "material albedo_texture = " << material.albedo_texture << ": only "
-            << textures_.size() << " textures in the scene";
-        throw Error(msg.str());
-    }
+    check_texture_ids(material);
     materials_.push_back(material);
+    cut_outs_ = cut_outs_ || material.cuts_out();
     return std::uint32_t(materials_.size() - 1);
 }
 
@@ -41,7 +68,8 @@ std::uint32_t Scene::add_object(std::uint32_t top_id, std::uint32_t material) {
     // Every object is added to top_ and here in the same order, so the ids agree.
     assert(top_id == objects_.size());
     (void)top_id;
-    objects_.push_back({kInvalidId, material});
+    const bool plain = material != kInvalidId && !materials_[material].varies_per_hit();
+    objects_.push_back({kInvalidId, material, plain ? material : kInvalidId});
     return std::uint32_t(objects_.size() - 1);
 }
 
@@ -49,6 +77,8 @@ std::uint32_t Scene::add_mesh_object(TriangleMesh mesh, BvhBuilder builder, std:
                                      std::vector<std::uint32_t> per_triangle) {
     const std::uint32_t prototype = top_.add_prototype(std::move(mesh), builder);
     const std::uint32_t id = add_object(top_.add_mesh(prototype), material);
+    // Vertex colors are a per-hit input: shade() evaluates them out of line.
+    if (top_.has_colors(id)) objects_[id].plain_material = kInvalidId;
     if (material == kInvalidId) {
         objects_[id].index = std::uint32_t(triangle_materials_.size());
         triangle_materials_.push_back(std::move(per_triangle));
@@ -60,13 +90,12 @@ std::uint32_t Scene::add_sphere(const Sphere& sphere, std::uint32_t material) {
     check_material_id(material);
     // A sphere's uv costs two inverse trigonometric calls: for intersect_for_shading, only
     // spheres with a texture need it (materials never change once added).
-    return add_object(top_.add_sphere(sphere, materials_[material].albedo_texture >= 0), material);
+    return add_object(top_.add_sphere(sphere, needs_uv(materials_[material])), material);
 }
 
 std::uint32_t Scene::add_sphere(const glm::dvec3& center, double radius, std::uint32_t material) {
     check_material_id(material);
-    return add_object(top_.add_sphere(center, radius, materials_[material].albedo_texture >= 0),
-                      material);
+    return add_object(top_.add_sphere(center, radius, needs_uv(materials_[material])), material);
 }
 
 std::uint32_t Scene::add_triangle(const Triangle& triangle, std::uint32_t material) {
@@ -99,7 +128,9 @@ std::uint32_t Scene::add_mesh_prototype(TriangleMesh mesh, BvhBuilder builder) {
 std::uint32_t Scene::add_instance(std::uint32_t prototype, const glm::mat4& object_to_world,
                                   std::uint32_t material) {
     check_material_id(material);
-    return add_object(top_.add_instance(prototype, object_to_world), material);
+    const std::uint32_t id = add_object(top_.add_instance(prototype, object_to_world), material);
+    if (top_.has_colors(id)) objects_[id].plain_material = kInvalidId;  // see add_mesh_object
+    return id;
 }
 
 std::uint32_t Scene::add_mesh(TriangleMesh mesh, std::vector<std::uint32_t> triangle_materials,
@@ -223,13 +254,16 @@ void Scene::make_triangle_lights() {
         };
         const TriangleMesh& mesh = top_.prototype_mesh(top_.prototype_of(id));
         bool any = false;
-        for (std::size_t t = 0; t < mesh.triangles.size() && !any; ++t)
-            any = materials_[material_of(t)].emits();
+        for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+            const Material& m = materials_[material_of(t)];
+            any = any || light_sampled(m);
+            unsampled_emitters_ = unsampled_emitters_ || (m.emits() && !light_sampled(m));
+        }
         if (!any) continue;
         triangle_light_base_[id] = std::uint32_t(triangle_light_.size());
         for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
             const Material& m = materials_[material_of(t)];
-            if (!m.emits()) {
+            if (!light_sampled(m)) {
                 triangle_light_.push_back(kInvalidId);
                 continue;
             }
@@ -264,8 +298,16 @@ void Scene::throw_not_committed() {
     throw Error("Scene queried before commit(): call commit() after adding objects");
 }
 
-glm::vec3 Scene::texture_albedo(const Hit& hit, const Material& m) const {
-    return textures_[std::size_t(m.albedo_texture)].lookup(hit.uv);
+std::uint32_t Scene::material_id(const Hit& hit) const {
+    const Object& o = objects_[hit.object_id];
+    if (o.material != kInvalidId) return o.material;
+    return triangle_materials_[o.index][hit.primitive_id];
+}
+
+glm::vec3 Scene::albedo(const Hit& hit) const {
+    const Material& m = material(hit);
+    if (m.albedo_texture >= 0) return textures_[std::size_t(m.albedo_texture)].lookup(hit.uv);
+    return m.albedo;
 }
 
 }  // namespace librt

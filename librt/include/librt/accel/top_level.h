@@ -13,7 +13,9 @@
 
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <array>
 #include <cstdint>
@@ -119,6 +121,20 @@ public:
     /// toward +y, when `every_sphere_uv` is true or the sphere was added with uv = true,
     /// else (0, 0)), primitive, object and instance ids.
     void finish(const Ray& ray, const ObjectHit& hit, bool every_sphere_uv, Hit& out) const;
+
+    /// The barycentric coordinates (b1, b2) of a finished hit's point on its triangle
+    /// (prototype space for an instance), recomputed from the point, for attributes
+    /// finish() does not interpolate; (0, 0) for a sphere.
+    [[nodiscard]] glm::vec2 barycentrics(const Hit& hit) const;
+    /// The tangent at a finished hit on a mesh or instance whose prototype has tangents,
+    /// interpolated, in world space: xyz by the object-to-world matrix (unnormalised), w
+    /// the bitangent sign (negated by a mirroring instance). (0, 0, 0, 0) otherwise.
+    [[nodiscard]] glm::vec4 tangent(const Hit& hit) const;
+    /// True when object `id` is a mesh or instance whose prototype has vertex colors.
+    [[nodiscard]] bool has_colors(std::uint32_t id) const;
+    /// The vertex color interpolated at a finished hit on a mesh or instance whose
+    /// prototype has colors; (1, 1, 1, 1) otherwise.
+    [[nodiscard]] glm::vec4 color(const Hit& hit) const;
 
     /// Number of objects.
     [[nodiscard]] std::size_t object_count() const { return objects_.size(); }

@@ -7,6 +7,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <cstdint>
 #include <string>
@@ -30,10 +31,16 @@ struct MeshMaterial {
 /// An indexed triangle mesh. Per-vertex attributes share the positions' indexing;
 /// optional arrays are either empty or exactly as long as the array they annotate.
 struct LIBRT_API TriangleMesh {
-    std::vector<glm::vec3> positions;         ///< vertex positions, in the mesh's space
-    std::vector<glm::uvec3> triangles;        ///< three indices into positions per triangle
-    std::vector<glm::vec3> normals;           ///< optional, one per position
-    std::vector<glm::vec2> uvs;               ///< optional, one per position
+    std::vector<glm::vec3> positions;   ///< vertex positions, in the mesh's space
+    std::vector<glm::uvec3> triangles;  ///< three indices into positions per triangle
+    std::vector<glm::vec3> normals;     ///< optional, one per position
+    std::vector<glm::vec2> uvs;         ///< optional, one per position
+    /// Optional, one per position: tangent xyz (along increasing u) and w = +-1, the
+    /// bitangent's sign: bitangent = w cross(normal, tangent) (glTF TANGENT). For normal maps.
+    std::vector<glm::vec4> tangents;
+    /// Optional, one per position: a linear RGBA colour (glTF COLOR_0) that multiplies the
+    /// material's base colour (its albedo for other kinds) and coverage where a hit lands.
+    std::vector<glm::vec4> colors;
     std::vector<std::uint32_t> material_ids;  ///< optional, one per triangle, into materials
     std::vector<MeshMaterial> materials;      ///< from the MTL file, may be empty
 
@@ -50,7 +57,8 @@ struct LIBRT_API TriangleMesh {
     [[nodiscard]] BBox bounds() const;
 };
 
-/// Applies an affine transform to positions (and the inverse transpose to normals, renormalised).
+/// Applies an affine transform to positions (and the inverse transpose to normals, renormalised;
+/// tangents by the matrix, renormalised, their w negated by a mirroring matrix).
 /// A mirroring matrix (negative determinant) also swaps two corners of every triangle, so the
 /// winding's normal keeps agreeing with the shading normals. Throws librt::Error, leaving the
 /// mesh untouched, if an entry is not finite, the bottom row is not (0 0 0 1), or the mesh
@@ -73,8 +81,8 @@ LIBRT_API void transform(TriangleMesh& mesh, const glm::mat4& matrix);
 inline constexpr float kMaxMeshCoordinate = 1099511627776.0f;  // 2^40
 
 /// Throws librt::Error naming the problem (and the offending index) when triangle or material
-/// indices are out of range, optional arrays have the wrong length, positions, normals or uvs
-/// are not finite, or a position lies outside +-kMaxMeshCoordinate.
+/// indices are out of range, optional arrays have the wrong length, positions, normals, uvs,
+/// tangents or colors are not finite, or a position lies outside +-kMaxMeshCoordinate.
 LIBRT_API void validate(const TriangleMesh& mesh);
 
 }  // namespace librt

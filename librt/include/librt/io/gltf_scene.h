@@ -14,23 +14,41 @@
 
 namespace librt {
 
-/// librt's material for a glTF material; the ONE place that mapping lives. Today's kinds:
-/// transmission > 0 -> dielectric(ior) tinted by the base colour; metallic 1 with roughness
-/// below 0.1 -> mirror tinted by the base colour; otherwise diffuse of the base colour
-/// (clamped to [0, 1]) with `base_color_texture` (a scene texture id, -1 for none) as its
-/// albedo texture. Emission = emissive_factor * emissive_strength, on every kind.
-/// Rough metals and glossy plastics are diffuse until the GGX kinds land.
+/// Scene texture ids of a glTF material's textures, -1 for none (scene_from_gltf adds
+/// them: base colour and emissive decoded as sRGB, the others as linear data).
+struct GltfMaterialTextures {
+    std::int32_t base_color = -1;          ///< baseColorTexture (sRGB RGBA)
+    std::int32_t metallic_roughness = -1;  ///< metallicRoughnessTexture (linear; G, B)
+    std::int32_t emissive = -1;            ///< emissiveTexture (sRGB)
+    std::int32_t normal = -1;              ///< normalTexture (linear, tangent space)
+};
+
+/// librt's material for a glTF material; the ONE place that mapping lives. Every glTF
+/// material becomes MaterialKind::MetallicRoughness (glTF 2.0 Appendix B): base colour,
+/// metallic and roughness factors (clamped to [0, 1]), ior from KHR_materials_ior (0, the
+/// extension's reflection-only limit, read as 1.5), KHR_materials_transmission as its
+/// thin-walled transmission; emission = emissive_factor * KHR_materials_emissive_strength.
+/// The textures in `textures` fill its slots, each with its KHR_texture_transform and the
+/// flip of glTF's downward v (the mesh keeps glTF's uvs); normalTexture.scale and the base
+/// colour alpha are kept. alphaMode MASK sets alpha_cutoff to alphaCutoff; BLEND is drawn
+/// as MASK with cut-off 0.5 (librt has no partial coverage); OPAQUE has no alpha test.
+/// doubleSided false makes the material one-sided (its back is black), except with
+/// transmission, which must be crossed from both sides. The occlusion texture is not used
+/// (a path tracer computes occlusion).
 [[nodiscard]] LIBRT_API Material material_from_gltf(const GltfMaterial& material,
-                                                    std::int32_t base_color_texture = -1);
+                                                    const GltfMaterialTextures& textures = {});
 
 /// Builds the Scene of `gltf` (taken by value: its vertex arrays are moved into the
-/// prototypes). Textures: the base colour image, sRGB-decoded and multiplied by the
-/// factor, becomes an ImageTexture; uvs are taken from the texture's coordinate set, through
-/// its KHR_texture_transform, and flipped (v' = 1 - v: glTF's v runs down, ImageTexture's
-/// up). KHR_lights_punctual point lights become PointLights of intensity candela / 683 W/sr
-/// (Blender's convention, see docs/render-your-own-scene.md); spot and directional lights,
-/// orthographic cameras, emissive, normal, metallic-roughness and occlusion textures and
-/// alpha MASK/BLEND are warned about and ignored. A scene with no supported light and no
+/// prototypes). Materials through material_from_gltf; each texture an ImageTexture once
+/// per colour space it is used in, with its sampler's wrap modes (NEAREST magnification
+/// reads texels, anything else is bilinear; no mipmaps). A material's textures share one
+/// uv set (the first texture's; others warned and dropped), which its primitives store
+/// with glTF's v; a normal-mapped primitive keeps its TANGENTs, or gets generate_tangents'
+/// (geometry/tangents.h). KHR_lights_punctual point lights become PointLights of intensity
+/// candela / 683 W/sr (Blender's convention, see docs/render-your-own-scene.md); spot and
+/// directional lights likewise; COLOR_0 (unless all white) is kept as the mesh's vertex
+/// colours (Scene::shade multiplies them in); orthographic cameras, occlusion and
+/// transmission textures are warned about or ignored. A scene with no supported light and no
 /// emissive surface gets default_light() (warned). Throws librt::Error for a camera option
 /// naming no camera ("camera = NAME: ..."), or a value Scene refuses.
 [[nodiscard]] LIBRT_API LoadedScene scene_from_gltf(GltfScene gltf,

@@ -17,7 +17,7 @@ namespace librt {
 
 /// How a scene file is turned into a Scene and a camera.
 struct SceneFileOptions {
-    /// The file's camera to use: empty = the first perspective camera; all digits = the
+    /// The file's camera to use (perspective or orthographic): empty = the first; all digits = the
     /// index among the cameras the scene places (node order); else a camera (or its
     /// node's) name. A file without cameras gets default_camera().
     std::string camera;

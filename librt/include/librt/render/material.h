@@ -1,6 +1,7 @@
 #pragma once
 
 #include <librt/export.h>
+#include <librt/render/texture.h>
 
 #include <glm/vec3.hpp>
 
@@ -65,6 +66,30 @@ struct LIBRT_API Material {
     /// MetallicRoughness: KHR_materials_transmission factor in [0, 1] (thin-walled).
     float transmission = 0.0f;
 
+    // Per-hit inputs (Scene::shade evaluates them where a hit is finished, so the BSDFs
+    // receive plain values; a material with none of them costs nothing per hit).
+    /// Texture (sRGB) whose RGB multiplies base_color (MetallicRoughness) and whose alpha
+    /// multiplies `alpha`.
+    TextureSlot base_color_texture;
+    /// Texture (linear) whose G channel multiplies roughness and B channel metallic.
+    TextureSlot metallic_roughness_texture;
+    /// Texture (sRGB) whose RGB multiplies emission. Such a surface is not light-sampled
+    /// (a TriangleLight's radiance is uniform): BSDF sampling finds it.
+    TextureSlot emission_texture;
+    /// Tangent-space normal map (linear; glTF's convention: x along the tangent (u), y
+    /// along the bitangent (v up), z out of the surface), on meshes with tangents.
+    TextureSlot normal_texture;
+    /// Multiplies the normal map's x and y (glTF normalTexture.scale).
+    float normal_scale = 1.0f;
+    /// Coverage in [0, 1] (glTF baseColorFactor's alpha), times base_color_texture's alpha.
+    float alpha = 1.0f;
+    /// Alpha test: where the coverage is below this, rays pass through the surface (glTF
+    /// alphaMode MASK's alphaCutoff); 0 = opaque, no test.
+    float alpha_cutoff = 0.0f;
+    /// False: the surface's back (the side its winding's normal points away from)
+    /// scatters and emits nothing (glTF doubleSided = false; see docs/materials-and-lights.md).
+    bool double_sided = true;
+
     /// A Lambertian surface of the given reflectance.
     [[nodiscard]] static Material diffuse(const glm::vec3& albedo);
     /// A perfect mirror; tint multiplies what it reflects.
@@ -96,6 +121,16 @@ struct LIBRT_API Material {
     [[nodiscard]] bool emits() const {
         return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f;
     }
+    /// True when the material has an input that varies per hit (a texture slot, a normal
+    /// map, an alpha test) or a one-sided back: Scene::shade then evaluates it per hit.
+    /// (albedo_texture, the report's map_Kd, is looked up by Scene::albedo as before.)
+    [[nodiscard]] bool varies_per_hit() const {
+        return base_color_texture.bound() || metallic_roughness_texture.bound() ||
+               emission_texture.bound() || normal_texture.bound() || alpha_cutoff > 0.0f ||
+               !double_sided;
+    }
+    /// True when the material has an alpha test (alpha_cutoff > 0).
+    [[nodiscard]] bool cuts_out() const { return alpha_cutoff > 0.0f; }
     /// True when every lobe of the material's BSDF is a delta distribution (no light
     /// sampling there); see lobes() in bsdf.h.
     [[nodiscard]] bool is_specular() const;
@@ -105,7 +140,8 @@ struct LIBRT_API Material {
 /// outside [0, 1] (or NaN), emission has a negative or non-finite component, ior is not
 /// finite and positive, albedo_texture is below -1, roughness, metallic, transmission or
 /// a base_color component is outside [0, 1], or eta or k has a negative or non-finite
-/// component.
+/// component; a texture slot's id is below -1 or its transform not finite; normal_scale is
+/// not finite; alpha or alpha_cutoff is outside [0, 1].
 LIBRT_API void validate(const Material& material);
 
 }  // namespace librt

@@ -26,6 +26,20 @@
 
 namespace librt {
 
+/// Room for the material Scene::shade evaluates at a hit whose material varies per hit
+/// (textures, a normal map, a one-sided back). It stays unconstructed until shade() fills
+/// it, so a path loop can keep one per path at no cost for untextured scenes.
+class ShadedMaterial {
+public:
+    ShadedMaterial() {}  // NOLINT: leaves the union member unconstructed on purpose
+
+private:
+    friend class Scene;
+    union {
+        Material material_;
+    };
+};
+
 /// The geometry, materials, textures and lights of a render, with closest-hit and any-hit
 /// queries over all of it.
 ///
@@ -45,6 +59,10 @@ namespace librt {
 /// normal when the mesh has normals (flipped onto geometric_normal's side if it disagrees,
 /// and replaced by it if degenerate), else equal to geometric_normal. Dielectric meshes
 /// must therefore be closed and wound so that their normals point outward.
+///
+/// Materials with per-hit inputs (Material::varies_per_hit) are evaluated by shade(); a
+/// material with an alpha test (Material::cuts_out) makes every query skip the hits where
+/// its coverage is below the cut-off (the ray goes on past them), for those materials only.
 ///
 /// Any add_* after commit() un-commits the scene; queries then throw until commit() runs
 /// again. A committed scene is immutable and may be queried from many threads at once.
@@ -134,13 +152,18 @@ public:
     /// before commit().
     [[nodiscard]] bool intersect(const Ray& ray, Hit& hit) const {
         require_committed();
+        if (cut_outs_) [[unlikely]]
+            return intersect_past_cut_outs(ray, hit);
         return top_.intersect(ray, hit, true);
     }
     /// intersect() for renderers: the same hit, except that a sphere's uv (two inverse
     /// trigonometric calls) is computed only when its material has a texture, and is
-    /// (0, 0) otherwise, since only texture lookups read it. What the integrators call.
+    /// (0, 0) otherwise, since only texture lookups read it (in a scene with an alpha
+    /// test, always). What the integrators call.
     [[nodiscard]] bool intersect_for_shading(const Ray& ray, Hit& hit) const {
         require_committed();
+        if (cut_outs_) [[unlikely]]
+            return intersect_past_cut_outs(ray, hit);
         return top_.intersect(ray, hit, false);
     }
     /// True when anything lies in (ray.t_min, ray.t_max): for shadow rays. The object
@@ -148,28 +171,42 @@ public:
     /// librt::Error before commit().
     [[nodiscard]] bool occluded(const Ray& ray, std::uint32_t ignored_object = kInvalidId) const {
         require_committed();
-        return top_.occluded(ray, ignored_object);
+        if (!top_.occluded(ray, ignored_object)) return false;
+        // Something is there; with cut-outs in the scene it may be a hole only.
+        if (cut_outs_) [[unlikely]]
+            return occluded_past_cut_outs(ray, ignored_object);
+        return true;
     }
 
     /// The material of a hit's primitive (per-triangle materials respected).
     [[nodiscard]] const Material& material(const Hit& hit) const {
         return materials_[material_id(hit)];
     }
-    /// The scene material id of a hit's primitive. Inline: the path loop asks it at every
-    /// hit, and the call cost more than the two loads (callgrind on the synthesis: ~9M).
-    [[nodiscard]] std::uint32_t material_id(const Hit& hit) const {
-        const Object& o = objects_[hit.object_id];
-        if (o.material != kInvalidId) return o.material;
-        return triangle_materials_[o.index][hit.primitive_id];
+    /// The material at a hit with its per-hit inputs evaluated: the stored material itself
+    /// when it has none (Material::varies_per_hit false: no cost), else `scratch` filled
+    /// with it, its textures looked up at hit.uv (base colour, metallic-roughness,
+    /// emission), the mesh's vertex colour multiplied in (base colour, else albedo), and
+    /// hit.shading_normal bent by its normal map. A one-sided material seen
+    /// from its back (`direction`, the ray's, against the geometric normal) gives a black
+    /// material: no scattering, no emission. The returned reference lives as long as the
+    /// scene and `scratch`.
+    [[nodiscard]] const Material& shade(Hit& hit, const glm::vec3& direction,
+                                        ShadedMaterial& scratch) const {
+        // Inline and one load for the common object (a uniform, plain material): cheaper
+        // than material(hit)'s call; per-triangle and textured materials go out of line.
+        const std::uint32_t plain = objects_[hit.object_id].plain_material;
+        if (plain != kInvalidId) [[likely]]
+            return materials_[plain];
+        return shade_varying(hit, direction, scratch);
     }
+    /// The coverage at a hit: the material's alpha times its base colour texture's alpha
+    /// at hit.uv and the vertex colour's alpha (1 without any of them).
+    [[nodiscard]] float coverage(const Hit& hit) const;
+    /// The scene material id of a hit's primitive.
+    [[nodiscard]] std::uint32_t material_id(const Hit& hit) const;
     /// The diffuse reflectance at a hit: the material's texture looked up at hit.uv if it
     /// has one, else its albedo.
-    [[nodiscard]] glm::vec3 albedo(const Hit& hit) const { return albedo(hit, material(hit)); }
-    /// albedo(hit) for a caller that already holds the hit's material `m` (material(hit)):
-    /// the untextured case inline, without a second material lookup.
-    [[nodiscard]] glm::vec3 albedo(const Hit& hit, const Material& m) const {
-        return m.albedo_texture >= 0 ? texture_albedo(hit, m) : m.albedo;
-    }
+    [[nodiscard]] glm::vec3 albedo(const Hit& hit) const;
 
     /// Material by id.
     [[nodiscard]] const Material& material(std::uint32_t id) const { return materials_.at(id); }
@@ -229,8 +266,11 @@ public:
 private:
     /// What the scene adds to a geometric object of top_ (same id).
     struct Object {
-        std::uint32_t index;         ///< into triangle_materials_ when material is kInvalidId
-        std::uint32_t material;      ///< uniform material, or kInvalidId for per-triangle ids
+        std::uint32_t index;     ///< into triangle_materials_ when material is kInvalidId
+        std::uint32_t material;  ///< uniform material, or kInvalidId for per-triangle ids
+        /// `material` when it is uniform and has no per-hit inputs (shade()'s one-load path),
+        /// else kInvalidId.
+        std::uint32_t plain_material;
         bool camera_visible = true;  ///< see set_camera_visible
     };
 
@@ -239,8 +279,6 @@ private:
         if (!committed_) throw_not_committed();
     }
     [[noreturn]] static void throw_not_committed();
-    /// albedo(hit, m) for a textured material `m`: the texture looked up at hit.uv.
-    [[nodiscard]] glm::vec3 texture_albedo(const Hit& hit, const Material& m) const;
     void check_material_id(std::uint32_t material) const;
     std::uint32_t add_object(std::uint32_t top_id, std::uint32_t material);
     std::uint32_t add_mesh_object(TriangleMesh mesh, BvhBuilder builder, std::uint32_t material,
@@ -248,6 +286,11 @@ private:
     std::uint32_t add_light(Light light);
     std::uint32_t add_surface_light(Light light, TriangleMesh surface, const glm::vec3& radiance);
     void make_triangle_lights();
+    void check_texture_ids(const Material& material) const;
+    const Material& shade_varying(Hit& hit, const glm::vec3& direction,
+                                  ShadedMaterial& scratch) const;
+    bool intersect_past_cut_outs(const Ray& ray, Hit& hit) const;
+    bool occluded_past_cut_outs(const Ray& ray, std::uint32_t ignored_object) const;
 
     std::vector<Material> materials_;
     std::vector<ImageTexture> textures_;
@@ -265,6 +308,7 @@ private:
 
     TopLevel top_;                     ///< the geometry and its acceleration structure
     bool unsampled_emitters_ = false;  ///< see has_unsampled_emitters()
+    bool cut_outs_ = false;            ///< some material cuts_out()
     bool hidden_objects_ = false;      ///< see may_hide_objects()
     bool committed_ = false;
 };

@@ -2,20 +2,52 @@
 
 #include <librt/export.h>
 
+#include <glm/mat3x2.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace librt {
 
-/// An RGB image used as a surface's albedo, stored as linear floats (io/texture_io.h
-/// load_texture reads one from a file).
+/// What a lookup does outside [0, 1] along one axis (glTF sampler wrapS / wrapT).
+enum class TextureWrap : std::uint8_t {
+    Repeat,          ///< tiles the image (glTF REPEAT, 10497; the OBJ / MTL default)
+    ClampToEdge,     ///< the edge texels continue outward (glTF CLAMP_TO_EDGE, 33071)
+    MirroredRepeat,  ///< tiles, every other tile mirrored (glTF MIRRORED_REPEAT, 33648)
+};
+
+/// How texels are combined at a lookup.
+enum class TextureFilter : std::uint8_t {
+    Linear,   ///< bilinear between the four nearest texel centres (glTF LINEAR)
+    Nearest,  ///< the texel containing the point (glTF NEAREST)
+};
+
+/// How texel bytes are turned into the linear values a renderer needs.
+enum class ColorSpace : std::uint8_t {
+    Srgb,    ///< colours (base colour, emission, map_Kd): the sRGB transfer function inverted
+    Linear,  ///< data (metallic-roughness, normals, alpha): byte / 255 as it is
+};
+
+/// How an ImageTexture is sampled.
+struct TextureSampling {
+    TextureWrap wrap_u = TextureWrap::Repeat;      ///< along u (columns)
+    TextureWrap wrap_v = TextureWrap::Repeat;      ///< along v (rows)
+    TextureFilter filter = TextureFilter::Linear;  ///< between texels
+};
+
+/// An RGB(A) image a material looks up, stored as linear floats (io/texture_io.h
+/// load_texture reads one from a file; from_rgba8 decodes 8-bit texels).
 ///
 /// Lookups use OBJ texture coordinates: u runs left to right and v bottom to top (the
-/// image's first row is v = 1), both wrapping around (repeat), with bilinear filtering
-/// between the four nearest texel centres.
+/// image's first row is v = 1); the texel centres sit at (i + 0.5) / width. Outside [0, 1]
+/// the sampling's wrap modes apply (repeat by default), and the filter is bilinear between
+/// the four nearest texel centres by default. (glTF's v runs down: a material's TextureSlot
+/// flips it, see make_texture_transform.) No mipmaps: a path tracer's many samples per
+/// pixel average what minification would.
 class LIBRT_API ImageTexture {
 public:
     ImageTexture() = default;
@@ -23,9 +55,19 @@ public:
     /// librt::Error if the size is not positive or texels.size() != width * height.
     ImageTexture(int width, int height, std::vector<glm::vec3> linear_texels);
 
-    /// Bilinearly filtered linear RGB at texture coordinates uv (repeat wrap, v up).
-    /// A non-finite uv gives the texel at (0, 0) instead of NaN.
+    /// A texture from 8-bit RGBA texels (row-major, top row first, 4 bytes each): RGB
+    /// decoded by `space`, alpha always linear (kept only when some texel is below 255).
+    /// Throws librt::Error if the size is not positive or rgba.size() != 4 width height.
+    [[nodiscard]] static ImageTexture from_rgba8(int width, int height,
+                                                 std::span<const std::uint8_t> rgba,
+                                                 ColorSpace space,
+                                                 const TextureSampling& sampling = {});
+
+    /// Filtered linear RGB at texture coordinates uv (the sampling's wrap modes and
+    /// filter; v up). A non-finite uv gives the texel at (0, 0) instead of NaN.
     [[nodiscard]] glm::vec3 lookup(glm::vec2 uv) const;
+    /// Filtered alpha at uv, as lookup() filters colour; 1 when the texture has no alpha.
+    [[nodiscard]] float lookup_alpha(glm::vec2 uv) const;
 
     /// The texel in column x, row y (row 0 at the top), without wrapping.
     [[nodiscard]] const glm::vec3& texel(int x, int y) const {
@@ -34,12 +76,54 @@ public:
     [[nodiscard]] int width() const { return width_; }            ///< texels per row
     [[nodiscard]] int height() const { return height_; }          ///< number of rows
     [[nodiscard]] bool empty() const { return texels_.empty(); }  ///< true when default-made
+    /// True when the texture carries an alpha channel (some texel not opaque).
+    [[nodiscard]] bool has_alpha() const { return !alpha_.empty(); }
+    /// How lookups wrap and filter.
+    [[nodiscard]] const TextureSampling& sampling() const { return sampling_; }
+    /// Changes how lookups wrap and filter.
+    void set_sampling(const TextureSampling& sampling) { sampling_ = sampling; }
 
 private:
+    /// The two texels along one axis and the weight of the second, for coordinate c.
+    struct Axis {
+        int i0, i1;
+        float w1;
+    };
+    template <class Texel>
+    Texel filtered(glm::vec2 uv, const std::vector<Texel>& texels, const Texel& fallback) const;
+
     int width_ = 0;
     int height_ = 0;
     std::vector<glm::vec3> texels_;
+    std::vector<float> alpha_;  ///< per texel, linear; empty when every texel is opaque
+    TextureSampling sampling_;
 };
+
+/// The KHR_texture_transform of a texture reference: uv' = T(offset) R(rotation) S(scale)
+/// uv, in glTF's uv space (v down).
+struct TextureTransform {
+    glm::vec2 offset{0.0f};  ///< translation
+    float rotation = 0.0f;   ///< radians; R maps (1, 0) to (cos, -sin) (see the .cpp)
+    glm::vec2 scale{1.0f};   ///< per-axis scale
+};
+
+/// A material's use of a scene texture: which one, and the affine map from the mesh's uvs
+/// to the texture's coordinates.
+struct TextureSlot {
+    std::int32_t texture = -1;    ///< scene texture id (Scene::add_texture); -1: none
+    glm::mat3x2 transform{1.0f};  ///< uv -> texture coordinates (make_texture_transform)
+    /// True when a texture is bound.
+    [[nodiscard]] bool bound() const { return texture >= 0; }
+    /// The texture coordinates of mesh uv `uv`.
+    [[nodiscard]] glm::vec2 map(glm::vec2 uv) const { return transform * glm::vec3(uv, 1.0f); }
+};
+
+/// The affine map from a mesh's stored uvs to ImageTexture coordinates (what
+/// TextureSlot::transform holds): the KHR_texture_transform `t` applied in glTF's uv space,
+/// then v flipped (v' = 1 - v) when `gltf_uvs` (uvs stored as glTF states them, v down).
+/// For OBJ uvs (already v up) and no transform, the identity.
+[[nodiscard]] LIBRT_API glm::mat3x2 make_texture_transform(const TextureTransform& t,
+                                                           bool gltf_uvs);
 
 /// The sRGB transfer function inverted (IEC 61966-2-1): c / 12.92 below 0.04045, else
 /// ((c + 0.055) / 1.055)^2.4, for c in [0, 1].

@@ -1,0 +1,142 @@
+#include "scene_app.h"
+
+#include "cli.h"
+
+#include <librt/core/error.h>
+#include <librt/io/exr.h>
+#include <librt/io/image_io.h>
+#include <librt/render/renderer.h>
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+namespace librt::apps {
+
+namespace {
+
+/// IEC 61966-2-1 sRGB encoding of a linear value in [0, 1]: 12.92 c below 0.0031308, else
+/// 1.055 c^(1/2.4) - 0.055.
+float srgb_encode(float c) {
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+/// Peak resident memory of this process in MiB (Linux reports ru_maxrss in KiB).
+double peak_rss_mib() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return double(usage.ru_maxrss) / 1024.0;
+}
+
+}  // namespace
+
+void parse_size(const std::string& text, float aspect, int& width, int& height) {
+    const auto bad = [&text](const char* rule) { throw Error("--size = " + text + ": " + rule); };
+    const char* rule = aspect > 0.0f ? "must be WIDTHxHEIGHT or WIDTH, e.g. 1280x720 or 1280"
+                                     : "must be WIDTHxHEIGHT, e.g. 1280x720";
+    long w = 0, h = 0;
+    char tail = 0;
+    if (std::sscanf(text.c_str(), "%ld%*[xX]%ld%c", &w, &h, &tail) == 2) {
+        // WxH
+    } else if (aspect > 0.0f && std::sscanf(text.c_str(), "%ld%c", &w, &tail) == 1) {
+        h = std::lround(double(w) / double(aspect));
+    } else {
+        bad(rule);
+    }
+    if (w < 1 || h < 1 || w > 65536 || h > 65536) bad("each side must be in [1, 65536]");
+    width = int(w);
+    height = int(h);
+}
+
+std::string lower_extension(const std::string& path) {
+    std::string e = std::filesystem::path(path).extension().string();
+    std::transform(e.begin(), e.end(), e.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return e;
+}
+
+Image display_image(const Image& linear, float scale) {
+    Image out = linear;
+    for (glm::vec3& p : out.pixels) {
+        for (int c = 0; c < 3; ++c) {
+            const float v = scale * p[c];
+            p[c] = srgb_encode(v > 0.0f ? std::min(v, 1.0f) : 0.0f);
+        }
+    }
+    return out;
+}
+
+void write_output(const std::string& path, const Film& film, float scale) {
+    const std::string ext = lower_extension(path);
+    if (ext == ".exr") {
+        ImageLayers layers = resolve_layers(film);
+        for (glm::vec3& p : layers.beauty.pixels) p *= scale;
+        write_exr(path, layers);
+    } else if (ext == ".png") {
+        write_png(path, display_image(resolve(film), scale), ToneMap{1.0f, 1.0f});
+    } else {
+        write_image(path, resolve(film), ToneMap{scale, 1.0f});
+    }
+}
+
+int render_progressively_and_write(const Scene& scene, const Camera& camera, PathTracer& integrator,
+                                   const ProgressiveOutput& o) {
+    ProgressiveSettings ps;
+    ps.render.samples_per_pixel = o.spp;
+    ps.render.threads = o.threads;
+    ps.render.seed = o.seed;
+    ps.render.cancel = interrupt_flag();
+    ProgressBar progress(!o.quiet);
+    ps.render.progress = [&progress](const RenderProgress& p) { progress.update(p); };
+    // One sample per pixel per pass: a stop (Ctrl-C, time limit) loses at most one sample's
+    // work; each pass costs one copy of the film, small next to rendering it.
+    ps.pass_samples = 1;
+    ps.time_limit = o.time_limit;
+    ps.aovs = lower_extension(o.output) == ".exr";
+    Film film;
+    const RenderStats stats = render_progressive(scene, camera, integrator, film, ps);
+    progress.finish();
+    const bool interrupted = stats.cancelled || interrupt_flag()->load();
+    if (stats.passes == 0) {
+        std::cerr << "interrupted before the first pass finished: nothing written\n";
+        return 130;
+    }
+    write_output(o.output, film, o.scale);
+    const bool partial = stats.samples_per_pixel < std::uint32_t(o.spp);
+    if (!o.quiet || partial) {
+        const double rate = stats.seconds > 0.0 ? double(stats.samples) / stats.seconds : 0.0;
+        std::printf(
+            "%dx%d, %u of %d spp in %d passes, %u threads: render %.2f s (%.2f M "
+            "samples/s), total %.2f s, peak memory %.0f MiB\n",
+            camera.width(), camera.height(), stats.samples_per_pixel, o.spp, stats.passes,
+            o.threads > 0 ? unsigned(o.threads) : std::max(1u, std::thread::hardware_concurrency()),
+            stats.seconds, rate * 1e-6,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - o.started).count(),
+            peak_rss_mib());
+    }
+    if (stats.nonfinite_samples + integrator.nonfinite_count() > 0) {
+        std::fprintf(stderr, "warning: %llu non-finite samples dropped\n",
+                     static_cast<unsigned long long>(stats.nonfinite_samples +
+                                                     integrator.nonfinite_count()));
+    }
+    if (interrupted) {
+        std::cerr << "interrupted: wrote partial image " << o.output << " ("
+                  << stats.samples_per_pixel << " of " << o.spp << " spp)\n";
+        return 130;
+    }
+    if (partial) {
+        std::cerr << "time limit reached: wrote partial image " << o.output << " ("
+                  << stats.samples_per_pixel << " of " << o.spp << " spp)\n";
+    } else if (!o.quiet) {
+        std::printf("wrote %s\n", o.output.c_str());
+    }
+    return 0;
+}
+
+}  // namespace librt::apps

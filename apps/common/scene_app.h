@@ -1,0 +1,55 @@
+#pragma once
+
+#include <librt/core/image.h>
+#include <librt/render/camera.h>
+#include <librt/render/film.h>
+#include <librt/render/integrators.h>
+#include <librt/render/scene.h>
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+// What the apps that show a scene in today's display convention (rt_render, rt_materials)
+// share, rather than the report's gamma-0.45 look: "WxH" sizes, progressive passes, a
+// partial image on Ctrl-C or at the time limit, sRGB-encoded PNG after a clamp, linear
+// HDR / PFM / EXR (EXR with AOV layers).
+
+namespace librt::apps {
+
+/// What render_progressively_and_write needs from the command line.
+struct ProgressiveOutput {
+    std::string output;       ///< .png (sRGB), .hdr, .pfm or .exr (linear)
+    int spp = 16;             ///< samples per pixel
+    int threads = 0;          ///< worker threads, 0 = all cores
+    std::uint64_t seed = 0;   ///< random seed
+    double time_limit = 0.0;  ///< seconds, 0 = none
+    float scale = 1.0f;       ///< exposure: the linear image is multiplied by this
+    bool quiet = false;       ///< no progress bar and no summary
+    /// When the app started its work (the summary's "total" counts from here).
+    std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+};
+
+/// Parses --size: "WxH", or (when aspect > 0) a single width W with the height
+/// round(W / aspect); each side in [1, 65536]. Throws librt::Error "--size = text: rule".
+void parse_size(const std::string& text, float aspect, int& width, int& height);
+
+/// The file extension of `path`, lower-cased, with its dot (".png").
+[[nodiscard]] std::string lower_extension(const std::string& path);
+
+/// The display image: exposure `scale`, clamp to [0, 1] (NaN -> 0), sRGB-encoded.
+[[nodiscard]] Image display_image(const Image& linear, float scale);
+
+/// Writes the film: PNG display-encoded, EXR with its layers, HDR / PFM linear.
+void write_output(const std::string& path, const Film& film, float scale);
+
+/// Renders `scene` through `camera` one sample per pixel per pass (render_progressive),
+/// with a progress bar, until o.spp samples, Ctrl-C or the time limit; writes the finished
+/// passes and prints a summary (render time, samples/s, total time, peak memory). Returns 0, or 130
+/// when interrupted (the partial image written, flagged on stderr; nothing written when no pass had
+/// finished). `scene` must be committed; `integrator` is the path tracer.
+[[nodiscard]] int render_progressively_and_write(const Scene& scene, const Camera& camera,
+                                                 PathTracer& integrator,
+                                                 const ProgressiveOutput& o);
+
+}  // namespace librt::apps

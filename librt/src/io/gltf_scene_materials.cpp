@@ -1,0 +1,175 @@
+// glTF materials to librt's MetallicRoughness kind, with their textures, samplers,
+// KHR_texture_transform, alpha modes and double-sidedness (see gltf_scene_materials.h).
+
+#include "io/gltf_scene_materials.h"
+
+#include <librt/geometry/tangents.h>
+#include <librt/io/gltf_scene.h>
+
+#include <glm/common.hpp>
+
+#include <algorithm>
+
+namespace librt {
+namespace {
+
+/// Alpha cut-off glTF's BLEND is drawn with (librt has no partial coverage).
+constexpr float kBlendCutoff = 0.5f;
+
+/// The slot of a texture reference: its scene texture and its uv map (glTF uvs, v down,
+/// through KHR_texture_transform, to ImageTexture coordinates).
+TextureSlot slot(const GltfTextureRef& ref, std::int32_t id) {
+    TextureSlot s;
+    if (id < 0) return s;
+    s.texture = id;
+    TextureTransform t;
+    if (ref.has_transform) t = {ref.transform.offset, ref.transform.rotation, ref.transform.scale};
+    s.transform = make_texture_transform(t, true);
+    return s;
+}
+
+}  // namespace
+
+Material material_from_gltf(const GltfMaterial& m, const GltfMaterialTextures& textures) {
+    const glm::vec3 base = glm::clamp(glm::vec3(m.base_color_factor), 0.0f, 1.0f);
+    // KHR_materials_ior allows 0 (a reflection-only limit): librt needs ior > 0, so 0
+    // becomes the default 1.5 (scene_from_gltf warns).
+    const float ior = m.ior > 0.0f ? m.ior : 1.5f;
+    Material out = Material::metallic_roughness(base, std::clamp(m.metallic_factor, 0.0f, 1.0f),
+                                                std::clamp(m.roughness_factor, 0.0f, 1.0f), ior,
+                                                std::clamp(m.transmission_factor, 0.0f, 1.0f));
+    // KHR_materials_emissive_strength scales the factor (the extension's definition).
+    out.emission = glm::max(m.emissive_factor * m.emissive_strength, glm::vec3(0.0f));
+    out.base_color_texture = slot(m.base_color_texture, textures.base_color);
+    out.metallic_roughness_texture =
+        slot(m.metallic_roughness_texture, textures.metallic_roughness);
+    out.emission_texture = slot(m.emissive_texture, textures.emissive);
+    out.normal_texture = slot(m.normal_texture, textures.normal);
+    out.normal_scale = m.normal_texture.scale;
+    out.alpha = std::clamp(m.base_color_factor.w, 0.0f, 1.0f);
+    if (m.alpha_mode == GltfAlphaMode::Mask)
+        out.alpha_cutoff = std::clamp(m.alpha_cutoff, 0.0f, 1.0f);
+    else if (m.alpha_mode == GltfAlphaMode::Blend)
+        out.alpha_cutoff = kBlendCutoff;
+    // A thin transmitting surface must be crossed from both sides (a glass bottle's far
+    // wall is seen from inside): transmission makes it double-sided whatever the flag.
+    out.double_sided = m.double_sided || out.transmission > 0.0f;
+    validate(out);
+    return out;
+}
+
+namespace gltf_detail {
+
+MaterialBuilder::MaterialBuilder(const GltfScene& gltf, Scene& scene,
+                                 std::vector<std::string>& warnings)
+    : gltf_(gltf),
+      scene_(scene),
+      warnings_(warnings),
+      built_(gltf.materials.size()),
+      done_(gltf.materials.size(), false) {
+    // glTF's default material: white, metallic 1, roughness 1 (spec 3.9.6) would be a
+    // rough metal; librt keeps its grey diffuse default for primitives without one.
+    default_.id = scene.add_material(Material::diffuse(glm::vec3(0.8f)));
+}
+
+std::int32_t MaterialBuilder::texture(const GltfTextureRef& ref, ColorSpace space) {
+    if (!ref.valid() || std::size_t(ref.texture) >= gltf_.textures.size()) return -1;
+    const auto key = std::make_pair(ref.texture, space);
+    if (const auto it = textures_.find(key); it != textures_.end()) return it->second;
+    std::int32_t id = -1;
+    const GltfTexture& t = gltf_.textures[std::size_t(ref.texture)];
+    if (t.image >= 0 && std::size_t(t.image) < gltf_.images.size()) {
+        const GltfImage& img = gltf_.images[std::size_t(t.image)];
+        if (img.width > 0 && img.height > 0) {
+            const auto wrap = [](GltfWrap w) {
+                return w == GltfWrap::ClampToEdge      ? TextureWrap::ClampToEdge
+                       : w == GltfWrap::MirroredRepeat ? TextureWrap::MirroredRepeat
+                                                       : TextureWrap::Repeat;
+            };
+            // NEAREST magnification reads texels; anything else (and mipmapped
+            // minification, which librt does without) is bilinear.
+            const TextureSampling sampling{wrap(t.wrap_s), wrap(t.wrap_t),
+                                           t.mag_filter == GltfFilter::Nearest
+                                               ? TextureFilter::Nearest
+                                               : TextureFilter::Linear};
+            id = scene_.add_texture(
+                ImageTexture::from_rgba8(img.width, img.height, img.rgba, space, sampling));
+        }
+    }
+    textures_[key] = id;
+    return id;
+}
+
+const SceneMaterial& MaterialBuilder::material(int index) {
+    if (index < 0 || std::size_t(index) >= gltf_.materials.size()) return default_;
+    SceneMaterial& out = built_[std::size_t(index)];
+    if (done_[std::size_t(index)]) return out;
+    done_[std::size_t(index)] = true;
+    const GltfMaterial& m = gltf_.materials[std::size_t(index)];
+    const std::string who = "materials[" + std::to_string(index) + "] '" + m.name + "': ";
+    // One uv set per material (a mesh stores one): the first texture's; a texture on
+    // another set is dropped with a warning.
+    const std::pair<const GltfTextureRef*, const char*> refs[] = {
+        {&m.base_color_texture, "base colour"},
+        {&m.metallic_roughness_texture, "metallic-roughness"},
+        {&m.emissive_texture, "emissive"},
+        {&m.normal_texture, "normal"}};
+    for (const auto& [ref, name] : refs) {
+        if (!ref->valid()) continue;
+        if (out.uv_set < 0) out.uv_set = ref->tex_coord;
+        if (ref->tex_coord != out.uv_set)
+            warnings_.push_back(who + name + " texture reads TEXCOORD_" +
+                                std::to_string(ref->tex_coord) + ", the others TEXCOORD_" +
+                                std::to_string(out.uv_set) + ": ignored (one uv set a material)");
+    }
+    const auto use = [&](const GltfTextureRef& ref, ColorSpace space) {
+        return ref.tex_coord == out.uv_set ? texture(ref, space) : -1;
+    };
+    GltfMaterialTextures ids;
+    ids.base_color = use(m.base_color_texture, ColorSpace::Srgb);
+    ids.metallic_roughness = use(m.metallic_roughness_texture, ColorSpace::Linear);
+    ids.emissive = use(m.emissive_texture, ColorSpace::Srgb);
+    ids.normal = use(m.normal_texture, ColorSpace::Linear);
+    if (m.occlusion_texture.valid())
+        warnings_.push_back(who + "occlusion texture ignored (a path tracer computes occlusion)");
+    if (m.transmission_texture.valid())
+        warnings_.push_back(who + "transmission texture ignored (factor used)");
+    if (m.alpha_mode == GltfAlphaMode::Blend && !blend_warned_) {
+        blend_warned_ = true;
+        warnings_.push_back(who +
+                            "alphaMode BLEND drawn as MASK with cut-off 0.5 (no partial "
+                            "coverage); the same for every BLEND material of the file");
+    }
+    if (m.ior == 0.0f) warnings_.push_back(who + "KHR_materials_ior 0 read as 1.5");
+    const Material material = material_from_gltf(m, ids);
+    emissive_ = emissive_ || material.emits();
+    out.id = scene_.add_material(material);
+    out.normal_map = material.normal_texture.bound();
+    return out;
+}
+
+void MaterialBuilder::attributes(const GltfPrimitive& prim, const SceneMaterial& m,
+                                 TriangleMesh& mesh, const std::string& who) {
+    // COLOR_0 multiplies the base colour (glTF 2.0 sec. 3.9.2); kept unless all white.
+    if (prim.colors.size() == mesh.positions.size() &&
+        std::any_of(prim.colors.begin(), prim.colors.end(),
+                    [](const glm::vec4& c) { return c != glm::vec4(1.0f); }))
+        mesh.colors = prim.colors;
+    if (m.uv_set < 0) return;
+    const std::vector<glm::vec2>& uvs = m.uv_set == 1 ? prim.uv1 : prim.uv0;
+    if (uvs.size() != mesh.positions.size()) {
+        warnings_.push_back(who + ": no TEXCOORD_" + std::to_string(m.uv_set) +
+                            " for its material's textures: they read uv (0, 0)");
+        mesh.uvs.assign(mesh.positions.size(), glm::vec2(0.0f));
+        return;
+    }
+    mesh.uvs = uvs;  // glTF's own (v down): the slots' transforms flip v
+    if (!m.normal_map) return;
+    if (prim.tangents.size() == mesh.positions.size())
+        mesh.tangents = prim.tangents;
+    else
+        mesh.tangents = generate_tangents(mesh, true);
+}
+
+}  // namespace gltf_detail
+}  // namespace librt

@@ -1,0 +1,52 @@
+#pragma once
+
+// scene_from_gltf's materials and textures: glTF materials to librt MetallicRoughness
+// materials, their textures to scene textures (once per image, sampler and colour space),
+// and the uv set and tangents a primitive's mesh needs for them. Private to io/.
+
+#include <librt/io/gltf.h>
+#include <librt/render/scene.h>
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace librt::gltf_detail {
+
+/// What a scene material needs from the meshes that use it.
+struct SceneMaterial {
+    std::uint32_t id = 0;     ///< scene material id
+    int uv_set = -1;          ///< TEXCOORD_n its textures read; -1 when it has none
+    bool normal_map = false;  ///< needs tangents
+};
+
+/// Adds the materials and textures of a GltfScene to a Scene on first use.
+class MaterialBuilder {
+public:
+    MaterialBuilder(const GltfScene& gltf, Scene& scene, std::vector<std::string>& warnings);
+    /// The scene material of glTF material `index` (-1 or out of range: the default).
+    const SceneMaterial& material(int index);
+    /// True when some material built so far emits.
+    [[nodiscard]] bool emissive() const { return emissive_; }
+    /// Puts the uvs and tangents `m` needs into `mesh` from `prim` (uvs as glTF states
+    /// them: v down; tangents given, else generated), warning when they are missing.
+    void attributes(const GltfPrimitive& prim, const SceneMaterial& m, TriangleMesh& mesh,
+                    const std::string& who);
+
+private:
+    std::int32_t texture(const GltfTextureRef& ref, ColorSpace space);
+
+    const GltfScene& gltf_;
+    Scene& scene_;
+    std::vector<std::string>& warnings_;
+    std::vector<SceneMaterial> built_;  ///< per glTF material; id 0 = not built yet
+    std::vector<bool> done_;
+    SceneMaterial default_;
+    std::map<std::pair<int, ColorSpace>, std::int32_t> textures_;
+    bool emissive_ = false;
+    bool blend_warned_ = false;
+};
+
+}  // namespace librt::gltf_detail

@@ -1,0 +1,122 @@
+// The Scene's per-hit material inputs (textures, normal maps, one-sided backs) and the
+// alpha test of cut-out materials; kept out of scene.cpp, and out of line, so a scene
+// without them pays one predictable branch per query.
+
+#include <librt/render/normal_map.h>
+#include <librt/render/scene.h>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <new>
+
+namespace librt {
+
+glm::vec3 apply_normal_map(const glm::vec3& texel, float scale, const glm::vec3& n,
+                           const glm::vec4& tangent, const glm::vec3& geometric) {
+    // glTF 2.0 sec. 3.9.3: the texel maps to [-1, 1]; normalTexture.scale scales x and y.
+    const float x = (2.0f * texel.x - 1.0f) * scale, y = (2.0f * texel.y - 1.0f) * scale;
+    const float z = 2.0f * texel.z - 1.0f;
+    if (x == 0.0f && y == 0.0f) return n;  // flat: the interpolated normal, unchanged
+    // Gram-Schmidt: the tangent's part perpendicular to n.
+    const glm::vec3 t_raw = glm::vec3(tangent) - glm::dot(n, glm::vec3(tangent)) * n;
+    const float t_len = glm::length(t_raw);
+    if (!(t_len > 1e-12f) || !std::isfinite(t_len)) return n;
+    const glm::vec3 t = t_raw / t_len;
+    const glm::vec3 b = (tangent.w < 0.0f ? -1.0f : 1.0f) * glm::cross(n, t);
+    glm::vec3 m = x * t + y * b + z * n;
+    float len = glm::length(m);
+    if (!(len > 0.0f) || !std::isfinite(len)) return n;
+    m /= len;
+    // Keep it on the geometric side (see kMinNormalMapCosine): lean it toward the
+    // geometric normal by what its cosine lacks.
+    const float c = glm::dot(m, geometric);
+    if (c < kMinNormalMapCosine) {
+        m += (kMinNormalMapCosine - c) * geometric;
+        len = glm::length(m);
+        if (!(len > 0.0f)) return n;
+        m /= len;
+    }
+    return m;
+}
+
+const Material& Scene::shade_varying(Hit& hit, const glm::vec3& direction,
+                                     ShadedMaterial& scratch) const {
+    const Material& stored = material(hit);
+    const bool colored = top_.has_colors(hit.object_id);
+    if (!stored.varies_per_hit() && !colored) return stored;
+    if (!stored.double_sided && !(glm::dot(direction, hit.geometric_normal) < 0.0f)) {
+        // The back of a one-sided surface: absorbs, emits nothing.
+        return *new (&scratch.material_) Material(Material::emissive(glm::vec3(0.0f)));
+    }
+    // Material is trivially copyable and destructible: a new copy over the last one.
+    Material& m = *new (&scratch.material_) Material(stored);
+    const auto lookup = [&](const TextureSlot& s) {
+        return textures_[std::size_t(s.texture)].lookup(s.map(hit.uv));
+    };
+    if (m.base_color_texture.bound()) m.base_color *= lookup(m.base_color_texture);
+    if (colored) {
+        // glTF COLOR_0 multiplies the base colour; for librt's other kinds, the albedo.
+        const glm::vec3 c = glm::clamp(glm::vec3(top_.color(hit)), 0.0f, 1.0f);
+        if (m.kind == MaterialKind::MetallicRoughness)
+            m.base_color *= c;
+        else
+            m.albedo *= c;
+    }
+    if (m.metallic_roughness_texture.bound()) {
+        // glTF: roughness in the green channel, metalness in the blue one (both linear).
+        const glm::vec3 mr = lookup(m.metallic_roughness_texture);
+        m.roughness *= mr.y;
+        m.metallic *= mr.z;
+    }
+    if (m.emission_texture.bound()) m.emission *= lookup(m.emission_texture);
+    if (m.normal_texture.bound()) {
+        const glm::vec4 t = top_.tangent(hit);
+        hit.shading_normal = apply_normal_map(lookup(m.normal_texture), m.normal_scale,
+                                              hit.shading_normal, t, hit.geometric_normal);
+    }
+    return m;
+}
+
+float Scene::coverage(const Hit& hit) const {
+    const Material& m = material(hit);
+    float a = m.alpha * std::clamp(top_.color(hit).w, 0.0f, 1.0f);
+    if (m.base_color_texture.bound()) {
+        const TextureSlot& s = m.base_color_texture;
+        a *= textures_[std::size_t(s.texture)].lookup_alpha(s.map(hit.uv));
+    }
+    return a;
+}
+
+bool Scene::intersect_past_cut_outs(const Ray& ray, Hit& hit) const {
+    Ray r = ray;
+    Hit h;
+    // Each pass starts past the last hole (t_min is exclusive), so t grows strictly and
+    // the loop ends within the number of surfaces along the ray. Every sphere's uv is
+    // computed: the alpha test reads it.
+    while (top_.intersect(r, h, true)) {
+        const Material& m = material(h);
+        if (!m.cuts_out() || !(coverage(h) < m.alpha_cutoff)) {
+            hit = h;
+            return true;
+        }
+        r.t_min = h.t;
+    }
+    return false;
+}
+
+bool Scene::occluded_past_cut_outs(const Ray& ray, std::uint32_t ignored_object) const {
+    Ray r = ray;
+    Hit h;
+    while (top_.intersect(r, h, true)) {
+        if (h.object_id != ignored_object) {
+            const Material& m = material(h);
+            if (!m.cuts_out() || !(coverage(h) < m.alpha_cutoff)) return true;
+        }
+        r.t_min = h.t;
+    }
+    return false;
+}
+
+}  // namespace librt
