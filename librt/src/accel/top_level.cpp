@@ -28,8 +28,12 @@ void TopLevel::throw_not_built() {
     throw Error("TopLevel queried before build(): call build() after adding objects");
 }
 
+// Forced inline into each query: as a separate call (g++ keeps it out of line) the
+// closest-hit lambda's captures and the best hit go through memory (callgrind on the
+// synthesis: ~2% of the closest-hit query's instructions).
 template <bool AnyHit, class TestObject>
-bool TopLevel::visit_objects(Ray& ray, TestObject&& test_object) const {
+[[gnu::always_inline]] inline bool TopLevel::visit_objects(Ray& ray,
+                                                           TestObject&& test_object) const {
     if (flat_.count == 0)
         return traverse<AnyHit>(top_, ray, [&](std::uint32_t slot, Ray& current) {
             return test_object(slot_object_[slot], current);

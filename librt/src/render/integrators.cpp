@@ -461,8 +461,10 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             // shading frame's to_world, so neither the geometric normal's local copy nor
             // the ShadingPoint is built (callgrind on the synthesis: fewer instructions
             // per vertex). Below the real surface ends the path, as Diffuse::sample does.
-            const Frame frame = Frame::from_normal(v.n);
+            // The local direction first: the frame built after its sincos call is not
+            // saved and restored around it (the same values).
             const glm::vec3 wl = sample_cosine_hemisphere(u);
+            const Frame frame = Frame::from_normal(v.n);
             wi_world = frame.to_world(wl);
             if (!(glm::dot(wi_world, v.g) > 0.0f)) break;
             // Cosine sampling: (albedo / pi) cos / (cos / pi) = albedo.

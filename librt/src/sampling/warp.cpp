@@ -121,11 +121,14 @@ SphereDirectionSample sample_sphere_direction(const glm::vec3& center, float rad
     }
     const float one_minus_cos_max = subtended_cone(r2 / dist2).one_minus_cos_max;
     const float one_minus_cos = u.x * one_minus_cos_max;
+    // The local direction first: its sincos call then comes before the frame exists, so
+    // fewer values are saved and restored around it (the same values).
+    const glm::vec3 local = cone_direction(one_minus_cos, u.y);
     const float cos_theta = 1.0f - one_minus_cos;
     const float sin2_theta = one_minus_cos * (2.0f - one_minus_cos);
     const float dist = std::sqrt(dist2);
     const Frame frame = Frame::from_normal(to_center * (1.0f / dist));
-    const glm::vec3 direction = frame.to_world(cone_direction(one_minus_cos, u.y));
+    const glm::vec3 direction = frame.to_world(local);
     // Near root of the ray-sphere quadratic at angle theta off the axis:
     // t = d cos(theta) - sqrt(r^2 - d^2 sin^2(theta)), written as (d^2 - r^2) /
     // (d cos(theta) + sqrt(...)) to avoid the cancellation, with d^2 - r^2 = (d - r)(d + r).

@@ -150,6 +150,7 @@ private:
     glm::vec3 forward_{0.0f, 0.0f, -1.0f};
     float image_plane_distance_ = 1.0f;  // H / (2 tan(fov/2)), in pixels
     PixelFilter filter_;                 // settings_.pixel_filter when it is used, else a box
+    bool clipped_ = false;               // a clip plane is set: sample_ray computes t_min, t_max
 };
 
 }  // namespace librt
