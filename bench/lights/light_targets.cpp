@@ -103,7 +103,7 @@ void build_sky(Scene& scene, const EnvironmentImage& sky) {
     scene.commit();
 }
 
-struct Camera {
+struct BenchCamera {
     glm::vec3 eye, forward, up;
     float fov;
     [[nodiscard]] Ray ray(int x, int y, float jx, float jy) const {
@@ -120,7 +120,7 @@ struct Camera {
 /// Renders passes of one sample per pixel, through the pixel centre (no anti-aliasing:
 /// the panel seen directly would otherwise add the same coverage noise to both
 /// estimators and hide the lighting's), until `seconds` pass; the mean image.
-std::vector<glm::dvec3> render(const Scene& scene, const Integrator& integrator, const Camera& cam,
+std::vector<glm::dvec3> render(const Scene& scene, const Integrator& integrator, const BenchCamera& cam,
                                double seconds, std::uint64_t seed, int* passes,
                                SamplerKind kind = SamplerKind::Independent) {
     std::vector<glm::dvec3> sum(kSize * kSize, glm::dvec3(0.0));
@@ -150,7 +150,7 @@ double rmse(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) 
 }
 
 void compare(const char* name, const Scene& sampled, const Integrator& good, const Scene& plain,
-             const Integrator& base, const Camera& cam, double seconds, double ref_seconds,
+             const Integrator& base, const BenchCamera& cam, double seconds, double ref_seconds,
              SamplerKind kind) {
     int nr = 0, ng = 0, nb = 0;
     const auto ref = render(sampled, good, cam, ref_seconds, 1000, &nr, kind);
@@ -181,7 +181,7 @@ int main(int argc, char** argv) {
     if (which != "sky") {
         Scene lit;
         build_panel_box(lit, edge);
-        const Camera box_cam{{0, 1, 3.4f}, {0, 0, -1}, {0, 1, 0}, 40.0f};
+        const BenchCamera box_cam{{0, 1, 3.4f}, {0, 0, -1}, {0, 1, 0}, 40.0f};
         compare("panel (triangle lights vs the panel unsampled)", lit, pt, lit, brute, box_cam,
                 seconds, ref_seconds, kind);
     }
@@ -193,7 +193,7 @@ int main(int argc, char** argv) {
     const EnvironmentImage sky = load_hdr_image(path);
     Scene sky_scene;
     build_sky(sky_scene, sky);
-    const Camera sky_cam{{0, 1.2f, 3.5f},
+    const BenchCamera sky_cam{{0, 1.2f, 3.5f},
                          glm::normalize(glm::vec3(0, -0.25f, -1)),
                          glm::normalize(glm::vec3(0, 1, -0.25f)),
                          50.0f};
