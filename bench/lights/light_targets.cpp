@@ -120,9 +120,9 @@ struct BenchCamera {
 /// Renders passes of one sample per pixel, through the pixel centre (no anti-aliasing:
 /// the panel seen directly would otherwise add the same coverage noise to both
 /// estimators and hide the lighting's), until `seconds` pass; the mean image.
-std::vector<glm::dvec3> render(const Scene& scene, const Integrator& integrator, const BenchCamera& cam,
-                               double seconds, std::uint64_t seed, int* passes,
-                               SamplerKind kind = SamplerKind::Independent) {
+std::vector<glm::dvec3> render(const Scene& scene, const Integrator& integrator,
+                               const BenchCamera& cam, double seconds, std::uint64_t seed,
+                               int* passes, SamplerKind kind = SamplerKind::Independent) {
     std::vector<glm::dvec3> sum(kSize * kSize, glm::dvec3(0.0));
     const auto start = Clock::now();
     int n = 0;
@@ -194,9 +194,9 @@ int main(int argc, char** argv) {
     Scene sky_scene;
     build_sky(sky_scene, sky);
     const BenchCamera sky_cam{{0, 1.2f, 3.5f},
-                         glm::normalize(glm::vec3(0, -0.25f, -1)),
-                         glm::normalize(glm::vec3(0, 1, -0.25f)),
-                         50.0f};
+                              glm::normalize(glm::vec3(0, -0.25f, -1)),
+                              glm::normalize(glm::vec3(0, 1, -0.25f)),
+                              50.0f};
     compare("sky.hdr (environment sampling + MIS vs cosine sampling)", sky_scene, pt, sky_scene,
             brute, sky_cam, seconds, ref_seconds, kind);
     return 0;

@@ -53,8 +53,8 @@ std::vector<const Light*> triangle_lights(const Scene& scene) {
 TEST(EmitterLights, OneSidedEmitterIsAOneSidedLightWithHalfThePower) {
     Scene one, two;
     for (Scene* s : {&one, &two}) {
-        s->add_mesh(panel(2.0f, true), s->add_material(glowing(glm::vec3(3.0f, 2.0f, 1.0f),
-                                                               s == &two)));
+        s->add_mesh(panel(2.0f, true),
+                    s->add_material(glowing(glm::vec3(3.0f, 2.0f, 1.0f), s == &two)));
         s->commit();
         EXPECT_FALSE(s->has_unsampled_emitters());
     }
@@ -117,8 +117,8 @@ TEST(EmitterLights, OneSidedLightSamplesFromBehindAreRejected) {
 TEST(EmitterLights, OneSidedPanelFacingTheSceneMisEqualsBruteForce) {
     Scene scene;
     add_floor_and_ball(scene);
-    scene.add_mesh(panel(2.2f, true), scene.add_material(glowing(glm::vec3(4.0f, 3.0f, 2.0f),
-                                                                 false)));
+    scene.add_mesh(panel(2.2f, true),
+                   scene.add_material(glowing(glm::vec3(4.0f, 3.0f, 2.0f), false)));
     scene.commit();
     EXPECT_FALSE(scene.has_unsampled_emitters());
     expect_mis_equals_brute(scene, testing::top_camera(), 32, 256, "one-sided panel, down");
@@ -194,8 +194,9 @@ TEST(EmitterLights, TexturedPanelMisEqualsBruteForce) {
         EXPECT_FALSE(scene.has_unsampled_emitters());
         expect_mis_equals_brute(scene, testing::top_camera(), 32, 256,
                                 double_sided ? "textured two-sided" : "textured one-sided");
-        expect_mis_equals_brute(scene, testing::side_camera(), 32, 256,
-                                double_sided ? "textured two-sided, side" : "textured one-sided, side");
+        expect_mis_equals_brute(
+            scene, testing::side_camera(), 32, 256,
+            double_sided ? "textured two-sided, side" : "textured one-sided, side");
     }
 }
 
