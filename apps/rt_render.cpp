@@ -45,8 +45,8 @@ struct Options {
     bool quiet = false;
     apps::AppOptions sampling;  // --sampler, --filter, --filter-radius (those fields only)
     int mpi_tile = 32;          // under mpirun: side of the tiles rank 0 hands out
-    bool guiding = false;    // path guiding
-    int guiding_passes = 5;  // its training passes
+    bool guiding = false;       // path guiding
+    int guiding_passes = 5;     // its training passes
 };
 
 [[noreturn]] void bad(const std::string& option, const std::string& value, const char* rule) {
