@@ -43,10 +43,8 @@ struct Options {
     std::string env;            // equirectangular .hdr lighting the scene; empty = none
     float env_strength = 1.0f;  // scale of the environment's radiance
     bool quiet = false;
-    apps::AppOptions sampling;  // --sampler, --filter, --filter-radius (those fields only)
+    apps::AppOptions sampling;  // --sampler, --filter, --filter-radius, --guiding(-passes)
     int mpi_tile = 32;          // under mpirun: side of the tiles rank 0 hands out
-    bool guiding = false;    // path guiding
-    int guiding_passes = 5;  // its training passes
 };
 
 [[noreturn]] void bad(const std::string& option, const std::string& value, const char* rule) {
@@ -72,8 +70,8 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         bad("--max-depth", std::to_string(o.max_depth), "must be in [0, 1000]");
     if (o.light_choice != "power" && o.light_choice != "bounded")
         bad("--light-choice", o.light_choice, "must be power or bounded");
-    if (o.guiding_passes < 1 || o.guiding_passes > 20)
-        bad("--guiding-passes", std::to_string(o.guiding_passes), "must be in [1, 20]");
+    if (o.sampling.guiding_passes < 1 || o.sampling.guiding_passes > 20)
+        bad("--guiding-passes", std::to_string(o.sampling.guiding_passes), "must be in [1, 20]");
     if (!std::isfinite(o.time_limit) || o.time_limit < 0.0)
         bad("--time-limit", std::to_string(o.time_limit), "must be finite and >= 0 (0 = none)");
     // Ranks render whole tiles with all their samples, not passes over the image: a frame
@@ -127,8 +125,8 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     PathTracerSettings pt;
     pt.max_depth = o.max_depth;
     pt.light_choice = o.light_choice == "bounded" ? LightChoice::Bounded : LightChoice::Power;
-    pt.guiding.enabled = o.guiding;
-    pt.guiding.training_passes = o.guiding_passes;
+    pt.guiding.enabled = o.sampling.guiding;
+    pt.guiding.training_passes = o.sampling.guiding_passes;
     PathTracer integrator(pt);
     if (job.distributed()) {
         apps::MpiJobSettings ms;
@@ -189,12 +187,6 @@ int main(int argc, char** argv) {
                    "Equirectangular Radiance .hdr lighting the scene from every direction "
                    "(importance-sampled; seen by rays that leave the scene)");
     app.add_option("--env-strength", o.env_strength, "Scale of the --env radiance")
-        ->capture_default_str();
-    app.add_flag("--guiding", o.guiding,
-                 "Path guiding: learn the incident light in training passes (discarded), then "
-                 "sample directions from it");
-    app.add_option("--guiding-passes", o.guiding_passes,
-                   "Training passes of --guiding; pass k renders 2^k spp (5: 31 spp)")
         ->capture_default_str();
     app.add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
     apps::add_sampling_options(app, o.sampling);

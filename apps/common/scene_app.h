@@ -20,14 +20,14 @@ namespace librt::apps {
 
 /// What render_progressively_and_write needs from the command line.
 struct ProgressiveOutput {
-    std::string output;       ///< .png (sRGB), .hdr, .pfm or .exr (linear)
-    int spp = 16;             ///< samples per pixel
-    int threads = 0;          ///< worker threads, 0 = all cores
-    std::uint64_t seed = 0;   ///< random seed
+    std::string output;                              ///< .png (sRGB), .hdr, .pfm or .exr (linear)
+    int spp = 16;                                    ///< samples per pixel
+    int threads = 0;                                 ///< worker threads, 0 = all cores
+    std::uint64_t seed = 0;                          ///< random seed
     SamplerKind sampler = SamplerKind::Independent;  ///< --sampler
-    double time_limit = 0.0;  ///< seconds, 0 = none
-    float scale = 1.0f;       ///< exposure: the linear image is multiplied by this
-    bool quiet = false;       ///< no progress bar and no summary
+    double time_limit = 0.0;                         ///< seconds, 0 = none
+    float scale = 1.0f;  ///< exposure: the linear image is multiplied by this
+    bool quiet = false;  ///< no progress bar and no summary
     /// When the app started its work (the summary's "total" counts from here).
     std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 };

@@ -8,14 +8,16 @@
 //          sampling with MIS (PathTracer) against cosine sampling of the sky
 //          (BruteForcePathTracer: the diffuse BSDF samples the cosine).
 // Environment, for the panel's diagnosis: LIBRT_PANEL_Y (its height, default 1.99 under a
-// ceiling at 2), LIBRT_PANEL_ONE_SIDED (a one-sided quad light instead of two-sided
-// emissive triangles).
+// ceiling at 2), LIBRT_PANEL_ONE_SIDED (=1: the panel's triangles get the material a glTF
+// file's single-sided emissive material maps to, through material_from_gltf, so they are
+// one-sided triangle lights; =quad: a one-sided quad light instead).
 // Usage: librt_light_targets [seconds per candidate = 2] [reference seconds = 40]
 //                            [panel edge = 0.5 (its power is kept: radiance / edge^2)]
 //                            [max depth = 5] [sampler of the sampled candidate and the
 //                            reference = independent | sobol] [roulette = 1 | 0]
 //                            [scene = both | panel | sky]
 
+#include <librt/io/gltf_scene.h>
 #include <librt/io/hdr_image.h>
 #include <librt/render/integrators.h>
 #include <librt/render/sampler.h>
@@ -68,11 +70,24 @@ void build_panel_box(Scene& scene, float edge) {
     const float k = 0.25f / (edge * edge);  // the same power as the 0.5 x 0.5 panel
     const auto lamp = scene.add_material(Material::emissive(k * glm::vec3(17.0f, 12.0f, 4.0f)));
     const glm::vec3 corner{-0.5f * edge, panel_y(), -0.5f * edge};
-    if (std::getenv("LIBRT_PANEL_ONE_SIDED") != nullptr) {
+    const char* one_sided = std::getenv("LIBRT_PANEL_ONE_SIDED");
+    if (one_sided != nullptr && std::string(one_sided) == "quad") {
         // The panel as a one-sided quad light facing down (edge0 x edge1 = -y): no light
         // into the gap between it and the ceiling (docs/materials-and-lights.md, Measured).
         (void)scene.add_quad_light(QuadLight{
             corner, {edge, 0, 0}, {0, 0, edge}, k * glm::vec3(17.0f, 12.0f, 4.0f), false});
+    } else if (one_sided != nullptr) {
+        // What a glTF emissive material that is not doubleSided becomes (black base, the
+        // emission as emissiveFactor x KHR_materials_emissive_strength), on triangles wound
+        // to face down: one-sided triangle lights.
+        GltfMaterial g;
+        g.base_color_factor = {0.0f, 0.0f, 0.0f, 1.0f};
+        g.metallic_factor = 0.0f;
+        g.emissive_factor = glm::vec3(17.0f, 12.0f, 4.0f) / 17.0f;
+        g.emissive_strength = 17.0f * k;
+        g.double_sided = false;
+        scene.add_mesh(quad(corner, {edge, 0, 0}, {0, 0, edge}),
+                       scene.add_material(material_from_gltf(g, {})));
     } else {
         scene.add_mesh(quad(corner, {edge, 0, 0}, {0, 0, edge}), lamp);  // two-sided triangles
     }
@@ -88,7 +103,7 @@ void build_sky(Scene& scene, const EnvironmentImage& sky) {
     scene.commit();
 }
 
-struct Camera {
+struct BenchCamera {
     glm::vec3 eye, forward, up;
     float fov;
     [[nodiscard]] Ray ray(int x, int y, float jx, float jy) const {
@@ -105,9 +120,9 @@ struct Camera {
 /// Renders passes of one sample per pixel, through the pixel centre (no anti-aliasing:
 /// the panel seen directly would otherwise add the same coverage noise to both
 /// estimators and hide the lighting's), until `seconds` pass; the mean image.
-std::vector<glm::dvec3> render(const Scene& scene, const Integrator& integrator, const Camera& cam,
-                               double seconds, std::uint64_t seed, int* passes,
-                               SamplerKind kind = SamplerKind::Independent) {
+std::vector<glm::dvec3> render(const Scene& scene, const Integrator& integrator,
+                               const BenchCamera& cam, double seconds, std::uint64_t seed,
+                               int* passes, SamplerKind kind = SamplerKind::Independent) {
     std::vector<glm::dvec3> sum(kSize * kSize, glm::dvec3(0.0));
     const auto start = Clock::now();
     int n = 0;
@@ -135,7 +150,7 @@ double rmse(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) 
 }
 
 void compare(const char* name, const Scene& sampled, const Integrator& good, const Scene& plain,
-             const Integrator& base, const Camera& cam, double seconds, double ref_seconds,
+             const Integrator& base, const BenchCamera& cam, double seconds, double ref_seconds,
              SamplerKind kind) {
     int nr = 0, ng = 0, nb = 0;
     const auto ref = render(sampled, good, cam, ref_seconds, 1000, &nr, kind);
@@ -166,7 +181,7 @@ int main(int argc, char** argv) {
     if (which != "sky") {
         Scene lit;
         build_panel_box(lit, edge);
-        const Camera box_cam{{0, 1, 3.4f}, {0, 0, -1}, {0, 1, 0}, 40.0f};
+        const BenchCamera box_cam{{0, 1, 3.4f}, {0, 0, -1}, {0, 1, 0}, 40.0f};
         compare("panel (triangle lights vs the panel unsampled)", lit, pt, lit, brute, box_cam,
                 seconds, ref_seconds, kind);
     }
@@ -178,10 +193,10 @@ int main(int argc, char** argv) {
     const EnvironmentImage sky = load_hdr_image(path);
     Scene sky_scene;
     build_sky(sky_scene, sky);
-    const Camera sky_cam{{0, 1.2f, 3.5f},
-                         glm::normalize(glm::vec3(0, -0.25f, -1)),
-                         glm::normalize(glm::vec3(0, 1, -0.25f)),
-                         50.0f};
+    const BenchCamera sky_cam{{0, 1.2f, 3.5f},
+                              glm::normalize(glm::vec3(0, -0.25f, -1)),
+                              glm::normalize(glm::vec3(0, 1, -0.25f)),
+                              50.0f};
     compare("sky.hdr (environment sampling + MIS vs cosine sampling)", sky_scene, pt, sky_scene,
             brute, sky_cam, seconds, ref_seconds, kind);
     return 0;

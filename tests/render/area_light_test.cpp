@@ -189,7 +189,11 @@ TEST(AreaLights, DiskAndTriangleIrradianceMatchLambertPolygonFormula) {
     const auto e = irradiance_by_sampling(Light{disk, kInvalidId}, p, n, 100000, 6);
     EXPECT_NEAR(e.mean.x, lambert_polygon_irradiance(corners, glm::dvec3(p), glm::dvec3(n), 1.5),
                 5.0 * e.se.x);
-    const TriangleLight tri{{-1, 1, -1}, {1, 1.2f, -1}, {0, 0.9f, 1}, glm::vec3(3.0f)};
+    TriangleLight tri;
+    tri.p0 = {-1, 1, -1};
+    tri.p1 = {1, 1.2f, -1};
+    tri.p2 = {0, 0.9f, 1};
+    tri.radiance = glm::vec3(3.0f);
     const auto t = irradiance_by_sampling(Light{tri, kInvalidId}, p, n, 100000, 7);
     EXPECT_NEAR(
         t.mean.x,

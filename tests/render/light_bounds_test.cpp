@@ -60,8 +60,12 @@ std::vector<Light> every_kind() {
     spot.inner_angle = 0.2f;
     spot.outer_angle = 0.5f;
     lights.push_back(light_of(spot));
-    lights.push_back(light_of(TriangleLight{
-        {1.0f, 0.5f, 1.5f}, {1.5f, 0.5f, 1.5f}, {1.0f, 1.2f, 1.8f}, glm::vec3(7.0f)}));
+    TriangleLight tri;
+    tri.p0 = {1.0f, 0.5f, 1.5f};
+    tri.p1 = {1.5f, 0.5f, 1.5f};
+    tri.p2 = {1.0f, 1.2f, 1.8f};
+    tri.radiance = glm::vec3(7.0f);
+    lights.push_back(light_of(tri));
     DirectionalLight sun{{0.2f, 1.0f, 0.1f}, glm::vec3(1.5f), 0.05f, 10.0f};
     lights.push_back(light_of(sun));
     EnvironmentLight sky = EnvironmentLight::constant(glm::vec3(0.2f));

@@ -207,9 +207,10 @@ TEST(SurfaceInputs, TexturesMultiplyTheFactorsAndUntexturedMaterialsAreReturnedA
     for (glm::vec3& p : other.positions) p.z -= 1.0f;
     (void)scene.add_mesh(std::move(other), plain);
     scene.commit();
-    // A textured emitter is not light-sampled (a TriangleLight's radiance is uniform).
-    EXPECT_TRUE(scene.lights().empty());
-    EXPECT_TRUE(scene.has_unsampled_emitters());
+    // A textured emitter is light-sampled (branch emitters: its triangle lights carry the
+    // texture; tests/render/emitter_light_test.cpp), one light per triangle.
+    EXPECT_EQ(scene.lights().size(), unit_quad().triangles.size());
+    EXPECT_FALSE(scene.has_unsampled_emitters());
 
     Hit hit;
     ASSERT_TRUE(scene.intersect_for_shading(Ray({0.2f, 0.1f, 2}, {0, 0, -1}), hit));
@@ -261,7 +262,9 @@ TEST(SurfaceInputs, OneSidedBacksAreBlackAndFrontsAsStored) {
     m.double_sided = false;
     (void)scene.add_mesh(unit_quad(), scene.add_material(m));
     scene.commit();
-    EXPECT_TRUE(scene.lights().empty());  // a one-sided emitter is left to BSDF sampling
+    // A one-sided emitter is light-sampled by one-sided triangle lights (branch emitters).
+    ASSERT_EQ(scene.lights().size(), unit_quad().triangles.size());
+    for (const Light& l : scene.lights()) EXPECT_TRUE(l.one_sided);
     ShadedMaterial scratch;
     Hit hit;
     ASSERT_TRUE(scene.intersect_for_shading(Ray({0, 0, 2}, {0, 0, -1}), hit));

@@ -357,8 +357,8 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
     ShadedMaterial shaded;  // a textured hit's material (Scene::shade); unused otherwise
     for (int depth = 0;;) {
         if (!scene.intersect_for_shading(ray, hit)) {
-            add(beta * escaped(scene, ray.direction, bounce, S == Strategy::Brute, depth == 0,
-                               chosen));
+            add(beta *
+                escaped(scene, ray.direction, bounce, S == Strategy::Brute, depth == 0, chosen));
             if constexpr (Guided) {
                 if (guide.recorder != nullptr && depth > 0)
                     guide.recorder->add_to_last(
@@ -547,7 +547,8 @@ glm::vec3 PathTracer::li_guided(const Scene& scene, const Ray& ray, Sampler& sam
         return guard(trace_guided(scene, ray, sampler, trace_settings(settings_), guide, bounded));
     guiding::PathRecorder recorder;
     guide.recorder = &recorder;
-    const glm::vec3 l = trace_guided(scene, ray, sampler, trace_settings(settings_), guide, bounded);
+    const glm::vec3 l =
+        trace_guided(scene, ray, sampler, trace_settings(settings_), guide, bounded);
     recorder.commit(*guide_);
     return guard(l);
 }

@@ -49,7 +49,11 @@ LightBounds bounds_of(const TriangleLight& l, float phi) {
     // Centroid and the farthest corner: not the smallest sphere, but it contains the triangle.
     const glm::vec3 c = (l.p0 + l.p1 + l.p2) / 3.0f;
     const float r = std::max({glm::length(l.p0 - c), glm::length(l.p1 - c), glm::length(l.p2 - c)});
-    return finite(c, r, phi);  // emits from both faces
+    LightBounds b = finite(c, r, phi);
+    const glm::vec3 n = glm::cross(l.p1 - l.p0, l.p2 - l.p0);
+    // A degenerate triangle has no normal (and no power): no cone.
+    planar(b, n, !l.two_sided && glm::dot(n, n) > 0.0f);
+    return b;
 }
 
 LightBounds bounds_of(const QuadLight& l, float phi) {

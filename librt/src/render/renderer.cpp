@@ -292,7 +292,8 @@ RenderStats train(const Scene& scene, const Camera& camera, Integrator& integrat
         // samples (seed itself) never reuse a training sample's numbers.
         rs.seed = mix64(mix64(settings.seed ^ 0x7a11ed6a1de5eedULL) + std::uint64_t(pass));
         const RenderBlock whole{0, 0, scratch.width, scratch.height, 0, spp};
-        const BlockOutcome outcome = run_block(scene, camera, integrator, scratch, {}, whole, rs, {});
+        const BlockOutcome outcome =
+            run_block(scene, camera, integrator, scratch, {}, whole, rs, {});
         stats.samples += outcome.samples;
         stats.nonfinite_samples += outcome.nonfinite;
         integrator.end_training_pass(pass);

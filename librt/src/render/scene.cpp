@@ -3,6 +3,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <memory>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -14,12 +15,10 @@ namespace {
 // Whether hits on a sphere of this material need its uv: for a texture lookup.
 bool needs_uv(const Material& m) { return m.albedo_texture >= 0 || m.varies_per_hit(); }
 
-// Whether a triangle of this material is light-sampled: it emits the same radiance all
-// over and on both sides, as a TriangleLight does (a textured or one-sided emitter is
-// left to BSDF sampling, which sees its texture and its back).
-bool light_sampled(const Material& m) {
-    return m.emits() && !m.emission_texture.bound() && m.double_sided;
-}
+// Whether a triangle of this material is light-sampled: every emitter (a TriangleLight
+// carries the material's one-sidedness and emission texture) but a cut-out one, whose
+// holes rays pass through: a light sample there would count light no ray can see.
+bool light_sampled(const Material& m) { return m.emits() && !m.cuts_out(); }
 
 }  // namespace
 
@@ -233,6 +232,9 @@ void Scene::make_triangle_lights() {
     triangle_light_base_.assign(objects_.size(), kInvalidId);
     triangle_light_.clear();
     unsampled_emitters_ = false;
+    // Emission textures are shared by the lights through one copy each: the lights are
+    // plain values that outlive any reallocation or copy of the scene's textures.
+    std::vector<std::shared_ptr<const ImageTexture>> shared(textures_.size());
     for (std::uint32_t id = 0; id < objects_.size(); ++id) {
         const Object& o = objects_[id];
         if (light_of_object(id) != kInvalidId) continue;
@@ -268,10 +270,28 @@ void Scene::make_triangle_lights() {
                 continue;
             }
             const glm::uvec3& i = mesh.triangles[t];
-            const TriangleLight tl{world(mesh.positions[i.x]), world(mesh.positions[i.y]),
-                                   world(mesh.positions[i.z]), m.emission};
+            TriangleLight tl;
+            tl.p0 = world(mesh.positions[i.x]);
+            tl.p1 = world(mesh.positions[i.y]);
+            tl.p2 = world(mesh.positions[i.z]);
+            tl.radiance = m.emission;
+            // Front and back as Scene::shade decides them: by the winding's normal, which
+            // a mirroring instance keeps (the world corners' cross product).
+            tl.two_sided = m.double_sided;
+            if (m.emission_texture.bound()) {
+                const auto tex = std::size_t(m.emission_texture.texture);
+                if (!shared[tex])
+                    shared[tex] = std::make_shared<const ImageTexture>(textures_[tex]);
+                tl.texture = shared[tex];
+                // Corner uvs as hits interpolate them (barycentrics without uvs).
+                const bool has_uv = !mesh.uvs.empty();
+                tl.uv0 = m.emission_texture.map(has_uv ? mesh.uvs[i.x] : glm::vec2(0.0f, 0.0f));
+                tl.uv1 = m.emission_texture.map(has_uv ? mesh.uvs[i.y] : glm::vec2(1.0f, 0.0f));
+                tl.uv2 = m.emission_texture.map(has_uv ? mesh.uvs[i.z] : glm::vec2(0.0f, 1.0f));
+                tl.mean_texture = mean_texture_estimate(tl);
+            }
             triangle_light_.push_back(std::uint32_t(lights_.size()));
-            lights_.push_back({tl, kInvalidId});
+            lights_.push_back({std::move(tl), kInvalidId, !m.double_sided});
             lights_.back().camera_visible = o.camera_visible;
         }
     }

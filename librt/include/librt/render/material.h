@@ -73,8 +73,8 @@ struct LIBRT_API Material {
     TextureSlot base_color_texture;
     /// Texture (linear) whose G channel multiplies roughness and B channel metallic.
     TextureSlot metallic_roughness_texture;
-    /// Texture (sRGB) whose RGB multiplies emission. Such a surface is not light-sampled
-    /// (a TriangleLight's radiance is uniform): BSDF sampling finds it.
+    /// Texture (sRGB) whose RGB multiplies emission (a mesh's triangle lights evaluate it
+    /// at their sampled points).
     TextureSlot emission_texture;
     /// Tangent-space normal map (linear; glTF's convention: x along the tangent (u), y
     /// along the bitangent (v up), z out of the surface), on meshes with tangents.

@@ -231,7 +231,9 @@ public:
 
     /// Every light: those added, in the order added, then (after commit()) one
     /// TriangleLight per emissive triangle of the mesh and instance objects, object by
-    /// object (an instance's triangles mapped to the world by its matrix).
+    /// object (an instance's triangles mapped to the world by its matrix; one-sided when
+    /// the material is not double_sided, textured by its emission texture; cut-out
+    /// emitters are left to BSDF sampling).
     [[nodiscard]] std::span<const Light> lights() const { return lights_; }
     /// Chooses the light a shading point samples; valid after commit().
     [[nodiscard]] const LightSampler& light_sampler() const { return light_sampler_; }
