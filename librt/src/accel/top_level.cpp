@@ -77,11 +77,15 @@ template <bool AnyHit, class TestObject>
 // Forced inline into both intersect()s: the one that finishes the hit then works on
 // registers instead of an ObjectHit passed through memory (the renderers' query, ~1.3% of
 // the synthesis' instructions as a separate call).
+// The best hit is written straight into `hit`, never copied whole: its fields are stored
+// one by one as they are found, and a 16-byte copy of them (ObjectHit by value into
+// finish) is a load no store can forward to, a stall per query on the room's sphere hits
+// (perf on the synthesis; see docs/benchmarks.md). On a miss `hit` is left as it was.
 [[gnu::always_inline]] inline bool TopLevel::closest(const Ray& ray, ObjectHit& hit) const {
     Ray r = ray;
     const DoubleRay dray(ray);
     std::uint32_t best_object = kInvalidId;
-    PrimitiveHit best;
+    PrimitiveHit& best = hit.primitive;
     visit_objects<false>(r, [&](std::uint32_t id, Ray& current) {
         const Object& o = objects_[id];
         if (o.kind == ObjectKind::Sphere) {
@@ -114,7 +118,6 @@ template <bool AnyHit, class TestObject>
     });
     if (best_object == kInvalidId) return false;
     hit.object_id = best_object;
-    hit.primitive = best;
     return true;
 }
 
