@@ -2,6 +2,7 @@
 // per-object tests and hit finishing. Adding objects and building: top_level_build.cpp.
 
 #include "accel/slab4.h"
+#include "geometry/ray_copy.h"
 
 #include <librt/accel/bvh_traversal.h>
 #include <librt/accel/top_level.h>
@@ -82,8 +83,8 @@ template <bool AnyHit, class TestObject>
 // finish) is a load no store can forward to, a stall per query on the room's sphere hits
 // (perf on the synthesis; see docs/benchmarks.md). On a miss `hit` is left as it was.
 [[gnu::always_inline]] inline bool TopLevel::closest(const Ray& ray, ObjectHit& hit) const {
-    Ray r = ray;
-    const DoubleRay dray(ray);
+    Ray r = detail::copy_by_floats(ray);  // no store-forwarding stall (ray_copy.h)
+    const DoubleRay dray(r);
     std::uint32_t best_object = kInvalidId;
     PrimitiveHit& best = hit.primitive;
     visit_objects<false>(r, [&](std::uint32_t id, Ray& current) {
@@ -136,8 +137,8 @@ bool TopLevel::intersect(const Ray& ray, Hit& hit, bool every_sphere_uv) const {
 
 bool TopLevel::occluded(const Ray& ray, std::uint32_t ignored_object) const {
     require_built();
-    Ray r = ray;
-    const DoubleRay dray(ray);
+    Ray r = detail::copy_by_floats(ray);  // no store-forwarding stall (ray_copy.h)
+    const DoubleRay dray(r);
     return visit_objects<true>(r, [&](std::uint32_t id, Ray& current) {
         if (id == ignored_object) return false;
         const Object& o = objects_[id];
