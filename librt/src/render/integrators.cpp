@@ -363,11 +363,8 @@ struct TraceSettings {
 /// default (power) loop keeps its code and registers unchanged (callgrind on the synthesis).
 /// Guided (PathTracer with a trained SD-tree) is a separate instantiation too, so the
 /// unguided loop carries none of its code.
-// Never inlined: PathTracer::li otherwise inlines both light choices' loops into one 14.5 KB
-// function, their hot blocks interleaved with each other's cold ones (perf on the synthesis:
-// see docs/benchmarks.md, "Where the last 7 % of CPU time goes").
 template <Strategy S, bool Bounded, bool Guided = false>
-[[gnu::noinline]] glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
+glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                 const TraceSettings& settings, const GuideContext& guide = {}) {
     glm::vec3 radiance(0.0f);
     // Every contribution goes through here: a training path shares it out to its vertices.
@@ -523,6 +520,16 @@ template <Strategy S, bool Bounded, bool Guided = false>
     return radiance;
 }
 
+/// trace<S, true>, never inlined: PathTracer::li inlines the default light choice's loop,
+/// and with this one inline too it was one 14.5 KB function, each loop's hot blocks
+/// between the other's (perf on the synthesis: docs/benchmarks.md, "Where the last 7 % of
+/// CPU time goes").
+template <Strategy S>
+[[gnu::noinline]] glm::vec3 trace_bounded(const Scene& scene, const Ray& camera_ray,
+                                          Sampler& sampler, const TraceSettings& settings) {
+    return trace<S, true>(scene, camera_ray, sampler, settings);
+}
+
 TraceSettings trace_settings(const PathTracerSettings& s) {
     return {s.max_depth, s.russian_roulette, s.russian_roulette_depth, s.mis};
 }
@@ -545,7 +552,7 @@ glm::vec3 DirectLighting::li(const Scene& scene, const Ray& ray, Sampler& sample
     TraceSettings s;
     s.max_depth = settings_.max_depth;
     if (settings_.light_choice == LightChoice::Bounded)
-        return guard(trace<Strategy::Direct, true>(scene, ray, sampler, s));
+        return guard(trace_bounded<Strategy::Direct>(scene, ray, sampler, s));
     return guard(trace<Strategy::Direct, false>(scene, ray, sampler, s));
 }
 
@@ -557,7 +564,7 @@ glm::vec3 PathTracer::li(const Scene& scene, const Ray& ray, Sampler& sampler) c
     if (guide_ == nullptr) [[likely]] {
         if (settings_.light_choice == LightChoice::Bounded)
             return guard(
-                trace<Strategy::Path, true>(scene, ray, sampler, trace_settings(settings_)));
+                trace_bounded<Strategy::Path>(scene, ray, sampler, trace_settings(settings_)));
         return guard(trace<Strategy::Path, false>(scene, ray, sampler, trace_settings(settings_)));
     }
     return li_guided(scene, ray, sampler);
