@@ -190,7 +190,11 @@ void TopLevel::finish(const Ray& ray, const ObjectHit& object_hit, bool every_sp
     }
     const TriangleMesh& mesh = prototypes_[o.index].mesh;
     const glm::uvec3& idx = mesh.triangles[prim.primitive_id];
-    const float b1 = prim.u, b2 = prim.v, b0 = 1.0f - prim.u - prim.v;
+    // u and v by 4-byte loads: closest() has just stored (t, u) as 8 bytes and v as 4, and
+    // g++ read (u, v) as one 8-byte load across both, which no store forwards to (a stall
+    // per mesh hit; geometry/ray_copy.h).
+    const float b1 = detail::load_alone(prim.u), b2 = detail::load_alone(prim.v);
+    const float b0 = 1.0f - b1 - b2;
     const glm::vec3& p0 = mesh.positions[idx.x];
     const glm::vec3& p1 = mesh.positions[idx.y];
     const glm::vec3& p2 = mesh.positions[idx.z];
@@ -215,7 +219,9 @@ void TopLevel::finish(const Ray& ray, const ObjectHit& object_hit, bool every_sp
                                                  const PrimitiveHit& prim, Hit& hit) const {
     const TriangleMesh& mesh = prototypes_[inst.prototype].mesh;
     const glm::uvec3& idx = mesh.triangles[prim.primitive_id];
-    const float b1 = prim.u, b2 = prim.v, b0 = 1.0f - prim.u - prim.v;
+    // By 4-byte loads, as in finish().
+    const float b1 = detail::load_alone(prim.u), b2 = detail::load_alone(prim.v);
+    const float b0 = 1.0f - b1 - b2;
     const glm::vec3& p0 = mesh.positions[idx.x];
     const glm::vec3& p1 = mesh.positions[idx.y];
     const glm::vec3& p2 = mesh.positions[idx.z];

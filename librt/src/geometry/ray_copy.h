@@ -12,14 +12,20 @@
 
 namespace librt::detail {
 
-/// One float loaded on its own: the empty asm keeps the compiler from merging neighbouring
-/// loads into one wide load (it changes no value).
+/// One float loaded on its own, by one 4-byte load: written as the instruction itself, since
+/// g++ otherwise merges neighbouring field loads into one wide load (the same value).
 [[gnu::always_inline]] inline float load_alone(const float& f) {
-    float v = f;
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-    asm("" : "+x"(v));
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__)) && defined(__SSE__)
+    float v;
+#if defined(__AVX__)
+    asm("vmovss %1, %0" : "=x"(v) : "m"(f));
+#else
+    asm("movss %1, %0" : "=x"(v) : "m"(f));
 #endif
     return v;
+#else
+    return f;
+#endif
 }
 
 /// A copy of `ray` read by 4-byte loads (its stores are the compiler's choice).
