@@ -167,8 +167,8 @@ struct Vertex {
 /// 0 from the back of a one-sided light.
 // Out of line, as escaped() below: rare next to scattering, so the path loop's hot blocks
 // stay contiguous (perf on the synthesis, docs/benchmarks.md).
-[[gnu::noinline]] float emitter_weight(const Scene& scene, const Hit& hit, const glm::vec3& dir, const Bounce& bounce,
-                     const LightChoicePoint* chosen_at) {
+[[gnu::noinline]] float emitter_weight(const Scene& scene, const Hit& hit, const glm::vec3& dir,
+                                       const Bounce& bounce, const LightChoicePoint* chosen_at) {
     const std::uint32_t light = scene.light_of_hit(hit);
     if (light != kInvalidId && scene.lights()[light].one_sided &&
         !(glm::dot(dir, hit.geometric_normal) < 0.0f))
@@ -178,8 +178,9 @@ struct Vertex {
 
 /// What a ray leaving the scene along unit direction `dir` after `bounce` receives from
 /// the lights at infinity, each with its MIS weight (all of them fully when `brute`).
-[[gnu::noinline]] glm::vec3 escaped(const Scene& scene, const glm::vec3& dir, const Bounce& bounce, bool brute,
-                  bool camera_ray, const LightChoicePoint* chosen_at) {
+[[gnu::noinline]] glm::vec3 escaped(const Scene& scene, const glm::vec3& dir, const Bounce& bounce,
+                                    bool brute, bool camera_ray,
+                                    const LightChoicePoint* chosen_at) {
     glm::vec3 sum(0.0f);
     for (const std::uint32_t i : scene.infinite_lights()) {
         const Light& light = scene.lights()[i];
@@ -374,7 +375,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             if (guide.recorder != nullptr) guide.recorder->add(c);
         }
     };
-    glm::vec3 beta(1.0f);  // path throughput
+    glm::vec3 beta(1.0f);                          // path throughput
     Ray ray = detail::copy_by_floats(camera_ray);  // no store-forwarding stall (ray_copy.h)
     // Work with unit directions (the BSDF frames need them); rescale t's range.
     const float len = glm::length(ray.direction);

@@ -23,7 +23,7 @@ inline constexpr float kShadowEpsilon = 1e-4f;
 /// are known: no square root. Forced inline: with offset_ray_origin inline in it, g++ kept
 /// it out of line in the path loop (callgrind on the synthesis: +34 M instructions).
 [[nodiscard, gnu::always_inline]] inline Ray spawn_ray_to(const glm::vec3& p, const glm::vec3& n,
-                                                         const glm::vec3& wi, float distance) {
+                                                          const glm::vec3& wi, float distance) {
     Ray r;
     r.origin = offset_ray_origin(p, n, wi);
     r.direction = wi;
