@@ -1,9 +1,13 @@
 #include "planar_light.h"
 
 #include <librt/render/triangle_light.h>
+#include <librt/sampling/spherical_triangle.h>
 #include <librt/sampling/warp.h>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
+
+#include <cmath>
 
 namespace librt {
 namespace {
@@ -33,14 +37,74 @@ glm::vec3 mean_texture_estimate(const TriangleLight& light) {
     return sum / float(n * n);
 }
 
+namespace {
+
+// Solid angles from this up are sampled over the spherical triangle, smaller ones
+// uniformly by area (pbrt-v4's triangle light has a like bound, 3e-4 sr): there the
+// triangle is small and far, so d^2 / cos is nearly constant over it and area sampling is
+// as good and cheaper. No upper bound: the spherical sampler runs in double and stays
+// exact up to 2 pi, where the point nearly touches the triangle and area sampling's
+// weights are worst.
+constexpr float k_min_spherical_solid_angle = 3e-4f;
+
+// The unit directions from ref to the corners and the solid angle they span, or a solid
+// angle of 0 when ref is in the triangle's plane, behind a one-sided triangle, or the
+// triangle is degenerate. n is its unit front normal.
+struct Corners {
+    glm::vec3 a{0.0f}, b{0.0f}, c{0.0f};
+    float solid_angle = 0.0f;
+};
+Corners corners_from(const TriangleLight& light, const glm::vec3& ref, const glm::vec3& n) {
+    const float side = glm::dot(ref - light.p0, n);  // > 0 in front
+    if (!(side != 0.0f) || (!light.two_sided && !(side > 0.0f))) return {};
+    const glm::vec3 a = light.p0 - ref, b = light.p1 - ref, c = light.p2 - ref;
+    const float la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+    if (!(la > 0.0f) || !(lb > 0.0f) || !(lc > 0.0f)) return {};
+    Corners k{a / la, b / lb, c / lc, 0.0f};
+    k.solid_angle = spherical_triangle_solid_angle(k.a, k.b, k.c);
+    return k;
+}
+
+bool spherical_sampling(float omega) { return omega >= k_min_spherical_solid_angle; }
+
+// Barycentrics (b1, b2) of a point q of the triangle's plane (sub-triangle areas over the
+// whole, signed along n; len = |cross(e1, e2)|).
+glm::vec2 barycentrics(const TriangleLight& light, const glm::vec3& q, const glm::vec3& n,
+                       float len) {
+    const glm::vec3 e1 = light.p1 - light.p0, e2 = light.p2 - light.p0;
+    const glm::vec3 d = q - light.p0;
+    return {glm::dot(glm::cross(d, e2), n) / len, glm::dot(glm::cross(e1, d), n) / len};
+}
+
+}  // namespace
+
 LightLiSample sample_li(const TriangleLight& light, const glm::vec3& ref, glm::vec2 u) {
     const glm::vec3 e1 = light.p1 - light.p0, e2 = light.p2 - light.p0;
     const glm::vec3 c = glm::cross(e1, e2);
     const float len = glm::length(c);
     if (!(len > 0.0f)) return {};
+    const glm::vec3 n = c / len;
+    const Corners k = corners_from(light, ref, n);
+    const float omega = k.solid_angle;
+    if (!(omega > 0.0f)) return {};
+    if (spherical_sampling(omega)) {
+        // Uniform over the solid angle: the weight L cos / pdf = L cos omega stays below
+        // 2 pi L however close ref is, where area sampling's d^2 / (A cos) explodes.
+        const SphericalTriangleSample st = sample_spherical_triangle(k.a, k.b, k.c, omega, u);
+        const float dn = glm::dot(st.direction, n);
+        const float t = glm::dot(light.p0 - ref, n) / dn;
+        if (!(st.solid_angle > 0.0f) || !(t > 0.0f) || !std::isfinite(t)) return {};
+        LightLiSample s{st.direction, light.radiance, 1.0f / omega, t, false};
+        if (light.texture) {
+            const glm::vec2 b =
+                glm::clamp(barycentrics(light, ref + t * st.direction, n, len), 0.0f, 1.0f);
+            s.radiance = radiance_at(light, b);
+        }
+        return s;
+    }
     const glm::vec2 b = sample_uniform_triangle(u);
     const glm::vec3 p = light.p0 + b.x * e1 + b.y * e2;
-    LightLiSample s = planar::toward(ref, p, c / len, 0.5f * len, light.radiance, light.two_sided);
+    LightLiSample s = planar::toward(ref, p, n, 0.5f * len, light.radiance, light.two_sided);
     if (light.texture && s.valid()) s.radiance = radiance_at(light, b);
     return s;
 }
@@ -53,11 +117,10 @@ float pdf_li(const TriangleLight& light, const glm::vec3& ref, const glm::vec3& 
     const glm::vec3 n = c / len;
     const planar::PlaneHit h = planar::hit_plane(light.p0, n, ref, wi, light.two_sided);
     if (!(h.t > 0.0f)) return 0.0f;
-    // Barycentrics of the plane point (sub-triangle areas over the whole, signed along n).
-    const glm::vec3 q = h.point - light.p0;
-    const float u = glm::dot(glm::cross(q, e2), n) / len;
-    const float v = glm::dot(glm::cross(e1, q), n) / len;
-    if (u < 0.0f || v < 0.0f || u + v > 1.0f) return 0.0f;
+    const glm::vec2 b = barycentrics(light, h.point, n, len);
+    if (b.x < 0.0f || b.y < 0.0f || b.x + b.y > 1.0f) return 0.0f;
+    const float omega = corners_from(light, ref, n).solid_angle;
+    if (spherical_sampling(omega)) return 1.0f / omega;
     return planar::pdf_of(h, 0.5f * len);
 }
 

@@ -15,9 +15,10 @@ namespace librt {
 /// material emits). It emits `radiance` (times its emission texture at the emitting point,
 /// when it has one) from its front, the side cross(p1 - p0, p2 - p0) points to, and, when
 /// two-sided, from its back too, as Scene::shade makes an emissive material do when a ray
-/// hits it. Sampled uniformly by area (not by spherical triangle: area sampling is cheap
-/// and exact, and the power light sampler already spends samples where the big triangles
-/// are); pdf per solid angle d^2 / (A |cos|).
+/// hits it. Sampled uniformly over the solid angle it subtends (spherical triangle, Arvo
+/// 1995; pdf 1 / omega), so a point close to it (a ceiling just above a panel) gets light
+/// samples of weight at most 2 pi L; when it subtends less than 3e-4 sr, uniformly by area
+/// (pdf per solid angle d^2 / (A |cos|)), as good there and cheaper.
 struct TriangleLight {
     glm::vec3 p0{0.0f};        ///< first corner (Triangle's convention)
     glm::vec3 p1{0.0f};        ///< second corner
@@ -36,9 +37,9 @@ struct TriangleLight {
     glm::vec3 mean_texture{1.0f};
 };
 
-/// A point drawn uniformly on the triangle, as a direction from ref with its solid-angle
-/// density and the radiance emitted there; invalid when ref lies in the triangle's plane,
-/// behind a one-sided triangle, or the triangle is degenerate.
+/// A point on the triangle (uniform in solid angle, or in area when small), as a direction from ref
+/// with its solid-angle density and the radiance emitted there; invalid when ref lies in the
+/// triangle's plane, behind a one-sided triangle, or the triangle is degenerate.
 [[nodiscard]] LIBRT_API LightLiSample sample_li(const TriangleLight& light, const glm::vec3& ref,
                                                 glm::vec2 u);
 /// The solid-angle density of sample_li at ref for unit direction wi; 0 if wi misses (or
