@@ -1,5 +1,6 @@
 #include "planar_light.h"
 
+#include <librt/geometry/ray_offset.h>
 #include <librt/render/triangle_light.h>
 #include <librt/sampling/spherical_triangle.h>
 #include <librt/sampling/warp.h>
@@ -76,6 +77,21 @@ glm::vec2 barycentrics(const TriangleLight& light, const glm::vec3& q, const glm
     return {glm::dot(glm::cross(d, e2), n) / len, glm::dot(glm::cross(e1, d), n) / len};
 }
 
+// How far the shadow ray toward the emitting point q (ray parameter t along wi from ref,
+// dn = wi . n) may go without meeting the emitter's own plane. A triangle light's shadow
+// ray cannot skip its object (the mesh may hold other triangles that do shade), and the
+// ray's origin is offset_ray_origin'd off the receiving surface: by up to
+// ray_offset_scale(ref) toward the plane, which along wi is that over |dn|. Beside an
+// emitter (a ceiling 1 cm above a panel) that exceeds kShadowEpsilon's relative margin and
+// every shadow ray hit the panel itself. So end the segment short of the plane by the
+// origin's offset plus q's own rounding (ray_offset_scale(q)), both over |dn| (pbrt-v4
+// likewise offsets both ends of a shadow ray, SpawnRayTo). 0 (nothing can be in between)
+// when the point is that close to the plane.
+float shadow_distance(float t, float dn, const glm::vec3& ref, const glm::vec3& q) {
+    const float margin = (ray_offset_scale(ref) + ray_offset_scale(q)) / std::fabs(dn);
+    return t > margin ? t - margin : 0.0f;
+}
+
 }  // namespace
 
 LightLiSample sample_li(const TriangleLight& light, const glm::vec3& ref, glm::vec2 u) {
@@ -94,10 +110,11 @@ LightLiSample sample_li(const TriangleLight& light, const glm::vec3& ref, glm::v
         const float dn = glm::dot(st.direction, n);
         const float t = glm::dot(light.p0 - ref, n) / dn;
         if (!(st.solid_angle > 0.0f) || !(t > 0.0f) || !std::isfinite(t)) return {};
-        LightLiSample s{st.direction, light.radiance, 1.0f / omega, t, false};
+        const glm::vec3 q = ref + t * st.direction;
+        LightLiSample s{st.direction, light.radiance, 1.0f / omega, shadow_distance(t, dn, ref, q),
+                        false};
         if (light.texture) {
-            const glm::vec2 b =
-                glm::clamp(barycentrics(light, ref + t * st.direction, n, len), 0.0f, 1.0f);
+            const glm::vec2 b = glm::clamp(barycentrics(light, q, n, len), 0.0f, 1.0f);
             s.radiance = radiance_at(light, b);
         }
         return s;
@@ -105,7 +122,9 @@ LightLiSample sample_li(const TriangleLight& light, const glm::vec3& ref, glm::v
     const glm::vec2 b = sample_uniform_triangle(u);
     const glm::vec3 p = light.p0 + b.x * e1 + b.y * e2;
     LightLiSample s = planar::toward(ref, p, n, 0.5f * len, light.radiance, light.two_sided);
-    if (light.texture && s.valid()) s.radiance = radiance_at(light, b);
+    if (!s.valid()) return s;
+    s.distance = shadow_distance(s.distance, glm::dot(s.wi, n), ref, p);
+    if (light.texture) s.radiance = radiance_at(light, b);
     return s;
 }
 
