@@ -90,7 +90,8 @@ float QuadTree::pdf(const glm::vec3& d) const {
     return pdf_square(direction_to_square(d)) * (0.25f * k_inv_pi);
 }
 
-glm::vec2 QuadTree::sample_square(glm::vec2 u) const {
+glm::vec2 QuadTree::sample_square(glm::vec2 u, float* pdf) const {
+    float density = 1.0f;
     glm::vec2 origin(0.0f);
     float size = 1.0f;
     std::uint32_t node = 0;
@@ -121,7 +122,12 @@ glm::vec2 QuadTree::sample_square(glm::vec2 u) const {
         size *= 0.5f;
         origin += size * glm::vec2(float(qx), float(qy));
         const std::uint32_t q = qx + 2 * qy;
-        if (n.child[q] == 0) return glm::min(origin + size * u, glm::vec2(kBelowOne));
+        // As pdf_square: a quadrant has a quarter of its node's area.
+        density *= 4.0f * n.share[q];
+        if (n.child[q] == 0) {
+            if (pdf != nullptr) *pdf = density;
+            return glm::min(origin + size * u, glm::vec2(kBelowOne));
+        }
         node = n.child[q];
     }
 }
@@ -132,6 +138,17 @@ std::uint32_t QuadTree::leaf_slot(glm::vec2 p) const {
         const std::uint32_t q = descend(p);
         if (nodes_[node].child[q] == 0) return 4 * node + q;
         node = nodes_[node].child[q];
+    }
+}
+
+std::uint32_t QuadTree::leaf_slot(glm::vec2 p, float& size) const {
+    std::uint32_t node = 0;
+    size = 0.5f;
+    for (;;) {
+        const std::uint32_t q = descend(p);
+        if (nodes_[node].child[q] == 0) return 4 * node + q;
+        node = nodes_[node].child[q];
+        size *= 0.5f;
     }
 }
 

@@ -56,8 +56,9 @@ public:
 
     /// A point of the unit square drawn with density pdf_square from u uniform in [0, 1)^2
     /// (continuous in u inside each cell, so stratified u stays stratified). Requires
-    /// total() > 0.
-    [[nodiscard]] glm::vec2 sample_square(glm::vec2 u) const;
+    /// total() > 0. With `pdf`, also its pdf_square, from the same descent (a guided sample
+    /// needs its density: this spares a second descent and the map's atan2).
+    [[nodiscard]] glm::vec2 sample_square(glm::vec2 u, float* pdf = nullptr) const;
 
     /// A unit direction drawn with density pdf() (requires total() > 0).
     [[nodiscard]] glm::vec3 sample(glm::vec2 u) const {
@@ -66,6 +67,9 @@ public:
 
     /// The leaf cell holding point p, as slot 4 * node + quadrant (see set_leaf_flux).
     [[nodiscard]] std::uint32_t leaf_slot(glm::vec2 p) const;
+
+    /// leaf_slot(p), and in `size` the side of that cell (1/2 at the root's quadrants).
+    [[nodiscard]] std::uint32_t leaf_slot(glm::vec2 p, float& size) const;
 
     /// Number of slots (4 per node); leaf cells own their slot, inner quadrants ignore it.
     [[nodiscard]] std::size_t slot_count() const { return nodes_.size() * 4; }
