@@ -276,19 +276,22 @@ struct GuidedSample {
 /// the balance heuristic as one sample of a mixture): with probability alpha the BSDF's
 /// sample(), else the leaf's quadtree; either way the weight is f |cos| divided by the
 /// mixture density alpha pdf_bsdf + (1 - alpha) pdf_guide, which is unbiased for any
-/// learned distribution while alpha > 0. The choice takes the lobe dimension's number,
-/// rescaled to choose the lobe after it (the sampler keeps 7 dimensions per bounce). A
+/// learned distribution while alpha > 0. The BSDF's lobe choice keeps the lobe dimension
+/// (the sampler keeps 7 dimensions per bounce). A
 /// weight of 0 (no valid direction) ends the path, as an invalid BSDF sample does.
 GuidedSample sample_guided(Vertex& v, const guiding::DirLeaf& leaf, float alpha, Sampler& sampler,
                            std::uint32_t dim) {
     sampler.set_dimension(dim + SampleDimensions::k_bounce_lobe);
-    float uc = sampler.next_1d();
+    const float uc = sampler.next_1d();
     sampler.set_dimension(dim + SampleDimensions::k_bounce_bsdf);
-    const glm::vec2 u = sampler.next_2d();
+    glm::vec2 u = sampler.next_2d();
     GuidedSample g;
     float guide_pdf = -1.0f;  // known from the guide's own descent when it drew wi
-    if (uc < alpha) {
-        uc = std::min(uc / alpha, 0x1.fffffep-1f);
+    // The strategy is chosen by u.x, rescaled into [0, 1) for the chosen one: each then
+    // gets a stratified subset of the 2D points (choosing by another dimension would hand
+    // each a random subset, and Sobol' would lose its 2D stratification at guided bounces).
+    if (u.x < alpha) {
+        u.x = std::min(u.x / alpha, 0x1.fffffep-1f);
         if (v.m.kind == MaterialKind::Diffuse) {
             g.wi = Frame::from_normal(v.n).to_world(sample_cosine_hemisphere(u));
         } else {
@@ -300,6 +303,7 @@ GuidedSample sample_guided(Vertex& v, const guiding::DirLeaf& leaf, float alpha,
             g.wi = sp.frame.to_world(bs.wi);
         }
     } else {
+        u.x = std::min((u.x - alpha) / (1.0f - alpha), 0x1.fffffep-1f);
         float square_pdf = 0.0f;
         g.wi = guiding::square_to_direction(leaf.sampling.sample_square(u, &square_pdf));
         guide_pdf = square_pdf * (0.25f * k_inv_pi);  // the equal-area map: 4 pi
