@@ -441,6 +441,9 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                 !near_specular(m)) {
                 leaf = &guide.tree->leaf_at(hit.point);
                 alpha = leaf->sampling.total() > 0.0f ? guide.bsdf_fraction : 1.0f;
+                // Nothing to guide and nothing to record: the plain BSDF path below (the
+                // same directions, without the mixture's bookkeeping).
+                if (alpha >= 1.0f && guide.recorder == nullptr) leaf = nullptr;
             }
         }
         if (S != Strategy::Brute && has_non_specular(material_lobes)) {

@@ -32,6 +32,10 @@ struct QuadNode {
     /// Each quadrant's share of the node's flux (0 when the node has none): set by
     /// set_leaf_flux, so pdf() multiplies instead of dividing at every level.
     std::array<float, 4> share{};
+    /// The bottom quadrant's probability within each column, flux[qx] / (flux[qx] +
+    /// flux[qx + 2]) (1/2 when the column is empty), for sample_square: set by
+    /// set_leaf_flux. Two floats of padding make the node 64 bytes.
+    std::array<float, 4> row{0.5f, 0.5f, 0.0f, 0.0f};
     std::array<std::uint32_t, 4> child{};  ///< node index of an inner quadrant; 0 = leaf cell
 };
 

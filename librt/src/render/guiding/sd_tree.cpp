@@ -12,9 +12,9 @@ namespace librt::guiding {
 namespace {
 
 /// Most spatial leaves, and most recording quadtree nodes over all leaves: they bound the
-/// memory whatever spatial_threshold and flux_threshold say. A node costs 128 bytes (48 in
-/// the sampling tree, 48 in the recording tree, 4 x 8 of counters), so 2^22 nodes are
-/// 512 MiB at worst. The paper's settings stay far below: ~1000 leaves of a few hundred
+/// memory whatever spatial_threshold and flux_threshold say. A node costs 160 bytes (64 in
+/// the sampling tree, 64 in the recording tree, 4 x 8 of counters), so 2^22 nodes are
+/// 640 MiB at worst. The paper's settings stay far below: ~1000 leaves of a few hundred
 /// nodes on a 1280 x 720 image.
 constexpr std::size_t kMaxLeaves = std::size_t{1} << 15u;
 constexpr std::size_t kMaxTotalNodes = std::size_t{1} << 22u;
