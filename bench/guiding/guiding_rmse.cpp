@@ -74,7 +74,7 @@ std::vector<int> parse_list(const char* text) {
 
 int main(int argc, char** argv) {
     int size = 64, ref_spp = 4096, threads = 2, passes = 5, keep = 1, filter = 0;
-    float hole = 3.0f, alpha = 0.5f;
+    float hole = 3.0f, alpha = 0.7f;
     std::string ref_file;  // cache of the reference (read when it exists, else written)
     std::vector<int> spps{16, 64, 256};
     for (int i = 1; i + 1 < argc; i += 2) {

@@ -8,10 +8,10 @@
 // Usage:
 //   librt_smallpt render SPP SAMPLER LIGHT OUT.pfm [THREADS=1] [SEED=1] [WIDTH=256 HEIGHT=192]
 //       SAMPLER: independent | sobol, optionally +guiding[:PASSES] (path guiding, the
-//       training passes kept in the image), +nokeep, +nofilter, +alpha=A; LIGHT: mis (the light sphere light-sampled, MIS),
-//       bounded (the same with LightChoice::Bounded), emitter (the sphere only an emitter
-//       found by BSDF sampling, as smallpt finds it). Tent filter of radius 1. Prints
-//       "cpu_seconds S" and "wall_seconds S".
+//       training passes kept in the image), +nokeep, +nofilter, +alpha=A; LIGHT: mis (the light
+//       sphere light-sampled, MIS), bounded (the same with LightChoice::Bounded), emitter (the
+//       sphere only an emitter found by BSDF sampling, as smallpt finds it). Tent filter of
+//       radius 1. Prints "cpu_seconds S" and "wall_seconds S".
 //   librt_smallpt rmse A.pfm REFERENCE.pfm
 //       Prints the RMSE over all pixels and channels.
 
@@ -84,16 +84,15 @@ int render_command(int argc, char** argv) {
     const int spp = std::atoi(argv[2]);
     // SAMPLER[+guiding[:PASSES]][+nokeep][+nofilter][+alpha=A]: path guiding, its
     // training passes (default 5) kept in the image unless +nokeep, records filtered
-    // unless +nofilter, BSDF fraction A (default 0.5).
+    // unless +nofilter, BSDF fraction A (default: GuidingSettings::bsdf_fraction).
     std::string sampler = argv[3];
     const std::string light = argv[4];
     PathTracerSettings pts;
     for (std::size_t plus = sampler.find('+'); plus != std::string::npos;
          plus = sampler.find('+')) {
         const std::size_t end = sampler.find('+', plus + 1);
-        const std::string opt = sampler.substr(plus + 1, end == std::string::npos
-                                                             ? std::string::npos
-                                                             : end - plus - 1);
+        const std::string opt =
+            sampler.substr(plus + 1, end == std::string::npos ? std::string::npos : end - plus - 1);
         sampler.erase(plus, opt.size() + 1);
         if (opt.rfind("guiding", 0) == 0) {
             pts.guiding.enabled = true;
@@ -106,7 +105,8 @@ int render_command(int argc, char** argv) {
         } else if (opt.rfind("alpha=", 0) == 0) {
             pts.guiding.bsdf_fraction = std::strtof(opt.c_str() + 6, nullptr);
         } else {
-            throw Error("SAMPLER option +" + opt + ": must be guiding[:N], nokeep, nofilter or alpha=A");
+            throw Error("SAMPLER option +" + opt +
+                        ": must be guiding[:N], nokeep, nofilter or alpha=A");
         }
     }
     const std::string out = argv[5];

@@ -37,7 +37,8 @@ public:
     glm::vec3 li(const Scene& /*scene*/, const Ray& /*ray*/, Sampler& sampler) const override {
         // Uniform on [-sqrt(3) sigma, sqrt(3) sigma]: variance sigma^2.
         const double u = sampler.next_1d();
-        return glm::vec3(float(kMu + kSigma[std::size_t(stage_)] * std::sqrt(3.0) * (2.0 * u - 1.0)));
+        return glm::vec3(
+            float(kMu + kSigma[std::size_t(stage_)] * std::sqrt(3.0) * (2.0 * u - 1.0)));
     }
     void set_keep(bool keep) { keep_ = keep; }
 
@@ -78,8 +79,8 @@ TEST(GuidingCombination, InverseVarianceWeightsAreUnbiasedAndOptimal) {
     const Image combined = render(scene, camera, integrator, rs);
     double inverse = 16.0 / (NoisyPasses::kSigma[4] * NoisyPasses::kSigma[4]);
     for (int k = 1; k < 4; ++k)
-        inverse += double(1 << k) / (NoisyPasses::kSigma[std::size_t(k)] *
-                                     NoisyPasses::kSigma[std::size_t(k)]);
+        inverse += double(1 << k) /
+                   (NoisyPasses::kSigma[std::size_t(k)] * NoisyPasses::kSigma[std::size_t(k)]);
     const double optimal = 1.0 / inverse;
     const auto [mean, variance] = pixel_mean_and_variance(combined);
     const double n = double(combined.pixels.size());
@@ -91,7 +92,8 @@ TEST(GuidingCombination, InverseVarianceWeightsAreUnbiasedAndOptimal) {
     // Without keeping, the image alone: variance sigma_4^2 / 16, higher than the
     // combination's by more than the tolerance.
     integrator.set_keep(false);
-    const auto [mean_alone, variance_alone] = pixel_mean_and_variance(render(scene, camera, integrator, rs));
+    const auto [mean_alone, variance_alone] =
+        pixel_mean_and_variance(render(scene, camera, integrator, rs));
     const double alone = NoisyPasses::kSigma[4] * NoisyPasses::kSigma[4] / 16.0;
     EXPECT_NEAR(variance_alone, alone, rel * alone);
     EXPECT_GT(alone, optimal * (1.0 + 2.0 * rel));

@@ -100,7 +100,8 @@ TEST(GuidingFilter, LearnedDensitiesStayNormalisedAndSampled) {
     for (int y = 0; y < fine; ++y)
         for (int x = 0; x < fine; ++x)
             expected[std::size_t((y / per) * cells + x / per)] +=
-                double(q.pdf_square({(float(x) + 0.5f) / float(fine), (float(y) + 0.5f) / float(fine)})) *
+                double(q.pdf_square(
+                    {(float(x) + 0.5f) / float(fine), (float(y) + 0.5f) / float(fine)})) *
                 samples / (double(fine) * double(fine));
     Pcg32 rng(77, 5);
     for (int i = 0; i < int(samples); ++i) {

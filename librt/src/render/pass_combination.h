@@ -2,12 +2,13 @@
 
 // Combining independent renders of the same image (the training passes of path guiding
 // and the image itself) into one estimate, each weighted by the inverse of its variance
-// (Müller, Gross and Novák 2017, section 5.2). Weights are one number per render, so each
-// pixel stays a weighted mean of unbiased estimates; the variance of a render is
-// estimated from two halves of its samples, whose difference has no signal in it.
+// (Müller, Gross and Novák 2017; Müller 2019, "Practical Path Guiding in Production").
+// Weights are one number per render, so each pixel stays a weighted mean of unbiased
+// estimates; the variance of a render is estimated from two halves of its samples, whose
+// difference has no signal in it.
 
-#include <librt/render/film.h>
 #include <librt/core/image.h>
+#include <librt/render/film.h>
 
 #include <glm/ext/vector_double3.hpp>
 

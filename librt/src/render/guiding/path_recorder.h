@@ -39,7 +39,8 @@ public:
     /// Radiance `contribution` (already times the path throughput) reached the camera:
     /// each recorded vertex receives its share of it.
     void add(const glm::vec3& contribution) {
-        for (std::size_t i = 0; i < count_; ++i) vertices_[i].radiance += contribution * vertices_[i].inv_beta;
+        for (std::size_t i = 0; i < count_; ++i)
+            vertices_[i].radiance += contribution * vertices_[i].inv_beta;
     }
 
     /// Radiance `extra` (times the path throughput) that only the last recorded vertex

@@ -144,8 +144,8 @@ glm::vec2 QuadTree::sample_square(glm::vec2 u, float* pdf) const {
         if (n.child[q] == 0) {
             if (pdf != nullptr) *pdf = density;
             // u's place in the cell's interval (rounding may put it a hair outside).
-            const glm::vec2 t = glm::clamp((u - lo) / glm::max(w, glm::vec2(1e-30f)), glm::vec2(0.0f),
-                                           glm::vec2(kBelowOne));
+            const glm::vec2 t = glm::clamp((u - lo) / glm::max(w, glm::vec2(1e-30f)),
+                                           glm::vec2(0.0f), glm::vec2(kBelowOne));
             return glm::min(origin + size * t, glm::vec2(kBelowOne));
         }
         node = n.child[q];

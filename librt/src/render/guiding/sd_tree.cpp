@@ -122,9 +122,10 @@ const DirLeaf& SdTree::locate(const glm::vec3& p, glm::vec3& size) const {
 
 void SdTree::record(const DirLeaf& leaf, const glm::vec3& p, const glm::vec3& dir,
                     float flux) const {
-    // Stochastic box filter (Müller et al. 2017, section 5.3): the record moves uniformly
-    // within a box of its leaf's size around it, then within its directional cell. The
-    // numbers hash the record itself, so where it lands does not depend on threads.
+    // Stochastic box filter (Müller 2019, "Practical Path Guiding in Production"): the
+    // record moves uniformly within a box of its leaf's size around it, then within its
+    // directional cell. The numbers hash the record itself, so where it lands does not
+    // depend on threads.
     const DirLeaf* target = &leaf;
     std::uint64_t h = 0;
     if (settings_.filter_records) {
