@@ -2,6 +2,7 @@
 // per-object tests and hit finishing. Adding objects and building: top_level_build.cpp.
 
 #include "accel/slab4.h"
+#include "accel/sphere_roots.h"
 
 #include <librt/accel/bvh_traversal.h>
 #include <librt/accel/top_level.h>
@@ -11,6 +12,7 @@
 
 #include <bit>
 #include <cmath>
+#include <limits>
 
 namespace librt {
 namespace {
@@ -121,21 +123,80 @@ template <bool AnyHit, class TestObject>
     return true;
 }
 
+// Why the nearest root is the hit the box-order visit finds, unless two roots are close:
+// that visit accepts a root below the float t_max it has reached, then lowers t_max to the
+// root rounded to float (or one float step below the old t_max). With every other root more
+// than kTieSteps float steps above the nearest m, each t_max reached stays above m, so m is
+// accepted whenever it is visited, and no root after it is. Closer roots (spheres that
+// touch, a ray through the seam of two walls) go to the visit itself, whose order decides.
+bool TopLevel::closest_sphere(const Ray& ray, ObjectHit& hit) const {
+    if (query_ == Query::None) throw_not_built();
+    if (!is_traceable(ray)) return false;
+    alignas(32) double roots[kFlatObjectLimit];
+    std::uint32_t mask = sphere_roots_(*sphere_lanes_, DoubleRay(ray), ray.t_min, ray.t_max, roots);
+    if (mask == 0) return false;
+    // The nearest root and the next one, in one pass over the lanes that hit.
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    std::uint32_t best = 0;
+    double m = kInf, second = kInf;
+    for (; mask != 0; mask &= mask - 1) {
+        const auto i = std::uint32_t(std::countr_zero(mask));
+        const double t = roots[i];
+        if (t < m) {
+            second = m;
+            m = t;
+            best = i;
+        } else if (t < second) {
+            second = t;
+        }
+    }
+    const float mf = static_cast<float>(m);
+    // One float step above mf (m >= 0, so the next float is the next bit pattern; from
+    // +inf that is a NaN, which sends the ray to the visit).
+    const double step = double(std::bit_cast<float>(std::bit_cast<std::uint32_t>(mf) + 1u)) - mf;
+    constexpr double kTieSteps = 8.0;
+    if (!(second > double(mf) + kTieSteps * step)) return closest(ray, hit);
+    // Rounded as the visit rounds it: the interval stays open at t_max.
+    float tf = mf;
+    if (!(tf < ray.t_max)) tf = std::nextafter(ray.t_max, 0.0f);
+    hit.primitive = {tf, 0.0f, 0.0f, 0};
+    hit.object_id = flat_.object[best];
+    return true;
+}
+
+bool TopLevel::occluded_sphere(const Ray& ray, std::uint32_t ignored_object) const {
+    if (query_ == Query::None) throw_not_built();
+    if (!is_traceable(ray)) return false;
+    alignas(32) double roots[kFlatObjectLimit];
+    // Any root will do, in any order.
+    for (std::uint32_t mask =
+             sphere_roots_(*sphere_lanes_, DoubleRay(ray), ray.t_min, ray.t_max, roots);
+         mask != 0; mask &= mask - 1)
+        if (flat_.object[std::countr_zero(mask)] != ignored_object) return true;
+    return false;
+}
+
+// Each query's one test of query_ also sends a query before build() to the throw.
 bool TopLevel::intersect(const Ray& ray, ObjectHit& hit) const {
-    require_built();
+    if (query_ != Query::Visit) [[unlikely]]
+        return closest_sphere(ray, hit);
     return closest(ray, hit);
 }
 
 bool TopLevel::intersect(const Ray& ray, Hit& hit, bool every_sphere_uv) const {
-    require_built();
     ObjectHit h;
-    if (!closest(ray, h)) return false;
+    if (query_ != Query::Visit) [[unlikely]] {
+        if (!closest_sphere(ray, h)) return false;
+    } else if (!closest(ray, h)) {
+        return false;
+    }
     finish(ray, h, every_sphere_uv, hit);
     return true;
 }
 
 bool TopLevel::occluded(const Ray& ray, std::uint32_t ignored_object) const {
-    require_built();
+    if (query_ != Query::Visit) [[unlikely]]
+        return occluded_sphere(ray, ignored_object);
     Ray r = ray;
     const DoubleRay dray(ray);
     return visit_objects<true>(r, [&](std::uint32_t id, Ray& current) {
