@@ -1,5 +1,5 @@
-// The SSE2 sphere-root kernel and the choice of kernel (sphere_roots.h); AVX is in
-// sphere_roots_avx.cpp.
+// The SSE2 sphere-root kernel and the choice of kernel (sphere_roots.h); AVX and AVX-512 are
+// in sphere_roots_avx.cpp and sphere_roots_avx512.cpp.
 
 #include "accel/sphere_roots.h"
 
@@ -22,11 +22,11 @@ std::uint32_t sphere_roots_sse2(const SphereLanes& spheres, const DoubleRay& ray
     const __m128d none = _mm_set1_pd(__builtin_nan(""));
     std::uint32_t mask = 0;
     for (std::uint32_t i = 0; i < spheres.count; i += 2) {
-        const __m128d r2 = _mm_load_pd(spheres.r2 + i);
+        const __m128d r2 = _mm_loadu_pd(spheres.r2 + i);
         // oc = o - c; b = oc . d; c = oc . oc - r^2 (glm's dot: (x + y) + z).
-        const __m128d ocx = _mm_sub_pd(ox, _mm_load_pd(spheres.cx + i));
-        const __m128d ocy = _mm_sub_pd(oy, _mm_load_pd(spheres.cy + i));
-        const __m128d ocz = _mm_sub_pd(oz, _mm_load_pd(spheres.cz + i));
+        const __m128d ocx = _mm_sub_pd(ox, _mm_loadu_pd(spheres.cx + i));
+        const __m128d ocy = _mm_sub_pd(oy, _mm_loadu_pd(spheres.cy + i));
+        const __m128d ocz = _mm_sub_pd(oz, _mm_loadu_pd(spheres.cz + i));
         const __m128d b =
             _mm_add_pd(_mm_add_pd(_mm_mul_pd(ocx, dx), _mm_mul_pd(ocy, dy)), _mm_mul_pd(ocz, dz));
         const __m128d c =
@@ -76,8 +76,9 @@ SphereRootsFn sphere_roots_for(SimdPath path) {
         case SimdPath::Sse:
             return &sphere_roots_sse2;
         case SimdPath::Avx2:
-        case SimdPath::Avx512:
             return &sphere_roots_avx;
+        case SimdPath::Avx512:
+            return &sphere_roots_avx512;
     }
 #else
     (void)path;

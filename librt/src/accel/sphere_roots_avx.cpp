@@ -31,11 +31,11 @@ std::uint32_t sphere_roots_avx(const SphereLanes& spheres, const DoubleRay& ray,
     const __m256d none = _mm256_set1_pd(__builtin_nan(""));
     std::uint32_t mask = 0;
     for (std::uint32_t i = 0; i < spheres.count; i += 4) {
-        const __m256d r2 = _mm256_load_pd(spheres.r2 + i);
+        const __m256d r2 = _mm256_loadu_pd(spheres.r2 + i);
         // oc = o - c; b = oc . d; c = oc . oc - r^2 (glm's dot: (x + y) + z).
-        const __m256d ocx = _mm256_sub_pd(ox, _mm256_load_pd(spheres.cx + i));
-        const __m256d ocy = _mm256_sub_pd(oy, _mm256_load_pd(spheres.cy + i));
-        const __m256d ocz = _mm256_sub_pd(oz, _mm256_load_pd(spheres.cz + i));
+        const __m256d ocx = _mm256_sub_pd(ox, _mm256_loadu_pd(spheres.cx + i));
+        const __m256d ocy = _mm256_sub_pd(oy, _mm256_loadu_pd(spheres.cy + i));
+        const __m256d ocz = _mm256_sub_pd(oz, _mm256_loadu_pd(spheres.cz + i));
         const __m256d b = _mm256_add_pd(
             _mm256_add_pd(_mm256_mul_pd(ocx, dx), _mm256_mul_pd(ocy, dy)), _mm256_mul_pd(ocz, dz));
         const __m256d c = _mm256_sub_pd(

@@ -67,7 +67,8 @@ struct ObjectHit {
 /// Up to kFlatObjectLimit objects, the top level is a flat list of boxes tested four at a
 /// time; beyond that a SAH Bvh over the objects' boxes (see kFlatObjectLimit). A flat list
 /// of spheres only (smallpt's room) skips the boxes: every sphere's double-precision root
-/// is computed at once, four spheres per AVX instruction (two with SSE2), the same roots
+/// is computed at once, up to eight spheres per instruction (AVX-512; four with AVX, two
+/// with SSE2), the same roots
 /// bit for bit as the one-at-a-time test, and the nearest is the hit; when two roots lie
 /// within a few float steps of each other the boxes are visited as otherwise, so the hit
 /// is always the one the box order gives. (With a mesh in the list the boxes are always
@@ -118,7 +119,7 @@ public:
 
     /// The instruction set of the sphere tests of a flat list of spheres only (see the class
     /// comment): default_simd_path() at first; Sse tests two spheres per instruction, Avx2
-    /// and Avx512 four (AVX), Scalar one sphere at a time as each box is visited. Every path
+    /// four (AVX), Avx512 eight, Scalar one sphere at a time as each box is visited. Every path
     /// gives the same hits. Not thread-safe against queries running at the same time; throws
     /// librt::Error when simd_path_supported(path) is false.
     void set_simd_path(SimdPath path);
