@@ -234,6 +234,8 @@ private:
     /// closest() for Query::Spheres (throws for Query::None): the nearest root of the flat
     /// list of spheres, or the visit when two roots are too close to tell apart by float t.
     bool closest_sphere(const Ray& ray, ObjectHit& hit) const;
+    /// closest() out of line, for closest_sphere's rare ties.
+    bool closest_visit(const Ray& ray, ObjectHit& hit) const;
     /// occluded() for Query::Spheres (throws for Query::None): whether a sphere but object
     /// `ignored_object` has a root.
     bool occluded_sphere(const Ray& ray, std::uint32_t ignored_object) const;
