@@ -20,6 +20,7 @@ std::uint32_t sphere_roots_sse2(const SphereLanes& spheres, const DoubleRay& ray
     const __m128d lo = _mm_set1_pd(t_min), hi = _mm_set1_pd(t_max);
     const __m128d zero = _mm_setzero_pd(), sign = _mm_set1_pd(-0.0);
     const __m128d none = _mm_set1_pd(__builtin_nan(""));
+    const __m128d inf = _mm_set1_pd(__builtin_inf());
     std::uint32_t mask = 0;
     for (std::uint32_t i = 0; i < spheres.count; i += 2) {
         const __m128d r2 = _mm_loadu_pd(spheres.r2 + i);
@@ -60,8 +61,10 @@ std::uint32_t sphere_roots_sse2(const SphereLanes& spheres, const DoubleRay& ray
                                     _mm_andnot_pd(near_in, _mm_or_pd(_mm_and_pd(far_in, far),
                                                                      _mm_andnot_pd(far_in, none))));
         const __m128d result = _mm_or_pd(_mm_and_pd(meets, t), _mm_andnot_pd(meets, none));
-        _mm_storeu_pd(roots + i, result);
-        mask |= std::uint32_t(_mm_movemask_pd(_mm_cmpge_pd(result, zero))) << i;
+        // A hit is a root >= 0 (TopLevel's test); the others become +inf.
+        const __m128d hit = _mm_cmpge_pd(result, zero);
+        _mm_storeu_pd(roots + i, _mm_or_pd(_mm_and_pd(hit, result), _mm_andnot_pd(hit, inf)));
+        mask |= std::uint32_t(_mm_movemask_pd(hit)) << i;
     }
     // Lanes past count (an odd count) hold the empty sphere: their bit is never set.
     return mask;

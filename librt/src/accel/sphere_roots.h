@@ -43,9 +43,9 @@ struct SphereLanes {
     }
 };
 
-/// Writes, for every lane i < count (rounded up to the kernel's width), roots[i] = intersect(sphere
-/// i, ray, t_min, t_max) (NaN for none), and returns the mask of the lanes whose root is >= 0, i.e.
-/// a hit (TopLevel's test of the scalar result).
+/// Writes, for every lane i < count (rounded up to the kernel's width), roots[i] =
+/// intersect(sphere i, ray, t_min, t_max) when that root is >= 0 (a hit, TopLevel's test of
+/// the scalar result), else +inf, and returns the mask of the hit lanes.
 using SphereRootsFn = std::uint32_t (*)(const SphereLanes& spheres, const DoubleRay& ray,
                                         double t_min, double t_max, double* roots);
 

@@ -29,6 +29,7 @@ std::uint32_t sphere_roots_avx(const SphereLanes& spheres, const DoubleRay& ray,
     const __m256d lo = _mm256_set1_pd(t_min), hi = _mm256_set1_pd(t_max);
     const __m256d zero = _mm256_setzero_pd(), sign = _mm256_set1_pd(-0.0);
     const __m256d none = _mm256_set1_pd(__builtin_nan(""));
+    const __m256d inf = _mm256_set1_pd(__builtin_inf());
     std::uint32_t mask = 0;
     for (std::uint32_t i = 0; i < spheres.count; i += 4) {
         const __m256d r2 = _mm256_loadu_pd(spheres.r2 + i);
@@ -74,8 +75,10 @@ std::uint32_t sphere_roots_avx(const SphereLanes& spheres, const DoubleRay& ray,
             _mm256_andnot_pd(
                 near_in, _mm256_or_pd(_mm256_and_pd(far_in, far), _mm256_andnot_pd(far_in, none))));
         const __m256d result = _mm256_or_pd(_mm256_and_pd(meets, t), _mm256_andnot_pd(meets, none));
-        _mm256_storeu_pd(roots + i, result);
-        mask |= std::uint32_t(_mm256_movemask_pd(_mm256_cmp_pd(result, zero, _CMP_GE_OQ))) << i;
+        // A hit is a root >= 0 (TopLevel's test); the others become +inf.
+        const __m256d hit = _mm256_cmp_pd(result, zero, _CMP_GE_OQ);
+        _mm256_storeu_pd(roots + i, _mm256_blendv_pd(inf, result, hit));
+        mask |= std::uint32_t(_mm256_movemask_pd(hit)) << i;
     }
     // Lanes past count (a count not a multiple of 4) hold the empty sphere: their bit is never set.
     return mask;

@@ -32,6 +32,7 @@ std::uint32_t sphere_roots_avx512(const SphereLanes& spheres, const DoubleRay& r
     const __m512d zero = _mm512_setzero_pd();
     const __m512i sign = _mm512_set1_epi64(std::int64_t(0x8000000000000000ULL));
     const __m512d none = _mm512_set1_pd(__builtin_nan(""));
+    const __m512d inf = _mm512_set1_pd(__builtin_inf());
     std::uint32_t mask = 0;
     for (std::uint32_t i = 0; i < spheres.count; i += 8) {
         const __m512d r2 = _mm512_loadu_pd(spheres.r2 + i);
@@ -76,8 +77,10 @@ std::uint32_t sphere_roots_avx512(const SphereLanes& spheres, const DoubleRay& r
         const __m512d t =
             _mm512_mask_blend_pd(near_in, _mm512_mask_blend_pd(far_in, none, far), near);
         const __m512d result = _mm512_mask_blend_pd(meets, none, t);
-        _mm512_storeu_pd(roots + i, result);
-        mask |= std::uint32_t(_mm512_cmp_pd_mask(result, zero, _CMP_GE_OQ)) << i;
+        // A hit is a root >= 0 (TopLevel's test); the others become +inf.
+        const __mmask8 hit = _mm512_cmp_pd_mask(result, zero, _CMP_GE_OQ);
+        _mm512_storeu_pd(roots + i, _mm512_mask_blend_pd(hit, inf, result));
+        mask |= std::uint32_t(hit) << i;
     }
     // Lanes past count (a count not a multiple of 8) hold the empty sphere: their bit is never set.
     return mask;
