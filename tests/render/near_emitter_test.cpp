@@ -28,20 +28,7 @@ namespace librt {
 namespace {
 
 using testing::expect_mis_equals_brute;
-
-// Irradiance at p (normal n) from a Lambertian polygon of radiance L (Lambert 1760; Arvo
-// 1995 "Applications of irradiance tensors", eq. 1): E = L/2 |sum_i Theta_i (n . g_i)|.
-double lambert_irradiance(const std::vector<glm::dvec3>& v, const glm::dvec3& p,
-                          const glm::dvec3& n, double radiance) {
-    double sum = 0.0;
-    for (std::size_t i = 0; i < v.size(); ++i) {
-        const glm::dvec3 a = glm::normalize(v[i] - p);
-        const glm::dvec3 b = glm::normalize(v[(i + 1) % v.size()] - p);
-        const double theta = std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0));
-        sum += theta * glm::dot(n, glm::normalize(glm::cross(a, b)));
-    }
-    return std::fabs(0.5 * radiance * sum);
-}
+using testing::lambert_polygon_irradiance;
 
 TriangleLight triangle(bool two_sided) {
     TriangleLight t;
@@ -74,7 +61,8 @@ TEST(NearEmitter, IrradianceFromBothFacesMatchesLambertWithBoundedWeights) {
     for (const Case& k : kCases) {
         const Light light{tri, kInvalidId};
         const auto e = testing::irradiance_by_sampling(light, k.p, k.n, 50000, 3);
-        const double expected = lambert_irradiance(v, glm::dvec3(k.p), glm::dvec3(k.n), 4.0);
+        const double expected =
+            lambert_polygon_irradiance(v, glm::dvec3(k.p), glm::dvec3(k.n), 4.0);
         EXPECT_GT(expected, 1e-3) << k.what;
         EXPECT_NEAR(e.mean.x, expected, 5.0 * e.se.x + 1e-6 * expected) << k.what;
         // Solid-angle sampling: every weight L cos / pdf is at most L omega <= 2 pi L (area
