@@ -224,6 +224,8 @@ PathTracerSettings path_tracer_settings(const AppOptions& options) {
     settings.russian_roulette = false;
     settings.guiding.enabled = options.guiding;
     settings.guiding.training_passes = options.guiding_passes;
+    // These apps render with render(), which can keep the training passes in the image.
+    settings.guiding.keep_training_samples = options.guiding;
     return settings;
 }
 

@@ -6,8 +6,10 @@
 // Google Benchmark: it measures error per time, not speed alone.
 //
 //   librt_guiding_rmse [--size N] [--ref-spp N] [--threads N] [--hole H] [--spp a,b,c]
+//       [--passes P] [--keep 0|1] [--filter 0|1] [--alpha A] [--ref CACHE.pfm]
 
 #include <librt/geometry/mesh.h>
+#include <librt/io/image_io.h>
 #include <librt/render/camera.h>
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
@@ -17,6 +19,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -70,8 +73,9 @@ std::vector<int> parse_list(const char* text) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    int size = 64, ref_spp = 4096, threads = 2, passes = 5;
-    float hole = 3.0f;
+    int size = 64, ref_spp = 4096, threads = 2, passes = 5, keep = 1, filter = 0;
+    float hole = 3.0f, alpha = 0.7f;
+    std::string ref_file;  // cache of the reference (read when it exists, else written)
     std::vector<int> spps{16, 64, 256};
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string a = argv[i];
@@ -85,6 +89,14 @@ int main(int argc, char** argv) {
             hole = float(std::atof(argv[i + 1]));
         else if (a == "--passes")
             passes = std::atoi(argv[i + 1]);
+        else if (a == "--keep")
+            keep = std::atoi(argv[i + 1]);
+        else if (a == "--filter")
+            filter = std::atoi(argv[i + 1]);
+        else if (a == "--alpha")
+            alpha = float(std::atof(argv[i + 1]));
+        else if (a == "--ref")
+            ref_file = argv[i + 1];
         else if (a == "--spp")
             spps = parse_list(argv[i + 1]);
         else {
@@ -106,7 +118,13 @@ int main(int argc, char** argv) {
     rs.seed = 1234567;
     PathTracer ref_tracer(base);
     RenderStats ref_stats;
-    const Image reference = render(scene, camera, ref_tracer, rs, &ref_stats);
+    Image reference;
+    if (!ref_file.empty() && std::ifstream(ref_file).good()) {
+        reference = read_pfm(ref_file);
+    } else {
+        reference = render(scene, camera, ref_tracer, rs, &ref_stats);
+        if (!ref_file.empty()) write_pfm(ref_file, reference);
+    }
     std::printf("lamp room %dx%d, hole %.1f: reference %d spp unguided, %.1f CPU s\n", size, size,
                 double(hole), ref_spp, ref_stats.cpu_seconds);
     std::printf("%-9s %6s %10s %8s %12s\n", "", "spp", "RMSE", "CPU s", "RMSE^2 x s");
@@ -116,6 +134,9 @@ int main(int argc, char** argv) {
             PathTracerSettings s = base;
             s.guiding.enabled = guided == 1;
             s.guiding.training_passes = passes;
+            s.guiding.keep_training_samples = keep != 0;
+            s.guiding.filter_records = filter != 0;
+            s.guiding.bsdf_fraction = alpha;
             PathTracer tracer(s);
             rs.samples_per_pixel = spp;
             rs.seed = 7;

@@ -10,13 +10,18 @@
 // Environment, for the panel's diagnosis: LIBRT_PANEL_Y (its height, default 1.99 under a
 // ceiling at 2), LIBRT_PANEL_ONE_SIDED (=1: the panel's triangles get the material a glTF
 // file's single-sided emissive material maps to, through material_from_gltf, so they are
-// one-sided triangle lights; =quad: a one-sided quad light instead).
+// one-sided triangle lights; =quad: a one-sided quad light instead); LIBRT_BLOCK_RMSE (set:
+// also print each candidate's RMSE per 8 x 8 pixel block, to see where the error is).
 // Usage: librt_light_targets [seconds per candidate = 2] [reference seconds = 40]
 //                            [panel edge = 0.5 (its power is kept: radiance / edge^2)]
 //                            [max depth = 5] [sampler of the sampled candidate and the
 //                            reference = independent | sobol] [roulette = 1 | 0]
-//                            [scene = both | panel | sky]
+//                            [scene = both | panel | sky | glb]
+// glb: ../shared/data/gltf/cornell_pbr.glb as rt_render loads it (its two-sided emissive
+// panel 1 cm under the ceiling, gold, thin glass and plastic), seen from the file's own
+// camera (the same eye, direction and 40 degree field of view as the panel box's).
 
+#include <librt/io/gltf.h>
 #include <librt/io/gltf_scene.h>
 #include <librt/io/hdr_image.h>
 #include <librt/render/integrators.h>
@@ -149,6 +154,27 @@ double rmse(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) 
     return std::sqrt(s / double(a.size()));
 }
 
+/// The RMSE of a against b in each of the 4 x 4 blocks of 8 x 8 pixels, top row first.
+void print_block_rmse(const char* what, const std::vector<glm::dvec3>& a,
+                      const std::vector<glm::dvec3>& b) {
+    constexpr int blocks = 4, side = kSize / blocks;
+    std::printf("  %s, RMSE per 8 x 8 block:\n", what);
+    for (int by = 0; by < blocks; ++by) {
+        std::printf("   ");
+        for (int bx = 0; bx < blocks; ++bx) {
+            double s = 0.0;
+            for (int y = by * side; y < (by + 1) * side; ++y)
+                for (int x = bx * side; x < (bx + 1) * side; ++x) {
+                    const glm::dvec3 d =
+                        a[std::size_t(y * kSize + x)] - b[std::size_t(y * kSize + x)];
+                    s += glm::dot(d, d) / 3.0;
+                }
+            std::printf(" %8.5f", std::sqrt(s / double(side * side)));
+        }
+        std::printf("\n");
+    }
+}
+
 void compare(const char* name, const Scene& sampled, const Integrator& good, const Scene& plain,
              const Integrator& base, const BenchCamera& cam, double seconds, double ref_seconds,
              SamplerKind kind) {
@@ -161,6 +187,11 @@ void compare(const char* name, const Scene& sampled, const Integrator& good, con
         "%s: reference %d spp; sampled %d spp RMSE %.5f; baseline %d spp RMSE %.5f; "
         "ratio %.1fx\n",
         name, nr, ng, rg, nb, rb, rb / rg);
+    // LIBRT_BLOCK_RMSE=1: where the error is (diagnosis of the panel's noise).
+    if (std::getenv("LIBRT_BLOCK_RMSE") != nullptr) {
+        print_block_rmse("sampled", g, ref);
+        print_block_rmse("baseline", b, ref);
+    }
 }
 
 }  // namespace
@@ -178,18 +209,25 @@ int main(int argc, char** argv) {
     const PathTracer pt(settings);
     const BruteForcePathTracer brute(settings);
 
+    const char* dir = std::getenv("LIBRT_DATA_DIR");
+    const std::filesystem::path data(dir ? dir : LIBRT_DEFAULT_DATA_DIR);
+    const BenchCamera box_cam{{0, 1, 3.4f}, {0, 0, -1}, {0, 1, 0}, 40.0f};
+    if (which == "glb") {
+        LoadedScene loaded = scene_from_gltf(load_gltf(data / "gltf" / "cornell_pbr.glb"));
+        loaded.scene.commit();
+        compare("cornell_pbr.glb (triangle lights vs the panel unsampled)", loaded.scene, pt,
+                loaded.scene, brute, box_cam, seconds, ref_seconds, kind);
+        return 0;
+    }
     if (which != "sky") {
         Scene lit;
         build_panel_box(lit, edge);
-        const BenchCamera box_cam{{0, 1, 3.4f}, {0, 0, -1}, {0, 1, 0}, 40.0f};
         compare("panel (triangle lights vs the panel unsampled)", lit, pt, lit, brute, box_cam,
                 seconds, ref_seconds, kind);
     }
     if (which == "panel") return 0;
 
-    const char* dir = std::getenv("LIBRT_DATA_DIR");
-    const std::filesystem::path path =
-        std::filesystem::path(dir ? dir : LIBRT_DEFAULT_DATA_DIR) / "sky.hdr";
+    const std::filesystem::path path = data / "sky.hdr";
     const EnvironmentImage sky = load_hdr_image(path);
     Scene sky_scene;
     build_sky(sky_scene, sky);

@@ -2,7 +2,8 @@
 # Issue 15's efficiency target: RMSE^2 x CPU seconds on smallpt's scene (256 x 192) at 16,
 # 64 and 256 spp, for librt (independent and Sobol samplers, tent filter of radius 1, the
 # light sphere light-sampled with MIS by power or by bound, or only found by BSDF sampling
-# as smallpt finds it) and for smallpt itself when SMALLPT names its binary (built by hand
+# as smallpt finds it; with path guiding, SAMPLER+guiding, its 5 training passes
+# kept in the image) and for smallpt itself when SMALLPT names its binary (built by hand
 # from Kevin Beason's public smallpt.cpp, outside the repository: it is never committed).
 # Lower is better. The reference is librt at REF_SPP (default 8192) Sobol samples, cached
 # in the build directory (not in git) and reused.
@@ -40,8 +41,10 @@ cached() {
 echo "| renderer | sampler | light | spp | CPU s | RMSE | RMSE² × CPU-s |"
 echo "|---|---|---|---|---|---|---|"
 for spp in 16 64 256; do
-  for sampler in independent sobol; do
+  for sampler in independent sobol independent+guiding sobol+guiding; do
     for light in mis bounded emitter; do
+      # Guided candidates (path guiding, 5 training passes kept in the image): MIS only.
+      [[ "$sampler" == *guiding* && "$light" != mis ]] && continue
       img="$out/librt_${sampler}_${light}_${spp}.pfm"
       cached "$img" "$bin" render "$spp" "$sampler" "$light" "$img" "$threads" 1
       [[ -n "${RENDER_ONLY:-}" ]] && continue

@@ -7,10 +7,11 @@
 //
 // Usage:
 //   librt_smallpt render SPP SAMPLER LIGHT OUT.pfm [THREADS=1] [SEED=1] [WIDTH=256 HEIGHT=192]
-//       SAMPLER: independent | sobol; LIGHT: mis (the light sphere light-sampled, MIS),
-//       bounded (the same with LightChoice::Bounded), emitter (the sphere only an emitter
-//       found by BSDF sampling, as smallpt finds it). Tent filter of radius 1. Prints
-//       "cpu_seconds S" and "wall_seconds S".
+//       SAMPLER: independent | sobol, optionally +guiding[:PASSES] (path guiding, the
+//       training passes kept in the image), +nokeep, +nofilter, +alpha=A; LIGHT: mis (the light
+//       sphere light-sampled, MIS), bounded (the same with LightChoice::Bounded), emitter (the
+//       sphere only an emitter found by BSDF sampling, as smallpt finds it). Tent filter of
+//       radius 1. Prints "cpu_seconds S" and "wall_seconds S".
 //   librt_smallpt rmse A.pfm REFERENCE.pfm
 //       Prints the RMSE over all pixels and channels.
 
@@ -81,7 +82,33 @@ int render_command(int argc, char** argv) {
         return 2;
     }
     const int spp = std::atoi(argv[2]);
-    const std::string sampler = argv[3], light = argv[4];
+    // SAMPLER[+guiding[:PASSES]][+nokeep][+nofilter][+alpha=A]: path guiding, its
+    // training passes (default 5) kept in the image unless +nokeep, records filtered
+    // unless +nofilter, BSDF fraction A (default: GuidingSettings::bsdf_fraction).
+    std::string sampler = argv[3];
+    const std::string light = argv[4];
+    PathTracerSettings pts;
+    for (std::size_t plus = sampler.find('+'); plus != std::string::npos;
+         plus = sampler.find('+')) {
+        const std::size_t end = sampler.find('+', plus + 1);
+        const std::string opt =
+            sampler.substr(plus + 1, end == std::string::npos ? std::string::npos : end - plus - 1);
+        sampler.erase(plus, opt.size() + 1);
+        if (opt.rfind("guiding", 0) == 0) {
+            pts.guiding.enabled = true;
+            pts.guiding.keep_training_samples = true;
+            if (opt.size() > 8) pts.guiding.training_passes = std::atoi(opt.c_str() + 8);
+        } else if (opt == "nokeep") {
+            pts.guiding.keep_training_samples = false;
+        } else if (opt == "nofilter") {
+            pts.guiding.filter_records = false;
+        } else if (opt.rfind("alpha=", 0) == 0) {
+            pts.guiding.bsdf_fraction = std::strtof(opt.c_str() + 6, nullptr);
+        } else {
+            throw Error("SAMPLER option +" + opt +
+                        ": must be guiding[:N], nokeep, nofilter or alpha=A");
+        }
+    }
     const std::string out = argv[5];
     const int threads = argc > 6 ? std::atoi(argv[6]) : 1;
     const auto seed = std::uint64_t(argc > 7 ? std::atoll(argv[7]) : 1);
@@ -96,7 +123,6 @@ int render_command(int argc, char** argv) {
     build_scene(scene, mode);
     const Camera camera(smallpt_camera(width, height));
     // The library's defaults: unbounded depth with roulette from bounce 3, MIS.
-    PathTracerSettings pts;
     pts.light_choice = mode == LightMode::Bounded ? LightChoice::Bounded : LightChoice::Power;
     PathTracer integrator(pts);
     RenderSettings rs;
@@ -111,6 +137,9 @@ int render_command(int argc, char** argv) {
     const Image image = render(scene, camera, integrator, rs, &stats);
     write_pfm(out, image);
     std::printf("cpu_seconds %.4f\nwall_seconds %.4f\n", stats.cpu_seconds, stats.seconds);
+    if (pts.guiding.enabled)
+        std::printf("guiding_leaves %zu\ntraining_passes %d\n", integrator.guiding_leaf_count(),
+                    stats.training_passes);
     return 0;
 }
 

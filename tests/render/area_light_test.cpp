@@ -23,6 +23,7 @@ namespace {
 using testing::add_floor_and_ball;
 using testing::expect_mis_equals_brute;
 using testing::irradiance_by_sampling;
+using testing::lambert_polygon_irradiance;
 using testing::Pinhole;
 using testing::region;
 using testing::render_stats;
@@ -143,22 +144,6 @@ TEST(AreaLights, DiskMisEqualsBruteForce) {
     scene.commit();
     expect_mis_equals_brute(scene, testing::top_camera(), 32, 256, "two-sided disk");
     expect_mis_equals_brute(scene, testing::side_camera(), 32, 256, "two-sided disk, side");
-}
-
-// Irradiance at p (normal n) from a Lambertian polygon of radiance L (Lambert 1760; e.g.
-// Arvo 1995 "Applications of irradiance tensors", eq. 1): E = L/2 sum_i Theta_i
-// (n . g_i), Theta_i the angle between r_i = v_i - p and r_{i+1}, g_i the unit normal of
-// the plane through p and that edge (r_i x r_{i+1} normalised).
-double lambert_polygon_irradiance(const std::vector<glm::dvec3>& v, const glm::dvec3& p,
-                                  const glm::dvec3& n, double radiance) {
-    double sum = 0.0;
-    for (std::size_t i = 0; i < v.size(); ++i) {
-        const glm::dvec3 a = glm::normalize(v[i] - p);
-        const glm::dvec3 b = glm::normalize(v[(i + 1) % v.size()] - p);
-        const double theta = std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0));
-        sum += theta * glm::dot(n, glm::normalize(glm::cross(a, b)));
-    }
-    return std::fabs(0.5 * radiance * sum);
 }
 
 TEST(AreaLights, QuadIrradianceMatchesLambertPolygonFormula) {

@@ -15,10 +15,28 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace librt::testing {
+
+// Irradiance at p (normal n) from a Lambertian polygon of radiance L (Lambert 1760; e.g.
+// Arvo 1995 "Applications of irradiance tensors", eq. 1): E = L/2 sum_i Theta_i
+// (n . g_i), Theta_i the angle between r_i = v_i - p and r_{i+1}, g_i the unit normal of
+// the plane through p and that edge (r_i x r_{i+1} normalised).
+inline double lambert_polygon_irradiance(const std::vector<glm::dvec3>& v, const glm::dvec3& p,
+                                         const glm::dvec3& n, double radiance) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        const glm::dvec3 a = glm::normalize(v[i] - p);
+        const glm::dvec3 b = glm::normalize(v[(i + 1) % v.size()] - p);
+        const double theta = std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0));
+        sum += theta * glm::dot(n, glm::normalize(glm::cross(a, b)));
+    }
+    return std::fabs(0.5 * radiance * sum);
+}
 
 /// A 4 x 4 diffuse floor at y = 0 (albedo 0.7, facing up) with a sphere of radius 0.5 on
 /// it (albedo 0.5): what the light tests light.

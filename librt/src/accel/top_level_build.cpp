@@ -1,6 +1,8 @@
 // The top level's construction: adding spheres, prototypes, meshes and instances (with
 // their validation and matrices), building, and memory accounting. Queries: top_level.cpp.
 
+#include "accel/sphere_roots.h"
+
 #include <librt/accel/bvh_builder.h>
 #include <librt/accel/top_level.h>
 #include <librt/core/error.h>
@@ -10,8 +12,10 @@
 #include <glm/ext/matrix_double4x4.hpp>
 #include <glm/matrix.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -26,7 +30,7 @@ constexpr double kInstanceBoxPad = 0x1p-18;
 }  // namespace
 
 std::uint32_t TopLevel::add_object(ObjectKind kind, std::uint32_t index) {
-    built_ = false;
+    query_ = Query::None;
     objects_.push_back({kind, index});
     return std::uint32_t(objects_.size() - 1);
 }
@@ -79,7 +83,7 @@ std::uint32_t TopLevel::add_sphere(const glm::dvec3& center, double radius, bool
 
 std::uint32_t TopLevel::add_prototype(TriangleMesh mesh, BvhBuilder builder) {
     validate(mesh);
-    built_ = false;
+    query_ = Query::None;
     prototypes_.push_back({std::move(mesh), {}, builder});
     return std::uint32_t(prototypes_.size() - 1);
 }
@@ -88,7 +92,7 @@ std::uint32_t TopLevel::add_triangle(const Triangle& triangle) {
     if (!finite(triangle.p0) || !finite(triangle.p1) || !finite(triangle.p2))
         throw Error("add_triangle: corners must be finite");
     if (loose_object_ == kInvalidId) loose_object_ = add_mesh(add_prototype({}));
-    built_ = false;
+    query_ = Query::None;
     TriangleMesh& mesh = prototypes_[objects_[loose_object_].index].mesh;
     const auto base = std::uint32_t(mesh.positions.size());
     mesh.positions.insert(mesh.positions.end(), {triangle.p0, triangle.p1, triangle.p2});
@@ -195,7 +199,7 @@ BBox TopLevel::object_bounds(const Object& o) const {
 }
 
 void TopLevel::build() {
-    if (built_) return;
+    if (built()) return;
     for (Prototype& p : prototypes_) {
         if (p.bvh.triangle_count() != p.mesh.triangle_count() || p.bvh.empty())
             p.bvh = TriangleBvh(p.mesh, p.builder);
@@ -231,7 +235,28 @@ void TopLevel::build() {
             flat_.object[i] = ids[i];
         }
     }
-    built_ = true;
+    sphere_lanes_.reset();
+    const auto is_sphere = [&](std::uint32_t id) {
+        return objects_[id].kind == ObjectKind::Sphere;
+    };
+    if (flat_.count > 0 && std::all_of(ids.begin(), ids.end(), is_sphere)) {
+        auto lanes = std::make_shared<detail::SphereLanes>();
+        lanes->clear();
+        for (std::uint32_t i = 0; i < flat_.count; ++i)
+            lanes->push(spheres_[objects_[flat_.object[i]].index].prepared);
+        sphere_lanes_ = std::move(lanes);
+    }
+    sphere_roots_ = sphere_lanes_ ? detail::sphere_roots_for(simd_path_) : nullptr;
+    query_ = sphere_roots_ != nullptr ? Query::Spheres : Query::Visit;
+}
+
+void TopLevel::set_simd_path(SimdPath path) {
+    if (!simd_path_supported(path))
+        throw Error(std::string("TopLevel: SIMD path ") + to_string(path) +
+                    " is not supported here");
+    simd_path_ = path;
+    sphere_roots_ = sphere_lanes_ ? detail::sphere_roots_for(path) : nullptr;
+    if (built()) query_ = sphere_roots_ != nullptr ? Query::Spheres : Query::Visit;
 }
 
 std::size_t TopLevel::memory_bytes() const {

@@ -266,6 +266,16 @@ struct GuideContext {
     float bsdf_fraction = 0.5f;
 };
 
+/// A lobe too narrow for the guide's cells (GGX alpha = roughness^2 below 0.01, i.e.
+/// roughness < 0.1, on a kind with no diffuse part): the BSDF samples it far better than
+/// any mixture would, and its vertices are left unguided.
+bool near_specular(const Material& m) {
+    constexpr float kRoughness = 0.1f;
+    if (!(m.roughness < kRoughness)) return false;
+    return m.kind == MaterialKind::Conductor || m.kind == MaterialKind::RoughDielectric ||
+           (m.kind == MaterialKind::MetallicRoughness && m.metallic >= 1.0f);
+}
+
 /// A direction drawn at a guided vertex: wi (world), f |cos| / pdf and the mixture's pdf.
 struct GuidedSample {
     glm::vec3 wi{0.0f};
@@ -277,18 +287,22 @@ struct GuidedSample {
 /// the balance heuristic as one sample of a mixture): with probability alpha the BSDF's
 /// sample(), else the leaf's quadtree; either way the weight is f |cos| divided by the
 /// mixture density alpha pdf_bsdf + (1 - alpha) pdf_guide, which is unbiased for any
-/// learned distribution while alpha > 0. The choice takes the lobe dimension's number,
-/// rescaled to choose the lobe after it (the sampler keeps 7 dimensions per bounce). A
+/// learned distribution while alpha > 0. The BSDF's lobe choice keeps the lobe dimension
+/// (the sampler keeps 7 dimensions per bounce). A
 /// weight of 0 (no valid direction) ends the path, as an invalid BSDF sample does.
 GuidedSample sample_guided(Vertex& v, const guiding::DirLeaf& leaf, float alpha, Sampler& sampler,
                            std::uint32_t dim) {
     sampler.set_dimension(dim + SampleDimensions::k_bounce_lobe);
-    float uc = sampler.next_1d();
+    const float uc = sampler.next_1d();
     sampler.set_dimension(dim + SampleDimensions::k_bounce_bsdf);
-    const glm::vec2 u = sampler.next_2d();
+    glm::vec2 u = sampler.next_2d();
     GuidedSample g;
-    if (uc < alpha) {
-        uc = std::min(uc / alpha, 0x1.fffffep-1f);
+    float guide_pdf = -1.0f;  // known from the guide's own descent when it drew wi
+    // The strategy is chosen by u.x, rescaled into [0, 1) for the chosen one: each then
+    // gets a stratified subset of the 2D points (choosing by another dimension would hand
+    // each a random subset, and Sobol' would lose its 2D stratification at guided bounces).
+    if (u.x < alpha) {
+        u.x = std::min(u.x / alpha, 0x1.fffffep-1f);
         if (v.m.kind == MaterialKind::Diffuse) {
             g.wi = Frame::from_normal(v.n).to_world(sample_cosine_hemisphere(u));
         } else {
@@ -300,11 +314,15 @@ GuidedSample sample_guided(Vertex& v, const guiding::DirLeaf& leaf, float alpha,
             g.wi = sp.frame.to_world(bs.wi);
         }
     } else {
-        g.wi = leaf.sampling.sample(u);
+        u.x = std::min((u.x - alpha) / (1.0f - alpha), 0x1.fffffep-1f);
+        float square_pdf = 0.0f;
+        g.wi = guiding::square_to_direction(leaf.sampling.sample_square(u, &square_pdf));
+        guide_pdf = square_pdf * (0.25f * k_inv_pi);  // the equal-area map: 4 pi
     }
     float cos_i = 0.0f;
     const bsdfs::EvalPdf e = light_eval(v, g.wi, cos_i);
-    g.pdf = alpha < 1.0f ? alpha * e.pdf + (1.0f - alpha) * leaf.sampling.pdf(g.wi) : e.pdf;
+    if (alpha < 1.0f && guide_pdf < 0.0f) guide_pdf = leaf.sampling.pdf(g.wi);
+    g.pdf = alpha < 1.0f ? alpha * e.pdf + (1.0f - alpha) * guide_pdf : e.pdf;
     if (!(g.pdf > 0.0f)) return g;
     g.weight = e.f * (cos_i / g.pdf);
     return g;
@@ -455,9 +473,13 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         const guiding::DirLeaf* leaf = nullptr;
         float alpha = 1.0f;
         if constexpr (Guided) {
-            if (has_non_specular(material_lobes) && !has(material_lobes, BsdfLobe::Specular)) {
+            if (has_non_specular(material_lobes) && !has(material_lobes, BsdfLobe::Specular) &&
+                !near_specular(m)) {
                 leaf = &guide.tree->leaf_at(hit.point);
                 alpha = leaf->sampling.total() > 0.0f ? guide.bsdf_fraction : 1.0f;
+                // Nothing to guide and nothing to record: the plain BSDF path below (the
+                // same directions, without the mixture's bookkeeping).
+                if (alpha >= 1.0f && guide.recorder == nullptr) leaf = nullptr;
             }
         }
         if (S != Strategy::Brute && has_non_specular(material_lobes)) {

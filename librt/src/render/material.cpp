@@ -72,18 +72,23 @@ Material Material::conductor(const glm::vec3& eta, const glm::vec3& k, float rou
 }
 
 Material Material::conductor(Metal metal, float roughness) {
-    // (n, k) at about 650, 550 and 450 nm (R, G, B), read from the tables of Johnson &
-    // Christy, Phys. Rev. B 6, 4370 (1972) for Au, Ag, Cu and of Rakic, Appl. Opt. 34,
-    // 4755 (1995) for Al, as listed by refractiveindex.info (rounded).
+    // (n, k) at 650, 550 and 450 nm (R, G, B: 1.907, 2.254 and 2.755 eV).
+    // Au, Ag, Cu: Johnson & Christy, Phys. Rev. B 6, 4370 (1972), Table 1, interpolated
+    // linearly in photon energy between its rows (1.88/2.01, 2.13/2.26, 2.75/2.88 eV).
+    // Al: the Lorentz-Drude model of Rakic et al., Appl. Opt. 37, 5271 (1998), Table 1
+    // (fitted to Rakic, Appl. Opt. 34, 4755 (1995)), evaluated at those energies.
+    // tests/render/metal_table_test.cpp recomputes every value from those sources. (Before,
+    // gold's red k was 3.15, J&C's value near 610 nm, and silver's red and green n 0.14
+    // and 0.12 where J&C give 0.05 and 0.06.)
     switch (metal) {
         case Metal::Gold:
-            return conductor({0.166f, 0.430f, 1.380f}, {3.150f, 2.455f, 1.880f}, roughness);
+            return conductor({0.155f, 0.424f, 1.383f}, {3.607f, 2.473f, 1.915f}, roughness);
         case Metal::Silver:
-            return conductor({0.140f, 0.120f, 0.040f}, {4.150f, 3.340f, 2.650f}, roughness);
+            return conductor({0.052f, 0.060f, 0.040f}, {4.413f, 3.598f, 2.649f}, roughness);
         case Metal::Copper:
-            return conductor({0.214f, 1.020f, 1.240f}, {3.670f, 2.580f, 2.400f}, roughness);
+            return conductor({0.237f, 1.006f, 1.240f}, {3.633f, 2.583f, 2.393f}, roughness);
         case Metal::Aluminium:
-            return conductor({1.490f, 0.960f, 0.620f}, {7.820f, 6.690f, 5.470f}, roughness);
+            return conductor({1.420f, 0.966f, 0.590f}, {7.467f, 6.458f, 5.311f}, roughness);
     }
     throw Error("material metal: unknown Metal value " + std::to_string(int(metal)));
 }

@@ -1,8 +1,9 @@
 // The render loop (run_block) and the entry points built on it: render, render_block and
-// render_progressive. A little over 400 lines: the entry points share the loop's private
+// render_progressive. Over 400 lines: the entry points share the loop's private
 // types, so they stay in one file.
 
 #include "render/aov.h"
+#include "render/pass_combination.h"
 
 #include <librt/core/error.h>
 #include <librt/core/finite.h>
@@ -269,8 +270,38 @@ void validate(const ProgressiveSettings& s) {
     }
 }
 
-RenderStats train(const Scene& scene, const Camera& camera, Integrator& integrator,
-                  const RenderSettings& settings) {
+namespace {
+
+/// Renders `block` onto `film` in two runs, the first half of its samples and then the
+/// rest, and returns the film as it was between them (for PassCombination). The same
+/// samples in the same order per pixel as one run: the film's sums are identical.
+BlockOutcome run_block_in_halves(const Scene& scene, const Camera& camera,
+                                 const Integrator& integrator, Film& film, const RenderBlock& block,
+                                 const RenderSettings& settings, const Tick& tick, Film& half) {
+    RenderBlock first = block;
+    first.count = block.count / 2;
+    RenderBlock second = block;
+    second.first = block.first + first.count;
+    second.count = block.count - first.count;
+    const Tick first_tick = tick ? Tick([&](double f) { return tick(0.5 * f); }) : Tick();
+    const Tick second_tick = tick ? Tick([&](double f) { return tick(0.5 + 0.5 * f); }) : Tick();
+    BlockOutcome a = run_block(scene, camera, integrator, film, {}, first, settings, first_tick);
+    if (!a.complete) return a;
+    half = film;
+    const BlockOutcome b =
+        run_block(scene, camera, integrator, film, {}, second, settings, second_tick);
+    a.samples += b.samples;
+    a.nonfinite += b.nonfinite;
+    a.complete = b.complete;
+    a.cancelled = b.cancelled;
+    a.aborted = b.aborted;
+    return a;
+}
+
+/// train(); with `keep`, every pass of at least 2 samples per pixel is rendered in halves
+/// and added to it.
+RenderStats train_passes(const Scene& scene, const Camera& camera, Integrator& integrator,
+                         const RenderSettings& settings, PassCombination* keep) {
     const Clock::time_point start = Clock::now();
     const double cpu_start = cpu_now();
     validate_threads_and_tiles(settings);
@@ -292,11 +323,15 @@ RenderStats train(const Scene& scene, const Camera& camera, Integrator& integrat
         // samples (seed itself) never reuse a training sample's numbers.
         rs.seed = mix64(mix64(settings.seed ^ 0x7a11ed6a1de5eedULL) + std::uint64_t(pass));
         const RenderBlock whole{0, 0, scratch.width, scratch.height, 0, spp};
+        const bool halves = keep != nullptr && spp >= 2;
+        Film half;
         const BlockOutcome outcome =
-            run_block(scene, camera, integrator, scratch, {}, whole, rs, {});
+            halves ? run_block_in_halves(scene, camera, integrator, scratch, whole, rs, {}, half)
+                   : run_block(scene, camera, integrator, scratch, {}, whole, rs, {});
         stats.samples += outcome.samples;
         stats.nonfinite_samples += outcome.nonfinite;
         integrator.end_training_pass(pass);
+        if (halves && outcome.complete) (void)keep->add(half, scratch);
         if (!outcome.complete) {
             stats.cancelled = outcome.cancelled;
             break;
@@ -308,6 +343,13 @@ RenderStats train(const Scene& scene, const Camera& camera, Integrator& integrat
     return stats;
 }
 
+}  // namespace
+
+RenderStats train(const Scene& scene, const Camera& camera, Integrator& integrator,
+                  const RenderSettings& settings) {
+    return train_passes(scene, camera, integrator, settings, nullptr);
+}
+
 Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
              const RenderSettings& settings, RenderStats* stats) {
     const Clock::time_point start = Clock::now();
@@ -317,7 +359,13 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
     Film film(camera.width(), camera.height());
 
     integrator.preprocess(scene);
-    const RenderStats training = train(scene, camera, integrator, settings);
+    // The training passes kept in the image when the integrator allows it (guiding's
+    // keep_training_samples) and the image has the 2 samples per pixel its own variance
+    // estimate needs.
+    PassCombination kept;
+    const bool keep = integrator.keeps_training_samples() && settings.samples_per_pixel >= 2;
+    const RenderStats training =
+        train_passes(scene, camera, integrator, settings, keep ? &kept : nullptr);
     const auto spp = static_cast<std::uint32_t>(settings.samples_per_pixel);
     const RenderBlock whole{0, 0, film.width, film.height, 0, spp};
     Tick tick;
@@ -327,12 +375,17 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
             return false;
         };
     }
+    Film half;
     const BlockOutcome outcome =
-        run_block(scene, camera, integrator, film, {}, whole, settings, tick);
+        keep ? run_block_in_halves(scene, camera, integrator, film, whole, settings, tick, half)
+             : run_block(scene, camera, integrator, film, {}, whole, settings, tick);
     if (settings.progress && outcome.complete)
         settings.progress({1.0, seconds_since(start), 1, spp});
 
-    Image image = resolve(film);
+    // With kept passes: the image joins them, all weighted by inverse variance (an image
+    // whose variance cannot be estimated, e.g. black, is shown alone).
+    const bool combine = keep && outcome.complete && kept.count() > 0 && kept.add(half, film);
+    Image image = combine ? kept.image(film.width, film.height) : resolve(film);
     if (!outcome.complete) {
         // As before films: a pixel the cancellation stopped part-way stays black.
         for (std::size_t i = 0; i < film.pixels.size(); ++i) {

@@ -125,6 +125,8 @@ public:
     [[nodiscard]] std::uint32_t begin_training_pass(int pass) override;
     /// With guiding: what the pass recorded guides the next pass (or the image).
     void end_training_pass(int pass) override;
+    /// With guiding and guiding.keep_training_samples: true (render() combines the passes).
+    [[nodiscard]] bool keeps_training_samples() const override;
     /// One sample of the radiance along ray.
     [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray, Sampler& sampler) const override;
     /// The settings in use.

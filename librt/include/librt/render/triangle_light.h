@@ -15,9 +15,11 @@ namespace librt {
 /// material emits). It emits `radiance` (times its emission texture at the emitting point,
 /// when it has one) from its front, the side cross(p1 - p0, p2 - p0) points to, and, when
 /// two-sided, from its back too, as Scene::shade makes an emissive material do when a ray
-/// hits it. Sampled uniformly by area (not by spherical triangle: area sampling is cheap
-/// and exact, and the power light sampler already spends samples where the big triangles
-/// are); pdf per solid angle d^2 / (A |cos|).
+/// hits it. Sampled uniformly over the solid angle it subtends (spherical triangle, Arvo
+/// 1995; pdf 1 / omega), so a point close to it (a ceiling just above a panel) gets light
+/// samples of weight at most 2 pi L; when it looks small (area / distance to its centroid
+/// squared below 0.1), uniformly by area (pdf per solid angle d^2 / (A |cos|)), about as
+/// good there and cheaper.
 struct TriangleLight {
     glm::vec3 p0{0.0f};        ///< first corner (Triangle's convention)
     glm::vec3 p1{0.0f};        ///< second corner
@@ -36,9 +38,12 @@ struct TriangleLight {
     glm::vec3 mean_texture{1.0f};
 };
 
-/// A point drawn uniformly on the triangle, as a direction from ref with its solid-angle
-/// density and the radiance emitted there; invalid when ref lies in the triangle's plane,
-/// behind a one-sided triangle, or the triangle is degenerate.
+/// A point on the triangle (uniform in solid angle, or in area when it looks small), as a direction
+/// from ref with its solid-angle density and the radiance emitted there; invalid when ref lies in
+/// the triangle's plane, behind a one-sided triangle, or the triangle is degenerate. Its distance
+/// is where the shadow ray must end: the emitting point less the ray offsets' worst case along wi
+/// (ray_offset_scale of ref and of the point, over |cos| at the emitter), so a shadow ray from a
+/// surface just beside the triangle does not end on it.
 [[nodiscard]] LIBRT_API LightLiSample sample_li(const TriangleLight& light, const glm::vec3& ref,
                                                 glm::vec2 u);
 /// The solid-angle density of sample_li at ref for unit direction wi; 0 if wi misses (or

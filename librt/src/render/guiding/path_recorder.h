@@ -28,17 +28,19 @@ public:
     void push(const DirLeaf& leaf, const glm::vec3& p, const glm::vec3& dir, float pdf,
               const glm::vec3& beta) {
         if (count_ == kMaxVertices) return;
-        vertices_[count_++] = Vertex{&leaf, p, dir, pdf, beta, glm::vec3(0.0f)};
+        // 1 / beta per channel once here: add() then multiplies (a path adds several
+        // contributions to each of its vertices, and divisions are slow).
+        glm::vec3 inv(0.0f);
+        for (int c = 0; c < 3; ++c)
+            if (beta[c] > 0.0f) inv[c] = 1.0f / beta[c];
+        vertices_[count_++] = Vertex{&leaf, p, dir, pdf, inv, glm::vec3(0.0f)};
     }
 
     /// Radiance `contribution` (already times the path throughput) reached the camera:
     /// each recorded vertex receives its share of it.
     void add(const glm::vec3& contribution) {
-        for (std::size_t i = 0; i < count_; ++i) {
-            Vertex& v = vertices_[i];
-            for (int c = 0; c < 3; ++c)
-                if (v.beta[c] > 0.0f) v.radiance[c] += contribution[c] / v.beta[c];
-        }
+        for (std::size_t i = 0; i < count_; ++i)
+            vertices_[i].radiance += contribution * vertices_[i].inv_beta;
     }
 
     /// Radiance `extra` (times the path throughput) that only the last recorded vertex
@@ -50,8 +52,7 @@ public:
     void add_to_last(const glm::vec3& extra) {
         if (count_ == 0) return;
         Vertex& v = vertices_[count_ - 1];
-        for (int c = 0; c < 3; ++c)
-            if (v.beta[c] > 0.0f) v.radiance[c] += extra[c] / v.beta[c];
+        v.radiance += extra * v.inv_beta;
     }
 
     /// Records every vertex: flux estimate = mean incident radiance / sampling density.
@@ -69,7 +70,7 @@ private:
         glm::vec3 p;
         glm::vec3 dir;
         float pdf;
-        glm::vec3 beta;
+        glm::vec3 inv_beta;  // 1 / throughput per channel (0 where the throughput is 0)
         glm::vec3 radiance;
     };
     // Not value-initialised: only the first count_ entries are ever read, and zeroing

@@ -30,6 +30,10 @@ void PathTracer::end_training_pass(int pass) {
     recording_ = false;
 }
 
+bool PathTracer::keeps_training_samples() const {
+    return guide_ != nullptr && settings_.guiding.keep_training_samples;
+}
+
 std::size_t PathTracer::guiding_leaf_count() const {
     return guide_ != nullptr ? guide_->leaf_count() : 0;
 }

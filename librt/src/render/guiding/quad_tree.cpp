@@ -14,14 +14,24 @@ namespace {
 /// The largest float below 1: a rescaled u must stay in [0, 1).
 constexpr float kBelowOne = 0x1.fffffep-1f;
 
-/// Quadrant of p in the unit square of its node, and p rescaled into that quadrant's square.
-std::uint32_t descend(glm::vec2& p) {
-    const std::uint32_t qx = p.x >= 0.5f ? 1u : 0u;
-    const std::uint32_t qy = p.y >= 0.5f ? 1u : 0u;
-    p = glm::min(glm::vec2(p.x * 2.0f - float(qx), p.y * 2.0f - float(qy)), glm::vec2(kBelowOne));
-    p = glm::max(p, glm::vec2(0.0f));
-    return qx + 2u * qy;
-}
+/// p in [0, 1)^2 as 32-bit fixed point: the quadrant at each level is then the top bit of
+/// each coordinate, and descending a level a shift (an integer chain of one cycle per
+/// level, where p * 2 - q, clamped, was a chain of float operations). The same cells as
+/// that float descent for the 20 levels a tree may have: p's 24-bit mantissa times 2^32
+/// is exact for p >= 2^-8, and smaller p differ only below bit 32.
+struct FixedPoint {
+    std::uint32_t x, y;
+    explicit FixedPoint(glm::vec2 p)
+        : x(static_cast<std::uint32_t>(std::clamp(p.x, 0.0f, kBelowOne) * 4294967296.0f)),
+          y(static_cast<std::uint32_t>(std::clamp(p.y, 0.0f, kBelowOne) * 4294967296.0f)) {}
+    /// The quadrant at this level, then one level down.
+    std::uint32_t descend() {
+        const std::uint32_t q = (x >> 31u) | ((y >> 31u) << 1u);
+        x <<= 1u;
+        y <<= 1u;
+        return q;
+    }
+};
 
 /// A node's quadrant fractions of the total, for refined(): the real ones, or a leaf
 /// cell's flux shared equally among four virtual children.
@@ -76,9 +86,10 @@ glm::vec3 square_to_direction(glm::vec2 p) {
 float QuadTree::pdf_square(glm::vec2 p) const {
     float pdf = 1.0f;
     std::uint32_t node = 0;
+    FixedPoint f(p);
     for (;;) {
         const QuadNode& n = nodes_[node];
-        const std::uint32_t q = descend(p);
+        const std::uint32_t q = f.descend();
         // A quadrant has a quarter of its node's area: density ratio 4 flux_q / sum.
         pdf *= 4.0f * n.share[q];
         if (n.child[q] == 0 || !(pdf > 0.0f)) return pdf;
@@ -90,48 +101,76 @@ float QuadTree::pdf(const glm::vec3& d) const {
     return pdf_square(direction_to_square(d)) * (0.25f * k_inv_pi);
 }
 
-glm::vec2 QuadTree::sample_square(glm::vec2 u) const {
+glm::vec2 QuadTree::sample_square(glm::vec2 u, float* pdf) const {
+    float density = 1.0f;
+    // u is not rescaled level by level (two dependent divisions per level): the interval
+    // [lo, lo + w) of u-space that the cell chosen so far owns shrinks instead, by the
+    // column's and the row's probabilities (multiplications only), and u is rescaled into
+    // the last cell once. The same distribution: the cell holding u is chosen with
+    // probability flux_q / sum at every level.
+    glm::vec2 lo(0.0f), w(1.0f);
     glm::vec2 origin(0.0f);
     float size = 1.0f;
     std::uint32_t node = 0;
     for (;;) {
         const QuadNode& n = nodes_[node];
-        // Column (x half) by its marginal flux, then the row within it; u rescaled in each
-        // choice, so the quadrant q is chosen with probability flux_q / sum.
-        const float left = n.flux[0] + n.flux[2];
-        const float right = n.flux[1] + n.flux[3];
-        // An empty node is never chosen; were rounding to reach one, it is uniform.
-        const float p_left = left + right > 0.0f ? left / (left + right) : 0.5f;
+        // Column (x half) by its marginal share, then the row within it.
+        const float p_left = n.share[0] + n.share[2];
         std::uint32_t qx = 0;
-        if (u.x < p_left) {
-            u.x = std::min(u.x / p_left, kBelowOne);
+        const float split_x = lo.x + w.x * p_left;
+        // Certain choices are made without comparing, so rounding never picks an empty half.
+        if (p_left > 0.0f && (p_left >= 1.0f || u.x < split_x)) {
+            w.x *= p_left;
         } else {
             qx = 1;
-            u.x = std::min((u.x - p_left) / (1.0f - p_left), kBelowOne);
+            w.x = lo.x + w.x - split_x;
+            lo.x = split_x;
         }
-        const float bottom = n.flux[qx], top = n.flux[qx + 2];
-        const float p_bottom = bottom + top > 0.0f ? bottom / (bottom + top) : 0.5f;
+        const float p_bottom = n.row[qx];
         std::uint32_t qy = 0;
-        if (u.y < p_bottom) {
-            u.y = std::min(u.y / p_bottom, kBelowOne);
+        const float split_y = lo.y + w.y * p_bottom;
+        if (p_bottom > 0.0f && (p_bottom >= 1.0f || u.y < split_y)) {
+            w.y *= p_bottom;
         } else {
             qy = 1;
-            u.y = std::min((u.y - p_bottom) / (1.0f - p_bottom), kBelowOne);
+            w.y = lo.y + w.y - split_y;
+            lo.y = split_y;
         }
         size *= 0.5f;
         origin += size * glm::vec2(float(qx), float(qy));
         const std::uint32_t q = qx + 2 * qy;
-        if (n.child[q] == 0) return glm::min(origin + size * u, glm::vec2(kBelowOne));
+        // As pdf_square: a quadrant has a quarter of its node's area.
+        density *= 4.0f * n.share[q];
+        if (n.child[q] == 0) {
+            if (pdf != nullptr) *pdf = density;
+            // u's place in the cell's interval (rounding may put it a hair outside).
+            const glm::vec2 t = glm::clamp((u - lo) / glm::max(w, glm::vec2(1e-30f)),
+                                           glm::vec2(0.0f), glm::vec2(kBelowOne));
+            return glm::min(origin + size * t, glm::vec2(kBelowOne));
+        }
         node = n.child[q];
     }
 }
 
 std::uint32_t QuadTree::leaf_slot(glm::vec2 p) const {
     std::uint32_t node = 0;
+    FixedPoint f(p);
     for (;;) {
-        const std::uint32_t q = descend(p);
+        const std::uint32_t q = f.descend();
         if (nodes_[node].child[q] == 0) return 4 * node + q;
         node = nodes_[node].child[q];
+    }
+}
+
+std::uint32_t QuadTree::leaf_slot(glm::vec2 p, float& size) const {
+    std::uint32_t node = 0;
+    size = 0.5f;
+    FixedPoint f(p);
+    for (;;) {
+        const std::uint32_t q = f.descend();
+        if (nodes_[node].child[q] == 0) return 4 * node + q;
+        node = nodes_[node].child[q];
+        size *= 0.5f;
     }
 }
 
@@ -150,6 +189,12 @@ void QuadTree::set_leaf_flux(const std::vector<double>& flux) {
         }
         const float sum = (n.flux[0] + n.flux[1]) + (n.flux[2] + n.flux[3]);
         for (std::uint32_t q = 0; q < 4; ++q) n.share[q] = sum > 0.0f ? n.flux[q] / sum : 0.0f;
+        // The bottom row's probability within each column (1/2 in an empty column, which
+        // is never chosen).
+        for (std::uint32_t qx = 0; qx < 2; ++qx) {
+            const float column = n.flux[qx] + n.flux[qx + 2];
+            n.row[qx] = column > 0.0f ? n.flux[qx] / column : 0.5f;
+        }
     }
 }
 
@@ -161,6 +206,7 @@ QuadTree QuadTree::refined(float threshold, int max_depth, std::size_t max_nodes
         for (QuadNode& n : out.nodes_) {
             n.flux.fill(0.0f);
             n.share.fill(0.0f);
+            n.row.fill(0.5f);
         }
         return out;
     }

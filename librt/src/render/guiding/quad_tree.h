@@ -32,6 +32,10 @@ struct QuadNode {
     /// Each quadrant's share of the node's flux (0 when the node has none): set by
     /// set_leaf_flux, so pdf() multiplies instead of dividing at every level.
     std::array<float, 4> share{};
+    /// The bottom quadrant's probability within each column, flux[qx] / (flux[qx] +
+    /// flux[qx + 2]) (1/2 when the column is empty), for sample_square: set by
+    /// set_leaf_flux. Two floats of padding make the node 64 bytes.
+    std::array<float, 4> row{0.5f, 0.5f, 0.0f, 0.0f};
     std::array<std::uint32_t, 4> child{};  ///< node index of an inner quadrant; 0 = leaf cell
 };
 
@@ -56,8 +60,9 @@ public:
 
     /// A point of the unit square drawn with density pdf_square from u uniform in [0, 1)^2
     /// (continuous in u inside each cell, so stratified u stays stratified). Requires
-    /// total() > 0.
-    [[nodiscard]] glm::vec2 sample_square(glm::vec2 u) const;
+    /// total() > 0. With `pdf`, also its pdf_square, from the same descent (a guided sample
+    /// needs its density: this spares a second descent and the map's atan2).
+    [[nodiscard]] glm::vec2 sample_square(glm::vec2 u, float* pdf = nullptr) const;
 
     /// A unit direction drawn with density pdf() (requires total() > 0).
     [[nodiscard]] glm::vec3 sample(glm::vec2 u) const {
@@ -66,6 +71,9 @@ public:
 
     /// The leaf cell holding point p, as slot 4 * node + quadrant (see set_leaf_flux).
     [[nodiscard]] std::uint32_t leaf_slot(glm::vec2 p) const;
+
+    /// leaf_slot(p), and in `size` the side of that cell (1/2 at the root's quadrants).
+    [[nodiscard]] std::uint32_t leaf_slot(glm::vec2 p, float& size) const;
 
     /// Number of slots (4 per node); leaf cells own their slot, inner quadrants ignore it.
     [[nodiscard]] std::size_t slot_count() const { return nodes_.size() * 4; }

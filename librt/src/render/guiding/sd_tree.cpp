@@ -3,6 +3,7 @@
 #include <librt/core/error.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -11,9 +12,9 @@ namespace librt::guiding {
 namespace {
 
 /// Most spatial leaves, and most recording quadtree nodes over all leaves: they bound the
-/// memory whatever spatial_threshold and flux_threshold say. A node costs 128 bytes (48 in
-/// the sampling tree, 48 in the recording tree, 4 x 8 of counters), so 2^22 nodes are
-/// 512 MiB at worst. The paper's settings stay far below: ~1000 leaves of a few hundred
+/// memory whatever spatial_threshold and flux_threshold say. A node costs 160 bytes (64 in
+/// the sampling tree, 64 in the recording tree, 4 x 8 of counters), so 2^22 nodes are
+/// 640 MiB at worst. The paper's settings stay far below: ~1000 leaves of a few hundred
 /// nodes on a 1280 x 720 image.
 constexpr std::size_t kMaxLeaves = std::size_t{1} << 15u;
 constexpr std::size_t kMaxTotalNodes = std::size_t{1} << 22u;
@@ -24,6 +25,26 @@ constexpr std::uint32_t kMaxSpatialDepth = 60;
 /// Clamping changes only what is learned, never the image's expectation.
 constexpr int kMeanBits = 24;
 constexpr double kMaxUnits = 17592186044416.0;  // 2^44
+/// The largest float below 1.
+constexpr float kBelowOneF = 0x1.fffffep-1f;
+
+/// splitmix64's finaliser (Steele et al. 2014): a bijective 64-bit mix.
+std::uint64_t mix_bits(std::uint64_t z) {
+    z = (z ^ (z >> 30u)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27u)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31u);
+}
+
+/// A hash of a record's position and direction bits.
+std::uint64_t hash_record(const glm::vec3& p, const glm::vec3& d) {
+    std::uint64_t h = 0x9e3779b97f4a7c15ULL;
+    for (const float f : {p.x, p.y, p.z, d.x, d.y, d.z})
+        h = mix_bits(h ^ std::bit_cast<std::uint32_t>(f));
+    return h;
+}
+
+/// The low 21 bits of h as a float in [0, 1).
+float unit_float(std::uint64_t h) { return float(h & 0x1fffffu) * 0x1p-21f; }
 
 }  // namespace
 
@@ -75,10 +96,15 @@ SdTree::SdTree(const BBox& bounds, const GuidingSettings& settings)
 }
 
 const DirLeaf& SdTree::leaf_at(const glm::vec3& p) const {
+    glm::vec3 size;
+    return locate(p, size);
+}
+
+const DirLeaf& SdTree::locate(const glm::vec3& p, glm::vec3& size) const {
     // Descend halving along x, y, z in turn; p's coordinates are compared with the cell's
     // midpoint, so points outside the cube follow the nearest side.
     glm::vec3 lo = lo_;
-    glm::vec3 size(size_);
+    size = glm::vec3(size_);
     std::uint32_t node = 0;
     for (int axis = 0;; axis = axis == 2 ? 0 : axis + 1) {
         const Node& n = nodes_[node];
@@ -96,7 +122,20 @@ const DirLeaf& SdTree::leaf_at(const glm::vec3& p) const {
 
 void SdTree::record(const DirLeaf& leaf, const glm::vec3& p, const glm::vec3& dir,
                     float flux) const {
-    leaf.vertices.fetch_add(1, std::memory_order_relaxed);
+    // Stochastic box filter (Müller 2019, "Practical Path Guiding in Production"): the
+    // record moves uniformly within a box of its leaf's size around it, then within its
+    // directional cell. The numbers hash the record itself, so where it lands does not
+    // depend on threads.
+    const DirLeaf* target = &leaf;
+    std::uint64_t h = 0;
+    if (settings_.filter_records) {
+        glm::vec3 size;
+        (void)locate(p, size);
+        h = hash_record(p, dir);
+        const glm::vec3 jitter(unit_float(h), unit_float(h >> 21u), unit_float(h >> 42u));
+        target = &locate(p + (jitter - 0.5f) * size, size);
+    }
+    target->vertices.fetch_add(1, std::memory_order_relaxed);
     if (fitting_) {
         for (int a = 0; a < 3; ++a) {
             if (!std::isfinite(p[a])) continue;
@@ -112,8 +151,17 @@ void SdTree::record(const DirLeaf& leaf, const glm::vec3& p, const glm::vec3& di
     const double units = std::min(double(flux) * scale_, kMaxUnits);
     const auto q = static_cast<std::uint64_t>(std::llround(units));
     if (q == 0) return;
-    const std::uint32_t slot = leaf.recording.leaf_slot(direction_to_square(dir));
-    leaf.flux[slot].fetch_add(q, std::memory_order_relaxed);
+    glm::vec2 square = direction_to_square(dir);
+    if (settings_.filter_records) {
+        h = mix_bits(h ^ 0x51ed);
+        float cell = 0.0f;
+        (void)target->recording.leaf_slot(square, cell);
+        // x (cos theta) clamps at the poles; y (phi) wraps around.
+        square.x = std::clamp(square.x + (unit_float(h) - 0.5f) * cell, 0.0f, kBelowOneF);
+        square.y += (unit_float(h >> 32u) - 0.5f) * cell;
+        square.y = std::clamp(square.y - std::floor(square.y), 0.0f, kBelowOneF);
+    }
+    target->flux[target->recording.leaf_slot(square)].fetch_add(q, std::memory_order_relaxed);
 }
 
 void SdTree::end_pass(int pass) {

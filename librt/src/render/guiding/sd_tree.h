@@ -59,7 +59,8 @@ public:
 
     /// Records a path vertex at `p` in `leaf` whose direction `dir` (unit, world) got the
     /// flux estimate `flux` (incident radiance / the density it was sampled with).
-    /// Thread-safe.
+    /// With filter_records the record goes to the leaf and cell at a jittered point
+    /// instead (stochastic box filter; `leaf` is then not used). Thread-safe.
     void record(const DirLeaf& leaf, const glm::vec3& p, const glm::vec3& dir, float flux) const;
 
     /// Ends training pass `pass` (which rendered 2^pass samples per pixel): leaves that
@@ -75,6 +76,9 @@ public:
     [[nodiscard]] const DirLeaf& leaf(std::size_t i) const { return *leaves_[i]; }
 
 private:
+    /// The leaf whose cell holds p, and in `size` that cell's extent.
+    [[nodiscard]] const DirLeaf& locate(const glm::vec3& p, glm::vec3& size) const;
+
     struct Node {
         std::uint32_t children = 0;  // index of the first of two children; 0 = a leaf
         std::uint32_t leaf = 0;      // index into leaves_ when a leaf
