@@ -3,6 +3,7 @@
 
 #include "accel/slab4.h"
 #include "accel/sphere_roots.h"
+#include "geometry/ray_copy.h"
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -88,8 +89,8 @@ template <bool AnyHit, class TestObject>
 // finish) is a load no store can forward to, a stall per query on the room's sphere hits
 // (perf on the synthesis; see docs/benchmarks.md). On a miss `hit` is left as it was.
 [[gnu::always_inline]] inline bool TopLevel::closest(const Ray& ray, ObjectHit& hit) const {
-    Ray r = ray;
-    const DoubleRay dray(ray);
+    Ray r = detail::copy_by_floats(ray);  // no store-forwarding stall (ray_copy.h)
+    const DoubleRay dray(r);
     std::uint32_t best_object = kInvalidId;
     PrimitiveHit& best = hit.primitive;
     visit_objects<false>(r, [&](std::uint32_t id, Ray& current) {
@@ -230,8 +231,8 @@ bool TopLevel::intersect(const Ray& ray, Hit& hit, bool every_sphere_uv) const {
 bool TopLevel::occluded(const Ray& ray, std::uint32_t ignored_object) const {
     if (query_ != Query::Visit) [[unlikely]]
         return occluded_sphere(ray, ignored_object);
-    Ray r = ray;
-    const DoubleRay dray(ray);
+    Ray r = detail::copy_by_floats(ray);  // no store-forwarding stall (ray_copy.h)
+    const DoubleRay dray(r);
     return visit_objects<true>(r, [&](std::uint32_t id, Ray& current) {
         if (id == ignored_object) return false;
         const Object& o = objects_[id];
@@ -283,7 +284,11 @@ void TopLevel::finish(const Ray& ray, const ObjectHit& object_hit, bool every_sp
     }
     const TriangleMesh& mesh = prototypes_[o.index].mesh;
     const glm::uvec3& idx = mesh.triangles[prim.primitive_id];
-    const float b1 = prim.u, b2 = prim.v, b0 = 1.0f - prim.u - prim.v;
+    // u and v by 4-byte loads: closest() has just stored (t, u) as 8 bytes and v as 4, and
+    // g++ read (u, v) as one 8-byte load across both, which no store forwards to (a stall
+    // per mesh hit; geometry/ray_copy.h).
+    const float b1 = detail::load_alone(prim.u), b2 = detail::load_alone(prim.v);
+    const float b0 = 1.0f - b1 - b2;
     const glm::vec3& p0 = mesh.positions[idx.x];
     const glm::vec3& p1 = mesh.positions[idx.y];
     const glm::vec3& p2 = mesh.positions[idx.z];
@@ -308,7 +313,9 @@ void TopLevel::finish(const Ray& ray, const ObjectHit& object_hit, bool every_sp
                                                  const PrimitiveHit& prim, Hit& hit) const {
     const TriangleMesh& mesh = prototypes_[inst.prototype].mesh;
     const glm::uvec3& idx = mesh.triangles[prim.primitive_id];
-    const float b1 = prim.u, b2 = prim.v, b0 = 1.0f - prim.u - prim.v;
+    // By 4-byte loads, as in finish().
+    const float b1 = detail::load_alone(prim.u), b2 = detail::load_alone(prim.v);
+    const float b0 = 1.0f - b1 - b2;
     const glm::vec3& p0 = mesh.positions[idx.x];
     const glm::vec3& p1 = mesh.positions[idx.y];
     const glm::vec3& p2 = mesh.positions[idx.z];

@@ -3,6 +3,7 @@
 // into it for speed; guiding's own code is in guiding/.
 
 #include "bsdf_dispatch.h"
+#include "geometry/ray_copy.h"
 #include "render/guiding/path_recorder.h"
 #include "render/guiding/sd_tree.h"
 
@@ -164,8 +165,10 @@ struct Vertex {
 
 /// The weight of the emission of the object hit along unit direction `dir` after `bounce`:
 /// 0 from the back of a one-sided light.
-float emitter_weight(const Scene& scene, const Hit& hit, const glm::vec3& dir, const Bounce& bounce,
-                     const LightChoicePoint* chosen_at) {
+// Out of line, as escaped() below: rare next to scattering, so the path loop's hot blocks
+// stay contiguous (perf on the synthesis, docs/benchmarks.md).
+[[gnu::noinline]] float emitter_weight(const Scene& scene, const Hit& hit, const glm::vec3& dir,
+                                       const Bounce& bounce, const LightChoicePoint* chosen_at) {
     const std::uint32_t light = scene.light_of_hit(hit);
     if (light != kInvalidId && scene.lights()[light].one_sided &&
         !(glm::dot(dir, hit.geometric_normal) < 0.0f))
@@ -175,8 +178,9 @@ float emitter_weight(const Scene& scene, const Hit& hit, const glm::vec3& dir, c
 
 /// What a ray leaving the scene along unit direction `dir` after `bounce` receives from
 /// the lights at infinity, each with its MIS weight (all of them fully when `brute`).
-glm::vec3 escaped(const Scene& scene, const glm::vec3& dir, const Bounce& bounce, bool brute,
-                  bool camera_ray, const LightChoicePoint* chosen_at) {
+[[gnu::noinline]] glm::vec3 escaped(const Scene& scene, const glm::vec3& dir, const Bounce& bounce,
+                                    bool brute, bool camera_ray,
+                                    const LightChoicePoint* chosen_at) {
     glm::vec3 sum(0.0f);
     for (const std::uint32_t i : scene.infinite_lights()) {
         const Light& light = scene.lights()[i];
@@ -186,6 +190,13 @@ glm::vec3 escaped(const Scene& scene, const glm::vec3& dir, const Bounce& bounce
         sum += le * (brute ? 1.0f : light_weight(scene, i, dir, bounce, chosen_at));
     }
     return sum;
+}
+
+/// sample_li of a light that is not a sphere light, out of line: std::visit over every
+/// light type inline put a jump table and its calls between the path loop's hot blocks.
+[[gnu::noinline]] LightLiSample sample_other_li(const Light& light, const glm::vec3& p,
+                                                glm::vec2 u) {
+    return sample_li(light, p, u);
 }
 
 /// Next-event estimation at a non-specular hit: the light sampler chooses a light, a
@@ -221,7 +232,7 @@ template <bool Guided = false>
     // light types costs a dispatch per sample; the same sample_li either way.
     const SphereLight* sphere = std::get_if<SphereLight>(&light.source);
     const LightLiSample s =
-        sphere != nullptr ? sample_li(*sphere, hit.point, u) : sample_li(light, hit.point, u);
+        sphere != nullptr ? sample_li(*sphere, hit.point, u) : sample_other_li(light, hit.point, u);
     if (!s.valid()) return glm::vec3(0.0f);
     // The unshadowed integrand f L |cos(theta_i)|; no shadow ray when it is 0.
     float cos_i = 0.0f;
@@ -317,6 +328,30 @@ GuidedSample sample_guided(Vertex& v, const guiding::DirLeaf& leaf, float alpha,
     return g;
 }
 
+/// The BSDF sample of a vertex whose kind is not Lambert's, its direction in world space in
+/// `wi_world` when valid. Out of line: the path loop's Lambert case is the hot one, and
+/// every other kind's dispatch inline sat between its hot blocks (perf on the synthesis).
+[[gnu::noinline]] BsdfSample sample_other(Vertex& v, float uc, glm::vec2 u, glm::vec3& wi_world) {
+    const ShadingPoint& sp = v.point();
+    const BsdfSample bs = bsdfs::dispatch(v.m.kind, [&](auto bsdf) {
+        // wo converted inside each kind's case: Lambert ignores it, and there it is dropped.
+        return decltype(bsdf)::sample(v.m, sp, v.wo(), uc, u);
+    });
+    if (bs.valid()) wi_world = sp.frame.to_world(bs.wi);
+    return bs;
+}
+
+/// Makes `ray` spawn_ray(point, normal, direction), written in place: assigned from a
+/// temporary, g++ stored the temporary field by field and copied it by 16-byte loads that
+/// no store forwards to (a stall per bounce; see ray_copy.h).
+[[gnu::always_inline]] inline void respawn(Ray& ray, const glm::vec3& point,
+                                           const glm::vec3& normal, const glm::vec3& direction) {
+    ray.origin = offset_ray_origin(point, normal, direction);
+    ray.direction = direction;
+    ray.t_min = 0.0f;
+    ray.t_max = std::numeric_limits<float>::infinity();
+}
+
 /// What a path needs besides the scene: depth limit, roulette and MIS choices.
 struct TraceSettings {
     int max_depth = 5;
@@ -358,8 +393,8 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             if (guide.recorder != nullptr) guide.recorder->add(c);
         }
     };
-    glm::vec3 beta(1.0f);  // path throughput
-    Ray ray = camera_ray;
+    glm::vec3 beta(1.0f);                          // path throughput
+    Ray ray = detail::copy_by_floats(camera_ray);  // no store-forwarding stall (ray_copy.h)
     // Work with unit directions (the BSDF frames need them); rescale t's range.
     const float len = glm::length(ray.direction);
     if (!(len > 0.0f) || !std::isfinite(len)) return radiance;
@@ -387,11 +422,12 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         }
         // may_hide_objects() first: a flag, where camera_visible() is a bounds-checked
         // lookup per camera hit that no scene without hidden objects needs.
-        if (depth == 0 && scene.may_hide_objects() && !scene.camera_visible(hit.object_id)) {
+        if (depth == 0 && scene.may_hide_objects() && !scene.camera_visible(hit.object_id))
+            [[unlikely]] {
             // Camera rays go on through hidden objects (bounded: a ray grazing a hidden
             // surface many times must still end).
             if (++hidden > 64) break;
-            ray = spawn_ray(hit.point, hit.geometric_normal, ray.direction);
+            respawn(ray, hit.point, hit.geometric_normal, ray.direction);
             continue;
         }
         // Textures looked up and the normal map applied here, so the BSDFs get plain values.
@@ -464,7 +500,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                 if (guide.recorder != nullptr)
                     guide.recorder->push(*leaf, hit.point, g.wi, g.pdf, beta);
                 if (!survives_roulette(settings, depth, dim, beta, sampler)) break;
-                ray = spawn_ray(hit.point, hit.geometric_normal, g.wi);
+                respawn(ray, hit.point, hit.geometric_normal, g.wi);
                 continue;
             }
         }
@@ -493,14 +529,8 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             bs = {wl, v.albedo, cosine_hemisphere_pdf(wl.z), bsdfs::Diffuse::kLobes};
             if (!bs.valid()) break;
         } else {
-            const ShadingPoint& sp = v.point();
-            bs = bsdfs::dispatch(m.kind, [&](auto bsdf) {
-                // wo converted inside each kind's case: Lambert ignores it, and there it is
-                // dropped.
-                return decltype(bsdf)::sample(m, sp, v.wo(), uc, u);
-            });
+            bs = sample_other(v, uc, u, wi_world);
             if (!bs.valid()) break;  // absorbed, or below the real surface
-            wi_world = sp.frame.to_world(bs.wi);
         }
         beta *= bs.weight;
         if (has(bs.lobe, BsdfLobe::Specular))
@@ -508,9 +538,19 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         else
             bounce = {light_only ? EmitterWeight::Zero : EmitterWeight::Mis, bs.pdf, hit.point};
         if (!survives_roulette(settings, depth, dim, beta, sampler)) break;
-        ray = spawn_ray(hit.point, hit.geometric_normal, wi_world);
+        respawn(ray, hit.point, hit.geometric_normal, wi_world);
     }
     return radiance;
+}
+
+/// trace<S, true>, never inlined: PathTracer::li inlines the default light choice's loop,
+/// and with this one inline too it was one 14.5 KB function, each loop's hot blocks
+/// between the other's (perf on the synthesis: docs/benchmarks.md, "Where the last 7 % of
+/// CPU time goes").
+template <Strategy S>
+[[gnu::noinline]] glm::vec3 trace_bounded(const Scene& scene, const Ray& camera_ray,
+                                          Sampler& sampler, const TraceSettings& settings) {
+    return trace<S, true>(scene, camera_ray, sampler, settings);
 }
 
 TraceSettings trace_settings(const PathTracerSettings& s) {
@@ -535,7 +575,7 @@ glm::vec3 DirectLighting::li(const Scene& scene, const Ray& ray, Sampler& sample
     TraceSettings s;
     s.max_depth = settings_.max_depth;
     if (settings_.light_choice == LightChoice::Bounded)
-        return guard(trace<Strategy::Direct, true>(scene, ray, sampler, s));
+        return guard(trace_bounded<Strategy::Direct>(scene, ray, sampler, s));
     return guard(trace<Strategy::Direct, false>(scene, ray, sampler, s));
 }
 
@@ -547,7 +587,7 @@ glm::vec3 PathTracer::li(const Scene& scene, const Ray& ray, Sampler& sampler) c
     if (guide_ == nullptr) [[likely]] {
         if (settings_.light_choice == LightChoice::Bounded)
             return guard(
-                trace<Strategy::Path, true>(scene, ray, sampler, trace_settings(settings_)));
+                trace_bounded<Strategy::Path>(scene, ray, sampler, trace_settings(settings_)));
         return guard(trace<Strategy::Path, false>(scene, ray, sampler, trace_settings(settings_)));
     }
     return li_guided(scene, ray, sampler);
