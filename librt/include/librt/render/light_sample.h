@@ -12,7 +12,10 @@ struct LightLiSample {
     /// factor that times cos(theta) gives the irradiance: I / d^2.
     glm::vec3 radiance{0.0f};
     float pdf = 0.0f;       ///< per unit solid angle at the reference point; 1 for a delta light
-    float distance = 0.0f;  ///< from the reference point to the emitting point along wi
+    /// Where a shadow ray toward the sample ends: the distance from the reference point to the
+    /// emitting point along wi, which a light may shorten by the ray offsets of both ends
+    /// (triangle lights do, see triangle_light.h).
+    float distance = 0.0f;
     bool is_delta = false;  ///< a delta light: no BSDF-sampled direction can find it
 
     /// True when there is a direction to use (pdf > 0).
