@@ -1,3 +1,7 @@
+// The options every app shares (size, samples, sampler, filter, guiding, output, AOVs) and
+// their checks. Over 400 lines: one table of options keeps the apps' command lines alike;
+// each option is a few lines of registration plus its range check.
+
 #include "cli.h"
 
 #include <librt/accel/simd.h>
