@@ -1,6 +1,7 @@
-// The options every app shares (size, samples, sampler, filter, guiding, output, AOVs) and
-// their checks. Over 400 lines: one table of options keeps the apps' command lines alike;
-// each option is a few lines of registration plus its range check.
+// What every app shares: the common, sampling and mesh options with their checks, the
+// progress bar, Ctrl-C handling and run() (errors to exit codes). Over 400 lines: one place
+// keeps the apps' command lines and messages alike; each option is a few lines of
+// registration plus its range check.
 
 #include "cli.h"
 
