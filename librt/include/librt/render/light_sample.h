@@ -11,7 +11,7 @@ struct LightLiSample {
     /// Radiance arriving at the reference point along -wi. For a delta light (a point), the
     /// factor that times cos(theta) gives the irradiance: I / d^2.
     glm::vec3 radiance{0.0f};
-    float pdf = 0.0f;       ///< per unit solid angle at the reference point; 1 for a delta light
+    float pdf = 0.0f;  ///< per unit solid angle at the reference point; 1 for a delta light
     /// Where a shadow ray toward the sample ends: the distance from the reference point to the
     /// emitting point along wi, which a light may shorten by the ray offsets of both ends
     /// (triangle lights do, see triangle_light.h).
