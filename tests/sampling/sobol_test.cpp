@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <iostream>
@@ -51,6 +52,47 @@ namespace {
             return ::testing::AssertionFailure() << "2^" << k << " values: two in cell " << cell;
         }
     }
+    return ::testing::AssertionSuccess();
+}
+
+// Whether n = 2^k points in [0, 1)^D form a (t, k, D)-net in base 2: every elementary
+// interval of volume 2^(t-k) (side 2^-a_j in dimension j, a_1 + ... + a_D = k - t) holds
+// exactly 2^t points.
+template <std::size_t D>
+::testing::AssertionResult is_net(const std::vector<std::array<float, D>>& points, int k, int t) {
+    const std::size_t n = std::size_t{1} << k;
+    if (points.size() < n) return ::testing::AssertionFailure() << "too few points";
+    if (t >= k) return ::testing::AssertionSuccess();
+    std::array<int, D> a{};  // the current composition of k - t, enumerated in lexicographic order
+    const auto next = [&]() {
+        // The next composition of k - t into D parts; false after the last one.
+        for (std::size_t j = D - 1; j > 0; --j) {
+            int rest = 0;
+            for (std::size_t i = j; i < D; ++i) rest += a[i];
+            if (rest > 0) {
+                ++a[j - 1];
+                for (std::size_t i = j; i < D; ++i) a[i] = 0;
+                a[D - 1] = rest - 1;
+                return true;
+            }
+        }
+        return false;
+    };
+    a[D - 1] = k - t;
+    do {
+        std::vector<int> count(std::size_t{1} << (k - t), 0);
+        for (std::size_t i = 0; i < n; ++i) {
+            std::size_t cell = 0;
+            for (std::size_t j = 0; j < D; ++j) {
+                const auto c = static_cast<std::size_t>(points[i][j] * std::ldexp(1.0f, a[j]));
+                cell = (cell << a[j]) | c;  // exact: scaling by a power of 2
+            }
+            if (++count[cell] > (1 << t)) {
+                return ::testing::AssertionFailure()
+                       << "2^" << k << " points: more than 2^" << t << " in cell " << cell;
+            }
+        }
+    } while (next());
     return ::testing::AssertionSuccess();
 }
 
@@ -154,6 +196,15 @@ TEST(SobolSampler, EveryPairAndSingleOfAPixelIsStratifiedForEveryPowerOfTwo) {
             std::vector<glm::vec2> points;
             for (const PathDraws& d : samples) points.push_back(d.pairs[p]);
             for (int k = 0; k <= k_max; ++k) {
+                if (p == 1) {
+                    // The lens pair is Sobol' dimensions 2 and 3 (see the next test): a
+                    // (t, 2)-sequence with t = (2 - 1) + (3 - 1) = 3, their polynomials'
+                    // degrees less one (Sobol' 1967), not a (0, 2)-sequence.
+                    std::vector<std::array<float, 2>> lens;
+                    for (const glm::vec2& q : points) lens.push_back({q.x, q.y});
+                    EXPECT_TRUE(is_net(lens, k, 3)) << "pixel " << x << "," << y << " lens";
+                    continue;
+                }
                 EXPECT_TRUE(is_02_net(points, k)) << "pixel " << x << "," << y << " pair " << p;
             }
         }
@@ -161,6 +212,26 @@ TEST(SobolSampler, EveryPairAndSingleOfAPixelIsStratifiedForEveryPowerOfTwo) {
             std::vector<float> values;
             for (const PathDraws& d : samples) values.push_back(d.singles[q]);
             for (int k = 0; k <= k_max; ++k) EXPECT_TRUE(is_stratified_1d(values, k)) << q;
+        }
+    }
+}
+
+TEST(SobolSampler, PixelAndLensAreOneFourDimensionalNet) {
+    // The camera's four numbers are Sobol' dimensions 0..3 of one shuffled index, so every
+    // 2^k samples of a pixel form a (3, k, 4)-net: t = 0 + 0 + 1 + 2, the degrees of the
+    // four dimensions' polynomials less one (Sobol' 1967). Padding the lens pair with its
+    // own shuffle (pairs stratified, their pairing random) fails this from k = 5 on.
+    constexpr int k_max = 10;
+    for (const auto& [x, y, seed] : {std::tuple{0u, 0u, 0ull}, {17u, 3u, 42ull}, {9u, 80u, 5ull}}) {
+        std::vector<std::array<float, 4>> points;
+        for (std::uint32_t s = 0; s < (1u << k_max); ++s) {
+            Sampler sampler(SamplerKind::Sobol, x, y, s, seed);
+            const glm::vec2 pixel = sampler.next_2d();
+            const glm::vec2 lens = sampler.next_2d();
+            points.push_back({pixel.x, pixel.y, lens.x, lens.y});
+        }
+        for (int k = 0; k <= k_max; ++k) {
+            EXPECT_TRUE(is_net(points, k, 3)) << "pixel " << x << "," << y << " k = " << k;
         }
     }
 }

@@ -61,7 +61,12 @@ struct SampleDimensions {
 /// next_1d() takes dimension 0. Distinct sampler dimensions are decorrelated by Burley's
 /// shuffle (an Owen scramble of the sample index, seeded per pixel and dimension) and by
 /// independent Owen scrambles of the values. Joint stratification across pairs is given
-/// up, the trade Burley 2020 discusses for padding; no dimension ever runs out.
+/// up, the trade Burley 2020 discusses for padding; no dimension ever runs out. The one
+/// exception is the camera: the lens pair shares the pixel pair's shuffle and takes
+/// Sobol' dimensions 2 and 3, so pixel and lens form one 4D net (t = 3). Depth of field
+/// makes what a camera ray hits depend on all four numbers at once (a blurred edge), and
+/// there joint stratification measured 1.1-1.3x lower RMSE (docs/sampling.md); the lens
+/// pair alone is then a (3, 2)-sequence rather than a (0, 2)-sequence.
 class LIBRT_API Sampler {
 public:
     /// An independent sampler drawing from a copy of an already seeded generator.
