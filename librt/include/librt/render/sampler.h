@@ -12,7 +12,7 @@ namespace librt {
 /// Where the random numbers of a camera path come from.
 enum class SamplerKind : std::uint8_t {
     Independent,  ///< a PCG32 stream per (pixel, sample): the default, as librt always was
-    Sobol,        ///< Owen-scrambled Sobol' points padded in 2D, one scramble per pixel
+    Sobol,        ///< Owen-scrambled Sobol' (camera: one 4D net; then padded 2D pairs)
 };
 
 /// The dimensions a camera path draws, in order. The camera takes the first four; each
