@@ -136,9 +136,10 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         ms.render.sampler = apps::sampler_kind(o.sampling);
         ms.tile_size = o.mpi_tile;
         ms.aovs = apps::lower_extension(o.output) == ".exr";
-        return apps::render_over_ranks(
-            job, loaded.scene, camera, integrator, ms, o.quiet, o.output,
-            [&](const Film& film) { apps::write_output(o.output, film, scale); });
+        return apps::render_over_ranks(job, loaded.scene, camera, integrator, ms, o.quiet, o.output,
+                                       [&](const Film& film, const Image& image) {
+                                           apps::write_output(o.output, film, image, scale);
+                                       });
     }
     apps::ProgressiveOutput out;
     out.output = o.output;
