@@ -148,7 +148,14 @@ BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrato
                     const Ray& ray = camera_ray.ray;
                     if (with_aovs) {
                         const AovSample a = sample_aovs(scene, ray, px, py, s, settings.seed);
-                        aov.albedo += glm::dvec3(a.albedo);
+                        // The albedo is filtered like the beauty: with the weight's sign
+                        // (its size is one per filter; resolve_layers divides it out).
+                        if (camera_ray.weight < 0.0f) {
+                            aov.albedo -= glm::dvec3(a.albedo);
+                            ++aov.negative;
+                        } else {
+                            aov.albedo += glm::dvec3(a.albedo);
+                        }
                         aov.normal += glm::dvec3(a.normal);
                         if (a.hit) {
                             aov.depth += static_cast<double>(a.depth);
