@@ -127,6 +127,8 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     pt.light_choice = o.light_choice == "bounded" ? LightChoice::Bounded : LightChoice::Power;
     pt.guiding.enabled = o.sampling.guiding;
     pt.guiding.training_passes = o.sampling.guiding_passes;
+    // Kept in the image, alone (render_progressive's final frame) and under mpirun alike.
+    pt.guiding.keep_training_samples = o.sampling.guiding;
     PathTracer integrator(pt);
     if (job.distributed()) {
         apps::MpiJobSettings ms;
