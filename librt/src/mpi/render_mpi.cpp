@@ -377,12 +377,11 @@ Film run_worker(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
         validate(s);
         integrator.preprocess(scene);
         const RenderSettings rs = block_settings(s, s.render.cancel);
-        // Trained exactly as rank 0 trains (its kept passes are dropped here), so every
-        // rank learns the same guide even from an integrator whose learning depended on
-        // how a pass's samples were split.
+        // Not kept here (rank 0 keeps them; no whole-image sums on a worker): a pass
+        // rendered in halves teaches PathTracer the same guide, as its records are integer
+        // sums that no order or split changes.
+        train(scene, camera, integrator, rs);
         const bool halves = keeps_halves(integrator, s);
-        PassCombination dropped;
-        train(scene, camera, integrator, rs, halves ? &dropped : nullptr);
         const auto spp = static_cast<std::uint32_t>(s.render.samples_per_pixel);
         while (true) {
             const Clock::time_point t0 = Clock::now();
