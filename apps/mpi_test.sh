@@ -2,7 +2,8 @@
 # rt_mpi_render under mpirun (ctest mpi.*, registered when librt::mpi is built):
 #   identical  mpirun -np 1, 2, 3, 4 give PFM files byte-identical (cmp) to the one-process
 #              threaded render (--single-process), and -np 3 an EXR (every layer, float)
-#              byte-identical to the one-process EXR;
+#              byte-identical to the one-process EXR, and -np 2 with --guiding (training
+#              passes kept) a PFM byte-identical to the one-process one;
 #   failures   a rank that fails (bad mesh file while setting up, an exception while
 #              rendering, killed by SIGKILL while rendering) ends the job with a non-zero
 #              exit, a message naming that rank, and no output file (nor temporary).
@@ -35,6 +36,15 @@ if [ "$mode" = identical ]; then
     -o "$dir/np3.exr"
   cmp "$dir/reference.exr" "$dir/np3.exr" || fail "-np 3 EXR differs from the one-process EXR"
   echo "-np 3 EXR with AOVs: byte-identical to the one-process EXR"
+  # --guiding keeps its training passes: render_block in halves joined by PassCombination
+  # in one process, render_mpi's image over 2 ranks.
+  "$app" "${frame[@]}" --threads 2 --single-process --guiding --guiding-passes 3 \
+    -o "$dir/reference_guiding.pfm"
+  "$mpirun" "${flags[@]}" -np 2 "$app" "${frame[@]}" --threads 1 --tile 16 --guiding \
+    --guiding-passes 3 -o "$dir/np2_guiding.pfm"
+  cmp "$dir/reference_guiding.pfm" "$dir/np2_guiding.pfm" ||
+    fail "-np 2 --guiding differs from the one-process render"
+  echo "-np 2 --guiding (training passes kept): byte-identical to the one-process render"
   rm -rf "$dir"
   exit 0
 fi

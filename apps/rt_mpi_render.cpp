@@ -47,6 +47,9 @@ public:
         return inner_.begin_training_pass(pass);
     }
     void end_training_pass(int pass) override { inner_.end_training_pass(pass); }
+    [[nodiscard]] bool keeps_training_samples() const override {
+        return inner_.keeps_training_samples();
+    }
     [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray,
                                Sampler& sampler) const override {
         if (calls_.fetch_add(1) == after_) {
@@ -77,12 +80,16 @@ bool ends_with(const std::string& s, const std::string& suffix) {
            s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-// Writes the film: EXR with every layer (beauty linear), PFM/HDR linear, PNG tone-mapped.
-void write_film(const std::string& path, const Film& film, bool exr_float, const ToneMap& tone) {
+// Writes `beauty` (the film resolved, or joined to kept training passes): EXR with the
+// film's other layers (beauty linear), PFM/HDR linear, PNG tone-mapped.
+void write_film(const std::string& path, const Film& film, const Image& beauty, bool exr_float,
+                const ToneMap& tone) {
     if (ends_with(path, ".exr")) {
-        write_exr(path, resolve_layers(film), exr_float ? ExrPixelType::Float : ExrPixelType::Half);
+        ImageLayers layers = resolve_layers(film);
+        layers.beauty = beauty;
+        write_exr(path, layers, exr_float ? ExrPixelType::Float : ExrPixelType::Half);
     } else {
-        write_image(path, resolve(film), tone);
+        write_image(path, beauty, tone);
     }
 }
 
@@ -190,20 +197,29 @@ int main(int argc, char** argv) {
         const auto start = std::chrono::steady_clock::now();
         const double cpu_start = cpu_seconds();
         Film film;
+        Image image;
         MpiRenderStats stats;
         if (single) {
             if (rank != 0) throw Error("--single-process runs without mpirun (one rank)");
             validate(settings);
             film = Film(camera.width(), camera.height(), settings.aovs);
             integrator.preprocess(scene);
-            train(scene, camera, integrator, settings.render);
-            const RenderStats rs = render_block(
-                scene, camera, integrator, film,
-                {0, 0, film.width, film.height, 0, static_cast<std::uint32_t>(options.spp)},
-                settings.render);
+            // --guiding keeps its training passes: render the halves apart, as render() does.
+            PassCombination kept;
+            train(scene, camera, integrator, settings.render, &kept);
+            const auto spp = static_cast<std::uint32_t>(options.spp);
+            const std::uint32_t mid = kept.count() > 0 ? spp / 2 : 0;
+            RenderStats rs = render_block(scene, camera, integrator, film,
+                                          {0, 0, film.width, film.height, 0, mid}, settings.render);
+            Film half = film;
+            if (!rs.cancelled) {
+                rs = render_block(scene, camera, integrator, film,
+                                  {0, 0, film.width, film.height, mid, spp - mid}, settings.render);
+            }
             stats.cancelled = rs.cancelled;
+            image = kept.combined(half, film);
         } else {
-            film = render_mpi(MPI_COMM_WORLD, scene, camera, integrator, settings, &stats);
+            film = render_mpi(MPI_COMM_WORLD, scene, camera, integrator, settings, &stats, &image);
         }
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -215,7 +231,7 @@ int main(int argc, char** argv) {
             if (rank == 0) std::fprintf(stderr, "interrupted: nothing written\n");
             code = 130;
         } else if (rank == 0) {
-            write_film(options.output, film, exr_float, tone);
+            write_film(options.output, film, image, exr_float, tone);
             if (!options.quiet) {
                 std::printf("%dx%d, %d spp, %d rank%s x %d threads: %.3f s\n", film.width,
                             film.height, options.spp, size, size == 1 ? "" : "s", options.threads,

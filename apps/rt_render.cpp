@@ -127,6 +127,8 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     pt.light_choice = o.light_choice == "bounded" ? LightChoice::Bounded : LightChoice::Power;
     pt.guiding.enabled = o.sampling.guiding;
     pt.guiding.training_passes = o.sampling.guiding_passes;
+    // Kept in the image, alone (render_progressive's final frame) and under mpirun alike.
+    pt.guiding.keep_training_samples = o.sampling.guiding;
     PathTracer integrator(pt);
     if (job.distributed()) {
         apps::MpiJobSettings ms;
@@ -136,9 +138,10 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         ms.render.sampler = apps::sampler_kind(o.sampling);
         ms.tile_size = o.mpi_tile;
         ms.aovs = apps::lower_extension(o.output) == ".exr";
-        return apps::render_over_ranks(
-            job, loaded.scene, camera, integrator, ms, o.quiet, o.output,
-            [&](const Film& film) { apps::write_output(o.output, film, scale); });
+        return apps::render_over_ranks(job, loaded.scene, camera, integrator, ms, o.quiet, o.output,
+                                       [&](const Film& film, const Image& image) {
+                                           apps::write_output(o.output, film, image, scale);
+                                       });
     }
     apps::ProgressiveOutput out;
     out.output = o.output;

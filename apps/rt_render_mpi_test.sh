@@ -2,8 +2,9 @@
 # rt_render under mpirun (ctest mpi.rt_render_*, registered when librt::mpi is built):
 #   identical  mpirun -np 1, 2, 3, 4 give files byte-identical (cmp) to the one-process
 #              rt_render: a PNG (default sampler and pixel jitter) and an EXR with every
-#              layer rendered with --sampler sobol --filter mitchell, on an OBJ this script
-#              writes (rt_render has no built-in scene; this mode needs no data);
+#              layer rendered with --sampler sobol --filter mitchell, and a PFM with
+#              --guiding (training passes kept), on an OBJ this script writes
+#              (rt_render has no built-in scene; this mode needs no data);
 #   gltf       the same on the data's glTF scene gltf/textures.glb (exit 77, a skip, with a
 #              message when the data is missing; a failure when LIBRT_REQUIRE_DATA=1);
 #   failures   one rank whose scene file is missing, and one rank killed by SIGKILL while
@@ -65,6 +66,9 @@ if [ "$mode" = identical ]; then
   identical obj.png "$scene" "${frame[@]}"
   identical obj-sobol-mitchell.exr "$scene" "${frame[@]}" --sampler sobol --filter mitchell \
     --filter-radius 2
+  # --guiding keeps its training passes: the progressive one-process image and render_mpi's
+  # both join them to the film as render() does.
+  identical obj-guiding.pfm "$scene" "${frame[@]}" --guiding --guiding-passes 3
   rm -rf "$dir"
   exit 0
 fi

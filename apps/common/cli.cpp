@@ -229,7 +229,7 @@ PathTracerSettings path_tracer_settings(const AppOptions& options) {
     settings.russian_roulette = false;
     settings.guiding.enabled = options.guiding;
     settings.guiding.training_passes = options.guiding_passes;
-    // These apps render with render(), which can keep the training passes in the image.
+    // Every render entry point can keep the training passes in the image (renderer.h).
     settings.guiding.keep_training_samples = options.guiding;
     return settings;
 }

@@ -81,14 +81,14 @@ void MpiJob::check_all_ranks(const std::string& local_error) const {
 }
 
 Film MpiJob::render(const Scene& scene, const Camera& camera, Integrator& integrator,
-                    const MpiJobSettings& settings, MpiJobStats& stats) const {
+                    const MpiJobSettings& settings, MpiJobStats& stats, Image& image) const {
     if (!distributed()) throw Error("MpiJob::render: this process is not one of several ranks");
     MpiRenderSettings s;
     s.render = settings.render;
     s.tile_size = settings.tile_size;
     s.aovs = settings.aovs;
     MpiRenderStats st;
-    Film film = render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s, &st);
+    Film film = render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s, &st, &image);
     stats = MpiJobStats{};
     stats.seconds = st.seconds;
     stats.tiles = st.tiles;

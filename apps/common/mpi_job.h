@@ -81,10 +81,13 @@ public:
     /// Collective: renders the frame over the ranks with librt::render_mpi (rank 0 schedules
     /// tiles and renders too, the others render tiles onto tile-sized films). Returns the
     /// whole film on rank 0, an empty one elsewhere; the film equals a one-process render
-    /// with the same settings bit for bit. Throws librt::Error on every rank when a rank
-    /// failed, naming it. Only for distributed() jobs (throws otherwise).
+    /// with the same settings bit for bit. `image` receives on rank 0 the image to write:
+    /// resolve(film), or with kept training passes (--guiding) render()'s combination.
+    /// Throws librt::Error on every rank when a rank failed, naming it. Only for
+    /// distributed() jobs (throws otherwise).
     [[nodiscard]] Film render(const Scene& scene, const Camera& camera, Integrator& integrator,
-                              const MpiJobSettings& settings, MpiJobStats& stats) const;
+                              const MpiJobSettings& settings, MpiJobStats& stats,
+                              Image& image) const;
 
 private:
     int rank_ = 0;
@@ -94,13 +97,14 @@ private:
 };
 
 /// A frame rendered over the ranks of `job` (distributed()) and written by rank 0 through
-/// `write`; rank 0 draws the progress bar and prints the summary unless `quiet`. Returns the
-/// process's exit code: 0, or 130 when Ctrl-C (apps::interrupt_flag) or a rank's cancel flag
-/// stopped the render; then nothing is written, as tiles finished so far would hold
-/// different sample counts. Throws librt::Error on every rank when a rank failed.
+/// `write` (the film and its image, see MpiJob::render); rank 0 draws the progress bar and prints
+/// the summary unless `quiet`. Returns the process's exit code: 0, or 130 when Ctrl-C
+/// (apps::interrupt_flag) or a rank's cancel flag stopped the render; then nothing is written, as
+/// tiles finished so far would hold different sample counts. Throws librt::Error on every rank when
+/// a rank failed.
 [[nodiscard]] int render_over_ranks(const MpiJob& job, const Scene& scene, const Camera& camera,
                                     Integrator& integrator, MpiJobSettings settings, bool quiet,
                                     const std::string& output,
-                                    const std::function<void(const Film&)>& write);
+                                    const std::function<void(const Film&, const Image&)>& write);
 
 }  // namespace librt::apps

@@ -18,7 +18,8 @@ void MpiJob::check_all_ranks(const std::string& local_error) const {
 }
 
 Film MpiJob::render(const Scene& /*scene*/, const Camera& /*camera*/, Integrator& /*integrator*/,
-                    const MpiJobSettings& /*settings*/, MpiJobStats& /*stats*/) const {
+                    const MpiJobSettings& /*settings*/, MpiJobStats& /*stats*/,
+                    Image& /*image*/) const {
     throw Error("MpiJob::render: this rt_render was built without MPI");
 }
 

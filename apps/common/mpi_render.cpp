@@ -23,14 +23,16 @@ double peak_rss_mib() {
 
 int render_over_ranks(const MpiJob& job, const Scene& scene, const Camera& camera,
                       Integrator& integrator, MpiJobSettings settings, bool quiet,
-                      const std::string& output, const std::function<void(const Film&)>& write) {
+                      const std::string& output,
+                      const std::function<void(const Film&, const Image&)>& write) {
     const bool root = job.rank() == 0;
     ProgressBar progress(!quiet && root);
     if (root)
         settings.render.progress = [&progress](const RenderProgress& p) { progress.update(p); };
     settings.render.cancel = interrupt_flag();
     MpiJobStats stats;
-    const Film film = job.render(scene, camera, integrator, settings, stats);
+    Image image;
+    const Film film = job.render(scene, camera, integrator, settings, stats, image);
     progress.finish();
     if (stats.cancelled || interrupt_flag()->load()) {
         if (root)
@@ -39,7 +41,7 @@ int render_over_ranks(const MpiJob& job, const Scene& scene, const Camera& camer
         return 130;
     }
     if (!root) return 0;
-    write(film);
+    write(film, image);
     if (!quiet) {
         std::printf(
             "%dx%d, %d spp, %d ranks x %d threads: render %.2f s, peak memory of rank 0 "

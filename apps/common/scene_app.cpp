@@ -72,16 +72,17 @@ Image display_image(const Image& linear, float scale) {
     return out;
 }
 
-void write_output(const std::string& path, const Film& film, float scale) {
+void write_output(const std::string& path, const Film& film, const Image& beauty, float scale) {
     const std::string ext = lower_extension(path);
     if (ext == ".exr") {
         ImageLayers layers = resolve_layers(film);
+        layers.beauty = beauty;
         for (glm::vec3& p : layers.beauty.pixels) p *= scale;
         write_exr(path, layers);
     } else if (ext == ".png") {
-        write_png(path, display_image(resolve(film), scale), ToneMap{1.0f, 1.0f});
+        write_png(path, display_image(beauty, scale), ToneMap{1.0f, 1.0f});
     } else {
-        write_image(path, resolve(film), ToneMap{scale, 1.0f});
+        write_image(path, beauty, ToneMap{scale, 1.0f});
     }
 }
 
@@ -101,14 +102,15 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera, Pat
     ps.time_limit = o.time_limit;
     ps.aovs = lower_extension(o.output) == ".exr";
     Film film;
-    const RenderStats stats = render_progressive(scene, camera, integrator, film, ps);
+    Image image;  // the film, joined to guiding's kept training passes when it completes
+    const RenderStats stats = render_progressive(scene, camera, integrator, film, ps, &image);
     progress.finish();
     const bool interrupted = stats.cancelled || interrupt_flag()->load();
     if (stats.passes == 0) {
         std::cerr << "interrupted before the first pass finished: nothing written\n";
         return 130;
     }
-    write_output(o.output, film, o.scale);
+    write_output(o.output, film, image, o.scale);
     const bool partial = stats.samples_per_pixel < std::uint32_t(o.spp);
     if (!o.quiet || partial) {
         const double rate = stats.seconds > 0.0 ? double(stats.samples) / stats.seconds : 0.0;

@@ -42,8 +42,9 @@ void parse_size(const std::string& text, float aspect, int& width, int& height);
 /// The display image: exposure `scale`, clamp to [0, 1] (NaN -> 0), sRGB-encoded.
 [[nodiscard]] Image display_image(const Image& linear, float scale);
 
-/// Writes the film: PNG display-encoded, EXR with its layers, HDR / PFM linear.
-void write_output(const std::string& path, const Film& film, float scale);
+/// Writes `beauty` (resolve(film), or the film joined to kept training passes): PNG
+/// display-encoded, EXR with the film's other layers, HDR / PFM linear.
+void write_output(const std::string& path, const Film& film, const Image& beauty, float scale);
 
 /// Renders `scene` through `camera` one sample per pixel per pass (render_progressive),
 /// with a progress bar, until o.spp samples, Ctrl-C or the time limit; writes the finished

@@ -7,6 +7,7 @@
 
 #include <librt/core/error.h>
 #include <librt/mpi/render_mpi.h>
+#include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
 
 #include <gtest/gtest.h>
@@ -20,6 +21,7 @@
 using namespace librt;
 using librt::testing::film_test_camera;
 using librt::testing::film_test_scene;
+using librt::testing::same_pixels;
 using librt::testing::same_records;
 
 namespace {
@@ -65,6 +67,58 @@ TEST(RenderMpi, FilmEqualsTheOneProcessFilmForAnyTileAndThreadCount) {
             } else {
                 EXPECT_EQ(film.width, 0);
                 EXPECT_TRUE(film.pixels.empty());
+            }
+        }
+    }
+}
+
+// Path guiding that keeps its training passes: rank 0 keeps them and the tiles travel
+// with their records at half the samples, so the image render_mpi returns is render()'s
+// bit for bit, for any tile size, thread count and number of ranks (ctest runs this alone,
+// with 2 and with 3 ranks), and the film holds the image's own samples.
+TEST(RenderMpi, KeptTrainingPassesGiveRendersImage) {
+    const Scene scene = film_test_scene();
+    const Camera camera = film_test_camera(17, 11);
+    PathTracerSettings pt{5, false};
+    pt.guiding.enabled = true;
+    pt.guiding.keep_training_samples = true;
+    pt.guiding.training_passes = 3;
+    pt.guiding.spatial_threshold = 300;
+    RenderSettings rs;
+    rs.samples_per_pixel = 5;
+    rs.seed = 23;
+    rs.threads = 2;
+    Image expected;
+    Film expected_film(camera.width(), camera.height(), true);
+    if (world_rank() == 0) {
+        PathTracer one(pt);
+        expected = render(scene, camera, one, rs);
+        PathTracer block(pt);
+        block.preprocess(scene);
+        (void)train(scene, camera, block, rs);
+        (void)render_block(scene, camera, block, expected_film,
+                           {0, 0, camera.width(), camera.height(), 0, 5}, rs);
+        ASSERT_FALSE(same_records(expected_film, Film(camera.width(), camera.height(), true)));
+    }
+    for (const int tile : {4, 32}) {
+        for (const int threads : {1, 2}) {
+            PathTracer tracer(pt);
+            MpiRenderSettings s;
+            s.render = rs;
+            s.render.threads = threads;
+            s.tile_size = tile;
+            s.aovs = true;
+            Image image;
+            MpiRenderStats stats;
+            const Film film = render_mpi(MPI_COMM_WORLD, scene, camera, tracer, s, &stats, &image);
+            EXPECT_FALSE(stats.cancelled);
+            if (world_rank() == 0) {
+                EXPECT_TRUE(same_pixels(image, expected))
+                    << "tile " << tile << ", threads " << threads;
+                EXPECT_TRUE(same_records(film, expected_film))
+                    << "tile " << tile << ", threads " << threads;
+            } else {
+                EXPECT_TRUE(image.pixels.empty());
             }
         }
     }

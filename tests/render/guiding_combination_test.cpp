@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -98,6 +99,46 @@ TEST(GuidingCombination, InverseVarianceWeightsAreUnbiasedAndOptimal) {
     EXPECT_NEAR(variance_alone, alone, rel * alone);
     EXPECT_GT(alone, optimal * (1.0 + 2.0 * rel));
     EXPECT_NEAR(mean_alone, NoisyPasses::kMu, 5.0 * std::sqrt(variance_alone / n));
+}
+
+// render_progressive keeps the passes too (its final frame): in passes of 3 samples its
+// image is render()'s bit for bit, so unbiased and optimal as above, checked again here.
+TEST(GuidingCombination, ProgressiveKeepsThePassesAsRenderDoes) {
+    Scene scene;
+    scene.commit();
+    CameraSettings cs;
+    cs.width = cs.height = 64;
+    const Camera camera(cs);
+    ProgressiveSettings ps;
+    ps.render.samples_per_pixel = 16;
+    ps.render.threads = 2;
+    ps.render.seed = 5;
+    ps.pass_samples = 3;
+    NoisyPasses integrator;
+    Film film;
+    Image image;
+    (void)render_progressive(scene, camera, integrator, film, ps, &image);
+    NoisyPasses one_shot;
+    const Image expected = render(scene, camera, one_shot, ps.render);
+    ASSERT_EQ(image.pixels.size(), expected.pixels.size());
+    EXPECT_EQ(std::memcmp(image.pixels.data(), expected.pixels.data(),
+                          image.pixels.size() * sizeof(glm::vec3)),
+              0);
+    double inverse = 16.0 / (NoisyPasses::kSigma[4] * NoisyPasses::kSigma[4]);
+    for (int k = 1; k < 4; ++k)
+        inverse += double(1 << k) /
+                   (NoisyPasses::kSigma[std::size_t(k)] * NoisyPasses::kSigma[std::size_t(k)]);
+    const double optimal = 1.0 / inverse;
+    const auto [mean, variance] = pixel_mean_and_variance(image);
+    const double n = double(image.pixels.size());
+    EXPECT_NEAR(mean, NoisyPasses::kMu, 5.0 * std::sqrt(variance / n));
+    const double rel = 5.0 * std::sqrt(2.0 / (n - 1.0));
+    EXPECT_NEAR(variance, optimal, rel * optimal);
+    // The film alone holds the image's 16 samples: variance sigma_4^2 / 16.
+    const auto [film_mean, film_variance] = pixel_mean_and_variance(resolve(film));
+    const double alone = NoisyPasses::kSigma[4] * NoisyPasses::kSigma[4] / 16.0;
+    EXPECT_NEAR(film_variance, alone, rel * alone);
+    EXPECT_NEAR(film_mean, NoisyPasses::kMu, 5.0 * std::sqrt(film_variance / n));
 }
 
 /// Means of the whole image (index 16) and of its 4 x 4 blocks (0..15), red, green, blue.

@@ -1,7 +1,9 @@
 // render_mpi: rank 0 schedules tiles and gathers them; every rank renders (rank 0 on a
 // thread of its own). The protocol, all point-to-point on `comm`:
 //   worker -> 0  kRequest  int32 tile index (-1: none yet), then that tile's FilmPixel
-//                          records row by row, then its AovPixel records; "give me another"
+//                          records row by row, then its AovPixel records, then (when the
+//                          integrator keeps its training passes) the FilmPixel records of
+//                          the tile at half its samples; "give me another"
 //   worker -> 0  kFail     the error message of an exception on the worker (its last word)
 //   worker -> 0  kCancel   the worker's cancel flag stopped it (its last word)
 //   0 -> worker  kAssign   int32 tile index to render next
@@ -14,6 +16,7 @@
 
 #include <librt/core/error.h>
 #include <librt/mpi/render_mpi.h>
+#include <librt/render/pass_combination.h>
 #include <librt/render/scene.h>
 
 #include <algorithm>
@@ -81,35 +84,46 @@ struct Tiling {
     }
 };
 
-std::size_t record_bytes(const Film& film) {
-    return sizeof(FilmPixel) + (film.has_aovs() ? sizeof(AovPixel) : 0);
+// Bytes per pixel of a tile's records: its FilmPixel, its AovPixel with AOVs, and its
+// FilmPixel at half the samples when training passes are kept (`halves`).
+std::size_t record_bytes(const Film& film, bool halves) {
+    return sizeof(FilmPixel) + (film.has_aovs() ? sizeof(AovPixel) : 0) +
+           (halves ? sizeof(FilmPixel) : 0);
 }
 
 // A kRequest message: the tile index, then the tile's records (`tile` is a film of the
-// tile's size, so its records are the tile's rows in order), then its AOV records.
-std::vector<std::byte> pack(const Film& tile, int index) {
+// tile's size, so its records are the tile's rows in order), then its AOV records, then
+// with `halves` the records of `half` (the tile at half its samples).
+std::vector<std::byte> pack(const Film& tile, const Film& half, bool halves, int index) {
     std::vector<std::byte> out(sizeof(std::int32_t));
     const auto index32 = static_cast<std::int32_t>(index);
     std::memcpy(out.data(), &index32, sizeof index32);
     if (index < 0) return out;
     const std::size_t pixels = tile.pixels.size();
-    out.resize(out.size() + pixels * record_bytes(tile));
+    out.resize(out.size() + pixels * record_bytes(tile, halves));
     std::byte* at = out.data() + sizeof(std::int32_t);
     std::memcpy(at, tile.pixels.data(), pixels * sizeof(FilmPixel));
-    if (tile.has_aovs())
-        std::memcpy(at + pixels * sizeof(FilmPixel), tile.aovs.data(), pixels * sizeof(AovPixel));
+    at += pixels * sizeof(FilmPixel);
+    if (tile.has_aovs()) {
+        std::memcpy(at, tile.aovs.data(), pixels * sizeof(AovPixel));
+        at += pixels * sizeof(AovPixel);
+    }
+    if (halves) std::memcpy(at, half.pixels.data(), pixels * sizeof(FilmPixel));
     return out;
 }
 
-// Copies a kRequest's records into `film`; returns the tile index (-1 for none).
-int unpack(Film& film, const Tiling& tiling, const std::vector<std::byte>& message, int source) {
+// Copies a kRequest's records into `film` (and with `halves`, the half-sample records
+// into `half`); returns the tile index (-1 for none).
+int unpack(Film& film, Film& half, bool halves, const Tiling& tiling,
+           const std::vector<std::byte>& message, int source) {
     std::int32_t index = -1;
     if (message.size() < sizeof index)
         throw Error("render_mpi: short message from rank " + std::to_string(source));
     std::memcpy(&index, message.data(), sizeof index);
     if (index < 0) return -1;
     const Rect r = tiling.rect(index);
-    if (index >= tiling.count || message.size() != sizeof index + r.pixels() * record_bytes(film)) {
+    if (index >= tiling.count ||
+        message.size() != sizeof index + r.pixels() * record_bytes(film, halves)) {
         throw Error("render_mpi: rank " + std::to_string(source) + " sent tile " +
                     std::to_string(index) + " in a message of " + std::to_string(message.size()) +
                     " bytes (mismatched settings?)");
@@ -124,6 +138,12 @@ int unpack(Film& film, const Tiling& tiling, const std::vector<std::byte>& messa
         for (int y = r.y0; y < r.y1; ++y) {
             std::memcpy(&film.aovs[film.index(r.x0, y)], at, row * sizeof(AovPixel));
             at += row * sizeof(AovPixel);
+        }
+    }
+    if (halves) {
+        for (int y = r.y0; y < r.y1; ++y) {
+            std::memcpy(&half.pixels[half.index(r.x0, y)], at, row * sizeof(FilmPixel));
+            at += row * sizeof(FilmPixel);
         }
     }
     return index;
@@ -169,21 +189,62 @@ RenderSettings block_settings(const MpiRenderSettings& s, const std::atomic<bool
     return r;
 }
 
+// Whether tiles are rendered in halves for kept training passes (as render() does): the
+// same answer on every rank, so every rank agrees on the records a tile carries. Asked
+// after preprocess() (PathTracer builds its guide there).
+bool keeps_halves(const Integrator& integrator, const MpiRenderSettings& s) {
+    return integrator.keeps_training_samples() && s.render.samples_per_pixel >= 2;
+}
+
+// Renders samples [0, spp) of the pixels `r` onto `film` placed at `origin`. With
+// `halves`, as two blocks (the same sums as one), copying the rect's records into `half`
+// (a film of the same size and placement) between them.
+RenderStats render_tile(const Scene& scene, const Camera& camera, const Integrator& integrator,
+                        Film& film, FilmOrigin origin, const Rect& r, std::uint32_t spp,
+                        bool halves, Film& half, const RenderSettings& rs) {
+    if (!halves)
+        return render_block(scene, camera, integrator, film, origin,
+                            {r.x0, r.y0, r.x1, r.y1, 0, spp}, rs);
+    const std::uint32_t a = spp / 2;
+    RenderStats st =
+        render_block(scene, camera, integrator, film, origin, {r.x0, r.y0, r.x1, r.y1, 0, a}, rs);
+    if (st.cancelled) return st;
+    const auto row = static_cast<std::ptrdiff_t>(r.x1 - r.x0);
+    for (int y = r.y0; y < r.y1; ++y) {
+        const std::size_t i = film.index(r.x0 - origin.x, y - origin.y);
+        std::copy_n(film.pixels.begin() + static_cast<std::ptrdiff_t>(i), row,
+                    half.pixels.begin() + static_cast<std::ptrdiff_t>(i));
+    }
+    const RenderStats b = render_block(scene, camera, integrator, film, origin,
+                                       {r.x0, r.y0, r.x1, r.y1, a, spp - a}, rs);
+    st.samples += b.samples;
+    st.nonfinite_samples += b.nonfinite_samples;
+    st.cancelled = b.cancelled;
+    return st;
+}
+
 // Rank 0: schedules, gathers, and (unless told not to, or alone) renders on a thread.
 Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
-              Integrator& integrator, const MpiRenderSettings& s, MpiRenderStats& stats) {
+              Integrator& integrator, const MpiRenderSettings& s, MpiRenderStats& stats,
+              Image* image) {
     const Clock::time_point start = Clock::now();
     std::string failure;  // "rank R failed: ..." once something failed
     bool stopping = false;
     Film film;
+    Film half;  // with kept training passes: the film at half its samples (radiance only)
+    PassCombination kept;
+    bool halves = false;
     Tiling tiling(camera.width(), camera.height(), std::max(1, s.tile_size));
     try {
         validate(s);
         film = Film(camera.width(), camera.height(), s.aovs);
         integrator.preprocess(scene);
+        halves = keeps_halves(integrator, s);  // known after preprocess()
+        if (halves) half = Film(camera.width(), camera.height());
         // Every rank learns the same guide (training is deterministic), so the tiles
-        // merge into the one-process image.
-        train(scene, camera, integrator, block_settings(s, s.render.cancel));
+        // merge into the one-process image; rank 0 keeps the passes as render() does.
+        train(scene, camera, integrator, block_settings(s, s.render.cancel),
+              halves ? &kept : nullptr);
     } catch (...) {
         failure = "rank 0 failed: " + message_of(std::current_exception());
         stopping = true;
@@ -205,9 +266,8 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
                 const RenderSettings rs = block_settings(s, &local_cancel);
                 for (int t = next_tile.fetch_add(1); t < tiling.count && !local_cancel.load();
                      t = next_tile.fetch_add(1)) {
-                    const Rect r = tiling.rect(t);
-                    const RenderStats st = render_block(scene, camera, integrator, film,
-                                                        {r.x0, r.y0, r.x1, r.y1, 0, spp}, rs);
+                    const RenderStats st = render_tile(scene, camera, integrator, film, {},
+                                                       tiling.rect(t), spp, halves, half, rs);
                     stats.samples += st.samples;
                     stats.nonfinite_samples += st.nonfinite_samples;
                     if (st.cancelled) break;
@@ -239,7 +299,8 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
             const std::vector<std::byte> message = receive(status, comm);
             if (status.MPI_TAG == kRequest) {
                 try {
-                    if (!stopping && unpack(film, tiling, message, source) >= 0) ++gathered;
+                    if (!stopping && unpack(film, half, halves, tiling, message, source) >= 0)
+                        ++gathered;
                 } catch (...) {
                     stop(message_of(std::current_exception()));
                 }
@@ -291,8 +352,12 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
     stats.tiles_rendered = local_tiles.load();
     stats.tiles_per_rank[0] = stats.tiles_rendered;
     stats.seconds = seconds_since(start);
-    if (stats.cancelled) return film;
+    if (stats.cancelled) {
+        if (image != nullptr) *image = resolve(film);
+        return film;
+    }
     if (!failure.empty()) throw Error(failure);
+    if (image != nullptr) *image = halves ? kept.combined(half, film) : resolve(film);
     if (s.render.progress) s.render.progress({1.0, stats.seconds, 1, spp});
     return film;
 }
@@ -306,16 +371,21 @@ Film run_worker(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
     // The finished tile the next request carries, on a film of the tile's size only: a
     // worker never holds the whole frame (32 x 32 x 96 bytes with AOVs, not 796 MB at 4K).
     Film film;
+    Film half;  // with kept training passes: the tile at half its samples
     int tile = -1;
     try {
         validate(s);
         integrator.preprocess(scene);
         const RenderSettings rs = block_settings(s, s.render.cancel);
+        // Not kept here (rank 0 keeps them; no whole-image sums on a worker): a pass
+        // rendered in halves teaches PathTracer the same guide, as its records are integer
+        // sums that no order or split changes.
         train(scene, camera, integrator, rs);
+        const bool halves = keeps_halves(integrator, s);
         const auto spp = static_cast<std::uint32_t>(s.render.samples_per_pixel);
         while (true) {
             const Clock::time_point t0 = Clock::now();
-            const std::vector<std::byte> request = pack(film, tile);
+            const std::vector<std::byte> request = pack(film, half, halves, tile);
             send_bytes(request.data(), request.size(), 0, kRequest, comm);
             stats.gather_bytes += request.size();
             MPI_Status status;
@@ -341,8 +411,9 @@ Film run_worker(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
             tile = t32;
             const Rect r = tiling.rect(tile);
             film = Film(r.x1 - r.x0, r.y1 - r.y0, s.aovs);
-            const RenderStats st = render_block(scene, camera, integrator, film, {r.x0, r.y0},
-                                                {r.x0, r.y0, r.x1, r.y1, 0, spp}, rs);
+            if (halves) half = Film(r.x1 - r.x0, r.y1 - r.y0);
+            const RenderStats st = render_tile(scene, camera, integrator, film, {r.x0, r.y0}, r,
+                                               spp, halves, half, rs);
             stats.samples += st.samples;
             stats.nonfinite_samples += st.nonfinite_samples;
             if (st.cancelled) {
@@ -375,7 +446,7 @@ void validate(const MpiRenderSettings& s) {
 }
 
 Film render_mpi(MPI_Comm comm, const Scene& scene, const Camera& camera, Integrator& integrator,
-                const MpiRenderSettings& settings, MpiRenderStats* stats) {
+                const MpiRenderSettings& settings, MpiRenderStats* stats, Image* image) {
     int rank = 0;
     int size = 1;
     check(MPI_Comm_rank(comm, &rank), "MPI_Comm_rank");
@@ -394,7 +465,7 @@ Film render_mpi(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
         MPI_Comm& comm;
         ~Free() { MPI_Comm_free(&comm); }
     } const free_own{own};
-    return rank == 0 ? run_root(own, size, scene, camera, integrator, settings, out)
+    return rank == 0 ? run_root(own, size, scene, camera, integrator, settings, out, image)
                      : run_worker(own, scene, camera, integrator, settings, out);
 }
 

@@ -91,8 +91,11 @@ ImageLayers resolve_layers(const Film& film) {
         const AovPixel& a = film.aovs[i];
         const std::uint32_t n = film.pixels[i].samples;
         // Means over the pixel's samples; a miss adds 0 to albedo and normal, and depth
-        // averages only the samples that hit.
-        layers.albedo.pixels[i] = n > 0 ? glm::vec3(a.albedo / double(n)) : glm::vec3(0.0f);
+        // averages only the samples that hit. The albedo's filtered mean sum(w a) / sum(w):
+        // every weight of a filter has one size, so sum(w) is that size times the sum of
+        // the signs, n - 2 negative, and the size cancels.
+        const double signs = double(n) - 2.0 * double(a.negative);
+        layers.albedo.pixels[i] = signs != 0.0 ? glm::vec3(a.albedo / signs) : glm::vec3(0.0f);
         layers.normal.pixels[i] = n > 0 ? glm::vec3(a.normal / double(n)) : glm::vec3(0.0f);
         layers.depth[i] = a.hits > 0 ? static_cast<float>(a.depth / double(a.hits))
                                      : std::numeric_limits<float>::infinity();

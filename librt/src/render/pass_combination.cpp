@@ -1,4 +1,4 @@
-#include "render/pass_combination.h"
+#include <librt/render/pass_combination.h>
 
 #include <cmath>
 #include <cstddef>
@@ -40,6 +40,12 @@ Image PassCombination::image(int width, int height) const {
     for (std::size_t i = 0; i < sum_.size() && i < image.pixels.size(); ++i)
         image.pixels[i] = glm::vec3(sum_[i] / weight_);
     return image;
+}
+
+Image PassCombination::combined(const Film& half, const Film& full) const {
+    if (count_ == 0) return resolve(full);
+    PassCombination with_image = *this;
+    return with_image.add(half, full) ? with_image.image(full.width, full.height) : resolve(full);
 }
 
 }  // namespace librt

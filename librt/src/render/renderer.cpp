@@ -3,10 +3,10 @@
 // types, so they stay in one file.
 
 #include "render/aov.h"
-#include "render/pass_combination.h"
 
 #include <librt/core/error.h>
 #include <librt/core/finite.h>
+#include <librt/render/pass_combination.h>
 #include <librt/render/renderer.h>
 
 #include <glm/vec3.hpp>
@@ -148,7 +148,14 @@ BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrato
                     const Ray& ray = camera_ray.ray;
                     if (with_aovs) {
                         const AovSample a = sample_aovs(scene, ray, px, py, s, settings.seed);
-                        aov.albedo += glm::dvec3(a.albedo);
+                        // The albedo is filtered like the beauty: with the weight's sign
+                        // (its size is one per filter; resolve_layers divides it out).
+                        if (camera_ray.weight < 0.0f) {
+                            aov.albedo -= glm::dvec3(a.albedo);
+                            ++aov.negative;
+                        } else {
+                            aov.albedo += glm::dvec3(a.albedo);
+                        }
                         aov.normal += glm::dvec3(a.normal);
                         if (a.hit) {
                             aov.depth += static_cast<double>(a.depth);
@@ -346,8 +353,9 @@ RenderStats train_passes(const Scene& scene, const Camera& camera, Integrator& i
 }  // namespace
 
 RenderStats train(const Scene& scene, const Camera& camera, Integrator& integrator,
-                  const RenderSettings& settings) {
-    return train_passes(scene, camera, integrator, settings, nullptr);
+                  const RenderSettings& settings, PassCombination* kept) {
+    return train_passes(scene, camera, integrator, settings,
+                        integrator.keeps_training_samples() ? kept : nullptr);
 }
 
 Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
@@ -364,8 +372,7 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
     // estimate needs.
     PassCombination kept;
     const bool keep = integrator.keeps_training_samples() && settings.samples_per_pixel >= 2;
-    const RenderStats training =
-        train_passes(scene, camera, integrator, settings, keep ? &kept : nullptr);
+    const RenderStats training = train(scene, camera, integrator, settings, keep ? &kept : nullptr);
     const auto spp = static_cast<std::uint32_t>(settings.samples_per_pixel);
     const RenderBlock whole{0, 0, film.width, film.height, 0, spp};
     Tick tick;
@@ -384,8 +391,7 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
 
     // With kept passes: the image joins them, all weighted by inverse variance (an image
     // whose variance cannot be estimated, e.g. black, is shown alone).
-    const bool combine = keep && outcome.complete && kept.count() > 0 && kept.add(half, film);
-    Image image = combine ? kept.image(film.width, film.height) : resolve(film);
+    Image image = keep && outcome.complete ? kept.combined(half, film) : resolve(film);
     if (!outcome.complete) {
         // As before films: a pixel the cancellation stopped part-way stays black.
         for (std::size_t i = 0; i < film.pixels.size(); ++i) {
@@ -478,7 +484,7 @@ RenderStats render_block(const Scene& scene, const Camera& camera, const Integra
 }
 
 RenderStats render_progressive(const Scene& scene, const Camera& camera, Integrator& integrator,
-                               Film& film, const ProgressiveSettings& settings) {
+                               Film& film, const ProgressiveSettings& settings, Image* image) {
     validate(settings);
     const std::function<double()> clock = settings.clock ? settings.clock : [] {
         return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
@@ -507,12 +513,27 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         if (limit > 0.0) f = std::max(f, seconds / limit);
         return std::clamp(f, 0.0, 1.0);
     };
+    // Kept training passes (as render() keeps them) need the film as it was at half the
+    // target, which this call sees only when the film starts at or before it. Whether the
+    // integrator keeps them is known after preprocess().
+    const std::uint32_t mid = target / 2;
+    bool keep = false;
+    PassCombination kept;
+    Film half;  // the film at `mid` samples (radiance only)
+    const auto snapshot_half = [&] {
+        half.width = film.width;
+        half.height = film.height;
+        half.pixels = film.pixels;
+    };
     if (n < target) {
         integrator.preprocess(scene);
-        const RenderStats training = train(scene, camera, integrator, rs);
+        keep =
+            image != nullptr && integrator.keeps_training_samples() && target >= 2 && first <= mid;
+        const RenderStats training = train(scene, camera, integrator, rs, keep ? &kept : nullptr);
         stats.training_passes = training.training_passes;
         stats.cancelled = training.cancelled;
     }
+    if (keep && n == mid) snapshot_half();
     Film work;  // the pass in progress: a copy of `film` that replaces it once complete
     while (n < target) {
         // A film holding no samples always gets its first pass, whatever the limit.
@@ -524,7 +545,8 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
             stats.cancelled = true;
             break;
         }
-        const std::uint32_t count = std::min(pass, target - n);
+        std::uint32_t count = std::min(pass, target - n);
+        if (keep && n < mid) count = std::min(count, mid - n);  // a pass ends at the half
         work = film;
         const RenderBlock block{0, 0, film.width, film.height, n, count};
         const Tick tick = [&](double done) {
@@ -545,12 +567,17 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         }
         std::swap(film, work);
         n += count;
+        if (keep && n == mid) snapshot_half();
         ++stats.passes;
         stats.samples_per_pixel = n;
         if (rs.progress) {
             const double seconds = elapsed();
             rs.progress({fraction(n, seconds), seconds, stats.passes, n});
         }
+    }
+    if (image != nullptr) {
+        *image =
+            keep && n == target && !half.pixels.empty() ? kept.combined(half, film) : resolve(film);
     }
     stats.seconds = elapsed();
     stats.cpu_seconds = cpu_now() - cpu_start;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <librt/core/image.h>
 #include <librt/export.h>
 #include <librt/render/camera.h>
 #include <librt/render/film.h>
@@ -80,9 +81,18 @@ LIBRT_API void validate(const MpiRenderSettings& settings);
 /// set on any rank) stops every rank within about a tile; stats->cancelled is then set and
 /// rank 0 returns the film as far as it got (tiles finished on rank 0 or received from the
 /// others; every other pixel holds fewer samples than asked, often none).
+///
+/// Kept training passes: when the integrator keeps its training passes (path guiding's
+/// keep_training_samples) and samples_per_pixel >= 2, rank 0 keeps them (train()) and every
+/// tile is rendered in two halves of its samples, whose records at the half travel with the
+/// tile (32 more bytes per pixel). `image`, when not null, then receives on rank 0 the passes
+/// joined to the film (PassCombination::combined), bit for bit render()'s image with the
+/// same settings whatever the rank count, tile size and threads; otherwise (or when
+/// cancelled) resolve() of the returned film. The film itself holds the image's samples
+/// only. Other ranks leave `image` unchanged.
 [[nodiscard]] LIBRT_API Film render_mpi(MPI_Comm comm, const Scene& scene, const Camera& camera,
                                         Integrator& integrator, const MpiRenderSettings& settings,
-                                        MpiRenderStats* stats = nullptr);
+                                        MpiRenderStats* stats = nullptr, Image* image = nullptr);
 
 /// A collective check after each rank's set-up (loading the scene, opening files): every
 /// rank passes its error message, empty when it succeeded. When any rank failed, throws

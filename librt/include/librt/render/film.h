@@ -44,12 +44,22 @@ struct FilmPixel {
 
 /// The AOV sums of one pixel, accumulated over the same samples as its FilmPixel (all of
 /// them, including those whose radiance was not finite). 64 bytes.
+///
+/// The pixel filter: sample positions are drawn from |f| (filter importance sampling),
+/// so every sum below is already |f|-weighted. The albedo also takes the sign of the
+/// sample's filter weight (negative only in a Mitchell filter's lobes; the weight's size is
+/// the same for every sample of a filter), and resolve_layers divides it by the sum of the
+/// signs: the filtered mean sum(w a) / sum(w), like a colour pass of pbrt-v4's film, exact
+/// on a constant albedo. Normal and depth stay |f|-weighted means: a signed mean of
+/// geometry can leave the range the pixel sees (a negative depth, a normal longer than 1).
 struct AovPixel {
-    glm::dvec3 albedo{0.0};    ///< sum of the albedos of the first non-specular hits (0 for a miss)
-    glm::dvec3 normal{0.0};    ///< sum of their unit shading normals (0 for a miss)
-    double depth = 0.0;        ///< sum of the camera distances of the first hits
-    std::uint32_t hits = 0;    ///< samples whose camera ray hit something (the terms of `depth`)
-    std::uint32_t unused = 0;  ///< padding, always 0
+    /// Sum of the albedos of the first non-specular hits (0 for a miss), each with the
+    /// sign of its sample's filter weight.
+    glm::dvec3 albedo{0.0};
+    glm::dvec3 normal{0.0};      ///< sum of their unit shading normals (0 for a miss)
+    double depth = 0.0;          ///< sum of the camera distances of the first hits
+    std::uint32_t hits = 0;      ///< samples whose camera ray hit something (the terms of `depth`)
+    std::uint32_t negative = 0;  ///< samples whose filter weight was negative (Mitchell's lobes)
 };
 
 /// Per-pixel sums of a render, row-major with the top row first like Image. Plain data:
@@ -95,9 +105,10 @@ LIBRT_API void merge(Film& into, const Film& from);
 [[nodiscard]] LIBRT_API Image resolve(const Film& film);
 
 /// Every layer of the film: beauty (resolve()), the per-pixel sample count, and when the
-/// film has AOVs, albedo and normal (means over all samples of the pixel, a miss counting
-/// as 0) and depth (mean camera distance over the samples that hit; +infinity when none
-/// did).
+/// film has AOVs, albedo (the filter-weighted mean over all samples of the pixel, a miss
+/// counting as 0: the albedo sum divided by samples - 2 negative, the sum of the weights'
+/// signs; 0 when that is 0), normal (mean over all samples, a miss counting as 0) and
+/// depth (mean camera distance over the samples that hit; +infinity when none did).
 [[nodiscard]] LIBRT_API ImageLayers resolve_layers(const Film& film);
 
 /// The number of samples every pixel of the film holds; throws librt::Error naming a

@@ -33,11 +33,12 @@ struct GuidingSettings {
     float flux_threshold = 0.01f;
     /// Deepest level of the directional quadtrees, in [1, 20] (the paper's 20).
     int max_quadtree_depth = 20;
-    /// Keep the training passes' samples in the image (render() only; render_progressive,
-    /// render_block and render_mpi still discard them): every pass from the second on is
+    /// Keep the training passes' samples in the image: every pass from the second on is
     /// combined with the image, each weighted by the inverse of its variance estimated
     /// from two halves of its samples (Müller et al. 2017; Müller 2019), so training time
-    /// is not wasted. The apps' --guiding sets it.
+    /// is not wasted. render() does it itself; render_progressive and render_mpi give the
+    /// same image through their `image` argument; with render_block, train() and
+    /// PassCombination (renderer.h says how). The apps' --guiding sets it.
     bool keep_training_samples = false;
     /// Splat each record into the spatial leaf at a point jittered uniformly within a box
     /// of the record's leaf's size around it, and into the directional cell at a point

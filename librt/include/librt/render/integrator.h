@@ -28,8 +28,9 @@ public:
     /// Ends the pass begin_training_pass(pass) started: what its samples taught the
     /// integrator is used from the next pass (or the image) on.
     virtual void end_training_pass(int /*pass*/) {}
-    /// True when render() may combine the training passes' samples with the image's (each
-    /// pass is then an unbiased estimate of it); false, the default, discards them.
+    /// True when the render entry points may combine the training passes' samples with the
+    /// image's (each pass is then an unbiased estimate of it; see train()); false, the
+    /// default, discards them. Asked after preprocess().
     [[nodiscard]] virtual bool keeps_training_samples() const { return false; }
     /// One sample of the radiance (linear RGB) travelling back along `ray`.
     [[nodiscard]] virtual glm::vec3 li(const Scene& scene, const Ray& ray,

@@ -5,6 +5,7 @@
 #include <librt/render/camera.h>
 #include <librt/render/film.h>
 #include <librt/render/integrator.h>
+#include <librt/render/pass_combination.h>
 #include <librt/render/sampler.h>
 
 #include <atomic>
@@ -72,10 +73,17 @@ LIBRT_API void validate(const RenderSettings& settings);
 /// derived from (settings.seed, k), so no training sample shares random numbers with the
 /// image's samples (whose guide would otherwise be correlated with them). For an
 /// integrator that learns nothing it does nothing. Call it after preprocess() and before
-/// render_block; render() and render_progressive() call it themselves. Honours
-/// settings.cancel (stats.cancelled); progress is not reported.
+/// render_block; render(), render_progressive() and render_mpi() call it themselves.
+/// Honours settings.cancel (stats.cancelled); progress is not reported.
+///
+/// Keeping the passes: when `kept` is not null and integrator.keeps_training_samples()
+/// (path guiding's keep_training_samples), every pass of at least 2 samples per pixel is
+/// rendered in two halves of its samples (the same sums as one run, so the same guide) and
+/// added to *kept. To show them with an image rendered by render_block, render its samples
+/// [0, spp / 2) first, copy the film (`half`), render [spp / 2, spp), and call
+/// kept->combined(half, film): for the same settings that is render()'s image bit for bit.
 LIBRT_API RenderStats train(const Scene& scene, const Camera& camera, Integrator& integrator,
-                            const RenderSettings& settings);
+                            const RenderSettings& settings, PassCombination* kept = nullptr);
 
 /// Renders `scene` through `camera` with `integrator`: calls integrator.preprocess(scene)
 /// and train(), then threads take tiles from an atomic counter. Sample s of pixel (x, y) uses
@@ -84,7 +92,9 @@ LIBRT_API RenderStats train(const Scene& scene, const Camera& camera, Integrator
 /// pixel is the mean of its finite weighted samples (non-finite
 /// ones are dropped and counted; all dropped gives black), accumulated in sample order,
 /// so the image is bit-identical for any thread count and tile size. It is render_block
-/// of the whole image and samples [0, samples_per_pixel) onto an empty Film, resolved.
+/// of the whole image and samples [0, samples_per_pixel) onto an empty Film, resolved;
+/// with kept training passes (train(); samples_per_pixel >= 2) the film is rendered in
+/// its two halves and the image is PassCombination::combined of the passes and the film.
 /// Cancellation is checked before every pixel and every 64 samples of a pixel, so a
 /// cancelled render returns after at most 64 samples' work per thread; pixels not yet
 /// finished stay black and stats->cancelled is set. Throws librt::Error for invalid
@@ -107,7 +117,8 @@ struct RenderBlock {
 /// Renders `block` onto `film`, continuing each pixel's sums: every pixel of the block must
 /// hold exactly block.first samples (the film header explains why this makes any split bit-
 /// identical to the one-shot render). `integrator` must have been preprocessed (and, for
-/// path guiding, trained by train()) for `scene`; settings.samples_per_pixel is not used.
+/// path guiding, trained by train(); train() says how kept training passes join a
+/// film rendered this way) for `scene`; settings.samples_per_pixel is not used.
 /// The film must have the camera's size; with AOVs, its AOV sums are rendered in the same
 /// pass. Threads, seeding, progress and cancellation work as in render(); a cancelled block
 /// leaves every pixel holding some number of samples in [first, first + count], its sums
@@ -167,8 +178,18 @@ LIBRT_API void validate(const ProgressiveSettings& settings);
 /// a film holding no samples always gets its first pass. The film equals a one-shot
 /// render of the same total sample count bit for bit. Calls integrator.preprocess(scene)
 /// and train() once, when there is something to render.
+///
+/// `image`, when not null, receives the image to show: resolve(film), or, when the
+/// integrator keeps its training passes (path guiding's keep_training_samples) and this
+/// call took the film from at most half of samples_per_pixel (>= 2) to all of it, those
+/// passes joined to the film as render() joins them (train()), so it equals render()'s
+/// image bit for bit. The film itself only ever holds the image's own samples: shown
+/// between passes, it is the plainer (noisier) estimate; a render stopped early (time
+/// limit, cancel) or a film resumed past its half gives resolve(film). Keeping costs one
+/// more film (the film at half the samples) and ends the pass that crosses the half there.
 LIBRT_API RenderStats render_progressive(const Scene& scene, const Camera& camera,
                                          Integrator& integrator, Film& film,
-                                         const ProgressiveSettings& settings);
+                                         const ProgressiveSettings& settings,
+                                         Image* image = nullptr);
 
 }  // namespace librt
