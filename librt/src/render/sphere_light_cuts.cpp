@@ -52,11 +52,28 @@ SphereLightCuts make_sphere_light_cuts(const SphereCut* cuts, int count) {
     });
     out.count = std::min(int(sorted.size()), kMaxSphereCuts);
     for (int i = 0; i < out.count; ++i) out.cut[std::size_t(i)] = sorted[std::size_t(i)];
+    // Two parts, caps about axes c1, c2 with angular radii t1, t2, share no point iff
+    // angle(c1, c2) > t1 + t2 (triangle inequality on the sphere). A cut's inside part is
+    // the cap about -a of radius acos(-h), its outside part the cap about +a of radius
+    // pi minus that; the angle between the parts' axes is angle(a_i, a_j) for equal sides,
+    // pi minus it otherwise. Touching parts count as sharing: rounding decides nothing.
+    constexpr double kPi = std::numbers::pi;
+    constexpr double kMargin = 1e-9;
     for (int i = 0; i < out.count; ++i)
         for (int j = 0; j < out.count; ++j) {
-            const double cosine =
-                glm::dot(out.cut[std::size_t(i)].axis, out.cut[std::size_t(j)].axis);
-            out.angle[std::size_t(i)][std::size_t(j)] = std::acos(std::clamp(cosine, -1.0, 1.0));
+            if (i == j) continue;
+            const SphereCut& ci = out.cut[std::size_t(i)];
+            const SphereCut& cj = out.cut[std::size_t(j)];
+            const double between = std::acos(std::clamp(glm::dot(ci.axis, cj.axis), -1.0, 1.0));
+            for (int si = 0; si < 2; ++si)
+                for (int sj = 0; sj < 2; ++sj) {
+                    const double ti = si == 1 ? ci.inside_angle : kPi - ci.inside_angle;
+                    const double tj = sj == 1 ? cj.inside_angle : kPi - cj.inside_angle;
+                    const double axes = si == sj ? between : kPi - between;
+                    if (axes > ti + tj + kMargin)
+                        out.disjoint[std::size_t(i)][std::size_t(si)] |=
+                            std::uint16_t(1u << (2 * j + sj));
+                }
         }
     return out;
 }
@@ -74,42 +91,33 @@ VisibleCap visible_cap(const SphereLight& light, const glm::vec3& p) {
     const glm::dvec3 to_light = dp - cl;
     if (!(glm::dot(to_light, to_light) > rl * rl)) return best;
     const double band = sphere_cut_band(p);
-    // Per cut: -1 unknown, 0 outside, 1 inside.
+    // Per cut: -1 unknown, 0 outside, 1 inside; `bound` has bit 2 i + side per known cut.
     std::array<int, kMaxSphereCuts> side{};
+    unsigned bound = 0;
     double best_width = 2.0 * (2.0 * kMaxCapFraction);  // above any allowed cap
     int chosen = -1;
     for (int i = 0; i < cuts.count; ++i) {
         const SphereCut& c = cuts.cut[std::size_t(i)];
-        const double dist = glm::length(dp - c.center);
-        side[std::size_t(i)] = std::fabs(dist - c.radius) <= band ? -1 : dist < c.radius ? 1 : 0;
-        if (side[std::size_t(i)] < 0) continue;
+        // |p - c_S| against r_S -+ band, squared: no square root per cut.
+        const glm::dvec3 v = dp - c.center;
+        const double dist2 = glm::dot(v, v);
+        const double lo = std::max(0.0, c.radius - band), hi = c.radius + band;
+        const int s = dist2 < lo * lo ? 1 : dist2 > hi * hi ? 0 : -1;
+        side[std::size_t(i)] = s;
+        if (s < 0) continue;
+        bound |= 1u << (2 * i + s);
         // The cap's height in n . a: 1 + h inside, 1 - h outside.
-        const double width = side[std::size_t(i)] == 1 ? 1.0 + c.h : 1.0 - c.h;
+        const double width = s == 1 ? 1.0 + c.h : 1.0 - c.h;
         if (width < best_width) {
             best_width = width;
             chosen = i;
         }
     }
-    // Two caps p is bound to, about axes c1, c2 with angular radii t1, t2, share no point
-    // iff angle(c1, c2) > t1 + t2 (spherical triangle inequality); the axis of a cut's
-    // inside part is -a, of its outside part +a, so the angle is angle[i][j] or pi minus it.
-    constexpr double kPi = std::numbers::pi;
-    constexpr double kMargin = 1e-9;  // touching caps stay visible: rounding decides nothing
     for (int i = 0; i < cuts.count; ++i) {
-        if (side[std::size_t(i)] < 0) continue;
-        const SphereCut& ci = cuts.cut[std::size_t(i)];
-        const double ti = side[std::size_t(i)] == 1 ? ci.inside_angle : kPi - ci.inside_angle;
-        for (int j = i + 1; j < cuts.count; ++j) {
-            if (side[std::size_t(j)] < 0) continue;
-            const SphereCut& cj = cuts.cut[std::size_t(j)];
-            const double tj = side[std::size_t(j)] == 1 ? cj.inside_angle : kPi - cj.inside_angle;
-            const double between = side[std::size_t(i)] == side[std::size_t(j)]
-                                       ? cuts.angle[std::size_t(i)][std::size_t(j)]
-                                       : kPi - cuts.angle[std::size_t(i)][std::size_t(j)];
-            if (between > ti + tj + kMargin) {
-                best.kind = CapKind::Hidden;
-                return best;
-            }
+        const int s = side[std::size_t(i)];
+        if (s >= 0 && (cuts.disjoint[std::size_t(i)][std::size_t(s)] & bound) != 0) {
+            best.kind = CapKind::Hidden;
+            return best;
         }
     }
     if (chosen < 0 || best_width > 2.0 * kMaxCapFraction) return best;

@@ -47,12 +47,14 @@ inline constexpr int kMaxSphereCuts = 8;
 inline constexpr double kMaxCapFraction = 0.25;
 
 /// The cuts of one sphere light, most restrictive first (smallest min(inside, outside)
-/// fraction of the light's surface), with the angles between their axes.
+/// fraction of the light's surface), with which of their parts share no point.
 struct SphereLightCuts {
     std::array<SphereCut, kMaxSphereCuts> cut{};  ///< the first `count` are valid
     int count = 0;                                ///< number of cuts, <= kMaxSphereCuts
-    /// angle[i][j] = acos(axis_i . axis_j), for the disjointness test of two caps.
-    std::array<std::array<double, kMaxSphereCuts>, kMaxSphereCuts> angle{};
+    /// disjoint[i][s] has bit 2 j + t set when part s of cut i and part t of cut j share
+    /// no point of the light (s, t: 1 the part inside the cut's sphere, 0 outside): a
+    /// point bound to both sees none of it. Precomputed: a per-sample test is one AND.
+    std::array<std::array<std::uint16_t, 2>, kMaxSphereCuts> disjoint{};
 };
 
 /// The cut of the light (centre, radius) by an opaque sphere (centre, squared radius), or
