@@ -46,7 +46,7 @@ std::optional<SphereCut> sphere_cut(const glm::dvec3& light_center, double light
 SphereLightCuts make_sphere_light_cuts(const SphereCut* cuts, int count) {
     SphereLightCuts out;
     std::vector<SphereCut> sorted(cuts, cuts + std::max(count, 0));
-    // Most restrictive first; ties by centre so that the order never depends on the input's.
+    // Most restrictive first; ties keep the input order (the scene's object order): stable.
     std::stable_sort(sorted.begin(), sorted.end(), [](const SphereCut& x, const SphereCut& y) {
         return smaller_fraction(x) < smaller_fraction(y);
     });

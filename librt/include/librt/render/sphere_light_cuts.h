@@ -65,7 +65,7 @@ struct SphereLightCuts {
                                                             double radius2);
 
 /// Builds a SphereLightCuts from up to any number of cuts: sorted most restrictive first,
-/// cut to kMaxSphereCuts, with the axis angles filled in.
+/// cut to kMaxSphereCuts, with `disjoint` filled in.
 [[nodiscard]] LIBRT_API SphereLightCuts make_sphere_light_cuts(const SphereCut* cuts, int count);
 
 /// Half-width of the band around a cut sphere's surface within which shading point p is
