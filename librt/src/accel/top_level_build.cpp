@@ -154,6 +154,13 @@ std::pair<glm::mat3, glm::vec3> TopLevel::object_to_world(std::uint32_t id) cons
     return {instances_[o.index].to_world, instances_[o.index].to_world_shift};
 }
 
+const DoubleSphere& TopLevel::sphere_geometry(std::uint32_t id) const {
+    const Object& o = objects_.at(id);
+    if (o.kind != ObjectKind::Sphere)
+        throw Error("sphere_geometry: object " + std::to_string(id) + " is not a sphere");
+    return spheres_[o.index].prepared;
+}
+
 std::uint32_t TopLevel::prototype_of(std::uint32_t id) const {
     const Object& o = objects_.at(id);
     switch (o.kind) {

@@ -20,6 +20,28 @@ bool needs_uv(const Material& m) { return m.albedo_texture >= 0 || m.varies_per_
 // holes rays pass through: a light sample there would count light no ray can see.
 bool light_sampled(const Material& m) { return m.emits() && !m.cuts_out(); }
 
+// Whether no ray passes a sphere of this material: no transmission of any kind (glass,
+// rough glass, glTF transmission), no alpha test's holes, and no emission (an emitter is a
+// light of its own, which BSDF sampling must be free to find past the cut). A one-sided
+// back absorbs, so it stays opaque; hiding from the camera lets only camera rays through,
+// and those take no light sample before their first hit.
+bool opaque(const Material& m) {
+    if (m.emits() || m.cuts_out()) return false;
+    switch (m.kind) {
+        case MaterialKind::Diffuse:
+        case MaterialKind::Mirror:
+        case MaterialKind::Conductor:
+            return true;
+        case MaterialKind::MetallicRoughness:
+            return m.transmission == 0.0f;
+        case MaterialKind::Dielectric:
+        case MaterialKind::RoughDielectric:
+        case MaterialKind::Emissive:
+            return false;
+    }
+    return false;
+}
+
 }  // namespace
 
 void Scene::check_texture_ids(const Material& material) const {
@@ -306,9 +328,36 @@ void Scene::make_triangle_lights() {
     }
 }
 
+void Scene::make_sphere_light_cuts() {
+    std::vector<SphereCut> found;
+    for (std::uint32_t i = 0; i < added_lights_; ++i) {
+        auto* light = std::get_if<SphereLight>(&lights_[i].source);
+        if (light == nullptr) continue;
+        found.clear();
+        const glm::dvec3 center(light->sphere.center);
+        const double radius = light->sphere.radius;
+        for (std::uint32_t id = 0; id < objects_.size(); ++id) {
+            // Only top-level analytic spheres of an opaque material that are no light's.
+            if (id == lights_[i].object || light_of_object(id) != kInvalidId) continue;
+            if (top_.kind(id) != ObjectKind::Sphere) continue;
+            const std::uint32_t m = objects_[id].material;
+            if (m == kInvalidId || !opaque(materials_[m])) continue;
+            const DoubleSphere& s = top_.sphere_geometry(id);
+            if (const std::optional<SphereCut> cut =
+                    sphere_cut(center, radius, s.center, s.radius2))
+                found.push_back(*cut);
+        }
+        light->cuts = found.empty()
+                          ? nullptr
+                          : std::make_shared<const SphereLightCuts>(
+                                librt::make_sphere_light_cuts(found.data(), int(found.size())));
+    }
+}
+
 void Scene::commit() {
     if (committed_) return;
     top_.build();
+    make_sphere_light_cuts();
     make_triangle_lights();
     light_sampler_ = LightSampler(lights_);
     committed_ = true;

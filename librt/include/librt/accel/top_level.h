@@ -167,6 +167,9 @@ public:
     [[nodiscard]] std::size_t instance_count() const { return instances_.size(); }
     /// What object `id` is.
     [[nodiscard]] ObjectKind kind(std::uint32_t id) const { return objects_.at(id).kind; }
+    /// The double-precision centre and squared radius sphere object `id`'s intersection
+    /// test uses (exactly the geometry rays meet); throws librt::Error unless id is a sphere.
+    [[nodiscard]] const DoubleSphere& sphere_geometry(std::uint32_t id) const;
     /// The prototype a mesh or instance object shows; kInvalidId for a sphere.
     [[nodiscard]] std::uint32_t prototype_of(std::uint32_t id) const;
     /// Where instance object `id` puts a prototype-space point: (linear part, translation)

@@ -3,12 +3,14 @@
 #include <librt/export.h>
 #include <librt/geometry/sphere.h>
 #include <librt/render/light_sample.h>
+#include <librt/render/sphere_light_cuts.h>
 #include <librt/sampling/warp.h>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <limits>
+#include <memory>
 
 namespace librt {
 
@@ -18,6 +20,10 @@ namespace librt {
 struct SphereLight {
     Sphere sphere;             ///< the emitting surface
     glm::vec3 radiance{0.0f};  ///< emitted radiance L (W / (sr m^2)) per channel
+    /// The opaque spheres that bury part of the light (sphere_light_cuts.h), or none:
+    /// Scene::commit fills it for the scene's copy of the light (any value given is
+    /// replaced); sample_li and pdf_li then see only the part a point can see.
+    std::shared_ptr<const SphereLightCuts> cuts{};
 
     /// The uniform radiance with which a sphere of the given radius emits `power` in
     /// total: power = L * pi * (4 pi r^2), so L = power / (4 pi^2 r^2). Far away it then
@@ -36,15 +42,30 @@ struct SphereLight {
 LIBRT_API void validate(const SphereLight& light);
 
 /// A direction toward the part of the sphere visible from ref, uniform in the cone it
-/// subtends (sample_sphere_direction), with the distance to the sphere along it.
-[[nodiscard]] inline LightLiSample sample_li(const SphereLight& light, const glm::vec3& ref,
-                                             glm::vec2 u) {
+/// subtends (sample_sphere_direction), with the distance to the sphere along it; the
+/// light's cuts ignored.
+[[nodiscard]] inline LightLiSample sample_li_cone(const SphereLight& light, const glm::vec3& ref,
+                                                  glm::vec2 u) {
     const SphereDirectionSample s =
         sample_sphere_direction(light.sphere.center, light.sphere.radius, ref, u);
     if (!(s.pdf > 0.0f) || !(s.pdf < std::numeric_limits<float>::infinity())) return {};
     return {s.direction, light.radiance, s.pdf, s.distance, false};
 }
-/// The solid-angle density of sample_li at ref for unit direction wi; 0 if wi misses.
+/// sample_li of a light with cuts: by visible_cap(light, ref), nothing when Hidden, a
+/// point uniform in area on the cap (converted to solid angle: pdf = d^2 / (A |cos|);
+/// nothing when it faces away from ref) when Cap, sample_li_cone when Whole.
+[[nodiscard]] LIBRT_API LightLiSample sample_li_cut(const SphereLight& light, const glm::vec3& ref,
+                                                    glm::vec2 u);
+/// A direction toward the part of the sphere ref may see: sample_li_cut when the light
+/// has cuts, else sample_li_cone.
+[[nodiscard]] inline LightLiSample sample_li(const SphereLight& light, const glm::vec3& ref,
+                                             glm::vec2 u) {
+    if (light.cuts != nullptr) [[unlikely]]
+        return sample_li_cut(light, ref, u);
+    return sample_li_cone(light, ref, u);
+}
+/// The solid-angle density of sample_li at ref for unit direction wi; 0 if wi misses (or,
+/// with cuts, misses the cap ref's samples are drawn from).
 [[nodiscard]] LIBRT_API float pdf_li(const SphereLight& light, const glm::vec3& ref,
                                      const glm::vec3& wi);
 /// Total emitted power per channel: L pi (4 pi r^2).
