@@ -124,9 +124,10 @@ TEST(LightSeam, SceneKeepsALightListAndSampler) {
     EXPECT_NEAR(scene.light_sampler().pmf(0) + scene.light_sampler().pmf(1), 1.0f, 1e-6f);
 }
 
-// spawn_ray_to: starts off the surface on the target's side, ends kShadowEpsilon short of
-// the target, the same for a target point and for a direction and distance; unoccluded
-// sees a blocker in between and ignores the object it is told to.
+// spawn_ray_to: starts off the surface on the target's side; toward a point it ends
+// kShadowEpsilon short of the target, toward a light sample (direction and distance) at
+// the distance itself; unoccluded sees a blocker in between and ignores the object it is
+// told to.
 TEST(ShadowRay, SpawnRayToAndUnoccluded) {
     const glm::vec3 p(1, 0, 0), n(0, 1, 0), target(1, 10, 0);
     const Ray r = spawn_ray_to(p, n, target);
@@ -137,7 +138,7 @@ TEST(ShadowRay, SpawnRayToAndUnoccluded) {
     EXPECT_NEAR(end.y, target.y - kShadowEpsilon * (target.y - r.origin.y), 1e-5f);
     const Ray r2 = spawn_ray_to(p, n, glm::vec3(0, 1, 0), 10.0f);
     EXPECT_EQ(r2.origin, r.origin);
-    EXPECT_NEAR(r2.t_max, 10.0f * (1.0f - kShadowEpsilon), 1e-6f);
+    EXPECT_EQ(r2.t_max, 10.0f);
     // A target at the point itself: a segment no longer than the offset, never negative.
     EXPECT_LE(spawn_ray_to(p, n, p).t_max, 2.0f * ray_offset_scale(p));
     EXPECT_GE(spawn_ray_to(p, n, p).t_max, 0.0f);
@@ -150,6 +151,30 @@ TEST(ShadowRay, SpawnRayToAndUnoccluded) {
     EXPECT_FALSE(unoccluded(scene, p, n, target));
     EXPECT_TRUE(unoccluded(scene, p, n, target, blocker));
     EXPECT_TRUE(unoccluded(scene, p, n, {-5, 0.5f, 0}));  // beside the blocker
+}
+
+// A light sample's shadow ray reaches the emitting point itself: a wall that the light's
+// surface pokes through, crossed within kShadowEpsilon of the ray's length before the
+// sample, still hides it. (With the relative margin the sample counted as lit: points of
+// smallpt's light sphere just above its ceiling lit the room, +0.5 %.)
+TEST(ShadowRay, LightSampleBeyondAWallByLessThanTheMarginIsHidden) {
+    Scene scene;
+    const auto m = scene.add_material(Material::diffuse(glm::vec3(0.5f)));
+    // A ceiling at y = 80 (the bottom of a radius-1e4 ball) and a sphere light poking
+    // through it, so that the shadow ray's end lies inside the ceiling's ball.
+    (void)scene.add_sphere(glm::dvec3(0.0, 80.0 + 1e4, 0.0), 1e4, m);
+    const std::uint32_t light_object =
+        scene.add_sphere_light(SphereLight{Sphere{{0.0f, 100.0f, 0.0f}, 20.001f}, glm::vec3(1)});
+    scene.commit();
+    const glm::vec3 p(0, 0, 0), n(0, 1, 0);
+    // Straight up, the light's lowest point (y = 79.999) is below the ceiling: lit.
+    EXPECT_TRUE(unoccluded(scene, spawn_ray_to(p, n, glm::vec3(0, 1, 0), 79.999f), light_object));
+    // The point of the light's surface at y = 80.004 (x^2 = 20.001^2 - 19.996^2), on the
+    // side facing p, lies inside the ceiling's ball; the ray crosses the ceiling 0.004
+    // before reaching it, within the old margin (1e-4 x 80 = 0.008): hidden.
+    const glm::vec3 q(std::sqrt(20.001f * 20.001f - 19.996f * 19.996f), 80.004f, 0.0f);
+    const glm::vec3 wi = glm::normalize(q - p);
+    EXPECT_FALSE(unoccluded(scene, spawn_ray_to(p, n, wi, glm::length(q - p)), light_object));
 }
 
 }  // namespace

@@ -93,14 +93,16 @@ TEST(NearEmitter, SamplesLieOnTheTriangleAtTheirDistanceWithPdfLiDensity) {
                 ++valid;
                 // The direction meets the triangle; the shadow ray's distance ends short of
                 // its plane by the ray offsets' margin (ray_offset_scale of both ends over
-                // |cos| at the emitter), never beyond.
+                // |cos| at the emitter), then by the relative kShadowEpsilon, never beyond.
                 const float dn = glm::dot(s.wi, n);
                 const float t = glm::dot(tri.p0 - k.p, n) / dn;
                 const glm::vec3 q = k.p + t * s.wi - tri.p0;
                 const float margin =
                     (ray_offset_scale(k.p) + ray_offset_scale(k.p + t * s.wi)) / std::fabs(dn);
                 EXPECT_LE(s.distance, t) << k.what;
-                EXPECT_NEAR(s.distance, std::max(0.0f, t - margin), 1e-5f * t) << k.what;
+                EXPECT_NEAR(s.distance, std::max(0.0f, (t - margin) * (1.0f - kShadowEpsilon)),
+                            1e-5f * t)
+                    << k.what;
                 const float b1 = glm::dot(glm::cross(q, e2), n) / glm::length(glm::cross(e1, e2));
                 const float b2 = glm::dot(glm::cross(e1, q), n) / glm::length(glm::cross(e1, e2));
                 EXPECT_GE(b1, -1e-4f) << k.what;

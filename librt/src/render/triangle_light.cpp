@@ -1,6 +1,7 @@
 #include "planar_light.h"
 
 #include <librt/geometry/ray_offset.h>
+#include <librt/render/shadow_ray.h>
 #include <librt/render/triangle_light.h>
 #include <librt/sampling/spherical_triangle.h>
 #include <librt/sampling/warp.h>
@@ -91,11 +92,12 @@ glm::vec2 barycentrics(const TriangleLight& light, const glm::vec3& q, const glm
 // emitter (a ceiling 1 cm above a panel) that exceeds kShadowEpsilon's relative margin and
 // every shadow ray hit the panel itself. So end the segment short of the plane by the
 // origin's offset plus q's own rounding (ray_offset_scale(q)), both over |dn| (pbrt-v4
-// likewise offsets both ends of a shadow ray, SpawnRayTo). 0 (nothing can be in between)
-// when the point is that close to the plane.
+// likewise offsets both ends of a shadow ray, SpawnRayTo), then by the relative
+// kShadowEpsilon, as every shadow ray did before spawn_ray_to left the margin to the light.
+// 0 (nothing can be in between) when the point is that close to the plane.
 float shadow_distance(float t, float dn, const glm::vec3& ref, const glm::vec3& q) {
     const float margin = (ray_offset_scale(ref) + ray_offset_scale(q)) / std::fabs(dn);
-    return t > margin ? t - margin : 0.0f;
+    return t > margin ? (t - margin) * (1.0f - kShadowEpsilon) : 0.0f;
 }
 
 }  // namespace

@@ -12,9 +12,10 @@ struct LightLiSample {
     /// factor that times cos(theta) gives the irradiance: I / d^2.
     glm::vec3 radiance{0.0f};
     float pdf = 0.0f;  ///< per unit solid angle at the reference point; 1 for a delta light
-    /// Where a shadow ray toward the sample ends: the distance from the reference point to the
-    /// emitting point along wi, which a light may shorten by the ray offsets of both ends
-    /// (triangle lights do, see triangle_light.h).
+    /// Where a shadow ray toward the sample ends (spawn_ray_to uses it as it is): the
+    /// distance from the reference point to the emitting point along wi. Lights whose own
+    /// surface the shadow ray skips give it exactly; triangle lights, which cannot skip
+    /// theirs, shorten it by the ray offsets of both ends (see triangle_light.cpp).
     float distance = 0.0f;
     bool is_delta = false;  ///< a delta light: no BSDF-sampled direction can find it
 
