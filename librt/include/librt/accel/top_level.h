@@ -190,7 +190,8 @@ private:
     /// What the traversal dispatches on.
     struct Object {
         ObjectKind kind;
-        std::uint32_t index;  ///< into spheres_, prototypes_ (Mesh) or instances_
+        std::uint16_t flat_bit = 0;  ///< its box's bit in flat_ (0 when not in a flat list)
+        std::uint32_t index = 0;     ///< into spheres_, prototypes_ (Mesh) or instances_
     };
     /// A sphere with the double-precision copy its test uses.
     struct SphereData {
@@ -245,9 +246,10 @@ private:
     void finish_instance(const Ray& ray, const Instance& inst, const PrimitiveHit& prim,
                          Hit& hit) const;
     /// Calls test_object(object id, ray) -> bool for the objects the ray may hit, nearest
-    /// box first, through flat_ or top_; stops at the first hit with AnyHit.
+    /// box first, through flat_ or top_; stops at the first hit with AnyHit. The flat
+    /// list's boxes whose bits are in `skip` are not visited.
     template <bool AnyHit, class TestObject>
-    bool visit_objects(Ray& ray, TestObject&& test_object) const;
+    bool visit_objects(Ray& ray, TestObject&& test_object, std::uint32_t skip = 0) const;
 
     std::vector<Object> objects_;
     std::vector<SphereData> spheres_;
