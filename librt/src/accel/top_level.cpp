@@ -58,6 +58,14 @@ template <bool AnyHit, class TestObject>
                                       ray.t_max, &enter[i])
                    << i;
     pending &= ((1u << n) - 1u) & ~skip;  // n <= 16: the slots past it are empty boxes
+    if constexpr (AnyHit) {
+        // Any hit ends the query and none moves t_max, so the order changes only the cost:
+        // in the order the objects were added (no search for the nearest box), which puts a
+        // scene's analytic spheres, cheap to test, before its meshes when added first.
+        for (; pending != 0; pending &= pending - 1)
+            if (test_object(flat_.object[std::countr_zero(pending)], ray)) return true;
+        return false;
+    }
     // Visit boxes nearest entry first; stop when the next one starts beyond the nearest hit.
     bool found = false;
     while (pending != 0) {
