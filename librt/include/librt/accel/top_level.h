@@ -246,8 +246,9 @@ private:
     void finish_instance(const Ray& ray, const Instance& inst, const PrimitiveHit& prim,
                          Hit& hit) const;
     /// Calls test_object(object id, ray) -> bool for the objects the ray may hit, nearest
-    /// box first, through flat_ or top_; stops at the first hit with AnyHit. The flat
-    /// list's boxes whose bits are in `skip` are not visited.
+    /// box first (AnyHit: a flat list in object order), through flat_ or top_; stops at
+    /// the first hit with AnyHit. The flat list's boxes whose bits are in `skip` are not
+    /// visited.
     template <bool AnyHit, class TestObject>
     bool visit_objects(Ray& ray, TestObject&& test_object, std::uint32_t skip = 0) const;
 
