@@ -72,8 +72,10 @@ struct ObjectHit {
 /// bit for bit as the one-at-a-time test, and the nearest is the hit; when two roots lie
 /// within a few float steps of each other the boxes are visited as otherwise, so the hit
 /// is always the one the box order gives. (With a mesh in the list the boxes are always
-/// visited: there the early exits of the one-at-a-time test cost fewer instructions than
-/// computing every root; callgrind on the synthesis.)
+/// visited: there the early exits of the one-at-a-time test cost fewer instructions and
+/// less time than computing every root; the synthesis, docs/benchmarks.md.) A query
+/// through occluded() visits a flat list's boxes in the order the objects were added,
+/// without `ignored_object`'s box: any hit ends it, so no nearest-first order is needed.
 ///
 /// Object ids count add_sphere / add_mesh / add_instance calls from 0; prototype ids count
 /// add_prototype calls. Any add_* after build() un-builds; queries
