@@ -99,6 +99,49 @@ TEST(TopLevel, FlatListAndBvhAgreeWithBruteForce) {
     }
 }
 
+// A shadow ray's ignored object is dropped from the flat list before the visit (its box's
+// bit): for every ignored id (each object, an unknown id, kInvalidId) the answer is whether
+// any other object is hit, as testing every object in turn says.
+TEST(TopLevel, OccludedIgnoresExactlyItsObjectInTheFlatList) {
+    constexpr std::uint32_t kCount = 11;  // the synthesis' size: flat, spheres and meshes
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> U(-6.0f, 6.0f);
+    TopLevel top;
+    std::vector<TopLevel> singles(kCount);
+    for (std::uint32_t i = 0; i < kCount; ++i) {
+        if (i % 4 != 3) {
+            const Sphere s{{U(rng), U(rng), U(rng)}, 1.0f + 0.2f * std::fabs(U(rng))};
+            top.add_sphere(s);
+            singles[i].add_sphere(s);
+        } else {
+            TriangleMesh mesh = make_icosphere({U(rng), U(rng), U(rng)}, 1.5f, 2);
+            top.add_mesh(top.add_prototype(mesh));
+            singles[i].add_mesh(singles[i].add_prototype(std::move(mesh)));
+        }
+        singles[i].build();
+    }
+    top.build();
+    int occluded_by_others_only = 0;
+    for (int r = 0; r < 20000; ++r) {
+        const Ray ray{
+            {U(rng), U(rng), U(rng)}, {U(rng), U(rng), U(rng)}, 0.0f, 0.5f + std::fabs(U(rng))};
+        bool hit[kCount];
+        for (std::uint32_t i = 0; i < kCount; ++i) {
+            ObjectHit h;
+            hit[i] = singles[i].intersect(ray, h);
+        }
+        for (std::uint32_t ignored = 0; ignored < kCount + 2; ++ignored) {
+            const std::uint32_t id = ignored == kCount + 1 ? kInvalidId : ignored;
+            bool others = false;
+            for (std::uint32_t i = 0; i < kCount; ++i) others |= hit[i] && i != id;
+            EXPECT_EQ(top.occluded(ray, id), others) << "ray " << r << " ignoring " << id;
+            occluded_by_others_only += id < kCount && hit[id] && others;
+        }
+    }
+    // The ignored object itself is often in the way while another one is too.
+    EXPECT_GT(occluded_by_others_only, 400);
+}
+
 TEST(TopLevel, InstanceIdsAndBadInput) {
     TopLevel top;
     EXPECT_THROW((void)top.add_mesh(0), Error);

@@ -39,8 +39,8 @@ void TopLevel::throw_not_built() {
 // closest-hit lambda's captures and the best hit go through memory (callgrind on the
 // synthesis: ~2% of the closest-hit query's instructions).
 template <bool AnyHit, class TestObject>
-[[gnu::always_inline]] inline bool TopLevel::visit_objects(Ray& ray,
-                                                           TestObject&& test_object) const {
+[[gnu::always_inline]] inline bool TopLevel::visit_objects(Ray& ray, TestObject&& test_object,
+                                                           std::uint32_t skip) const {
     if (flat_.count == 0)
         return traverse<AnyHit>(top_, ray, [&](std::uint32_t slot, Ray& current) {
             return test_object(slot_object_[slot], current);
@@ -57,7 +57,15 @@ template <bool AnyHit, class TestObject>
         pending |= detail::slab_test4(&flat_.planes[0][i], kFlatObjectLimit, r4, ray.t_min,
                                       ray.t_max, &enter[i])
                    << i;
-    pending &= (1u << n) - 1u;  // n <= 16: the slots past it are empty boxes
+    pending &= ((1u << n) - 1u) & ~skip;  // n <= 16: the slots past it are empty boxes
+    if constexpr (AnyHit) {
+        // Any hit ends the query and none moves t_max, so the order changes only the cost:
+        // in the order the objects were added (no search for the nearest box), which puts a
+        // scene's analytic spheres, cheap to test, before its meshes when added first.
+        for (; pending != 0; pending &= pending - 1)
+            if (test_object(flat_.object[std::countr_zero(pending)], ray)) return true;
+        return false;
+    }
     // Visit boxes nearest entry first; stop when the next one starts beyond the nearest hit.
     bool found = false;
     while (pending != 0) {
@@ -233,24 +241,31 @@ bool TopLevel::occluded(const Ray& ray, std::uint32_t ignored_object) const {
         return occluded_sphere(ray, ignored_object);
     Ray r = detail::copy_by_floats(ray);  // no store-forwarding stall (ray_copy.h)
     const DoubleRay dray(r);
-    return visit_objects<true>(r, [&](std::uint32_t id, Ray& current) {
-        if (id == ignored_object) return false;
-        const Object& o = objects_[id];
-        switch (o.kind) {
-            case ObjectKind::Sphere:
-                return librt::intersect(spheres_[o.index].prepared, dray, current.t_min,
-                                        current.t_max) >= 0.0;
-            case ObjectKind::Mesh:
-                return prototypes_[o.index].bvh.occluded(current);
-            case ObjectKind::Instance:
-                break;
-        }
-        const Instance& inst = instances_[o.index];
-        Ray local = current;
-        local.origin = inst.to_object * current.origin + inst.to_object_shift;
-        local.direction = inst.to_object * current.direction;
-        return prototypes_[inst.prototype].bvh.occluded(local);
-    });
+    // The ignored object's box is dropped before the visit (a shadow ray toward a sphere
+    // light enters the light's box every time); the test below still skips it in top_.
+    const std::uint32_t skip =
+        ignored_object < objects_.size() ? objects_[ignored_object].flat_bit : 0u;
+    return visit_objects<true>(
+        r,
+        [&](std::uint32_t id, Ray& current) {
+            if (id == ignored_object) return false;
+            const Object& o = objects_[id];
+            switch (o.kind) {
+                case ObjectKind::Sphere:
+                    return librt::intersect(spheres_[o.index].prepared, dray, current.t_min,
+                                            current.t_max) >= 0.0;
+                case ObjectKind::Mesh:
+                    return prototypes_[o.index].bvh.occluded(current);
+                case ObjectKind::Instance:
+                    break;
+            }
+            const Instance& inst = instances_[o.index];
+            Ray local = current;
+            local.origin = inst.to_object * current.origin + inst.to_object_shift;
+            local.direction = inst.to_object * current.direction;
+            return prototypes_[inst.prototype].bvh.occluded(local);
+        },
+        skip);
 }
 
 void TopLevel::finish(const Ray& ray, const ObjectHit& object_hit, bool every_sphere_uv,

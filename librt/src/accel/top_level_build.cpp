@@ -31,7 +31,7 @@ constexpr double kInstanceBoxPad = 0x1p-18;
 
 std::uint32_t TopLevel::add_object(ObjectKind kind, std::uint32_t index) {
     query_ = Query::None;
-    objects_.push_back({kind, index});
+    objects_.push_back({kind, 0, index});
     return std::uint32_t(objects_.size() - 1);
 }
 
@@ -226,6 +226,7 @@ void TopLevel::build() {
     for (std::size_t slot = 0; slot < slot_object_.size(); ++slot)
         slot_object_[slot] = ids[top_.prim_indices[slot]];
     flat_.count = 0;
+    for (Object& o : objects_) o.flat_bit = 0;
     if (ids.size() <= kFlatObjectLimit) {
         flat_.count = std::uint32_t(ids.size());
         for (std::size_t i = 0; i < kFlatObjectLimit; ++i) {  // empty boxes: never entered
@@ -240,6 +241,7 @@ void TopLevel::build() {
                 flat_.planes[2 * a + 1][i] = boxes[i].hi[a];
             }
             flat_.object[i] = ids[i];
+            objects_[ids[i]].flat_bit = static_cast<std::uint16_t>(1u << i);
         }
     }
     sphere_lanes_.reset();

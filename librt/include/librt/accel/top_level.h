@@ -72,8 +72,10 @@ struct ObjectHit {
 /// bit for bit as the one-at-a-time test, and the nearest is the hit; when two roots lie
 /// within a few float steps of each other the boxes are visited as otherwise, so the hit
 /// is always the one the box order gives. (With a mesh in the list the boxes are always
-/// visited: there the early exits of the one-at-a-time test cost fewer instructions than
-/// computing every root; callgrind on the synthesis.)
+/// visited: there the early exits of the one-at-a-time test cost fewer instructions and
+/// less time than computing every root; the synthesis, docs/benchmarks.md.) A query
+/// through occluded() visits a flat list's boxes in the order the objects were added,
+/// without `ignored_object`'s box: any hit ends it, so no nearest-first order is needed.
 ///
 /// Object ids count add_sphere / add_mesh / add_instance calls from 0; prototype ids count
 /// add_prototype calls. Any add_* after build() un-builds; queries
@@ -193,7 +195,8 @@ private:
     /// What the traversal dispatches on.
     struct Object {
         ObjectKind kind;
-        std::uint32_t index;  ///< into spheres_, prototypes_ (Mesh) or instances_
+        std::uint16_t flat_bit = 0;  ///< its box's bit in flat_ (0 when not in a flat list)
+        std::uint32_t index = 0;     ///< into spheres_, prototypes_ (Mesh) or instances_
     };
     /// A sphere with the double-precision copy its test uses.
     struct SphereData {
@@ -248,9 +251,11 @@ private:
     void finish_instance(const Ray& ray, const Instance& inst, const PrimitiveHit& prim,
                          Hit& hit) const;
     /// Calls test_object(object id, ray) -> bool for the objects the ray may hit, nearest
-    /// box first, through flat_ or top_; stops at the first hit with AnyHit.
+    /// box first (AnyHit: a flat list in object order), through flat_ or top_; stops at
+    /// the first hit with AnyHit. The flat list's boxes whose bits are in `skip` are not
+    /// visited.
     template <bool AnyHit, class TestObject>
-    bool visit_objects(Ray& ray, TestObject&& test_object) const;
+    bool visit_objects(Ray& ray, TestObject&& test_object, std::uint32_t skip = 0) const;
 
     std::vector<Object> objects_;
     std::vector<SphereData> spheres_;
