@@ -155,7 +155,9 @@ void check_data_file(const fs::path& p) {
     for (std::size_t i = 0; i < scene.top_level().prototype_count(); ++i) {
         const TriangleMesh& mesh = scene.top_level().prototype_mesh(std::uint32_t(i));
         with_tangents += !mesh.tangents.empty();
-        if (!mesh.tangents.empty()) EXPECT_EQ(mesh.tangents.size(), mesh.positions.size());
+        if (!mesh.tangents.empty()) {
+            EXPECT_EQ(mesh.tangents.size(), mesh.positions.size());
+        }
     }
     EXPECT_EQ(with_tangents, want.prototypes_with_tangents);
 

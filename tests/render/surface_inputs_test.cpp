@@ -247,7 +247,9 @@ TEST(SurfaceInputs, VertexColorsMultiplyTheBaseColourWhereTheHitLands) {
         Hit hit;
         const Ray ray({0.5f, -0.5f, z}, {0, 0, -1});
         ASSERT_TRUE(scene.intersect_for_shading(ray, hit));
-        if (z < 0.0f) ASSERT_NE(hit.instance_id, kInvalidId);
+        if (z < 0.0f) {
+            ASSERT_NE(hit.instance_id, kInvalidId);
+        }
         ShadedMaterial scratch;
         const Material& m = scene.shade(hit, ray.direction, scratch);
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(m.base_color[c], 0.5f * want[c], 1e-6f) << c;
