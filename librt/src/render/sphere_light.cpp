@@ -69,21 +69,27 @@ float pdf_li(const SphereLight& light, const glm::vec3& ref, const glm::vec3& wi
         const VisibleCap cap = visible_cap(light, ref);
         if (cap.kind == CapKind::Hidden) return 0.0f;
         if (cap.kind == CapKind::Cap) {
-            // The near root of the ray with the light, by the scene's own double-precision
-            // sphere test (ref is outside the light: visible_cap is Whole inside).
-            const DoubleRay ray(Ray(ref, wi));
-            const double t = intersect(DoubleSphere(light.sphere), ray, 0.0,
-                                       std::numeric_limits<double>::infinity());
-            if (!(t > 0.0)) return 0.0f;
+            // The near root of the ray with the light (ref is outside it: visible_cap is
+            // Whole inside), as t = c / (-b + sqrt(disc)) for a unit direction: the
+            // quadratic t^2 + 2 b t + c with b = oc . w, c = |oc|^2 - r^2, the
+            // discriminant r^2 - |oc - b w|^2 without cancellation (Numerical Recipes 5.6).
+            const glm::dvec3 w = glm::normalize(glm::dvec3(wi));
+            const glm::dvec3 cl(light.sphere.center);
             const double r = double(light.sphere.radius);
-            const glm::dvec3 w = ray.direction * std::sqrt(ray.inv_a);  // unit
-            const glm::dvec3 n =
-                (ray.origin + t * ray.direction - glm::dvec3(light.sphere.center)) / r;
+            const glm::dvec3 oc = glm::dvec3(ref) - cl;
+            const double b = glm::dot(oc, w);
+            const glm::dvec3 perp = oc - b * w;
+            const double disc = r * r - glm::dot(perp, perp);
+            if (!(b < 0.0) || !(disc >= 0.0)) return 0.0f;
+            const double c = glm::dot(oc, oc) - r * r;
+            const double t = c / (-b + std::sqrt(disc));
+            if (!(t > 0.0)) return 0.0f;
+            const glm::dvec3 n = (oc + t * w) / r;
             const double z = glm::dot(n, cap.cut->axis);
             if (!(z >= cap.z0 && z <= cap.z1)) return 0.0f;
             const double cos_light = -glm::dot(n, w);
             if (!(cos_light > 0.0)) return 0.0f;
-            return cap_pdf(t * t * ray.a, cap_area(r, cap), cos_light);
+            return cap_pdf(t * t, cap_area(r, cap), cos_light);
         }
     }
     const float p = sphere_visible_pdf(light.sphere.center, light.sphere.radius, ref, wi);
