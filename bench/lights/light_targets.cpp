@@ -11,12 +11,15 @@
 // ceiling at 2), LIBRT_PANEL_ONE_SIDED (=1: the panel's triangles get the material a glTF
 // file's single-sided emissive material maps to, through material_from_gltf, so they are
 // one-sided triangle lights; =quad: a one-sided quad light instead); LIBRT_BLOCK_RMSE (set:
-// also print each candidate's RMSE per 8 x 8 pixel block, to see where the error is).
+// also print each candidate's RMSE per 8 x 8 pixel block, to see where the error is);
+// LIBRT_WORST (set: print the 10 pixels where the sampled candidate is furthest from the
+// reference, with all three images' values: fireflies); LIBRT_BENCH_SIZE (image side,
+// default 32); LIBRT_GUIDING_PASSES (training passes of the guided candidate).
 // Usage: librt_light_targets [seconds per candidate = 2] [reference seconds = 40]
 //                            [panel edge = 0.5 (its power is kept: radiance / edge^2)]
 //                            [max depth = 5] [sampler of the sampled candidate and the
 //                            reference = independent | sobol] [roulette = 1 | 0]
-//                            [scene = both | panel | sky | glb]
+//                            [scene = both | panel | sky | glb] [guided = 0 | 1]
 // glb: ../shared/data/gltf/cornell_pbr.glb as rt_render loads it (its two-sided emissive
 // panel 1 cm under the ceiling, gold, thin glass and plastic), seen from the file's own
 // camera (the same eye, direction and 40 degree field of view as the panel box's).
@@ -31,6 +34,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -44,7 +48,12 @@ namespace {
 using namespace librt;
 using Clock = std::chrono::steady_clock;
 
-constexpr int kSize = 32;
+/// Image side in pixels: 32, or LIBRT_BENCH_SIZE (a multiple of 4) for experiments.
+const int kSize = [] {
+    const char* v = std::getenv("LIBRT_BENCH_SIZE");
+    const int n = v != nullptr ? std::atoi(v) : 32;
+    return n >= 4 && n % 4 == 0 ? n : 32;
+}();
 
 TriangleMesh quad(const glm::vec3& c, const glm::vec3& e0, const glm::vec3& e1) {
     TriangleMesh m;
@@ -116,8 +125,8 @@ struct BenchCamera {
         const float depth = float(kSize) / (2.0f * std::tan(glm::radians(fov) * 0.5f));
         Ray r;
         r.origin = eye;
-        r.direction = glm::normalize((float(x) + jx - kSize / 2.0f) * right +
-                                     (kSize / 2.0f - float(y) - jy) * up + depth * forward);
+        r.direction = glm::normalize((float(x) + jx - float(kSize) / 2.0f) * right +
+                                     (float(kSize) / 2.0f - float(y) - jy) * up + depth * forward);
         return r;
     }
 };
@@ -127,11 +136,13 @@ struct BenchCamera {
 /// estimators and hide the lighting's), until `seconds` pass; the mean image.
 std::vector<glm::dvec3> render(const Scene& scene, const Integrator& integrator,
                                const BenchCamera& cam, double seconds, std::uint64_t seed,
-                               int* passes, SamplerKind kind = SamplerKind::Independent) {
-    std::vector<glm::dvec3> sum(kSize * kSize, glm::dvec3(0.0));
+                               int* passes, SamplerKind kind = SamplerKind::Independent,
+                               int max_passes = 0) {
+    std::vector<glm::dvec3> sum(std::size_t(kSize * kSize), glm::dvec3(0.0));
     const auto start = Clock::now();
     int n = 0;
     do {
+        if (max_passes > 0 && n == max_passes) break;
         for (int y = 0; y < kSize; ++y)
             for (int x = 0; x < kSize; ++x) {
                 Sampler s(kind, std::uint32_t(x), std::uint32_t(y), std::uint32_t(n), seed);
@@ -139,7 +150,8 @@ std::vector<glm::dvec3> render(const Scene& scene, const Integrator& integrator,
                     glm::dvec3(integrator.li(scene, cam.ray(x, y, 0.5f, 0.5f), s));
             }
         ++n;
-    } while (std::chrono::duration<double>(Clock::now() - start).count() < seconds);
+    } while (max_passes > 0 ||
+             std::chrono::duration<double>(Clock::now() - start).count() < seconds);
     for (auto& v : sum) v /= double(n);
     *passes = n;
     return sum;
@@ -154,11 +166,12 @@ double rmse(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) 
     return std::sqrt(s / double(a.size()));
 }
 
-/// The RMSE of a against b in each of the 4 x 4 blocks of 8 x 8 pixels, top row first.
+/// The RMSE of a against b in each of 4 x 4 blocks (8 x 8 pixels at the default size),
+/// top row first.
 void print_block_rmse(const char* what, const std::vector<glm::dvec3>& a,
                       const std::vector<glm::dvec3>& b) {
-    constexpr int blocks = 4, side = kSize / blocks;
-    std::printf("  %s, RMSE per 8 x 8 block:\n", what);
+    const int blocks = 4, side = kSize / blocks;
+    std::printf("  %s, RMSE per %d x %d block:\n", what, side, side);
     for (int by = 0; by < blocks; ++by) {
         std::printf("   ");
         for (int bx = 0; bx < blocks; ++bx) {
@@ -177,16 +190,53 @@ void print_block_rmse(const char* what, const std::vector<glm::dvec3>& a,
 
 void compare(const char* name, const Scene& sampled, const Integrator& good, const Scene& plain,
              const Integrator& base, const BenchCamera& cam, double seconds, double ref_seconds,
-             SamplerKind kind) {
+             SamplerKind kind, PathTracer* guided) {
     int nr = 0, ng = 0, nb = 0;
     const auto ref = render(sampled, good, cam, ref_seconds, 1000, &nr, kind);
-    const auto g = render(sampled, good, cam, seconds, 1, &ng, kind);
+    std::vector<glm::dvec3> g;
+    if (guided != nullptr) {
+        // The guided candidate's training passes count in its time (their samples are
+        // discarded), as render() without keep_training_samples does.
+        const auto start = Clock::now();
+        guided->preprocess(sampled);
+        int trained = 0;
+        for (int pass = 0;; ++pass) {
+            const std::uint32_t spp = guided->begin_training_pass(pass);
+            if (spp == 0) break;
+            int done = 0;
+            (void)render(sampled, *guided, cam, 0.0, 5000 + std::uint64_t(pass), &done, kind,
+                         int(spp));
+            guided->end_training_pass(pass);
+            trained += done;
+        }
+        const double spent = std::chrono::duration<double>(Clock::now() - start).count();
+        std::printf("guided: %d training spp in %.2f s, %zu spatial leaves\n", trained, spent,
+                    guided->guiding_leaf_count());
+        g = render(sampled, *guided, cam, seconds - spent, 1, &ng, kind);
+    } else {
+        g = render(sampled, good, cam, seconds, 1, &ng, kind);
+    }
     const auto b = render(plain, base, cam, seconds, 2, &nb);
     const double rg = rmse(g, ref), rb = rmse(b, ref);
     std::printf(
         "%s: reference %d spp; sampled %d spp RMSE %.5f; baseline %d spp RMSE %.5f; "
         "ratio %.1fx\n",
         name, nr, ng, rg, nb, rb, rb / rg);
+    if (std::getenv("LIBRT_WORST") != nullptr) {
+        std::vector<std::size_t> idx(g.size());
+        for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+        std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t c) {
+            return glm::length(g[a] - ref[a]) > glm::length(g[c] - ref[c]);
+        });
+        for (int k = 0; k < 10; ++k) {
+            const std::size_t i = idx[std::size_t(k)];
+            std::printf(
+                "  pixel (%zu, %zu): sampled %.4f %.4f %.4f ref %.4f %.4f %.4f base %.4f %.4f "
+                "%.4f\n",
+                i % std::size_t(kSize), i / std::size_t(kSize), g[i].x, g[i].y, g[i].z, ref[i].x,
+                ref[i].y, ref[i].z, b[i].x, b[i].y, b[i].z);
+        }
+    }
     // LIBRT_BLOCK_RMSE=1: where the error is (diagnosis of the panel's noise).
     if (std::getenv("LIBRT_BLOCK_RMSE") != nullptr) {
         print_block_rmse("sampled", g, ref);
@@ -208,6 +258,14 @@ int main(int argc, char** argv) {
     const std::string which = argc > 7 ? argv[7] : "both";
     const PathTracer pt(settings);
     const BruteForcePathTracer brute(settings);
+    // [guided = 0 | 1]: the sampled candidate also guides its paths (path guiding, its
+    // training passes in its time; LIBRT_GUIDING_PASSES sets their number).
+    PathTracerSettings guided_settings = settings;
+    guided_settings.guiding.enabled = true;
+    if (const char* p = std::getenv("LIBRT_GUIDING_PASSES"))
+        guided_settings.guiding.training_passes = std::atoi(p);
+    PathTracer guided_pt(guided_settings);
+    PathTracer* guided = argc > 8 && std::atoi(argv[8]) != 0 ? &guided_pt : nullptr;
 
     const char* dir = std::getenv("LIBRT_DATA_DIR");
     const std::filesystem::path data(dir ? dir : LIBRT_DEFAULT_DATA_DIR);
@@ -216,14 +274,14 @@ int main(int argc, char** argv) {
         LoadedScene loaded = scene_from_gltf(load_gltf(data / "gltf" / "cornell_pbr.glb"));
         loaded.scene.commit();
         compare("cornell_pbr.glb (triangle lights vs the panel unsampled)", loaded.scene, pt,
-                loaded.scene, brute, box_cam, seconds, ref_seconds, kind);
+                loaded.scene, brute, box_cam, seconds, ref_seconds, kind, guided);
         return 0;
     }
     if (which != "sky") {
         Scene lit;
         build_panel_box(lit, edge);
         compare("panel (triangle lights vs the panel unsampled)", lit, pt, lit, brute, box_cam,
-                seconds, ref_seconds, kind);
+                seconds, ref_seconds, kind, guided);
     }
     if (which == "panel") return 0;
 
@@ -236,6 +294,6 @@ int main(int argc, char** argv) {
                               glm::normalize(glm::vec3(0, 1, -0.25f)),
                               50.0f};
     compare("sky.hdr (environment sampling + MIS vs cosine sampling)", sky_scene, pt, sky_scene,
-            brute, sky_cam, seconds, ref_seconds, kind);
+            brute, sky_cam, seconds, ref_seconds, kind, guided);
     return 0;
 }

@@ -462,9 +462,14 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         if (!(max_component(beta * albedo) > 0.0f)) break;
         Vertex v(m, hit, ray.direction, albedo);  // its frame built when first needed
         // Light sampling alone takes the whole weight for direct lighting, without MIS, and
-        // at the last scattering event, where no BSDF sample will be weighed against it.
-        const bool light_only =
-            S == Strategy::Direct || !settings.mis || depth >= settings.max_depth;
+        // at the last scattering event, where no BSDF sample will be weighed against it --
+        // except on a glossy lobe: there light sampling alone divides a peaked f by a light
+        // pdf that knows nothing of it (a sample through a smooth-ish glass cube read 2800
+        // times the panel's radiance), so the last vertex keeps MIS and traces its BSDF ray
+        // for the emitter it may hit, as pbrt-v4's loop does at every depth.
+        const bool last = depth >= settings.max_depth;
+        const bool light_only = S == Strategy::Direct || !settings.mis ||
+                                (last && !has(material_lobes, BsdfLobe::Glossy));
         if constexpr (Bounded) {
             // The point, its normal and whether light from below its plane can count.
             chosen_at = {hit.point, v.g, !has(material_lobes, BsdfLobe::Transmission)};
@@ -489,7 +494,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             // The last bounce: what it finds counts only if it emits without being a light
             // (lights got weight 1 from the light sample just taken). With no such emitter,
             // save the ray.
-            if (depth >= settings.max_depth && !scene.has_unsampled_emitters()) return radiance;
+            if (last && light_only && !scene.has_unsampled_emitters()) return radiance;
         }
         if constexpr (Guided) {
             if (leaf != nullptr) {
