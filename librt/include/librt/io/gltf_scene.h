@@ -21,18 +21,20 @@ struct GltfMaterialTextures {
     std::int32_t metallic_roughness = -1;  ///< metallicRoughnessTexture (linear; G, B)
     std::int32_t emissive = -1;            ///< emissiveTexture (sRGB)
     std::int32_t normal = -1;              ///< normalTexture (linear, tangent space)
+    std::int32_t anisotropy = -1;          ///< anisotropyTexture (linear; RG direction, B)
 };
 
 /// librt's material for a glTF material; the ONE place that mapping lives. Every glTF
 /// material becomes MaterialKind::MetallicRoughness (glTF 2.0 Appendix B): base colour,
 /// metallic and roughness factors (clamped to [0, 1]), ior from KHR_materials_ior (0, the
 /// extension's reflection-only limit, read as 1.5), KHR_materials_transmission as its
-/// thin-walled transmission; emission = emissive_factor * KHR_materials_emissive_strength.
-/// The textures in `textures` fill its slots, each with its KHR_texture_transform and the
-/// flip of glTF's downward v (the mesh keeps glTF's uvs); normalTexture.scale and the base
-/// colour alpha are kept. alphaMode MASK sets alpha_cutoff to alphaCutoff; BLEND is drawn
-/// as MASK with cut-off 0.5 (librt has no partial coverage); OPAQUE has no alpha test.
-/// doubleSided false makes the material one-sided (its back is black), except with
+/// thin-walled transmission; emission = emissive_factor * KHR_materials_emissive_strength;
+/// KHR_materials_anisotropy's strength, rotation and texture as Material::anisotropy,
+/// anisotropy_rotation and anisotropy_texture. The textures in `textures` fill its slots, each with
+/// its KHR_texture_transform and the flip of glTF's downward v (the mesh keeps glTF's uvs);
+/// normalTexture.scale and the base colour alpha are kept. alphaMode MASK sets alpha_cutoff to
+/// alphaCutoff; BLEND is drawn as MASK with cut-off 0.5 (librt has no partial coverage); OPAQUE has
+/// no alpha test. doubleSided false makes the material one-sided (its back is black), except with
 /// transmission, which must be crossed from both sides. The occlusion texture is not used
 /// (a path tracer computes occlusion).
 [[nodiscard]] LIBRT_API Material material_from_gltf(const GltfMaterial& material,
