@@ -74,52 +74,62 @@ struct MetallicRoughness {
         return wi.z > 0.0f ? p.frame.above_geometry(wi) : !p.frame.above_geometry(wi);
     }
 
-    static BsdfSample sample(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
-                             float uc, glm::vec2 u) {
+    [[gnu::noinline]] static BsdfSample sample(const Material& m, const ShadingPoint& p,
+                                               const glm::vec3& wo, float uc, glm::vec2 u) {
+        if (m.anisotropy > 0.0f) [[unlikely]]
+            return sample_anisotropic(m, p, wo, uc, u);
         if (wo.z <= 0.0f) return {};
-        return microfacet::with_ggx_lobe(m, p, [&](const auto& ggx) -> BsdfSample {
-            const auto prob = lobe_probabilities(m, wo);
-            glm::vec3 wi;
-            BsdfLobe lobe;
-            if (uc < prob[0]) {
-                wi = reflect(-wo, ggx.sample_visible_normal(wo, u));
-                lobe = BsdfLobe::Glossy | BsdfLobe::Reflection;
-            } else if (uc < prob[0] + prob[1]) {
-                wi = sample_cosine_hemisphere(u);
-                lobe = BsdfLobe::DiffuseReflection;
-            } else {
-                wi = reflect(-wo, ggx.sample_visible_normal(wo, u));
-                wi.z = -wi.z;  // thin-walled: the reflection mirrored through the surface
-                lobe = BsdfLobe::Glossy | BsdfLobe::Transmission;
-            }
-            // A reflection that went under the surface is no sample of its lobe (nor of the
-            // other side's): without this check it would be counted with the wrong density.
-            const bool wants_transmission = has(lobe, BsdfLobe::Transmission);
-            if ((wi.z < 0.0f) != wants_transmission || !valid_side(p, wo, wi)) return {};
-            const float density = pdf_of(ggx, m, wo, wi);
-            if (!(density > 0.0f)) return {};
-            return {wi, eval_of(ggx, m, p, wo, wi) * std::fabs(wi.z) / density, density, lobe};
-        });
+        return sample_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo,
+                           uc, u);
     }
 
-    static glm::vec3 eval(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
-                          const glm::vec3& wi) {
+    [[gnu::noinline]] static glm::vec3 eval(const Material& m, const ShadingPoint& p,
+                                            const glm::vec3& wo, const glm::vec3& wi) {
+        if (m.anisotropy > 0.0f) [[unlikely]]
+            return eval_anisotropic(m, p, wo, wi);
         if (!valid_side(p, wo, wi)) return glm::vec3(0.0f);
-        return microfacet::with_ggx_lobe(
-            m, p, [&](const auto& ggx) { return eval_of(ggx, m, p, wo, wi); });
+        return eval_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
     }
 
-    static float pdf(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
-                     const glm::vec3& wi) {
+    [[gnu::noinline]] static float pdf(const Material& m, const ShadingPoint& p,
+                                       const glm::vec3& wo, const glm::vec3& wi) {
+        if (m.anisotropy > 0.0f) [[unlikely]]
+            return pdf_anisotropic(m, p, wo, wi);
         if (!valid_side(p, wo, wi)) return 0.0f;
-        return microfacet::with_ggx_lobe(m, p,
-                                         [&](const auto& ggx) { return pdf_of(ggx, m, wo, wi); });
+        return pdf_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, wo, wi);
+    }
+
+    /// The sample for wo.z > 0, given the GGX lobe.
+    template <class Ggx>
+    static BsdfSample sample_with(const Ggx& ggx, const Material& m, const ShadingPoint& p,
+                                  const glm::vec3& wo, float uc, glm::vec2 u) {
+        const auto prob = lobe_probabilities(m, wo);
+        glm::vec3 wi;
+        BsdfLobe lobe;
+        if (uc < prob[0]) {
+            wi = reflect(-wo, ggx.sample_visible_normal(wo, u));
+            lobe = BsdfLobe::Glossy | BsdfLobe::Reflection;
+        } else if (uc < prob[0] + prob[1]) {
+            wi = sample_cosine_hemisphere(u);
+            lobe = BsdfLobe::DiffuseReflection;
+        } else {
+            wi = reflect(-wo, ggx.sample_visible_normal(wo, u));
+            wi.z = -wi.z;  // thin-walled: the reflection mirrored through the surface
+            lobe = BsdfLobe::Glossy | BsdfLobe::Transmission;
+        }
+        // A reflection that went under the surface is no sample of its lobe (nor of the
+        // other side's): without this check it would be counted with the wrong density.
+        const bool wants_transmission = has(lobe, BsdfLobe::Transmission);
+        if ((wi.z < 0.0f) != wants_transmission || !valid_side(p, wo, wi)) return {};
+        const float density = pdf_with(ggx, m, wo, wi);
+        if (!(density > 0.0f)) return {};
+        return {wi, eval_with(ggx, m, p, wo, wi) * std::fabs(wi.z) / density, density, lobe};
     }
 
     /// eval() on a valid side, given the GGX lobe.
     template <class Ggx>
-    static glm::vec3 eval_of(const Ggx& ggx, const Material& m, const ShadingPoint& p,
-                             const glm::vec3& wo, const glm::vec3& wi) {
+    static glm::vec3 eval_with(const Ggx& ggx, const Material& m, const ShadingPoint& p,
+                               const glm::vec3& wo, const glm::vec3& wi) {
         const bool transmitted = wi.z < 0.0f;
         const glm::vec3 wr(wi.x, wi.y, std::fabs(wi.z));  // thin transmission: mirrored wi
         const glm::vec3 h = glm::normalize(wo + wr);
@@ -143,14 +153,37 @@ struct MetallicRoughness {
 
     /// pdf() on a valid side, given the GGX lobe.
     template <class Ggx>
-    static float pdf_of(const Ggx& ggx, const Material& m, const glm::vec3& wo,
-                        const glm::vec3& wi) {
+    static float pdf_with(const Ggx& ggx, const Material& m, const glm::vec3& wo,
+                          const glm::vec3& wi) {
         const auto prob = lobe_probabilities(m, wo);
         const glm::vec3 wr(wi.x, wi.y, std::fabs(wi.z));
         const glm::vec3 h = glm::normalize(wo + wr);
         const float glossy = ggx.reflection_pdf(wo, h);
         if (wi.z < 0.0f) return prob[2] * glossy;
         return prob[0] * glossy + prob[1] * cosine_hemisphere_pdf(wi.z);
+    }
+
+    // Anisotropic materials, out of line (see microfacet_anisotropic.h).
+    [[gnu::noinline, gnu::cold]] static BsdfSample sample_anisotropic(const Material& m,
+                                                                      const ShadingPoint& p,
+                                                                      const glm::vec3& wo, float uc,
+                                                                      glm::vec2 u) {
+        if (wo.z <= 0.0f) return {};
+        return sample_with(microfacet::anisotropic_lobe(m, p), m, p, wo, uc, u);
+    }
+    [[gnu::noinline, gnu::cold]] static glm::vec3 eval_anisotropic(const Material& m,
+                                                                   const ShadingPoint& p,
+                                                                   const glm::vec3& wo,
+                                                                   const glm::vec3& wi) {
+        if (!valid_side(p, wo, wi)) return glm::vec3(0.0f);
+        return eval_with(microfacet::anisotropic_lobe(m, p), m, p, wo, wi);
+    }
+    [[gnu::noinline, gnu::cold]] static float pdf_anisotropic(const Material& m,
+                                                              const ShadingPoint& p,
+                                                              const glm::vec3& wo,
+                                                              const glm::vec3& wi) {
+        if (!valid_side(p, wo, wi)) return 0.0f;
+        return pdf_with(microfacet::anisotropic_lobe(m, p), m, wo, wi);
     }
 };
 

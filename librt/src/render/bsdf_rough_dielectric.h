@@ -34,31 +34,39 @@ struct RoughDielectric {
         return p.frame.front ? ior : 1.0f / ior;
     }
 
-    static BsdfSample sample(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
-                             float uc, glm::vec2 u) {
-        if (smooth(m)) return Dielectric::sample(m, p, wo, uc, u);
+    [[gnu::noinline]] static BsdfSample sample(const Material& m, const ShadingPoint& p,
+                                               const glm::vec3& wo, float uc, glm::vec2 u) {
+        if (m.anisotropy > 0.0f) [[unlikely]]
+            return sample_anisotropic(m, p, wo, uc, u);
+        if (m.roughness <= 0.0f) return Dielectric::sample(m, p, wo, uc, u);
         if (wo.z <= 0.0f) return {};
-        return microfacet::with_ggx_lobe(m, p, [&](const auto& ggx) -> BsdfSample {
-            const float eta = eta_t(p, m.ior);
-            const glm::vec3 h = ggx.sample_visible_normal(wo, u);
-            const float oh = glm::dot(wo, h);
-            const float f = microfacet::fresnel_dielectric(oh, eta);
-            glm::vec3 wi;
-            bool transmitted = false;
-            if (uc < f) {
-                wi = reflect(-wo, h);
-            } else {
-                const float cos_t = refracted_cos(oh, 1.0f / eta);
-                if (cos_t < 0.0f) return {};  // cannot happen when F < 1; guards rounding
-                wi = refract(-wo, h, 1.0f / eta, oh, cos_t);
-                transmitted = true;
-            }
-            if (!valid_side(p, wi, transmitted)) return {};
-            const float g = ggx.g2(wo, wi) / ggx.g1(wo);
-            const BsdfLobe lobe =
-                BsdfLobe::Glossy | (transmitted ? BsdfLobe::Transmission : BsdfLobe::Reflection);
-            return {wi, p.albedo * g, pdf_of(ggx, p, m.ior, wo, wi), lobe};
-        });
+        return sample_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo,
+                           uc, u);
+    }
+
+    /// The rough sample for wo.z > 0, given the lobe.
+    template <class Ggx>
+    static BsdfSample sample_with(const Ggx& ggx, const Material& m, const ShadingPoint& p,
+                                  const glm::vec3& wo, float uc, glm::vec2 u) {
+        const float eta = eta_t(p, m.ior);
+        const glm::vec3 h = ggx.sample_visible_normal(wo, u);
+        const float oh = glm::dot(wo, h);
+        const float f = microfacet::fresnel_dielectric(oh, eta);
+        glm::vec3 wi;
+        bool transmitted = false;
+        if (uc < f) {
+            wi = reflect(-wo, h);
+        } else {
+            const float cos_t = refracted_cos(oh, 1.0f / eta);
+            if (cos_t < 0.0f) return {};  // cannot happen when F < 1; guards rounding
+            wi = refract(-wo, h, 1.0f / eta, oh, cos_t);
+            transmitted = true;
+        }
+        if (!valid_side(p, wi, transmitted)) return {};
+        const float g = ggx.g2(wo, wi) / ggx.g1(wo);
+        const BsdfLobe lobe =
+            BsdfLobe::Glossy | (transmitted ? BsdfLobe::Transmission : BsdfLobe::Reflection);
+        return {wi, p.albedo * g, pdf_with(ggx, p, m.ior, wo, wi), lobe};
     }
 
     /// Reflection stays above both normals, transmission goes below both.
@@ -85,36 +93,46 @@ struct RoughDielectric {
         return h;
     }
 
-    static glm::vec3 eval(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
-                          const glm::vec3& wi) {
-        if (smooth(m) || wo.z <= 0.0f || !valid_side(p, wi, wi.z < 0.0f)) return glm::vec3(0.0f);
-        return microfacet::with_ggx_lobe(m, p, [&](const auto& ggx) {
-            const float eta = eta_t(p, m.ior);
-            const glm::vec3 h = half_vector(wo, wi, eta);
-            if (h.z <= 0.0f) return glm::vec3(0.0f);
-            const float oh = glm::dot(wo, h), ih = glm::dot(wi, h);
-            const float f = microfacet::fresnel_dielectric(oh, eta);
-            const float dg = ggx.d(h) * ggx.g2(wo, wi);
-            if (wi.z > 0.0f) return p.albedo * (f * dg / (4.0f * wo.z * wi.z));  // eq. 20
-            // Walter et al. eq. 21 times (n_o / n_i)^2 (no radiance scaling, see above):
-            // (1 - F) D G2 |wi.h| |wo.h| / (|cos_i| cos_o (wi.h + wo.h / eta)^2).
-            const float denom = ih + oh / eta;
-            return p.albedo * ((1.0f - f) * dg * std::fabs(ih) * oh /
-                               (std::fabs(wi.z) * wo.z * denom * denom));
-        });
+    [[gnu::noinline]] static glm::vec3 eval(const Material& m, const ShadingPoint& p,
+                                            const glm::vec3& wo, const glm::vec3& wi) {
+        if (m.anisotropy > 0.0f) [[unlikely]]
+            return eval_anisotropic(m, p, wo, wi);
+        if (m.roughness <= 0.0f || wo.z <= 0.0f || !valid_side(p, wi, wi.z < 0.0f))
+            return glm::vec3(0.0f);
+        return eval_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
     }
 
-    static float pdf(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
-                     const glm::vec3& wi) {
-        if (smooth(m) || wo.z <= 0.0f || !valid_side(p, wi, wi.z < 0.0f)) return 0.0f;
-        return microfacet::with_ggx_lobe(
-            m, p, [&](const auto& ggx) { return pdf_of(ggx, p, m.ior, wo, wi); });
+    [[gnu::noinline]] static float pdf(const Material& m, const ShadingPoint& p,
+                                       const glm::vec3& wo, const glm::vec3& wi) {
+        if (m.anisotropy > 0.0f) [[unlikely]]
+            return pdf_anisotropic(m, p, wo, wi);
+        if (m.roughness <= 0.0f || wo.z <= 0.0f || !valid_side(p, wi, wi.z < 0.0f)) return 0.0f;
+        return pdf_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, p, m.ior, wo,
+                        wi);
     }
 
-    /// pdf() for wi on a valid side, given the lobe.
+    /// eval() for wo.z > 0 and wi on a valid side, given the lobe.
     template <class Ggx>
-    static float pdf_of(const Ggx& ggx, const ShadingPoint& p, float ior, const glm::vec3& wo,
-                        const glm::vec3& wi) {
+    static glm::vec3 eval_with(const Ggx& ggx, const Material& m, const ShadingPoint& p,
+                               const glm::vec3& wo, const glm::vec3& wi) {
+        const float eta = eta_t(p, m.ior);
+        const glm::vec3 h = half_vector(wo, wi, eta);
+        if (h.z <= 0.0f) return glm::vec3(0.0f);
+        const float oh = glm::dot(wo, h), ih = glm::dot(wi, h);
+        const float f = microfacet::fresnel_dielectric(oh, eta);
+        const float dg = ggx.d(h) * ggx.g2(wo, wi);
+        if (wi.z > 0.0f) return p.albedo * (f * dg / (4.0f * wo.z * wi.z));  // eq. 20
+        // Walter et al. eq. 21 times (n_o / n_i)^2 (no radiance scaling, see above):
+        // (1 - F) D G2 |wi.h| |wo.h| / (|cos_i| cos_o (wi.h + wo.h / eta)^2).
+        const float denom = ih + oh / eta;
+        return p.albedo *
+               ((1.0f - f) * dg * std::fabs(ih) * oh / (std::fabs(wi.z) * wo.z * denom * denom));
+    }
+
+    /// pdf() for wo.z > 0 and wi on a valid side, given the lobe.
+    template <class Ggx>
+    static float pdf_with(const Ggx& ggx, const ShadingPoint& p, float ior, const glm::vec3& wo,
+                          const glm::vec3& wi) {
         const float eta = eta_t(p, ior);
         const glm::vec3 h = half_vector(wo, wi, eta);
         if (h.z <= 0.0f) return 0.0f;
@@ -126,6 +144,29 @@ struct RoughDielectric {
         // divided through by eta^2).
         const float denom = ih + oh / eta;
         return (1.0f - f) * vndf * std::fabs(ih) / (denom * denom);
+    }
+
+    // Anisotropic materials, out of line (see microfacet_anisotropic.h).
+    [[gnu::noinline, gnu::cold]] static BsdfSample sample_anisotropic(const Material& m,
+                                                                      const ShadingPoint& p,
+                                                                      const glm::vec3& wo, float uc,
+                                                                      glm::vec2 u) {
+        if (wo.z <= 0.0f) return {};
+        return sample_with(microfacet::anisotropic_lobe(m, p), m, p, wo, uc, u);
+    }
+    [[gnu::noinline, gnu::cold]] static glm::vec3 eval_anisotropic(const Material& m,
+                                                                   const ShadingPoint& p,
+                                                                   const glm::vec3& wo,
+                                                                   const glm::vec3& wi) {
+        if (wo.z <= 0.0f || !valid_side(p, wi, wi.z < 0.0f)) return glm::vec3(0.0f);
+        return eval_with(microfacet::anisotropic_lobe(m, p), m, p, wo, wi);
+    }
+    [[gnu::noinline, gnu::cold]] static float pdf_anisotropic(const Material& m,
+                                                              const ShadingPoint& p,
+                                                              const glm::vec3& wo,
+                                                              const glm::vec3& wi) {
+        if (wo.z <= 0.0f || !valid_side(p, wi, wi.z < 0.0f)) return 0.0f;
+        return pdf_with(microfacet::anisotropic_lobe(m, p), p, m.ior, wo, wi);
     }
 };
 
