@@ -6,6 +6,7 @@
 // chi-square of sample() against pdf() (down to 87 degrees), weight == eval cos / pdf,
 // reciprocity, albedo <= 1, and a white conductor's albedo equals an independent quadrature.
 
+#include "render/anisotropic_ggx_test_util.h"
 #include "render/bsdf_metallic_roughness.h"
 #include "render/microfacet_anisotropic.h"
 #include "render/microfacet_test_util.h"
@@ -30,51 +31,15 @@ namespace {
 using microfacet::Alpha2;
 using testing::Case;
 using testing::flat_point;
+using testing::for_each_normal;
 using testing::local_dir;
+using testing::ref_d;
+using testing::ref_lambda;
 
 constexpr double kPi = std::numbers::pi;
 
 /// The alpha pairs under test, (alpha along local x, alpha along local y) after rotation.
 const Alpha2 kPairs[] = {{0.05f, 0.3f}, {0.3f, 0.8f}, {0.8f, 0.1f}};
-
-/// Anisotropic GGX D in double, slope form (Heitz 2014, eq. 85):
-/// 1 / (pi ax ay cos^4 (1 + tan^2 (cos^2 phi / ax^2 + sin^2 phi / ay^2))^2).
-double ref_d(const glm::dvec3& m, double ax, double ay) {
-    if (m.z <= 0.0) return 0.0;
-    const double sx = m.x / m.z, sy = m.y / m.z, c2 = m.z * m.z;
-    const double q = 1.0 + sx * sx / (ax * ax) + sy * sy / (ay * ay);
-    return 1.0 / (kPi * ax * ay * c2 * c2 * q * q);
-}
-
-/// Smith Lambda in double (Heitz 2014, eq. 86, with alpha_o of eq. 80).
-double ref_lambda(const glm::dvec3& w, double ax, double ay) {
-    const double s2 = w.x * w.x + w.y * w.y;
-    if (s2 <= 0.0) return 0.0;
-    const double ao = std::sqrt((w.x * w.x * ax * ax + w.y * w.y * ay * ay) / s2);
-    const double a = w.z / (ao * std::sqrt(s2));  // 1 / (alpha_o tan theta)
-    return 0.5 * (std::sqrt(1.0 + 1.0 / (a * a)) - 1.0);
-}
-
-/// Calls visit(m, d omega) for a quadrature over microfacet normals m (upper hemisphere),
-/// dense where an (ax, ay) GGX lobe is, rotated by phi0 about +z: slopes
-/// (ax tan psi cos phi, ay tan psi sin phi) on a midpoint grid in (psi, phi), each normal
-/// weighted by d omega = cos^3 theta d(slope area) = cos^3 ax ay tan psi sec^2 psi dpsi dphi.
-void for_each_normal(double ax, double ay, double phi0,
-                     const std::function<void(const glm::dvec3&, double)>& visit, int n_psi,
-                     int n_phi) {
-    const double dpsi = 0.5 * kPi / n_psi, dphi = 2.0 * kPi / n_phi;
-    const double c0 = std::cos(phi0), s0 = std::sin(phi0);
-    for (int i = 0; i < n_psi; ++i) {
-        const double psi = (i + 0.5) * dpsi, r = std::tan(psi), sec = 1.0 / std::cos(psi);
-        for (int j = 0; j < n_phi; ++j) {
-            const double phi = (j + 0.5) * dphi;
-            const double x = ax * r * std::cos(phi), y = ay * r * std::sin(phi);
-            const double inv = 1.0 / std::sqrt(1.0 + x * x + y * y);  // cos theta
-            const glm::dvec3 m(inv * (c0 * x - s0 * y), inv * (s0 * x + c0 * y), inv);
-            visit(m, inv * inv * inv * ax * ay * r * sec * sec * dpsi * dphi);
-        }
-    }
-}
 
 /// KHR_materials_anisotropy's (roughness, strength) for alphas (at, ab), at >= ab:
 /// ab = roughness^2, at = ab + (1 - ab) strength^2.
@@ -374,19 +339,7 @@ TEST(AnisotropicGgx, AlbedoAtMostOneAndWhiteFurnace) {
                 // wo in the lobe's frame, where the double formulas' axes are.
                 const glm::dvec3 o(wo), ol(std::cos(phi0) * o.x + std::sin(phi0) * o.y,
                                            std::cos(phi0) * o.y - std::sin(phi0) * o.x, o.z);
-                double expected = 0.0;
-                for_each_normal(
-                    ax, ay, 0.0,
-                    [&](const glm::dvec3& h, double w) {
-                        const double oh = glm::dot(ol, h);
-                        if (oh <= 0.0) return;
-                        const glm::dvec3 wi = 2.0 * oh * h - ol;
-                        if (wi.z <= 0.0) return;
-                        const double g2 =
-                            1.0 / (1.0 + ref_lambda(ol, ax, ay) + ref_lambda(wi, ax, ay));
-                        expected += ref_d(h, ax, ay) * g2 * oh / ol.z * w;
-                    },
-                    1200, 480);
+                const double expected = testing::ref_anisotropic_albedo(ol, ax, ay);
                 Pcg32 rng(4, 4);
                 double sum = 0.0, sum2 = 0.0;
                 for (int i = 0; i < 200'000; ++i) {
