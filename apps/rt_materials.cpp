@@ -1,7 +1,8 @@
 // rt_materials: the material gallery (docs/gallery.md). Spheres on a checkered ground
 // plane, lit only by an environment: three rows of the glTF metallic-roughness material
 // (metallic 0, 0.5, 1) and a row of rough glass, each over roughness 0 .. 1 in seven
-// columns, and a row of the four tabulated metals (gold, silver, copper, aluminium). The
+// columns, and a row of the four tabulated metals (gold, silver, copper, aluminium) with
+// brushed (anisotropic) aluminium between them, turned by 0, 45 and 90 degrees. The
 // environment is a built-in sky (a gradient and a sun), so the app needs no data files, or
 // an equirectangular .hdr given by --env. Output as rt_render's: PNG sRGB-encoded after a
 // clamp, .hdr / .pfm / .exr linear; Ctrl-C or --time-limit writes the finished passes.
@@ -35,11 +36,12 @@ using namespace librt;
 
 namespace {
 
-constexpr int kColumns = 7;               // roughness 0, 1/6, ..., 1
-constexpr float kSpacing = 2.5f;          // between sphere centres, in both directions
-constexpr float kRadius = 1.0f;           // every sphere
-constexpr float kMetalRoughness = 0.25f;  // the named metals' row
-constexpr float kAspect = 16.0f / 9.0f;   // of the default image and the framing
+constexpr int kColumns = 7;                 // roughness 0, 1/6, ..., 1
+constexpr float kSpacing = 2.5f;            // between sphere centres, in both directions
+constexpr float kRadius = 1.0f;             // every sphere
+constexpr float kMetalRoughness = 0.25f;    // the named metals' row
+constexpr float kBrushedAnisotropy = 0.9f;  // the brushed aluminium spheres of that row
+constexpr float kAspect = 16.0f / 9.0f;     // of the default image and the framing
 /// The base colour of the metallic-roughness rows: a red that reads as plastic at
 /// metallic 0 and as a coloured metal at metallic 1 (linear RGB).
 const glm::vec3 kBaseColor{0.8f, 0.12f, 0.06f};
@@ -170,6 +172,15 @@ void build_gallery(Scene& scene) {
         scene.add_sphere(Sphere{sphere_centre(4, float(2 * i)), kRadius},
                          scene.add_material(Material::conductor(metals[i], kMetalRoughness)));
     }
+    // Brushed aluminium between them (columns 1, 3, 5): anisotropy 0.9 along the sphere's
+    // tangent (east about +y), turned by 0, 45 and 90 degrees toward its bitangent.
+    for (int i = 0; i < 3; ++i) {
+        Material brushed = Material::conductor(Metal::Aluminium, kMetalRoughness);
+        brushed.anisotropy = kBrushedAnisotropy;
+        brushed.anisotropy_rotation = float(i) * 0.25f * std::numbers::pi_v<float>;
+        scene.add_sphere(Sphere{sphere_centre(4, float(2 * i + 1)), kRadius},
+                         scene.add_material(brushed));
+    }
 }
 
 /// A camera 35 degrees above the ground, in front of the grid (+z), framing it at 16:9:
@@ -243,8 +254,8 @@ int render_gallery(const Options& o) {
 
 int main(int argc, char** argv) {
     CLI::App app{
-        "The material gallery: spheres over roughness (columns) x metallic, rough glass and "
-        "named metals, on a ground plane lit by a sky",
+        "The material gallery: spheres over roughness (columns) x metallic, rough glass, "
+        "named and brushed metals, on a ground plane lit by a sky",
         "rt_materials"};
     Options o;
     app.add_option("-o,--output", o.output,

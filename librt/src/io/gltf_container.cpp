@@ -38,8 +38,9 @@ std::uint32_t le32(const std::string& bytes, std::size_t at) {
 /// The extensions whose absence would change the picture that librt reads.
 const std::set<std::string, std::less<>>& supported_extensions() {
     static const std::set<std::string, std::less<>> names = {
-        "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_transmission",
-        "KHR_materials_ior",   "KHR_texture_transform",           "KHR_mesh_quantization"};
+        "KHR_lights_punctual",     "KHR_materials_emissive_strength", "KHR_materials_transmission",
+        "KHR_materials_ior",       "KHR_texture_transform",           "KHR_mesh_quantization",
+        "KHR_materials_anisotropy"};
     return names;
 }
 

@@ -84,6 +84,24 @@ GltfTextureRef texture_ref(int index, int tex_coord, double scale, const Extensi
     return ref;
 }
 
+/// The texture info `key` of an extension object (KHR_materials_transmission's
+/// transmissionTexture, KHR_materials_anisotropy's anisotropyTexture), or none.
+GltfTextureRef ext_texture(const Value& ext, const char* key, const std::string& path,
+                           std::size_t textures, const Context& ctx) {
+    if (!ext.IsObject() || !ext.Has(key)) return {};
+    const std::string at = path + "." + key;
+    const Value& t = ext.Get(key);
+    if (!t.IsObject() || !t.Has("index") || !t.Get("index").IsInt())
+        ctx.fail(at + ".index", "missing or not an integer");
+    const int tc =
+        t.Has("texCoord") && t.Get("texCoord").IsInt() ? t.Get("texCoord").Get<int>() : 0;
+    ExtensionMap nested;
+    if (t.Has("extensions") && t.Get("extensions").IsObject())
+        for (const std::string& k : t.Get("extensions").Keys())
+            nested[k] = t.Get("extensions").Get(k);
+    return texture_ref(t.Get("index").Get<int>(), tc, 1.0, nested, at, textures, ctx);
+}
+
 GltfMaterial read_material(const tinygltf::Material& m, const std::string& path,
                            std::size_t textures, const Context& ctx) {
     GltfMaterial g;
@@ -141,19 +159,24 @@ GltfMaterial read_material(const tinygltf::Material& m, const std::string& path,
         const std::string tp = ep + "KHR_materials_transmission";
         if (ext_number(it->second, "transmissionFactor", &v))
             g.transmission_factor = unit_factor(v, 0, 1, tp + ".transmissionFactor", ctx);
-        if (it->second.IsObject() && it->second.Has("transmissionTexture")) {
-            const Value& t = it->second.Get("transmissionTexture");
-            if (!t.IsObject() || !t.Has("index") || !t.Get("index").IsInt())
-                ctx.fail(tp + ".transmissionTexture.index", "missing or not an integer");
-            const int tc =
-                t.Has("texCoord") && t.Get("texCoord").IsInt() ? t.Get("texCoord").Get<int>() : 0;
-            ExtensionMap nested;
-            if (t.Has("extensions") && t.Get("extensions").IsObject())
-                for (const std::string& k : t.Get("extensions").Keys())
-                    nested[k] = t.Get("extensions").Get(k);
-            g.transmission_texture = texture_ref(t.Get("index").Get<int>(), tc, 1.0, nested,
-                                                 tp + ".transmissionTexture", textures, ctx);
-        }
+        g.transmission_texture = ext_texture(it->second, "transmissionTexture", tp, textures, ctx);
+    }
+    if (const auto it = m.extensions.find("KHR_materials_anisotropy"); it != m.extensions.end()) {
+        const std::string ap = ep + "KHR_materials_anisotropy";
+        const Value& a = it->second;
+        if (!a.IsObject()) ctx.fail(ap, "must be an object");
+        const auto number = [&](const char* key, double* out) {
+            if (!a.Has(key)) return false;
+            const Value& number_value = a.Get(key);
+            if (!number_value.IsNumber()) ctx.fail(ap + "." + key, "must be a number");
+            *out = number_value.GetNumberAsDouble();
+            if (!std::isfinite(*out)) ctx.fail(ap + "." + key, "is not finite");
+            return true;
+        };
+        if (number("anisotropyStrength", &v))
+            g.anisotropy_strength = unit_factor(v, 0, 1, ap + ".anisotropyStrength", ctx);
+        if (number("anisotropyRotation", &v)) g.anisotropy_rotation = float(v);
+        g.anisotropy_texture = ext_texture(a, "anisotropyTexture", ap, textures, ctx);
     }
     if (const auto it = m.extensions.find("KHR_materials_ior");
         it != m.extensions.end() && ext_number(it->second, "ior", &v)) {

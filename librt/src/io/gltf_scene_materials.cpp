@@ -46,6 +46,9 @@ Material material_from_gltf(const GltfMaterial& m, const GltfMaterialTextures& t
     out.emission_texture = slot(m.emissive_texture, textures.emissive);
     out.normal_texture = slot(m.normal_texture, textures.normal);
     out.normal_scale = m.normal_texture.scale;
+    out.anisotropy = std::clamp(m.anisotropy_strength, 0.0f, 1.0f);
+    out.anisotropy_rotation = m.anisotropy_rotation;
+    out.anisotropy_texture = slot(m.anisotropy_texture, textures.anisotropy);
     out.alpha = std::clamp(m.base_color_factor.w, 0.0f, 1.0f);
     if (m.alpha_mode == GltfAlphaMode::Mask)
         out.alpha_cutoff = std::clamp(m.alpha_cutoff, 0.0f, 1.0f);
@@ -113,7 +116,8 @@ const SceneMaterial& MaterialBuilder::material(int index) {
         {&m.base_color_texture, "base colour"},
         {&m.metallic_roughness_texture, "metallic-roughness"},
         {&m.emissive_texture, "emissive"},
-        {&m.normal_texture, "normal"}};
+        {&m.normal_texture, "normal"},
+        {&m.anisotropy_texture, "anisotropy"}};
     for (const auto& [ref, name] : refs) {
         if (!ref->valid()) continue;
         if (out.uv_set < 0) out.uv_set = ref->tex_coord;
@@ -130,6 +134,7 @@ const SceneMaterial& MaterialBuilder::material(int index) {
     ids.metallic_roughness = use(m.metallic_roughness_texture, ColorSpace::Linear);
     ids.emissive = use(m.emissive_texture, ColorSpace::Srgb);
     ids.normal = use(m.normal_texture, ColorSpace::Linear);
+    ids.anisotropy = use(m.anisotropy_texture, ColorSpace::Linear);
     if (m.occlusion_texture.valid())
         warnings_.push_back(who + "occlusion texture ignored (a path tracer computes occlusion)");
     if (m.transmission_texture.valid())
@@ -144,7 +149,11 @@ const SceneMaterial& MaterialBuilder::material(int index) {
     const Material material = material_from_gltf(m, ids);
     emissive_ = emissive_ || material.emits();
     out.id = scene_.add_material(material);
-    out.normal_map = material.normal_texture.bound();
+    // A normal map and an anisotropy direction both need the tangent frame, and so uvs
+    // (TEXCOORD_0 when no texture chose a set) for generated tangents.
+    out.needs_tangents = material.normal_texture.bound() || material.anisotropy > 0.0f;
+    out.textured = out.uv_set >= 0;
+    if (material.anisotropy > 0.0f && out.uv_set < 0) out.uv_set = 0;
     return out;
 }
 
@@ -157,15 +166,18 @@ void MaterialBuilder::attributes(const GltfPrimitive& prim, const SceneMaterial&
         mesh.colors = prim.colors;
     if (m.uv_set < 0) return;
     const std::vector<glm::vec2>& uvs = m.uv_set == 1 ? prim.uv1 : prim.uv0;
+    const bool given_tangents = prim.tangents.size() == mesh.positions.size();
     if (uvs.size() != mesh.positions.size()) {
-        warnings_.push_back(who + ": no TEXCOORD_" + std::to_string(m.uv_set) +
-                            " for its material's textures: they read uv (0, 0)");
+        if (!(m.needs_tangents && given_tangents && !m.textured))
+            warnings_.push_back(who + ": no TEXCOORD_" + std::to_string(m.uv_set) +
+                                " for its material's textures or tangents: they read uv (0, 0)");
         mesh.uvs.assign(mesh.positions.size(), glm::vec2(0.0f));
+        if (m.needs_tangents && given_tangents) mesh.tangents = prim.tangents;
         return;
     }
     mesh.uvs = uvs;  // glTF's own (v down): the slots' transforms flip v
-    if (!m.normal_map) return;
-    if (prim.tangents.size() == mesh.positions.size())
+    if (!m.needs_tangents) return;
+    if (given_tangents)
         mesh.tangents = prim.tangents;
     else
         mesh.tangents = generate_tangents(mesh, true);

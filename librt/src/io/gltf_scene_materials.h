@@ -17,9 +17,10 @@ namespace librt::gltf_detail {
 
 /// What a scene material needs from the meshes that use it.
 struct SceneMaterial {
-    std::uint32_t id = 0;     ///< scene material id
-    int uv_set = -1;          ///< TEXCOORD_n its textures read; -1 when it has none
-    bool normal_map = false;  ///< needs tangents
+    std::uint32_t id = 0;         ///< scene material id
+    int uv_set = -1;              ///< TEXCOORD_n its textures read; -1 when it has none
+    bool needs_tangents = false;  ///< a normal map or anisotropy: needs tangents
+    bool textured = false;        ///< some texture reads uv_set (else only tangents need it)
 };
 
 /// Adds the materials and textures of a GltfScene to a Scene on first use.

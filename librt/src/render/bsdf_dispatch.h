@@ -4,6 +4,9 @@
 // bsdf_<kind>.h) provides kLobes and static sample / eval / pdf; a new kind adds its header
 // and one case in dispatch(). Private, and inline so that the integrators' path loop
 // calls the BSDFs without a call through the public, out-of-line functions of bsdf.h.
+// The microfacet kinds (Conductor, RoughDielectric, MetallicRoughness) mark their own
+// sample / eval / pdf gnu::noinline: their bodies (isotropic and anisotropic) inlined into
+// the path loop made g++ stop inlining the loop's helpers (microfacet_anisotropic.h).
 
 #include "bsdf_conductor.h"
 #include "bsdf_dielectric.h"

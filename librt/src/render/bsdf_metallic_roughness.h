@@ -19,10 +19,13 @@
 // mixture's, so MIS sees one density. Estimating per lobe what it contributes keeps the
 // one-sample mixture's variance low without tables; the specular lobe keeps at least a
 // small share because its Fresnel at wo.h can exceed the estimate at cos_o.
-// Material::albedo scales every lobe (1 by default); base colour is its own field, because
-// a black base colour still reflects the dielectric specular (bsdf.h's albedo contract).
+// Anisotropic GGX when Material::anisotropy > 0 (microfacet_anisotropic.h), as
+// KHR_materials_anisotropy extends this material. Material::albedo scales every lobe (1 by
+// default); base colour is its own field, because a black base colour still reflects the
+// dielectric specular (bsdf.h's albedo contract).
 
 #include "microfacet.h"
+#include "microfacet_anisotropic.h"
 
 #include <librt/render/bsdf.h>
 #include <librt/render/specular.h>
@@ -71,21 +74,46 @@ struct MetallicRoughness {
         return wi.z > 0.0f ? p.frame.above_geometry(wi) : !p.frame.above_geometry(wi);
     }
 
-    static BsdfSample sample(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
-                             float uc, glm::vec2 u) {
+    [[gnu::noinline]] static BsdfSample sample(const Material& m, const ShadingPoint& p,
+                                               const glm::vec3& wo, float uc, glm::vec2 u) {
+        if (m.anisotropy > 0.0f) [[unlikely]]
+            return sample_anisotropic(m, p, wo, uc, u);
         if (wo.z <= 0.0f) return {};
+        return sample_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo,
+                           uc, u);
+    }
+
+    [[gnu::noinline]] static glm::vec3 eval(const Material& m, const ShadingPoint& p,
+                                            const glm::vec3& wo, const glm::vec3& wi) {
+        if (m.anisotropy > 0.0f) [[unlikely]]
+            return eval_anisotropic(m, p, wo, wi);
+        if (!valid_side(p, wo, wi)) return glm::vec3(0.0f);
+        return eval_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
+    }
+
+    [[gnu::noinline]] static float pdf(const Material& m, const ShadingPoint& p,
+                                       const glm::vec3& wo, const glm::vec3& wi) {
+        if (m.anisotropy > 0.0f) [[unlikely]]
+            return pdf_anisotropic(m, p, wo, wi);
+        if (!valid_side(p, wo, wi)) return 0.0f;
+        return pdf_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, wo, wi);
+    }
+
+    /// The sample for wo.z > 0, given the GGX lobe.
+    template <class Ggx>
+    static BsdfSample sample_with(const Ggx& ggx, const Material& m, const ShadingPoint& p,
+                                  const glm::vec3& wo, float uc, glm::vec2 u) {
         const auto prob = lobe_probabilities(m, wo);
-        const float alpha = microfacet::alpha_of(m.roughness);
         glm::vec3 wi;
         BsdfLobe lobe;
         if (uc < prob[0]) {
-            wi = reflect(-wo, microfacet::sample_visible_normal(wo, alpha, u));
+            wi = reflect(-wo, ggx.sample_visible_normal(wo, u));
             lobe = BsdfLobe::Glossy | BsdfLobe::Reflection;
         } else if (uc < prob[0] + prob[1]) {
             wi = sample_cosine_hemisphere(u);
             lobe = BsdfLobe::DiffuseReflection;
         } else {
-            wi = reflect(-wo, microfacet::sample_visible_normal(wo, alpha, u));
+            wi = reflect(-wo, ggx.sample_visible_normal(wo, u));
             wi.z = -wi.z;  // thin-walled: the reflection mirrored through the surface
             lobe = BsdfLobe::Glossy | BsdfLobe::Transmission;
         }
@@ -93,22 +121,21 @@ struct MetallicRoughness {
         // other side's): without this check it would be counted with the wrong density.
         const bool wants_transmission = has(lobe, BsdfLobe::Transmission);
         if ((wi.z < 0.0f) != wants_transmission || !valid_side(p, wo, wi)) return {};
-        const float density = pdf(m, p, wo, wi);
+        const float density = pdf_with(ggx, m, wo, wi);
         if (!(density > 0.0f)) return {};
-        return {wi, eval(m, p, wo, wi) * std::fabs(wi.z) / density, density, lobe};
+        return {wi, eval_with(ggx, m, p, wo, wi) * std::fabs(wi.z) / density, density, lobe};
     }
 
-    static glm::vec3 eval(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
-                          const glm::vec3& wi) {
-        if (!valid_side(p, wo, wi)) return glm::vec3(0.0f);
-        const float alpha = microfacet::alpha_of(m.roughness);
+    /// eval() on a valid side, given the GGX lobe.
+    template <class Ggx>
+    static glm::vec3 eval_with(const Ggx& ggx, const Material& m, const ShadingPoint& p,
+                               const glm::vec3& wo, const glm::vec3& wi) {
         const bool transmitted = wi.z < 0.0f;
         const glm::vec3 wr(wi.x, wi.y, std::fabs(wi.z));  // thin transmission: mirrored wi
         const glm::vec3 h = glm::normalize(wo + wr);
         const float vh = std::fabs(glm::dot(wo, h));
         // specular_brdf = D V, V = G2 / (4 |N.L| |N.V|) (glTF 2.0 Appendix B).
-        const float dv =
-            microfacet::ggx_d(h, alpha) * microfacet::ggx_g2(wo, wr, alpha) / (4.0f * wo.z * wr.z);
+        const float dv = ggx.d(h) * ggx.g2(wo, wr) / (4.0f * wo.z * wr.z);
         const float fr = microfacet::schlick(glm::vec3(f0_dielectric(m.ior)), vh).x;
         const glm::vec3& c = m.base_color;
         glm::vec3 f;
@@ -124,16 +151,39 @@ struct MetallicRoughness {
         return p.albedo * f;
     }
 
-    static float pdf(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
-                     const glm::vec3& wi) {
-        if (!valid_side(p, wo, wi)) return 0.0f;
+    /// pdf() on a valid side, given the GGX lobe.
+    template <class Ggx>
+    static float pdf_with(const Ggx& ggx, const Material& m, const glm::vec3& wo,
+                          const glm::vec3& wi) {
         const auto prob = lobe_probabilities(m, wo);
-        const float alpha = microfacet::alpha_of(m.roughness);
         const glm::vec3 wr(wi.x, wi.y, std::fabs(wi.z));
         const glm::vec3 h = glm::normalize(wo + wr);
-        const float glossy = microfacet::reflection_pdf(wo, h, alpha);
+        const float glossy = ggx.reflection_pdf(wo, h);
         if (wi.z < 0.0f) return prob[2] * glossy;
         return prob[0] * glossy + prob[1] * cosine_hemisphere_pdf(wi.z);
+    }
+
+    // Anisotropic materials, out of line (see microfacet_anisotropic.h).
+    [[gnu::noinline, gnu::cold]] static BsdfSample sample_anisotropic(const Material& m,
+                                                                      const ShadingPoint& p,
+                                                                      const glm::vec3& wo, float uc,
+                                                                      glm::vec2 u) {
+        if (wo.z <= 0.0f) return {};
+        return sample_with(microfacet::anisotropic_lobe(m, p), m, p, wo, uc, u);
+    }
+    [[gnu::noinline, gnu::cold]] static glm::vec3 eval_anisotropic(const Material& m,
+                                                                   const ShadingPoint& p,
+                                                                   const glm::vec3& wo,
+                                                                   const glm::vec3& wi) {
+        if (!valid_side(p, wo, wi)) return glm::vec3(0.0f);
+        return eval_with(microfacet::anisotropic_lobe(m, p), m, p, wo, wi);
+    }
+    [[gnu::noinline, gnu::cold]] static float pdf_anisotropic(const Material& m,
+                                                              const ShadingPoint& p,
+                                                              const glm::vec3& wo,
+                                                              const glm::vec3& wi) {
+        if (!valid_side(p, wo, wi)) return 0.0f;
+        return pdf_with(microfacet::anisotropic_lobe(m, p), m, wo, wi);
     }
 };
 

@@ -11,6 +11,7 @@
 
 #include "bsdf_dielectric.h"
 #include "microfacet.h"
+#include "microfacet_anisotropic.h"
 
 #include <librt/render/bsdf.h>
 #include <librt/render/specular.h>
@@ -23,7 +24,8 @@ struct RoughDielectric {
     static constexpr BsdfLobe kLobes =
         BsdfLobe::Glossy | BsdfLobe::Reflection | BsdfLobe::Transmission;
 
-    static bool smooth(const Material& m) { return m.roughness <= 0.0f; }
+    /// Roughness 0 without anisotropy: the smooth Dielectric.
+    static bool smooth(const Material& m) { return m.roughness <= 0.0f && m.anisotropy <= 0.0f; }
 
     static BsdfLobe lobes(const Material& m) { return smooth(m) ? Dielectric::kLobes : kLobes; }
 
@@ -32,13 +34,22 @@ struct RoughDielectric {
         return p.frame.front ? ior : 1.0f / ior;
     }
 
-    static BsdfSample sample(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
-                             float uc, glm::vec2 u) {
-        if (smooth(m)) return Dielectric::sample(m, p, wo, uc, u);
+    [[gnu::noinline]] static BsdfSample sample(const Material& m, const ShadingPoint& p,
+                                               const glm::vec3& wo, float uc, glm::vec2 u) {
+        if (m.anisotropy > 0.0f) [[unlikely]]
+            return sample_anisotropic(m, p, wo, uc, u);
+        if (m.roughness <= 0.0f) return Dielectric::sample(m, p, wo, uc, u);
         if (wo.z <= 0.0f) return {};
-        const float alpha = microfacet::alpha_of(m.roughness);
+        return sample_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo,
+                           uc, u);
+    }
+
+    /// The rough sample for wo.z > 0, given the lobe.
+    template <class Ggx>
+    static BsdfSample sample_with(const Ggx& ggx, const Material& m, const ShadingPoint& p,
+                                  const glm::vec3& wo, float uc, glm::vec2 u) {
         const float eta = eta_t(p, m.ior);
-        const glm::vec3 h = microfacet::sample_visible_normal(wo, alpha, u);
+        const glm::vec3 h = ggx.sample_visible_normal(wo, u);
         const float oh = glm::dot(wo, h);
         const float f = microfacet::fresnel_dielectric(oh, eta);
         glm::vec3 wi;
@@ -52,10 +63,10 @@ struct RoughDielectric {
             transmitted = true;
         }
         if (!valid_side(p, wi, transmitted)) return {};
-        const float g = microfacet::ggx_g2(wo, wi, alpha) / microfacet::ggx_g1(wo, alpha);
+        const float g = ggx.g2(wo, wi) / ggx.g1(wo);
         const BsdfLobe lobe =
             BsdfLobe::Glossy | (transmitted ? BsdfLobe::Transmission : BsdfLobe::Reflection);
-        return {wi, p.albedo * g, pdf(m, p, wo, wi), lobe};
+        return {wi, p.albedo * g, pdf_with(ggx, p, m.ior, wo, wi), lobe};
     }
 
     /// Reflection stays above both normals, transmission goes below both.
@@ -82,16 +93,34 @@ struct RoughDielectric {
         return h;
     }
 
-    static glm::vec3 eval(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
-                          const glm::vec3& wi) {
-        if (smooth(m) || wo.z <= 0.0f || !valid_side(p, wi, wi.z < 0.0f)) return glm::vec3(0.0f);
-        const float alpha = microfacet::alpha_of(m.roughness);
+    [[gnu::noinline]] static glm::vec3 eval(const Material& m, const ShadingPoint& p,
+                                            const glm::vec3& wo, const glm::vec3& wi) {
+        if (m.anisotropy > 0.0f) [[unlikely]]
+            return eval_anisotropic(m, p, wo, wi);
+        if (m.roughness <= 0.0f || wo.z <= 0.0f || !valid_side(p, wi, wi.z < 0.0f))
+            return glm::vec3(0.0f);
+        return eval_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
+    }
+
+    [[gnu::noinline]] static float pdf(const Material& m, const ShadingPoint& p,
+                                       const glm::vec3& wo, const glm::vec3& wi) {
+        if (m.anisotropy > 0.0f) [[unlikely]]
+            return pdf_anisotropic(m, p, wo, wi);
+        if (m.roughness <= 0.0f || wo.z <= 0.0f || !valid_side(p, wi, wi.z < 0.0f)) return 0.0f;
+        return pdf_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, p, m.ior, wo,
+                        wi);
+    }
+
+    /// eval() for wo.z > 0 and wi on a valid side, given the lobe.
+    template <class Ggx>
+    static glm::vec3 eval_with(const Ggx& ggx, const Material& m, const ShadingPoint& p,
+                               const glm::vec3& wo, const glm::vec3& wi) {
         const float eta = eta_t(p, m.ior);
         const glm::vec3 h = half_vector(wo, wi, eta);
         if (h.z <= 0.0f) return glm::vec3(0.0f);
         const float oh = glm::dot(wo, h), ih = glm::dot(wi, h);
         const float f = microfacet::fresnel_dielectric(oh, eta);
-        const float dg = microfacet::ggx_d(h, alpha) * microfacet::ggx_g2(wo, wi, alpha);
+        const float dg = ggx.d(h) * ggx.g2(wo, wi);
         if (wi.z > 0.0f) return p.albedo * (f * dg / (4.0f * wo.z * wi.z));  // eq. 20
         // Walter et al. eq. 21 times (n_o / n_i)^2 (no radiance scaling, see above):
         // (1 - F) D G2 |wi.h| |wo.h| / (|cos_i| cos_o (wi.h + wo.h / eta)^2).
@@ -100,21 +129,44 @@ struct RoughDielectric {
                ((1.0f - f) * dg * std::fabs(ih) * oh / (std::fabs(wi.z) * wo.z * denom * denom));
     }
 
-    static float pdf(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
-                     const glm::vec3& wi) {
-        if (smooth(m) || wo.z <= 0.0f || !valid_side(p, wi, wi.z < 0.0f)) return 0.0f;
-        const float alpha = microfacet::alpha_of(m.roughness);
-        const float eta = eta_t(p, m.ior);
+    /// pdf() for wo.z > 0 and wi on a valid side, given the lobe.
+    template <class Ggx>
+    static float pdf_with(const Ggx& ggx, const ShadingPoint& p, float ior, const glm::vec3& wo,
+                          const glm::vec3& wi) {
+        const float eta = eta_t(p, ior);
         const glm::vec3 h = half_vector(wo, wi, eta);
         if (h.z <= 0.0f) return 0.0f;
         const float oh = glm::dot(wo, h), ih = glm::dot(wi, h);
         const float f = microfacet::fresnel_dielectric(oh, eta);
-        const float vndf = microfacet::vndf_pdf(wo, h, alpha);
-        if (wi.z > 0.0f) return f * microfacet::reflection_pdf(wo, h, alpha);
+        const float vndf = ggx.vndf_pdf(wo, h);
+        if (wi.z > 0.0f) return f * ggx.reflection_pdf(wo, h);
         // Refraction's Jacobian |wi.h| / (wi.h + wo.h / eta)^2 (Walter et al. eq. 17,
         // divided through by eta^2).
         const float denom = ih + oh / eta;
         return (1.0f - f) * vndf * std::fabs(ih) / (denom * denom);
+    }
+
+    // Anisotropic materials, out of line (see microfacet_anisotropic.h).
+    [[gnu::noinline, gnu::cold]] static BsdfSample sample_anisotropic(const Material& m,
+                                                                      const ShadingPoint& p,
+                                                                      const glm::vec3& wo, float uc,
+                                                                      glm::vec2 u) {
+        if (wo.z <= 0.0f) return {};
+        return sample_with(microfacet::anisotropic_lobe(m, p), m, p, wo, uc, u);
+    }
+    [[gnu::noinline, gnu::cold]] static glm::vec3 eval_anisotropic(const Material& m,
+                                                                   const ShadingPoint& p,
+                                                                   const glm::vec3& wo,
+                                                                   const glm::vec3& wi) {
+        if (wo.z <= 0.0f || !valid_side(p, wi, wi.z < 0.0f)) return glm::vec3(0.0f);
+        return eval_with(microfacet::anisotropic_lobe(m, p), m, p, wo, wi);
+    }
+    [[gnu::noinline, gnu::cold]] static float pdf_anisotropic(const Material& m,
+                                                              const ShadingPoint& p,
+                                                              const glm::vec3& wo,
+                                                              const glm::vec3& wi) {
+        if (wo.z <= 0.0f || !valid_side(p, wi, wi.z < 0.0f)) return 0.0f;
+        return pdf_with(microfacet::anisotropic_lobe(m, p), p, m.ior, wo, wi);
     }
 };
 

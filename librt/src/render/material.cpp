@@ -166,6 +166,20 @@ void validate(const Material& material) {
     check_unit("transmission", material.transmission);
     check_unit("alpha", material.alpha);
     check_unit("alpha_cutoff", material.alpha_cutoff);
+    check_unit("anisotropy", material.anisotropy);
+    if (!std::isfinite(material.anisotropy_rotation)) {
+        std::ostringstream msg;
+        msg << "material anisotropy_rotation = " << material.anisotropy_rotation
+            << ": must be finite";
+        throw Error(msg.str());
+    }
+    const glm::vec3& d = material.anisotropy_direction;
+    if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.z)) {
+        std::ostringstream msg;
+        msg << "material anisotropy_direction = (" << d.x << ", " << d.y << ", " << d.z
+            << "): must be finite";
+        throw Error(msg.str());
+    }
     if (!std::isfinite(material.normal_scale)) {
         std::ostringstream msg;
         msg << "material normal_scale = " << material.normal_scale << ": must be finite";
@@ -175,7 +189,8 @@ void validate(const Material& material) {
         {"base_color_texture", &material.base_color_texture},
         {"metallic_roughness_texture", &material.metallic_roughness_texture},
         {"emission_texture", &material.emission_texture},
-        {"normal_texture", &material.normal_texture}};
+        {"normal_texture", &material.normal_texture},
+        {"anisotropy_texture", &material.anisotropy_texture}};
     for (const auto& [name, slot] : slots) {
         bool finite_map = true;
         for (int c = 0; c < 3; ++c)

@@ -1,8 +1,10 @@
 #include <librt/core/error.h>
+#include <librt/geometry/tangents.h>
 #include <librt/render/scene.h>
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -50,7 +52,8 @@ void Scene::check_texture_ids(const Material& material) const {
         {"base_color_texture", material.base_color_texture.texture},
         {"metallic_roughness_texture", material.metallic_roughness_texture.texture},
         {"emission_texture", material.emission_texture.texture},
-        {"normal_texture", material.normal_texture.texture}};
+        {"normal_texture", material.normal_texture.texture},
+        {"anisotropy_texture", material.anisotropy_texture.texture}};
     for (const auto& [name, id] : ids) {
         if (id >= 0 && std::size_t(id) >= textures_.size()) {
             std::ostringstream msg;
@@ -96,6 +99,14 @@ std::uint32_t Scene::add_object(std::uint32_t top_id, std::uint32_t material) {
 
 std::uint32_t Scene::add_mesh_object(TriangleMesh mesh, BvhBuilder builder, std::uint32_t material,
                                      std::vector<std::uint32_t> per_triangle) {
+    // An anisotropic material needs the surface's tangent frame: a mesh with uvs but no
+    // tangents gets them from its uvs (v up, as add_mesh's callers give them).
+    const auto anisotropic = [&](std::uint32_t i) { return materials_[i].anisotropy > 0.0f; };
+    if (mesh.tangents.empty() && mesh.uvs.size() == mesh.positions.size() &&
+        (material != kInvalidId
+             ? anisotropic(material)
+             : std::any_of(per_triangle.begin(), per_triangle.end(), anisotropic)))
+        mesh.tangents = generate_tangents(mesh, false);
     const std::uint32_t prototype = top_.add_prototype(std::move(mesh), builder);
     const std::uint32_t id = add_object(top_.add_mesh(prototype), material);
     // Vertex colors are a per-hit input: shade() evaluates them out of line.

@@ -76,7 +76,51 @@ const Material& Scene::shade_varying(Hit& hit, const glm::vec3& direction,
         hit.shading_normal = apply_normal_map(lookup(m.normal_texture), m.normal_scale,
                                               hit.shading_normal, t, hit.geometric_normal);
     }
+    if (m.anisotropy > 0.0f) anisotropy_at(hit, m);
     return m;
+}
+
+void Scene::anisotropy_at(const Hit& hit, Material& m) const {
+    // KHR_materials_anisotropy: the direction (cos r, sin r) in tangent-bitangent space, or
+    // the texture's RG direction turned by r; the texture's B scales the strength.
+    float c = std::cos(m.anisotropy_rotation), s = std::sin(m.anisotropy_rotation);
+    if (m.anisotropy_texture.bound()) {
+        const TextureSlot& slot = m.anisotropy_texture;
+        const glm::vec3 tex = textures_[std::size_t(slot.texture)].lookup(slot.map(hit.uv));
+        m.anisotropy *= std::clamp(tex.z, 0.0f, 1.0f);
+        const float x = 2.0f * tex.x - 1.0f, y = 2.0f * tex.y - 1.0f;
+        const float len = std::sqrt(x * x + y * y);
+        if (len > 0.0f) {
+            // The rotation applied to the texture's direction: angle sum.
+            const float cx = x / len, sy = y / len;
+            const float c2 = c * cx - s * sy, s2 = s * cx + c * sy;
+            c = c2;
+            s = s2;
+        }
+    }
+    // The surface's tangent (increasing u) and bitangent: a mesh's tangents, else a
+    // sphere's dP/du (east about +y: u is the azimuth around +y) with b = n x t.
+    const glm::vec3& n = hit.shading_normal;
+    glm::vec3 t(0.0f);
+    float handedness = 1.0f;
+    const glm::vec4 tangent = top_.tangent(hit);
+    if (tangent != glm::vec4(0.0f)) {
+        t = glm::vec3(tangent);
+        handedness = tangent.w < 0.0f ? -1.0f : 1.0f;
+    } else if (top_.kind(hit.object_id) == ObjectKind::Sphere) {
+        t = {-hit.geometric_normal.z, 0.0f, hit.geometric_normal.x};
+    }
+    // Gram-Schmidt onto the shading plane; none (a pole, or a mesh without uvs): zero, and
+    // the BSDFs use their frame's own x axis.
+    t -= glm::dot(n, t) * n;
+    const float len = glm::length(t);
+    if (!(len > 1e-12f) || !std::isfinite(len)) {
+        m.anisotropy_direction = glm::vec3(0.0f);
+        return;
+    }
+    t /= len;
+    const glm::vec3 b = handedness * glm::cross(n, t);
+    m.anisotropy_direction = c * t + s * b;
 }
 
 float Scene::coverage(const Hit& hit) const {

@@ -124,20 +124,24 @@ enum class GltfAlphaMode {
 /// A glTF metallic-roughness material, with the extensions librt reads, as stated in the
 /// file (no conversion to librt's materials).
 struct GltfMaterial {
-    std::string name;                                  ///< may be empty
-    glm::vec4 base_color_factor{1.0f};                 ///< linear RGBA
-    GltfTextureRef base_color_texture;                 ///< sRGB RGBA, multiplies the factor
-    float metallic_factor = 1.0f;                      ///< in [0, 1]
-    float roughness_factor = 1.0f;                     ///< perceptual roughness in [0, 1]
-    GltfTextureRef metallic_roughness_texture;         ///< linear: G = roughness, B = metallic
-    GltfTextureRef normal_texture;                     ///< tangent-space normals; scale in .scale
-    GltfTextureRef occlusion_texture;                  ///< R = occlusion; strength in .scale
-    glm::vec3 emissive_factor{0.0f};                   ///< linear RGB
-    GltfTextureRef emissive_texture;                   ///< sRGB RGB, multiplies the factor
-    float emissive_strength = 1.0f;                    ///< KHR_materials_emissive_strength
-    float transmission_factor = 0.0f;                  ///< KHR_materials_transmission
-    GltfTextureRef transmission_texture;               ///< KHR_materials_transmission, R channel
-    float ior = 1.5f;                                  ///< KHR_materials_ior
+    std::string name;                           ///< may be empty
+    glm::vec4 base_color_factor{1.0f};          ///< linear RGBA
+    GltfTextureRef base_color_texture;          ///< sRGB RGBA, multiplies the factor
+    float metallic_factor = 1.0f;               ///< in [0, 1]
+    float roughness_factor = 1.0f;              ///< perceptual roughness in [0, 1]
+    GltfTextureRef metallic_roughness_texture;  ///< linear: G = roughness, B = metallic
+    GltfTextureRef normal_texture;              ///< tangent-space normals; scale in .scale
+    GltfTextureRef occlusion_texture;           ///< R = occlusion; strength in .scale
+    glm::vec3 emissive_factor{0.0f};            ///< linear RGB
+    GltfTextureRef emissive_texture;            ///< sRGB RGB, multiplies the factor
+    float emissive_strength = 1.0f;             ///< KHR_materials_emissive_strength
+    float transmission_factor = 0.0f;           ///< KHR_materials_transmission
+    GltfTextureRef transmission_texture;        ///< KHR_materials_transmission, R channel
+    float ior = 1.5f;                           ///< KHR_materials_ior
+    float anisotropy_strength = 0.0f;  ///< KHR_materials_anisotropy anisotropyStrength, [0, 1]
+    float anisotropy_rotation = 0.0f;  ///< KHR_materials_anisotropy anisotropyRotation, radians
+    /// KHR_materials_anisotropy anisotropyTexture (linear): RG direction, B strength.
+    GltfTextureRef anisotropy_texture;
     GltfAlphaMode alpha_mode = GltfAlphaMode::Opaque;  ///< OPAQUE, MASK or BLEND
     float alpha_cutoff = 0.5f;                         ///< MASK: alpha below this is cut out
     bool double_sided = false;                         ///< back faces are seen (else culled)

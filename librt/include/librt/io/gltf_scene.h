@@ -21,20 +21,22 @@ struct GltfMaterialTextures {
     std::int32_t metallic_roughness = -1;  ///< metallicRoughnessTexture (linear; G, B)
     std::int32_t emissive = -1;            ///< emissiveTexture (sRGB)
     std::int32_t normal = -1;              ///< normalTexture (linear, tangent space)
+    std::int32_t anisotropy = -1;          ///< anisotropyTexture (linear; RG direction, B)
 };
 
 /// librt's material for a glTF material; the ONE place that mapping lives. Every glTF
 /// material becomes MaterialKind::MetallicRoughness (glTF 2.0 Appendix B): base colour,
 /// metallic and roughness factors (clamped to [0, 1]), ior from KHR_materials_ior (0, the
 /// extension's reflection-only limit, read as 1.5), KHR_materials_transmission as its
-/// thin-walled transmission; emission = emissive_factor * KHR_materials_emissive_strength.
-/// The textures in `textures` fill its slots, each with its KHR_texture_transform and the
-/// flip of glTF's downward v (the mesh keeps glTF's uvs); normalTexture.scale and the base
-/// colour alpha are kept. alphaMode MASK sets alpha_cutoff to alphaCutoff; BLEND is drawn
-/// as MASK with cut-off 0.5 (librt has no partial coverage); OPAQUE has no alpha test.
-/// doubleSided false makes the material one-sided (its back is black), except with
-/// transmission, which must be crossed from both sides. The occlusion texture is not used
-/// (a path tracer computes occlusion).
+/// thin-walled transmission; emission = emissive_factor * KHR_materials_emissive_strength;
+/// KHR_materials_anisotropy's strength, rotation and texture as Material::anisotropy,
+/// anisotropy_rotation and anisotropy_texture. The textures in `textures` fill its slots,
+/// each with its KHR_texture_transform and the flip of glTF's downward v (the mesh keeps
+/// glTF's uvs); normalTexture.scale and the base colour alpha are kept. alphaMode MASK
+/// sets alpha_cutoff to alphaCutoff; BLEND is drawn as MASK with cut-off 0.5 (librt has no
+/// partial coverage); OPAQUE has no alpha test. doubleSided false makes the material
+/// one-sided (its back is black), except with transmission, which must be crossed from
+/// both sides. The occlusion texture is not used (a path tracer computes occlusion).
 [[nodiscard]] LIBRT_API Material material_from_gltf(const GltfMaterial& material,
                                                     const GltfMaterialTextures& textures = {});
 
@@ -43,7 +45,8 @@ struct GltfMaterialTextures {
 /// per colour space it is used in, with its sampler's wrap modes (NEAREST magnification
 /// reads texels, anything else is bilinear; no mipmaps). A material's textures share one
 /// uv set (the first texture's; others warned and dropped), which its primitives store
-/// with glTF's v; a normal-mapped primitive keeps its TANGENTs, or gets generate_tangents'
+/// with glTF's v (an anisotropic material without textures: TEXCOORD_0); a normal-mapped or
+/// anisotropic primitive keeps its TANGENTs, or gets generate_tangents'
 /// (geometry/tangents.h). KHR_lights_punctual point lights become PointLights of intensity
 /// candela / 683 W/sr (Blender's convention, see docs/render-your-own-scene.md); spot and
 /// directional lights likewise; COLOR_0 (unless all white) is kept as the mesh's vertex

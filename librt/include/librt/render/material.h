@@ -90,6 +90,24 @@ struct LIBRT_API Material {
     /// scatters and emits nothing (glTF doubleSided = false; see docs/materials-and-lights.md).
     bool double_sided = true;
 
+    // Anisotropy (KHR_materials_anisotropy; docs/materials-and-lights.md, "Anisotropy").
+    /// Anisotropy strength in [0, 1] of the GGX lobes (Conductor, RoughDielectric,
+    /// MetallicRoughness): alpha_t = mix(alpha, 1, anisotropy^2) along the anisotropy
+    /// direction, alpha_b = alpha across it (glTF anisotropyStrength); 0 is isotropic.
+    float anisotropy = 0.0f;
+    /// Angle in radians of the anisotropy direction, counter-clockwise about the normal
+    /// from the surface tangent (increasing u) toward the bitangent (glTF anisotropyRotation).
+    float anisotropy_rotation = 0.0f;
+    /// Texture (linear) whose RG, mapped to [-1, 1], is a direction in tangent-bitangent
+    /// space turned by anisotropy_rotation, and whose B multiplies anisotropy (glTF
+    /// anisotropyTexture).
+    TextureSlot anisotropy_texture;
+    /// Per hit: the world direction along which alpha_t lies. Scene::shade sets it from the
+    /// surface's tangent frame, anisotropy_rotation and anisotropy_texture; the BSDFs
+    /// project it onto the shading plane (zero: the shading frame's own x axis). A caller
+    /// of bsdf.h's functions without a Scene sets it itself.
+    glm::vec3 anisotropy_direction{0.0f};
+
     /// A Lambertian surface of the given reflectance.
     [[nodiscard]] static Material diffuse(const glm::vec3& albedo);
     /// A perfect mirror; tint multiplies what it reflects.
@@ -122,12 +140,13 @@ struct LIBRT_API Material {
         return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f;
     }
     /// True when the material has an input that varies per hit (a texture slot, a normal
-    /// map, an alpha test) or a one-sided back: Scene::shade then evaluates it per hit.
+    /// map, an alpha test, an anisotropy direction) or a one-sided back: Scene::shade then
+    /// evaluates it per hit.
     /// (albedo_texture, the report's map_Kd, is looked up by Scene::albedo as before.)
     [[nodiscard]] bool varies_per_hit() const {
         return base_color_texture.bound() || metallic_roughness_texture.bound() ||
                emission_texture.bound() || normal_texture.bound() || alpha_cutoff > 0.0f ||
-               !double_sided;
+               !double_sided || anisotropy > 0.0f;
     }
     /// True when the material has an alpha test (alpha_cutoff > 0).
     [[nodiscard]] bool cuts_out() const { return alpha_cutoff > 0.0f; }
@@ -141,7 +160,8 @@ struct LIBRT_API Material {
 /// finite and positive, albedo_texture is below -1, roughness, metallic, transmission or
 /// a base_color component is outside [0, 1], or eta or k has a negative or non-finite
 /// component; a texture slot's id is below -1 or its transform not finite; normal_scale is
-/// not finite; alpha or alpha_cutoff is outside [0, 1].
+/// not finite; alpha, alpha_cutoff or anisotropy is outside [0, 1]; anisotropy_rotation or
+/// anisotropy_direction is not finite.
 LIBRT_API void validate(const Material& material);
 
 }  // namespace librt

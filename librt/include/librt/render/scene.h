@@ -186,7 +186,10 @@ public:
     /// when it has none (Material::varies_per_hit false: no cost), else `scratch` filled
     /// with it, its textures looked up at hit.uv (base colour, metallic-roughness,
     /// emission), the mesh's vertex colour multiplied in (base colour, else albedo), and
-    /// hit.shading_normal bent by its normal map. A one-sided material seen
+    /// hit.shading_normal bent by its normal map, and an anisotropic material's
+    /// anisotropy_direction set from the surface's tangent frame (a mesh's tangents, which
+    /// add_mesh generates from uvs for such a material, or a sphere's dP/du), turned by
+    /// anisotropy_rotation and its texture. A one-sided material seen
     /// from its back (`direction`, the ray's, against the geometric normal) gives a black
     /// material: no scattering, no emission. The returned reference lives as long as the
     /// scene and `scratch`.
@@ -293,6 +296,8 @@ private:
     void check_texture_ids(const Material& material) const;
     const Material& shade_varying(Hit& hit, const glm::vec3& direction,
                                   ShadedMaterial& scratch) const;
+    /// Sets m.anisotropy_direction (and scales m.anisotropy by its texture) at a hit.
+    void anisotropy_at(const Hit& hit, Material& m) const;
     bool intersect_past_cut_outs(const Ray& ray, Hit& hit) const;
     bool occluded_past_cut_outs(const Ray& ray, std::uint32_t ignored_object) const;
 
