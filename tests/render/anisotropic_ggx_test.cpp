@@ -7,6 +7,7 @@
 // reciprocity, albedo <= 1, and a white conductor's albedo equals an independent quadrature.
 
 #include "render/anisotropic_ggx_test_util.h"
+#include "render/bsdf_chi_square_util.h"
 #include "render/bsdf_metallic_roughness.h"
 #include "render/microfacet_anisotropic.h"
 #include "render/microfacet_test_util.h"
@@ -187,15 +188,7 @@ TEST(AnisotropicGgx, SampleWeightEvalPdfAndReciprocity) {
                 const BsdfSample s = sample(c.material, p, wo, rng.next_float(), rng.next_vec2());
                 if (!s.valid()) continue;
                 ++valid;
-                ASSERT_TRUE(has(lobes(c.material), s.lobe)) << c.name;
-                const glm::vec3 f = eval(c.material, p, wo, s.wi);
-                const float d = pdf(c.material, p, wo, s.wi);
-                ASSERT_NEAR(s.pdf, d, 1e-4f * d) << c.name;
-                for (int k = 0; k < 3; ++k) {
-                    ASSERT_GE(f[k], 0.0f) << c.name;
-                    const float expected = f[k] * std::fabs(s.wi.z) / d;
-                    ASSERT_NEAR(s.weight[k], expected, 2e-3f * expected + 1e-6f) << c.name;
-                }
+                ASSERT_TRUE(testing::sample_agrees_with_eval_pdf(c.material, p, wo, s)) << c.name;
             }
             EXPECT_GT(valid, 10000) << c.name;
             for (int i = 0; i < 5000; ++i) {
@@ -223,13 +216,9 @@ TEST(AnisotropicGgx, SampledDirectionsFollowPdf) {
                 const glm::vec3 wo = local_dir(co, 0.3);
                 testing::DirectionBins bins;
                 bins.frame = Frame::from_normal({0, 0, 1});
-                std::vector<double> observed(std::size_t(bins.size()) + 1, 0.0);
                 Pcg32 rng(std::uint64_t(1000 * a.x + 100 * a.y + 10 * co), 23);
-                for (int i = 0; i < n; ++i) {
-                    const BsdfSample s =
-                        sample(c.material, p, wo, rng.next_float(), rng.next_vec2());
-                    observed[std::size_t(s.valid() ? bins.cell(s.wi) : bins.size())] += 1.0;
-                }
+                const std::vector<double> observed =
+                    testing::sampled_direction_counts(c.material, p, wo, bins, n, rng);
                 std::vector<double> expected(observed.size(), 0.0);
                 const bool refracts = c.material.kind == MaterialKind::RoughDielectric;
                 const bool thin = c.material.kind == MaterialKind::MetallicRoughness &&
@@ -290,14 +279,8 @@ TEST(AnisotropicGgx, SampledDirectionsFollowPdf) {
                     2400, 960);
                 EXPECT_LE(integral, 1.003) << c.name << " cos_o " << co;
                 expected.back() = std::max(0.0, n - n * integral);
-                // As in Microfacet.NarrowLobesFollowPdf: a token count for cells the grid
-                // leaves empty, pooled with the other small cells.
-                for (double& e : expected) e = std::max(e, 1e-3);
-                const testing::ChiSquareResult res = testing::chi_square_test(observed, expected);
-                EXPECT_TRUE(res.error.empty())
-                    << c.name << " cos_o " << co << ": " << res.summary();
-                // 72 tests at fixed seeds: 1e-3 keeps a false alarm rare across them all.
-                EXPECT_GE(res.p_value, 1e-3) << c.name << " cos_o " << co << ": " << res.summary();
+                testing::expect_chi_square_passes(observed, expected,
+                                                  c.name + " cos_o " + std::to_string(co));
             }
 }
 
@@ -314,19 +297,8 @@ TEST(AnisotropicGgx, AlbedoAtMostOneAndWhiteFurnace) {
                 const ShadingPoint p = flat_point(c.front);
                 const glm::vec3 wo = local_dir(co, 1.0);
                 Pcg32 rng(78, 2);
-                glm::dvec3 sum(0.0), sum2(0.0);
-                for (int i = 0; i < n; ++i) {
-                    const BsdfSample s =
-                        sample(c.material, p, wo, rng.next_float(), rng.next_vec2());
-                    if (!s.valid()) continue;
-                    sum += glm::dvec3(s.weight);
-                    sum2 += glm::dvec3(s.weight) * glm::dvec3(s.weight);
-                }
-                for (int k = 0; k < 3; ++k) {
-                    const double mean = sum[k] / n;
-                    const double se = std::sqrt(std::max(0.0, sum2[k] / n - mean * mean) / n);
-                    EXPECT_LE(mean, 1.0 + 4.0 * se) << c.name << " cos_o " << co;
-                }
+                testing::expect_albedo_at_most_one(c.material, p, wo, n, rng,
+                                                   c.name + " cos_o " + std::to_string(co));
             }
         Material white = Material::conductor(glm::vec3(1.0f), glm::vec3(1000.0f), 0.5f);
         white.anisotropy = anisotropic_cases(a)[0].material.anisotropy;

@@ -4,6 +4,7 @@
 // directional albedo <= 1; a white conductor's albedo equals GGX's single-scattering
 // energy by an independent quadrature; the Fresnel of the named metals and the artist form.
 
+#include "render/bsdf_chi_square_util.h"
 #include "render/microfacet_test_util.h"
 #include "sampling/chi_square.h"
 #include "sampling/direction_bins.h"
@@ -17,6 +18,7 @@
 
 #include <cmath>
 #include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -43,16 +45,8 @@ TEST(Microfacet, SampleWeightIsEvalCosOverPdf) {
                 const BsdfSample s = sample(c.material, p, wo, rng.next_float(), rng.next_vec2());
                 if (!s.valid()) continue;
                 ++valid;
-                ASSERT_TRUE(has(lobes(c.material), s.lobe)) << c.name;
                 ASSERT_NEAR(glm::length(s.wi), 1.0f, 1e-5f);
-                const glm::vec3 f = eval(c.material, p, wo, s.wi);
-                const float d = pdf(c.material, p, wo, s.wi);
-                ASSERT_NEAR(s.pdf, d, 1e-4f * d) << c.name;
-                for (int k = 0; k < 3; ++k) {
-                    ASSERT_GE(f[k], 0.0f) << c.name;
-                    const float expected = f[k] * std::fabs(s.wi.z) / d;
-                    ASSERT_NEAR(s.weight[k], expected, 2e-3f * expected + 1e-6f) << c.name;
-                }
+                ASSERT_TRUE(testing::sample_agrees_with_eval_pdf(c.material, p, wo, s)) << c.name;
             }
             EXPECT_GT(valid, 10000) << c.name;
         }
@@ -177,13 +171,9 @@ TEST(Microfacet, NarrowLobesFollowPdf) {
                 const glm::vec3 wo = local_dir(co, 0.3);
                 testing::DirectionBins bins;
                 bins.frame = Frame::from_normal({0, 0, 1});
-                std::vector<double> observed(std::size_t(bins.size()) + 1, 0.0);
                 Pcg32 rng(uint64_t(100 * r + 10 * co), 17);
-                for (int i = 0; i < n; ++i) {
-                    const BsdfSample s =
-                        sample(c.material, p, wo, rng.next_float(), rng.next_vec2());
-                    observed[std::size_t(s.valid() ? bins.cell(s.wi) : bins.size())] += 1.0;
-                }
+                const std::vector<double> observed =
+                    testing::sampled_direction_counts(c.material, p, wo, bins, n, rng);
                 std::vector<double> expected(observed.size(), 0.0);
                 const double eta = c.front ? 1.5 : 1.0 / 1.5;
                 const glm::dvec3 o(wo);
@@ -218,15 +208,9 @@ TEST(Microfacet, NarrowLobesFollowPdf) {
                     },
                     2400, 960);
                 expected.back() = std::max(0.0, n - n * integral);
-                // A cell (or the failure cell) the grid leaves empty while a rare sample lands
-                // there gets a token count to be pooled with the other small cells: that a
-                // sample is possible at all is already checked (pdf() > 0 at every sample,
-                // SampleWeightIsEvalCosOverPdf).
-                for (double& e : expected) e = std::max(e, 1e-3);
-                const testing::ChiSquareResult res = testing::chi_square_test(observed, expected);
-                EXPECT_TRUE(res.error.empty())
-                    << c.name << " cos_o " << co << ": " << res.summary();
-                EXPECT_GE(res.p_value, 1e-3) << c.name << " cos_o " << co << ": " << res.summary();
+                // (pdf() > 0 at every sample: SampleWeightIsEvalCosOverPdf.)
+                testing::expect_chi_square_passes(observed, expected,
+                                                  c.name + " cos_o " + std::to_string(co));
             }
         }
 }
@@ -246,19 +230,8 @@ TEST(Microfacet, DirectionalAlbedoAtMostOne) {
                 const ShadingPoint p = flat_point(c.front);
                 const glm::vec3 wo = local_dir(co, 1.0);
                 Pcg32 rng(77, 2);
-                glm::dvec3 sum(0.0), sum2(0.0);
-                for (int i = 0; i < n; ++i) {
-                    const BsdfSample s =
-                        sample(c.material, p, wo, rng.next_float(), rng.next_vec2());
-                    if (!s.valid()) continue;
-                    sum += glm::dvec3(s.weight);
-                    sum2 += glm::dvec3(s.weight) * glm::dvec3(s.weight);
-                }
-                for (int k = 0; k < 3; ++k) {
-                    const double mean = sum[k] / n;
-                    const double se = std::sqrt(std::max(0.0, sum2[k] / n - mean * mean) / n);
-                    EXPECT_LE(mean, 1.0 + 4.0 * se) << c.name << " cos_o " << co;
-                }
+                testing::expect_albedo_at_most_one(c.material, p, wo, n, rng,
+                                                   c.name + " cos_o " + std::to_string(co));
             }
 }
 

@@ -53,12 +53,13 @@ inline constexpr float kMinAlpha = 1e-3f;
     return 1.0f / (1.0f + ggx_lambda(wo, alpha) + ggx_lambda(wi, alpha));
 }
 
-/// A microfacet normal drawn from the distribution of normals visible from wo (wo.z > 0),
-/// density vndf_pdf (Heitz 2018, "Sampling the GGX Distribution of Visible Normals": stretch
-/// wo to the hemisphere configuration, sample the projected half disk, unstretch).
-[[nodiscard]] inline glm::vec3 sample_visible_normal(const glm::vec3& wo, float alpha,
+/// A microfacet normal drawn from the distribution of normals visible from wo (wo.z > 0)
+/// of a GGX distribution with roughness ax along x and ay along y (Heitz 2018, "Sampling
+/// the GGX Distribution of Visible Normals": stretch wo to the hemisphere configuration,
+/// sample the projected half disk, unstretch; its listing 1).
+[[nodiscard]] inline glm::vec3 sample_visible_normal(const glm::vec3& wo, float ax, float ay,
                                                      glm::vec2 u) {
-    const glm::vec3 vh = glm::normalize(glm::vec3(alpha * wo.x, alpha * wo.y, wo.z));
+    const glm::vec3 vh = glm::normalize(glm::vec3(ax * wo.x, ay * wo.y, wo.z));
     const float len2 = vh.x * vh.x + vh.y * vh.y;
     const glm::vec3 t1 =
         len2 > 0.0f ? glm::vec3(-vh.y, vh.x, 0.0f) / std::sqrt(len2) : glm::vec3(1, 0, 0);
@@ -73,7 +74,13 @@ inline constexpr float kMinAlpha = 1e-3f;
     p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * p2;
     const glm::vec3 nh =
         p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
-    return glm::normalize(glm::vec3(alpha * nh.x, alpha * nh.y, std::max(1e-7f, nh.z)));
+    return glm::normalize(glm::vec3(ax * nh.x, ay * nh.y, std::max(1e-7f, nh.z)));
+}
+
+/// The isotropic case, density vndf_pdf.
+[[nodiscard]] inline glm::vec3 sample_visible_normal(const glm::vec3& wo, float alpha,
+                                                     glm::vec2 u) {
+    return sample_visible_normal(wo, alpha, alpha, u);
 }
 
 /// Density of sample_visible_normal: G1(wo) max(0, wo.m) D(m) / wo.z (Heitz 2018, eq. 3).

@@ -68,25 +68,10 @@ struct Alpha2 {
     return 1.0f / (1.0f + ggx_lambda(wo, a) + ggx_lambda(wi, a));
 }
 
-/// A visible normal of the anisotropic distribution seen from wo (wo.z > 0): Heitz 2018's
-/// algorithm, whose stretch and unstretch scale x by ax and y by ay (its listing 1); the
-/// isotropic sample_visible_normal is this with ax == ay.
+/// A visible normal of the anisotropic distribution seen from wo (wo.z > 0): microfacet.h's
+/// Heitz 2018 sampler with its two roughnesses.
 [[nodiscard]] inline glm::vec3 sample_visible_normal(const glm::vec3& wo, Alpha2 a, glm::vec2 u) {
-    const glm::vec3 vh = glm::normalize(glm::vec3(a.x * wo.x, a.y * wo.y, wo.z));
-    const float len2 = vh.x * vh.x + vh.y * vh.y;
-    const glm::vec3 t1 =
-        len2 > 0.0f ? glm::vec3(-vh.y, vh.x, 0.0f) / std::sqrt(len2) : glm::vec3(1, 0, 0);
-    const glm::vec3 t2 = glm::cross(vh, t1);
-    // A uniform point on the unit disk, squeezed onto the visible half (Heitz 2018, sec. 4).
-    const float r = std::sqrt(u.x);
-    const float phi = 2.0f * k_pi * u.y;
-    const float p1 = r * std::cos(phi);
-    float p2 = r * std::sin(phi);
-    const float s = 0.5f * (1.0f + vh.z);
-    p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * p2;
-    const glm::vec3 nh =
-        p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
-    return glm::normalize(glm::vec3(a.x * nh.x, a.y * nh.y, std::max(1e-7f, nh.z)));
+    return sample_visible_normal(wo, a.x, a.y, u);
 }
 
 /// Density of the anisotropic sample_visible_normal: G1(wo) max(0, wo.m) D(m) / wo.z
