@@ -327,4 +327,11 @@ TEST(GltfFuzzSeeds, EverySeedLoads) {
     EXPECT_NEAR(s.meshes[0].primitives[0].colors[2].w, 128.0f / 255.0f, 1e-6f);
     ASSERT_EQ(s.warnings.size(), 1u);  // it has no scenes: its root nodes are placed
     EXPECT_TRUE(lt::has(s.warnings[0], "fan_quantized.glb: scenes: none in the file"));
+    // scene_features.gltf's material as a brushed metal (KHR_materials_anisotropy).
+    s = load_gltf(dir / "anisotropy.gltf");
+    ASSERT_EQ(s.materials.size(), 1u);
+    EXPECT_FLOAT_EQ(s.materials[0].anisotropy_strength, 0.6f);
+    EXPECT_FLOAT_EQ(s.materials[0].anisotropy_rotation, 0.4f);
+    EXPECT_EQ(s.materials[0].anisotropy_texture.texture, 0);
+    EXPECT_TRUE(s.warnings.empty()) << lt::joined(s.warnings);
 }
