@@ -102,11 +102,14 @@ struct PathTracerSettings {
 /// ray counts with the BSDF strategy's weight. Specular hits (mirror, glass) only sample
 /// their BSDF, and an emitter seen by the camera or through them counts fully. Emitters
 /// that are no light (emissive meshes, glowing diffuse surfaces) are not light-sampled,
-/// so they always count fully. At the last scattering event (depth = max_depth) the
-/// light sample takes the whole weight and hit lights count nothing (one strategy, so the
-/// weights still sum to 1), which lets the path stop without tracing that last ray
-/// unless some emitter is not light-sampled. With settings.mis = false every non-specular
-/// vertex is weighted like that last one (next-event estimation only).
+/// so they always count fully. At the last scattering event (depth = max_depth) of a
+/// surface without a glossy lobe the light sample takes the whole weight and hit lights
+/// count nothing (one strategy, so the weights still sum to 1), which lets the path stop
+/// without tracing that last ray unless some emitter is not light-sampled; a glossy last
+/// vertex keeps MIS and traces its BSDF ray for the emitter it may hit (light sampling
+/// alone would divide its peaked f by a light pdf blind to it: fireflies). With
+/// settings.mis = false every non-specular vertex takes the light sample's whole weight
+/// (next-event estimation only).
 ///
 /// With settings.guiding.enabled, preprocess() builds an empty SD-tree over the scene and
 /// the training passes (train() in renderer.h) teach it the incident radiance; at a vertex
