@@ -420,9 +420,10 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             }
             break;
         }
-        // may_hide_objects() first: a flag, where camera_visible() is a bounds-checked
-        // lookup per camera hit that no scene without hidden objects needs.
-        if (depth == 0 && scene.may_hide_objects() && !scene.camera_visible(hit.object_id))
+        // may_hide_objects() first: a flag that never changes during a render (depth == 0
+        // alternates per path), and camera_visible() is a lookup no scene without hidden
+        // objects needs.
+        if (scene.may_hide_objects() && depth == 0 && !scene.camera_visible(hit.object_id))
             [[unlikely]] {
             // Camera rays go on through hidden objects (bounded: a ray grazing a hidden
             // surface many times must still end).
