@@ -119,6 +119,21 @@ TEST(AnisotropyFrame, TextureTurnsTheDirectionAndScalesTheStrength) {
     EXPECT_NEAR(s.material.anisotropy, 0.4f, 1e-6f);
 }
 
+// An instance of a prototype added without tangents: the anisotropic material placed on it
+// gets tangents from the prototype's uvs, mapped by the instance (a quarter turn about z
+// takes the u direction +x to +y), as a mesh added whole gets them.
+TEST(AnisotropyFrame, InstanceOfAPrototypeWithoutTangentsGetsThemFromItsUvs) {
+    Scene scene;
+    const std::uint32_t prototype = scene.add_mesh_prototype(quad(true));
+    const glm::mat4 quarter_turn(glm::vec4(0, 1, 0, 0), glm::vec4(-1, 0, 0, 0),
+                                 glm::vec4(0, 0, 1, 0), glm::vec4(0, 0, 0, 1));
+    scene.add_instance(prototype, quarter_turn, scene.add_material(brushed(0.0f)));
+    scene.commit();
+    const Shaded s = shade_at(scene, Ray({0.2f, 0.3f, 2}, {0, 0, -1}));
+    expect_near(s.material.anisotropy_direction, {0, 1, 0}, "instance");
+    EXPECT_FLOAT_EQ(s.material.anisotropy, 0.8f);
+}
+
 TEST(AnisotropyFrame, MeshWithoutUvsLeavesTheDirectionToTheBsdfFrame) {
     Scene scene;
     scene.add_mesh(quad(false), scene.add_material(brushed(0.3f)));

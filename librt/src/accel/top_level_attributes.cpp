@@ -2,6 +2,7 @@
 // the few materials that need them; kept out of top_level.cpp's hot query path.
 
 #include <librt/accel/top_level.h>
+#include <librt/geometry/tangents.h>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -52,6 +53,14 @@ glm::vec4 TopLevel::tangent(const Hit& hit) const {
         if (glm::determinant(inst->to_world) < 0.0f) sign = -sign;
     }
     return glm::vec4(t, sign);
+}
+
+void TopLevel::generate_prototype_tangents(std::uint32_t prototype, bool v_down) {
+    check_prototype(prototype);
+    TriangleMesh& mesh = prototypes_[prototype].mesh;
+    // Tangents are shading data: the prototype's BVH and every query stay as they are.
+    if (mesh.tangents.empty() && !mesh.uvs.empty() && mesh.uvs.size() == mesh.positions.size())
+        mesh.tangents = generate_tangents(mesh, v_down);
 }
 
 bool TopLevel::has_colors(std::uint32_t id) const {

@@ -162,6 +162,9 @@ std::uint32_t Scene::add_instance(std::uint32_t prototype, const glm::mat4& obje
     check_material_id(material);
     const std::uint32_t id = add_object(top_.add_instance(prototype, object_to_world), material);
     if (top_.has_colors(id)) objects_[id].plain_material = kInvalidId;  // see add_mesh_object
+    // An anisotropic material needs a tangent frame, as in add_mesh_object: a prototype with
+    // uvs but no tangents gets them from its uvs (v up, as add_mesh's callers give them).
+    if (materials_[material].anisotropy > 0.0f) top_.generate_prototype_tangents(prototype, false);
     return id;
 }
 

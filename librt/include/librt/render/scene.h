@@ -106,7 +106,9 @@ public:
     /// of `material`; returns its object id. Hits on it report the prototype's triangle as
     /// primitive_id and the instance's rank among add_instance calls as instance_id. Throws
     /// librt::Error for an unknown prototype or material id, or a matrix that is not finite,
-    /// not affine (bottom row 0 0 0 1) or singular.
+    /// not affine (bottom row 0 0 0 1) or singular. An anisotropic `material` gives a
+    /// prototype with uvs but no tangents tangents from its uvs (generate_tangents, v up),
+    /// as add_mesh does.
     std::uint32_t add_instance(std::uint32_t prototype, const glm::mat4& object_to_world,
                                std::uint32_t material);
     /// Adds a point light (validated) to the light list. Point lights are not geometry.
