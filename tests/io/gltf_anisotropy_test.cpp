@@ -116,6 +116,19 @@ TEST(GltfAnisotropy, BadValuesNameTheJsonPath) {
     EXPECT_TRUE(has(msg, at + ".anisotropyTexture.index")) << msg;
     msg = error({{"anisotropyTexture", {{"texCoord", 0}}}});
     EXPECT_TRUE(has(msg, at + ".anisotropyTexture.index: missing")) << msg;
+    // Not an object: tinygltf would drop it without a word; the pre-pass names it.
+    for (const json& not_object : {json(5), json::array({1, 2}), json("strong")}) {
+        msg = error(not_object);
+        EXPECT_TRUE(has(msg, at + ": must be a JSON object, found")) << msg;
+    }
+    GltfBuilder b = anisotropic_triangle({{"anisotropyStrength", 0.5}});
+    b.doc["materials"][0]["extensions"] = 3;
+    msg = error_of([&] { (void)load_gltf(write(dir, "ext.gltf", b)); });
+    EXPECT_TRUE(has(msg, "materials[0].extensions: must be a JSON object, found number")) << msg;
+    // Free-form data may hold anything, and an extension librt does not read is left alone.
+    b.doc["materials"][0]["extensions"] = {{"EXT_unknown", 7}};
+    b.doc["materials"][0]["extras"] = {{"extensions", 1}};
+    EXPECT_NO_THROW((void)load_gltf(write(dir, "free.gltf", b)));
     // Out of [0, 1]: clamped with a warning, as every glTF factor is.
     const GltfScene s =
         load_gltf(write(dir, "clamp.gltf", anisotropic_triangle({{"anisotropyStrength", 1.5}})));

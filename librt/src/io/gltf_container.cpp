@@ -77,15 +77,18 @@ struct Frame {
     const Json* value;
     std::string path;
     int depth;
-    bool free_form;  // inside extras or an extension: only the depth matters
-    bool ints;       // members must be ints (children, attributes...)
-    bool sparse;     // inside accessor.sparse: sizes are ints there
+    bool free_form;           // inside extras or an extension: only the depth matters
+    bool ints;                // members must be ints (children, attributes...)
+    bool sparse;              // inside accessor.sparse: sizes are ints there
+    bool extensions = false;  // an object's "extensions" member itself
 };
 
-/// One pass over the whole document without recursion: nesting depth, and integers that
-/// tinygltf would truncate or drop.
+/// One pass over the whole document without recursion: nesting depth, integers that
+/// tinygltf would truncate or drop, and extension values that are not objects (the schema's
+/// glTFProperty.extensions holds objects; tinygltf skips any other value without a word,
+/// so a supported extension written as a number or an array would vanish unnoticed).
 void check_structure(const Json& root, const Context& ctx) {
-    std::vector<Frame> stack{{&root, "", 1, false, false, false}};
+    std::vector<Frame> stack{{&root, "", 1, false, false, false, false}};
     // A member's path, built only when needed (an error, or a container to visit).
     auto member_path = [](const Frame& parent, bool is_object, const std::string& key,
                           std::size_t i) {
@@ -127,12 +130,19 @@ void check_structure(const Json& root, const Context& ctx) {
             static const std::string no_key;
             const std::string& key = is_object ? it.key() : no_key;
             const Json& child = *it;
+            if (is_object && !frame.free_form && key == "extensions" && !child.is_object())
+                ctx.fail(member_path(frame, true, key, i),
+                         "must be a JSON object, found " + std::string(child.type_name()));
+            if (frame.extensions && !child.is_object() && supported_extensions().count(key) != 0)
+                ctx.fail(member_path(frame, true, key, i),
+                         "must be a JSON object, found " + std::string(child.type_name()));
             if (child.is_structured()) {
                 const bool free_form =
                     frame.free_form || (is_object && (key == "extras" || key == "extensions"));
                 stack.push_back({&child, member_path(frame, is_object, key, i), frame.depth + 1,
                                  free_form, is_object && is_int_container(key),
-                                 frame.sparse || (is_object && key == "sparse")});
+                                 frame.sparse || (is_object && key == "sparse"),
+                                 is_object && !frame.free_form && key == "extensions"});
             } else {
                 check_leaf(child, frame, is_object, key, i);
             }
