@@ -179,6 +179,27 @@ TEST(NormalMap, GeneratedTangentsFollowTheUvsAndTiltAsPredicted) {
     EXPECT_NEAR(generate_tangents(bare, false)[2].x, 1.0f, 1e-6f);
 }
 
+// A mesh, or a prototype, added without tangents: the normal-mapped material gets them
+// from the uvs (the glTF loader's rule), so the map tilts the normal as through given
+// tangents; before, the map was silently ignored for want of a frame.
+TEST(NormalMap, MeshesAndInstancesWithoutTangentsGetThemForTheirNormalMap) {
+    const float theta = 0.7f;
+    const glm::vec3 ty(0.5f, 0.5f + 0.5f * std::sin(theta), 0.5f + 0.5f * std::cos(theta));
+    const glm::mat4 quarter_turn(glm::vec4(0, 1, 0, 0), glm::vec4(-1, 0, 0, 0),
+                                 glm::vec4(0, 0, 1, 0), glm::vec4(0, 0, 0, 1));
+    const glm::mat4 identity(1.0f);
+    for (const glm::mat4* instance :
+         {static_cast<const glm::mat4*>(nullptr), &identity, &quarter_turn}) {
+        ASSERT_TRUE(unit_quad().tangents.empty());
+        const glm::vec3 n =
+            shaded_normal(normal_mapped(unit_quad(), ty, 1.0f, instance), 0.2f, 0.3f);
+        EXPECT_NEAR(angle_between(n, {0, 0, 1}), theta, 2e-6f);
+        // Tilted toward the bitangent (+v): +y on the quad, -x once turned a quarter.
+        const glm::vec3 b = instance == &quarter_turn ? glm::vec3(-1, 0, 0) : glm::vec3(0, 1, 0);
+        EXPECT_NEAR(glm::dot(n, b), std::sin(theta), 2e-6f);
+    }
+}
+
 TEST(NormalMap, BentNormalsStayOnTheGeometricSide) {
     const glm::vec3 n(0, 0, 1), g(0, 0, 1);
     // Texels at and past the horizon: x = 1 with z = 0, and z < 0 (below the surface).

@@ -17,6 +17,11 @@ namespace {
 // Whether hits on a sphere of this material need its uv: for a texture lookup.
 bool needs_uv(const Material& m) { return m.albedo_texture >= 0 || m.varies_per_hit(); }
 
+// A normal map and an anisotropy direction are both read in the surface's tangent frame.
+bool needs_tangent_frame(const Material& m) {
+    return m.normal_texture.bound() || m.anisotropy > 0.0f;
+}
+
 // Whether a triangle of this material is light-sampled: every emitter (a TriangleLight
 // carries the material's one-sidedness and emission texture) but a cut-out one, whose
 // holes rays pass through: a light sample there would count light no ray can see.
@@ -99,13 +104,13 @@ std::uint32_t Scene::add_object(std::uint32_t top_id, std::uint32_t material) {
 
 std::uint32_t Scene::add_mesh_object(TriangleMesh mesh, BvhBuilder builder, std::uint32_t material,
                                      std::vector<std::uint32_t> per_triangle) {
-    // An anisotropic material needs the surface's tangent frame: a mesh with uvs but no
-    // tangents gets them from its uvs (v up, as add_mesh's callers give them).
-    const auto anisotropic = [&](std::uint32_t i) { return materials_[i].anisotropy > 0.0f; };
+    // A normal map or an anisotropic material needs the surface's tangent frame (the glTF
+    // loader's rule): a mesh with uvs but no tangents gets them from its uvs (v up, as
+    // add_mesh's callers give them).
+    const auto needs = [&](std::uint32_t i) { return needs_tangent_frame(materials_[i]); };
     if (mesh.tangents.empty() && mesh.uvs.size() == mesh.positions.size() &&
-        (material != kInvalidId
-             ? anisotropic(material)
-             : std::any_of(per_triangle.begin(), per_triangle.end(), anisotropic)))
+        (material != kInvalidId ? needs(material)
+                                : std::any_of(per_triangle.begin(), per_triangle.end(), needs)))
         mesh.tangents = generate_tangents(mesh, false);
     const std::uint32_t prototype = top_.add_prototype(std::move(mesh), builder);
     const std::uint32_t id = add_object(top_.add_mesh(prototype), material);
@@ -162,9 +167,11 @@ std::uint32_t Scene::add_instance(std::uint32_t prototype, const glm::mat4& obje
     check_material_id(material);
     const std::uint32_t id = add_object(top_.add_instance(prototype, object_to_world), material);
     if (top_.has_colors(id)) objects_[id].plain_material = kInvalidId;  // see add_mesh_object
-    // An anisotropic material needs a tangent frame, as in add_mesh_object: a prototype with
-    // uvs but no tangents gets them from its uvs (v up, as add_mesh's callers give them).
-    if (materials_[material].anisotropy > 0.0f) top_.generate_prototype_tangents(prototype, false);
+    // As in add_mesh_object: a prototype with uvs but no tangents gets them from its uvs
+    // when a material placed on it needs a tangent frame. Every instance then shades with
+    // the same tangents, whichever was added first.
+    if (needs_tangent_frame(materials_[material]))
+        top_.generate_prototype_tangents(prototype, false);
     return id;
 }
 

@@ -84,8 +84,9 @@ public:
     /// returned (the triangle's primitive id is its rank among loose triangles).
     std::uint32_t add_triangle(const Triangle& triangle, std::uint32_t material);
     /// Adds a mesh whose triangles all use `material` (its own materials are ignored);
-    /// returns its object id. Throws librt::Error for an invalid mesh (librt::validate) or
-    /// an unknown material id.
+    /// returns its object id. A mesh with uvs but no tangents whose material has a normal
+    /// map or anisotropy gets tangents from its uvs (generate_tangents, v up). Throws
+    /// librt::Error for an invalid mesh (librt::validate) or an unknown material id.
     std::uint32_t add_mesh(TriangleMesh mesh, std::uint32_t material);
     /// As add_mesh, with the builder of the mesh's BVH chosen (the report's median split
     /// for comparisons; SAH, the default, is faster to trace).
@@ -106,9 +107,9 @@ public:
     /// of `material`; returns its object id. Hits on it report the prototype's triangle as
     /// primitive_id and the instance's rank among add_instance calls as instance_id. Throws
     /// librt::Error for an unknown prototype or material id, or a matrix that is not finite,
-    /// not affine (bottom row 0 0 0 1) or singular. An anisotropic `material` gives a
-    /// prototype with uvs but no tangents tangents from its uvs (generate_tangents, v up),
-    /// as add_mesh does.
+    /// not affine (bottom row 0 0 0 1) or singular. A `material` with a normal map or
+    /// anisotropy gives a prototype with uvs but no tangents tangents from its uvs
+    /// (generate_tangents, v up), as add_mesh does.
     std::uint32_t add_instance(std::uint32_t prototype, const glm::mat4& object_to_world,
                                std::uint32_t material);
     /// Adds a point light (validated) to the light list. Point lights are not geometry.
