@@ -198,6 +198,13 @@ TEST(NormalMap, MeshesAndInstancesWithoutTangentsGetThemForTheirNormalMap) {
         const glm::vec3 b = instance == &quarter_turn ? glm::vec3(-1, 0, 0) : glm::vec3(0, 1, 0);
         EXPECT_NEAR(glm::dot(n, b), std::sin(theta), 2e-6f);
     }
+    // Uvs all one point (a glTF primitive without TEXCOORD reads (0, 0)) give no frame: the
+    // map is left out, as on a mesh without uvs, rather than read in an arbitrary frame.
+    TriangleMesh flat_uvs = unit_quad();
+    flat_uvs.uvs.assign(flat_uvs.positions.size(), glm::vec2(0.0f));
+    for (const glm::mat4* instance : {static_cast<const glm::mat4*>(nullptr), &identity})
+        EXPECT_EQ(shaded_normal(normal_mapped(flat_uvs, ty, 1.0f, instance), 0.2f, 0.3f),
+                  glm::vec3(0, 0, 1));
 }
 
 TEST(NormalMap, BentNormalsStayOnTheGeometricSide) {

@@ -7,6 +7,8 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include <algorithm>
+
 namespace librt {
 
 glm::vec2 TopLevel::barycentrics(const Hit& hit) const {
@@ -58,9 +60,13 @@ glm::vec4 TopLevel::tangent(const Hit& hit) const {
 void TopLevel::generate_prototype_tangents(std::uint32_t prototype, bool v_down) {
     check_prototype(prototype);
     TriangleMesh& mesh = prototypes_[prototype].mesh;
-    // Tangents are shading data: the prototype's BVH and every query stay as they are.
-    if (mesh.tangents.empty() && !mesh.uvs.empty() && mesh.uvs.size() == mesh.positions.size())
-        mesh.tangents = generate_tangents(mesh, v_down);
+    // Uvs that are all one point (the glTF loader's stand-in for a missing TEXCOORD) give
+    // no frame: generate_tangents would return an arbitrary one, so there are none, and a
+    // normal map or anisotropy direction falls back as on a mesh without uvs.
+    const auto varies = [&](const glm::vec2& uv) { return uv != mesh.uvs.front(); };
+    if (mesh.tangents.empty() && !mesh.uvs.empty() && mesh.uvs.size() == mesh.positions.size() &&
+        std::any_of(mesh.uvs.begin(), mesh.uvs.end(), varies))
+        mesh.tangents = generate_tangents(mesh, v_down);  // shading data: the BVH stays
 }
 
 bool TopLevel::has_colors(std::uint32_t id) const {

@@ -1,5 +1,4 @@
 #include <librt/core/error.h>
-#include <librt/geometry/tangents.h>
 #include <librt/render/scene.h>
 
 #include <glm/geometric.hpp>
@@ -108,11 +107,10 @@ std::uint32_t Scene::add_mesh_object(TriangleMesh mesh, BvhBuilder builder, std:
     // loader's rule): a mesh with uvs but no tangents gets them from its uvs (v up, as
     // add_mesh's callers give them).
     const auto needs = [&](std::uint32_t i) { return needs_tangent_frame(materials_[i]); };
-    if (mesh.tangents.empty() && mesh.uvs.size() == mesh.positions.size() &&
-        (material != kInvalidId ? needs(material)
-                                : std::any_of(per_triangle.begin(), per_triangle.end(), needs)))
-        mesh.tangents = generate_tangents(mesh, false);
     const std::uint32_t prototype = top_.add_prototype(std::move(mesh), builder);
+    if (material != kInvalidId ? needs(material)
+                               : std::any_of(per_triangle.begin(), per_triangle.end(), needs))
+        top_.generate_prototype_tangents(prototype, false);
     const std::uint32_t id = add_object(top_.add_mesh(prototype), material);
     // Vertex colors are a per-hit input: shade() evaluates them out of line.
     if (top_.has_colors(id)) objects_[id].plain_material = kInvalidId;

@@ -102,9 +102,9 @@ public:
     /// Throws librt::Error for an invalid mesh (librt::validate).
     std::uint32_t add_prototype(TriangleMesh mesh, BvhBuilder builder = BvhBuilder::Sah);
     /// Gives prototype `prototype` the tangents generate_tangents(mesh, v_down) makes from
-    /// its uvs when it has uvs and no tangents (else nothing): for a material that needs a
-    /// tangent frame placed on a prototype added without one. Throws librt::Error for an
-    /// unknown prototype.
+    /// its uvs when it has uvs, not all equal, and no tangents (else nothing): for a
+    /// material that needs a tangent frame placed on a prototype added without one. Throws
+    /// librt::Error for an unknown prototype.
     void generate_prototype_tangents(std::uint32_t prototype, bool v_down);
     /// Adds a loose triangle; all loose triangles form one mesh object, created at the
     /// first call, whose id is returned (the triangle's primitive id is its rank among
