@@ -130,10 +130,9 @@ void check_structure(const Json& root, const Context& ctx) {
             static const std::string no_key;
             const std::string& key = is_object ? it.key() : no_key;
             const Json& child = *it;
-            if (is_object && !frame.free_form && key == "extensions" && !child.is_object())
-                ctx.fail(member_path(frame, true, key, i),
-                         "must be a JSON object, found " + std::string(child.type_name()));
-            if (frame.extensions && !child.is_object() && supported_extensions().count(key) != 0)
+            const bool extensions_member = is_object && !frame.free_form && key == "extensions";
+            const bool read_extension = frame.extensions && supported_extensions().count(key) != 0;
+            if ((extensions_member || read_extension) && !child.is_object())
                 ctx.fail(member_path(frame, true, key, i),
                          "must be a JSON object, found " + std::string(child.type_name()));
             if (child.is_structured()) {
@@ -142,7 +141,7 @@ void check_structure(const Json& root, const Context& ctx) {
                 stack.push_back({&child, member_path(frame, is_object, key, i), frame.depth + 1,
                                  free_form, is_object && is_int_container(key),
                                  frame.sparse || (is_object && key == "sparse"),
-                                 is_object && !frame.free_form && key == "extensions"});
+                                 extensions_member});
             } else {
                 check_leaf(child, frame, is_object, key, i);
             }

@@ -151,7 +151,7 @@ const SceneMaterial& MaterialBuilder::material(int index) {
     out.id = scene_.add_material(material);
     // A normal map and an anisotropy direction both need the tangent frame, and so uvs
     // (TEXCOORD_0 when no texture chose a set) for generated tangents.
-    out.needs_tangents = material.normal_texture.bound() || material.anisotropy > 0.0f;
+    out.needs_tangents = material.needs_tangent_frame();
     out.textured = out.uv_set >= 0;
     if (material.anisotropy > 0.0f && out.uv_set < 0) out.uv_set = 0;
     return out;

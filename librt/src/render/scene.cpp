@@ -16,11 +16,6 @@ namespace {
 // Whether hits on a sphere of this material need its uv: for a texture lookup.
 bool needs_uv(const Material& m) { return m.albedo_texture >= 0 || m.varies_per_hit(); }
 
-// A normal map and an anisotropy direction are both read in the surface's tangent frame.
-bool needs_tangent_frame(const Material& m) {
-    return m.normal_texture.bound() || m.anisotropy > 0.0f;
-}
-
 // Whether a triangle of this material is light-sampled: every emitter (a TriangleLight
 // carries the material's one-sidedness and emission texture) but a cut-out one, whose
 // holes rays pass through: a light sample there would count light no ray can see.
@@ -106,7 +101,7 @@ std::uint32_t Scene::add_mesh_object(TriangleMesh mesh, BvhBuilder builder, std:
     // A normal map or an anisotropic material needs the surface's tangent frame (the glTF
     // loader's rule): a mesh with uvs but no tangents gets them from its uvs (v up, as
     // add_mesh's callers give them).
-    const auto needs = [&](std::uint32_t i) { return needs_tangent_frame(materials_[i]); };
+    const auto needs = [&](std::uint32_t i) { return materials_[i].needs_tangent_frame(); };
     const std::uint32_t prototype = top_.add_prototype(std::move(mesh), builder);
     if (material != kInvalidId ? needs(material)
                                : std::any_of(per_triangle.begin(), per_triangle.end(), needs))
@@ -168,7 +163,7 @@ std::uint32_t Scene::add_instance(std::uint32_t prototype, const glm::mat4& obje
     // As in add_mesh_object: a prototype with uvs but no tangents gets them from its uvs
     // when a material placed on it needs a tangent frame. Every instance then shades with
     // the same tangents, whichever was added first.
-    if (needs_tangent_frame(materials_[material]))
+    if (materials_[material].needs_tangent_frame())
         top_.generate_prototype_tangents(prototype, false);
     return id;
 }

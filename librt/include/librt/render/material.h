@@ -148,6 +148,11 @@ struct LIBRT_API Material {
                emission_texture.bound() || normal_texture.bound() || alpha_cutoff > 0.0f ||
                !double_sided || anisotropy > 0.0f;
     }
+    /// True when the material reads the surface's tangent frame: a normal map or an
+    /// anisotropy direction (meshes without tangents get them from their uvs).
+    [[nodiscard]] bool needs_tangent_frame() const {
+        return normal_texture.bound() || anisotropy > 0.0f;
+    }
     /// True when the material has an alpha test (alpha_cutoff > 0).
     [[nodiscard]] bool cuts_out() const { return alpha_cutoff > 0.0f; }
     /// True when every lobe of the material's BSDF is a delta distribution (no light
