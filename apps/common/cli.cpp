@@ -129,6 +129,10 @@ void add_common_options(CLI::App& app, AppOptions& o) {
     app.add_option("--bounces", o.bounces,
                    "Scattering events per path (mirror/glass bounces for direct lighting)")
         ->capture_default_str();
+    app.add_option("--roulette", o.roulette,
+                   "Russian roulette from this bounce on, path-traced apps (-1 = off: the report's "
+                   "fixed-length paths; the image's mean is the same)")
+        ->capture_default_str();
     app.add_option("--threads", o.threads, "Worker threads, 0 = all cores")->capture_default_str();
     app.add_option("--seed", o.seed, "Random seed (the image is the same for any thread count)")
         ->capture_default_str();
@@ -226,7 +230,8 @@ PathTracerSettings path_tracer_settings(const AppOptions& options) {
     PathTracerSettings settings;
     // The report's paths, explicitly: the library's defaults (long paths, roulette) differ.
     settings.max_depth = options.bounces;
-    settings.russian_roulette = false;
+    settings.russian_roulette = options.roulette >= 0;
+    if (options.roulette >= 0) settings.russian_roulette_depth = options.roulette;
     settings.guiding.enabled = options.guiding;
     settings.guiding.training_passes = options.guiding_passes;
     // Every render entry point can keep the training passes in the image (renderer.h).
@@ -300,6 +305,9 @@ void validate(const AppOptions& o) {
         bad_option("--guiding-passes", std::to_string(o.guiding_passes), "must be in [1, 20]");
     if (o.bounces < 0 || o.bounces > 1000) {
         bad_option("--bounces", std::to_string(o.bounces), "must be in [0, 1000]");
+    }
+    if (o.roulette < -1 || o.roulette > 1000) {
+        bad_option("--roulette", std::to_string(o.roulette), "must be -1 (off) or in [0, 1000]");
     }
     if (!std::isfinite(o.exposure) || !(o.exposure > 0.0f) ||
         !std::isfinite(o.exposure * kReportExposure) || !(o.exposure * kReportExposure > 0.0f)) {

@@ -26,11 +26,14 @@ namespace librt::apps {
 
 /// Options every app has.
 struct AppOptions {
-    int width = 512;                      ///< --width
-    int height = 512;                     ///< --height
-    std::optional<int> size;              ///< --size: sets width and height when given
-    int spp = 1;                          ///< --spp, samples per pixel
-    int bounces = 5;                      ///< --bounces, scattering events per path
+    int width = 512;          ///< --width
+    int height = 512;         ///< --height
+    std::optional<int> size;  ///< --size: sets width and height when given
+    int spp = 1;              ///< --spp, samples per pixel
+    int bounces = 5;          ///< --bounces, scattering events per path
+    /// --roulette: Russian roulette from this bounce on; -1 (the default) is off, the
+    /// report's fixed-length paths.
+    int roulette = -1;
     int threads = 0;                      ///< --threads, 0 = all cores
     std::uint64_t seed = 0;               ///< --seed
     std::string output;                   ///< -o/--output: .png, .pfm or .hdr

@@ -43,6 +43,7 @@ expect_error "--width = 0: must be in [1, 65536]" rt_indirect --width 0 -q
 expect_error "--exposure = -1: must be finite and > 0" rt_soft_shadows --exposure -1 -q
 expect_error "--power = -2: must be finite and >= 0" rt_synthesis --power -2 -q
 expect_error "--bounces = -1: must be in [0, 1000]" rt_depth_of_field --bounces -1 -q
+expect_error "--roulette = -2: must be -1 (off) or in [0, 1000]" rt_synthesis --roulette -2 -q
 expect_error "samples_per_pixel = 0" rt_antialiasing --spp 0 -q
 expect_error "--mesh-scale = 0: must be finite and > 0" rt_mesh --mesh-scale 0 -q
 # Issue 15: the sampler and pixel filter options.
