@@ -6,6 +6,12 @@ namespace librt {
 
 BsdfLobe lobes(const Material& material) { return bsdfs::lobes_of(material); }
 
+glm::vec3 pass_through(const Material& material, const ShadingPoint& point, const glm::vec3& wo) {
+    return bsdfs::pass_through_of(material, point, wo);
+}
+
+bool may_pass_through(const Material& material) { return bsdfs::may_pass_through_of(material); }
+
 BsdfSample sample(const Material& material, const ShadingPoint& point, const glm::vec3& wo,
                   float uc, glm::vec2 u) {
     return bsdfs::sample_bsdf(material, point, wo, uc, u);

@@ -70,6 +70,27 @@ inline decltype(auto) dispatch(MaterialKind kind, Fn&& fn) {
             return T::kLobes;
     });
 }
+/// pass_through() of bsdf.h: a type with a Null lobe provides static pass_through(m, p, wo).
+[[nodiscard]] inline glm::vec3 pass_through_of(const Material& m, const ShadingPoint& p,
+                                               const glm::vec3& wo) {
+    return dispatch(m.kind, [&](auto bsdf) {
+        using T = decltype(bsdf);
+        if constexpr (requires { T::pass_through(m, p, wo); })
+            return T::pass_through(m, p, wo);
+        else
+            return glm::vec3(0.0f);
+    });
+}
+/// may_pass_through() of bsdf.h: a type with a Null lobe provides static may_pass_through(m).
+[[nodiscard]] inline bool may_pass_through_of(const Material& m) {
+    return dispatch(m.kind, [&](auto bsdf) {
+        using T = decltype(bsdf);
+        if constexpr (requires { T::may_pass_through(m); })
+            return T::may_pass_through(m);
+        else
+            return false;
+    });
+}
 /// sample() of bsdf.h, inline (forced: g++ keeps the call in the path loop otherwise).
 [[nodiscard, gnu::always_inline]] inline BsdfSample sample_bsdf(const Material& m,
                                                                 const ShadingPoint& p,

@@ -19,6 +19,12 @@
 // mixture's, so MIS sees one density. Estimating per lobe what it contributes keeps the
 // one-sample mixture's variance low without tables; the specular lobe keeps at least a
 // small share because its Fresnel at wo.h can exceed the estimate at cos_o.
+// Smooth transmission (roughness at GGX's alpha floor, no anisotropy) is a Null lobe: a
+// thin wall of roughness 0 lets light through undeviated, so it is exactly a transparent
+// surface of colour (1 - metallic) (1 - Fr(cos_o)) transmission c. The integrators cross
+// it without a bounce and shadow rays see lights through it (pass_through); sample / eval /
+// pdf keep the reflection lobes. As a GGX lobe of alpha 10^-3 it was a spike that next-event
+// estimation could not light through: only a BSDF ray that happened to reach a light did.
 // Anisotropic GGX when Material::anisotropy > 0 (microfacet_anisotropic.h), as
 // KHR_materials_anisotropy extends this material. Material::albedo scales every lobe (1 by
 // default); base colour is its own field, because a black base colour still reflects the
@@ -43,7 +49,26 @@ struct MetallicRoughness {
 
     static BsdfLobe lobes(const Material& m) {
         const BsdfLobe refl = BsdfLobe::Diffuse | BsdfLobe::Glossy | BsdfLobe::Reflection;
-        return m.transmission > 0.0f && m.metallic < 1.0f ? refl | BsdfLobe::Transmission : refl;
+        if (!(m.transmission > 0.0f && m.metallic < 1.0f)) return refl;
+        return smooth_transmission(m) ? refl | BsdfLobe::Null : refl | BsdfLobe::Transmission;
+    }
+
+    /// True when the transmission is a Null lobe: the surface transmits (transmission > 0,
+    /// not wholly metal), isotropic, with roughness^2 at or below GGX's alpha floor.
+    static bool smooth_transmission(const Material& m) {
+        return m.transmission > 0.0f && m.metallic < 1.0f && !(m.anisotropy > 0.0f) &&
+               m.roughness * m.roughness <= microfacet::kMinAlpha;
+    }
+
+    /// Any point may be smooth and transmit: the textures scale roughness and metallic.
+    static bool may_pass_through(const Material& m) { return m.transmission > 0.0f; }
+
+    /// The Null lobe's colour for wo: the dielectric base layer's transmitted share with
+    /// the half vector at the normal, (1 - metallic) (1 - Fr(cos_o)) transmission c.
+    static glm::vec3 pass_through(const Material& m, const ShadingPoint& p, const glm::vec3& wo) {
+        if (!smooth_transmission(m)) return glm::vec3(0.0f);
+        const float fr = microfacet::schlick(glm::vec3(f0_dielectric(m.ior)), std::fabs(wo.z)).x;
+        return p.albedo * ((1.0f - m.metallic) * (1.0f - fr) * m.transmission) * m.base_color;
     }
 
     static float f0_dielectric(float ior) {
@@ -62,7 +87,8 @@ struct MetallicRoughness {
         const float dielectric = (1.0f - m.metallic) * (1.0f - fd) * mean_c;
         float w_spec = (1.0f - m.metallic) * fd + m.metallic * fm;
         const float w_diff = dielectric * (1.0f - m.transmission);
-        const float w_trans = dielectric * m.transmission;
+        // A Null lobe is no lobe of sample(): the integrator crosses it (pass_through).
+        const float w_trans = smooth_transmission(m) ? 0.0f : dielectric * m.transmission;
         w_spec = std::max(w_spec, 0.1f * (w_spec + w_diff + w_trans) + 1e-4f);
         const float total = w_spec + w_diff + w_trans;
         return {w_spec / total, w_diff / total, w_trans / total};
@@ -109,7 +135,7 @@ struct MetallicRoughness {
         if (uc < prob[0]) {
             wi = reflect(-wo, ggx.sample_visible_normal(wo, u));
             lobe = BsdfLobe::Glossy | BsdfLobe::Reflection;
-        } else if (uc < prob[0] + prob[1]) {
+        } else if (uc < prob[0] + prob[1] || !(prob[2] > 0.0f)) {
             wi = sample_cosine_hemisphere(u);
             lobe = BsdfLobe::DiffuseReflection;
         } else {
@@ -140,6 +166,7 @@ struct MetallicRoughness {
         const glm::vec3& c = m.base_color;
         glm::vec3 f;
         if (transmitted) {
+            if (smooth_transmission(m)) return glm::vec3(0.0f);  // the Null lobe's, not f's
             // Only the dielectric's base layer transmits: (1 - Fr) transmission c D V.
             f = (1.0f - m.metallic) * (1.0f - fr) * m.transmission * c * dv;
         } else {

@@ -1,4 +1,5 @@
 #include <librt/core/error.h>
+#include <librt/render/bsdf.h>
 #include <librt/render/scene.h>
 
 #include <glm/geometric.hpp>
@@ -374,6 +375,8 @@ void Scene::commit() {
     make_sphere_light_cuts();
     make_triangle_lights();
     light_sampler_ = LightSampler(lights_);
+    pass_through_surfaces_ = std::any_of(materials_.begin(), materials_.end(),
+                                         [](const Material& m) { return may_pass_through(m); });
     committed_ = true;
 }
 

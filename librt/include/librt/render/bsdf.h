@@ -29,6 +29,11 @@ enum class BsdfLobe : std::uint8_t {
     Diffuse = 1 << 2,       ///< spread over the hemisphere (Lambert)
     Glossy = 1 << 3,        ///< spread around a preferred direction (rough metal, rough glass)
     Specular = 1 << 4,      ///< a delta distribution: one direction, no density
+    /// Light passes straight through, direction unchanged (a smooth thin-walled layer; after
+    /// Mitsuba's null lobe). Not part of sample / eval / pdf: pass_through() gives its
+    /// colour, and the integrators cross it as they would a transparent surface, neither a
+    /// bounce nor a vertex, so shadow rays can see a light through it.
+    Null = 1 << 5,
     DiffuseReflection = Diffuse | Reflection,       ///< Lambertian reflection
     SpecularReflection = Specular | Reflection,     ///< mirror reflection
     SpecularTransmission = Specular | Transmission  ///< refraction through smooth glass
@@ -128,6 +133,17 @@ struct BsdfSample {
 
 /// The lobes a material has.
 [[nodiscard]] LIBRT_API BsdfLobe lobes(const Material& material);
+
+/// The fraction of light (per channel) that passes the surface straight through for the
+/// outgoing wo (local): the weight of the Null lobe, 0 for a material without one. A ray
+/// along -wo continues along -wo with this factor; sample / eval / pdf describe the rest
+/// of the BSDF, so the whole BSDF is theirs plus pass_through(wo) delta(wi = -wo).
+[[nodiscard]] LIBRT_API glm::vec3 pass_through(const Material& material, const ShadingPoint& point,
+                                               const glm::vec3& wo);
+
+/// True when some point of a surface with this material may have a Null lobe (whatever its
+/// textures give there): what tells a Scene its shadow rays must look for such surfaces.
+[[nodiscard]] LIBRT_API bool may_pass_through(const Material& material);
 
 /// Draws wi for the outgoing wo (local) from uc (to choose a lobe) and u (the direction),
 /// both uniform in [0, 1). An invalid sample means the path ends there.

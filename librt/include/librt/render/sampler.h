@@ -32,6 +32,11 @@ struct SampleDimensions {
     /// 1D: which BSDF lobe (materials with several); last, so the 2D direction keeps its
     /// dimension whether or not the material hit in this sample chooses a lobe.
     static constexpr std::uint32_t k_bounce_lobe = 6;
+    /// 1D each: whether a path crosses a Null lobe (bsdf.h) or scatters there; the c-th
+    /// crossing decision of a path takes k_pass_through + c. Far above every bounce's
+    /// dimensions (bounce 1000 ends near 7000): a crossing is no bounce, and must not reuse
+    /// a number a bounce draws.
+    static constexpr std::uint32_t k_pass_through = 1u << 16u;
 
     /// First dimension of bounce `bounce` (0 = the camera ray's first hit).
     [[nodiscard]] static constexpr std::uint32_t bounce(std::uint32_t bounce) {
