@@ -1,3 +1,4 @@
+#include "emission.h"
 #include "light_validation.h"
 #include "planar_light.h"
 
@@ -35,6 +36,18 @@ constexpr float kSector = 2.0f * k_pi / float(kDiskLightSides);
 /// Area of the regular N-gon of circumradius r: N/2 r^2 sin(2 pi / N).
 float polygon_area(float r) { return 0.5f * float(kDiskLightSides) * r * r * std::sin(kSector); }
 
+/// A point uniform by area on the polygon (frame f), from u in [0, 1)^2.
+glm::vec3 polygon_point(const DiskLight& light, const DiskFrame& f, glm::vec2 u) {
+    // All sectors have the same area: pick one with u.x, reuse its fraction for the point.
+    const float x = u.x * float(kDiskLightSides);
+    const int k = std::min(int(x), kDiskLightSides - 1);
+    const glm::vec2 b = sample_uniform_triangle({x - float(k), u.y});
+    const float a0 = kSector * float(k), a1 = kSector * float(k + 1);
+    const glm::vec3 c0 = std::cos(a0) * f.t + std::sin(a0) * f.b;
+    const glm::vec3 c1 = std::cos(a1) * f.t + std::sin(a1) * f.b;
+    return light.center + light.radius * (b.x * c0 + b.y * c1);
+}
+
 }  // namespace
 
 void validate(const DiskLight& light) {
@@ -60,14 +73,7 @@ glm::vec3 disk_light_corner(const DiskLight& light, int i) {
 
 LightLiSample sample_li(const DiskLight& light, const glm::vec3& ref, glm::vec2 u) {
     const DiskFrame f = frame_of(light);
-    // All sectors have the same area: pick one with u.x, reuse its fraction for the point.
-    const float x = u.x * float(kDiskLightSides);
-    const int k = std::min(int(x), kDiskLightSides - 1);
-    const glm::vec2 b = sample_uniform_triangle({x - float(k), u.y});
-    const float a0 = kSector * float(k), a1 = kSector * float(k + 1);
-    const glm::vec3 c0 = std::cos(a0) * f.t + std::sin(a0) * f.b;
-    const glm::vec3 c1 = std::cos(a1) * f.t + std::sin(a1) * f.b;
-    const glm::vec3 p = light.center + light.radius * (b.x * c0 + b.y * c1);
+    const glm::vec3 p = polygon_point(light, f, u);
     return planar::toward(ref, p, f.n, polygon_area(light.radius), light.radiance, light.two_sided);
 }
 
@@ -85,6 +91,24 @@ float pdf_li(const DiskLight& light, const glm::vec3& ref, const glm::vec3& wi) 
     const float apothem = light.radius * std::cos(0.5f * kSector);
     if (x * std::cos(mid) + y * std::sin(mid) > apothem) return 0.0f;
     return planar::pdf_of(h, polygon_area(light.radius));
+}
+
+LightLeSample sample_le(const DiskLight& light, glm::vec2 u_pos, glm::vec2 u_dir) {
+    const float area = polygon_area(light.radius);
+    if (!(area > 0.0f) || !std::isfinite(area) || !finite(light.normal)) return {};
+    const DiskFrame f = frame_of(light);  // a zero normal gives NaNs: leave_surface's check
+    return emission::leave_surface(polygon_point(light, f, u_pos), f.n, 1.0f / area, light.radiance,
+                                   light.two_sided, u_dir);
+}
+
+LightLePdf pdf_le(const DiskLight& light, const glm::vec3& /*origin*/, const glm::vec3& /*normal*/,
+                  const glm::vec3& direction) {
+    const float area = polygon_area(light.radius);
+    const float len = glm::length(light.normal);
+    if (!(area > 0.0f) || !std::isfinite(area) || !(len > 0.0f) || !std::isfinite(len)) return {};
+    // The unit normal as frame_of makes it, so that sample_le's density is this one.
+    const glm::vec3 n = glm::normalize(light.normal);
+    return {1.0f / area, emission::direction_pdf(n, light.two_sided, direction)};
 }
 
 glm::vec3 power(const DiskLight& light) {

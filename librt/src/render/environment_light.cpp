@@ -1,3 +1,5 @@
+#include "emission.h"
+
 #include <librt/core/error.h>
 #include <librt/core/finite.h>
 #include <librt/render/environment_light.h>
@@ -141,6 +143,22 @@ glm::vec3 escaped_radiance(const EnvironmentLight& light, const glm::vec3& dir) 
     if (!light.data) return glm::vec3(0.0f);
     if (light.data->image.pixels.empty()) return light.data->constant * light.scale;
     return lookup(*light.data, uv_of(glm::transpose(light.rotation) * dir)) * light.scale;
+}
+
+LightLeSample sample_le(const EnvironmentLight& light, const SceneSphere& scene, glm::vec2 u_pos,
+                        glm::vec2 u_dir) {
+    // Light arriving along wi travels -wi: the same density, the same radiance. The
+    // weight L / (pdf_pos pdf_dir) then averages to pi R^2 times the integral of L over
+    // the sphere, the power (pbrt 4th ed. 12.5.2, the image light's SampleLe).
+    const LightLiSample li = sample_li(light, scene.center, u_dir);
+    if (!li.valid()) return {};
+    return emission::from_disk(scene, li.wi, li.radiance, li.pdf, u_pos);
+}
+
+LightLePdf pdf_le(const EnvironmentLight& light, const SceneSphere& scene,
+                  const glm::vec3& /*origin*/, const glm::vec3& /*normal*/,
+                  const glm::vec3& direction) {
+    return {emission::disk_pdf(scene), pdf_li(light, scene.center, -direction)};
 }
 
 glm::vec3 power(const EnvironmentLight& light) {

@@ -1,3 +1,4 @@
+#include "emission.h"
 #include "light_validation.h"
 #include "planar_light.h"
 
@@ -49,6 +50,23 @@ float pdf_li(const QuadLight& light, const glm::vec3& ref, const glm::vec3& wi) 
     const float t = glm::dot(glm::cross(light.edge0, q), n) / area;
     if (s < 0.0f || s > 1.0f || t < 0.0f || t > 1.0f) return 0.0f;
     return planar::pdf_of(h, area);
+}
+
+LightLeSample sample_le(const QuadLight& light, glm::vec2 u_pos, glm::vec2 u_dir) {
+    const glm::vec3 c = glm::cross(light.edge0, light.edge1);
+    const float area = glm::length(c);
+    if (!(area > 0.0f) || !std::isfinite(area)) return {};
+    const glm::vec3 p = light.corner + u_pos.x * light.edge0 + u_pos.y * light.edge1;
+    return emission::leave_surface(p, c / area, 1.0f / area, light.radiance, light.two_sided,
+                                   u_dir);
+}
+
+LightLePdf pdf_le(const QuadLight& light, const glm::vec3& /*origin*/, const glm::vec3& /*normal*/,
+                  const glm::vec3& direction) {
+    const glm::vec3 c = glm::cross(light.edge0, light.edge1);
+    const float area = glm::length(c);
+    if (!(area > 0.0f) || !std::isfinite(area)) return {};
+    return {1.0f / area, emission::direction_pdf(c / area, light.two_sided, direction)};
 }
 
 glm::vec3 power(const QuadLight& light) {

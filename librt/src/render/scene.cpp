@@ -333,14 +333,19 @@ void Scene::make_triangle_lights() {
         }
     }
     // Lights at infinity need the scene's size for their power (what the sampler weighs).
-    const BBox b = top_.bounds();
-    const float radius = b.empty() ? 1.0f : 0.5f * glm::length(b.hi - b.lo);
+    const float radius = bounding_sphere().radius;
     infinite_lights_.clear();
     for (std::uint32_t i = 0; i < lights_.size(); ++i) {
         if (auto* e = std::get_if<EnvironmentLight>(&lights_[i].source)) e->scene_radius = radius;
         if (auto* d = std::get_if<DirectionalLight>(&lights_[i].source)) d->scene_radius = radius;
         if (is_infinite(lights_[i])) infinite_lights_.push_back(i);
     }
+}
+
+SceneSphere Scene::bounding_sphere() const {
+    const BBox b = top_.bounds();
+    if (b.empty()) return {glm::vec3(0.0f), 1.0f};
+    return {b.center(), 0.5f * glm::length(b.hi - b.lo)};
 }
 
 void Scene::make_sphere_light_cuts() {

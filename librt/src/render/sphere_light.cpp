@@ -1,3 +1,4 @@
+#include "emission.h"
 #include "light_validation.h"
 
 #include <librt/core/error.h>
@@ -94,6 +95,34 @@ float pdf_li(const SphereLight& light, const glm::vec3& ref, const glm::vec3& wi
     }
     const float p = sphere_visible_pdf(light.sphere.center, light.sphere.radius, ref, wi);
     return std::isfinite(p) ? p : 0.0f;
+}
+
+namespace {
+
+/// 1 / (4 pi r^2), in double so that a tiny radius does not underflow; 0 for a radius not
+/// > 0 or when the result is not a finite float.
+float sphere_area_pdf(float radius) {
+    if (!(radius > 0.0f)) return 0.0f;
+    const double pdf = 1.0 / (4.0 * std::numbers::pi * double(radius) * double(radius));
+    return pdf > 0.0 && pdf < double(std::numeric_limits<float>::max()) ? float(pdf) : 0.0f;
+}
+
+}  // namespace
+
+LightLeSample sample_le(const SphereLight& light, glm::vec2 u_pos, glm::vec2 u_dir) {
+    const float pdf_pos = sphere_area_pdf(light.sphere.radius);
+    if (!(pdf_pos > 0.0f) || !finite(light.sphere.center)) return {};
+    // Uniform by area, then cosine-weighted: the weight L cos / (pdf_pos pdf_dir) is the
+    // power L pi 4 pi r^2 for every ray.
+    const glm::vec3 n = sample_uniform_sphere(u_pos);
+    const glm::vec3 p = light.sphere.center + light.sphere.radius * n;
+    return emission::leave_surface(p, n, pdf_pos, light.radiance, false, u_dir);
+}
+
+LightLePdf pdf_le(const SphereLight& light, const glm::vec3& /*origin*/, const glm::vec3& normal,
+                  const glm::vec3& direction) {
+    return {sphere_area_pdf(light.sphere.radius),
+            emission::direction_pdf(normal, false, direction)};
 }
 
 glm::vec3 power(const SphereLight& light) {

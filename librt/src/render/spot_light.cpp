@@ -1,3 +1,4 @@
+#include "emission.h"
 #include "light_validation.h"
 
 #include <librt/core/error.h>
@@ -51,6 +52,47 @@ LightLiSample sample_li(const SpotLight& light, const glm::vec3& ref, glm::vec2 
     if (!(f > 0.0f)) return {};
     // Inverse-square law with the cone's falloff: E = I f cos(theta) / d^2.
     return {wi, light.intensity * (f / d2), 1.0f, d, true};
+}
+
+namespace {
+
+/// The spot's unit axis and its outer cone's 1 - cos, or omc 0 when either is degenerate.
+struct SpotCone {
+    glm::vec3 axis{0.0f};
+    float omc = 0.0f;
+};
+SpotCone cone_of(const SpotLight& light) {
+    const float len = glm::length(light.direction);
+    if (!(len > 0.0f) || !std::isfinite(len)) return {};
+    const float omc = emission::one_minus_cos(light.outer_angle);
+    return {light.direction / len, std::isfinite(omc) ? omc : 0.0f};
+}
+
+}  // namespace
+
+LightLeSample sample_le(const SpotLight& light, glm::vec2 /*u_pos*/, glm::vec2 u_dir) {
+    const SpotCone c = cone_of(light);
+    // Uniform in the outer cone, outside which the falloff is 0: I f / pdf_dir integrates
+    // to the power. (Sampling by the falloff itself would weigh rays more evenly; the
+    // uniform cone is exact and what pdf_le can invert cheaply.)
+    const float pdf_dir = emission::cone_pdf(c.omc);
+    if (!(pdf_dir > 0.0f) || !finite(light.position)) return {};
+    const glm::vec3 d = emission::sample_cone(c.axis, c.omc, u_dir);
+    LightLeSample s;
+    s.origin = light.position;
+    s.direction = d;
+    s.radiance = light.intensity * spot_falloff(light, glm::dot(d, c.axis));
+    s.pdf_pos = 1.0f;
+    s.pdf_dir = pdf_dir;
+    s.delta_position = true;
+    return s;
+}
+
+LightLePdf pdf_le(const SpotLight& light, const glm::vec3& /*origin*/, const glm::vec3& /*normal*/,
+                  const glm::vec3& direction) {
+    const SpotCone c = cone_of(light);
+    if (!emission::in_cone(direction, c.axis, c.omc)) return {1.0f, 0.0f};
+    return {1.0f, emission::cone_pdf(c.omc)};
 }
 
 glm::vec3 power(const SpotLight& light) {

@@ -1,3 +1,4 @@
+#include "emission.h"
 #include "planar_light.h"
 
 #include <librt/geometry/ray_offset.h>
@@ -151,6 +152,25 @@ float pdf_li(const TriangleLight& light, const glm::vec3& ref, const glm::vec3& 
         return omega > 0.0f ? 1.0f / omega : 0.0f;
     }
     return planar::pdf_of(h, 0.5f * len);
+}
+
+LightLeSample sample_le(const TriangleLight& light, glm::vec2 u_pos, glm::vec2 u_dir) {
+    const glm::vec3 e1 = light.p1 - light.p0, e2 = light.p2 - light.p0;
+    const glm::vec3 c = glm::cross(e1, e2);
+    const float len = glm::length(c);
+    if (!(len > 0.0f) || !std::isfinite(len)) return {};
+    const glm::vec2 b = sample_uniform_triangle(u_pos);
+    const glm::vec3 p = light.p0 + b.x * e1 + b.y * e2;
+    return emission::leave_surface(p, c / len, 2.0f / len, radiance_at(light, b), light.two_sided,
+                                   u_dir);
+}
+
+LightLePdf pdf_le(const TriangleLight& light, const glm::vec3& /*origin*/,
+                  const glm::vec3& /*normal*/, const glm::vec3& direction) {
+    const glm::vec3 c = glm::cross(light.p1 - light.p0, light.p2 - light.p0);
+    const float len = glm::length(c);
+    if (!(len > 0.0f) || !std::isfinite(len)) return {};
+    return {2.0f / len, emission::direction_pdf(c / len, light.two_sided, direction)};
 }
 
 glm::vec3 power(const TriangleLight& light) {

@@ -34,6 +34,21 @@ LIBRT_API void validate(const DirectionalLight& light);
 /// What a ray escaping along unit direction dir sees of the sun: L inside the cone.
 [[nodiscard]] LIBRT_API glm::vec3 escaped_radiance(const DirectionalLight& light,
                                                    const glm::vec3& dir);
+/// A ray leaving the sun toward the scene (for paths that start there): a direction toward
+/// the sun wi drawn as sample_li draws it (the axis, a delta direction with pdf_dir 1 and
+/// radiance the irradiance E, when the angular radius is 0; else uniform in the cone, pdf
+/// 1 / (2 pi (1 - cos r)), radiance L), the ray going -wi from a point uniform on the disk
+/// of radius R perpendicular to wi at center + R wi (pdf_pos 1 / (pi R^2)). Invalid for a
+/// degenerate scene sphere or direction.
+[[nodiscard]] LIBRT_API LightLeSample sample_le(const DirectionalLight& light,
+                                                const SceneSphere& scene, glm::vec2 u_pos,
+                                                glm::vec2 u_dir);
+/// The densities sample_le gives a ray along unit `direction`: pos 1 / (pi R^2) (origin
+/// and normal are not looked at), dir 1 for the delta sun (taken to be along the axis) or
+/// the cone's density inside the cone, 0 outside.
+[[nodiscard]] LIBRT_API LightLePdf pdf_le(const DirectionalLight& light, const SceneSphere& scene,
+                                          const glm::vec3& origin, const glm::vec3& normal,
+                                          const glm::vec3& direction);
 /// Power falling on the scene's bounding disk: E pi R^2 (for the light sampler).
 [[nodiscard]] LIBRT_API glm::vec3 power(const DirectionalLight& light);
 

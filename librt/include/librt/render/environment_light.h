@@ -64,6 +64,19 @@ LIBRT_API void validate(const EnvironmentLight& light);
 /// What a ray escaping along unit direction dir sees.
 [[nodiscard]] LIBRT_API glm::vec3 escaped_radiance(const EnvironmentLight& light,
                                                    const glm::vec3& dir);
+/// A ray from the environment into the scene (for paths that start there): a direction
+/// toward the environment wi drawn as sample_li draws it (pdf_dir its solid-angle density,
+/// radiance what arrives along it), the ray going -wi from a point uniform on the disk of
+/// radius R perpendicular to wi at center + R wi (pdf_pos 1 / (pi R^2)). Invalid without
+/// data or for a degenerate scene sphere.
+[[nodiscard]] LIBRT_API LightLeSample sample_le(const EnvironmentLight& light,
+                                                const SceneSphere& scene, glm::vec2 u_pos,
+                                                glm::vec2 u_dir);
+/// The densities sample_le gives a ray along unit `direction`: pos 1 / (pi R^2) (origin
+/// and normal are not looked at), dir pdf_li of -direction.
+[[nodiscard]] LIBRT_API LightLePdf pdf_le(const EnvironmentLight& light, const SceneSphere& scene,
+                                          const glm::vec3& origin, const glm::vec3& normal,
+                                          const glm::vec3& direction);
 /// Power through the scene's bounding disk: pi R^2 times 4 pi times the mean radiance
 /// (an estimate for the light sampler, as pbrt's).
 [[nodiscard]] LIBRT_API glm::vec3 power(const EnvironmentLight& light);

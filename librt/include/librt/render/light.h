@@ -20,9 +20,11 @@
 
 // The light seam. A light type is a plain struct in its own header (point_light.h,
 // sphere_light.h) with three free functions: sample_li(light, ref, u) -> LightLiSample,
-// pdf_li(light, ref, wi) and power(light). Adding one is that header, its .cpp, and its
-// name in LightSource. A light at infinity that escaping rays see (environment, sun with
-// an angular radius) also has escaped_radiance(light, dir).
+// pdf_li(light, ref, wi) and power(light), and for paths that start at lights
+// sample_le(light, u_pos, u_dir) and pdf_le(light, origin, normal, direction) (lights at
+// infinity take the scene's SceneSphere after the light). Adding one is that header, its
+// .cpp, and its name in LightSource. A light at infinity that escaping rays see
+// (environment, sun with an angular radius) also has escaped_radiance(light, dir).
 
 namespace librt {
 
@@ -80,5 +82,20 @@ struct Light {
 [[nodiscard]] LIBRT_API float pdf_li(const Light& light, const glm::vec3& ref, const glm::vec3& wi);
 /// Total emitted power per channel (W): what the light sampler weighs lights by.
 [[nodiscard]] LIBRT_API glm::vec3 power(const Light& light);
+
+/// A ray leaving the light, for paths that start there (light tracing, bidirectional path
+/// tracing): its origin from u_pos, its direction from u_dir, both in [0, 1)^2. `scene`
+/// (Scene::bounding_sphere) places the rays of lights at infinity; other lights ignore it.
+/// See each light's sample_le for its densities; invalid for a degenerate light.
+[[nodiscard]] LIBRT_API LightLeSample sample_le(const Light& light, const SceneSphere& scene,
+                                                glm::vec2 u_pos, glm::vec2 u_dir);
+/// The densities with which sample_le draws the ray from `origin` (on the light, with unit
+/// surface normal `normal` there on the emitting side) along unit `direction`: what MIS
+/// weights of light paths need for a ray found another way. pos is 1 for a delta position
+/// and dir 1 for a delta direction, as in LightLeSample; dir is 0 for a direction the light
+/// does not emit in (behind a one-sided surface, outside a spot's cone).
+[[nodiscard]] LIBRT_API LightLePdf pdf_le(const Light& light, const SceneSphere& scene,
+                                          const glm::vec3& origin, const glm::vec3& normal,
+                                          const glm::vec3& direction);
 
 }  // namespace librt

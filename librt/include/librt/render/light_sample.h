@@ -23,4 +23,48 @@ struct LightLiSample {
     [[nodiscard]] bool valid() const { return pdf > 0.0f; }
 };
 
+/// What a light's sample_le returns: a ray leaving the light, for paths that start there
+/// (light tracing, bidirectional path tracing). Its weight as a path's first throughput is
+/// radiance |cos(normal, direction)| / (pdf_pos pdf_dir), and radiance / pdf_dir for a
+/// light with a delta position (whose normal is 0).
+struct LightLeSample {
+    /// Where the ray starts: on the light, or for a light at infinity on a disk facing
+    /// the scene.
+    glm::vec3 origin{0.0f};
+    glm::vec3 direction{0.0f};  ///< unit, the way the light travels
+    /// Unit surface normal at origin on the side the ray leaves; 0 for a point or spot
+    /// light; for a light at infinity, direction (the disk of the origin faces that way).
+    glm::vec3 normal{0.0f};
+    /// Emitted radiance Le(origin, direction) (area lights, lights at infinity; for a
+    /// delta sun its irradiance, as pdf_dir is 1), or intensity I(direction) in W/sr for
+    /// point and spot lights.
+    glm::vec3 radiance{0.0f};
+    /// Density of origin: per unit area on the light's surface, or on the disk a light at
+    /// infinity starts its rays from; 1 for a delta position (point, spot).
+    float pdf_pos = 0.0f;
+    /// Density of direction per unit solid angle; 1 for a delta direction (a sun without
+    /// angular radius).
+    float pdf_dir = 0.0f;
+    bool delta_position = false;   ///< a point or spot light: no ray can hit the origin
+    bool delta_direction = false;  ///< a sun without angular radius: one direction only
+
+    /// True when there is a ray to use (both densities > 0).
+    [[nodiscard]] bool valid() const { return pdf_pos > 0.0f && pdf_dir > 0.0f; }
+};
+
+/// The two densities with which sample_le would have drawn a given ray (see pdf_le).
+struct LightLePdf {
+    float pos = 0.0f;  ///< of the origin, as LightLeSample::pdf_pos
+    float dir = 0.0f;  ///< of the direction, as LightLeSample::pdf_dir
+};
+
+/// The scene's bounds as a sphere, for lights at infinity: the points their rays start
+/// from are drawn on a disk of this radius, perpendicular to the ray and tangent to the
+/// sphere on the light's side (as pbrt 4th ed. 12.4 does), so every such ray that can meet
+/// the scene is drawn with the same density 1 / (pi radius^2).
+struct SceneSphere {
+    glm::vec3 center{0.0f};  ///< centre of the scene's bounding box
+    float radius = 0.0f;     ///< half its diagonal; a disk needs > 0
+};
+
 }  // namespace librt

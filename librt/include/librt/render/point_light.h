@@ -42,6 +42,16 @@ LIBRT_API void validate(const PointLight& light);
                                   const glm::vec3& /*wi*/) {
     return 0.0f;
 }
+/// A ray leaving the light (for paths that start there): from its position, a direction
+/// uniform over the sphere (pdf_dir 1 / (4 pi), as the light is isotropic), radiance the
+/// intensity I, a delta position (pdf_pos 1). u_pos is unused. Invalid for a position that
+/// is not finite.
+[[nodiscard]] LIBRT_API LightLeSample sample_le(const PointLight& light, glm::vec2 u_pos,
+                                                glm::vec2 u_dir);
+/// The densities sample_le gives a ray along unit `direction`: pos 1 (the delta position;
+/// origin and normal are not looked at), dir 1 / (4 pi).
+[[nodiscard]] LIBRT_API LightLePdf pdf_le(const PointLight& light, const glm::vec3& origin,
+                                          const glm::vec3& normal, const glm::vec3& direction);
 /// Total emitted power per channel: 4 pi I.
 [[nodiscard]] inline glm::vec3 power(const PointLight& light) {
     return 4.0f * k_pi * light.intensity;

@@ -31,6 +31,17 @@ LIBRT_API void validate(const QuadLight& light);
 /// The solid-angle density of sample_li at ref for unit direction wi; 0 if wi misses.
 [[nodiscard]] LIBRT_API float pdf_li(const QuadLight& light, const glm::vec3& ref,
                                      const glm::vec3& wi);
+/// A ray leaving the light (for paths that start there): a point uniform by area (pdf_pos
+/// 1 / A), a direction cosine-weighted about the normal of the side it leaves (one-sided:
+/// the front, pdf_dir cos / pi; two-sided: either side with probability 1/2, |cos| /
+/// (2 pi)), radiance L. Invalid when the edges span no area.
+[[nodiscard]] LIBRT_API LightLeSample sample_le(const QuadLight& light, glm::vec2 u_pos,
+                                                glm::vec2 u_dir);
+/// The densities sample_le gives a ray from `origin` on the light along unit `direction`:
+/// pos 1 / A, dir as sample_le's (0 behind a one-sided light). The light's own normal is
+/// used; `normal` is not looked at, nor whether origin lies on the light.
+[[nodiscard]] LIBRT_API LightLePdf pdf_le(const QuadLight& light, const glm::vec3& origin,
+                                          const glm::vec3& normal, const glm::vec3& direction);
 /// Total emitted power per channel: L pi A (times 2 when two-sided).
 [[nodiscard]] LIBRT_API glm::vec3 power(const QuadLight& light);
 

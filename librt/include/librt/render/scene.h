@@ -278,6 +278,10 @@ public:
 
     /// Bounding box of all objects (empty if none); valid after commit().
     [[nodiscard]] BBox bounds() const { return top_.bounds(); }
+    /// The sphere around bounds(): its centre, and half its diagonal as radius (centre 0
+    /// and radius 1 when empty), the size lights at infinity are given (their power, the
+    /// disk their sample_le starts rays from); valid after commit().
+    [[nodiscard]] SceneSphere bounding_sphere() const;
 
 private:
     /// What the scene adds to a geometric object of top_ (same id).

@@ -68,6 +68,19 @@ LIBRT_API void validate(const SphereLight& light);
 /// with cuts, misses the cap ref's samples are drawn from).
 [[nodiscard]] LIBRT_API float pdf_li(const SphereLight& light, const glm::vec3& ref,
                                      const glm::vec3& wi);
+/// A ray leaving the light (for paths that start there): a point uniform over the whole
+/// sphere (pdf_pos 1 / (4 pi r^2)), a direction cosine-weighted about the outward normal
+/// there (pdf_dir cos / pi), radiance L. The cuts are not looked at: they say which part
+/// of the light a point sees, and every part emits (a buried one into the opaque sphere
+/// around it, which points inside it see), as power() counts. Invalid for a radius that
+/// is not finite and > 0.
+[[nodiscard]] LIBRT_API LightLeSample sample_le(const SphereLight& light, glm::vec2 u_pos,
+                                                glm::vec2 u_dir);
+/// The densities sample_le gives a ray from `origin` on the sphere, where the outward unit
+/// normal is `normal`, along unit `direction`: pos 1 / (4 pi r^2), dir cos / pi (0 into
+/// the sphere).
+[[nodiscard]] LIBRT_API LightLePdf pdf_le(const SphereLight& light, const glm::vec3& origin,
+                                          const glm::vec3& normal, const glm::vec3& direction);
 /// Total emitted power per channel: L pi (4 pi r^2).
 [[nodiscard]] LIBRT_API glm::vec3 power(const SphereLight& light);
 

@@ -35,6 +35,18 @@ LIBRT_API void validate(const SpotLight& light);
                                   const glm::vec3& /*wi*/) {
     return 0.0f;
 }
+/// A ray leaving the light (for paths that start there): from its position, a direction
+/// uniform in the outer cone (pdf_dir 1 / (2 pi (1 - cos outer)): the falloff is 0
+/// outside it), radiance the intensity times spot_falloff there, a delta position (pdf_pos
+/// 1). u_pos is unused. Invalid for a position that is not finite, a zero direction or an
+/// empty cone.
+[[nodiscard]] LIBRT_API LightLeSample sample_le(const SpotLight& light, glm::vec2 u_pos,
+                                                glm::vec2 u_dir);
+/// The densities sample_le gives a ray along unit `direction`: pos 1 (the delta position;
+/// origin and normal are not looked at), dir the cone's 1 / (2 pi (1 - cos outer)) inside
+/// the outer cone, 0 outside.
+[[nodiscard]] LIBRT_API LightLePdf pdf_le(const SpotLight& light, const glm::vec3& origin,
+                                          const glm::vec3& normal, const glm::vec3& direction);
 /// Total emitted power: 2 pi I ((1 - cos inner) + (cos inner - cos outer) / 3), the
 /// falloff integrated over the sphere.
 [[nodiscard]] LIBRT_API glm::vec3 power(const SpotLight& light);

@@ -50,6 +50,17 @@ struct TriangleLight {
 /// meets a one-sided triangle's back).
 [[nodiscard]] LIBRT_API float pdf_li(const TriangleLight& light, const glm::vec3& ref,
                                      const glm::vec3& wi);
+/// A ray leaving the light (for paths that start there): a point uniform by area (pdf_pos
+/// 1 / A), a direction cosine-weighted about the normal of the side it leaves (one-sided:
+/// the front, pdf_dir cos / pi; two-sided: either side with probability 1/2, |cos| /
+/// (2 pi)), radiance radiance_at the point. Invalid for a degenerate triangle.
+[[nodiscard]] LIBRT_API LightLeSample sample_le(const TriangleLight& light, glm::vec2 u_pos,
+                                                glm::vec2 u_dir);
+/// The densities sample_le gives a ray from `origin` on the triangle along unit
+/// `direction`: pos 1 / A, dir as sample_le's (0 behind a one-sided triangle). The
+/// triangle's own normal is used; `normal` is not looked at, nor whether origin lies on it.
+[[nodiscard]] LIBRT_API LightLePdf pdf_le(const TriangleLight& light, const glm::vec3& origin,
+                                          const glm::vec3& normal, const glm::vec3& direction);
 /// Total emitted power per channel: L pi A times the texture's mean, times 2 when two-sided.
 [[nodiscard]] LIBRT_API glm::vec3 power(const TriangleLight& light);
 /// The radiance emitted at barycentrics (b1, b2) (the point p0 + b1 (p1 - p0) + b2 (p2 - p0)).
