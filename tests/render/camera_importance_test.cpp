@@ -361,8 +361,8 @@ void check_identity(const IdentityCase& c) {
     s.height = 8;
     s.vertical_fov_degrees = 60.0f;
     s.lens = c.lens;
-    s.lens_radius = 0.3f;
-    s.lens_sigma = 0.1f;
+    s.lens_radius = 1.5f;  // large against the focal distance: far from a pinhole
+    s.lens_sigma = 0.4f;
     s.focal_distance = 6.0f;
     s.pixel_jitter = c.jitter;
     s.pixel_filter = default_filter_settings(c.filter);
@@ -376,12 +376,12 @@ void check_identity(const IdentityCase& c) {
     const glm::dvec3 a(1.0, 0.0, 0.0);
     const glm::dvec3 b = glm::cross(n, a);
     const glm::dvec3 p0(0.0, 0.0, -6.0);
-    // The rectangle holding every ray from the lens (within 2 sigma or the radius: a lens
-    // point farther out is rare and its rays reach barely past it) through the image grown
-    // by the margin: the corner rays' hits, and 0.5 units to spare.
+    // The rectangle holding every ray from the lens (its radius, or 6 sigma: a Gaussian
+    // lens point beyond has probability exp(-18) = 1.5e-8) through the image grown by the
+    // margin: the corner rays' hits, and 0.5 units to spare.
     double a_lo = 1e30, a_hi = -1e30, b_lo = 1e30, b_hi = -1e30;
     const double lens_reach =
-        c.lens == LensModel::Disk ? 0.3 : (c.lens == LensModel::Gaussian ? 0.5 : 0.0);
+        c.lens == LensModel::Disk ? 1.5 : (c.lens == LensModel::Gaussian ? 6.0 * 0.4 : 0.0);
     const double d = camera.image_plane_distance();
     for (const double rx : {-double(margin), s.width + double(margin)}) {
         for (const double ry : {-double(margin), s.height + double(margin)}) {
