@@ -79,8 +79,9 @@ struct CameraWi {
 /// the ray crosses the sphere of radius focal_distance around the position, since
 /// sample_ray aims each ray at position + focal_distance * (unit pinhole direction): an
 /// in-focus sphere, not a plane. Nothing when the ray goes backwards or its raster lies
-/// outside [-margin, W + margin) x [-margin, H + margin) (margin >= 0 in pixels: 0 is the
-/// image; a wider pixel filter needs the positions around it, see SplatFilm::margin()).
+/// outside [-margin, W + margin) x [-margin, H + margin) (margin in pixels: 0 is the image;
+/// a wider pixel filter needs the positions around it, see SplatFilm::margin(); a negative
+/// margin keeps to the image's interior).
 /// A lens point farther from the position than focal_distance (possible only with a huge
 /// lens) can reach one direction from two in-focus points; the farther one is returned.
 [[nodiscard]] LIBRT_API std::optional<glm::vec2> raster_of(const Camera& camera, const Ray& ray,
