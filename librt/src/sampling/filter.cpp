@@ -213,6 +213,8 @@ float PixelFilter::evaluate_1d(float x) const {
     return static_cast<float>(filter_value(settings_, x));
 }
 
+double PixelFilter::evaluate_1d_precise(double x) const { return filter_value(settings_, x); }
+
 float PixelFilter::sample_1d(float u, float& sign) const {
     const FilterSettings& s = settings_;
     const float r = s.radius;

@@ -134,6 +134,9 @@ public:
     [[nodiscard]] const glm::vec3& true_up() const { return up_; }
     /// Unit viewing direction (camera-space -z) in world space.
     [[nodiscard]] const glm::vec3& forward() const { return forward_; }
+    /// Perspective only: the image plane's distance from the centre of projection in
+    /// pixels, H / (2 tan(fov/2)) (the report's d; camera_importance.h inverts with it).
+    [[nodiscard]] float image_plane_distance() const { return image_plane_distance_; }
 
 private:
     // The sub-pixel offset of the jitter or filter for sample pixel_u; sets weight for a

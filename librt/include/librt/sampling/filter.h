@@ -70,6 +70,9 @@ public:
     /// The unnormalised 1D filter f(x) (f(0) need not be 1); 0 for |x| > radius.
     [[nodiscard]] float evaluate_1d(float x) const;
 
+    /// evaluate_1d in double, unrounded: for weights that must sum exactly (SplatFilm).
+    [[nodiscard]] double evaluate_1d_precise(double x) const;
+
     /// The settings the filter was built from.
     [[nodiscard]] const FilterSettings& settings() const { return settings_; }
 
