@@ -226,3 +226,51 @@ TEST(NearEmitter, MisEqualsBruteForceWithATwoSidedPanelUnderTheCeiling) {
 
 }  // namespace
 }  // namespace librt
+
+namespace librt {
+namespace {
+
+// A point of an emitting panel does not light itself. The panel (two triangles of a glTF
+// material: black base colour, so only its specular layer reflects, and an emission) is
+// alone in the scene: the radiance leaving it toward the camera is its emission and
+// nothing else (no other surface to reflect). Spherical-triangle sampling from a point on
+// the panel, 10^-7 off its plane by rounding, spans a hemisphere with a shadow ray too
+// short to meet anything: before, PathTracer added that reflection (1 % of L here).
+TEST(NearEmitter, APanelDoesNotLightItself) {
+    Scene scene;
+    TriangleMesh panel;
+    panel.positions = {{-0.25f, 1.99f, -0.25f},
+                       {0.25f, 1.99f, -0.25f},
+                       {0.25f, 1.99f, 0.25f},
+                       {-0.25f, 1.99f, 0.25f}};
+    panel.triangles = {{0, 1, 2}, {0, 2, 3}};
+    Material light = Material::metallic_roughness(glm::vec3(0.0f), 0.0f, 0.5f);
+    light.emission = glm::vec3(15.0f);
+    scene.add_mesh(panel, scene.add_material(light));
+    scene.commit();
+    PathTracerSettings settings;
+    settings.max_depth = 3;
+    settings.russian_roulette = false;
+    const PathTracer tracer(settings);
+    Pcg32 rng(5, 9);
+    for (int i = 0; i < 2000; ++i) {
+        // Rays from below at varied points and angles.
+        Ray ray;
+        ray.origin = {rng.next_float() - 0.5f, 1.0f, rng.next_float() - 0.5f};
+        const glm::vec3 target{0.4f * rng.next_float() - 0.2f, 1.99f,
+                               0.4f * rng.next_float() - 0.2f};
+        ray.direction = glm::normalize(target - ray.origin);
+        Sampler sampler(SamplerKind::Independent, 0, 0, std::uint32_t(i), 3);
+        const glm::vec3 l = tracer.li(scene, ray, sampler);
+        ASSERT_EQ(l, glm::vec3(15.0f)) << "ray " << i;
+    }
+    // The light seam itself: nothing to sample, and no density, from a point of the panel.
+    const TriangleLight tl{panel.positions[0], panel.positions[1], panel.positions[2],
+                           glm::vec3(15.0f)};
+    const glm::vec3 on{0.1f, 1.99f, -0.1f};
+    EXPECT_FALSE(sample_li(tl, on, {0.3f, 0.6f}).valid());
+    EXPECT_EQ(pdf_li(tl, on, glm::normalize(glm::vec3(0.2f, 1e-3f, 0.1f))), 0.0f);
+}
+
+}  // namespace
+}  // namespace librt
