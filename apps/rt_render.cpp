@@ -13,10 +13,12 @@
 #include <librt/io/hdr_image.h>
 #include <librt/io/image_io.h>
 #include <librt/io/scene_file.h>
+#include <librt/render/bdpt.h>
 #include <librt/render/environment_light.h>
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -36,6 +38,7 @@ struct Options {
     std::string camera;
     int max_depth = 5;
     std::string light_choice = "power";  // power | bounded (LightChoice)
+    std::string integrator = "path";     // path | bdpt
     int threads = 0;
     std::uint64_t seed = 0;
     double time_limit = 0.0;
@@ -70,6 +73,14 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         bad("--max-depth", std::to_string(o.max_depth), "must be in [0, 1000]");
     if (o.light_choice != "power" && o.light_choice != "bounded")
         bad("--light-choice", o.light_choice, "must be power or bounded");
+    if (o.integrator != "path" && o.integrator != "bdpt")
+        bad("--integrator", o.integrator, "must be path or bdpt");
+    if (o.integrator == "bdpt" && o.max_depth > BidirectionalSettings::kMaxDepth)
+        bad("--max-depth", std::to_string(o.max_depth),
+            "must be in [0, 64] with --integrator bdpt");
+    static_assert(BidirectionalSettings::kMaxDepth == 64, "the message above");
+    if (o.integrator == "bdpt" && o.sampling.guiding)
+        bad("--guiding", "on", "path guiding is PathTracer's: use --integrator path");
     if (o.sampling.guiding_passes < 1 || o.sampling.guiding_passes > 20)
         bad("--guiding-passes", std::to_string(o.sampling.guiding_passes), "must be in [1, 20]");
     if (!std::isfinite(o.time_limit) || o.time_limit < 0.0)
@@ -129,7 +140,12 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     pt.guiding.training_passes = o.sampling.guiding_passes;
     // Kept in the image, alone (render_progressive's final frame) and under mpirun alike.
     pt.guiding.keep_training_samples = o.sampling.guiding;
-    PathTracer integrator(pt);
+    PathTracer path_tracer(pt);
+    BidirectionalSettings bd;
+    bd.max_depth = std::min(o.max_depth, BidirectionalSettings::kMaxDepth);
+    BidirectionalPathTracer bidirectional(bd);
+    GuardedIntegrator& integrator =
+        o.integrator == "bdpt" ? static_cast<GuardedIntegrator&>(bidirectional) : path_tracer;
     if (job.distributed()) {
         apps::MpiJobSettings ms;
         ms.render.samples_per_pixel = o.spp;
@@ -175,6 +191,11 @@ int main(int argc, char** argv) {
     app.add_option("--camera", o.camera,
                    "The file's camera: index (in node order) or name; default: the first");
     app.add_option("--max-depth", o.max_depth, "Scattering events per path")->capture_default_str();
+    app.add_option("--integrator", o.integrator,
+                   "path (unidirectional, MIS) or bdpt (bidirectional: paths from the camera "
+                   "and from the lights joined, for light that reaches the camera through small "
+                   "bright regions or caustics)")
+        ->capture_default_str();
     app.add_option("--light-choice", o.light_choice,
                    "How a shading point chooses the light it samples: power (by power alone) or "
                    "bounded (by power times a bound of its contribution there)")

@@ -86,8 +86,8 @@ void write_output(const std::string& path, const Film& film, const Image& beauty
     }
 }
 
-int render_progressively_and_write(const Scene& scene, const Camera& camera, PathTracer& integrator,
-                                   const ProgressiveOutput& o) {
+int render_progressively_and_write(const Scene& scene, const Camera& camera,
+                                   GuardedIntegrator& integrator, const ProgressiveOutput& o) {
     ProgressiveSettings ps;
     ps.render.samples_per_pixel = o.spp;
     ps.render.threads = o.threads;

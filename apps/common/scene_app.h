@@ -50,9 +50,9 @@ void write_output(const std::string& path, const Film& film, const Image& beauty
 /// with a progress bar, until o.spp samples, Ctrl-C or the time limit; writes the finished
 /// passes and prints a summary (render time, samples/s, total time, peak memory). Returns 0, or 130
 /// when interrupted (the partial image written, flagged on stderr; nothing written when no pass had
-/// finished). `scene` must be committed; `integrator` is the path tracer.
+/// finished). `scene` must be committed; `integrator` is the path tracer or the bidirectional one.
 [[nodiscard]] int render_progressively_and_write(const Scene& scene, const Camera& camera,
-                                                 PathTracer& integrator,
+                                                 GuardedIntegrator& integrator,
                                                  const ProgressiveOutput& o);
 
 }  // namespace librt::apps

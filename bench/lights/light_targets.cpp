@@ -27,6 +27,7 @@
 #include <librt/io/gltf.h>
 #include <librt/io/gltf_scene.h>
 #include <librt/io/hdr_image.h>
+#include <librt/render/bdpt.h>
 #include <librt/render/integrators.h>
 #include <librt/render/sampler.h>
 #include <librt/render/scene.h>
@@ -190,7 +191,7 @@ void print_block_rmse(const char* what, const std::vector<glm::dvec3>& a,
 
 void compare(const char* name, const Scene& sampled, const Integrator& good, const Scene& plain,
              const Integrator& base, const BenchCamera& cam, double seconds, double ref_seconds,
-             SamplerKind kind, PathTracer* guided) {
+             SamplerKind kind, PathTracer* guided, const Integrator* candidate = nullptr) {
     int nr = 0, ng = 0, nb = 0;
     const auto ref = render(sampled, good, cam, ref_seconds, 1000, &nr, kind);
     std::vector<glm::dvec3> g;
@@ -214,7 +215,7 @@ void compare(const char* name, const Scene& sampled, const Integrator& good, con
                     guided->guiding_leaf_count());
         g = render(sampled, *guided, cam, seconds - spent, 1, &ng, kind);
     } else {
-        g = render(sampled, good, cam, seconds, 1, &ng, kind);
+        g = render(sampled, candidate != nullptr ? *candidate : good, cam, seconds, 1, &ng, kind);
     }
     const auto b = render(plain, base, cam, seconds, 2, &nb);
     const double rg = rmse(g, ref), rb = rmse(b, ref);
@@ -266,6 +267,13 @@ int main(int argc, char** argv) {
         guided_settings.guiding.training_passes = std::atoi(p);
     PathTracer guided_pt(guided_settings);
     PathTracer* guided = argc > 8 && std::atoi(argv[8]) != 0 ? &guided_pt : nullptr;
+    // LIBRT_BDPT set: the sampled candidate is the bidirectional path tracer (its t >= 2
+    // strategies: this bench's pixel-centre camera has no splat film), the reference
+    // still the path tracer.
+    BidirectionalSettings bd;
+    bd.max_depth = settings.max_depth;
+    BidirectionalPathTracer bdpt(bd);
+    const Integrator* candidate = std::getenv("LIBRT_BDPT") != nullptr ? &bdpt : nullptr;
 
     const char* dir = std::getenv("LIBRT_DATA_DIR");
     const std::filesystem::path data(dir ? dir : LIBRT_DEFAULT_DATA_DIR);
@@ -273,15 +281,17 @@ int main(int argc, char** argv) {
     if (which == "glb") {
         LoadedScene loaded = scene_from_gltf(load_gltf(data / "gltf" / "cornell_pbr.glb"));
         loaded.scene.commit();
+        bdpt.preprocess(loaded.scene);
         compare("cornell_pbr.glb (triangle lights vs the panel unsampled)", loaded.scene, pt,
-                loaded.scene, brute, box_cam, seconds, ref_seconds, kind, guided);
+                loaded.scene, brute, box_cam, seconds, ref_seconds, kind, guided, candidate);
         return 0;
     }
     if (which != "sky") {
         Scene lit;
         build_panel_box(lit, edge);
+        bdpt.preprocess(lit);
         compare("panel (triangle lights vs the panel unsampled)", lit, pt, lit, brute, box_cam,
-                seconds, ref_seconds, kind, guided);
+                seconds, ref_seconds, kind, guided, candidate);
     }
     if (which == "panel") return 0;
 

@@ -6,6 +6,7 @@
 #include "geometry/ray_copy.h"
 #include "render/guiding/path_recorder.h"
 #include "render/guiding/sd_tree.h"
+#include "render/transmittance.h"
 
 #include <librt/core/error.h>
 #include <librt/render/bsdf.h>
@@ -199,42 +200,10 @@ struct Vertex {
     return sample_li(light, p, u);
 }
 
-/// Null lobes (bsdf.h) a shadow ray may cross before it counts as blocked, and crossing
-/// decisions a path may take before it ends: bounds, so that rays grazing a stack of
-/// panes still end (a path's also covers its max_depth bounces between panes).
-constexpr int kMaxCrossings = 64;
+/// Crossing decisions (Null lobes, bsdf.h) a path may take before it ends: a bound, so
+/// that a path grazing a stack of panes still ends (it also covers the max_depth bounces
+/// between panes).
 constexpr std::uint32_t kMaxCrossingDecisions = 4096;
-
-/// The fraction of light that arrives along shadow ray `ray` (from spawn_ray_to) through
-/// the surfaces it crosses: 0 at the first surface without a Null lobe, else the product
-/// of their pass_through() colours (object `ignored_object`, the light's own surface,
-/// skipped). For scenes with such surfaces (Scene::has_pass_through_surfaces); the others
-/// take unoccluded()'s one any-hit query.
-[[gnu::noinline]] glm::vec3 transmittance(const Scene& scene, Ray ray,
-                                          std::uint32_t ignored_object) {
-    glm::vec3 through(1.0f);
-    if (!(ray.t_max > 0.0f)) return through;
-    ShadedMaterial shaded;
-    for (int crossed = 0; crossed <= kMaxCrossings; ++crossed) {
-        Hit hit;
-        if (!scene.intersect_for_shading(ray, hit)) return through;
-        if (hit.object_id != ignored_object) {
-            const Material& m = scene.shade(hit, ray.direction, shaded);
-            if (!has(bsdfs::lobes_of(m), BsdfLobe::Null)) return glm::vec3(0.0f);
-            const glm::vec3 albedo = m.albedo_texture < 0 ? m.albedo : scene.albedo(hit);
-            Vertex v(m, hit, ray.direction, albedo);
-            through *= bsdfs::pass_through_of(m, v.point(), v.wo());
-            if (!(max_component(through) > 0.0f)) return glm::vec3(0.0f);
-        }
-        // On along the rest of the segment, from just past the surface.
-        const float rest = ray.t_max - hit.t;
-        if (!(rest > 0.0f)) return through;
-        ray.origin = offset_ray_origin(hit.point, hit.geometric_normal, ray.direction);
-        ray.t_min = 0.0f;
-        ray.t_max = rest;
-    }
-    return glm::vec3(0.0f);
-}
 
 /// Next-event estimation at a non-specular hit: the light sampler chooses a light, a
 /// direction toward it is drawn, and its contribution f L |cos| / pdf is returned if a

@@ -1,0 +1,226 @@
+// BidirectionalPathTracer against the brute-force path tracer (which only finds emitters
+// by chance: the ground truth for area lights) and, for point lights, which brute force
+// cannot find, against the MIS path tracer. Every comparison is of region means with
+// tolerances of 5 standard errors from the samples' own variance; the light-tracing
+// (t = 1) strategies are checked through a camera and a splat film, over independent
+// renders.
+
+#include "integrator_test_util.h"
+
+#include <librt/core/error.h>
+#include <librt/render/bdpt.h>
+#include <librt/render/camera.h>
+#include <librt/render/camera_importance.h>
+#include <librt/render/integrators.h>
+#include <librt/render/material.h>
+#include <librt/render/point_light.h>
+#include <librt/render/quad_light.h>
+#include <librt/render/sampler.h>
+#include <librt/render/scene.h>
+#include <librt/render/splat_film.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace librt {
+namespace {
+
+using testing::Pinhole;
+using testing::region;
+using testing::render_stats;
+
+void add_quad(Scene& scene, glm::vec3 corner, glm::vec3 e0, glm::vec3 e1, std::uint32_t material) {
+    TriangleMesh m;
+    m.positions = {corner, corner + e0, corner + e0 + e1, corner + e1};
+    m.triangles = {{0, 1, 2}, {0, 2, 3}};
+    scene.add_mesh(m, material);
+}
+
+/// A 2 x 2 x 2 box open toward the camera (+z): white floor and ceiling, red and green
+/// walls, a white back wall. `panel`: a two-sided emissive triangle panel 1 cm under the
+/// ceiling (the case bidirectional paths are for); else a one-sided quad light.
+void build_box(Scene& scene, bool panel, bool glass_pane, bool glossy) {
+    const auto white = scene.add_material(Material::diffuse(glm::vec3(0.73f)));
+    const auto red = scene.add_material(Material::diffuse({0.65f, 0.05f, 0.05f}));
+    const auto green = scene.add_material(Material::diffuse({0.12f, 0.45f, 0.15f}));
+    add_quad(scene, {-1, 0, -1}, {2, 0, 0}, {0, 0, 2}, white);  // floor
+    add_quad(scene, {-1, 2, -1}, {0, 0, 2}, {2, 0, 0}, white);  // ceiling
+    add_quad(scene, {-1, 0, -1}, {0, 2, 0}, {2, 0, 0}, white);  // back
+    add_quad(scene, {-1, 0, -1}, {0, 0, 2}, {0, 2, 0}, red);    // left
+    add_quad(scene, {1, 0, -1}, {0, 2, 0}, {0, 0, 2}, green);   // right
+    if (panel) {
+        Material light = Material::metallic_roughness(glm::vec3(0.0f), 0.0f, 1.0f);
+        light.emission = glm::vec3(12.0f, 10.0f, 8.0f);
+        add_quad(scene, {-0.25f, 1.99f, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f},
+                 scene.add_material(light));
+    } else {
+        (void)scene.add_quad_light(QuadLight{
+            {-0.25f, 1.99f, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}, glm::vec3(10.0f), false});
+    }
+    if (glass_pane) {
+        // A thin smooth pane standing on the floor (a Null lobe) and a block behind it.
+        add_quad(scene, {-0.6f, 0.0f, 0.2f}, {0.8f, 0, 0}, {0, 0.8f, 0},
+                 scene.add_material(
+                     Material::metallic_roughness(glm::vec3(1.0f), 0.0f, 0.0f, 1.5f, 1.0f)));
+    }
+    if (glossy) {
+        add_quad(scene, {0.1f, 0.0f, -0.6f}, {0.6f, 0.6f, 0}, {0, 0, 0.6f},
+                 scene.add_material(Material::metallic_roughness({1.0f, 0.8f, 0.4f}, 1.0f, 0.3f)));
+    }
+    scene.commit();
+}
+
+Pinhole box_camera() {
+    Pinhole cam;
+    cam.eye = {0.0f, 1.0f, 3.4f};
+    cam.fov_degrees = 40.0f;
+    cam.width = cam.height = 16;
+    return cam;
+}
+
+/// Compares two renders block by block (4 x 4 blocks of 4 x 4 pixels) and over the image.
+void expect_agree(const testing::StatImage& a, const testing::StatImage& b, const char* what) {
+    for (int by = 0; by < 4; ++by)
+        for (int bx = 0; bx < 4; ++bx) {
+            const auto ra = region(a, bx * 4, by * 4, bx * 4 + 4, by * 4 + 4);
+            const auto rb = region(b, bx * 4, by * 4, bx * 4 + 4, by * 4 + 4);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(ra.mean[c], rb.mean[c], 5.0 * std::sqrt(ra.se2[c] + rb.se2[c]) + 1e-6)
+                    << what << " block " << bx << "," << by << " channel " << c;
+        }
+    const auto ra = region(a, 0, 0, 16, 16);
+    const auto rb = region(b, 0, 0, 16, 16);
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(ra.mean[c], rb.mean[c], 5.0 * std::sqrt(ra.se2[c] + rb.se2[c]))
+            << what << " image channel " << c;
+}
+
+TEST(Bidirectional, RejectsDepthOutOfRange) {
+    EXPECT_THROW(BidirectionalPathTracer(BidirectionalSettings{-1}), Error);
+    EXPECT_THROW(BidirectionalPathTracer(BidirectionalSettings{65}), Error);
+}
+
+TEST(Bidirectional, AgreesWithBruteForceUnderAQuadLight) {
+    Scene scene;
+    build_box(scene, false, false, false);
+    PathTracerSettings pt;
+    pt.max_depth = 3;
+    pt.russian_roulette = false;
+    BidirectionalSettings bd;
+    bd.max_depth = 3;
+    BruteForcePathTracer brute(pt);
+    BidirectionalPathTracer bdpt(bd);
+    const auto ref = render_stats(scene, brute, box_camera(), 1024, 1);
+    const auto img = render_stats(scene, bdpt, box_camera(), 128, 2);
+    expect_agree(img, ref, "quad light");
+}
+
+TEST(Bidirectional, AgreesWithBruteForceUnderATwoSidedPanelWithGlassAndMetal) {
+    Scene scene;
+    build_box(scene, true, true, true);
+    PathTracerSettings pt;
+    pt.max_depth = 4;
+    pt.russian_roulette = false;
+    BidirectionalSettings bd;
+    bd.max_depth = 4;
+    BruteForcePathTracer brute(pt);
+    BidirectionalPathTracer bdpt(bd);
+    const auto ref = render_stats(scene, brute, box_camera(), 2048, 3);
+    const auto img = render_stats(scene, bdpt, box_camera(), 128, 4);
+    expect_agree(img, ref, "panel");
+}
+
+TEST(Bidirectional, AgreesWithThePathTracerUnderAPointLight) {
+    Scene scene;
+    build_box(scene, false, true, true);
+    (void)scene.add_point_light(PointLight::from_power({0.3f, 1.5f, 0.0f}, glm::vec3(20.0f)));
+    scene.commit();
+    PathTracerSettings pt;
+    pt.max_depth = 3;
+    pt.russian_roulette = false;
+    BidirectionalSettings bd;
+    bd.max_depth = 3;
+    PathTracer tracer(pt);
+    BidirectionalPathTracer bdpt(bd);
+    const auto ref = render_stats(scene, tracer, box_camera(), 512, 5);
+    const auto img = render_stats(scene, bdpt, box_camera(), 128, 6);
+    expect_agree(img, ref, "point light");
+}
+
+// The t = 1 strategies through a real camera and a splat film: per render, each pixel's
+// mean plus the resolved splats; over K independent renders (seeds), block means agree
+// with the brute-force tracer's through the same camera.
+TEST(Bidirectional, LightTracingStrategiesAgreeThroughASplatFilm) {
+    Scene scene;
+    build_box(scene, true, true, false);
+    CameraSettings cs;
+    cs.position = {0.0f, 1.0f, 3.4f};
+    cs.look_at = {0.0f, 1.0f, 0.0f};
+    cs.vertical_fov_degrees = 40.0f;
+    cs.width = cs.height = 16;
+    cs.pixel_jitter = PixelJitter::Gaussian;
+    const Camera camera(cs);
+    BidirectionalSettings bd;
+    bd.max_depth = 3;
+    BidirectionalPathTracer bdpt(bd);
+    bdpt.preprocess(scene);
+    PathTracerSettings pt;
+    pt.max_depth = 3;
+    pt.russian_roulette = false;
+    BruteForcePathTracer brute(pt);
+    ASSERT_TRUE(bdpt.splats());
+
+    constexpr int kRenders = 8;
+    constexpr int kSpp = 16;
+    // Block means of each render: [render][block][channel].
+    auto render = [&](const Integrator& integrator, bool splat, std::uint64_t seed, int spp) {
+        SplatFilm film(16, 16, splat_filter_settings(camera));
+        std::vector<glm::dvec3> sum(256, glm::dvec3(0.0));
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x)
+                for (int s = 0; s < spp; ++s) {
+                    Sampler sampler(SamplerKind::Independent, std::uint32_t(x), std::uint32_t(y),
+                                    std::uint32_t(s), seed);
+                    const CameraRay r = camera.sample_ray(x, y, sampler);
+                    const glm::vec3 l = splat ? integrator.li_splatting(scene, r.ray, sampler,
+                                                                        SplatTarget{&camera, &film})
+                                              : integrator.li(scene, r.ray, sampler);
+                    sum[std::size_t(y * 16 + x)] += glm::dvec3(l) / double(spp);
+                }
+        if (splat) {
+            const Image splats = film.resolve(double(spp));
+            for (int y = 0; y < 16; ++y)
+                for (int x = 0; x < 16; ++x)
+                    sum[std::size_t(y * 16 + x)] += glm::dvec3(splats.at(x, y));
+        }
+        std::vector<glm::dvec3> blocks(16, glm::dvec3(0.0));
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x)
+                blocks[std::size_t((y / 4) * 4 + x / 4)] += sum[std::size_t(y * 16 + x)] / 16.0;
+        return blocks;
+    };
+    std::vector<std::vector<glm::dvec3>> a, b;
+    for (int k = 0; k < kRenders; ++k) {
+        a.push_back(render(bdpt, true, 100 + std::uint64_t(k), kSpp));
+        b.push_back(render(brute, false, 200 + std::uint64_t(k), 16 * kSpp));
+    }
+    for (int blk = 0; blk < 16; ++blk)
+        for (int c = 0; c < 3; ++c) {
+            double ma = 0, mb = 0, va = 0, vb = 0;
+            for (int k = 0; k < kRenders; ++k) {
+                ma += a[std::size_t(k)][std::size_t(blk)][c] / kRenders;
+                mb += b[std::size_t(k)][std::size_t(blk)][c] / kRenders;
+            }
+            for (int k = 0; k < kRenders; ++k) {
+                va += std::pow(a[std::size_t(k)][std::size_t(blk)][c] - ma, 2) / (kRenders - 1);
+                vb += std::pow(b[std::size_t(k)][std::size_t(blk)][c] - mb, 2) / (kRenders - 1);
+            }
+            EXPECT_NEAR(ma, mb, 5.0 * std::sqrt(va / kRenders + vb / kRenders) + 1e-6)
+                << "block " << blk << " channel " << c;
+        }
+}
+
+}  // namespace
+}  // namespace librt
