@@ -54,7 +54,7 @@ struct RenderStats {
     /// cost measure of efficiency figures (error^2 x CPU seconds). Includes any other
     /// thread of the process working at the same time.
     double cpu_seconds = 0.0;
-    std::uint64_t samples = 0;            ///< camera samples taken (Integrator::li calls)
+    std::uint64_t samples = 0;            ///< camera samples taken (li / li_splatting calls)
     std::uint64_t nonfinite_samples = 0;  ///< samples dropped because a channel was NaN or infinite
     bool cancelled = false;               ///< true when `cancel` stopped the render before the end
     bool time_limit_reached = false;      ///< render_progressive: stopped by its time limit
