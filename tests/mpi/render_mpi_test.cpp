@@ -4,6 +4,7 @@
 // mpi.render_mpi_np3). On rank 0 the film must equal a one-process render_block film bit
 // for bit; the other ranks get an empty film.
 #include "render/film_test_util.h"
+#include "render/splat_test_util.h"
 
 #include <librt/core/error.h>
 #include <librt/mpi/render_mpi.h>
@@ -30,6 +31,25 @@ int world_rank() {
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     return rank;
+}
+
+bool same_splats(const Film& a, const Film& b) {
+    return a.splats.has_value() == b.splats.has_value() &&
+           (!a.splats || a.splats->sums() == b.splats->sums());
+}
+
+Scene empty_scene() {
+    Scene scene;
+    scene.commit();
+    return scene;
+}
+
+// Splats anywhere (partly off the film) with a Gaussian filter, and own-pixel colours.
+librt::testing::RandomSplatter::Options splatter_options(bool trains) {
+    librt::testing::RandomSplatter::Options o;
+    o.margin = 3.0f;
+    o.trains = trains;
+    return o;
 }
 
 }  // namespace
@@ -185,5 +205,97 @@ TEST(RenderMpi, CallsInARowKeepTheirMessagesApart) {
     const Film again = render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s);
     if (world_rank() == 0) {
         EXPECT_TRUE(same_records(again, first));
+    }
+}
+
+// An integrator that splats: every rank's splats, summed over all its tiles, reach rank 0
+// (kSplats) and add up exactly, so the film holds a one-process render_block's records and
+// splat sums, and the image is render()'s, for any tile size, thread count, number of ranks
+// and whether rank 0 renders.
+TEST(RenderMpi, SplattingIntegratorGivesRendersImage) {
+    const Scene scene = empty_scene();
+    const Camera camera = librt::testing::splat_test_camera(19, 13, false);
+    librt::testing::RandomSplatter integrator(splatter_options(false));
+    RenderSettings rs;
+    rs.samples_per_pixel = 4;
+    rs.seed = 5;
+    rs.threads = 2;
+    Image expected;
+    Film expected_film(camera.width(), camera.height());
+    if (world_rank() == 0) {
+        expected = render(scene, camera, integrator, rs);
+        (void)render_block(scene, camera, integrator, expected_film,
+                           {0, 0, camera.width(), camera.height(), 0, 4}, rs);
+        ASSERT_TRUE(expected_film.splats.has_value());
+    }
+    for (const int tile : {3, 32}) {
+        for (const int threads : {1, 2}) {
+            for (const bool root_renders : {true, false}) {
+                MpiRenderSettings s;
+                s.render = rs;
+                s.render.threads = threads;
+                s.render.tile_size = 2;
+                s.tile_size = tile;
+                s.root_renders = root_renders;
+                Image image;
+                MpiRenderStats stats;
+                const Film film =
+                    render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s, &stats, &image);
+                EXPECT_FALSE(stats.cancelled);
+                if (world_rank() == 0) {
+                    const std::string where = "tile " + std::to_string(tile) + ", threads " +
+                                              std::to_string(threads) + ", root renders " +
+                                              std::to_string(root_renders);
+                    EXPECT_TRUE(same_records(film, expected_film)) << where;
+                    EXPECT_TRUE(same_splats(film, expected_film)) << where;
+                    EXPECT_TRUE(same_pixels(image, expected)) << where;
+                    EXPECT_TRUE(same_pixels(resolve(film), expected)) << where;
+                } else {
+                    EXPECT_TRUE(film.pixels.empty());
+                }
+            }
+        }
+    }
+}
+
+// A splatting integrator that keeps its training passes: the first halves' splats travel
+// apart from the rest, so rank 0 joins the passes to the film as render() does.
+TEST(RenderMpi, SplattingKeptTrainingPassesGiveRendersImage) {
+    const Scene scene = empty_scene();
+    const Camera camera = librt::testing::splat_test_camera(17, 11, false);
+    RenderSettings rs;
+    rs.samples_per_pixel = 5;
+    rs.seed = 9;
+    rs.threads = 2;
+    Image expected;
+    Film expected_film(camera.width(), camera.height());
+    if (world_rank() == 0) {
+        librt::testing::RandomSplatter one(splatter_options(true));
+        expected = render(scene, camera, one, rs);
+        librt::testing::RandomSplatter block(splatter_options(true));
+        block.preprocess(scene);
+        (void)train(scene, camera, block, rs);
+        (void)render_block(scene, camera, block, expected_film,
+                           {0, 0, camera.width(), camera.height(), 0, 5}, rs);
+        ASSERT_FALSE(same_pixels(expected, resolve(expected_film)));  // the passes show
+    }
+    for (const int tile : {4, 32}) {
+        for (const bool root_renders : {true, false}) {
+            librt::testing::RandomSplatter integrator(splatter_options(true));
+            MpiRenderSettings s;
+            s.render = rs;
+            s.tile_size = tile;
+            s.root_renders = root_renders;
+            Image image;
+            const Film film =
+                render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s, nullptr, &image);
+            if (world_rank() == 0) {
+                const std::string where = "tile " + std::to_string(tile) + ", root renders " +
+                                          std::to_string(root_renders);
+                EXPECT_TRUE(same_pixels(image, expected)) << where;
+                EXPECT_TRUE(same_records(film, expected_film)) << where;
+                EXPECT_TRUE(same_splats(film, expected_film)) << where;
+            }
+        }
     }
 }

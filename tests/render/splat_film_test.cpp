@@ -131,6 +131,25 @@ TEST(SplatFilm, MergeIsExact) {
     EXPECT_THROW(other_filter.merge(first), Error);
 }
 
+// merge_sums (sums received from another process) adds as merge() does, counts included,
+// and refuses sums of another size without changing the film.
+TEST(SplatFilm, MergeSumsEqualsMerge) {
+    const std::vector<Splat> splats = random_splats(5000, 12, 9, 8);
+    SplatFilm all(12, 9), first(12, 9), second(12, 9);
+    for (std::size_t k = 0; k < splats.size(); ++k) {
+        all.add(splats[k].raster, splats[k].value);
+        (k % 2 == 0 ? first : second).add(splats[k].raster, splats[k].value);
+    }
+    second.merge_sums(first.sums(), 3, 4);
+    EXPECT_EQ(second.sums(), all.sums());
+    EXPECT_EQ(second.clipped(), 3u);
+    EXPECT_EQ(second.non_finite(), 4u);
+    const std::vector<std::int64_t> before = second.sums();
+    const std::vector<std::int64_t> short_sums(first.sums().begin(), first.sums().end() - 3);
+    EXPECT_THROW(second.merge_sums(short_sums, 0, 0), Error);
+    EXPECT_EQ(second.sums(), before);
+}
+
 // Box, tent and Mitchell (B + 2C = 1) weights are partitions of unity: one splat's weights
 // sum to 1 wherever it lands, up to the rounding of each term to 2^-(k+1) and double
 // rounding. The box gives all of it to the containing pixel [j, j + 1) x [i, i + 1).

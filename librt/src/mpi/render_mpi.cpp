@@ -6,16 +6,22 @@
 //                          the tile at half its samples; "give me another"
 //   worker -> 0  kFail     the error message of an exception on the worker (its last word)
 //   worker -> 0  kCancel   the worker's cancel flag stopped it (its last word)
+//   worker -> 0  kSplats   after kDone, for an integrator that splats: its splat sums over
+//                          the whole image (int64), then its clipped and non-finite counts,
+//                          and with kept training passes the same for its first halves;
+//                          empty when it rendered no tile (its last word)
 //   0 -> worker  kAssign   int32 tile index to render next
 //   0 -> worker  kDone     no tiles left: return
 //   0 -> worker  kStop     the job failed or was cancelled (payload: why): return or throw
 // Every kRequest gets exactly one answer and every worker ends with exactly one of kFail,
-// kCancel, or a kRequest answered by kDone/kStop, so rank 0 knows when all have finished
-// and no rank waits for a message that never comes. A little over 400 lines: both sides of
-// the protocol share its private message helpers, so they stay in one file.
+// kCancel, kSplats (splatting), or a kRequest answered by kStop or (not splatting) kDone,
+// so rank 0 knows when all have finished and no rank waits for a message that never comes. A little
+// over 400 lines: both sides of the protocol share its private message helpers, so they stay in one
+// file.
 
 #include <librt/core/error.h>
 #include <librt/mpi/render_mpi.h>
+#include <librt/render/camera_importance.h>
 #include <librt/render/pass_combination.h>
 #include <librt/render/scene.h>
 
@@ -25,9 +31,13 @@
 #include <cstddef>
 #include <cstring>
 #include <exception>
+#include <limits>
+#include <optional>
+#include <span>
 #include <string>
 #include <thread>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace librt {
@@ -40,7 +50,15 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-enum Tag : int { kRequest = 1, kFail = 2, kCancel = 3, kAssign = 4, kDone = 5, kStop = 6 };
+enum Tag : int {
+    kRequest = 1,
+    kFail = 2,
+    kCancel = 3,
+    kAssign = 4,
+    kDone = 5,
+    kStop = 6,
+    kSplats = 7
+};
 
 // How long rank 0's main thread sleeps when no message is waiting. Open MPI's blocking
 // receive spins a core, which on a machine whose cores all render would steal one from
@@ -178,6 +196,75 @@ std::vector<std::byte> receive(const MPI_Status& status, MPI_Comm comm) {
     return data;
 }
 
+// The splat sums of a worker travel as int64 (counts, not bytes: 3 W H sums would pass an
+// int count of bytes at 89 M pixels).
+void send_int64s(const std::vector<std::int64_t>& data, int dest, int tag, MPI_Comm comm) {
+    if (data.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+        throw Error("render_mpi: " + std::to_string(data.size()) + " splat sums in one message");
+    check(MPI_Send(data.data(), static_cast<int>(data.size()), MPI_INT64_T, dest, tag, comm),
+          "MPI_Send");
+}
+
+std::vector<std::int64_t> receive_int64s(const MPI_Status& status, MPI_Comm comm) {
+    int count = 0;
+    check(MPI_Get_count(&status, MPI_INT64_T, &count), "MPI_Get_count");
+    std::vector<std::int64_t> data(static_cast<std::size_t>(count));
+    check(MPI_Recv(data.data(), count, MPI_INT64_T, status.MPI_SOURCE, status.MPI_TAG, comm,
+                   MPI_STATUS_IGNORE),
+          "MPI_Recv");
+    return data;
+}
+
+// A kSplats message: the sums and counts of `splats` (a worker's second halves with
+// `halves`, else everything), then with `halves` those of `first` (its first halves).
+// Empty when the worker has none.
+std::vector<std::int64_t> pack_splats(const std::optional<SplatFilm>& splats,
+                                      const std::optional<SplatFilm>& first, bool halves) {
+    std::vector<std::int64_t> out;
+    if (!splats) return out;
+    if (halves && !first) throw Error("render_mpi: splats of the first halves are missing");
+    const auto append = [&](const SplatFilm& f) {
+        out.insert(out.end(), f.sums().begin(), f.sums().end());
+        out.push_back(static_cast<std::int64_t>(f.clipped()));
+        out.push_back(static_cast<std::int64_t>(f.non_finite()));
+    };
+    append(*splats);
+    if (halves) append(*first);
+    return out;
+}
+
+// Adds a kSplats message to `rest` and (with `halves`) `first`, creating them as the render
+// loop creates a film's splats (splat_filter_settings, the default scale).
+void unpack_splats(const std::vector<std::int64_t>& message, bool halves, const Camera& camera,
+                   std::optional<SplatFilm>& rest, std::optional<SplatFilm>& first, int source) {
+    if (message.empty()) return;
+    const std::size_t n =
+        3 * static_cast<std::size_t>(camera.width()) * static_cast<std::size_t>(camera.height());
+    if (message.size() != (halves ? 2 : 1) * (n + 2)) {
+        throw Error("render_mpi: rank " + std::to_string(source) + " sent " +
+                    std::to_string(message.size()) +
+                    " splat sums and counts (mismatched settings?)");
+    }
+    const auto add = [&](std::optional<SplatFilm>& into, std::size_t at) {
+        if (!into) into.emplace(camera.width(), camera.height(), splat_filter_settings(camera));
+        into->merge_sums(std::span(message).subspan(at, n),
+                         static_cast<std::uint64_t>(message[at + n]),
+                         static_cast<std::uint64_t>(message[at + n + 1]));
+    };
+    add(rest, 0);
+    if (halves) add(first, n + 2);
+}
+
+// Adds `from` to `into` (SplatFilm::merge), or copies it when `into` has none.
+void add_splats(std::optional<SplatFilm>& into, const std::optional<SplatFilm>& from) {
+    if (!from) return;
+    if (into) {
+        into->merge(*from);
+    } else {
+        into = from;
+    }
+}
+
 std::string text_of(const std::vector<std::byte>& data) {
     return {reinterpret_cast<const char*>(data.data()), data.size()};
 }
@@ -198,7 +285,8 @@ bool keeps_halves(const Integrator& integrator, const MpiRenderSettings& s) {
 
 // Renders samples [0, spp) of the pixels `r` onto `film` placed at `origin`. With
 // `halves`, as two blocks (the same sums as one), copying the rect's records into `half`
-// (a film of the same size and placement) between them.
+// (a film of the same size and placement) between them; a splatting integrator's splats
+// of the first block then go to half.splats, of the second to film.splats.
 RenderStats render_tile(const Scene& scene, const Camera& camera, const Integrator& integrator,
                         Film& film, FilmOrigin origin, const Rect& r, std::uint32_t spp,
                         bool halves, Film& half, const RenderSettings& rs) {
@@ -206,8 +294,18 @@ RenderStats render_tile(const Scene& scene, const Camera& camera, const Integrat
         return render_block(scene, camera, integrator, film, origin,
                             {r.x0, r.y0, r.x1, r.y1, 0, spp}, rs);
     const std::uint32_t a = spp / 2;
-    RenderStats st =
-        render_block(scene, camera, integrator, film, origin, {r.x0, r.y0, r.x1, r.y1, 0, a}, rs);
+    // The first halves' splats go to half.splats, the rest stay in film.splats (see
+    // run_root): the splats of the image at half its samples, and what completes them.
+    std::swap(film.splats, half.splats);
+    RenderStats st;
+    try {
+        st = render_block(scene, camera, integrator, film, origin, {r.x0, r.y0, r.x1, r.y1, 0, a},
+                          rs);
+    } catch (...) {
+        std::swap(film.splats, half.splats);
+        throw;
+    }
+    std::swap(film.splats, half.splats);
     if (st.cancelled) return st;
     const auto row = static_cast<std::ptrdiff_t>(r.x1 - r.x0);
     for (int y = r.y0; y < r.y1; ++y) {
@@ -234,12 +332,17 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
     Film half;  // with kept training passes: the film at half its samples (radiance only)
     PassCombination kept;
     bool halves = false;
+    bool splatting = false;
+    // The workers' splats (kSplats): of their second halves with `halves`, else all; and of
+    // their first halves. Rank 0's own thread splats into film.splats and half.splats.
+    std::optional<SplatFilm> worker_splats, worker_first_splats;
     Tiling tiling(camera.width(), camera.height(), std::max(1, s.tile_size));
     try {
         validate(s);
         film = Film(camera.width(), camera.height(), s.aovs);
         integrator.preprocess(scene);
         halves = keeps_halves(integrator, s);  // known after preprocess()
+        splatting = integrator.splats();
         if (halves) half = Film(camera.width(), camera.height());
         // Every rank learns the same guide (training is deterministic), so the tiles
         // merge into the one-process image; rank 0 keeps the passes as render() does.
@@ -296,6 +399,20 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
         if (flag) {
             const int source = status.MPI_SOURCE;
             const Clock::time_point t0 = Clock::now();
+            if (status.MPI_TAG == kSplats) {
+                const std::vector<std::int64_t> sums = receive_int64s(status, comm);
+                try {
+                    if (!stopping)
+                        unpack_splats(sums, halves, camera, worker_splats, worker_first_splats,
+                                      source);
+                } catch (...) {
+                    stop(message_of(std::current_exception()));
+                }
+                stats.gather_bytes += sums.size() * sizeof(std::int64_t);
+                stats.gather_seconds += seconds_since(t0);
+                --active;
+                continue;
+            }
             const std::vector<std::byte> message = receive(status, comm);
             if (status.MPI_TAG == kRequest) {
                 try {
@@ -316,7 +433,7 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
                     ++stats.tiles_per_rank[static_cast<std::size_t>(source)];
                 } else {
                     send_bytes(nullptr, 0, source, kDone, comm);
-                    --active;
+                    if (!splatting) --active;  // else its kSplats is its last word
                 }
             } else if (status.MPI_TAG == kFail) {
                 stop("rank " + std::to_string(source) + " failed: " + text_of(message));
@@ -349,6 +466,15 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
     }
     if (local.joinable()) local.join();
     if (local_error && failure.empty()) failure = "rank 0 failed: " + message_of(local_error);
+    // Every rank's splats into the film's (integer sums: exact in any order); with kept
+    // passes, the first halves' into half.splats and, with the rest, into film.splats.
+    try {
+        add_splats(film.splats, worker_splats);
+        add_splats(half.splats, worker_first_splats);
+        if (halves) add_splats(film.splats, half.splats);
+    } catch (...) {
+        if (failure.empty()) failure = "rank 0 failed: " + message_of(std::current_exception());
+    }
     stats.tiles_rendered = local_tiles.load();
     stats.tiles_per_rank[0] = stats.tiles_rendered;
     stats.seconds = seconds_since(start);
@@ -382,6 +508,10 @@ Film run_worker(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
         // sums that no order or split changes.
         train(scene, camera, integrator, rs);
         const bool halves = keeps_halves(integrator, s);
+        const bool splatting = integrator.splats();
+        // A splatting integrator's splats over all this worker's tiles (of the first halves
+        // in `first_splats` with `halves`): whole-image films, sent once at the end.
+        std::optional<SplatFilm> splats, first_splats;
         const auto spp = static_cast<std::uint32_t>(s.render.samples_per_pixel);
         while (true) {
             const Clock::time_point t0 = Clock::now();
@@ -392,7 +522,15 @@ Film run_worker(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
             check(MPI_Probe(0, MPI_ANY_TAG, comm, &status), "MPI_Probe");
             const std::vector<std::byte> answer = receive(status, comm);
             stats.gather_seconds += seconds_since(t0);
-            if (status.MPI_TAG == kDone) break;
+            if (status.MPI_TAG == kDone) {
+                if (splatting) {
+                    const std::vector<std::int64_t> sums =
+                        pack_splats(splats, first_splats, halves);
+                    send_int64s(sums, 0, kSplats, comm);
+                    stats.gather_bytes += sums.size() * sizeof(std::int64_t);
+                }
+                break;
+            }
             if (status.MPI_TAG == kStop) {
                 const std::string why = text_of(answer);
                 if (why.rfind("cancelled", 0) == 0) {
@@ -411,9 +549,15 @@ Film run_worker(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
             tile = t32;
             const Rect r = tiling.rect(tile);
             film = Film(r.x1 - r.x0, r.y1 - r.y0, s.aovs);
-            if (halves) half = Film(r.x1 - r.x0, r.y1 - r.y0);
+            film.splats = std::exchange(splats, std::nullopt);
+            if (halves) {
+                half = Film(r.x1 - r.x0, r.y1 - r.y0);
+                half.splats = std::exchange(first_splats, std::nullopt);
+            }
             const RenderStats st = render_tile(scene, camera, integrator, film, {r.x0, r.y0}, r,
                                                spp, halves, half, rs);
+            splats = std::exchange(film.splats, std::nullopt);
+            first_splats = std::exchange(half.splats, std::nullopt);
             stats.samples += st.samples;
             stats.nonfinite_samples += st.nonfinite_samples;
             if (st.cancelled) {

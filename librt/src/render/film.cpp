@@ -59,6 +59,15 @@ void merge(Film& into, const Film& from) {
             }
         }
     }
+    // Splats before pixels: SplatFilm::merge checks before it adds, and is the last thing
+    // here that can throw.
+    if (from.splats) {
+        if (into.splats) {
+            into.splats->merge(*from.splats);
+        } else {
+            into.splats = from.splats;
+        }
+    }
     for (std::size_t i = 0; i < from.pixels.size(); ++i) {
         if (from.pixels[i].samples == 0) continue;
         into.pixels[i] = from.pixels[i];
@@ -74,7 +83,28 @@ Image resolve(const Film& film) {
         image.pixels[i] =
             p.finite > 0 ? glm::vec3(p.radiance / static_cast<double>(p.finite)) : glm::vec3(0.0f);
     }
+    if (!film.splats) return image;
+    const SplatFilm& splats = *film.splats;
+    if (splats.width() != film.width || splats.height() != film.height) {
+        throw Error("cannot resolve a " + std::to_string(film.width) + " x " +
+                    std::to_string(film.height) + " film with " + std::to_string(splats.width()) +
+                    " x " + std::to_string(splats.height()) +
+                    " splats: merge its region into a film of the whole image first");
+    }
+    const double spp = splat_samples_per_pixel(film);
+    if (spp == 0.0) return image;
+    const Image splat_image = splats.resolve(spp);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] += splat_image.pixels[i];
     return image;
+}
+
+double splat_samples_per_pixel(const Film& film) {
+    if (film.pixels.empty()) return 0.0;
+    // An integer total (at most 2^29 pixels of 2^20 samples: exact in a double too), so
+    // a complete render's divisor is its sample count exactly.
+    std::uint64_t total = 0;
+    for (const FilmPixel& p : film.pixels) total += p.samples;
+    return static_cast<double>(total) / static_cast<double>(film.pixels.size());
 }
 
 ImageLayers resolve_layers(const Film& film) {

@@ -6,6 +6,7 @@
 
 #include <librt/core/error.h>
 #include <librt/core/finite.h>
+#include <librt/render/camera_importance.h>
 #include <librt/render/pass_combination.h>
 #include <librt/render/renderer.h>
 
@@ -58,7 +59,7 @@ void validate_threads_and_tiles(const RenderSettings& s) {
 
 /// How run_block ended.
 struct BlockOutcome {
-    std::uint64_t samples = 0;    // Integrator::li calls
+    std::uint64_t samples = 0;    // Integrator::li (or li_splatting) calls
     std::uint64_t nonfinite = 0;  // of which non-finite
     bool complete = false;        // every pixel of the block got all its samples
     bool cancelled = false;       // settings.cancel stopped it
@@ -69,6 +70,21 @@ struct BlockOutcome {
 /// block's tiles done; returning true stops the block (as a cancellation would).
 using Tick = std::function<bool(double fraction)>;
 
+/// Where the samples of `film` splat to, for an integrator that splats (none otherwise):
+/// film.splats, created over the whole camera image - splats land anywhere, whatever
+/// region or sample range the block covers - or checked to be that size.
+SplatTarget splat_target(const Camera& camera, const Integrator& integrator, Film& film) {
+    if (!integrator.splats()) return {};
+    if (!film.splats) {
+        film.splats.emplace(camera.width(), camera.height(), splat_filter_settings(camera));
+    } else if (film.splats->width() != camera.width() || film.splats->height() != camera.height()) {
+        throw Error("film splats " + std::to_string(film.splats->width()) + " x " +
+                    std::to_string(film.splats->height()) + ": must be the camera's " +
+                    std::to_string(camera.width()) + " x " + std::to_string(camera.height()));
+    }
+    return {&camera, &*film.splats};
+}
+
 // The one render loop under every entry point: threads take the block's tiles from an
 // atomic counter and render each pixel's samples onto its film record, in sample order.
 // The calling thread watches (ticks) until the workers are done.
@@ -76,6 +92,7 @@ BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrato
                        Film& film, FilmOrigin origin, const RenderBlock& block,
                        const RenderSettings& settings, const Tick& tick) {
     BlockOutcome outcome;
+    const SplatTarget target = splat_target(camera, integrator, film);
     const int width = block.x1 - block.x0;
     const int height = block.y1 - block.y0;
     if (width <= 0 || height <= 0 || block.count == 0) {
@@ -128,13 +145,16 @@ BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrato
     // pixel stopped part-way keeps the samples it took: its record stays consistent.
     constexpr std::uint32_t kCancelCheckSamples = 64;
     const bool with_aovs = film.has_aovs();
+    const bool with_splats = target.film != nullptr;
     const std::uint32_t end = block.first + block.count;
-    // The AOV sums as a compile-time choice: the plain render's per-sample loop then carries
-    // neither the branch nor the AOV code (the loop runs once per camera sample, ~21 M
-    // times in the report's synthesis).
+    // The AOV sums and splatting as compile-time choices: the plain render's per-sample
+    // loop then carries neither the branches nor the AOV code, and calls li() as it always
+    // did (the loop runs once per camera sample, ~21 M times in the report's synthesis).
     const auto render_tile_with = [&](const Tile& t, std::uint64_t& samples,
-                                      std::uint64_t& nonfinite, auto aovs_wanted) {
+                                      std::uint64_t& nonfinite, auto aovs_wanted,
+                                      auto splats_wanted) {
         constexpr bool kAovs = decltype(aovs_wanted)::value;
+        constexpr bool kSplats = decltype(splats_wanted)::value;
         const SamplerKind sampler_kind = settings.sampler;
         const std::uint64_t seed = settings.seed;
         for (int y = t.y0; y < t.y1; ++y) {
@@ -177,7 +197,13 @@ BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrato
                     }
                     // The filter weight makes the plain mean the filter's estimate (Mitchell's
                     // signed weights); x 1.0f is exact, so other filters are unchanged.
-                    const glm::vec3 l = integrator.li(scene, ray, sampler) * camera_ray.weight;
+                    glm::vec3 l;
+                    if constexpr (kSplats) {
+                        l = integrator.li_splatting(scene, ray, sampler, target) *
+                            camera_ray.weight;
+                    } else {
+                        l = integrator.li(scene, ray, sampler) * camera_ray.weight;
+                    }
                     ++taken;
                     if (finite(l)) [[likely]] {
                         pixel.radiance += glm::dvec3(l);
@@ -196,8 +222,15 @@ BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrato
         return true;
     };
     const auto render_tile = [&](const Tile& t, std::uint64_t& samples, std::uint64_t& nonfinite) {
-        return with_aovs ? render_tile_with(t, samples, nonfinite, std::true_type{})
-                         : render_tile_with(t, samples, nonfinite, std::false_type{});
+        if (with_splats) {
+            return with_aovs
+                       ? render_tile_with(t, samples, nonfinite, std::true_type{}, std::true_type{})
+                       : render_tile_with(t, samples, nonfinite, std::false_type{},
+                                          std::true_type{});
+        }
+        return with_aovs
+                   ? render_tile_with(t, samples, nonfinite, std::true_type{}, std::false_type{})
+                   : render_tile_with(t, samples, nonfinite, std::false_type{}, std::false_type{});
     };
 
     const auto worker = [&] {
@@ -341,6 +374,7 @@ RenderStats train_passes(const Scene& scene, const Camera& camera, Integrator& i
             scratch = Film(camera.width(), camera.height());
         } else {
             std::fill(scratch.pixels.begin(), scratch.pixels.end(), FilmPixel{});
+            scratch.splats.reset();  // run_block makes a new one for an integrator that splats
         }
         RenderSettings rs = settings;
         rs.progress = nullptr;
@@ -537,11 +571,12 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
     const std::uint32_t mid = target / 2;
     bool keep = false;
     PassCombination kept;
-    Film half;  // the film at `mid` samples (radiance only)
+    Film half;  // the film at `mid` samples (radiance and splats)
     const auto snapshot_half = [&] {
         half.width = film.width;
         half.height = film.height;
         half.pixels = film.pixels;
+        half.splats = film.splats;
     };
     if (n < target) {
         integrator.preprocess(scene);

@@ -177,11 +177,21 @@ void SplatFilm::merge(const SplatFilm& other) {
                     std::to_string(other.fraction_bits_) + " and " +
                     std::to_string(fraction_bits_));
     }
-    for (std::size_t k = 0; k < sums_.size(); ++k) {
-        if (saturating_add(sums_[k], other.sums_[k])) ++clipped_;
+    merge_sums(other.sums_, other.clipped_, other.non_finite_);
+}
+
+void SplatFilm::merge_sums(std::span<const std::int64_t> sums, std::uint64_t clipped,
+                           std::uint64_t non_finite) {
+    if (sums.size() != sums_.size()) {
+        throw Error("cannot merge " + std::to_string(sums.size()) + " splat sums into a " +
+                    std::to_string(width_) + " x " + std::to_string(height_) +
+                    " splat film (3 per pixel)");
     }
-    clipped_ += other.clipped_;
-    non_finite_ += other.non_finite_;
+    for (std::size_t k = 0; k < sums_.size(); ++k) {
+        if (saturating_add(sums_[k], sums[k])) ++clipped_;
+    }
+    clipped_ += clipped;
+    non_finite_ += non_finite;
 }
 
 Image SplatFilm::resolve(double samples_per_pixel) const {

@@ -23,6 +23,12 @@
 // rank 0 holds a film of the whole frame; the others render each tile onto a film of the
 // tile's size (render_block with a FilmOrigin), so their memory is the scene's.
 //
+// An integrator that splats (Integrator::splats) splats from every rank into a SplatFilm
+// of the whole image: rank 0's own thread into the film's, each other rank into one it
+// keeps over all its tiles (24 bytes per pixel; twice that with kept training passes) and
+// sends to rank 0 once, after its last tile. Rank 0 adds them (integer sums: exact in any
+// order), so the film's splats, like its records, are render()'s whatever the split.
+//
 // Threads and MPI: only the thread that calls render_mpi makes MPI calls; initialise MPI
 // with MPI_Init_thread and at least MPI_THREAD_FUNNELED. Tile records travel as raw bytes:
 // every rank must run on the same architecture (as a render farm does).
@@ -80,7 +86,10 @@ LIBRT_API void validate(const MpiRenderSettings& settings);
 /// handler (MPI_ERRORS_ARE_FATAL) and mpirun end the job. Cancellation (settings.render.cancel
 /// set on any rank) stops every rank within about a tile; stats->cancelled is then set and
 /// rank 0 returns the film as far as it got (tiles finished on rank 0 or received from the
-/// others; every other pixel holds fewer samples than asked, often none).
+/// others; every other pixel holds fewer samples than asked, often none). A cancelled
+/// render's splats are rank 0's own and those of the ranks that had finished before (the
+/// others never send theirs): resolve() divides them by the mean sample count all the
+/// same, so such a film's splats are short of the light of the missing ranks.
 ///
 /// Kept training passes: when the integrator keeps its training passes (path guiding's
 /// keep_training_samples) and samples_per_pixel >= 2, rank 0 keeps them (train()) and every

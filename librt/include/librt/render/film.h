@@ -3,11 +3,13 @@
 #include <librt/core/image.h>
 #include <librt/core/image_layers.h>
 #include <librt/export.h>
+#include <librt/render/splat_film.h>
 
 #include <glm/ext/vector_double3.hpp>
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 // An accumulation film: per-pixel sums and sample counts, not means, so that a render can
@@ -31,6 +33,13 @@
 //  - resolve() turns a record into the same float mean the renderer always produced:
 //    float(sum / finite).
 // The AOV sums (albedo, normal, depth) are accumulated the same way, in the same order.
+//
+// Splats (Integrator::splats: light tracing, bidirectional path tracing) land on any pixel
+// from any thread, so they cannot join a pixel's ordered chain: the film keeps them apart,
+// in a SplatFilm of integer sums over the whole image, which any order, split or merge adds
+// exactly (splat_film.h). resolve() adds them to the pixel means, divided by the render's
+// samples per pixel (splat_samples_per_pixel below): every pixel's sample count once the
+// render is complete, the mean count when it stopped early.
 
 namespace librt {
 
@@ -69,6 +78,10 @@ struct LIBRT_API Film {
     int height = 0;                 ///< number of rows
     std::vector<FilmPixel> pixels;  ///< width * height records, top row first
     std::vector<AovPixel> aovs;     ///< width * height AOV records, or empty for no AOVs
+    /// The splats of an integrator that splats, over the whole image (the camera's size,
+    /// also when this film holds only a region of it); empty for one that does not. The
+    /// render loop creates it on the first block it renders with such an integrator.
+    std::optional<SplatFilm> splats;
 
     /// An empty 0x0 film.
     Film() = default;
@@ -93,15 +106,27 @@ struct LIBRT_API Film {
     [[nodiscard]] const FilmPixel& at(int x, int y) const { return pixels[index(x, y)]; }
 };
 
-/// Copies into `into` every pixel record of `from` that holds samples. For pixels that
-/// hold samples in both films this cannot be exact (see the top of this header), so it
-/// throws librt::Error naming the pixel; render the later samples onto the film instead
-/// (render_block continues a film). Also throws when the sizes differ or only one of the
-/// films has AOVs. `into` is unchanged when it throws.
+/// Copies into `into` every pixel record of `from` that holds samples, and adds `from`'s
+/// splat sums to `into`'s (integers: exact, whatever the split). For pixels that hold
+/// samples in both films this cannot be exact (see the top of this header), so it throws
+/// librt::Error naming the pixel; render the later samples onto the film instead
+/// (render_block continues a film). Also throws when the sizes differ, only one of the
+/// films has AOVs, or the splat films differ in size, filter or scale. `into` is unchanged
+/// when it throws.
 LIBRT_API void merge(Film& into, const Film& from);
 
+/// The divisor of a film's splat sums: the camera samples per pixel of the render, the
+/// total over its pixels divided by their number. Every pixel's count for a complete render
+/// (bit for bit, however it was split); the mean count for one stopped early, which keeps
+/// the splats an unbiased estimate when each camera sample brings one light path
+/// (splat_film.h). 0 for a film holding no samples.
+[[nodiscard]] LIBRT_API double splat_samples_per_pixel(const Film& film);
+
 /// The image: each pixel the mean of its finite radiance samples, float(sum / finite),
-/// black when it has none.
+/// black when it has none; plus, when the film has splats, splats->resolve(
+/// splat_samples_per_pixel(film)) (a float addition; nothing for a film of no samples).
+/// Throws librt::Error when the splat film's size is not the film's (a region film, whose
+/// splats cover the whole image: merge it into a whole-image film first).
 [[nodiscard]] LIBRT_API Image resolve(const Film& film);
 
 /// Every layer of the film: beauty (resolve()), the per-pixel sample count, and when the

@@ -25,7 +25,9 @@ public:
     /// Adds the render `full`, whose first half of samples per pixel is `half` (the film as
     /// it was after them). A render with fewer than 2 samples in a pixel, or whose
     /// estimated variance is 0 or not finite, is skipped (returns false). The variance is
-    /// summed over pixels in index order: the same films give the same bits.
+    /// summed over pixels in index order: the same films give the same bits. A render with
+    /// splats counts them as resolve() does (pixel mean plus splat sums over the samples
+    /// per pixel), each half with its own sums; `half` must then have splats too.
     bool add(const Film& half, const Film& full);
 
     /// Renders added so far.

@@ -54,7 +54,7 @@ struct RenderStats {
     /// cost measure of efficiency figures (error^2 x CPU seconds). Includes any other
     /// thread of the process working at the same time.
     double cpu_seconds = 0.0;
-    std::uint64_t samples = 0;            ///< camera samples taken (Integrator::li calls)
+    std::uint64_t samples = 0;            ///< camera samples taken (li / li_splatting calls)
     std::uint64_t nonfinite_samples = 0;  ///< samples dropped because a channel was NaN or infinite
     bool cancelled = false;               ///< true when `cancel` stopped the render before the end
     bool time_limit_reached = false;      ///< render_progressive: stopped by its time limit
@@ -76,6 +76,9 @@ LIBRT_API void validate(const RenderSettings& settings);
 /// render_block; render(), render_progressive() and render_mpi() call it themselves.
 /// Honours settings.cancel (stats.cancelled); progress is not reported.
 ///
+/// A splatting integrator's training passes splat onto the scratch film's own splats,
+/// which PassCombination counts (pass_combination.h).
+///
 /// Keeping the passes: when `kept` is not null and integrator.keeps_training_samples()
 /// (path guiding's keep_training_samples), every pass of at least 2 samples per pixel is
 /// rendered in two halves of its samples (the same sums as one run, so the same guide) and
@@ -95,9 +98,15 @@ LIBRT_API RenderStats train(const Scene& scene, const Camera& camera, Integrator
 /// of the whole image and samples [0, samples_per_pixel) onto an empty Film, resolved;
 /// with kept training passes (train(); samples_per_pixel >= 2) the film is rendered in
 /// its two halves and the image is PassCombination::combined of the passes and the film.
+/// Splatting (integrator.splats(), asked once per block): each sample calls li_splatting
+/// with a SplatTarget of the camera and the film's splats (Film::splats, created over the
+/// whole image), and the image adds them divided by the samples per pixel (resolve()):
+/// integer sums, so the same bits for any thread count and tile size too. An integrator
+/// that does not splat is called through li() alone, as it always was.
 /// Cancellation is checked before every pixel and every 64 samples of a pixel, so a
 /// cancelled render returns after at most 64 samples' work per thread; pixels not yet
-/// finished stay black and stats->cancelled is set. Throws librt::Error for invalid
+/// finished stay black (the others show their mean plus the splats over the mean sample
+/// count, splat_samples_per_pixel) and stats->cancelled is set. Throws librt::Error for invalid
 /// settings or a film too large to allocate (before allocating it); an exception thrown
 /// by the integrator stops the render and is rethrown.
 [[nodiscard]] LIBRT_API Image render(const Scene& scene, const Camera& camera,
@@ -120,11 +129,14 @@ struct RenderBlock {
 /// path guiding, trained by train(); train() says how kept training passes join a
 /// film rendered this way) for `scene`; settings.samples_per_pixel is not used.
 /// The film must have the camera's size; with AOVs, its AOV sums are rendered in the same
-/// pass. Threads, seeding, progress and cancellation work as in render(); a cancelled block
-/// leaves every pixel holding some number of samples in [first, first + count], its sums
-/// consistent with that count. Throws librt::Error naming the parameter for an invalid
-/// block (outside the film, first + count > 2^20) or a pixel holding a different number of
-/// samples, before rendering anything.
+/// pass. A splatting integrator's splats are added to film.splats (created at the camera's
+/// size when empty; another size throws), over the whole image whatever the block covers:
+/// blocks rendered onto one film, or onto several merged by merge(), sum their splats
+/// exactly, and resolve() of the complete film is render()'s image. Threads, seeding, progress and
+/// cancellation work as in render(); a cancelled block leaves every pixel holding some number of
+/// samples in [first, first + count], its sums consistent with that count. Throws librt::Error
+/// naming the parameter for an invalid block (outside the film, first + count > 2^20) or a pixel
+/// holding a different number of samples, before rendering anything.
 LIBRT_API RenderStats render_block(const Scene& scene, const Camera& camera,
                                    const Integrator& integrator, Film& film,
                                    const RenderBlock& block, const RenderSettings& settings);
@@ -142,9 +154,11 @@ struct FilmOrigin {
 /// [origin.x, origin.x + film.width) x [origin.y, origin.y + film.height), which must lie
 /// within the camera's image. Pixel (x, y) of the image is film.at(x - origin.x, y -
 /// origin.y) and gets exactly the samples and sums it gets in a film of the whole image.
-/// Everything else (threads, seeding, progress, cancellation, errors) is as in
-/// render_block above, which is this function with origin (0, 0) and a film of the
-/// camera's size.
+/// Splats still go to film.splats of the whole image (the camera's size: a region film
+/// cannot be resolve()d with them until merged into a whole-image film; render_mpi sums
+/// them across tiles and ranks itself). Everything else (threads, seeding, progress,
+/// cancellation, errors) is as in render_block above, which is this function with origin
+/// (0, 0) and a film of the camera's size.
 LIBRT_API RenderStats render_block(const Scene& scene, const Camera& camera,
                                    const Integrator& integrator, Film& film, FilmOrigin origin,
                                    const RenderBlock& block, const RenderSettings& settings);
@@ -185,7 +199,9 @@ LIBRT_API void validate(const ProgressiveSettings& settings);
 /// passes joined to the film as render() joins them (train()), so it equals render()'s
 /// image bit for bit. The film itself only ever holds the image's own samples: shown
 /// between passes, it is the plainer (noisier) estimate; a render stopped early (time
-/// limit, cancel) or a film resumed past its half gives resolve(film). Keeping costs one
+/// limit, cancel) or a film resumed past its half gives resolve(film). A splatting
+/// integrator's splats travel with the film (Film::splats) from pass to pass; as the film
+/// holds whole passes, they resolve over its uniform sample count. Keeping costs one
 /// more film (the film at half the samples) and ends the pass that crosses the half there.
 LIBRT_API RenderStats render_progressive(const Scene& scene, const Camera& camera,
                                          Integrator& integrator, Film& film,

@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 // A film for contributions that land on arbitrary pixels (light tracing, the t = 1
@@ -86,6 +87,13 @@ public:
     /// its counts; the clips of this merge count in clipped(). Throws librt::Error when the
     /// size, filter or fraction_bits differ; this film is then unchanged.
     void merge(const SplatFilm& other);
+
+    /// merge() of raw sums: adds `sums` (another film's sums(), e.g. received from another
+    /// process, of the same size, filter and fraction_bits - which this cannot check) and its
+    /// counts. Throws librt::Error when sums.size() is not 3 width height; this film is then
+    /// unchanged.
+    void merge_sums(std::span<const std::int64_t> sums, std::uint64_t clipped,
+                    std::uint64_t non_finite);
 
     /// The image: each pixel's sums times 2^-fraction_bits divided by samples_per_pixel
     /// (finite, > 0; throws librt::Error otherwise), as float.
