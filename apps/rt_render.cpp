@@ -38,7 +38,7 @@ struct Options {
     std::string camera;
     int max_depth = 5;
     std::string light_choice = "power";  // power | bounded (LightChoice)
-    std::string integrator = "path";     // path | bdpt
+    std::string integrator = "path";     // path | bdpt | brute
     int threads = 0;
     std::uint64_t seed = 0;
     double time_limit = 0.0;
@@ -73,14 +73,14 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         bad("--max-depth", std::to_string(o.max_depth), "must be in [0, 1000]");
     if (o.light_choice != "power" && o.light_choice != "bounded")
         bad("--light-choice", o.light_choice, "must be power or bounded");
-    if (o.integrator != "path" && o.integrator != "bdpt")
-        bad("--integrator", o.integrator, "must be path or bdpt");
+    if (o.integrator != "path" && o.integrator != "bdpt" && o.integrator != "brute")
+        bad("--integrator", o.integrator, "must be path, bdpt or brute");
     if (o.integrator == "bdpt" && o.max_depth > BidirectionalSettings::kMaxDepth)
         bad("--max-depth", std::to_string(o.max_depth),
             "must be in [0, 64] with --integrator bdpt");
     static_assert(BidirectionalSettings::kMaxDepth == 64, "the message above");
-    if (o.integrator == "bdpt" && o.sampling.guiding)
-        bad("--guiding", "on", "path guiding is PathTracer's: use --integrator path");
+    if (o.integrator != "path" && o.sampling.guiding)
+        bad("--guiding", "on", "path guiding is the path tracer's: use --integrator path");
     if (o.sampling.guiding_passes < 1 || o.sampling.guiding_passes > 20)
         bad("--guiding-passes", std::to_string(o.sampling.guiding_passes), "must be in [1, 20]");
     if (!std::isfinite(o.time_limit) || o.time_limit < 0.0)
@@ -144,8 +144,13 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     BidirectionalSettings bd;
     bd.max_depth = std::min(o.max_depth, BidirectionalSettings::kMaxDepth);
     BidirectionalPathTracer bidirectional(bd);
+    PathTracerSettings brute_settings = pt;
+    brute_settings.guiding = {};
+    BruteForcePathTracer brute(brute_settings);
     GuardedIntegrator& integrator =
-        o.integrator == "bdpt" ? static_cast<GuardedIntegrator&>(bidirectional) : path_tracer;
+        o.integrator == "bdpt"    ? static_cast<GuardedIntegrator&>(bidirectional)
+        : o.integrator == "brute" ? static_cast<GuardedIntegrator&>(brute)
+                                  : path_tracer;
     if (job.distributed()) {
         apps::MpiJobSettings ms;
         ms.render.samples_per_pixel = o.spp;
@@ -192,9 +197,10 @@ int main(int argc, char** argv) {
                    "The file's camera: index (in node order) or name; default: the first");
     app.add_option("--max-depth", o.max_depth, "Scattering events per path")->capture_default_str();
     app.add_option("--integrator", o.integrator,
-                   "path (unidirectional, MIS) or bdpt (bidirectional: paths from the camera "
-                   "and from the lights joined, for light that reaches the camera through small "
-                   "bright regions or caustics)")
+                   "path (unidirectional, MIS), bdpt (bidirectional: paths from the camera and "
+                   "from the lights joined, for light that reaches the camera through small "
+                   "bright regions or caustics) or brute (no light sampling: a reference that "
+                   "point, spot and sun lights cannot light)")
         ->capture_default_str();
     app.add_option("--light-choice", o.light_choice,
                    "How a shading point chooses the light it samples: power (by power alone) or "

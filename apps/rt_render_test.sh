@@ -31,6 +31,19 @@ bad_ms=$elapsed
 [ "$bad_ms" -lt 1000 ] || fail "bad extension took ${bad_ms} ms"
 [ -z "$(ls -A "$dir/out")" ] || fail "bad extension wrote $(ls -A "$dir/out")"
 
+# 1b. Bad integrator options: named with their value before the scene is looked at.
+status=0
+"$app" "$dir/missing.glb" --integrator lightcuts -o "$dir/out/image.png" 2>"$dir/err.txt" >/dev/null || status=$?
+[ "$status" -eq 1 ] || fail "--integrator lightcuts: exit status $status, expected 1"
+grep -q -- "--integrator = lightcuts: must be path, bdpt or brute" "$dir/err.txt" ||
+    fail "--integrator: message: $(cat "$dir/err.txt")"
+status=0
+"$app" "$dir/missing.glb" --integrator bdpt --max-depth 65 -o "$dir/out/image.png" 2>"$dir/err.txt" >/dev/null || status=$?
+[ "$status" -eq 1 ] || fail "bdpt --max-depth 65: exit status $status, expected 1"
+grep -q -- "--max-depth = 65: must be in \[0, 64\] with --integrator bdpt" "$dir/err.txt" ||
+    fail "bdpt --max-depth: message: $(cat "$dir/err.txt")"
+[ -z "$(ls -A "$dir/out")" ] || fail "bad integrator options wrote $(ls -A "$dir/out")"
+
 # 2. SIGINT during a render that would take hours.
 out="$dir/out/interrupted.png"
 "$app" "$scene" --size 256x256 --spp 1000000 --threads 2 -o "$out" 2>"$dir/err.txt" >/dev/null &

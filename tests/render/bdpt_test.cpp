@@ -15,6 +15,7 @@
 #include <librt/render/material.h>
 #include <librt/render/point_light.h>
 #include <librt/render/quad_light.h>
+#include <librt/render/renderer.h>
 #include <librt/render/sampler.h>
 #include <librt/render/scene.h>
 #include <librt/render/splat_film.h>
@@ -220,6 +221,45 @@ TEST(Bidirectional, LightTracingStrategiesAgreeThroughASplatFilm) {
             EXPECT_NEAR(ma, mb, 5.0 * std::sqrt(va / kRenders + vb / kRenders) + 1e-6)
                 << "block " << blk << " channel " << c;
         }
+}
+
+}  // namespace
+}  // namespace librt
+
+namespace librt {
+namespace {
+
+// Through render(): the splats of the t = 1 strategies land in pixels other threads
+// render, and the image is still the same bits for any thread count and tile size.
+TEST(Bidirectional, RenderIsIdenticalForAnyThreadCountAndTileSize) {
+    Scene scene;
+    build_box(scene, true, true, true);
+    CameraSettings cs;
+    cs.position = {0.0f, 1.0f, 3.4f};
+    cs.look_at = {0.0f, 1.0f, 0.0f};
+    cs.vertical_fov_degrees = 40.0f;
+    cs.width = cs.height = 24;
+    cs.pixel_jitter = PixelJitter::Gaussian;
+    const Camera camera(cs);
+    BidirectionalSettings bd;
+    bd.max_depth = 4;
+    BidirectionalPathTracer bdpt(bd);
+    RenderSettings rs;
+    rs.samples_per_pixel = 4;
+    rs.threads = 1;
+    rs.tile_size = 16;
+    const Image one = render(scene, camera, bdpt, rs);
+    rs.threads = 2;
+    rs.tile_size = 5;
+    const Image two = render(scene, camera, bdpt, rs);
+    ASSERT_EQ(one.width, two.width);
+    double sum = 0.0;
+    for (int y = 0; y < one.height; ++y)
+        for (int x = 0; x < one.width; ++x) {
+            ASSERT_EQ(one.at(x, y), two.at(x, y)) << x << "," << y;
+            sum += double(one.at(x, y).x);
+        }
+    EXPECT_GT(sum, 0.0);
 }
 
 }  // namespace
