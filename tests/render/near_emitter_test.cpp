@@ -265,8 +265,11 @@ TEST(NearEmitter, APanelDoesNotLightItself) {
         ASSERT_EQ(l, glm::vec3(15.0f)) << "ray " << i;
     }
     // The light seam itself: nothing to sample, and no density, from a point of the panel.
-    const TriangleLight tl{panel.positions[0], panel.positions[1], panel.positions[2],
-                           glm::vec3(15.0f)};
+    TriangleLight tl;
+    tl.p0 = panel.positions[0];
+    tl.p1 = panel.positions[1];
+    tl.p2 = panel.positions[2];
+    tl.radiance = glm::vec3(15.0f);
     const glm::vec3 on{0.1f, 1.99f, -0.1f};
     EXPECT_FALSE(sample_li(tl, on, {0.3f, 0.6f}).valid());
     EXPECT_EQ(pdf_li(tl, on, glm::normalize(glm::vec3(0.2f, 1e-3f, 0.1f))), 0.0f);
