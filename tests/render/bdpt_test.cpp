@@ -11,6 +11,7 @@
 #include <librt/render/bdpt.h>
 #include <librt/render/camera.h>
 #include <librt/render/camera_importance.h>
+#include <librt/render/environment_light.h>
 #include <librt/render/integrators.h>
 #include <librt/render/material.h>
 #include <librt/render/point_light.h>
@@ -131,6 +132,27 @@ TEST(Bidirectional, AgreesWithBruteForceUnderATwoSidedPanelWithGlassAndMetal) {
     const auto ref = render_stats(scene, brute, box_camera(), 2048, 3);
     const auto img = render_stats(scene, bdpt, box_camera(), 128, 4);
     expect_agree(img, ref, "panel");
+}
+
+// A light at infinity starts no light subpath; when the light sampler picks it for the
+// light subpath, next-event estimation must still run (it draws its own light), and the
+// panel's paths keep their bidirectional weights. The box is open toward the camera, so
+// the sky lights it too.
+TEST(Bidirectional, AgreesWithBruteForceUnderASkyAndAPanel) {
+    Scene scene;
+    build_box(scene, true, false, true);
+    (void)scene.add_environment_light(EnvironmentLight::constant({0.6f, 0.7f, 0.9f}));
+    scene.commit();
+    PathTracerSettings pt;
+    pt.max_depth = 3;
+    pt.russian_roulette = false;
+    BidirectionalSettings bd;
+    bd.max_depth = 3;
+    BruteForcePathTracer brute(pt);
+    BidirectionalPathTracer bdpt(bd);
+    const auto ref = render_stats(scene, brute, box_camera(), 1024, 7);
+    const auto img = render_stats(scene, bdpt, box_camera(), 128, 8);
+    expect_agree(img, ref, "sky and panel");
 }
 
 TEST(Bidirectional, AgreesWithThePathTracerUnderAPointLight) {

@@ -508,6 +508,9 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
 
     glm::vec3 radiance(0.0f);
     PathVertex sampled{};
+    // Without a light subpath, s = 1's weight still swaps its vertex into lv[0] and back:
+    // give that slot a value.
+    if (nl == 0) lv[0] = PathVertex{};
 
     // Lights at infinity: what the camera walk's last ray met, against next-event
     // estimation at the vertex it left (s = 0 and s = 1 only: PathTracer's weights).
@@ -528,7 +531,8 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
 
     for (int t = 1; t <= nc; ++t) {
         PathVertex& pt = cv[t - 1];
-        for (int s = 0; s <= nl; ++s) {
+        // s = 1 (next-event estimation) needs no light subpath: it draws its own light.
+        for (int s = 0; s <= std::max(nl, 1); ++s) {
             const int depth = s + t - 2;
             if ((s == 1 && t == 1) || depth < 0 || depth > settings_.max_depth) continue;
             if (t == 1 && !tracing) continue;
