@@ -99,6 +99,24 @@ void expect_agree(const testing::StatImage& a, const testing::StatImage& b, cons
             << what << " image channel " << c;
 }
 
+/// Renders `scene` at max depth `depth` with the bidirectional tracer (128 spp) and with
+/// the reference integrator `Reference` (ref_spp; brute force or the MIS path tracer), and
+/// expects them to agree (expect_agree).
+template <class Reference>
+void expect_matches(const Scene& scene, int depth, int ref_spp, std::uint64_t seed,
+                    const char* what) {
+    PathTracerSettings pt;
+    pt.max_depth = depth;
+    pt.russian_roulette = false;
+    BidirectionalSettings bd;
+    bd.max_depth = depth;
+    Reference reference(pt);
+    BidirectionalPathTracer bdpt(bd);
+    const auto ref = render_stats(scene, reference, box_camera(), ref_spp, seed);
+    const auto img = render_stats(scene, bdpt, box_camera(), 128, seed + 1);
+    expect_agree(img, ref, what);
+}
+
 TEST(Bidirectional, RejectsDepthOutOfRange) {
     EXPECT_THROW(BidirectionalPathTracer(BidirectionalSettings{-1}), Error);
     EXPECT_THROW(BidirectionalPathTracer(BidirectionalSettings{65}), Error);
@@ -107,31 +125,13 @@ TEST(Bidirectional, RejectsDepthOutOfRange) {
 TEST(Bidirectional, AgreesWithBruteForceUnderAQuadLight) {
     Scene scene;
     build_box(scene, false, false, false);
-    PathTracerSettings pt;
-    pt.max_depth = 3;
-    pt.russian_roulette = false;
-    BidirectionalSettings bd;
-    bd.max_depth = 3;
-    BruteForcePathTracer brute(pt);
-    BidirectionalPathTracer bdpt(bd);
-    const auto ref = render_stats(scene, brute, box_camera(), 1024, 1);
-    const auto img = render_stats(scene, bdpt, box_camera(), 128, 2);
-    expect_agree(img, ref, "quad light");
+    expect_matches<BruteForcePathTracer>(scene, 3, 1024, 1, "quad light");
 }
 
 TEST(Bidirectional, AgreesWithBruteForceUnderATwoSidedPanelWithGlassAndMetal) {
     Scene scene;
     build_box(scene, true, true, true);
-    PathTracerSettings pt;
-    pt.max_depth = 4;
-    pt.russian_roulette = false;
-    BidirectionalSettings bd;
-    bd.max_depth = 4;
-    BruteForcePathTracer brute(pt);
-    BidirectionalPathTracer bdpt(bd);
-    const auto ref = render_stats(scene, brute, box_camera(), 2048, 3);
-    const auto img = render_stats(scene, bdpt, box_camera(), 128, 4);
-    expect_agree(img, ref, "panel");
+    expect_matches<BruteForcePathTracer>(scene, 4, 2048, 3, "panel");
 }
 
 // A light at infinity starts no light subpath; when the light sampler picks it for the
@@ -143,16 +143,7 @@ TEST(Bidirectional, AgreesWithBruteForceUnderASkyAndAPanel) {
     build_box(scene, true, false, true);
     (void)scene.add_environment_light(EnvironmentLight::constant({0.6f, 0.7f, 0.9f}));
     scene.commit();
-    PathTracerSettings pt;
-    pt.max_depth = 3;
-    pt.russian_roulette = false;
-    BidirectionalSettings bd;
-    bd.max_depth = 3;
-    BruteForcePathTracer brute(pt);
-    BidirectionalPathTracer bdpt(bd);
-    const auto ref = render_stats(scene, brute, box_camera(), 1024, 7);
-    const auto img = render_stats(scene, bdpt, box_camera(), 128, 8);
-    expect_agree(img, ref, "sky and panel");
+    expect_matches<BruteForcePathTracer>(scene, 3, 1024, 7, "sky and panel");
 }
 
 TEST(Bidirectional, AgreesWithThePathTracerUnderAPointLight) {
@@ -160,16 +151,7 @@ TEST(Bidirectional, AgreesWithThePathTracerUnderAPointLight) {
     build_box(scene, false, true, true);
     (void)scene.add_point_light(PointLight::from_power({0.3f, 1.5f, 0.0f}, glm::vec3(20.0f)));
     scene.commit();
-    PathTracerSettings pt;
-    pt.max_depth = 3;
-    pt.russian_roulette = false;
-    BidirectionalSettings bd;
-    bd.max_depth = 3;
-    PathTracer tracer(pt);
-    BidirectionalPathTracer bdpt(bd);
-    const auto ref = render_stats(scene, tracer, box_camera(), 512, 5);
-    const auto img = render_stats(scene, bdpt, box_camera(), 128, 6);
-    expect_agree(img, ref, "point light");
+    expect_matches<PathTracer>(scene, 3, 512, 5, "point light");
 }
 
 // The t = 1 strategies through a real camera and a splat film: per render, each pixel's

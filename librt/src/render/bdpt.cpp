@@ -62,6 +62,24 @@ struct PathVertex {
     glm::vec3 wo;              ///< Surface: unit direction back along the walk (world)
 };
 
+/// An endpoint vertex (on the lens, or on a light: `light`), its pdf_rev and material empty.
+PathVertex endpoint(VertexKind kind, const glm::vec3& p, const glm::vec3& n, const glm::vec3& beta,
+                    float pdf_fwd, std::uint32_t light, bool delta_position) {
+    PathVertex v{};
+    v.kind = kind;
+    v.delta = false;
+    v.delta_position = delta_position;
+    v.p = p;
+    v.ng = n;
+    v.ns = n;
+    v.beta = beta;
+    v.pdf_fwd = pdf_fwd;
+    v.pdf_rev = 0.0f;
+    v.light = light;
+    v.material = nullptr;
+    return v;
+}
+
 /// What every piece of a sample needs.
 struct Context {
     const Scene& scene;
@@ -447,18 +465,8 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
     ray.t_max *= len;
 
     // The camera subpath: z0 on the lens, then up to max_depth + 1 surface vertices.
-    PathVertex& z0 = cv[0];
-    z0.kind = VertexKind::Camera;
-    z0.delta = false;
-    z0.delta_position = false;
-    z0.p = ray.origin;
-    z0.ng = glm::vec3(0.0f);
-    z0.ns = glm::vec3(0.0f);
-    z0.beta = glm::vec3(1.0f);
-    z0.pdf_fwd = 1.0f;
-    z0.pdf_rev = 0.0f;
-    z0.light = kInvalidId;
-    z0.material = nullptr;
+    cv[0] = endpoint(VertexKind::Camera, ray.origin, glm::vec3(0.0f), glm::vec3(1.0f), 1.0f,
+                     kInvalidId, false);
     // The density of the camera ray's direction (what the t = 1 strategy's ratio needs).
     const float camera_pdf = tracing ? pdf_we(*c.camera, ray, c.margin).dir : 1.0f;
     Escape escape;
@@ -479,18 +487,10 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
         if (chosen.valid() && !is_infinite(scene.lights()[chosen.light])) {
             const LightLeSample le = sample_le(scene.lights()[chosen.light], sphere_, u_pos, u_dir);
             if (le.valid() && max_component(le.radiance) > 0.0f) {
-                PathVertex& y0 = lv[0];
-                y0.kind = VertexKind::Light;
-                y0.delta = false;
-                y0.delta_position = le.delta_position;
-                y0.p = le.origin;
-                y0.ng = le.normal;
-                y0.ns = le.normal;
-                y0.pdf_fwd = chosen.pmf * le.pdf_pos;
-                y0.pdf_rev = 0.0f;
-                y0.beta = le.radiance / y0.pdf_fwd;
-                y0.light = chosen.light;
-                y0.material = nullptr;
+                const float pdf0 = chosen.pmf * le.pdf_pos;
+                lv[0] = endpoint(VertexKind::Light, le.origin, le.normal, le.radiance / pdf0, pdf0,
+                                 chosen.light, le.delta_position);
+                const PathVertex& y0 = lv[0];
                 const float cos0 = glm::dot(le.normal, le.normal) > 0.0f
                                        ? std::fabs(glm::dot(le.normal, le.direction))
                                        : 1.0f;
@@ -576,18 +576,11 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
                             ? 1.0f
                             : power_heuristic(chosen.pmf * ls.pdf, bsdf_pdf(pt, pt.wo, ls.wi));
                 } else {
-                    sampled.kind = VertexKind::Light;
-                    sampled.delta = false;
-                    sampled.delta_position = ls.is_delta;
-                    sampled.p = pt.p + ls.wi * ls.distance;
-                    sampled.ng = light_normal(light, sampled.p);
-                    sampled.ns = sampled.ng;
-                    sampled.beta = glm::vec3(0.0f);
-                    sampled.pdf_rev = 0.0f;
-                    sampled.light = chosen.light;
-                    sampled.material = nullptr;
-                    const LightLePdf le = pdf_le(light, sphere_, sampled.p, sampled.ng, -ls.wi);
-                    sampled.pdf_fwd = chosen.pmf * le.pos;
+                    const glm::vec3 q = pt.p + ls.wi * ls.distance;
+                    const glm::vec3 nq = light_normal(light, q);
+                    const LightLePdf le = pdf_le(light, sphere_, q, nq, -ls.wi);
+                    sampled = endpoint(VertexKind::Light, q, nq, glm::vec3(0.0f),
+                                       chosen.pmf * le.pos, chosen.light, ls.is_delta);
                     w = mis_weight(c, lv, cv, sampled, 1, t);
                 }
                 radiance += contrib * w;
@@ -607,17 +600,8 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
                 if (!(max_component(contrib) > 0.0f)) continue;
                 contrib *= segment(scene, qs.p, qs.ng, cw.lens_point);
                 if (!(max_component(contrib) > 0.0f)) continue;
-                sampled.kind = VertexKind::Camera;
-                sampled.delta = false;
-                sampled.delta_position = false;
-                sampled.p = cw.lens_point;
-                sampled.ng = glm::vec3(0.0f);
-                sampled.ns = glm::vec3(0.0f);
-                sampled.beta = glm::vec3(0.0f);
-                sampled.pdf_fwd = cw.pdf_pos;
-                sampled.pdf_rev = 0.0f;
-                sampled.light = kInvalidId;
-                sampled.material = nullptr;
+                sampled = endpoint(VertexKind::Camera, cw.lens_point, glm::vec3(0.0f),
+                                   glm::vec3(0.0f), cw.pdf_pos, kInvalidId, false);
                 const float w = mis_weight(c, lv, cv, sampled, s, 1);
                 c.film->add(cw.raster, contrib * w);
                 continue;
