@@ -82,6 +82,17 @@ Pinhole box_camera() {
     return cam;
 }
 
+/// box_camera() as a librt Camera of size x size pixels, with the report's Gaussian jitter.
+CameraSettings box_camera_settings(int size) {
+    CameraSettings cs;
+    cs.position = {0.0f, 1.0f, 3.4f};
+    cs.look_at = {0.0f, 1.0f, 0.0f};
+    cs.vertical_fov_degrees = 40.0f;
+    cs.width = cs.height = size;
+    cs.pixel_jitter = PixelJitter::Gaussian;
+    return cs;
+}
+
 /// Compares two renders block by block (4 x 4 blocks of 4 x 4 pixels) and over the image.
 void expect_agree(const testing::StatImage& a, const testing::StatImage& b, const char* what) {
     for (int by = 0; by < 4; ++by)
@@ -160,13 +171,7 @@ TEST(Bidirectional, AgreesWithThePathTracerUnderAPointLight) {
 TEST(Bidirectional, LightTracingStrategiesAgreeThroughASplatFilm) {
     Scene scene;
     build_box(scene, true, true, false);
-    CameraSettings cs;
-    cs.position = {0.0f, 1.0f, 3.4f};
-    cs.look_at = {0.0f, 1.0f, 0.0f};
-    cs.vertical_fov_degrees = 40.0f;
-    cs.width = cs.height = 16;
-    cs.pixel_jitter = PixelJitter::Gaussian;
-    const Camera camera(cs);
+    const Camera camera(box_camera_settings(16));
     BidirectionalSettings bd;
     bd.max_depth = 3;
     BidirectionalPathTracer bdpt(bd);
@@ -238,13 +243,7 @@ namespace {
 TEST(Bidirectional, RenderIsIdenticalForAnyThreadCountAndTileSize) {
     Scene scene;
     build_box(scene, true, true, true);
-    CameraSettings cs;
-    cs.position = {0.0f, 1.0f, 3.4f};
-    cs.look_at = {0.0f, 1.0f, 0.0f};
-    cs.vertical_fov_degrees = 40.0f;
-    cs.width = cs.height = 24;
-    cs.pixel_jitter = PixelJitter::Gaussian;
-    const Camera camera(cs);
+    const Camera camera(box_camera_settings(24));
     BidirectionalSettings bd;
     bd.max_depth = 4;
     BidirectionalPathTracer bdpt(bd);
