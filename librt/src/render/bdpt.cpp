@@ -5,6 +5,7 @@
 // away from it for the light subpath) and in reverse.
 
 #include "bsdf_dispatch.h"
+#include "render/mis.h"
 #include "render/transmittance.h"
 
 #include <librt/core/error.h>
@@ -29,8 +30,6 @@
 namespace librt {
 namespace {
 
-float max_component(const glm::vec3& v) { return std::max(std::max(v.x, v.y), v.z); }
-
 /// Sampler dimensions of the light subpath: its light choice (1D), origin (2D) and
 /// direction (2D), then per light vertex j >= 1 k_light_per_vertex dimensions from
 /// k_light_vertices + (j - 1) k_light_per_vertex: lobe (1D), direction (2D), lens point of
@@ -40,7 +39,6 @@ float max_component(const glm::vec3& v) { return std::max(std::max(v.x, v.y), v.
 constexpr std::uint32_t k_light_base = 1u << 15u;
 constexpr std::uint32_t k_light_vertices = k_light_base + 5;
 constexpr std::uint32_t k_light_per_vertex = 5;
-constexpr std::uint32_t k_max_crossing_decisions = 4096;
 
 enum class VertexKind : std::uint8_t { Camera, Light, Surface };
 
@@ -90,13 +88,6 @@ struct Context {
     bool light_tracing;  ///< t = 1 strategies are used (and weighed)
     int max_depth;
 };
-
-float power_heuristic(float a, float b) {
-    if (!(a > 0.0f)) return 0.0f;
-    if (std::isinf(a)) return std::isinf(b) ? 0.5f : 1.0f;
-    const float r = b / a;
-    return 1.0f / (1.0f + r * r);
-}
 
 /// A shadow segment from a (normal na) to b (normal nb; either may be 0, a point): the
 /// fraction of light it lets through (transmittance, or 1 / 0 without Null lobes).
@@ -337,22 +328,16 @@ int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transp
         const BsdfLobe lobes = bsdfs::lobes_of(m);
         const glm::vec3 albedo = m.albedo_texture < 0 ? m.albedo : c.scene.albedo(hit);
         if (has(lobes, BsdfLobe::Null)) {
-            // Cross with probability mean(T), weighted T / p, or scatter weighted 1 / (1 - p).
-            const ShadingPoint sp{
-                ShadingFrame::at(hit.shading_normal, hit.geometric_normal, ray.direction), albedo};
-            const glm::vec3 through =
-                bsdfs::pass_through_of(m, sp, sp.frame.to_local(-ray.direction));
-            const float p = std::clamp((through.x + through.y + through.z) / 3.0f, 0.0f, 1.0f);
-            sampler.set_dimension(SampleDimensions::k_pass_through + decisions++);
-            if (sampler.next_1d() < p) {
-                beta *= through / p;
-                if (decisions > k_max_crossing_decisions) break;
+            // Crossed as PathTracer crosses it (cross_null).
+            const Crossing x = cross_null(c.scene, m, hit, ray.direction, sampler, decisions++);
+            beta *= x.weight;
+            if (x.crossed) {
+                if (decisions > kMaxCrossingDecisions) break;
                 ray.origin = offset_ray_origin(hit.point, hit.geometric_normal, ray.direction);
                 ray.t_min = 0.0f;
                 ray.t_max = std::numeric_limits<float>::infinity();
                 continue;
             }
-            beta /= 1.0f - p;
         }
         PathVertex& v = path[n];
         PathVertex& prev = path[n - 1];

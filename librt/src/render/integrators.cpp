@@ -6,6 +6,7 @@
 #include "geometry/ray_copy.h"
 #include "render/guiding/path_recorder.h"
 #include "render/guiding/sd_tree.h"
+#include "render/mis.h"
 #include "render/transmittance.h"
 
 #include <librt/core/error.h>
@@ -40,18 +41,6 @@ void check(const PathTracerSettings& s) {
     check_depth("max_depth", s.max_depth, 0, kMaxDepthLimit);
     check_depth("russian_roulette_depth", s.russian_roulette_depth, 0, kMaxDepthLimit);
     guiding::validate(s.guiding);
-}
-
-float max_component(const glm::vec3& v) { return std::max(std::max(v.x, v.y), v.z); }
-
-/// The power heuristic with exponent 2 (Veach 1997, eq. 9.13, one sample per strategy):
-/// the weight a^2 / (a^2 + b^2) of the strategy of density a against the one of density b,
-/// written as 1 / (1 + (b/a)^2) so that huge densities (tiny lights) do not overflow.
-float power_heuristic(float a, float b) {
-    if (!(a > 0.0f)) return 0.0f;
-    if (std::isinf(a)) return std::isinf(b) ? 0.5f : 1.0f;
-    const float r = b / a;
-    return 1.0f / (1.0f + r * r);
 }
 
 /// Which strategies a path uses at its non-specular vertices.
@@ -199,11 +188,6 @@ struct Vertex {
                                                 glm::vec2 u) {
     return sample_li(light, p, u);
 }
-
-/// Crossing decisions (Null lobes, bsdf.h) a path may take before it ends: a bound, so
-/// that a path grazing a stack of panes still ends (it also covers the max_depth bounces
-/// between panes).
-constexpr std::uint32_t kMaxCrossingDecisions = 4096;
 
 /// Next-event estimation at a non-specular hit: the light sampler chooses a light, a
 /// direction toward it is drawn, and its contribution f L |cos| / pdf is returned if a
@@ -365,30 +349,6 @@ GuidedSample sample_guided(Vertex& v, const guiding::DirLeaf& leaf, float alpha,
     ray.direction = direction;
     ray.t_min = 0.0f;
     ray.t_max = std::numeric_limits<float>::infinity();
-}
-
-/// What a path does at a surface with a Null lobe, and the factor its throughput takes.
-struct Crossing {
-    bool crossed = false;  ///< true: goes on along the same direction; false: scatters here
-    glm::vec3 weight{1.0f};
-};
-
-/// The decision at a hit with a Null lobe: cross with probability p, the mean of its
-/// colour T, weighted T / p, else scatter off the rest of the BSDF, weighted 1 / (1 - p).
-/// The number comes from dimension k_pass_through + `decision`: a crossing is no bounce,
-/// and must not reuse a bounce's numbers. Out of line (rare, kept out of the path loop's
-/// hot blocks) and returning its weight: taking the throughput by reference, it made the
-/// loop keep that in memory (callgrind on the synthesis: +13 instructions per sample).
-[[gnu::noinline]] Crossing cross_null(const Scene& scene, const Material& m, const Hit& hit,
-                                      const glm::vec3& direction, Sampler& sampler,
-                                      std::uint32_t decision) {
-    const glm::vec3 albedo = m.albedo_texture < 0 ? m.albedo : scene.albedo(hit);
-    Vertex v(m, hit, direction, albedo);
-    const glm::vec3 through = bsdfs::pass_through_of(m, v.point(), v.wo());
-    const float p = std::clamp((through.x + through.y + through.z) / 3.0f, 0.0f, 1.0f);
-    sampler.set_dimension(SampleDimensions::k_pass_through + decision);
-    if (sampler.next_1d() < p) return {true, through / p};
-    return {false, glm::vec3(1.0f / (1.0f - p))};
 }
 
 /// What a path needs besides the scene: depth limit, roulette and MIS choices.

@@ -36,4 +36,16 @@ glm::vec3 transmittance(const Scene& scene, Ray ray, std::uint32_t ignored_objec
     return glm::vec3(0.0f);
 }
 
+Crossing cross_null(const Scene& scene, const Material& m, const Hit& hit,
+                    const glm::vec3& direction, Sampler& sampler, std::uint32_t decision) {
+    const glm::vec3 albedo = m.albedo_texture < 0 ? m.albedo : scene.albedo(hit);
+    const ShadingPoint point{ShadingFrame::at(hit.shading_normal, hit.geometric_normal, direction),
+                             albedo};
+    const glm::vec3 through = bsdfs::pass_through_of(m, point, point.frame.to_local(-direction));
+    const float p = std::clamp((through.x + through.y + through.z) / 3.0f, 0.0f, 1.0f);
+    sampler.set_dimension(SampleDimensions::k_pass_through + decision);
+    if (sampler.next_1d() < p) return {true, through / p};
+    return {false, glm::vec3(1.0f / (1.0f - p))};
+}
+
 }  // namespace librt
