@@ -91,6 +91,12 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         bad("--time-limit", std::to_string(o.time_limit),
             "is not available under mpirun (use --spp)");
     apps::validate_sampling(o.sampling);
+    // Adaptive sampling spreads a known budget: the clock's passes and the ranks' tiles
+    // sample every pixel alike.
+    if (o.sampling.adaptive && o.time_limit > 0.0)
+        bad("--adaptive", "on", "needs a sample budget (--spp): not with --time-limit");
+    if (o.sampling.adaptive && job.distributed())
+        bad("--adaptive", "on", "is not available under mpirun");
     if (o.mpi_tile < 1 || o.mpi_tile > 1024)
         bad("--mpi-tile", std::to_string(o.mpi_tile), "must be in [1, 1024]");
     if (!std::isfinite(o.exposure_ev) || std::abs(o.exposure_ev) > 64.0f)
@@ -171,6 +177,7 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     out.seed = o.seed;
     out.sampler = apps::sampler_kind(o.sampling);
     out.time_limit = o.time_limit;
+    out.adaptive = o.sampling.adaptive;
     out.scale = scale;
     out.quiet = o.quiet;
     out.started = t0;

@@ -164,6 +164,9 @@ void add_sampling_options(CLI::App& app, AppOptions& o) {
     app.add_option("--guiding-passes", o.guiding_passes,
                    "Training passes of --guiding; pass k renders 2^k spp (5: 31 spp)")
         ->capture_default_str();
+    app.add_flag("--adaptive", o.adaptive,
+                 "Adaptive sampling: a pilot of --spp / 4 samples per pixel, then the rest "
+                 "where the noise is (--spp becomes the mean; pixels' means stay unbiased)");
     app.add_option("--filter-radius", o.filter_radius,
                    "The filter's radius in pixels (default: box 0.5, tent 1, gaussian 1.5, "
                    "mitchell 2, blackman-harris 1.5)");
@@ -385,6 +388,7 @@ int render_and_write(const Scene& scene, const CameraSettings& camera_settings,
     settings.threads = o.threads;
     settings.seed = o.seed;
     settings.sampler = sampler_kind(o);
+    settings.adaptive.enabled = o.adaptive;
     ProgressBar progress(!o.quiet);
     settings.progress = [&progress](const RenderProgress& p) { progress.update(p); };
     settings.cancel = &g_cancel;

@@ -48,6 +48,7 @@ struct AppOptions {
     std::optional<float> filter_radius;  ///< --filter-radius in pixels; default: the filter's
     bool guiding = false;                ///< --guiding: path guiding (PathTracer apps)
     int guiding_passes = 5;              ///< --guiding-passes: training passes (1, 2, 4... spp)
+    bool adaptive = false;               ///< --adaptive: spread samples by noise (--spp: mean)
 };
 
 /// Options of the apps that show a mesh.

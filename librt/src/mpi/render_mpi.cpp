@@ -587,6 +587,13 @@ void validate(const MpiRenderSettings& s) {
         throw Error("tile_size = " + std::to_string(s.tile_size) + ": must be in [1, 1024]");
     }
     validate(s.render);
+    // Ranks render whole tiles with all their samples; adaptive sampling's counts come
+    // from a pilot of the whole image (neighbours across tiles), which they do not share.
+    if (s.render.adaptive.enabled) {
+        throw Error(
+            "render.adaptive.enabled = true: render_mpi samples every pixel alike; "
+            "adaptive sampling needs render()");
+    }
 }
 
 Film render_mpi(MPI_Comm comm, const Scene& scene, const Camera& camera, Integrator& integrator,

@@ -88,9 +88,12 @@ SplatTarget splat_target(const Camera& camera, const Integrator& integrator, Fil
 // The one render loop under every entry point: threads take the block's tiles from an
 // atomic counter and render each pixel's samples onto its film record, in sample order.
 // The calling thread watches (ticks) until the workers are done.
+// With `ends` (adaptive sampling: one count per film pixel), each pixel of the block is
+// rendered from the samples it holds up to its own end instead of [first, first + count).
 BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrator& integrator,
                        Film& film, FilmOrigin origin, const RenderBlock& block,
-                       const RenderSettings& settings, const Tick& tick) {
+                       const RenderSettings& settings, const Tick& tick,
+                       const std::vector<std::uint32_t>* ends = nullptr) {
     BlockOutcome outcome;
     const SplatTarget target = splat_target(camera, integrator, film);
     const int width = block.x1 - block.x0;
@@ -165,10 +168,12 @@ BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrato
                 AovPixel aov = kAovs ? film.aovs[index] : AovPixel{};
                 const auto px = static_cast<std::uint32_t>(x);
                 const auto py = static_cast<std::uint32_t>(y);
+                const std::uint32_t first = ends != nullptr ? pixel.samples : block.first;
+                const std::uint32_t last = ends != nullptr ? (*ends)[index] : end;
                 bool stopped = false;
                 std::uint32_t taken = 0;
                 std::uint32_t until_check = 0;  // samples left before the next cancel check
-                for (std::uint32_t s = block.first; s < end; ++s) {
+                for (std::uint32_t s = first; s < last; ++s) {
                     if (until_check-- == 0) {
                         if (stop_requested()) {
                             stopped = true;
@@ -314,10 +319,16 @@ void validate(const RenderSettings& s) {
                     ": must be in [1, 1048576]");
     }
     validate_threads_and_tiles(s);
+    validate(s.adaptive);
 }
 
 void validate(const ProgressiveSettings& s) {
     validate(s.render);
+    if (s.render.adaptive.enabled) {
+        throw Error(
+            "render.adaptive.enabled = true: a progressive render samples every pixel "
+            "alike; adaptive sampling needs render()");
+    }
     if (s.pass_samples < 1 || s.pass_samples > static_cast<int>(kMaxSamplesPerPixel)) {
         throw Error("pass_samples = " + std::to_string(s.pass_samples) +
                     ": must be in [1, 1048576]");
@@ -410,34 +421,59 @@ RenderStats train(const Scene& scene, const Camera& camera, Integrator& integrat
                         integrator.keeps_training_samples() ? kept : nullptr);
 }
 
-Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
-             const RenderSettings& settings, RenderStats* stats) {
+namespace {
+
+/// render() onto `film` (of the camera's size, holding no samples); kept training passes
+/// only when `may_keep`.
+Image render_onto(const Scene& scene, const Camera& camera, Integrator& integrator, Film& film,
+                  const RenderSettings& settings, bool may_keep, RenderStats* stats) {
     const Clock::time_point start = Clock::now();
     const double cpu_start = cpu_now();
-    validate(settings);
-    check_image_size(camera.width(), camera.height());  // before allocating anything
-    Film film(camera.width(), camera.height());
-
     integrator.preprocess(scene);
+    const auto spp = static_cast<std::uint32_t>(settings.samples_per_pixel);
+    // Adaptive sampling's pilot (0: every pixel gets spp samples).
+    const std::uint32_t pilot =
+        settings.adaptive.enabled ? adaptive_pilot_samples(settings.adaptive, spp) : 0;
     // The training passes kept in the image when the integrator allows it (guiding's
     // keep_training_samples) and the image has the 2 samples per pixel its own variance
-    // estimate needs.
+    // estimate needs; not with adaptive sampling, whose pixels hold different counts.
     PassCombination kept;
-    const bool keep = integrator.keeps_training_samples() && settings.samples_per_pixel >= 2;
+    const bool keep = may_keep && pilot == 0 && integrator.keeps_training_samples() && spp >= 2;
     const RenderStats training = train(scene, camera, integrator, settings, keep ? &kept : nullptr);
-    const auto spp = static_cast<std::uint32_t>(settings.samples_per_pixel);
     const RenderBlock whole{0, 0, film.width, film.height, 0, spp};
-    Tick tick;
-    if (settings.progress) {
-        tick = [&](double fraction) {
-            settings.progress({fraction, seconds_since(start), 0, 0});
+    const auto tick_over = [&](double from, double to) {
+        if (!settings.progress) return Tick();
+        return Tick([&settings, &start, from, to](double fraction) {
+            settings.progress({from + (to - from) * fraction, seconds_since(start), 0, 0});
             return false;
-        };
-    }
+        });
+    };
     Film half;
-    const BlockOutcome outcome =
-        keep ? run_block_in_halves(scene, camera, integrator, film, whole, settings, tick, half)
-             : run_block(scene, camera, integrator, film, {}, whole, settings, tick);
+    BlockOutcome outcome;
+    std::vector<std::uint32_t> ends;  // adaptive sampling: each pixel's count
+    if (pilot > 0) {
+        // The pilot in two halves (their means' difference is the noise estimate), then
+        // every pixel up to its own count.
+        const double pilot_share = double(pilot) / double(spp);
+        outcome = run_block_in_halves(scene, camera, integrator, film,
+                                      {0, 0, film.width, film.height, 0, pilot}, settings,
+                                      tick_over(0.0, pilot_share), half);
+        if (outcome.complete) {
+            ends = adaptive_sample_counts(half, film, spp, settings.adaptive);
+            const BlockOutcome rest = run_block(scene, camera, integrator, film, {},
+                                                {0, 0, film.width, film.height, pilot, spp - pilot},
+                                                settings, tick_over(pilot_share, 1.0), &ends);
+            outcome.samples += rest.samples;
+            outcome.nonfinite += rest.nonfinite;
+            outcome.complete = rest.complete;
+            outcome.cancelled = rest.cancelled;
+        }
+    } else {
+        const Tick tick = tick_over(0.0, 1.0);
+        outcome =
+            keep ? run_block_in_halves(scene, camera, integrator, film, whole, settings, tick, half)
+                 : run_block(scene, camera, integrator, film, {}, whole, settings, tick);
+    }
     if (settings.progress && outcome.complete)
         settings.progress({1.0, seconds_since(start), 1, spp});
 
@@ -447,7 +483,8 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
     if (!outcome.complete) {
         // As before films: a pixel the cancellation stopped part-way stays black.
         for (std::size_t i = 0; i < film.pixels.size(); ++i) {
-            if (film.pixels[i].samples < spp) image.pixels[i] = glm::vec3(0.0f);
+            const std::uint32_t wanted = ends.empty() ? (pilot > 0 ? pilot : spp) : ends[i];
+            if (film.pixels[i].samples < wanted) image.pixels[i] = glm::vec3(0.0f);
         }
     }
     if (stats != nullptr) {
@@ -462,6 +499,34 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
         stats->training_passes = training.training_passes;
     }
     return image;
+}
+
+}  // namespace
+
+Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
+             const RenderSettings& settings, RenderStats* stats) {
+    validate(settings);
+    check_image_size(camera.width(), camera.height());  // before allocating anything
+    Film film(camera.width(), camera.height());
+    return render_onto(scene, camera, integrator, film, settings, true, stats);
+}
+
+RenderStats render(const Scene& scene, const Camera& camera, Integrator& integrator, Film& film,
+                   const RenderSettings& settings) {
+    validate(settings);
+    if (film.width == 0 && film.height == 0) {
+        check_image_size(camera.width(), camera.height());
+        film = Film(camera.width(), camera.height());
+    }
+    check_film_matches(film, camera);
+    if (uniform_sample_count(film) != 0 || film.splats) {
+        throw Error(
+            "film: must hold no samples (render() fills an empty film; "
+            "render_block continues one)");
+    }
+    RenderStats stats;
+    (void)render_onto(scene, camera, integrator, film, settings, false, &stats);
+    return stats;
 }
 
 RenderStats render_block(const Scene& scene, const Camera& camera, const Integrator& integrator,

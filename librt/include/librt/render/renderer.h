@@ -2,6 +2,7 @@
 
 #include <librt/core/image.h>
 #include <librt/export.h>
+#include <librt/render/adaptive_sampling.h>
 #include <librt/render/camera.h>
 #include <librt/render/film.h>
 #include <librt/render/integrator.h>
@@ -40,6 +41,10 @@ struct RenderSettings {
     /// Where each camera path's random numbers come from. Independent (the default) draws
     /// exactly what librt always drew; Sobol lowers the noise per sample (docs/sampling.md).
     SamplerKind sampler = SamplerKind::Independent;
+    /// render() only: spread the samples over pixels by their noise, samples_per_pixel
+    /// becoming the mean (adaptive_sampling.h). render_block ignores it (its block says
+    /// the samples); render_progressive and render_mpi refuse it.
+    AdaptiveSampling adaptive;
     int tile_size =
         16;  ///< side of the square tiles handed to threads (>= 1; capped at the image size)
     ProgressCallback progress;  ///< progress reports (see ProgressCallback); empty = none
@@ -59,7 +64,8 @@ struct RenderStats {
     bool cancelled = false;               ///< true when `cancel` stopped the render before the end
     bool time_limit_reached = false;      ///< render_progressive: stopped by its time limit
     int passes = 0;                       ///< passes finished and kept in the film
-    std::uint32_t samples_per_pixel = 0;  ///< samples every pixel holds after a complete pass
+    /// samples every pixel holds after a complete pass (adaptive sampling: their mean)
+    std::uint32_t samples_per_pixel = 0;
     int training_passes = 0;  ///< learning passes run before the image (train(): path guiding)
 };
 
@@ -103,6 +109,12 @@ LIBRT_API RenderStats train(const Scene& scene, const Camera& camera, Integrator
 /// whole image), and the image adds them divided by the samples per pixel (resolve()):
 /// integer sums, so the same bits for any thread count and tile size too. An integrator
 /// that does not splat is called through li() alone, as it always was.
+/// Adaptive sampling (settings.adaptive.enabled): samples_per_pixel is the mean. A pilot of
+/// adaptive_pilot_samples() per pixel is rendered in two halves, adaptive_sample_counts()
+/// gives each pixel its own count from its neighbours' pilots, and every pixel is rendered
+/// on to it, still in sample order (bit-identical for any thread count and tile size;
+/// stats->samples is the total, at most samples_per_pixel per pixel on average). Training
+/// passes are then not kept in the image (their combination assumes equal counts).
 /// Cancellation is checked before every pixel and every 64 samples of a pixel, so a
 /// cancelled render returns after at most 64 samples' work per thread; pixels not yet
 /// finished stay black (the others show their mean plus the splats over the mean sample
@@ -112,6 +124,16 @@ LIBRT_API RenderStats train(const Scene& scene, const Camera& camera, Integrator
 [[nodiscard]] LIBRT_API Image render(const Scene& scene, const Camera& camera,
                                      Integrator& integrator, const RenderSettings& settings,
                                      RenderStats* stats = nullptr);
+
+/// render() onto a film, which keeps what the image does not: each pixel's sample count
+/// (adaptive sampling's allocation) and, for a film created with AOVs, the AOV sums. The
+/// film must be empty (0x0: created at the camera's size, without AOVs) or of the camera's
+/// size holding no samples; resolve(film) is then render()'s image, except that training
+/// passes (path guiding's keep_training_samples) are never kept: the film holds the
+/// image's own samples only. Throws librt::Error as render() does, and for a film of
+/// another size or holding samples.
+LIBRT_API RenderStats render(const Scene& scene, const Camera& camera, Integrator& integrator,
+                             Film& film, const RenderSettings& settings);
 
 /// A piece of a render: samples [first, first + count) of the pixels [x0, x1) x [y0, y1).
 struct RenderBlock {

@@ -1,0 +1,63 @@
+#pragma once
+
+#include <librt/export.h>
+#include <librt/render/film.h>
+
+#include <cstdint>
+#include <vector>
+
+// Adaptive sampling: a render's samples spread over pixels by their noise, for a lower
+// error of the whole image at the same number of samples (docs/sampling.md).
+//
+// A pilot of `pilot` samples in every pixel is rendered in two halves; the difference of
+// a pixel's two half means estimates its noise. The rest of the budget goes where the
+// noise is, each pixel's total proportional to its noise's standard deviation, which
+// minimises the image's mean squared error for a fixed total (the Lagrange condition
+// d(sigma^2 / n) / dn = const; the linear radiance, so bright noisy pixels weigh most).
+//
+// Unbiased, not only consistent: a pixel's count is computed from its *neighbours'* pilot
+// halves, never its own. Pixels' samples are independent (seeded by pixel), so a pixel's
+// count is independent of its own samples and its mean stays an unbiased estimate. A
+// count computed from the pixel's own pilot would not be: a pilot that happened to catch a
+// firefly would draw more samples, which dilute it, so bright outliers are shrunk and dark
+// ones are not.
+
+namespace librt {
+
+/// How render() spreads samples (RenderSettings::adaptive). Off by default.
+struct AdaptiveSampling {
+    bool enabled = false;  ///< spread samples by noise; samples_per_pixel is then the mean
+    /// Samples every pixel gets before the noise is estimated (even, >= 2, below
+    /// samples_per_pixel); 0 = the largest power of two <= samples_per_pixel / 4, at least
+    /// 2 (a power of two keeps a Sobol' pilot a whole net in each half). It is also the
+    /// fewest samples a pixel gets: a floor against noise the pilot did not see.
+    int pilot_samples = 0;
+    /// Pixels within this distance (a (2r + 1)^2 square, the pixel itself left out) whose
+    /// pilots estimate a pixel's noise, in [1, 16]. A pilot's noise estimate of one pixel is
+    /// itself noisy; on the report's synthesis radii 8-12 did best (docs/sampling.md).
+    int radius = 8;
+    /// Most samples a pixel may get, as a multiple of samples_per_pixel, in [1, 1024].
+    double max_factor = 8.0;
+};
+
+/// Throws librt::Error naming the first bad field and its value.
+LIBRT_API void validate(const AdaptiveSampling& settings);
+
+/// The pilot's samples per pixel for a render of `samples_per_pixel` (the mean): the
+/// setting, or its default; 0 when the render is too small to adapt (below 4 samples per
+/// pixel, or a pilot not below the mean), and render() then samples every pixel equally.
+[[nodiscard]] LIBRT_API std::uint32_t adaptive_pilot_samples(const AdaptiveSampling& settings,
+                                                             std::uint32_t samples_per_pixel);
+
+/// The number of samples each pixel should hold (row-major, top row first): at least
+/// `pilot.samples` of each pixel, at most max_factor x samples_per_pixel (and 2^20), the
+/// rest in proportion to the noise estimated from the neighbours' pilots, all together at
+/// most samples_per_pixel x pixels. `first_half` is the film after the first half of the
+/// pilot's samples, `pilot` after all of them (each pixel holding the same count in each).
+/// Deterministic: the same films give the same counts. Throws librt::Error when the films'
+/// sizes differ or a pixel's count is not the pilot's.
+[[nodiscard]] LIBRT_API std::vector<std::uint32_t> adaptive_sample_counts(
+    const Film& first_half, const Film& pilot, std::uint32_t samples_per_pixel,
+    const AdaptiveSampling& settings);
+
+}  // namespace librt
