@@ -160,6 +160,19 @@ TEST(RenderMpi, BadSettingsThrowOnEveryRank) {
             EXPECT_NE(text.find("rank 0 failed: tile_size = 0"), std::string::npos) << text;
         }
     }
+    // Adaptive sampling needs the whole image's pilot, which tiles do not share.
+    s = {};
+    s.render.adaptive.enabled = true;
+    try {
+        (void)render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s);
+        ADD_FAILURE() << "no exception";
+    } catch (const Error& e) {
+        const std::string text = e.what();
+        if (world_rank() == 0) {
+            EXPECT_NE(text.find("rank 0 failed: render.adaptive.enabled = true"), std::string::npos)
+                << text;
+        }
+    }
 }
 
 namespace {
