@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # RMSE against CPU time on the report's synthesis room (rt_synthesis, the bunny-free default
-# teapot, 96 x 96) for each sampler and pixel filter, into a CSV and a log-log SVG plot
+# teapot, 96 x 96) for each sampler and pixel filter (and adaptive sampling with the
+# report's jitter), into a CSV and a log-log SVG plot
 # (docs/sampling_convergence.svg). Each filter is a different image, so each gets its own
 # reference (Sobol', REF_SPP samples, another seed), cached in the build directory.
 #
@@ -26,14 +27,20 @@ for filter in app tent box mitchell; do
     "$app" --size 96 --threads 2 --seed 99 --sampler sobol --spp "$ref_spp" "${fargs[@]}" \
       -q -o "$ref"
   fi
-  for sampler in independent sobol; do
+  # Adaptive sampling (--adaptive) with the report's own jitter only.
+  samplers=(independent sobol)
+  [[ "$filter" == app ]] && samplers+=(independent+adaptive sobol+adaptive)
+  for option in "${samplers[@]}"; do
+    sampler=${option%+adaptive}
+    aargs=()
+    [[ "$option" == *+adaptive ]] && aargs=(--adaptive)
     for spp in 16 64 256; do
-      img="$out/${sampler}_${filter}_${spp}.pfm"
+      img="$out/${option}_${filter}_${spp}.pfm"
       "$app" --size 96 --threads 1 --seed 1 --sampler "$sampler" --spp "$spp" "${fargs[@]}" \
-        -o "$img" > "$out/log.txt" 2>&1
+        "${aargs[@]}" -o "$img" > "$out/log.txt" 2>&1
       cpu=$(cpu_of "$out/log.txt")
       rmse=$("$rmse_tool" rmse "$img" "$ref")
-      label="$sampler / $([[ $filter == app ]] && echo "Gaussian jitter (report)" || echo "$filter filter")"
+      label="$option / $([[ $filter == app ]] && echo "Gaussian jitter (report)" || echo "$filter filter")"
       echo "$label,$spp,$cpu,$rmse" >> "$csv"
     done
   done
