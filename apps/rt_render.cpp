@@ -91,10 +91,8 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         bad("--time-limit", std::to_string(o.time_limit),
             "is not available under mpirun (use --spp)");
     apps::validate_sampling(o.sampling);
-    // Adaptive sampling spreads a known budget: the clock's passes and the ranks' tiles
-    // sample every pixel alike.
-    if (o.sampling.adaptive && o.time_limit > 0.0)
-        bad("--adaptive", "on", "needs a sample budget (--spp): not with --time-limit");
+    // The ranks' tiles sample every pixel alike; a pixel's adaptive count needs the pilot
+    // of the pixels around it, in other tiles.
     if (o.sampling.adaptive && job.distributed())
         bad("--adaptive", "on", "is not available under mpirun");
     if (o.mpi_tile < 1 || o.mpi_tile > 1024)

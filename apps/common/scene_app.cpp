@@ -103,23 +103,9 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
     ps.aovs = lower_extension(o.output) == ".exr";
     Film film;
     Image image;  // the film, joined to guiding's kept training passes when it completes
-    RenderStats stats;
-    if (o.adaptive) {
-        // One render of the whole budget (adaptive sampling needs it known), onto a film
-        // that keeps the per-pixel counts for an EXR's sample-count layer.
-        ps.render.adaptive.enabled = true;
-        film = Film(camera.width(), camera.height(), ps.aovs);
-        stats = render(scene, camera, integrator, film, ps.render);
-        progress.finish();
-        if (stats.cancelled || interrupt_flag()->load()) {
-            std::cerr << "interrupted: nothing written\n";
-            return 130;
-        }
-        image = resolve(film);
-    } else {
-        stats = render_progressive(scene, camera, integrator, film, ps, &image);
-        progress.finish();
-    }
+    ps.render.adaptive.enabled = o.adaptive;
+    const RenderStats stats = render_progressive(scene, camera, integrator, film, ps, &image);
+    progress.finish();
     const bool interrupted = stats.cancelled || interrupt_flag()->load();
     if (stats.passes == 0) {
         std::cerr << "interrupted before the first pass finished: nothing written\n";

@@ -26,11 +26,9 @@ struct ProgressiveOutput {
     std::uint64_t seed = 0;                          ///< random seed
     SamplerKind sampler = SamplerKind::Independent;  ///< --sampler
     double time_limit = 0.0;                         ///< seconds, 0 = none
-    /// Adaptive sampling (--adaptive): one render() of the whole budget instead of passes
-    /// (time_limit must be 0).
-    bool adaptive = false;
-    float scale = 1.0f;  ///< exposure: the linear image is multiplied by this
-    bool quiet = false;  ///< no progress bar and no summary
+    bool adaptive = false;  ///< --adaptive: spp is the mean; passes spread by noise
+    float scale = 1.0f;     ///< exposure: the linear image is multiplied by this
+    bool quiet = false;     ///< no progress bar and no summary
     /// When the app started its work (the summary's "total" counts from here).
     std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 };

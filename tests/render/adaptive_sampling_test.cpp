@@ -294,13 +294,91 @@ TEST(AdaptiveSampling, LowersTheErrorWhereNoiseIsUneven) {
     EXPECT_LT(adaptive * 1.4, uniform) << adaptive << " vs " << uniform;
 }
 
-TEST(AdaptiveSampling, ProgressiveRenderRefusesIt) {
-    ProgressiveSettings ps;
-    ps.render.adaptive.enabled = true;
-    try {
-        validate(ps);
-        FAIL() << "no error";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("adaptive"), std::string::npos) << e.what();
+namespace {
+
+bool same_film(const Film& a, const Film& b) {
+    if (a.pixels.size() != b.pixels.size()) return false;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        const FilmPixel& p = a.pixels[i];
+        const FilmPixel& q = b.pixels[i];
+        if (p.samples != q.samples || p.finite != q.finite ||
+            std::memcmp(&p.radiance, &q.radiance, sizeof(p.radiance)) != 0)
+            return false;
     }
+    return true;
+}
+
+}  // namespace
+
+// In passes (of 3 samples, so passes do not line up with the pilot's half) the film ends
+// exactly as render()'s: the pilot's passes stop at its half and at its end, and every
+// pixel's samples are the same ones in the same order.
+TEST(AdaptiveSampling, ProgressiveRenderEqualsTheOneShotRender) {
+    const Scene scene = empty_scene();
+    const Camera camera = flat_camera(40, 24);
+    Bernoulli integrator(0.05f, 0.4f);
+    RenderSettings settings;
+    settings.samples_per_pixel = 40;  // pilot 8
+    settings.seed = 9;
+    settings.sampler = SamplerKind::Sobol;
+    settings.adaptive.enabled = true;
+    Film one_shot;
+    (void)render(scene, camera, integrator, one_shot, settings);
+    ProgressiveSettings ps;
+    ps.render = settings;
+    ps.pass_samples = 3;
+    Film film;
+    Image image;
+    const RenderStats stats = render_progressive(scene, camera, integrator, film, ps, &image);
+    EXPECT_EQ(stats.samples_per_pixel, 40u);
+    EXPECT_EQ(stats.passes, 4 + 11);  // 3, 4 | 7, 8 | 11, 14, ..., 38, 40
+    EXPECT_TRUE(same_film(film, one_shot));
+    const Image expected = resolve(one_shot);
+    EXPECT_EQ(std::memcmp(image.pixels.data(), expected.pixels.data(),
+                          image.pixels.size() * sizeof(glm::vec3)),
+              0);
+    // The counts do differ between pixels: the right half is the noisier.
+    EXPECT_GT(film.at(30, 12).samples, film.at(10, 12).samples);
+}
+
+// Stopped by the clock after the pilot, each pixel holds its share of the way from the
+// pilot to its own count; a film holding samples is not continued adaptively.
+TEST(AdaptiveSampling, ProgressiveRenderStopsWithEveryPixelAtItsShare) {
+    const Scene scene = empty_scene();
+    const Camera camera = flat_camera(40, 24);
+    Bernoulli integrator(0.05f, 0.4f);
+    ProgressiveSettings ps;
+    ps.render.samples_per_pixel = 72;  // pilot 16
+    ps.render.seed = 2;
+    ps.render.adaptive.enabled = true;
+    ps.pass_samples = 8;
+    ps.time_limit = 3.5;  // the fake clock below: four passes, the pilot's two and two more
+    double now = 0.0;
+    ps.clock = [&now] { return now; };
+    int seen = 0;
+    ps.render.progress = [&](const RenderProgress& p) {
+        if (p.passes > seen) {
+            seen = p.passes;
+            now += 1.0;
+        }
+    };
+    Film film;
+    const RenderStats stats = render_progressive(scene, camera, integrator, film, ps);
+    EXPECT_TRUE(stats.time_limit_reached);
+    EXPECT_EQ(stats.passes, 4);
+    EXPECT_EQ(stats.samples_per_pixel, 32u);  // the level: 16 of the 56 past the pilot
+    Film final_film;
+    RenderSettings whole = ps.render;
+    whole.progress = nullptr;
+    (void)render(scene, camera, integrator, final_film, whole);
+    std::uint64_t total = 0;
+    for (std::size_t i = 0; i < film.pixels.size(); ++i) {
+        const std::uint32_t n = final_film.pixels[i].samples;
+        EXPECT_EQ(film.pixels[i].samples, 16u + (n - 16u) * 16u / 56u) << i;
+        total += film.pixels[i].samples;
+    }
+    EXPECT_LE(total, 32u * film.pixels.size());
+    ps.time_limit = 0.0;
+    ps.render.progress = nullptr;
+    EXPECT_THROW((void)render_progressive(scene, camera, integrator, film, ps), Error);
 }

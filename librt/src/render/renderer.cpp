@@ -324,11 +324,6 @@ void validate(const RenderSettings& s) {
 
 void validate(const ProgressiveSettings& s) {
     validate(s.render);
-    if (s.render.adaptive.enabled) {
-        throw Error(
-            "render.adaptive.enabled = true: a progressive render samples every pixel "
-            "alike; adaptive sampling needs render()");
-    }
     if (s.pass_samples < 1 || s.pass_samples > static_cast<int>(kMaxSamplesPerPixel)) {
         throw Error("pass_samples = " + std::to_string(s.pass_samples) +
                     ": must be in [1, 1048576]");
@@ -619,6 +614,20 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
     const auto pass = static_cast<std::uint32_t>(settings.pass_samples);
     const RenderSettings& rs = settings.render;
     const double limit = settings.time_limit;
+    // Adaptive sampling: uniform passes up to the pilot (one ending at its half), then each
+    // pass moves every pixel the same fraction of the way to its own count, so a film
+    // stopped between passes holds each pixel's share: counts still chosen from the
+    // neighbours' pilots only, its means still unbiased.
+    const std::uint32_t pilot =
+        rs.adaptive.enabled ? adaptive_pilot_samples(rs.adaptive, target) : 0;
+    if (pilot > 0 && first != 0) {
+        throw Error("film holds " + std::to_string(first) +
+                    " samples per pixel: an adaptive progressive render starts from an empty "
+                    "film (its pilot decides every pixel's count)");
+    }
+    Film pilot_half;                    // the film at pilot / 2 samples
+    std::vector<std::uint32_t> counts;  // each pixel's final count, once the pilot is done
+    std::vector<std::uint32_t> goals;   // each pixel's count at the end of the current pass
 
     RenderStats stats;
     stats.samples_per_pixel = first;
@@ -645,8 +654,8 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
     };
     if (n < target) {
         integrator.preprocess(scene);
-        keep =
-            image != nullptr && integrator.keeps_training_samples() && target >= 2 && first <= mid;
+        keep = pilot == 0 && image != nullptr && integrator.keeps_training_samples() &&
+               target >= 2 && first <= mid;
         const RenderStats training = train(scene, camera, integrator, rs, keep ? &kept : nullptr);
         stats.training_passes = training.training_passes;
         stats.cancelled = training.cancelled;
@@ -665,6 +674,19 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         }
         std::uint32_t count = std::min(pass, target - n);
         if (keep && n < mid) count = std::min(count, mid - n);  // a pass ends at the half
+        const std::vector<std::uint32_t>* ends = nullptr;
+        if (pilot > 0 && n < pilot) {  // the pilot: passes end at its half and at its end
+            count = std::min(count, (n < pilot / 2 ? pilot / 2 : pilot) - n);
+        } else if (pilot > 0) {
+            // Level n + count of the way from the pilot to the target: pixel p holds
+            // pilot + floor((N_p - pilot) (level - pilot) / (target - pilot)), N_p at the end.
+            const std::uint64_t step = n + count - pilot;
+            const std::uint64_t span = target - pilot;
+            goals.resize(counts.size());
+            for (std::size_t i = 0; i < counts.size(); ++i)
+                goals[i] = pilot + std::uint32_t((counts[i] - pilot) * step / span);
+            ends = &goals;
+        }
         work = film;
         const RenderBlock block{0, 0, film.width, film.height, n, count};
         const Tick tick = [&](double done) {
@@ -675,7 +697,7 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
             return limit > 0.0 && n > 0 && elapsed() >= limit;
         };
         const BlockOutcome outcome =
-            run_block(scene, camera, integrator, work, {}, block, rs, tick);
+            run_block(scene, camera, integrator, work, {}, block, rs, tick, ends);
         stats.samples += outcome.samples;
         stats.nonfinite_samples += outcome.nonfinite;
         if (!outcome.complete) {  // the unfinished pass is dropped with `work`
@@ -686,6 +708,9 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         std::swap(film, work);
         n += count;
         if (keep && n == mid) snapshot_half();
+        if (pilot > 0 && n == pilot / 2) pilot_half = film;
+        if (pilot > 0 && n == pilot)
+            counts = adaptive_sample_counts(pilot_half, film, target, rs.adaptive);
         ++stats.passes;
         stats.samples_per_pixel = n;
         if (rs.progress) {

@@ -41,9 +41,9 @@ struct RenderSettings {
     /// Where each camera path's random numbers come from. Independent (the default) draws
     /// exactly what librt always drew; Sobol lowers the noise per sample (docs/sampling.md).
     SamplerKind sampler = SamplerKind::Independent;
-    /// render() only: spread the samples over pixels by their noise, samples_per_pixel
-    /// becoming the mean (adaptive_sampling.h). render_block ignores it (its block says
-    /// the samples); render_progressive and render_mpi refuse it.
+    /// Spread the samples over pixels by their noise, samples_per_pixel becoming the mean
+    /// (adaptive_sampling.h): render() and render_progressive(); render_block ignores it
+    /// (its block says the samples) and render_mpi refuses it.
     AdaptiveSampling adaptive;
     int tile_size =
         16;  ///< side of the square tiles handed to threads (>= 1; capped at the image size)
@@ -64,7 +64,8 @@ struct RenderStats {
     bool cancelled = false;               ///< true when `cancel` stopped the render before the end
     bool time_limit_reached = false;      ///< render_progressive: stopped by its time limit
     int passes = 0;                       ///< passes finished and kept in the film
-    /// samples every pixel holds after a complete pass (adaptive sampling: their mean)
+    /// samples every pixel holds after a complete pass (adaptive sampling: the level the
+    /// passes reached, of which the pixels' mean is at most)
     std::uint32_t samples_per_pixel = 0;
     int training_passes = 0;  ///< learning passes run before the image (train(): path guiding)
 };
@@ -214,6 +215,15 @@ LIBRT_API void validate(const ProgressiveSettings& settings);
 /// a film holding no samples always gets its first pass. The film equals a one-shot
 /// render of the same total sample count bit for bit. Calls integrator.preprocess(scene)
 /// and train() once, when there is something to render.
+///
+/// Adaptive sampling (settings.render.adaptive.enabled; the film must hold no samples):
+/// uniform passes render the pilot, one of them ending at its half; adaptive_sample_counts
+/// then gives every pixel its final count N_p, and each later pass takes every pixel to
+/// pilot + floor((N_p - pilot) x (L - pilot) / (samples_per_pixel - pilot)) for the level
+/// L = pilot + k x pass_samples it reaches (stats.samples_per_pixel). A film stopped
+/// between passes holds every pixel's share, each count still chosen from the neighbours'
+/// pilots alone; the complete film is render()'s (adaptive) film bit for bit. Training
+/// passes are not kept.
 ///
 /// `image`, when not null, receives the image to show: resolve(film), or, when the
 /// integrator keeps its training passes (path guiding's keep_training_samples) and this
