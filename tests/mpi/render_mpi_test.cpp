@@ -149,30 +149,24 @@ TEST(RenderMpi, BadSettingsThrowOnEveryRank) {
     const Scene scene = film_test_scene();
     const Camera camera = film_test_camera(8, 8);
     PathTracer integrator;
+    const auto expect_error = [&](const MpiRenderSettings& s, const std::string& message) {
+        try {
+            (void)render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s);
+            ADD_FAILURE() << "no exception: " << message;
+        } catch (const Error& e) {
+            const std::string text = e.what();
+            if (world_rank() == 0) {
+                EXPECT_NE(text.find("rank 0 failed: " + message), std::string::npos) << text;
+            }
+        }
+    };
     MpiRenderSettings s;
     s.tile_size = 0;
-    try {
-        (void)render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s);
-        ADD_FAILURE() << "no exception";
-    } catch (const Error& e) {
-        const std::string text = e.what();
-        if (world_rank() == 0) {
-            EXPECT_NE(text.find("rank 0 failed: tile_size = 0"), std::string::npos) << text;
-        }
-    }
+    expect_error(s, "tile_size = 0");
     // Adaptive sampling needs the whole image's pilot, which tiles do not share.
     s = {};
     s.render.adaptive.enabled = true;
-    try {
-        (void)render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s);
-        ADD_FAILURE() << "no exception";
-    } catch (const Error& e) {
-        const std::string text = e.what();
-        if (world_rank() == 0) {
-            EXPECT_NE(text.find("rank 0 failed: render.adaptive.enabled = true"), std::string::npos)
-                << text;
-        }
-    }
+    expect_error(s, "render.adaptive.enabled = true");
 }
 
 namespace {
