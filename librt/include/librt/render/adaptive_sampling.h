@@ -21,6 +21,11 @@
 // count computed from the pixel's own pilot would not be: a pilot that happened to catch a
 // firefly would draw more samples, which dilute it, so bright outliers are shrunk and dark
 // ones are not.
+//
+// One exception: an integrator that splats (bidirectional path tracing). A sample's light
+// subpath both joins its own pixel's value, which steers its neighbours' counts, and
+// splats anywhere, and the splats are divided by the mean count: the splatted part of the
+// image is consistent (the bias falls with the samples) but not strictly unbiased.
 
 namespace librt {
 
