@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <numeric>
@@ -381,4 +382,64 @@ TEST(AdaptiveSampling, ProgressiveRenderStopsWithEveryPixelAtItsShare) {
     ps.time_limit = 0.0;
     ps.render.progress = nullptr;
     EXPECT_THROW((void)render_progressive(scene, camera, integrator, film, ps), Error);
+}
+
+namespace {
+
+// 1 everywhere (2 u on the left half), and sets `cancel` once it has been called `after`
+// times.
+class CancelAfter final : public Integrator {
+public:
+    CancelAfter(std::atomic<bool>& cancel, std::uint64_t after) : cancel_(cancel), after_(after) {}
+    [[nodiscard]] glm::vec3 li(const Scene& /*scene*/, const Ray& ray,
+                               Sampler& sampler) const override {
+        if (calls_.fetch_add(1) + 1 >= after_) cancel_.store(true);
+        return glm::vec3(ray.direction.x < 0.0f ? 2.0f * sampler.next_1d() : 1.0f);
+    }
+
+private:
+    std::atomic<bool>& cancel_;
+    std::uint64_t after_;
+    mutable std::atomic<std::uint64_t> calls_{0};
+};
+
+}  // namespace
+
+// Cancelled after the pilot: every pixel holds whole samples, between the pilot's count and
+// its own; render()'s image shows the pixels short of their count black.
+TEST(AdaptiveSampling, CancelledAfterThePilotKeepsWholeSamples) {
+    const Scene scene = empty_scene();
+    const Camera camera = flat_camera(32, 16);
+    const std::uint64_t pixels = 32u * 16u;
+    RenderSettings settings;
+    settings.samples_per_pixel = 32;  // pilot 8
+    settings.seed = 4;
+    settings.threads = 2;
+    settings.adaptive.enabled = true;
+    std::atomic<bool> never{false};
+    CancelAfter complete_run(never, ~std::uint64_t{0});
+    Film complete;
+    (void)render(scene, camera, complete_run, complete, settings);
+
+    std::atomic<bool> cancel{false};
+    CancelAfter integrator(cancel, 8u * pixels + 2000u);
+    settings.cancel = &cancel;
+    Film film;
+    const RenderStats stats = render(scene, camera, integrator, film, settings);
+    EXPECT_TRUE(stats.cancelled);
+    std::uint64_t short_pixels = 0;
+    for (std::size_t i = 0; i < film.pixels.size(); ++i) {
+        EXPECT_GE(film.pixels[i].samples, 8u);
+        EXPECT_LE(film.pixels[i].samples, complete.pixels[i].samples);
+        short_pixels += film.pixels[i].samples < complete.pixels[i].samples ? 1u : 0u;
+    }
+    EXPECT_GT(short_pixels, 0u);
+
+    cancel = false;
+    CancelAfter again(cancel, 8u * pixels + 2000u);
+    const Image image = render(scene, camera, again, settings);
+    std::uint64_t black = 0;
+    for (const glm::vec3& p : image.pixels) black += p == glm::vec3(0.0f) ? 1u : 0u;
+    EXPECT_GT(black, 0u);
+    EXPECT_LT(black, pixels);  // the finished pixels show their means
 }
