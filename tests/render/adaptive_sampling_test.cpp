@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -442,4 +443,93 @@ TEST(AdaptiveSampling, CancelledAfterThePilotKeepsWholeSamples) {
     for (const glm::vec3& p : image.pixels) black += p == glm::vec3(0.0f) ? 1u : 0u;
     EXPECT_GT(black, 0u);
     EXPECT_LT(black, pixels);  // the finished pixels show their means
+}
+
+// The pieces render_mpi splits an adaptive render into: the pilot by render_block in its
+// two halves, the counts from the whole image's pilot, then each tile, on a film of the
+// tile alone holding the tile's pilot, rendered on to its counts by render_block_to_counts.
+// Merged, the tiles are render()'s adaptive film record for record.
+TEST(AdaptiveSampling, TilesRenderedToTheirCountsGiveRendersFilm) {
+    const Scene scene = empty_scene();
+    const Camera camera = flat_camera(40, 24);
+    Bernoulli integrator(0.05f, 0.4f);
+    RenderSettings settings;
+    settings.samples_per_pixel = 24;  // pilot 4
+    settings.seed = 3;
+    settings.sampler = SamplerKind::Sobol;
+    settings.adaptive.enabled = true;
+    settings.threads = 2;
+    Film expected;
+    (void)render(scene, camera, integrator, expected, settings);
+
+    const std::uint32_t pilot = adaptive_pilot_samples(settings.adaptive, 24);
+    ASSERT_EQ(pilot, 4u);
+    Film film(40, 24);
+    (void)render_block(scene, camera, integrator, film, {0, 0, 40, 24, 0, pilot / 2}, settings);
+    const Film half = film;
+    (void)render_block(scene, camera, integrator, film, {0, 0, 40, 24, pilot / 2, pilot / 2},
+                       settings);
+    const std::vector<std::uint32_t> counts =
+        adaptive_sample_counts(half, film, 24, settings.adaptive);
+    constexpr int kTile = 16;
+    for (int y0 = 0; y0 < 24; y0 += kTile) {
+        for (int x0 = 0; x0 < 40; x0 += kTile) {
+            const int x1 = std::min(x0 + kTile, 40), y1 = std::min(y0 + kTile, 24);
+            Film tile(x1 - x0, y1 - y0);
+            std::vector<std::uint32_t> ends(tile.pixels.size());
+            for (int y = y0; y < y1; ++y) {
+                for (int x = x0; x < x1; ++x) {
+                    tile.pixels[tile.index(x - x0, y - y0)] = film.at(x, y);
+                    ends[tile.index(x - x0, y - y0)] = counts[film.index(x, y)];
+                }
+            }
+            const RenderStats stats =
+                render_block_to_counts(scene, camera, integrator, tile, {x0, y0},
+                                       {x0, y0, x1, y1, pilot, 0}, ends, settings);
+            EXPECT_FALSE(stats.cancelled);
+            std::uint64_t wanted = 0;
+            for (const std::uint32_t e : ends) wanted += e - pilot;
+            EXPECT_EQ(stats.samples, wanted);
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x) film.at(x, y) = tile.at(x - x0, y - y0);
+        }
+    }
+    EXPECT_TRUE(same_film(film, expected));
+    EXPECT_GT(film.at(30, 12).samples, film.at(10, 12).samples);
+}
+
+TEST(AdaptiveSampling, RenderBlockToCountsRefusesBadCounts) {
+    const Scene scene = empty_scene();
+    const Camera camera = flat_camera(8, 6);
+    Bernoulli integrator(0.5f, 0.5f);
+    RenderSettings settings;
+    Film film(8, 6);
+    (void)render_block(scene, camera, integrator, film, {0, 0, 8, 6, 0, 2}, settings);
+    const Film before = film;
+    const auto expect_error = [&](const std::vector<std::uint32_t>& ends, std::uint32_t first,
+                                  const std::string& part) {
+        try {
+            (void)render_block_to_counts(scene, camera, integrator, film, {},
+                                         {0, 0, 8, 6, first, 0}, ends, settings);
+            ADD_FAILURE() << "no error for " << part;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+        }
+        EXPECT_TRUE(same_film(film, before)) << "rendered before refusing: " << part;
+    };
+    std::vector<std::uint32_t> ends(48, 5);
+    expect_error(std::vector<std::uint32_t>(47, 5), 2, "ends: 47 counts for a film of 48 pixels");
+    ends[8 * 3 + 5] = 1;
+    expect_error(ends, 2, "ends: pixel (5, 3) = 1: must be in [2, 1048576]");
+    ends[8 * 3 + 5] = kMaxSamplesPerPixel + 1;
+    expect_error(ends, 2, "ends: pixel (5, 3) = 1048577");
+    ends[8 * 3 + 5] = 5;
+    expect_error(ends, 3, "block.first = 3: film pixel (0, 0) holds 2 samples");
+    // Accepted: a count equal to what the pixel holds takes no sample.
+    ends[0] = 2;
+    const RenderStats stats = render_block_to_counts(scene, camera, integrator, film, {},
+                                                     {0, 0, 8, 6, 2, 0}, ends, settings);
+    EXPECT_EQ(stats.samples, 47u * 3u);
+    EXPECT_EQ(film.at(0, 0).samples, 2u);
+    EXPECT_EQ(film.at(1, 0).samples, 5u);
 }

@@ -88,12 +88,12 @@ SplatTarget splat_target(const Camera& camera, const Integrator& integrator, Fil
 // The one render loop under every entry point: threads take the block's tiles from an
 // atomic counter and render each pixel's samples onto its film record, in sample order.
 // The calling thread watches (ticks) until the workers are done.
-// With `ends` (adaptive sampling: one count per film pixel), each pixel of the block is
-// rendered from the samples it holds up to its own end instead of [first, first + count).
+// With `ends` (adaptive sampling: one count per film pixel, film.pixels.size()), each pixel of the
+// block is rendered from the samples it holds up to its own end instead of [first, first + count).
 BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrator& integrator,
                        Film& film, FilmOrigin origin, const RenderBlock& block,
                        const RenderSettings& settings, const Tick& tick,
-                       const std::vector<std::uint32_t>* ends = nullptr) {
+                       const std::uint32_t* ends = nullptr) {
     BlockOutcome outcome;
     const SplatTarget target = splat_target(camera, integrator, film);
     const int width = block.x1 - block.x0;
@@ -169,7 +169,7 @@ BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrato
                 const auto px = static_cast<std::uint32_t>(x);
                 const auto py = static_cast<std::uint32_t>(y);
                 const std::uint32_t first = ends != nullptr ? pixel.samples : block.first;
-                const std::uint32_t last = ends != nullptr ? (*ends)[index] : end;
+                const std::uint32_t last = ends != nullptr ? ends[index] : end;
                 bool stopped = false;
                 std::uint32_t taken = 0;
                 std::uint32_t until_check = 0;  // samples left before the next cancel check
@@ -457,7 +457,7 @@ Image render_onto(const Scene& scene, const Camera& camera, Integrator& integrat
             ends = adaptive_sample_counts(half, film, spp, settings.adaptive);
             const BlockOutcome rest = run_block(scene, camera, integrator, film, {},
                                                 {0, 0, film.width, film.height, pilot, spp - pilot},
-                                                settings, tick_over(pilot_share, 1.0), &ends);
+                                                settings, tick_over(pilot_share, 1.0), ends.data());
             outcome.samples += rest.samples;
             outcome.nonfinite += rest.nonfinite;
             outcome.complete = rest.complete;
@@ -530,12 +530,12 @@ RenderStats render_block(const Scene& scene, const Camera& camera, const Integra
     return render_block(scene, camera, integrator, film, FilmOrigin{}, block, settings);
 }
 
-RenderStats render_block(const Scene& scene, const Camera& camera, const Integrator& integrator,
-                         Film& film, FilmOrigin origin, const RenderBlock& block,
-                         const RenderSettings& settings) {
-    const Clock::time_point start = Clock::now();
-    const double cpu_start = cpu_now();
-    validate_threads_and_tiles(settings);
+namespace {
+
+// render_block's checks of the film's region and the block (before anything is rendered);
+// with `ends`, each pixel's own end instead of block.first + block.count.
+void check_block(const Camera& camera, const Film& film, FilmOrigin origin,
+                 const RenderBlock& block, const std::span<const std::uint32_t>* ends) {
     // The film's region, in 64 bits: origin + size cannot overflow.
     const std::int64_t rx0 = origin.x;
     const std::int64_t ry0 = origin.y;
@@ -557,22 +557,41 @@ RenderStats render_block(const Scene& scene, const Camera& camera, const Integra
                  ? std::string()
                  : " placed at (" + std::to_string(rx0) + ", " + std::to_string(ry0) + ")"));
     }
-    if (std::uint64_t{block.first} + block.count > kMaxSamplesPerPixel) {
+    if (ends == nullptr && std::uint64_t{block.first} + block.count > kMaxSamplesPerPixel) {
         throw Error("block samples [" + std::to_string(block.first) + ", " +
                     std::to_string(std::uint64_t{block.first} + block.count) +
                     "): a pixel holds at most 1048576 samples");
     }
+    if (ends != nullptr && ends->size() != film.pixels.size()) {
+        throw Error("ends: " + std::to_string(ends->size()) + " counts for a film of " +
+                    std::to_string(film.pixels.size()) + " pixels (one per film pixel)");
+    }
     for (int y = block.y0; y < block.y1; ++y) {
         for (int x = block.x0; x < block.x1; ++x) {
-            const FilmPixel& pixel = film.at(x - origin.x, y - origin.y);
+            const std::size_t i = film.index(x - origin.x, y - origin.y);
+            const FilmPixel& pixel = film.pixels[i];
             if (pixel.samples != block.first) {
                 throw Error("block.first = " + std::to_string(block.first) + ": film pixel (" +
                             std::to_string(x) + ", " + std::to_string(y) + ") holds " +
                             std::to_string(pixel.samples) +
                             " samples (a block continues a pixel's samples in order)");
             }
+            if (ends != nullptr && ((*ends)[i] < block.first || (*ends)[i] > kMaxSamplesPerPixel)) {
+                throw Error("ends: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                            ") = " + std::to_string((*ends)[i]) + ": must be in [" +
+                            std::to_string(block.first) + ", 1048576] (block.first, the samples " +
+                            "it holds, to the most a pixel holds)");
+            }
         }
     }
+}
+
+RenderStats render_checked_block(const Scene& scene, const Camera& camera,
+                                 const Integrator& integrator, Film& film, FilmOrigin origin,
+                                 const RenderBlock& block, const std::uint32_t* ends,
+                                 const RenderSettings& settings) {
+    const Clock::time_point start = Clock::now();
+    const double cpu_start = cpu_now();
     Tick tick;
     if (settings.progress) {
         tick = [&](double fraction) {
@@ -581,7 +600,7 @@ RenderStats render_block(const Scene& scene, const Camera& camera, const Integra
         };
     }
     const BlockOutcome outcome =
-        run_block(scene, camera, integrator, film, origin, block, settings, tick);
+        run_block(scene, camera, integrator, film, origin, block, settings, tick, ends);
     RenderStats stats;
     stats.seconds = seconds_since(start);
     stats.cpu_seconds = cpu_now() - cpu_start;
@@ -589,10 +608,34 @@ RenderStats render_block(const Scene& scene, const Camera& camera, const Integra
     stats.nonfinite_samples = outcome.nonfinite;
     stats.cancelled = outcome.cancelled;
     stats.passes = outcome.complete ? 1 : 0;
-    stats.samples_per_pixel = outcome.complete ? block.first + block.count : block.first;
+    // With ends the pixels hold different counts: the level all of them reached.
+    stats.samples_per_pixel =
+        outcome.complete && ends == nullptr ? block.first + block.count : block.first;
     if (settings.progress && outcome.complete)
         settings.progress({1.0, stats.seconds, 1, stats.samples_per_pixel});
     return stats;
+}
+
+}  // namespace
+
+RenderStats render_block(const Scene& scene, const Camera& camera, const Integrator& integrator,
+                         Film& film, FilmOrigin origin, const RenderBlock& block,
+                         const RenderSettings& settings) {
+    validate_threads_and_tiles(settings);
+    check_block(camera, film, origin, block, nullptr);
+    return render_checked_block(scene, camera, integrator, film, origin, block, nullptr, settings);
+}
+
+RenderStats render_block_to_counts(const Scene& scene, const Camera& camera,
+                                   const Integrator& integrator, Film& film, FilmOrigin origin,
+                                   const RenderBlock& block, std::span<const std::uint32_t> ends,
+                                   const RenderSettings& settings) {
+    validate_threads_and_tiles(settings);
+    check_block(camera, film, origin, block, &ends);
+    RenderBlock marked = block;
+    marked.count = 1;  // run_block skips a block of no samples; with ends it reads no count
+    return render_checked_block(scene, camera, integrator, film, origin, marked, ends.data(),
+                                settings);
 }
 
 RenderStats render_progressive(const Scene& scene, const Camera& camera, Integrator& integrator,
@@ -674,7 +717,7 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         }
         std::uint32_t count = std::min(pass, target - n);
         if (keep && n < mid) count = std::min(count, mid - n);  // a pass ends at the half
-        const std::vector<std::uint32_t>* ends = nullptr;
+        const std::uint32_t* ends = nullptr;
         if (pilot > 0 && n < pilot) {  // the pilot: passes end at its half and at its end
             count = std::min(count, (n < pilot / 2 ? pilot / 2 : pilot) - n);
         } else if (pilot > 0) {
@@ -685,7 +728,7 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
             goals.resize(counts.size());
             for (std::size_t i = 0; i < counts.size(); ++i)
                 goals[i] = pilot + std::uint32_t((counts[i] - pilot) * step / span);
-            ends = &goals;
+            ends = goals.data();
         }
         work = film;
         const RenderBlock block{0, 0, film.width, film.height, n, count};

@@ -12,6 +12,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <span>
 
 namespace librt {
 
@@ -185,6 +186,21 @@ struct FilmOrigin {
 LIBRT_API RenderStats render_block(const Scene& scene, const Camera& camera,
                                    const Integrator& integrator, Film& film, FilmOrigin origin,
                                    const RenderBlock& block, const RenderSettings& settings);
+
+/// render_block with a sample count of its own for each pixel: adaptive sampling split
+/// over processes (render_mpi renders the pilot of every tile, computes the counts with
+/// adaptive_sample_counts on rank 0 and sends each tile its counts). Every pixel of the
+/// block must hold block.first samples; pixel (x, y) is rendered on, in sample order, to
+/// ends[film.index(x - origin.x, y - origin.y)] samples (one entry per film pixel, each in
+/// [block.first, 2^20]), so it gets the sums render()'s adaptive film gives it. block.count
+/// is not used. A cancelled block leaves each pixel between its first and its end, its sums
+/// consistent. Throws librt::Error as render_block does, and for an `ends` of the wrong size
+/// or a count outside its range (naming the pixel), before rendering anything.
+LIBRT_API RenderStats render_block_to_counts(const Scene& scene, const Camera& camera,
+                                             const Integrator& integrator, Film& film,
+                                             FilmOrigin origin, const RenderBlock& block,
+                                             std::span<const std::uint32_t> ends,
+                                             const RenderSettings& settings);
 
 /// A render in passes, until a sample count or a time limit is reached.
 struct ProgressiveSettings {
