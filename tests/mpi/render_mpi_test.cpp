@@ -15,6 +15,8 @@
 
 #include <mpi.h>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <string>
 #include <thread>
@@ -163,10 +165,10 @@ TEST(RenderMpi, BadSettingsThrowOnEveryRank) {
     MpiRenderSettings s;
     s.tile_size = 0;
     expect_error(s, "tile_size = 0");
-    // Adaptive sampling needs the whole image's pilot, which tiles do not share.
     s = {};
     s.render.adaptive.enabled = true;
-    expect_error(s, "render.adaptive.enabled = true");
+    s.render.adaptive.radius = 0;
+    expect_error(s, "adaptive.radius = 0");
 }
 
 namespace {
@@ -304,5 +306,161 @@ TEST(RenderMpi, SplattingKeptTrainingPassesGiveRendersImage) {
                 EXPECT_TRUE(same_splats(film, expected_film)) << where;
             }
         }
+    }
+}
+
+// Adaptive sampling over the ranks: the pilots of all tiles, the counts computed on rank 0
+// from the whole image, then each tile continued to its counts. The film (with its AOVs)
+// and the image are render()'s adaptive ones bit for bit, for any tile size, thread count,
+// sampler, number of ranks and whether rank 0 renders.
+TEST(RenderMpi, AdaptiveSamplingGivesRendersFilm) {
+    const Scene scene = film_test_scene();
+    const Camera camera = film_test_camera(23, 14);
+    const PathTracerSettings pt{4, false};
+    for (const SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
+        RenderSettings rs;
+        rs.samples_per_pixel = 12;  // pilot 2
+        rs.seed = 7;
+        rs.threads = 2;
+        rs.sampler = kind;
+        rs.adaptive.enabled = true;
+        rs.adaptive.radius = 2;
+        Film expected(camera.width(), camera.height(), true);
+        Image expected_image;
+        if (world_rank() == 0) {
+            PathTracer one(pt);
+            const RenderStats st = render(scene, camera, one, expected, rs);
+            expected_image = resolve(expected);
+            // The counts do differ, or this would test nothing adaptive.
+            std::uint32_t low = ~0u, high = 0;
+            for (const FilmPixel& p : expected.pixels) {
+                low = std::min(low, p.samples);
+                high = std::max(high, p.samples);
+            }
+            ASSERT_LT(low, high);
+            ASSERT_LE(st.samples, 12u * expected.pixels.size());
+        }
+        for (const int tile : {4, 32}) {
+            for (const int threads : {1, 2}) {
+                for (const bool root_renders : {true, false}) {
+                    PathTracer tracer(pt);
+                    MpiRenderSettings s;
+                    s.render = rs;
+                    s.render.threads = threads;
+                    s.render.tile_size = 3;
+                    s.tile_size = tile;
+                    s.aovs = true;
+                    s.root_renders = root_renders;
+                    Image image;
+                    MpiRenderStats stats;
+                    const Film film =
+                        render_mpi(MPI_COMM_WORLD, scene, camera, tracer, s, &stats, &image);
+                    EXPECT_FALSE(stats.cancelled);
+                    if (world_rank() == 0) {
+                        const std::string where = "sampler " + std::to_string(int(kind)) +
+                                                  ", tile " + std::to_string(tile) + ", threads " +
+                                                  std::to_string(threads) + ", root renders " +
+                                                  std::to_string(root_renders);
+                        EXPECT_TRUE(same_records(film, expected)) << where;
+                        EXPECT_TRUE(same_pixels(image, expected_image)) << where;
+                        // Every tile twice: its pilot, then the rest of its counts.
+                        int sum = 0;
+                        for (const int n : stats.tiles_per_rank) sum += n;
+                        EXPECT_EQ(sum, stats.tiles) << where;
+                        const int tiles_x = (camera.width() + tile - 1) / tile;
+                        const int tiles_y = (camera.height() + tile - 1) / tile;
+                        EXPECT_EQ(stats.tiles, 2 * tiles_x * tiles_y) << where;
+                    }
+                }
+            }
+        }
+    }
+}
+
+// A splatting integrator with adaptive sampling: every splat, the pilot's and the rest's,
+// sums into the film's splats, and the image is render()'s.
+TEST(RenderMpi, AdaptiveSamplingWithSplatsGivesRendersImage) {
+    const Scene scene = empty_scene();
+    const Camera camera = librt::testing::splat_test_camera(19, 13, false);
+    librt::testing::RandomSplatter integrator(splatter_options(false));
+    RenderSettings rs;
+    rs.samples_per_pixel = 8;  // pilot 2
+    rs.seed = 3;
+    rs.threads = 2;
+    rs.adaptive.enabled = true;
+    rs.adaptive.radius = 1;
+    Film expected_film(camera.width(), camera.height());
+    Image expected;
+    if (world_rank() == 0) {
+        (void)render(scene, camera, integrator, expected_film, rs);
+        ASSERT_TRUE(expected_film.splats.has_value());
+        expected = resolve(expected_film);
+    }
+    for (const int tile : {3, 32}) {
+        MpiRenderSettings s;
+        s.render = rs;
+        s.tile_size = tile;
+        Image image;
+        MpiRenderStats stats;
+        const Film film = render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s, &stats, &image);
+        EXPECT_FALSE(stats.cancelled);
+        if (world_rank() == 0) {
+            EXPECT_TRUE(same_records(film, expected_film)) << "tile " << tile;
+            EXPECT_TRUE(same_splats(film, expected_film)) << "tile " << tile;
+            EXPECT_TRUE(same_pixels(image, expected)) << "tile " << tile;
+        }
+    }
+}
+
+// Cancelled on rank 0 after the pilots (its progress passes the pilot's share): every rank
+// returns, cancelled, and no rank waits for a message that never comes.
+namespace {
+
+// The path tracer at ~100 us a sample on every rank: slow enough for rank 0's progress
+// reports (every 0.1 s) to see the render part-way.
+class Slow final : public Integrator {
+public:
+    void preprocess(const Scene& scene) override { inner_.preprocess(scene); }
+    [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray,
+                               Sampler& sampler) const override {
+        std::this_thread::sleep_for(std::chrono::microseconds(100));
+        return inner_.li(scene, ray, sampler);
+    }
+
+private:
+    PathTracer inner_{PathTracerSettings{4, false}};
+};
+
+}  // namespace
+
+TEST(RenderMpi, AdaptiveSamplingCancelledAfterThePilotStopsEveryRank) {
+    const Scene scene = film_test_scene();
+    const Camera camera = film_test_camera(16, 12);
+    Slow tracer;
+    std::atomic<bool> cancel{false};
+    MpiRenderSettings s;
+    s.render.samples_per_pixel = 64;  // pilot 16: a quarter of the work
+    s.render.seed = 2;
+    s.render.adaptive.enabled = true;
+    s.render.cancel = &cancel;
+    s.tile_size = 4;
+    double highest = 0.0;
+    if (world_rank() == 0) {
+        s.render.progress = [&](const RenderProgress& p) {
+            highest = std::max(highest, p.fraction);
+            if (p.fraction > 0.3) cancel = true;
+        };
+    }
+    MpiRenderStats stats;
+    const Film film = render_mpi(MPI_COMM_WORLD, scene, camera, tracer, s, &stats);
+    EXPECT_TRUE(stats.cancelled);
+    if (world_rank() == 0) {
+        EXPECT_GT(highest, 0.3);
+        EXPECT_LT(highest, 1.0);
+        // Some pixel went past its pilot before the stop; none past 8 x 64.
+        std::uint32_t most = 0;
+        for (const FilmPixel& p : film.pixels) most = std::max(most, p.samples);
+        EXPECT_GT(most, 16u);
+        EXPECT_LE(most, 8u * 64u);
     }
 }

@@ -52,8 +52,8 @@ struct MpiRenderSettings {
 
 /// What render_mpi did, as seen from the calling rank.
 struct MpiRenderStats {
-    double seconds = 0.0;                 ///< wall-clock time of render_mpi on this rank
-    int tiles = 0;                        ///< tiles of the image
+    double seconds = 0.0;  ///< wall-clock time of render_mpi on this rank
+    int tiles = 0;  ///< tiles of the image (adaptive sampling: twice, its pilot and its rest)
     int tiles_rendered = 0;               ///< tiles this rank rendered
     std::vector<int> tiles_per_rank;      ///< rank 0: tiles each rank rendered (others: empty)
     std::uint64_t samples = 0;            ///< camera samples this rank took
@@ -76,8 +76,8 @@ LIBRT_API void validate(const MpiRenderSettings& settings);
 /// of `comm` (MPI_Comm_dup), so they never mix with the caller's or with those of the
 /// next call (calls in a row, e.g. the frames of an animation, are safe). Calls
 /// integrator.preprocess(scene) on each rank. Returns the whole film on rank 0 (every
-/// pixel holding settings.render.samples_per_pixel samples; resolve() or resolve_layers()
-/// it), an empty 0x0 film on the other ranks.
+/// pixel holding settings.render.samples_per_pixel samples, but see adaptive sampling; resolve() or
+/// resolve_layers() it), an empty 0x0 film on the other ranks.
 ///
 /// Failure: an exception on any rank (the integrator throws, bad settings, an allocation
 /// fails) is sent to rank 0, which stops the other ranks; then render_mpi throws
@@ -99,6 +99,13 @@ LIBRT_API void validate(const MpiRenderSettings& settings);
 /// same settings whatever the rank count, tile size and threads; otherwise (or when
 /// cancelled) resolve() of the returned film. The film itself holds the image's samples
 /// only. Other ranks leave `image` unchanged.
+///
+/// Adaptive sampling (settings.render.adaptive): every tile's pilot is rendered first (in
+/// its two halves, both of whose records travel to rank 0); once all are back, rank 0
+/// computes each pixel's count from the whole image (adaptive_sample_counts) and hands out
+/// each tile again with its pilot records and counts, continued by render_block_to_counts.
+/// The film is then render()'s adaptive film bit for bit, its pixels holding their own
+/// counts (samples_per_pixel on average), and stats->tiles counts each tile twice.
 [[nodiscard]] LIBRT_API Film render_mpi(MPI_Comm comm, const Scene& scene, const Camera& camera,
                                         Integrator& integrator, const MpiRenderSettings& settings,
                                         MpiRenderStats* stats = nullptr, Image* image = nullptr);

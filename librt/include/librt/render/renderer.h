@@ -43,8 +43,8 @@ struct RenderSettings {
     /// exactly what librt always drew; Sobol lowers the noise per sample (docs/sampling.md).
     SamplerKind sampler = SamplerKind::Independent;
     /// Spread the samples over pixels by their noise, samples_per_pixel becoming the mean
-    /// (adaptive_sampling.h): render() and render_progressive(); render_block ignores it
-    /// (its block says the samples) and render_mpi refuses it.
+    /// (adaptive_sampling.h): render(), render_progressive() and render_mpi(); render_block
+    /// ignores it (its block says the samples; render_block_to_counts takes the counts).
     AdaptiveSampling adaptive;
     int tile_size =
         16;  ///< side of the square tiles handed to threads (>= 1; capped at the image size)
