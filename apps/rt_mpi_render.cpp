@@ -189,7 +189,7 @@ int main(int argc, char** argv) {
         settings.render.threads = options.threads;
         settings.render.seed = options.seed;
         settings.render.sampler = apps::sampler_kind(options);
-        settings.render.adaptive.enabled = options.adaptive;  // refused by render_mpi
+        settings.render.adaptive.enabled = options.adaptive;
         settings.render.cancel = &g_cancel;
         settings.tile_size = tile;
         settings.aovs = ends_with(options.output, ".exr");

@@ -91,10 +91,6 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         bad("--time-limit", std::to_string(o.time_limit),
             "is not available under mpirun (use --spp)");
     apps::validate_sampling(o.sampling);
-    // The ranks' tiles sample every pixel alike; a pixel's adaptive count needs the pilot
-    // of the pixels around it, in other tiles.
-    if (o.sampling.adaptive && job.distributed())
-        bad("--adaptive", "on", "is not available under mpirun");
     if (o.mpi_tile < 1 || o.mpi_tile > 1024)
         bad("--mpi-tile", std::to_string(o.mpi_tile), "must be in [1, 1024]");
     if (!std::isfinite(o.exposure_ev) || std::abs(o.exposure_ev) > 64.0f)
@@ -161,6 +157,7 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         ms.render.threads = o.threads;
         ms.render.seed = o.seed;
         ms.render.sampler = apps::sampler_kind(o.sampling);
+        ms.render.adaptive.enabled = o.sampling.adaptive;
         ms.tile_size = o.mpi_tile;
         ms.aovs = apps::lower_extension(o.output) == ".exr";
         return apps::render_over_ranks(job, loaded.scene, camera, integrator, ms, o.quiet, o.output,

@@ -3,8 +3,9 @@
 #   identical  mpirun -np 1, 2, 3, 4 give files byte-identical (cmp) to the one-process
 #              rt_render: a PNG (default sampler and pixel jitter) and an EXR with every
 #              layer rendered with --sampler sobol --filter mitchell, and a PFM with
-#              --guiding (training passes kept), on an OBJ this script writes
-#              (rt_render has no built-in scene; this mode needs no data);
+#              --guiding (training passes kept), and an EXR with --adaptive, on an OBJ
+#              this script writes (rt_render has no built-in scene; this mode needs no
+#              data);
 #   gltf       the same on the data's glTF scene gltf/textures.glb (exit 77, a skip, with a
 #              message when the data is missing; a failure when LIBRT_REQUIRE_DATA=1);
 #   failures   one rank whose scene file is missing, and one rank killed by SIGKILL while
@@ -69,6 +70,9 @@ if [ "$mode" = identical ]; then
   # --guiding keeps its training passes: the progressive one-process image and render_mpi's
   # both join them to the film as render() does.
   identical obj-guiding.pfm "$scene" "${frame[@]}" --guiding --guiding-passes 3
+  # --adaptive: the pilots of all tiles, the counts from the whole image on rank 0, then
+  # the rest; the EXR's sample_count layer holds each pixel's count.
+  identical obj-adaptive.exr "$scene" --size 64x40 --spp 16 --seed 7 --adaptive
   rm -rf "$dir"
   exit 0
 fi
