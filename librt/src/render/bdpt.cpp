@@ -3,6 +3,8 @@
 // could have made a path, computed as pbrt 3rd ed. (section 16.3.4) does, by ratios of
 // the densities of each vertex sampled forward (toward the light for the camera subpath,
 // away from it for the light subpath) and in reverse.
+// Over 400 lines: the walks, the connections and the weights share the private PathVertex
+// and its densities, and the weight is only checkable beside the code that sets them.
 
 #include "bsdf_dispatch.h"
 #include "render/mis.h"
