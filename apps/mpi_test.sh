@@ -3,7 +3,8 @@
 #   identical  mpirun -np 1, 2, 3, 4 give PFM files byte-identical (cmp) to the one-process
 #              threaded render (--single-process), and -np 3 an EXR (every layer, float)
 #              byte-identical to the one-process EXR, and -np 2 with --guiding (training
-#              passes kept) a PFM byte-identical to the one-process one;
+#              passes kept) a PFM byte-identical to the one-process one, and -np 3 with
+#              --adaptive an EXR byte-identical to the one-process one;
 #   failures   a rank that fails (bad mesh file while setting up, an exception while
 #              rendering, killed by SIGKILL while rendering) ends the job with a non-zero
 #              exit, a message naming that rank, and no output file (nor temporary).
@@ -45,6 +46,15 @@ if [ "$mode" = identical ]; then
   cmp "$dir/reference_guiding.pfm" "$dir/np2_guiding.pfm" ||
     fail "-np 2 --guiding differs from the one-process render"
   echo "-np 2 --guiding (training passes kept): byte-identical to the one-process render"
+  # --adaptive: render() onto a film in one process; the pilots, the counts on rank 0 and
+  # the rest over 3 ranks. The EXR's sample_count layer holds each pixel's count.
+  "$app" "${frame[@]}" --threads 2 --single-process --adaptive --exr-float \
+    -o "$dir/reference_adaptive.exr"
+  "$mpirun" "${flags[@]}" -np 3 "$app" "${frame[@]}" --threads 1 --tile 16 --adaptive \
+    --exr-float -o "$dir/np3_adaptive.exr"
+  cmp "$dir/reference_adaptive.exr" "$dir/np3_adaptive.exr" ||
+    fail "-np 3 --adaptive differs from the one-process render"
+  echo "-np 3 --adaptive EXR: byte-identical to the one-process render"
   rm -rf "$dir"
   exit 0
 fi

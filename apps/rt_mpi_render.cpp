@@ -204,21 +204,31 @@ int main(int argc, char** argv) {
             if (rank != 0) throw Error("--single-process runs without mpirun (one rank)");
             validate(settings);
             film = Film(camera.width(), camera.height(), settings.aovs);
-            integrator.preprocess(scene);
-            // --guiding keeps its training passes: render the halves apart, as render() does.
-            PassCombination kept;
-            train(scene, camera, integrator, settings.render, &kept);
-            const auto spp = static_cast<std::uint32_t>(options.spp);
-            const std::uint32_t mid = kept.count() > 0 ? spp / 2 : 0;
-            RenderStats rs = render_block(scene, camera, integrator, film,
-                                          {0, 0, film.width, film.height, 0, mid}, settings.render);
-            Film half = film;
-            if (!rs.cancelled) {
-                rs = render_block(scene, camera, integrator, film,
-                                  {0, 0, film.width, film.height, mid, spp - mid}, settings.render);
+            if (settings.render.adaptive.enabled) {
+                // render() onto the film: the pilot, the counts, the rest (it keeps no
+                // training passes then, as render_mpi does not).
+                const RenderStats rs = render(scene, camera, integrator, film, settings.render);
+                stats.cancelled = rs.cancelled;
+                image = resolve(film);
+            } else {
+                integrator.preprocess(scene);
+                // --guiding keeps its training passes: render the halves apart, as render() does.
+                PassCombination kept;
+                train(scene, camera, integrator, settings.render, &kept);
+                const auto spp = static_cast<std::uint32_t>(options.spp);
+                const std::uint32_t mid = kept.count() > 0 ? spp / 2 : 0;
+                RenderStats rs =
+                    render_block(scene, camera, integrator, film,
+                                 {0, 0, film.width, film.height, 0, mid}, settings.render);
+                Film half = film;
+                if (!rs.cancelled) {
+                    rs = render_block(scene, camera, integrator, film,
+                                      {0, 0, film.width, film.height, mid, spp - mid},
+                                      settings.render);
+                }
+                stats.cancelled = rs.cancelled;
+                image = kept.combined(half, film);
             }
-            stats.cancelled = rs.cancelled;
-            image = kept.combined(half, film);
         } else {
             film = render_mpi(MPI_COMM_WORLD, scene, camera, integrator, settings, &stats, &image);
         }
