@@ -8,7 +8,8 @@
 # the render's own CPU seconds summed over the ranks (getrusage around the render call),
 # gather bytes and seconds, tiles per rank. On a shared machine the wall times measure the
 # CPU share the scheduler grants as much as the renderer; CPU seconds are the overhead.
-# Usage: scripts/mpi_scaling.sh <rt_mpi_render> [rounds] [size] [spp]
+# Usage: scripts/mpi_scaling.sh <rt_mpi_render> [rounds] [size] [spp] [more options...]
+# (the more options, e.g. --adaptive, go to every run)
 set -euo pipefail
 app=$1
 rounds=${2:-3}
@@ -18,7 +19,7 @@ flags=(--oversubscribe)
 [ "$(id -u)" -ne 0 ] || flags+=(--allow-run-as-root)
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-frame=(--size "$size" --spp "$spp" --seed 1 -o "$out/frame.pfm")
+frame=(--size "$size" --spp "$spp" --seed 1 -o "$out/frame.pfm" "${@:5}")
 
 run() {  # name, command...
   local name=$1
