@@ -63,6 +63,22 @@ double seconds_since(Clock::time_point start) {
 constexpr auto k_poll_interval = std::chrono::microseconds(500);
 constexpr auto k_poll_interval_alone = std::chrono::milliseconds(5);
 
+// A worker waiting for rank 0's answer. Open MPI's blocking MPI_Probe spins a core for as
+// long as the answer takes: the round trip between tiles (under a millisecond), but with
+// adaptive sampling also the wait for the last pilot, a tile's time, during which the
+// spinning core is taken from the ranks that still render. So: probe without blocking
+// for about 200 us (the usual answer comes within rank 0's 500 us nap), then nap 200 us
+// between probes.
+void wait_for_answer(MPI_Comm comm, MPI_Status& status) {
+    const Clock::time_point start = Clock::now();
+    for (int flag = 0;;) {
+        check(MPI_Iprobe(0, MPI_ANY_TAG, comm, &flag, &status), "MPI_Iprobe");
+        if (flag) return;
+        if (Clock::now() - start > std::chrono::microseconds(200))
+            std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+}
+
 RenderSettings block_settings(const MpiRenderSettings& s, const std::atomic<bool>* cancel) {
     RenderSettings r = s.render;
     r.progress = {};  // render_mpi reports progress itself, on rank 0's calling thread
@@ -423,7 +439,7 @@ Film run_worker(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
             send_bytes(request.data(), request.size(), 0, kRequest, comm);
             stats.gather_bytes += request.size();
             MPI_Status status;
-            check(MPI_Probe(0, MPI_ANY_TAG, comm, &status), "MPI_Probe");
+            wait_for_answer(comm, status);
             const std::vector<std::byte> answer = receive(status, comm);
             stats.gather_seconds += seconds_since(t0);
             if (status.MPI_TAG == kDone) {
