@@ -159,14 +159,24 @@ void send_text(const std::string& text, int dest, int tag, MPI_Comm comm) {
     send_bytes(text.data(), text.size(), dest, tag, comm);
 }
 
-std::vector<std::byte> receive(const MPI_Status& status, MPI_Comm comm) {
+namespace {
+
+// Receives the message `status` announced as elements of T (MPI type `type`).
+template <class T>
+std::vector<T> receive_as(const MPI_Status& status, MPI_Comm comm, MPI_Datatype type) {
     int count = 0;
-    check(MPI_Get_count(&status, MPI_BYTE, &count), "MPI_Get_count");
-    std::vector<std::byte> data(static_cast<std::size_t>(count));
-    check(MPI_Recv(data.data(), count, MPI_BYTE, status.MPI_SOURCE, status.MPI_TAG, comm,
+    check(MPI_Get_count(&status, type, &count), "MPI_Get_count");
+    std::vector<T> data(static_cast<std::size_t>(count));
+    check(MPI_Recv(data.data(), count, type, status.MPI_SOURCE, status.MPI_TAG, comm,
                    MPI_STATUS_IGNORE),
           "MPI_Recv");
     return data;
+}
+
+}  // namespace
+
+std::vector<std::byte> receive(const MPI_Status& status, MPI_Comm comm) {
+    return receive_as<std::byte>(status, comm, MPI_BYTE);
 }
 
 // The splat sums of a worker travel as int64 (counts, not bytes: 3 W H sums would pass an
@@ -179,13 +189,7 @@ void send_int64s(const std::vector<std::int64_t>& data, int dest, int tag, MPI_C
 }
 
 std::vector<std::int64_t> receive_int64s(const MPI_Status& status, MPI_Comm comm) {
-    int count = 0;
-    check(MPI_Get_count(&status, MPI_INT64_T, &count), "MPI_Get_count");
-    std::vector<std::int64_t> data(static_cast<std::size_t>(count));
-    check(MPI_Recv(data.data(), count, MPI_INT64_T, status.MPI_SOURCE, status.MPI_TAG, comm,
-                   MPI_STATUS_IGNORE),
-          "MPI_Recv");
-    return data;
+    return receive_as<std::int64_t>(status, comm, MPI_INT64_T);
 }
 
 std::vector<std::int64_t> pack_splats(const std::optional<SplatFilm>& splats,
