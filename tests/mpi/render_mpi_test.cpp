@@ -54,6 +54,18 @@ librt::testing::RandomSplatter::Options splatter_options(bool trains) {
     return o;
 }
 
+// render_mpi's settings for one case of a test's loops.
+MpiRenderSettings split(const RenderSettings& rs, int threads, int tile, bool root_renders,
+                        bool aovs = false) {
+    MpiRenderSettings s;
+    s.render = rs;
+    s.render.threads = threads;
+    s.tile_size = tile;
+    s.root_renders = root_renders;
+    s.aovs = aovs;
+    return s;
+}
+
 }  // namespace
 
 TEST(RenderMpi, FilmEqualsTheOneProcessFilmForAnyTileAndThreadCount) {
@@ -173,18 +185,22 @@ TEST(RenderMpi, BadSettingsThrowOnEveryRank) {
 
 namespace {
 
-// The path tracer, slowed down on rank 0 only: rank 0's own rendering thread finishes its
-// tile long after the other ranks have finished theirs and gone on to the next call.
-class SlowOnRankZero final : public Integrator {
+// The path tracer, each sample delayed by `delay` (on rank 0 only, or on every rank).
+class SlowPathTracer final : public Integrator {
 public:
+    SlowPathTracer(std::chrono::microseconds delay, bool rank_zero_only,
+                   const PathTracerSettings& settings = {})
+        : delay_(delay), rank_zero_only_(rank_zero_only), inner_(settings) {}
     void preprocess(const Scene& scene) override { inner_.preprocess(scene); }
     [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray,
                                Sampler& sampler) const override {
-        if (world_rank() == 0) std::this_thread::sleep_for(std::chrono::milliseconds(3));
+        if (!rank_zero_only_ || world_rank() == 0) std::this_thread::sleep_for(delay_);
         return inner_.li(scene, ray, sampler);
     }
 
 private:
+    std::chrono::microseconds delay_;
+    bool rank_zero_only_;
     PathTracer inner_;
 };
 
@@ -196,7 +212,9 @@ private:
 TEST(RenderMpi, CallsInARowKeepTheirMessagesApart) {
     const Scene scene = film_test_scene();
     const Camera camera = film_test_camera(8, 8);
-    SlowOnRankZero integrator;
+    // Rank 0's own rendering thread finishes its tile long after the other ranks have
+    // finished theirs and gone on to the next call.
+    SlowPathTracer integrator(std::chrono::milliseconds(3), true);
     MpiRenderSettings s;
     s.render.threads = 1;
     s.tile_size = 4;  // 4 tiles: with 3 ranks, rank 0 renders one slowly
@@ -240,12 +258,8 @@ TEST(RenderMpi, SplattingIntegratorGivesRendersImage) {
     for (const int tile : {3, 32}) {
         for (const int threads : {1, 2}) {
             for (const bool root_renders : {true, false}) {
-                MpiRenderSettings s;
-                s.render = rs;
-                s.render.threads = threads;
+                MpiRenderSettings s = split(rs, threads, tile, root_renders);
                 s.render.tile_size = 2;
-                s.tile_size = tile;
-                s.root_renders = root_renders;
                 Image image;
                 MpiRenderStats stats;
                 const Film film =
@@ -344,13 +358,8 @@ TEST(RenderMpi, AdaptiveSamplingGivesRendersFilm) {
             for (const int threads : {1, 2}) {
                 for (const bool root_renders : {true, false}) {
                     PathTracer tracer(pt);
-                    MpiRenderSettings s;
-                    s.render = rs;
-                    s.render.threads = threads;
+                    MpiRenderSettings s = split(rs, threads, tile, root_renders, true);
                     s.render.tile_size = 3;
-                    s.tile_size = tile;
-                    s.aovs = true;
-                    s.root_renders = root_renders;
                     Image image;
                     MpiRenderStats stats;
                     const Film film =
@@ -413,30 +422,13 @@ TEST(RenderMpi, AdaptiveSamplingWithSplatsGivesRendersImage) {
 }
 
 // Cancelled on rank 0 after the pilots (its progress passes the pilot's share): every rank
-// returns, cancelled, and no rank waits for a message that never comes.
-namespace {
-
-// The path tracer at ~100 us a sample on every rank: slow enough for rank 0's progress
-// reports (every 0.1 s) to see the render part-way.
-class Slow final : public Integrator {
-public:
-    void preprocess(const Scene& scene) override { inner_.preprocess(scene); }
-    [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray,
-                               Sampler& sampler) const override {
-        std::this_thread::sleep_for(std::chrono::microseconds(100));
-        return inner_.li(scene, ray, sampler);
-    }
-
-private:
-    PathTracer inner_{PathTracerSettings{4, false}};
-};
-
-}  // namespace
-
+// returns, cancelled, and no rank waits for a message that never comes. Each sample takes
+// ~100 us on every rank, slow enough for rank 0's progress reports (every 0.1 s) to see
+// the render part-way.
 TEST(RenderMpi, AdaptiveSamplingCancelledAfterThePilotStopsEveryRank) {
     const Scene scene = film_test_scene();
     const Camera camera = film_test_camera(16, 12);
-    Slow tracer;
+    SlowPathTracer tracer(std::chrono::microseconds(100), false, PathTracerSettings{4, false});
     std::atomic<bool> cancel{false};
     MpiRenderSettings s;
     s.render.samples_per_pixel = 64;  // pilot 16: a quarter of the work
