@@ -456,3 +456,32 @@ TEST(RenderMpi, AdaptiveSamplingCancelledAfterThePilotStopsEveryRank) {
         EXPECT_LE(most, 8u * 64u);
     }
 }
+
+// Cancelled on rank 0 while the pilots are still out: rank 0's own thread renders its
+// pilot tiles slowly, so the other ranks finish theirs and wait for the counts; the cancel
+// must reach those waiting requests too (each is answered "stop"), and no rank hangs.
+TEST(RenderMpi, AdaptiveSamplingCancelledBeforeTheCountsStopsEveryRank) {
+    const Scene scene = film_test_scene();
+    const Camera camera = film_test_camera(16, 12);
+    SlowPathTracer tracer(std::chrono::milliseconds(2), true, PathTracerSettings{4, false});
+    std::atomic<bool> cancel{false};
+    MpiRenderSettings s;
+    s.render.samples_per_pixel = 64;  // pilot 16
+    s.render.seed = 4;
+    s.render.threads = 1;
+    s.render.adaptive.enabled = true;
+    s.render.cancel = &cancel;
+    s.tile_size = 4;  // 12 tiles; rank 0's thread takes ~0.5 s for one pilot tile
+    if (world_rank() == 0) {
+        s.render.progress = [&](const RenderProgress& p) {
+            if (p.seconds > 0.15) cancel = true;
+        };
+    }
+    MpiRenderStats stats;
+    const Film film = render_mpi(MPI_COMM_WORLD, scene, camera, tracer, s, &stats);
+    EXPECT_TRUE(stats.cancelled);
+    if (world_rank() == 0) {
+        // No pixel went past its pilot: the counts were never computed.
+        for (const FilmPixel& p : film.pixels) EXPECT_LE(p.samples, 16u);
+    }
+}
