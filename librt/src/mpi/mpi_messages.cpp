@@ -117,16 +117,19 @@ int unpack_assignment(const std::vector<std::byte>& message, const Tiling& tilin
     std::int32_t job = -1;
     if (message.size() < sizeof job) throw Error("render_mpi: short assignment from rank 0");
     std::memcpy(&job, message.data(), sizeof job);
+    const auto malformed = [&] {
+        return Error("render_mpi: rank 0 assigned job " + std::to_string(job) +
+                     " in a message of " + std::to_string(message.size()) +
+                     " bytes (mismatched settings?)");
+    };
+    if (job < 0 || job >= 2 * tiling.count) throw malformed();
     const bool continues = job >= tiling.count;
-    const Rect r = tiling.rect(job % std::max(1, tiling.count));
-    tile = Film(r.x1 - r.x0, r.y1 - r.y0, aovs);
+    const Rect r = tiling.rect(job % tiling.count);
     const std::size_t n = r.pixels();
-    const std::size_t expected =
-        sizeof job + (continues ? n * (record_bytes(tile, false) + sizeof(std::uint32_t)) : 0);
-    if (job < 0 || job >= 2 * tiling.count || message.size() != expected) {
-        throw Error("render_mpi: rank 0 assigned job " + std::to_string(job) + " in a message of " +
-                    std::to_string(message.size()) + " bytes (mismatched settings?)");
-    }
+    const std::size_t per_pixel =
+        sizeof(FilmPixel) + (aovs ? sizeof(AovPixel) : 0) + sizeof(std::uint32_t);
+    if (message.size() != sizeof job + (continues ? n * per_pixel : 0)) throw malformed();
+    tile = Film(r.x1 - r.x0, r.y1 - r.y0, aovs);
     ends.clear();
     if (!continues) return job;
     const std::byte* at = message.data() + sizeof job;
