@@ -1,6 +1,8 @@
 // Adaptive sampling (adaptive_sampling.h): where the counts go, that they keep every pixel
 // an unbiased mean, that they lower the image's error at equal samples, and determinism.
 
+#include "render/film_test_util.h"
+
 #include <librt/core/error.h>
 #include <librt/render/adaptive_sampling.h>
 #include <librt/render/renderer.h>
@@ -296,22 +298,6 @@ TEST(AdaptiveSampling, LowersTheErrorWhereNoiseIsUneven) {
     EXPECT_LT(adaptive * 1.4, uniform) << adaptive << " vs " << uniform;
 }
 
-namespace {
-
-bool same_film(const Film& a, const Film& b) {
-    if (a.pixels.size() != b.pixels.size()) return false;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-        const FilmPixel& p = a.pixels[i];
-        const FilmPixel& q = b.pixels[i];
-        if (p.samples != q.samples || p.finite != q.finite ||
-            std::memcmp(&p.radiance, &q.radiance, sizeof(p.radiance)) != 0)
-            return false;
-    }
-    return true;
-}
-
-}  // namespace
-
 // In passes (of 3 samples, so passes do not line up with the pilot's half) the film ends
 // exactly as render()'s: the pilot's passes stop at its half and at its end, and every
 // pixel's samples are the same ones in the same order.
@@ -334,7 +320,7 @@ TEST(AdaptiveSampling, ProgressiveRenderEqualsTheOneShotRender) {
     const RenderStats stats = render_progressive(scene, camera, integrator, film, ps, &image);
     EXPECT_EQ(stats.samples_per_pixel, 40u);
     EXPECT_EQ(stats.passes, 4 + 11);  // 3, 4 | 7, 8 | 11, 14, ..., 38, 40
-    EXPECT_TRUE(same_film(film, one_shot));
+    EXPECT_TRUE(librt::testing::same_records(film, one_shot));
     const Image expected = resolve(one_shot);
     EXPECT_EQ(std::memcmp(image.pixels.data(), expected.pixels.data(),
                           image.pixels.size() * sizeof(glm::vec3)),
@@ -494,7 +480,7 @@ TEST(AdaptiveSampling, TilesRenderedToTheirCountsGiveRendersFilm) {
                 for (int x = x0; x < x1; ++x) film.at(x, y) = tile.at(x - x0, y - y0);
         }
     }
-    EXPECT_TRUE(same_film(film, expected));
+    EXPECT_TRUE(librt::testing::same_records(film, expected));
     EXPECT_GT(film.at(30, 12).samples, film.at(10, 12).samples);
 }
 
@@ -515,7 +501,8 @@ TEST(AdaptiveSampling, RenderBlockToCountsRefusesBadCounts) {
         } catch (const Error& e) {
             EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
         }
-        EXPECT_TRUE(same_film(film, before)) << "rendered before refusing: " << part;
+        EXPECT_TRUE(librt::testing::same_records(film, before))
+            << "rendered before refusing: " << part;
     };
     std::vector<std::uint32_t> ends(48, 5);
     expect_error(std::vector<std::uint32_t>(47, 5), 2, "ends: 47 counts for a film of 48 pixels");
