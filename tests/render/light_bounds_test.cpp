@@ -186,8 +186,9 @@ void expect_bounded_mis_equals_brute(const Scene& scene, int spp_mis, int spp_br
     const auto c = render_stats(scene, by_power, cam, spp_mis, 23);
     const auto whole = region(a, 0, 0, a.width, a.height);
     EXPECT_GT(whole.mean.x + whole.mean.y + whole.mean.z, 1e-3) << what << ": black image";
-    testing::expect_images_agree(a, b, std::string(what) + ": bounded vs brute force");
-    testing::expect_images_agree(a, c, std::string(what) + ": bounded vs power");
+    const std::string name = what;
+    testing::expect_images_agree(a, b, name + ": bounded vs brute force");
+    testing::expect_images_agree(a, c, name + ": bounded vs power");
 }
 
 TEST(BoundedLightChoice, MisWithPerPointPmfEqualsBruteForce) {
