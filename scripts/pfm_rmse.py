@@ -1,5 +1,14 @@
 #!/usr/bin/env python3
-"""RMSE of linear PFM images against a reference: pfm_rmse.py REF.pfm IMG.pfm [IMG.pfm ...]"""
+"""RMSE of linear PFM images against a reference.
+
+pfm_rmse.py [--near-above V] REF.pfm IMG.pfm [IMG.pfm ...]
+
+Prints each image's RMSE (also relative to the reference's mean) and MSE. With
+--near-above V it also splits the MSE into "near" (the pixels within 2 of one whose
+largest reference channel exceeds V: an emitter seen directly and its anti-aliased edge)
+and "room" (all others), the split docs/materials-and-lights.md's equal-time tables use.
+"""
+import argparse
 import math
 import struct
 import sys
@@ -10,16 +19,50 @@ def read_pfm(path):
         kind = f.readline().strip()
         width, height = map(int, f.readline().split())
         scale = float(f.readline())
-        count = width * height * (3 if kind == b"PF" else 1)
+        channels = 3 if kind == b"PF" else 1
+        count = width * height * channels
         order = "<" if scale < 0 else ">"  # negative scale = little-endian
-        return struct.unpack(order + "%df" % count, f.read(4 * count))
+        return width, height, channels, struct.unpack(order + "%df" % count, f.read(4 * count))
 
 
-ref = read_pfm(sys.argv[1])
-mean = sum(ref) / len(ref)
-for path in sys.argv[2:]:
-    img = read_pfm(path)
-    if len(img) != len(ref):
-        sys.exit(f"{path}: size differs from the reference")
-    rmse = math.sqrt(sum((a - b) ** 2 for a, b in zip(img, ref)) / len(ref))
-    print(f"{path}: RMSE {rmse:.5f}, relative to the mean {rmse / mean:.4f}")
+def near_mask(width, height, channels, ref, above):
+    bright = [max(ref[channels * i:channels * i + channels]) > above for i in range(width * height)]
+    near = [False] * (width * height)
+    for y in range(height):
+        for x in range(width):
+            if not bright[y * width + x]:
+                continue
+            for yy in range(max(0, y - 2), min(height, y + 3)):
+                for xx in range(max(0, x - 2), min(width, x + 3)):
+                    near[yy * width + xx] = True
+    return near
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--near-above", type=float, default=None)
+    parser.add_argument("reference")
+    parser.add_argument("images", nargs="+")
+    args = parser.parse_args()
+    width, height, channels, ref = read_pfm(args.reference)
+    mean = sum(ref) / len(ref)
+    near = near_mask(width, height, channels, ref, args.near_above) if args.near_above else None
+    for path in args.images:
+        w, h, c, img = read_pfm(path)
+        if (w, h, c) != (width, height, channels):
+            sys.exit(f"{path}: size differs from the reference")
+        pixel_se = [sum((img[c * i + k] - ref[c * i + k]) ** 2 for k in range(c)) / c
+                    for i in range(w * h)]
+        mse = sum(pixel_se) / len(pixel_se)
+        rmse = math.sqrt(mse)
+        line = f"{path}: RMSE {rmse:.5f}, relative to the mean {rmse / mean:.4f}, MSE {mse:.4e}"
+        if near is not None:
+            room = [se for se, n in zip(pixel_se, near) if not n]
+            n_near = len(pixel_se) - len(room)
+            room_mse = sum(room) / len(room) if room else 0.0
+            line += f", room MSE {room_mse:.4e} ({n_near} near pixels)"
+        print(line)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""Writes a copy of a binary glTF (.glb) with some materials changed, for experiments.
+
+glb_variant.py IN.glb OUT.glb EDIT [EDIT ...]
+
+Each EDIT is NAME.one-sided (doubleSided false: an emitter then emits from its front
+only), NAME.dielectric (metallicFactor 0), NAME.opaque (KHR_materials_transmission
+removed) or NAME.rough (roughnessFactor 1), NAME a material's name. docs/materials-and-lights.md uses it to measure which
+of cornell_pbr.glb's surfaces limit its emissive-panel target. The binary chunk is
+copied unchanged; only the JSON chunk is rewritten.
+"""
+import json
+import struct
+import sys
+
+JSON_CHUNK = 0x4E4F534A
+
+
+def main():
+    if len(sys.argv) < 4:
+        sys.exit(__doc__)
+    source, target, edits = sys.argv[1], sys.argv[2], sys.argv[3:]
+    with open(source, "rb") as f:
+        data = f.read()
+    magic, version, _ = struct.unpack("<4sII", data[:12])
+    if magic != b"glTF" or version != 2:
+        sys.exit(f"{source}: not a version 2 binary glTF")
+    length, kind = struct.unpack("<II", data[12:20])
+    if kind != JSON_CHUNK:
+        sys.exit(f"{source}: the first chunk is not JSON")
+    gltf = json.loads(data[20:20 + length])
+    rest = data[20 + length:]
+    materials = {m.get("name"): m for m in gltf.get("materials", [])}
+    for edit in edits:
+        name, _, what = edit.rpartition(".")
+        if name not in materials:
+            sys.exit(f"{edit}: {source} has no material named '{name}'")
+        m = materials[name]
+        if what == "one-sided":
+            m["doubleSided"] = False
+        elif what == "dielectric":
+            m.setdefault("pbrMetallicRoughness", {})["metallicFactor"] = 0
+        elif what == "opaque":
+            extensions = m.get("extensions", {})
+            extensions.pop("KHR_materials_transmission", None)
+            if not extensions:
+                m.pop("extensions", None)
+        elif what == "rough":
+            m.setdefault("pbrMetallicRoughness", {})["roughnessFactor"] = 1
+        else:
+            sys.exit(f"{edit}: the edit must be one-sided, dielectric, opaque or rough")
+    text = json.dumps(gltf, separators=(",", ":")).encode()
+    text += b" " * (-len(text) % 4)  # chunks are 4-byte aligned; JSON pads with spaces
+    body = struct.pack("<II", len(text), JSON_CHUNK) + text + rest
+    with open(target, "wb") as f:
+        f.write(struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body)
+
+
+if __name__ == "__main__":
+    main()
