@@ -20,15 +20,20 @@ def main():
     if len(sys.argv) < 4:
         sys.exit(__doc__)
     source, target, edits = sys.argv[1], sys.argv[2], sys.argv[3:]
-    with open(source, "rb") as f:
-        data = f.read()
-    magic, version, _ = struct.unpack("<4sII", data[:12])
-    if magic != b"glTF" or version != 2:
+    try:
+        with open(source, "rb") as f:
+            data = f.read()
+    except OSError as e:
+        sys.exit(f"{source}: {e}")
+    if len(data) < 20 or data[:4] != b"glTF" or struct.unpack("<I", data[4:8])[0] != 2:
         sys.exit(f"{source}: not a version 2 binary glTF")
     length, kind = struct.unpack("<II", data[12:20])
-    if kind != JSON_CHUNK:
-        sys.exit(f"{source}: the first chunk is not JSON")
-    gltf = json.loads(data[20:20 + length])
+    if kind != JSON_CHUNK or 20 + length > len(data):
+        sys.exit(f"{source}: the first chunk is not a whole JSON chunk")
+    try:
+        gltf = json.loads(data[20:20 + length])
+    except ValueError as e:
+        sys.exit(f"{source}: JSON chunk: {e}")
     rest = data[20 + length:]
     materials = {m.get("name"): m for m in gltf.get("materials", [])}
     for edit in edits:

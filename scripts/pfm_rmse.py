@@ -15,14 +15,25 @@ import sys
 
 
 def read_pfm(path):
-    with open(path, "rb") as f:
-        kind = f.readline().strip()
-        width, height = map(int, f.readline().split())
-        scale = float(f.readline())
-        channels = 3 if kind == b"PF" else 1
-        count = width * height * channels
-        order = "<" if scale < 0 else ">"  # negative scale = little-endian
-        return width, height, channels, struct.unpack(order + "%df" % count, f.read(4 * count))
+    """(width, height, channels, values) of a PFM file; exits naming the file if it is not one."""
+    try:
+        with open(path, "rb") as f:
+            kind = f.readline().strip()
+            if kind not in (b"PF", b"Pf"):
+                raise ValueError("not a PFM file (no PF or Pf header)")
+            width, height = map(int, f.readline().split())
+            scale = float(f.readline())
+            if width <= 0 or height <= 0 or scale == 0.0:
+                raise ValueError(f"bad size {width} x {height} or scale {scale}")
+            channels = 3 if kind == b"PF" else 1
+            count = width * height * channels
+            order = "<" if scale < 0 else ">"  # negative scale = little-endian
+            data = f.read(4 * count)
+            if len(data) != 4 * count:
+                raise ValueError(f"truncated: {len(data)} of {4 * count} bytes of pixels")
+            return width, height, channels, struct.unpack(order + "%df" % count, data)
+    except (OSError, ValueError) as e:
+        sys.exit(f"{path}: {e}")
 
 
 def near_mask(width, height, channels, ref, above):
