@@ -5,9 +5,10 @@ glb_variant.py IN.glb OUT.glb EDIT [EDIT ...]
 
 Each EDIT is NAME.one-sided (doubleSided false: an emitter then emits from its front
 only), NAME.dielectric (metallicFactor 0), NAME.opaque (KHR_materials_transmission
-removed) or NAME.rough (roughnessFactor 1), NAME a material's name. docs/materials-and-lights.md uses it to measure which
-of cornell_pbr.glb's surfaces limit its emissive-panel target. The binary chunk is
-copied unchanged; only the JSON chunk is rewritten.
+removed) or NAME.rough (roughnessFactor 1), NAME a material's name.
+docs/materials-and-lights.md uses it to measure which of cornell_pbr.glb's surfaces
+limit its emissive-panel target. The binary chunk is copied unchanged; only the JSON
+chunk is rewritten.
 """
 import json
 import struct
@@ -37,7 +38,9 @@ def main():
     rest = data[20 + length:]
     materials = {m.get("name"): m for m in gltf.get("materials", [])}
     for edit in edits:
-        name, _, what = edit.rpartition(".")
+        name, dot, what = edit.rpartition(".")
+        if not dot:
+            sys.exit(f"{edit}: an edit is NAME.one-sided, NAME.dielectric, NAME.opaque or NAME.rough")
         if name not in materials:
             sys.exit(f"{edit}: {source} has no material named '{name}'")
         m = materials[name]

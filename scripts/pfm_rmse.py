@@ -57,7 +57,9 @@ def main():
     args = parser.parse_args()
     width, height, channels, ref = read_pfm(args.reference)
     mean = sum(ref) / len(ref)
-    near = near_mask(width, height, channels, ref, args.near_above) if args.near_above else None
+    near = None
+    if args.near_above is not None:  # 0 is a valid threshold
+        near = near_mask(width, height, channels, ref, args.near_above)
     for path in args.images:
         w, h, c, img = read_pfm(path)
         if (w, h, c) != (width, height, channels):
@@ -66,12 +68,13 @@ def main():
                     for i in range(w * h)]
         mse = sum(pixel_se) / len(pixel_se)
         rmse = math.sqrt(mse)
-        line = f"{path}: RMSE {rmse:.5f}, relative to the mean {rmse / mean:.4f}, MSE {mse:.4e}"
+        relative = f"{rmse / mean:.4f}" if mean != 0.0 else "undefined (mean 0)"
+        line = f"{path}: RMSE {rmse:.5f}, relative to the mean {relative}, MSE {mse:.4e}"
         if near is not None:
             room = [se for se, n in zip(pixel_se, near) if not n]
             n_near = len(pixel_se) - len(room)
-            room_mse = sum(room) / len(room) if room else 0.0
-            line += f", room MSE {room_mse:.4e} ({n_near} near pixels)"
+            room_mse = f"{sum(room) / len(room):.4e}" if room else "none (every pixel is near)"
+            line += f", room MSE {room_mse} ({n_near} near pixels)"
         print(line)
 
 
