@@ -5,6 +5,7 @@
 // (t = 1) strategies are checked through a camera and a splat film, over independent
 // renders.
 
+#include "box_scene_test_util.h"
 #include "integrator_test_util.h"
 
 #include <librt/core/error.h>
@@ -29,69 +30,13 @@
 namespace librt {
 namespace {
 
-using testing::Pinhole;
+using testing::block_means;
+using testing::box_camera;
+using testing::box_camera_settings;
+using testing::build_box;
+using testing::expect_blocks_agree;
 using testing::region;
 using testing::render_stats;
-
-void add_quad(Scene& scene, glm::vec3 corner, glm::vec3 e0, glm::vec3 e1, std::uint32_t material) {
-    TriangleMesh m;
-    m.positions = {corner, corner + e0, corner + e0 + e1, corner + e1};
-    m.triangles = {{0, 1, 2}, {0, 2, 3}};
-    scene.add_mesh(m, material);
-}
-
-/// A 2 x 2 x 2 box open toward the camera (+z): white floor and ceiling, red and green
-/// walls, a white back wall. `panel`: a two-sided emissive triangle panel 1 cm under the
-/// ceiling (the case bidirectional paths are for); else a one-sided quad light.
-void build_box(Scene& scene, bool panel, bool glass_pane, bool glossy) {
-    const auto white = scene.add_material(Material::diffuse(glm::vec3(0.73f)));
-    const auto red = scene.add_material(Material::diffuse({0.65f, 0.05f, 0.05f}));
-    const auto green = scene.add_material(Material::diffuse({0.12f, 0.45f, 0.15f}));
-    add_quad(scene, {-1, 0, -1}, {2, 0, 0}, {0, 0, 2}, white);  // floor
-    add_quad(scene, {-1, 2, -1}, {0, 0, 2}, {2, 0, 0}, white);  // ceiling
-    add_quad(scene, {-1, 0, -1}, {0, 2, 0}, {2, 0, 0}, white);  // back
-    add_quad(scene, {-1, 0, -1}, {0, 0, 2}, {0, 2, 0}, red);    // left
-    add_quad(scene, {1, 0, -1}, {0, 2, 0}, {0, 0, 2}, green);   // right
-    if (panel) {
-        Material light = Material::metallic_roughness(glm::vec3(0.0f), 0.0f, 1.0f);
-        light.emission = glm::vec3(12.0f, 10.0f, 8.0f);
-        add_quad(scene, {-0.25f, 1.99f, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f},
-                 scene.add_material(light));
-    } else {
-        (void)scene.add_quad_light(QuadLight{
-            {-0.25f, 1.99f, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}, glm::vec3(10.0f), false});
-    }
-    if (glass_pane) {
-        // A thin smooth pane standing on the floor (a Null lobe) and a block behind it.
-        add_quad(scene, {-0.6f, 0.0f, 0.2f}, {0.8f, 0, 0}, {0, 0.8f, 0},
-                 scene.add_material(
-                     Material::metallic_roughness(glm::vec3(1.0f), 0.0f, 0.0f, 1.5f, 1.0f)));
-    }
-    if (glossy) {
-        add_quad(scene, {0.1f, 0.0f, -0.6f}, {0.6f, 0.6f, 0}, {0, 0, 0.6f},
-                 scene.add_material(Material::metallic_roughness({1.0f, 0.8f, 0.4f}, 1.0f, 0.3f)));
-    }
-    scene.commit();
-}
-
-Pinhole box_camera() {
-    Pinhole cam;
-    cam.eye = {0.0f, 1.0f, 3.4f};
-    cam.fov_degrees = 40.0f;
-    cam.width = cam.height = 16;
-    return cam;
-}
-
-/// box_camera() as a librt Camera of size x size pixels, with the report's Gaussian jitter.
-CameraSettings box_camera_settings(int size) {
-    CameraSettings cs;
-    cs.position = {0.0f, 1.0f, 3.4f};
-    cs.look_at = {0.0f, 1.0f, 0.0f};
-    cs.vertical_fov_degrees = 40.0f;
-    cs.width = cs.height = size;
-    cs.pixel_jitter = PixelJitter::Gaussian;
-    return cs;
-}
 
 /// Compares two renders block by block (4 x 4 blocks of 4 x 4 pixels) and over the image.
 void expect_agree(const testing::StatImage& a, const testing::StatImage& b, const char* what) {
@@ -184,52 +129,12 @@ TEST(Bidirectional, LightTracingStrategiesAgreeThroughASplatFilm) {
 
     constexpr int kRenders = 8;
     constexpr int kSpp = 16;
-    // Block means of each render: [render][block][channel].
-    auto render = [&](const Integrator& integrator, bool splat, std::uint64_t seed, int spp) {
-        SplatFilm film(16, 16, splat_filter_settings(camera));
-        std::vector<glm::dvec3> sum(256, glm::dvec3(0.0));
-        for (int y = 0; y < 16; ++y)
-            for (int x = 0; x < 16; ++x)
-                for (int s = 0; s < spp; ++s) {
-                    Sampler sampler(SamplerKind::Independent, std::uint32_t(x), std::uint32_t(y),
-                                    std::uint32_t(s), seed);
-                    const CameraRay r = camera.sample_ray(x, y, sampler);
-                    const glm::vec3 l = splat ? integrator.li_splatting(scene, r.ray, sampler,
-                                                                        SplatTarget{&camera, &film})
-                                              : integrator.li(scene, r.ray, sampler);
-                    sum[std::size_t(y * 16 + x)] += glm::dvec3(l) / double(spp);
-                }
-        if (splat) {
-            const Image splats = film.resolve(double(spp));
-            for (int y = 0; y < 16; ++y)
-                for (int x = 0; x < 16; ++x)
-                    sum[std::size_t(y * 16 + x)] += glm::dvec3(splats.at(x, y));
-        }
-        std::vector<glm::dvec3> blocks(16, glm::dvec3(0.0));
-        for (int y = 0; y < 16; ++y)
-            for (int x = 0; x < 16; ++x)
-                blocks[std::size_t((y / 4) * 4 + x / 4)] += sum[std::size_t(y * 16 + x)] / 16.0;
-        return blocks;
-    };
     std::vector<std::vector<glm::dvec3>> a, b;
     for (int k = 0; k < kRenders; ++k) {
-        a.push_back(render(bdpt, true, 100 + std::uint64_t(k), kSpp));
-        b.push_back(render(brute, false, 200 + std::uint64_t(k), 16 * kSpp));
+        a.push_back(block_means(scene, camera, bdpt, true, 100 + std::uint64_t(k), kSpp));
+        b.push_back(block_means(scene, camera, brute, false, 200 + std::uint64_t(k), 16 * kSpp));
     }
-    for (int blk = 0; blk < 16; ++blk)
-        for (int c = 0; c < 3; ++c) {
-            double ma = 0, mb = 0, va = 0, vb = 0;
-            for (int k = 0; k < kRenders; ++k) {
-                ma += a[std::size_t(k)][std::size_t(blk)][c] / kRenders;
-                mb += b[std::size_t(k)][std::size_t(blk)][c] / kRenders;
-            }
-            for (int k = 0; k < kRenders; ++k) {
-                va += std::pow(a[std::size_t(k)][std::size_t(blk)][c] - ma, 2) / (kRenders - 1);
-                vb += std::pow(b[std::size_t(k)][std::size_t(blk)][c] - mb, 2) / (kRenders - 1);
-            }
-            EXPECT_NEAR(ma, mb, 5.0 * std::sqrt(va / kRenders + vb / kRenders) + 1e-6)
-                << "block " << blk << " channel " << c;
-        }
+    expect_blocks_agree(a, b, "light tracing");
 }
 
 }  // namespace
