@@ -39,6 +39,7 @@ struct Options {
     int max_depth = 5;
     std::string light_choice = "power";  // power | bounded (LightChoice)
     std::string integrator = "path";     // path | bdpt | brute
+    bool caustic_paths = false;          // the path tracer's caustics traced from the lights
     int threads = 0;
     std::uint64_t seed = 0;
     double time_limit = 0.0;
@@ -83,6 +84,11 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         bad("--guiding", "on", "path guiding is the path tracer's: use --integrator path");
     if (o.sampling.guiding_passes < 1 || o.sampling.guiding_passes > 20)
         bad("--guiding-passes", std::to_string(o.sampling.guiding_passes), "must be in [1, 20]");
+    if (o.caustic_paths && o.integrator != "path")
+        bad("--caustic-paths", "on",
+            "caustic light paths are the path tracer's: use --integrator path");
+    if (o.caustic_paths && o.sampling.guiding)
+        bad("--caustic-paths", "on", "cannot be combined with --guiding");
     if (!std::isfinite(o.time_limit) || o.time_limit < 0.0)
         bad("--time-limit", std::to_string(o.time_limit), "must be finite and >= 0 (0 = none)");
     // Ranks render whole tiles with all their samples, not passes over the image: a frame
@@ -140,6 +146,7 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     pt.guiding.training_passes = o.sampling.guiding_passes;
     // Kept in the image, alone (render_progressive's final frame) and under mpirun alike.
     pt.guiding.keep_training_samples = o.sampling.guiding;
+    pt.caustic_paths.enabled = o.caustic_paths;
     PathTracer path_tracer(pt);
     BidirectionalSettings bd;
     bd.max_depth = std::min(o.max_depth, BidirectionalSettings::kMaxDepth);
@@ -204,6 +211,9 @@ int main(int argc, char** argv) {
                    "bright regions or caustics) or brute (no light sampling: a reference that "
                    "point, spot and sun lights cannot light)")
         ->capture_default_str();
+    app.add_flag("--caustic-paths", o.caustic_paths,
+                 "Path tracer: trace caustics (light reaching a seen surface through mirrors, "
+                 "glass or smooth metal) from the lights and splat them");
     app.add_option("--light-choice", o.light_choice,
                    "How a shading point chooses the light it samples: power (by power alone) or "
                    "bounded (by power times a bound of its contribution there)")

@@ -4,6 +4,7 @@
 
 #include "bsdf_dispatch.h"
 #include "geometry/ray_copy.h"
+#include "render/caustic_paths.h"
 #include "render/guiding/path_recorder.h"
 #include "render/guiding/sd_tree.h"
 #include "render/mis.h"
@@ -11,6 +12,7 @@
 
 #include <librt/core/error.h>
 #include <librt/render/bsdf.h>
+#include <librt/render/camera.h>
 #include <librt/render/integrators.h>
 #include <librt/render/light.h>
 #include <librt/render/scene.h>
@@ -41,6 +43,13 @@ void check(const PathTracerSettings& s) {
     check_depth("max_depth", s.max_depth, 0, kMaxDepthLimit);
     check_depth("russian_roulette_depth", s.russian_roulette_depth, 0, kMaxDepthLimit);
     guiding::validate(s.guiding);
+    const float r = s.caustic_paths.max_roughness;
+    if (!(r >= 0.0f && r <= 1.0f))
+        throw Error("caustic_paths.max_roughness = " + std::to_string(r) + ": must be in [0, 1]");
+    if (s.caustic_paths.enabled && s.guiding.enabled)
+        throw Error(
+            "caustic_paths.enabled and guiding.enabled: choose one (a guided path "
+            "cannot leave the caustics out)");
 }
 
 /// Which strategies a path uses at its non-specular vertices.
@@ -205,7 +214,8 @@ template <bool Guided = false>
                                                       const glm::vec3& beta, Sampler& sampler,
                                                       bool mis, const LightChoicePoint* at,
                                                       const guiding::DirLeaf* leaf = nullptr,
-                                                      float alpha = 1.0f) {
+                                                      float alpha = 1.0f,
+                                                      bool infinite_only = false) {
     const LightSampler& lights = scene.light_sampler();
     // Drawn even when unused, so later decisions of the path keep their numbers; no
     // number chooses among a single light. The caller's start_bounce put the sampler on
@@ -218,6 +228,7 @@ template <bool Guided = false>
         at != nullptr ? lights.sample(u_light, *at) : lights.sample(u_light);
     if (!chosen.valid()) return glm::vec3(0.0f);
     const Light& light = scene.lights()[chosen.light];
+    if (infinite_only && !is_infinite(light)) return glm::vec3(0.0f);
     // Sphere lights (the report scenes' kind) called directly: std::visit over all the
     // light types costs a dispatch per sample; the same sample_li either way.
     const SphereLight* sphere = std::get_if<SphereLight>(&light.source);
@@ -357,6 +368,7 @@ struct TraceSettings {
     bool russian_roulette = false;
     int roulette_depth = 3;
     bool mis = true;
+    float caustic_roughness = 0.0f;  ///< SplitCaustics: casts_caustics()'s max_roughness
 };
 
 /// Russian roulette after bounce depth - 1 (its dimensions from `dim`), and the end of a
@@ -380,10 +392,12 @@ struct TraceSettings {
 /// `Bounded`: lights are chosen by LightChoice::Bounded. A template parameter, so that the
 /// default (power) loop keeps its code and registers unchanged (callgrind on the synthesis).
 /// Guided (PathTracer with a trained SD-tree) is a separate instantiation too, so the
-/// unguided loop carries none of its code.
-template <Strategy S, bool Bounded, bool Guided = false>
+/// unguided loop carries none of its code. SplitCaustics: the path counts no caustic path
+/// (caustic_paths.h), which splat_caustic_path adds; its own instantiation as well.
+template <Strategy S, bool Bounded, bool Guided = false, bool SplitCaustics = false>
 glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                 const TraceSettings& settings, const GuideContext& guide = {}) {
+    static_assert(!(SplitCaustics && (Guided || S != Strategy::Path)));
     glm::vec3 radiance(0.0f);
     // Every contribution goes through here: a training path shares it out to its vertices.
     const auto add = [&](const glm::vec3& c) {
@@ -406,6 +420,8 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
     const LightChoicePoint* const chosen = Bounded ? &chosen_at : nullptr;
     int hidden = 0;  // objects hidden from the camera that the camera ray passed through
     std::uint32_t decisions = 0;  // Null-lobe crossing decisions, each from its own dimension
+    // SplitCaustics: whether light found from here on closes a caustic path E D G+ L.
+    CausticChain chain = CausticChain::Before;
     Hit hit;  // out of the loop: every intersection that returns true rewrites it whole
     ShadedMaterial shaded;  // a textured hit's material (Scene::shade); unused otherwise
     for (int depth = 0;;) {
@@ -435,8 +451,12 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         const Material& m = scene.shade(hit, ray.direction, shaded);
         if (m.emits()) {
             // Brute force weighs every emitter fully (a one-sided light's back stays dark).
-            const float w = emitter_weight(scene, hit, ray.direction,
-                                           S == Strategy::Brute ? Bounce{} : bounce, chosen);
+            float w = emitter_weight(scene, hit, ray.direction,
+                                     S == Strategy::Brute ? Bounce{} : bounce, chosen);
+            // A light that starts light paths, hit through casters only: a caustic path.
+            if constexpr (SplitCaustics) {
+                if (chain == CausticChain::Open && scene.light_of_hit(hit) != kInvalidId) w = 0.0f;
+            }
             if (w > 0.0f) add(beta * m.emission * w);
             if constexpr (Guided) {
                 if (guide.recorder != nullptr) {
@@ -482,6 +502,8 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         // times the panel's radiance), so the last vertex keeps MIS and traces its BSDF ray
         // for the emitter it may hit, as pbrt-v4's loop does at every depth.
         const bool last = depth >= settings.max_depth;
+        if constexpr (SplitCaustics)
+            chain = advance(chain, casts_caustics(m, settings.caustic_roughness));
         const bool light_only = S == Strategy::Direct || !settings.mis ||
                                 (last && !has(material_lobes, BsdfLobe::Glossy));
         if constexpr (Bounded) {
@@ -502,8 +524,11 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             }
         }
         if (S != Strategy::Brute && has_non_specular(material_lobes)) {
+            // A caustic path's light sample (at a caster after D) is the light path's to
+            // take: there only lights at infinity, which start none, count.
+            const bool infinite_only = SplitCaustics && chain == CausticChain::Open;
             add(beta * sample_direct<Guided>(scene, hit, v, beta, sampler, !light_only, chosen,
-                                             leaf, alpha));
+                                             leaf, alpha, infinite_only));
             if constexpr (S == Strategy::Direct) return radiance;
             // The last bounce: what it finds counts only if it emits without being a light
             // (lights got weight 1 from the light sample just taken). With no such emitter,
@@ -573,7 +598,8 @@ template <Strategy S>
 }
 
 TraceSettings trace_settings(const PathTracerSettings& s) {
-    return {s.max_depth, s.russian_roulette, s.russian_roulette_depth, s.mis};
+    return {s.max_depth, s.russian_roulette, s.russian_roulette_depth, s.mis,
+            s.caustic_paths.max_roughness};
 }
 
 }  // namespace
@@ -610,6 +636,22 @@ glm::vec3 PathTracer::li(const Scene& scene, const Ray& ray, Sampler& sampler) c
         return guard(trace<Strategy::Path, false>(scene, ray, sampler, trace_settings(settings_)));
     }
     return li_guided(scene, ray, sampler);
+}
+
+glm::vec3 PathTracer::li_splatting(const Scene& scene, const Ray& ray, Sampler& sampler,
+                                   const SplatTarget& target) const {
+    const bool split = settings_.caustic_paths.enabled && target.camera != nullptr &&
+                       target.film != nullptr &&
+                       target.camera->settings().projection == Projection::Perspective &&
+                       !scene.may_hide_objects();
+    if (!split) return li(scene, ray, sampler);
+    const TraceSettings s = trace_settings(settings_);
+    const glm::vec3 l = settings_.light_choice == LightChoice::Bounded
+                            ? trace<Strategy::Path, true, false, true>(scene, ray, sampler, s)
+                            : trace<Strategy::Path, false, false, true>(scene, ray, sampler, s);
+    splat_caustic_path(scene, sphere_, *target.camera, *target.film, sampler, s.max_depth,
+                       settings_.caustic_paths.max_roughness);
+    return guard(l);
 }
 
 namespace {

@@ -3,6 +3,7 @@
 #include <librt/export.h>
 #include <librt/render/guiding.h>
 #include <librt/render/integrator.h>
+#include <librt/render/light_sample.h>
 #include <librt/render/light_sampler.h>
 
 #include <atomic>
@@ -71,6 +72,21 @@ private:
     DirectLightingSettings settings_;
 };
 
+/// PathTracer's caustic light paths: the light that reaches a surface the camera sees
+/// through mirrors, glass or smooth metal (a caustic, E D G+ L) is traced from the lights
+/// and splatted, and the camera paths leave it out (a split of path space, not a MIS
+/// weight, so each half stays as cheap as it was: src/render/caustic_paths.h). Off by
+/// default. Used by the render entry points, which call li_splatting when splats() is
+/// true; li() alone renders every path as without it.
+struct CausticPathSettings {
+    bool enabled = false;
+    /// Perceptual roughness, in [0, 1], up to which a metal or glass (Conductor,
+    /// RoughDielectric, a MetallicRoughness wholly metal or wholly transmissive) casts
+    /// caustics; mirrors and smooth glass always do, nothing with a diffuse part does.
+    /// 0.5 (GGX alpha 0.25): above it next-event estimation handles the lobe well.
+    float max_roughness = 0.5f;
+};
+
 /// Settings of PathTracer and BruteForcePathTracer.
 struct PathTracerSettings {
     // Defaults converge to the right image: a 5-bounce cut is ~7% too dark in a closed
@@ -92,6 +108,8 @@ struct PathTracerSettings {
     LightChoice light_choice = LightChoice::Power;
     /// PathTracer only: path guiding (guiding.h), off by default.
     GuidingSettings guiding{};
+    /// PathTracer only: caustics traced from the lights (not with guiding), off by default.
+    CausticPathSettings caustic_paths{};
 };
 
 /// The report's full getColor as a loop with multiple importance sampling: at every
@@ -116,13 +134,19 @@ struct PathTracerSettings {
 /// with no specular lobe the direction is then drawn from the BSDF with probability
 /// guiding.bsdf_fraction and from the learned distribution otherwise, weighted by the
 /// mixture's density (docs/sampling.md). Without training it renders unguided.
+///
+/// With settings.caustic_paths.enabled, li_splatting also traces one light path per
+/// camera sample for the caustics (CausticPathSettings), when the camera is perspective
+/// and the scene hides nothing from it (light paths cannot see through hidden objects);
+/// otherwise it is li().
 class LIBRT_API PathTracer final : public GuardedIntegrator {
 public:
-    /// Throws librt::Error naming max_depth, russian_roulette_depth or the guiding
-    /// parameter out of range.
+    /// Throws librt::Error naming max_depth, russian_roulette_depth, the guiding parameter
+    /// or caustic_paths.max_roughness out of range, or guiding and caustic paths together.
     explicit PathTracer(const PathTracerSettings& settings = {});
     ~PathTracer() override;
     /// With guiding: an empty SD-tree over the scene's bounds (what was learned is dropped).
+    /// Records the scene's bounding sphere (light paths start from it).
     void preprocess(const Scene& scene) override;
     /// With guiding: 2^pass samples per pixel for pass < training_passes, recorded.
     [[nodiscard]] std::uint32_t begin_training_pass(int pass) override;
@@ -132,6 +156,12 @@ public:
     [[nodiscard]] bool keeps_training_samples() const override;
     /// One sample of the radiance along ray.
     [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray, Sampler& sampler) const override;
+    /// True with caustic paths.
+    [[nodiscard]] bool splats() const override { return settings_.caustic_paths.enabled; }
+    /// With caustic paths: the camera path without them, and one caustic light path splatted
+    /// onto target.film.
+    [[nodiscard]] glm::vec3 li_splatting(const Scene& scene, const Ray& ray, Sampler& sampler,
+                                         const SplatTarget& target) const override;
     /// The settings in use.
     [[nodiscard]] const PathTracerSettings& settings() const { return settings_; }
     /// Spatial leaves of the SD-tree (0 without guiding or before preprocess()).
@@ -141,6 +171,7 @@ private:
     [[nodiscard]] glm::vec3 li_guided(const Scene& scene, const Ray& ray, Sampler& sampler) const;
 
     PathTracerSettings settings_;
+    SceneSphere sphere_{};                    // the scene's, from preprocess()
     std::unique_ptr<guiding::SdTree> guide_;  // with guiding, after preprocess()
     bool recording_ = false;                  // a training pass is running
 };

@@ -11,6 +11,7 @@ namespace librt {
 PathTracer::~PathTracer() = default;
 
 void PathTracer::preprocess(const Scene& scene) {
+    sphere_ = scene.bounding_sphere();
     guide_.reset();
     recording_ = false;
     if (settings_.guiding.enabled)

@@ -1,0 +1,304 @@
+// PathTracer's caustic light paths (CausticPathSettings): a point light's image in a mirror
+// ceiling against its closed form (the path tracer alone cannot render it at all), the
+// split path tracer against brute force in a box with a panel, a glass pane and a glossy
+// metal, and what must not change: li() alone, bad settings, thread and tile counts.
+
+#include "render/caustic_paths.h"
+
+#include "box_scene_test_util.h"
+
+#include <librt/core/error.h>
+#include <librt/render/camera.h>
+#include <librt/render/environment_light.h>
+#include <librt/render/integrators.h>
+#include <librt/render/material.h>
+#include <librt/render/point_light.h>
+#include <librt/render/quad_light.h>
+#include <librt/render/renderer.h>
+#include <librt/render/sampler.h>
+#include <librt/render/scene.h>
+#include <librt/sampling/warp.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace librt {
+namespace {
+
+using testing::add_quad;
+using testing::block_means;
+using testing::box_camera_settings;
+using testing::build_box;
+using testing::expect_blocks_agree;
+using testing::spread;
+
+PathTracerSettings caustic_settings(int depth) {
+    PathTracerSettings pt;
+    pt.max_depth = depth;
+    pt.russian_roulette = false;
+    pt.caustic_paths.enabled = true;
+    return pt;
+}
+
+// A point light of intensity I at height 1 between a diffuse floor (albedo rho, y = 0) and
+// a mirror ceiling (tint R, y = 2); the camera looks straight down at the floor. With two
+// scattering events a floor point at distance r from the axis receives the light directly
+// (cos / d^2 = 1 / (1 + r^2)^1.5) and through the mirror from the light's image at height
+// 3 (R * 3 / (9 + r^2)^1.5), and sends rho / pi of it to the camera.
+constexpr float kRho = 0.5f;
+constexpr float kTint = 0.8f;
+constexpr float kIntensity = 2.0f;
+
+/// The floor's exact radiance where each camera ray meets it.
+class MirroredPointLightFloor final : public Integrator {
+public:
+    [[nodiscard]] glm::vec3 li(const Scene& /*scene*/, const Ray& ray,
+                               Sampler& /*sampler*/) const override {
+        const float t = -ray.origin.y / ray.direction.y;
+        const glm::vec3 p = ray.origin + t * ray.direction;
+        const float r2 = p.x * p.x + p.z * p.z;
+        const float direct = 1.0f / std::pow(1.0f + r2, 1.5f);
+        const float mirrored = kTint * 3.0f / std::pow(9.0f + r2, 1.5f);
+        return glm::vec3(kRho / k_pi * kIntensity * (direct + mirrored));
+    }
+};
+
+void build_mirror_room(Scene& scene) {
+    add_quad(scene, {-20, 0, -20}, {40, 0, 0}, {0, 0, 40},
+             scene.add_material(Material::diffuse(glm::vec3(kRho))));
+    add_quad(scene, {-20, 2, -20}, {0, 0, 40}, {40, 0, 0},
+             scene.add_material(Material::mirror(glm::vec3(kTint))));
+    scene.add_point_light(PointLight{{0.0f, 1.0f, 0.0f}, glm::vec3(kIntensity)});
+    scene.commit();
+}
+
+Camera looking_down() {
+    CameraSettings cs;
+    cs.position = {0.0f, 1.5f, 0.0f};
+    cs.look_at = {0.0f, 0.0f, 0.0f};
+    cs.up = {0.0f, 0.0f, -1.0f};
+    cs.vertical_fov_degrees = 60.0f;
+    cs.width = cs.height = 16;
+    cs.pixel_jitter = PixelJitter::Filter;  // a box over the pixel, as the splats' filter
+    return Camera(cs);
+}
+
+TEST(CausticPaths, RenderAPointLightsImageInAMirrorInClosedForm) {
+    Scene scene;
+    build_mirror_room(scene);
+    const Camera camera = looking_down();
+    PathTracer split(caustic_settings(2));
+    split.preprocess(scene);
+    ASSERT_TRUE(split.splats());
+    PathTracerSettings plain_settings = caustic_settings(2);
+    plain_settings.caustic_paths.enabled = false;
+    PathTracer plain(plain_settings);
+    plain.preprocess(scene);
+    const MirroredPointLightFloor exact;
+
+    constexpr int kRenders = 16;
+    constexpr int kSpp = 32;
+    std::vector<std::vector<glm::dvec3>> with, without, expected;
+    for (int k = 0; k < kRenders; ++k) {
+        with.push_back(block_means(scene, camera, split, true, 10 + std::uint64_t(k), kSpp));
+        without.push_back(block_means(scene, camera, plain, false, 40 + std::uint64_t(k), kSpp));
+        expected.push_back(block_means(scene, camera, exact, false, 70 + std::uint64_t(k), kSpp));
+    }
+    expect_blocks_agree(with, expected, "caustic paths");
+    // The test can fail: without the light paths the mirrored light is missing, by far
+    // more than the tolerance.
+    for (int blk = 0; blk < 16; ++blk) {
+        const auto w = spread(without, blk, 0);
+        const auto e = spread(expected, blk, 0);
+        EXPECT_GT(e.mean - w.mean, 5.0 * std::sqrt(w.se2 + e.se2)) << "block " << blk;
+    }
+}
+
+// A quad light facing the mirror ceiling, off to the side: the floor the camera sees is
+// lit through the mirror alone, so every path is caustic, and the camera path hits the
+// light in the mirror with full weight (a specular bounce) -- which it must now leave to
+// the light paths. Against brute force, which finds nothing else here either.
+TEST(CausticPaths, AgreeWithBruteForceUnderALightOnlyAMirrorSees) {
+    Scene scene;
+    add_quad(scene, {-20, 0, -20}, {40, 0, 0}, {0, 0, 40},
+             scene.add_material(Material::diffuse(glm::vec3(kRho))));
+    add_quad(scene, {-20, 2, -20}, {0, 0, 40}, {40, 0, 0},
+             scene.add_material(Material::mirror(glm::vec3(kTint))));
+    (void)scene.add_quad_light(
+        QuadLight{{1.5f, 1.0f, -0.25f}, {0, 0, 0.5f}, {0.5f, 0, 0}, glm::vec3(4.0f), false});
+    scene.commit();
+    const Camera camera = looking_down();
+    PathTracer split(caustic_settings(2));
+    split.preprocess(scene);
+    PathTracerSettings pt = caustic_settings(2);
+    pt.caustic_paths.enabled = false;
+    BruteForcePathTracer brute(pt);
+    constexpr int kRenders = 8;
+    std::vector<std::vector<glm::dvec3>> a, b;
+    for (int k = 0; k < kRenders; ++k) {
+        a.push_back(block_means(scene, camera, split, true, 900 + std::uint64_t(k), 32));
+        b.push_back(block_means(scene, camera, brute, false, 950 + std::uint64_t(k), 256));
+    }
+    expect_blocks_agree(a, b, "light seen through a mirror");
+}
+
+/// The split path tracer against `Reference` (brute force, which finds emitters only by
+/// hitting them, or the plain MIS path tracer) at 16 times the samples, over independent
+/// renders through a real camera, at max depth `depth`.
+template <class Reference>
+void expect_matches(const Scene& scene, int depth, int spp, std::uint64_t seed, const char* what) {
+    const Camera camera(box_camera_settings(16));
+    PathTracer split(caustic_settings(depth));
+    split.preprocess(scene);
+    PathTracerSettings pt = caustic_settings(depth);
+    pt.caustic_paths.enabled = false;
+    Reference reference(pt);
+    reference.preprocess(scene);
+    constexpr int kRenders = 8;
+    std::vector<std::vector<glm::dvec3>> a, b;
+    for (int k = 0; k < kRenders; ++k) {
+        a.push_back(block_means(scene, camera, split, true, seed + std::uint64_t(k), spp));
+        b.push_back(
+            block_means(scene, camera, reference, false, seed + 100 + std::uint64_t(k), 16 * spp));
+    }
+    expect_blocks_agree(a, b, what);
+}
+
+TEST(CausticPaths, AgreeWithBruteForceUnderAQuadLightWithGlassAndMetal) {
+    Scene scene;
+    build_box(scene, false, true, true);
+    expect_matches<BruteForcePathTracer>(scene, 3, 32, 500, "quad light, glass and metal");
+}
+
+// A light at infinity starts no light path: its caustics (the sky in the metal on the
+// floor) stay with the camera path, and next-event estimation after a caster keeps it.
+TEST(CausticPaths, AgreeWithBruteForceUnderASkyAndAPanel) {
+    Scene scene;
+    build_box(scene, true, false, true);
+    (void)scene.add_environment_light(EnvironmentLight::constant({0.6f, 0.7f, 0.9f}));
+    scene.commit();
+    expect_matches<BruteForcePathTracer>(scene, 3, 32, 700, "sky and panel");
+}
+
+// The panel is a triangle-mesh light seen through the pane and in the metal (roughness
+// 0.3, a caster); the caustics are the light paths', all other paths the camera path's.
+// Against the plain path tracer (itself held to brute force by mis_test and bdpt_test):
+// brute force's noise under the small panel would hide a missing caustic.
+TEST(CausticPaths, AgreeWithThePlainPathTracerUnderATwoSidedPanelWithGlassAndMetal) {
+    Scene scene;
+    build_box(scene, true, true, true);
+    expect_matches<PathTracer>(scene, 4, 64, 300, "panel, glass and metal");
+}
+
+TEST(CausticPaths, CastersAreSmoothMetalsAndGlassOnly) {
+    EXPECT_TRUE(casts_caustics(Material::mirror(), 0.0f));
+    EXPECT_TRUE(casts_caustics(Material::dielectric(1.5f), 0.0f));
+    EXPECT_TRUE(casts_caustics(Material::conductor(Metal::Gold, 0.3f), 0.5f));
+    EXPECT_FALSE(casts_caustics(Material::conductor(Metal::Gold, 0.6f), 0.5f));
+    EXPECT_TRUE(casts_caustics(Material::rough_dielectric(1.5f, 0.5f), 0.5f));
+    EXPECT_FALSE(casts_caustics(Material::rough_dielectric(1.5f, 0.51f), 0.5f));
+    EXPECT_TRUE(casts_caustics(Material::metallic_roughness(glm::vec3(1.0f), 1.0f, 0.2f), 0.5f));
+    EXPECT_TRUE(casts_caustics(
+        Material::metallic_roughness(glm::vec3(1.0f), 0.0f, 0.0f, 1.5f, 1.0f), 0.5f));
+    // Any Lambert part, or a plastic's, is no caster.
+    EXPECT_FALSE(casts_caustics(Material::metallic_roughness(glm::vec3(1.0f), 0.9f, 0.1f), 0.5f));
+    EXPECT_FALSE(casts_caustics(Material::metallic_roughness(glm::vec3(1.0f), 0.0f, 0.0f), 0.5f));
+    EXPECT_FALSE(casts_caustics(Material::diffuse(glm::vec3(0.5f)), 1.0f));
+    EXPECT_FALSE(casts_caustics(Material::emissive(glm::vec3(1.0f)), 1.0f));
+}
+
+TEST(CausticPaths, ChainOpensOnlyAfterASeenNonCaster) {
+    using C = CausticChain;
+    EXPECT_EQ(advance(C::Before, false), C::AtD);
+    EXPECT_EQ(advance(C::Before, true), C::Broken);
+    EXPECT_EQ(advance(C::AtD, true), C::Open);
+    EXPECT_EQ(advance(C::AtD, false), C::Broken);
+    EXPECT_EQ(advance(C::Open, true), C::Open);
+    EXPECT_EQ(advance(C::Open, false), C::Broken);
+    EXPECT_EQ(advance(C::Broken, true), C::Broken);
+}
+
+TEST(CausticPaths, RejectBadSettings) {
+    for (const float r : {-0.1f, 1.5f, std::numeric_limits<float>::quiet_NaN()}) {
+        PathTracerSettings pt;
+        pt.caustic_paths.enabled = true;
+        pt.caustic_paths.max_roughness = r;
+        EXPECT_THROW(PathTracer{pt}, Error) << r;
+    }
+    PathTracerSettings pt;
+    pt.caustic_paths.enabled = true;
+    pt.guiding.enabled = true;
+    EXPECT_THROW(PathTracer{pt}, Error);
+}
+
+// li() alone (no film to splat onto) renders every path, as without the setting: the same
+// bits; and li_splatting falls back to it where light paths cannot reach the image (an
+// orthographic camera, objects hidden from the camera).
+TEST(CausticPaths, LiAloneAndFallbacksAreThePlainPathTracer) {
+    Scene scene;
+    build_box(scene, true, true, true);
+    PathTracerSettings on = caustic_settings(4);
+    on.russian_roulette = true;
+    PathTracerSettings off = on;
+    off.caustic_paths.enabled = false;
+    PathTracer split(on);
+    PathTracer plain(off);
+    split.preprocess(scene);
+    plain.preprocess(scene);
+    CameraSettings ortho_settings = box_camera_settings(16);
+    ortho_settings.projection = Projection::Orthographic;
+    ortho_settings.pixel_jitter = PixelJitter::None;
+    const Camera ortho(ortho_settings);
+    SplatFilm film(16, 16, splat_filter_settings(ortho));
+    const Camera persp(box_camera_settings(16));
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x)
+            for (int s = 0; s < 4; ++s) {
+                const auto sampler = [&] {
+                    return Sampler(SamplerKind::Independent, std::uint32_t(x), std::uint32_t(y),
+                                   std::uint32_t(s), 9);
+                };
+                Sampler a = sampler();
+                Sampler b = sampler();
+                Sampler c = sampler();
+                const Ray ray = persp.sample_ray(x, y, a).ray;
+                (void)persp.sample_ray(x, y, b);
+                (void)persp.sample_ray(x, y, c);
+                const glm::vec3 ref = plain.li(scene, ray, a);
+                EXPECT_EQ(split.li(scene, ray, b), ref) << x << "," << y;
+                EXPECT_EQ(split.li_splatting(scene, ray, c, SplatTarget{&ortho, &film}), ref);
+            }
+    const Image splats = film.resolve(4.0);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) EXPECT_EQ(splats.at(x, y), glm::vec3(0.0f));
+}
+
+TEST(CausticPaths, RenderIsIdenticalForAnyThreadCountAndTileSize) {
+    Scene scene;
+    build_box(scene, true, true, true);
+    const Camera camera(box_camera_settings(24));
+    PathTracer split(caustic_settings(4));
+    RenderSettings rs;
+    rs.samples_per_pixel = 4;
+    rs.threads = 1;
+    rs.tile_size = 16;
+    const Image one = render(scene, camera, split, rs);
+    rs.threads = 2;
+    rs.tile_size = 5;
+    const Image two = render(scene, camera, split, rs);
+    ASSERT_EQ(one.width, two.width);
+    double sum = 0.0;
+    for (int y = 0; y < one.height; ++y)
+        for (int x = 0; x < one.width; ++x) {
+            ASSERT_EQ(one.at(x, y), two.at(x, y)) << x << "," << y;
+            sum += double(one.at(x, y).x);
+        }
+    EXPECT_GT(sum, 0.0);
+}
+
+}  // namespace
+}  // namespace librt
