@@ -208,8 +208,9 @@ struct Vertex {
 // (callgrind on the synthesis: -1.6% instructions in the path loop).
 // With Guided, `leaf` is the vertex's SD-tree leaf and `alpha` the BSDF's share of the
 // mixture the BSDF-side direction is drawn from: that mixture's density weighs the light
-// sample (nullptr: the vertex is not guided).
-template <bool Guided = false>
+// sample (nullptr: the vertex is not guided). With SplitCaustics, `infinite_only` keeps
+// only lights at infinity (a template parameter: the other loops see none of it).
+template <bool Guided = false, bool SplitCaustics = false>
 [[gnu::always_inline]] inline glm::vec3 sample_direct(const Scene& scene, const Hit& hit, Vertex& v,
                                                       const glm::vec3& beta, Sampler& sampler,
                                                       bool mis, const LightChoicePoint* at,
@@ -228,7 +229,9 @@ template <bool Guided = false>
         at != nullptr ? lights.sample(u_light, *at) : lights.sample(u_light);
     if (!chosen.valid()) return glm::vec3(0.0f);
     const Light& light = scene.lights()[chosen.light];
-    if (infinite_only && !is_infinite(light)) return glm::vec3(0.0f);
+    if constexpr (SplitCaustics) {
+        if (infinite_only && !is_infinite(light)) return glm::vec3(0.0f);
+    }
     // Sphere lights (the report scenes' kind) called directly: std::visit over all the
     // light types costs a dispatch per sample; the same sample_li either way.
     const SphereLight* sphere = std::get_if<SphereLight>(&light.source);
@@ -368,7 +371,13 @@ struct TraceSettings {
     bool russian_roulette = false;
     int roulette_depth = 3;
     bool mis = true;
-    float caustic_roughness = 0.0f;  ///< SplitCaustics: casts_caustics()'s max_roughness
+};
+
+/// What trace<..., SplitCaustics = true> is given: TraceSettings and casts_caustics()'s
+/// max_roughness. Derived rather than a member, so the other loops are built from the
+/// struct they had (callgrind on the synthesis: each of their instructions unchanged).
+struct SplitTraceSettings : TraceSettings {
+    float caustic_roughness = 0.0f;
 };
 
 /// Russian roulette after bounce depth - 1 (its dimensions from `dim`), and the end of a
@@ -393,7 +402,8 @@ struct TraceSettings {
 /// default (power) loop keeps its code and registers unchanged (callgrind on the synthesis).
 /// Guided (PathTracer with a trained SD-tree) is a separate instantiation too, so the
 /// unguided loop carries none of its code. SplitCaustics: the path counts no caustic path
-/// (caustic_paths.h), which splat_caustic_path adds; its own instantiation as well.
+/// (caustic_paths.h), which splat_caustic_path adds; its own instantiation as well, whose
+/// settings are a SplitTraceSettings.
 template <Strategy S, bool Bounded, bool Guided = false, bool SplitCaustics = false>
 glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                 const TraceSettings& settings, const GuideContext& guide = {}) {
@@ -503,7 +513,9 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         // for the emitter it may hit, as pbrt-v4's loop does at every depth.
         const bool last = depth >= settings.max_depth;
         if constexpr (SplitCaustics)
-            chain = advance(chain, casts_caustics(m, settings.caustic_roughness));
+            chain = advance(
+                chain, casts_caustics(
+                           m, static_cast<const SplitTraceSettings&>(settings).caustic_roughness));
         const bool light_only = S == Strategy::Direct || !settings.mis ||
                                 (last && !has(material_lobes, BsdfLobe::Glossy));
         if constexpr (Bounded) {
@@ -527,8 +539,9 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             // A caustic path's light sample (at a caster after D) is the light path's to
             // take: there only lights at infinity, which start none, count.
             const bool infinite_only = SplitCaustics && chain == CausticChain::Open;
-            add(beta * sample_direct<Guided>(scene, hit, v, beta, sampler, !light_only, chosen,
-                                             leaf, alpha, infinite_only));
+            add(beta * sample_direct<Guided, SplitCaustics>(scene, hit, v, beta, sampler,
+                                                            !light_only, chosen, leaf, alpha,
+                                                            infinite_only));
             if constexpr (S == Strategy::Direct) return radiance;
             // The last bounce: what it finds counts only if it emits without being a light
             // (lights got weight 1 from the light sample just taken). With no such emitter,
@@ -598,8 +611,7 @@ template <Strategy S>
 }
 
 TraceSettings trace_settings(const PathTracerSettings& s) {
-    return {s.max_depth, s.russian_roulette, s.russian_roulette_depth, s.mis,
-            s.caustic_paths.max_roughness};
+    return {s.max_depth, s.russian_roulette, s.russian_roulette_depth, s.mis};
 }
 
 }  // namespace
@@ -645,7 +657,9 @@ glm::vec3 PathTracer::li_splatting(const Scene& scene, const Ray& ray, Sampler& 
                        target.camera->settings().projection == Projection::Perspective &&
                        !scene.may_hide_objects();
     if (!split) return li(scene, ray, sampler);
-    const TraceSettings s = trace_settings(settings_);
+    SplitTraceSettings s;
+    static_cast<TraceSettings&>(s) = trace_settings(settings_);
+    s.caustic_roughness = settings_.caustic_paths.max_roughness;
     const glm::vec3 l = settings_.light_choice == LightChoice::Bounded
                             ? trace<Strategy::Path, true, false, true>(scene, ray, sampler, s)
                             : trace<Strategy::Path, false, false, true>(scene, ray, sampler, s);

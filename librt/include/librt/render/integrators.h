@@ -79,7 +79,7 @@ private:
 /// default. Used by the render entry points, which call li_splatting when splats() is
 /// true; li() alone renders every path as without it.
 struct CausticPathSettings {
-    bool enabled = false;
+    bool enabled = false;  ///< trace the caustics from the lights (needs a splat film)
     /// Perceptual roughness, in [0, 1], up to which a metal or glass (Conductor,
     /// RoughDielectric, a MetallicRoughness wholly metal or wholly transmissive) casts
     /// caustics; mirrors and smooth glass always do, nothing with a diffuse part does.
