@@ -17,6 +17,7 @@
 #include <librt/render/renderer.h>
 #include <librt/render/sampler.h>
 #include <librt/render/scene.h>
+#include <librt/render/sphere_light.h>
 #include <librt/sampling/warp.h>
 
 #include <gtest/gtest.h>
@@ -118,18 +119,20 @@ TEST(CausticPaths, RenderAPointLightsImageInAMirrorInClosedForm) {
     }
 }
 
-// A quad light facing the mirror ceiling, off to the side: the floor the camera sees is
-// lit through the mirror alone, so every path is caustic, and the camera path hits the
-// light in the mirror with full weight (a specular bounce) -- which it must now leave to
-// the light paths. Against brute force, which finds nothing else here either.
-TEST(CausticPaths, AgreeWithBruteForceUnderALightOnlyAMirrorSees) {
+/// A diffuse floor under a mirror ceiling, lit by what add_light adds off to the side so
+/// that the floor the camera sees is lit through the mirror alone: every path is caustic,
+/// and the camera path hits the light in the mirror with full weight (a specular bounce)
+/// -- which it must now leave to the light paths. Against brute force, which finds
+/// nothing else here either.
+template <class AddLight>
+void expect_mirrored_light_matches_brute_force(AddLight add_light, std::uint64_t seed,
+                                               const char* what) {
     Scene scene;
     add_quad(scene, {-20, 0, -20}, {40, 0, 0}, {0, 0, 40},
              scene.add_material(Material::diffuse(glm::vec3(kRho))));
     add_quad(scene, {-20, 2, -20}, {0, 0, 40}, {40, 0, 0},
              scene.add_material(Material::mirror(glm::vec3(kTint))));
-    (void)scene.add_quad_light(
-        QuadLight{{1.5f, 1.0f, -0.25f}, {0, 0, 0.5f}, {0.5f, 0, 0}, glm::vec3(4.0f), false});
+    add_light(scene);
     scene.commit();
     const Camera camera = looking_down();
     PathTracer split(caustic_settings(2));
@@ -140,10 +143,33 @@ TEST(CausticPaths, AgreeWithBruteForceUnderALightOnlyAMirrorSees) {
     constexpr int kRenders = 8;
     std::vector<std::vector<glm::dvec3>> a, b;
     for (int k = 0; k < kRenders; ++k) {
-        a.push_back(block_means(scene, camera, split, true, 900 + std::uint64_t(k), 32));
-        b.push_back(block_means(scene, camera, brute, false, 950 + std::uint64_t(k), 256));
+        a.push_back(block_means(scene, camera, split, true, seed + std::uint64_t(k), 64));
+        b.push_back(block_means(scene, camera, brute, false, seed + 50 + std::uint64_t(k), 512));
     }
-    expect_blocks_agree(a, b, "light seen through a mirror");
+    expect_blocks_agree(a, b, what);
+}
+
+TEST(CausticPaths, AgreeWithBruteForceUnderAQuadLightOnlyAMirrorSees) {
+    // One-sided, facing the mirror.
+    expect_mirrored_light_matches_brute_force(
+        [](Scene& scene) {
+            (void)scene.add_quad_light(QuadLight{
+                {1.5f, 1.0f, -0.25f}, {0, 0, 0.5f}, {0.5f, 0, 0}, glm::vec3(4.0f), false});
+        },
+        900, "quad light seen through a mirror");
+}
+
+TEST(CausticPaths, AgreeWithBruteForceUnderASphereLightOnlyAMirrorSees) {
+    // A sphere light (an emitter the camera path hits: Scene::light_of_hit) over a
+    // diffuse shade that hides it from the floor in view, not from the mirror.
+    expect_mirrored_light_matches_brute_force(
+        [](Scene& scene) {
+            (void)scene.add_sphere_light(
+                SphereLight{Sphere{{1.9f, 1.3f, 0.0f}, 0.3f}, glm::vec3(4.0f)});
+            add_quad(scene, {0.95f, 0.9f, -0.8f}, {1.65f, 0, 0}, {0, 0, 1.6f},
+                     scene.add_material(Material::diffuse(glm::vec3(0.5f))));
+        },
+        1000, "sphere light seen through a mirror");
 }
 
 /// The split path tracer against `Reference` (brute force, which finds emitters only by
@@ -192,6 +218,23 @@ TEST(CausticPaths, AgreeWithThePlainPathTracerUnderATwoSidedPanelWithGlassAndMet
     Scene scene;
     build_box(scene, true, true, true);
     expect_matches<PathTracer>(scene, 4, 64, 300, "panel, glass and metal");
+}
+
+// The report's kinds: a sphere light (an emitter the camera path can hit, light_of_hit)
+// over a glass sphere and a mirror sphere, whose caustics land on the floor and walls.
+TEST(CausticPaths, AgreeWithThePlainPathTracerUnderASphereLightWithGlassAndMirrorSpheres) {
+    Scene scene;
+    const auto white = scene.add_material(Material::diffuse(glm::vec3(0.73f)));
+    add_quad(scene, {-1, 0, -1}, {2, 0, 0}, {0, 0, 2}, white);  // floor
+    add_quad(scene, {-1, 0, -1}, {0, 2, 0}, {2, 0, 0}, white);  // back
+    add_quad(scene, {-1, 2, -1}, {0, 0, 2}, {2, 0, 0}, white);  // ceiling
+    (void)scene.add_sphere(Sphere{{-0.4f, 0.35f, 0.0f}, 0.35f},
+                           scene.add_material(Material::dielectric(1.5f)));
+    (void)scene.add_sphere(Sphere{{0.45f, 0.3f, -0.3f}, 0.3f},
+                           scene.add_material(Material::mirror(glm::vec3(0.9f))));
+    (void)scene.add_sphere_light(SphereLight{Sphere{{0.0f, 1.4f, 0.2f}, 0.1f}, glm::vec3(40.0f)});
+    scene.commit();
+    expect_matches<PathTracer>(scene, 4, 64, 1100, "sphere light, glass and mirror spheres");
 }
 
 TEST(CausticPaths, CastersAreSmoothMetalsAndGlassOnly) {
