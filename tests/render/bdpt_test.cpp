@@ -12,7 +12,6 @@
 #include <librt/render/bdpt.h>
 #include <librt/render/camera.h>
 #include <librt/render/camera_importance.h>
-#include <librt/render/environment_light.h>
 #include <librt/render/integrators.h>
 #include <librt/render/material.h>
 #include <librt/render/point_light.h>
@@ -34,6 +33,7 @@ using testing::block_means;
 using testing::box_camera;
 using testing::box_camera_settings;
 using testing::build_box;
+using testing::build_box_under_sky;
 using testing::expect_blocks_agree;
 using testing::region;
 using testing::render_stats;
@@ -96,9 +96,7 @@ TEST(Bidirectional, AgreesWithBruteForceUnderATwoSidedPanelWithGlassAndMetal) {
 // the sky lights it too.
 TEST(Bidirectional, AgreesWithBruteForceUnderASkyAndAPanel) {
     Scene scene;
-    build_box(scene, true, false, true);
-    (void)scene.add_environment_light(EnvironmentLight::constant({0.6f, 0.7f, 0.9f}));
-    scene.commit();
+    build_box_under_sky(scene);
     expect_matches<BruteForcePathTracer>(scene, 3, 1024, 7, "sky and panel");
 }
 

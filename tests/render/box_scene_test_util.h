@@ -9,6 +9,7 @@
 
 #include <librt/render/camera.h>
 #include <librt/render/camera_importance.h>
+#include <librt/render/environment_light.h>
 #include <librt/render/integrator.h>
 #include <librt/render/material.h>
 #include <librt/render/quad_light.h>
@@ -65,6 +66,15 @@ inline void build_box(Scene& scene, bool panel, bool glass_pane, bool glossy) {
         add_quad(scene, {0.1f, 0.0f, -0.6f}, {0.6f, 0.6f, 0}, {0, 0, 0.6f},
                  scene.add_material(Material::metallic_roughness({1.0f, 0.8f, 0.4f}, 1.0f, 0.3f)));
     }
+    scene.commit();
+}
+
+/// build_box with the two-sided panel and the glossy metal, under a constant sky too (the
+/// box is open toward the camera, so the sky lights it): a light at infinity, which starts
+/// no light path, beside one that does.
+inline void build_box_under_sky(Scene& scene) {
+    build_box(scene, true, false, true);
+    (void)scene.add_environment_light(EnvironmentLight::constant({0.6f, 0.7f, 0.9f}));
     scene.commit();
 }
 

@@ -9,7 +9,6 @@
 
 #include <librt/core/error.h>
 #include <librt/render/camera.h>
-#include <librt/render/environment_light.h>
 #include <librt/render/integrators.h>
 #include <librt/render/material.h>
 #include <librt/render/point_light.h>
@@ -34,6 +33,7 @@ using testing::add_quad;
 using testing::block_means;
 using testing::box_camera_settings;
 using testing::build_box;
+using testing::build_box_under_sky;
 using testing::expect_blocks_agree;
 using testing::spread;
 
@@ -204,9 +204,7 @@ TEST(CausticPaths, AgreeWithBruteForceUnderAQuadLightWithGlassAndMetal) {
 // floor) stay with the camera path, and next-event estimation after a caster keeps it.
 TEST(CausticPaths, AgreeWithBruteForceUnderASkyAndAPanel) {
     Scene scene;
-    build_box(scene, true, false, true);
-    (void)scene.add_environment_light(EnvironmentLight::constant({0.6f, 0.7f, 0.9f}));
-    scene.commit();
+    build_box_under_sky(scene);
     expect_matches<BruteForcePathTracer>(scene, 3, 32, 700, "sky and panel");
 }
 

@@ -7,6 +7,7 @@
 // and its densities, and the weight is only checkable beside the code that sets them.
 
 #include "bsdf_dispatch.h"
+#include "render/light_path_start.h"
 #include "render/mis.h"
 #include "render/transmittance.h"
 
@@ -464,32 +465,15 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
     int nl = 0;
     const LightSampler& lights = scene.light_sampler();
     if (lights.any() && settings_.max_depth >= 1) {
-        sampler.set_dimension(k_light_base);
-        const float u_choice = sampler.next_1d();
-        sampler.set_dimension(k_light_base + 1);
-        const glm::vec2 u_pos = sampler.next_2d();
-        sampler.set_dimension(k_light_base + 3);
-        const glm::vec2 u_dir = sampler.next_2d();
-        const SampledLight chosen = lights.sample(u_choice);
-        if (chosen.valid() && !is_infinite(scene.lights()[chosen.light])) {
-            const LightLeSample le = sample_le(scene.lights()[chosen.light], sphere_, u_pos, u_dir);
-            if (le.valid() && max_component(le.radiance) > 0.0f) {
-                const float pdf0 = chosen.pmf * le.pdf_pos;
-                lv[0] = endpoint(VertexKind::Light, le.origin, le.normal, le.radiance / pdf0, pdf0,
-                                 chosen.light, le.delta_position);
-                const PathVertex& y0 = lv[0];
-                const float cos0 = glm::dot(le.normal, le.normal) > 0.0f
-                                       ? std::fabs(glm::dot(le.normal, le.direction))
-                                       : 1.0f;
-                const glm::vec3 beta = y0.beta * (cos0 / le.pdf_dir);
-                Ray r;
-                r.origin = glm::dot(le.normal, le.normal) > 0.0f
-                               ? offset_ray_origin(le.origin, le.normal, le.direction)
-                               : le.origin;
-                r.direction = le.direction;
-                nl = random_walk(c, r, beta, le.pdf_dir, Transport::Importance, sampler, lv,
-                                 light_scratch, settings_.max_depth + 1, decisions, nullptr);
-            }
+        const LightPathStart start = start_light_path(scene, sphere_, sampler, k_light_base);
+        if (start.valid) {
+            const LightLeSample& le = start.le;
+            const float pdf0 = start.chosen.pmf * le.pdf_pos;
+            lv[0] = endpoint(VertexKind::Light, le.origin, le.normal, le.radiance / pdf0, pdf0,
+                             start.chosen.light, le.delta_position);
+            const glm::vec3 beta = lv[0].beta * (start.cosine() / le.pdf_dir);
+            nl = random_walk(c, start.ray(), beta, le.pdf_dir, Transport::Importance, sampler, lv,
+                             light_scratch, settings_.max_depth + 1, decisions, nullptr);
         }
     }
 

@@ -4,6 +4,7 @@
 #include "render/caustic_paths.h"
 
 #include "bsdf_dispatch.h"
+#include "render/light_path_start.h"
 #include "render/mis.h"
 #include "render/transmittance.h"
 
@@ -82,26 +83,13 @@ void splat_caustic_path(const Scene& scene, const SceneSphere& sphere, const Cam
     if (max_depth < 2) return;
     const LightSampler& lights = scene.light_sampler();
     if (!lights.any()) return;
-    sampler.set_dimension(k_base);
-    const float u_choice = sampler.next_1d();
-    sampler.set_dimension(k_base + 1);
-    const glm::vec2 u_pos = sampler.next_2d();
-    sampler.set_dimension(k_base + 3);
-    const glm::vec2 u_dir = sampler.next_2d();
-    const SampledLight chosen = lights.sample(u_choice);
     // Lights at infinity start no path: their caustics stay with the camera path.
-    if (!chosen.valid() || is_infinite(scene.lights()[chosen.light])) return;
-    const LightLeSample le = sample_le(scene.lights()[chosen.light], sphere, u_pos, u_dir);
-    if (!le.valid() || !(max_component(le.radiance) > 0.0f)) return;
-    const bool on_surface = glm::dot(le.normal, le.normal) > 0.0f;
+    const LightPathStart start = start_light_path(scene, sphere, sampler, k_base);
+    if (!start.valid) return;
+    const LightLeSample& le = start.le;
     // Throughput Le |cos| / (p_choice p_pos p_dir), as a light subpath of bdpt.cpp starts.
-    const float cos0 = on_surface ? std::fabs(glm::dot(le.normal, le.direction)) : 1.0f;
-    glm::vec3 beta = le.radiance * (cos0 / (chosen.pmf * le.pdf_pos * le.pdf_dir));
-    Ray ray;
-    ray.origin = on_surface ? offset_ray_origin(le.origin, le.normal, le.direction) : le.origin;
-    ray.direction = le.direction;
-    ray.t_min = 0.0f;
-    ray.t_max = std::numeric_limits<float>::infinity();
+    glm::vec3 beta = le.radiance * (start.cosine() / (start.chosen.pmf * le.pdf_pos * le.pdf_dir));
+    Ray ray = start.ray();
 
     std::uint32_t decisions = k_first_decision;
     int casters = 0;             // caster vertices so far
