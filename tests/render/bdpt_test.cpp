@@ -108,13 +108,10 @@ TEST(Bidirectional, AgreesWithThePathTracerUnderAPointLight) {
     expect_matches<PathTracer>(scene, 3, 512, 5, "point light");
 }
 
-// The t = 1 strategies through a real camera and a splat film: per render, each pixel's
-// mean plus the resolved splats; over K independent renders (seeds), block means agree
-// with the brute-force tracer's through the same camera.
-TEST(Bidirectional, LightTracingStrategiesAgreeThroughASplatFilm) {
-    Scene scene;
-    build_box(scene, true, true, false);
-    const Camera camera(box_camera_settings(16));
+/// The bidirectional tracer (max depth 3) through `camera` and a splat film against the
+/// brute-force tracer through the same camera, over 8 independent renders.
+void expect_splatting_matches_brute_force(const Scene& scene, const Camera& camera,
+                                          std::uint64_t seed, const char* what) {
     BidirectionalSettings bd;
     bd.max_depth = 3;
     BidirectionalPathTracer bdpt(bd);
@@ -124,15 +121,52 @@ TEST(Bidirectional, LightTracingStrategiesAgreeThroughASplatFilm) {
     pt.russian_roulette = false;
     BruteForcePathTracer brute(pt);
     ASSERT_TRUE(bdpt.splats());
-
     constexpr int kRenders = 8;
     constexpr int kSpp = 16;
     std::vector<std::vector<glm::dvec3>> a, b;
     for (int k = 0; k < kRenders; ++k) {
-        a.push_back(block_means(scene, camera, bdpt, true, 100 + std::uint64_t(k), kSpp));
-        b.push_back(block_means(scene, camera, brute, false, 200 + std::uint64_t(k), 16 * kSpp));
+        a.push_back(block_means(scene, camera, bdpt, true, seed + std::uint64_t(k), kSpp));
+        b.push_back(
+            block_means(scene, camera, brute, false, seed + 100 + std::uint64_t(k), 16 * kSpp));
     }
-    expect_blocks_agree(a, b, "light tracing");
+    expect_blocks_agree(a, b, what);
+}
+
+// The t = 1 strategies through a real camera and a splat film: per render, each pixel's
+// mean plus the resolved splats; over K independent renders (seeds), block means agree
+// with the brute-force tracer's through the same camera.
+TEST(Bidirectional, LightTracingStrategiesAgreeThroughASplatFilm) {
+    Scene scene;
+    build_box(scene, true, true, false);
+    expect_splatting_matches_brute_force(scene, Camera(box_camera_settings(16)), 100,
+                                         "light tracing");
+}
+
+// Camera rays pass what a light path's join to the lens would otherwise stop at: the space
+// before a near clip plane (here a wall just in front of the camera), which the join leaves
+// out (CameraWi::view_start), and objects hidden from the camera, for which the t = 1
+// strategies are left out. Either way the image still matches brute force.
+TEST(Bidirectional, AgreesWithBruteForceThroughANearClipPlane) {
+    Scene scene;
+    build_box(scene, false, false, true);
+    testing::add_quad(scene, {-3.0f, -2.0f, 3.0f}, {6.0f, 0, 0}, {0, 6.0f, 0},
+                      scene.add_material(Material::diffuse(glm::vec3(0.5f))));
+    scene.commit();
+    CameraSettings cs = box_camera_settings(16);
+    cs.near_clip = 0.6f;
+    expect_splatting_matches_brute_force(scene, Camera(cs), 300, "near clip plane");
+}
+
+TEST(Bidirectional, AgreesWithBruteForceThroughAnObjectHiddenFromTheCamera) {
+    Scene scene;
+    build_box(scene, false, false, true);
+    scene.set_camera_visible(
+        scene.add_sphere(Sphere{{0.0f, 1.0f, 2.0f}, 0.5f},
+                         scene.add_material(Material::diffuse(glm::vec3(0.5f)))),
+        false);
+    scene.commit();
+    expect_splatting_matches_brute_force(scene, Camera(box_camera_settings(16)), 500,
+                                         "hidden object");
 }
 
 }  // namespace

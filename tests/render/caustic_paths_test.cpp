@@ -77,8 +77,9 @@ void build_mirror_room(Scene& scene) {
     scene.commit();
 }
 
-Camera looking_down() {
+Camera looking_down(float near_clip = 0.0f) {
     CameraSettings cs;
+    cs.near_clip = near_clip;
     cs.position = {0.0f, 1.5f, 0.0f};
     cs.look_at = {0.0f, 0.0f, 0.0f};
     cs.up = {0.0f, 0.0f, -1.0f};
@@ -126,7 +127,7 @@ TEST(CausticPaths, RenderAPointLightsImageInAMirrorInClosedForm) {
 /// nothing else here either.
 template <class AddLight>
 void expect_mirrored_light_matches_brute_force(AddLight add_light, std::uint64_t seed,
-                                               const char* what) {
+                                               const char* what, float near_clip = 0.0f) {
     Scene scene;
     add_quad(scene, {-20, 0, -20}, {40, 0, 0}, {0, 0, 40},
              scene.add_material(Material::diffuse(glm::vec3(kRho))));
@@ -134,7 +135,7 @@ void expect_mirrored_light_matches_brute_force(AddLight add_light, std::uint64_t
              scene.add_material(Material::mirror(glm::vec3(kTint))));
     add_light(scene);
     scene.commit();
-    const Camera camera = looking_down();
+    const Camera camera = looking_down(near_clip);
     PathTracer split(caustic_settings(2));
     split.preprocess(scene);
     PathTracerSettings pt = caustic_settings(2);
@@ -170,6 +171,20 @@ TEST(CausticPaths, AgreeWithBruteForceUnderASphereLightOnlyAMirrorSees) {
                      scene.add_material(Material::diffuse(glm::vec3(0.5f))));
         },
         1000, "sphere light seen through a mirror");
+}
+
+// A near clip plane (every glTF camera has one): camera rays pass a shade just under the
+// camera that covers the whole view, and so must the light paths' joins to the lens
+// (CameraWi::view_start), or every caustic is lost.
+TEST(CausticPaths, AgreeWithBruteForceThroughANearClipPlane) {
+    expect_mirrored_light_matches_brute_force(
+        [](Scene& scene) {
+            (void)scene.add_quad_light(QuadLight{
+                {1.5f, 1.0f, -0.25f}, {0, 0, 0.5f}, {0.5f, 0, 0}, glm::vec3(4.0f), false});
+            add_quad(scene, {-0.3f, 1.35f, -0.3f}, {0.6f, 0, 0}, {0, 0, 0.6f},
+                     scene.add_material(Material::diffuse(glm::vec3(0.5f))));
+        },
+        1300, "near clip plane", 0.2f);
 }
 
 /// The split path tracer against `Reference` (brute force, which finds emitters only by
@@ -294,6 +309,13 @@ TEST(CausticPaths, LiAloneAndFallbacksAreThePlainPathTracer) {
     ortho_settings.projection = Projection::Orthographic;
     ortho_settings.pixel_jitter = PixelJitter::None;
     const Camera ortho(ortho_settings);
+    Scene hiding;
+    build_box(hiding, true, true, true);
+    hiding.set_camera_visible(
+        hiding.add_sphere(Sphere{{0.0f, 1.0f, 1.5f}, 0.2f},
+                          hiding.add_material(Material::diffuse(glm::vec3(0.5f)))),
+        false);
+    hiding.commit();
     SplatFilm film(16, 16, splat_filter_settings(ortho));
     const Camera persp(box_camera_settings(16));
     for (int y = 0; y < 16; ++y)
@@ -306,12 +328,18 @@ TEST(CausticPaths, LiAloneAndFallbacksAreThePlainPathTracer) {
                 Sampler a = sampler();
                 Sampler b = sampler();
                 Sampler c = sampler();
+                Sampler e = sampler();
+                Sampler f = sampler();
                 const Ray ray = persp.sample_ray(x, y, a).ray;
                 (void)persp.sample_ray(x, y, b);
                 (void)persp.sample_ray(x, y, c);
                 const glm::vec3 ref = plain.li(scene, ray, a);
                 EXPECT_EQ(split.li(scene, ray, b), ref) << x << "," << y;
                 EXPECT_EQ(split.li_splatting(scene, ray, c, SplatTarget{&ortho, &film}), ref);
+                (void)persp.sample_ray(x, y, e);
+                (void)persp.sample_ray(x, y, f);
+                EXPECT_EQ(split.li_splatting(hiding, ray, e, SplatTarget{&persp, &film}),
+                          plain.li(hiding, ray, f));
             }
     const Image splats = film.resolve(4.0);
     for (int y = 0; y < 16; ++y)

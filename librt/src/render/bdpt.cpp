@@ -428,9 +428,14 @@ glm::vec3 BidirectionalPathTracer::li(const Scene& scene, const Ray& ray, Sample
 
 glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& camera_ray,
                                                 Sampler& sampler, const SplatTarget& target) const {
+    // The t = 1 strategies only where a join to the lens passes what camera rays pass:
+    // not through objects hidden from the camera (without them every weight leaves t = 1
+    // out, and the image stays unbiased). A near clip plane's skipped space the join
+    // leaves out itself (CameraWi::view_start).
     const bool tracing = settings_.light_tracing && target.camera != nullptr &&
                          target.film != nullptr &&
-                         target.camera->settings().projection == Projection::Perspective;
+                         target.camera->settings().projection == Projection::Perspective &&
+                         !scene.may_hide_objects();
     const Context c{scene,
                     sphere_,
                     tracing ? target.camera : nullptr,
@@ -569,7 +574,7 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
                 const glm::vec3 f = bsdf_f(qs, cw.wi) * shading_correction(qs, qs.wo, cw.wi);
                 glm::vec3 contrib = qs.beta * f * (std::fabs(glm::dot(qs.ns, cw.wi)) * cw.weight);
                 if (!(max_component(contrib) > 0.0f)) continue;
-                contrib *= segment(scene, qs.p, qs.ng, cw.lens_point);
+                contrib *= segment(scene, qs.p, qs.ng, cw.view_start);
                 if (!(max_component(contrib) > 0.0f)) continue;
                 sampled = endpoint(VertexKind::Camera, cw.lens_point, glm::vec3(0.0f),
                                    glm::vec3(0.0f), cw.pdf_pos, kInvalidId, false);

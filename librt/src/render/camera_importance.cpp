@@ -172,6 +172,11 @@ CameraWi sample_wi(const Camera& camera, const glm::vec3& ref, glm::vec2 u_lens,
     const double pdf_pos = lens_pdf(camera, to_double(lens_point));
     out.valid = true;
     out.lens_point = lens_point;
+    // The near plane at t = near / cos_axis along the unit direction, cos_axis = depth / d.
+    out.view_start =
+        s.near_clip > 0.0f
+            ? glm::vec3(to_double(lens_point) + dir * (double(s.near_clip) * distance / depth))
+            : lens_point;
     out.wi = glm::vec3(-dir);
     out.distance = static_cast<float>(distance);
     out.raster = glm::vec2(traced->raster);

@@ -132,7 +132,7 @@ void splat_caustic_path(const Scene& scene, const SceneSphere& sphere, const Cam
             glm::vec3 contrib =
                 beta * f * (std::fabs(glm::dot(hit.shading_normal, cw.wi)) * cw.weight);
             if (!(max_component(contrib) > 0.0f)) return;
-            const Ray shadow = spawn_ray_to(hit.point, hit.geometric_normal, cw.lens_point);
+            const Ray shadow = spawn_ray_to(hit.point, hit.geometric_normal, cw.view_start);
             if (!unoccluded(scene, shadow)) {
                 if (!scene.has_pass_through_surfaces()) return;
                 contrib *= transmittance(scene, shadow);

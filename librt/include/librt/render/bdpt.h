@@ -47,8 +47,9 @@ struct BidirectionalSettings {
 /// librt's BSDFs are symmetric (the dielectrics carry no 1 / eta^2 radiance factor), so a
 /// light subpath uses the same sample / eval / pdf with Veach's correction for shading
 /// normals. Camera rays see through objects hidden from the camera, but light-subpath
-/// connections to the lens do not: a scene that hides objects from the camera should be
-/// rendered with light_tracing off.
+/// connections to the lens could not: in a scene that hides objects from the camera the
+/// t = 1 strategies are left out, as with light_tracing off. A connection to the lens
+/// ends at the near clip plane (CameraWi::view_start), as camera rays start there.
 class LIBRT_API BidirectionalPathTracer final : public GuardedIntegrator {
 public:
     /// Throws librt::Error naming max_depth when it is outside [0, kMaxDepth].

@@ -53,11 +53,15 @@ struct CameraPdf {
 struct CameraWi {
     bool valid = false;          ///< false: behind the camera, clipped, or off the image
     glm::vec3 lens_point{0.0f};  ///< the point on the lens (the position for a pinhole)
-    glm::vec3 wi{0.0f};          ///< unit direction from the reference point to lens_point
-    float distance = 0.0f;       ///< from the reference point to lens_point
-    glm::vec2 raster{0.0f};      ///< where the ray lens_point -> reference point meets the image
-    float importance = 0.0f;     ///< We of that ray (camera_importance)
-    float pdf_pos = 0.0f;        ///< density of lens_point per unit lens area (CameraPdf::pos)
+    /// Where the camera ray from lens_point toward the reference point starts to see: its
+    /// point on the near clip plane, or lens_point without one. A join's shadow ray ends
+    /// here, since the camera ray passes whatever lies before it.
+    glm::vec3 view_start{0.0f};
+    glm::vec3 wi{0.0f};       ///< unit direction from the reference point to lens_point
+    float distance = 0.0f;    ///< from the reference point to lens_point
+    glm::vec2 raster{0.0f};   ///< where the ray lens_point -> reference point meets the image
+    float importance = 0.0f;  ///< We of that ray (camera_importance)
+    float pdf_pos = 0.0f;     ///< density of lens_point per unit lens area (CameraPdf::pos)
     /// Solid-angle density at the reference point of having chosen this lens point:
     /// pdf_pos d^2 / cos_lens; 1 for a pinhole, whose lens point is a delta.
     float pdf = 0.0f;

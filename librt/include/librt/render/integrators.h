@@ -137,8 +137,8 @@ struct PathTracerSettings {
 ///
 /// With settings.caustic_paths.enabled, li_splatting also traces one light path per
 /// camera sample for the caustics (CausticPathSettings), when the camera is perspective
-/// and the scene hides nothing from it (light paths cannot see through hidden objects);
-/// otherwise it is li().
+/// and the scene hides nothing from it (a light path's join to the lens cannot pass
+/// hidden objects as camera rays do); otherwise it is li().
 class LIBRT_API PathTracer final : public GuardedIntegrator {
 public:
     /// Throws librt::Error naming max_depth, russian_roulette_depth, the guiding parameter
