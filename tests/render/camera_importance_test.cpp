@@ -314,7 +314,20 @@ TEST(CameraImportance, SampleWiSeesInFocusPointsSharpAndRespectsClipPlanes) {
             ASSERT_TRUE(wi.valid);
             EXPECT_NEAR(wi.raster.x, want.x, 1e-3);
             EXPECT_NEAR(wi.raster.y, want.y, 1e-3);
+            // The join ends where the camera ray starts: on the segment to the lens, at
+            // the near clip plane's depth.
+            const glm::vec3 start = wi.view_start - wi.lens_point;
+            EXPECT_NEAR(glm::dot(start, camera.forward()), s.near_clip, 1e-4f);
+            EXPECT_NEAR(glm::length(glm::cross(start, wi.wi)), 0.0f, 1e-4f);
+            EXPECT_LT(glm::dot(start, wi.wi), 0.0f);  // toward the point, not behind the lens
         }
+        // Without a near clip plane it is the lens point itself.
+        CameraSettings unclipped = s;
+        unclipped.near_clip = 0.0f;
+        const CameraWi open =
+            sample_wi(Camera(unclipped), s.position + 5.0f * camera.forward(), {0.3f, 0.3f});
+        ASSERT_TRUE(open.valid);
+        EXPECT_EQ(open.view_start, open.lens_point);
         const glm::vec3 f = camera.forward();
         EXPECT_FALSE(sample_wi(camera, s.position - 5.0f * f, {0.3f, 0.3f}).valid);   // behind
         EXPECT_FALSE(sample_wi(camera, s.position + 0.5f * f, {0.3f, 0.3f}).valid);   // near
