@@ -121,15 +121,7 @@ void expect_splatting_matches_brute_force(const Scene& scene, const Camera& came
     pt.russian_roulette = false;
     BruteForcePathTracer brute(pt);
     ASSERT_TRUE(bdpt.splats());
-    constexpr int kRenders = 8;
-    constexpr int kSpp = 16;
-    std::vector<std::vector<glm::dvec3>> a, b;
-    for (int k = 0; k < kRenders; ++k) {
-        a.push_back(block_means(scene, camera, bdpt, true, seed + std::uint64_t(k), kSpp));
-        b.push_back(
-            block_means(scene, camera, brute, false, seed + 100 + std::uint64_t(k), 16 * kSpp));
-    }
-    expect_blocks_agree(a, b, what);
+    testing::expect_splatting_agrees(scene, camera, bdpt, 16, brute, 256, seed, what);
 }
 
 // The t = 1 strategies through a real camera and a splat film: per render, each pixel's
@@ -160,11 +152,7 @@ TEST(Bidirectional, AgreesWithBruteForceThroughANearClipPlane) {
 TEST(Bidirectional, AgreesWithBruteForceThroughAnObjectHiddenFromTheCamera) {
     Scene scene;
     build_box(scene, false, false, true);
-    scene.set_camera_visible(
-        scene.add_sphere(Sphere{{0.0f, 1.0f, 2.0f}, 0.5f},
-                         scene.add_material(Material::diffuse(glm::vec3(0.5f)))),
-        false);
-    scene.commit();
+    testing::add_hidden_sphere(scene, Sphere{{0.0f, 1.0f, 2.0f}, 0.5f});
     expect_splatting_matches_brute_force(scene, Camera(box_camera_settings(16)), 500,
                                          "hidden object");
 }

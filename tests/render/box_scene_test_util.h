@@ -78,6 +78,14 @@ inline void build_box_under_sky(Scene& scene) {
     scene.commit();
 }
 
+/// A grey diffuse sphere hidden from the camera (camera rays pass it; it still shadows and
+/// reflects for every other ray), then commit().
+inline void add_hidden_sphere(Scene& scene, const Sphere& sphere) {
+    scene.set_camera_visible(
+        scene.add_sphere(sphere, scene.add_material(Material::diffuse(glm::vec3(0.5f)))), false);
+    scene.commit();
+}
+
 /// The box seen from the open side, through pixel centres (render_stats' camera).
 inline Pinhole box_camera() {
     Pinhole cam;
@@ -158,6 +166,22 @@ inline void expect_blocks_agree(const std::vector<std::vector<glm::dvec3>>& a,
             EXPECT_NEAR(sa.mean, sb.mean, 5.0 * std::sqrt(sa.se2 + sb.se2) + 1e-6)
                 << what << " block " << blk << " channel " << c;
         }
+}
+
+/// `integrator` (li_splatting onto a splat film, spp samples per pixel) against `reference`
+/// (li alone, reference_spp) through the same camera: expect_blocks_agree over `renders`
+/// independent renders, seeds from `seed` and from seed + 100.
+inline void expect_splatting_agrees(const Scene& scene, const Camera& camera,
+                                    const Integrator& integrator, int spp,
+                                    const Integrator& reference, int reference_spp,
+                                    std::uint64_t seed, const char* what, int renders = 8) {
+    std::vector<std::vector<glm::dvec3>> a, b;
+    for (int k = 0; k < renders; ++k) {
+        a.push_back(block_means(scene, camera, integrator, true, seed + std::uint64_t(k), spp));
+        b.push_back(block_means(scene, camera, reference, false, seed + 100 + std::uint64_t(k),
+                                reference_spp));
+    }
+    expect_blocks_agree(a, b, what);
 }
 
 }  // namespace librt::testing

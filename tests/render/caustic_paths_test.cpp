@@ -141,13 +141,7 @@ void expect_mirrored_light_matches_brute_force(AddLight add_light, std::uint64_t
     PathTracerSettings pt = caustic_settings(2);
     pt.caustic_paths.enabled = false;
     BruteForcePathTracer brute(pt);
-    constexpr int kRenders = 8;
-    std::vector<std::vector<glm::dvec3>> a, b;
-    for (int k = 0; k < kRenders; ++k) {
-        a.push_back(block_means(scene, camera, split, true, seed + std::uint64_t(k), 64));
-        b.push_back(block_means(scene, camera, brute, false, seed + 50 + std::uint64_t(k), 512));
-    }
-    expect_blocks_agree(a, b, what);
+    testing::expect_splatting_agrees(scene, camera, split, 64, brute, 512, seed, what);
 }
 
 TEST(CausticPaths, AgreeWithBruteForceUnderAQuadLightOnlyAMirrorSees) {
@@ -199,14 +193,7 @@ void expect_matches(const Scene& scene, int depth, int spp, std::uint64_t seed, 
     pt.caustic_paths.enabled = false;
     Reference reference(pt);
     reference.preprocess(scene);
-    constexpr int kRenders = 8;
-    std::vector<std::vector<glm::dvec3>> a, b;
-    for (int k = 0; k < kRenders; ++k) {
-        a.push_back(block_means(scene, camera, split, true, seed + std::uint64_t(k), spp));
-        b.push_back(
-            block_means(scene, camera, reference, false, seed + 100 + std::uint64_t(k), 16 * spp));
-    }
-    expect_blocks_agree(a, b, what);
+    testing::expect_splatting_agrees(scene, camera, split, spp, reference, 16 * spp, seed, what);
 }
 
 TEST(CausticPaths, AgreeWithBruteForceUnderAQuadLightWithGlassAndMetal) {
@@ -311,11 +298,7 @@ TEST(CausticPaths, LiAloneAndFallbacksAreThePlainPathTracer) {
     const Camera ortho(ortho_settings);
     Scene hiding;
     build_box(hiding, true, true, true);
-    hiding.set_camera_visible(
-        hiding.add_sphere(Sphere{{0.0f, 1.0f, 1.5f}, 0.2f},
-                          hiding.add_material(Material::diffuse(glm::vec3(0.5f)))),
-        false);
-    hiding.commit();
+    testing::add_hidden_sphere(hiding, Sphere{{0.0f, 1.0f, 1.5f}, 0.2f});
     SplatFilm film(16, 16, splat_filter_settings(ortho));
     const Camera persp(box_camera_settings(16));
     for (int y = 0; y < 16; ++y)
