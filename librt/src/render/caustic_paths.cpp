@@ -58,25 +58,6 @@ void restart(Ray& ray, const glm::vec3& p, const glm::vec3& ng, const glm::vec3&
 
 }  // namespace
 
-bool casts_caustics(const Material& m, float max_roughness) {
-    switch (m.kind) {
-        case MaterialKind::Mirror:
-        case MaterialKind::Dielectric:
-            return true;
-        case MaterialKind::Conductor:
-        case MaterialKind::RoughDielectric:
-            return m.roughness <= max_roughness;
-        case MaterialKind::MetallicRoughness:
-            // Its Lambert layer weighs (1 - metallic)(1 - transmission): a caster only
-            // without it.
-            return m.roughness <= max_roughness && (m.metallic >= 1.0f || m.transmission >= 1.0f);
-        case MaterialKind::Diffuse:
-        case MaterialKind::Emissive:
-            break;
-    }
-    return false;
-}
-
 void splat_caustic_path(const Scene& scene, const SceneSphere& sphere, const Camera& camera,
                         SplatFilm& film, Sampler& sampler, int max_depth, float max_roughness) {
     // E D G L has two scattering events at least.

@@ -35,7 +35,25 @@ struct SceneSphere;
 /// caster G: every part of its BSDF is specular or a microfacet lobe of perceptual
 /// roughness <= max_roughness, with no diffuse part (a metallic-roughness material only
 /// when wholly metal or wholly transmissive). The same test on both sides of the split.
-[[nodiscard]] bool casts_caustics(const Material& m, float max_roughness);
+/// Inline: the tests call it, and a shared librt exports only the public API.
+[[nodiscard]] inline bool casts_caustics(const Material& m, float max_roughness) {
+    switch (m.kind) {
+        case MaterialKind::Mirror:
+        case MaterialKind::Dielectric:
+            return true;
+        case MaterialKind::Conductor:
+        case MaterialKind::RoughDielectric:
+            return m.roughness <= max_roughness;
+        case MaterialKind::MetallicRoughness:
+            // Its Lambert layer weighs (1 - metallic)(1 - transmission): a caster only
+            // without it.
+            return m.roughness <= max_roughness && (m.metallic >= 1.0f || m.transmission >= 1.0f);
+        case MaterialKind::Diffuse:
+        case MaterialKind::Emissive:
+            break;
+    }
+    return false;
+}
 
 /// Where a camera path stands against the caustic set: after its first scattering vertex
 /// x1, and while every later vertex is a caustic caster.
