@@ -9,6 +9,11 @@
 // lies within one store whatever widths the producer used.
 
 #include <librt/geometry/ray.h>
+#include <librt/geometry/ray_offset.h>
+
+#include <glm/vec3.hpp>
+
+#include <limits>
 
 namespace librt::detail {
 
@@ -37,6 +42,18 @@ namespace librt::detail {
     r.t_min = load_alone(ray.t_min);
     r.t_max = load_alone(ray.t_max);
     return r;
+}
+
+/// Makes `ray` spawn_ray(point, normal, direction) with an unbounded extent, written in
+/// place: assigned from a temporary, g++ stored the temporary field by field and copied it
+/// by 16-byte loads that no store forwards to (a stall per bounce of the path loop).
+/// `direction` may be `ray.direction` itself (a ray continuing through a surface).
+[[gnu::always_inline]] inline void respawn(Ray& ray, const glm::vec3& point,
+                                           const glm::vec3& normal, const glm::vec3& direction) {
+    ray.origin = offset_ray_origin(point, normal, direction);
+    ray.direction = direction;
+    ray.t_min = 0.0f;
+    ray.t_max = std::numeric_limits<float>::infinity();
 }
 
 }  // namespace librt::detail

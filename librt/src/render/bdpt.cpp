@@ -7,8 +7,10 @@
 // and its densities, and the weight is only checkable beside the code that sets them.
 
 #include "bsdf_dispatch.h"
+#include "geometry/ray_copy.h"
 #include "render/light_path_start.h"
 #include "render/mis.h"
+#include "render/shading_correction.h"
 #include "render/transmittance.h"
 
 #include <librt/core/error.h>
@@ -25,7 +27,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -111,18 +112,10 @@ float bsdf_pdf(const PathVertex& v, const glm::vec3& from, const glm::vec3& to) 
 
 /// f at a surface vertex toward world direction `to`, for light arriving along the walk's
 /// other end (wo): f(wo, to). librt's BSDFs are symmetric, so this is also the adjoint
-/// (light from wo leaving toward `to`) a light subpath needs, up to shading_correction.
+/// (light from wo leaving toward `to`) a light subpath needs, up to shading_correction
+/// (shading_correction.h).
 glm::vec3 bsdf_f(const PathVertex& v, const glm::vec3& to) {
     return bsdfs::eval_bsdf(*v.material, v.sp, v.sp.frame.to_local(v.wo), v.sp.frame.to_local(to));
-}
-
-/// Veach's correction (1997, section 5.3.2) of the adjoint BSDF for shading normals:
-/// |wo.ns| |wi.ng| / (|wo.ng| |wi.ns|), wo toward the light's side, wi the way light
-/// leaves. Radiance needs none.
-float shading_correction(const PathVertex& v, const glm::vec3& wo, const glm::vec3& wi) {
-    const float denom = std::fabs(glm::dot(wo, v.ng)) * std::fabs(glm::dot(wi, v.ns));
-    if (!(denom > 0.0f)) return 0.0f;
-    return std::fabs(glm::dot(wo, v.ns)) * std::fabs(glm::dot(wi, v.ng)) / denom;
 }
 
 /// A solid-angle density at `from` turned into an area density at `to` (|cos| at `to`
@@ -322,9 +315,7 @@ int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transp
         if (mode == Transport::Radiance && n == 1 && c.scene.may_hide_objects() &&
             !c.scene.camera_visible(hit.object_id)) {
             if (++hidden_skips > 64) break;
-            ray.origin = offset_ray_origin(hit.point, hit.geometric_normal, ray.direction);
-            ray.t_min = 0.0f;
-            ray.t_max = std::numeric_limits<float>::infinity();
+            detail::respawn(ray, hit.point, hit.geometric_normal, ray.direction);
             continue;
         }
         const Material& m = c.scene.shade(hit, ray.direction, scratch[n]);
@@ -336,9 +327,7 @@ int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transp
             beta *= x.weight;
             if (x.crossed) {
                 if (decisions > kMaxCrossingDecisions) break;
-                ray.origin = offset_ray_origin(hit.point, hit.geometric_normal, ray.direction);
-                ray.t_min = 0.0f;
-                ray.t_max = std::numeric_limits<float>::infinity();
+                detail::respawn(ray, hit.point, hit.geometric_normal, ray.direction);
                 continue;
             }
         }
@@ -377,7 +366,7 @@ int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transp
         if (!bs.valid()) break;
         const glm::vec3 wi = v.sp.frame.to_world(bs.wi);
         beta *= bs.weight;
-        if (mode == Transport::Importance) beta *= shading_correction(v, v.wo, wi);
+        if (mode == Transport::Importance) beta *= shading_correction(v.ns, v.ng, v.wo, wi);
         float pdf_rev = 0.0f;
         if (has(bs.lobe, BsdfLobe::Specular)) {
             v.delta = true;
@@ -388,10 +377,7 @@ int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transp
         }
         prev.pdf_rev = to_area(pdf_rev, v, prev);
         if (!(max_component(beta) > 0.0f)) break;
-        ray.origin = offset_ray_origin(hit.point, hit.geometric_normal, wi);
-        ray.direction = wi;
-        ray.t_min = 0.0f;
-        ray.t_max = std::numeric_limits<float>::infinity();
+        detail::respawn(ray, hit.point, hit.geometric_normal, wi);
     }
     return n;
 }
@@ -571,7 +557,8 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
                 const glm::vec2 u_lens = sampler.next_2d();
                 const CameraWi cw = sample_wi(*c.camera, qs.p, u_lens, c.margin);
                 if (!cw.valid) continue;
-                const glm::vec3 f = bsdf_f(qs, cw.wi) * shading_correction(qs, qs.wo, cw.wi);
+                const glm::vec3 f =
+                    bsdf_f(qs, cw.wi) * shading_correction(qs.ns, qs.ng, qs.wo, cw.wi);
                 glm::vec3 contrib = qs.beta * f * (std::fabs(glm::dot(qs.ns, cw.wi)) * cw.weight);
                 if (!(max_component(contrib) > 0.0f)) continue;
                 contrib *= segment(scene, qs.p, qs.ng, cw.view_start);
@@ -588,7 +575,7 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
             const float d2 = glm::dot(d, d);
             if (!(d2 > 0.0f)) continue;
             d /= std::sqrt(d2);
-            const glm::vec3 fq = bsdf_f(qs, d) * shading_correction(qs, qs.wo, d);
+            const glm::vec3 fq = bsdf_f(qs, d) * shading_correction(qs.ns, qs.ng, qs.wo, d);
             const glm::vec3 fp = bsdf_f(pt, -d);
             const float g = std::fabs(glm::dot(qs.ns, d)) * std::fabs(glm::dot(pt.ns, d)) / d2;
             glm::vec3 contrib = qs.beta * fq * fp * pt.beta * g;

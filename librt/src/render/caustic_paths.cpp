@@ -4,8 +4,10 @@
 #include "render/caustic_paths.h"
 
 #include "bsdf_dispatch.h"
+#include "geometry/ray_copy.h"
 #include "render/light_path_start.h"
 #include "render/mis.h"
+#include "render/shading_correction.h"
 #include "render/transmittance.h"
 
 #include <librt/render/bsdf.h>
@@ -20,7 +22,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace librt {
 namespace {
@@ -38,23 +39,6 @@ constexpr int k_roulette_after = 3;
 /// The light path's crossing decisions follow the camera path's (kMaxCrossingDecisions
 /// bounds both): from here, so no number is drawn twice in one sample.
 constexpr std::uint32_t k_first_decision = kMaxCrossingDecisions / 2;
-
-/// Veach's correction (1997, section 5.3.2) of the adjoint BSDF for shading normals:
-/// |wo.ns| |wi.ng| / (|wo.ng| |wi.ns|), wo toward the light's side, wi the way light
-/// leaves.
-float shading_correction(const glm::vec3& ns, const glm::vec3& ng, const glm::vec3& wo,
-                         const glm::vec3& wi) {
-    const float denom = std::fabs(glm::dot(wo, ng)) * std::fabs(glm::dot(wi, ns));
-    if (!(denom > 0.0f)) return 0.0f;
-    return std::fabs(glm::dot(wo, ns)) * std::fabs(glm::dot(wi, ng)) / denom;
-}
-
-void restart(Ray& ray, const glm::vec3& p, const glm::vec3& ng, const glm::vec3& dir) {
-    ray.origin = offset_ray_origin(p, ng, dir);
-    ray.direction = dir;
-    ray.t_min = 0.0f;
-    ray.t_max = std::numeric_limits<float>::infinity();
-}
 
 }  // namespace
 
@@ -87,7 +71,7 @@ void splat_caustic_path(const Scene& scene, const SceneSphere& sphere, const Cam
             beta *= x.weight;
             if (x.crossed) {
                 if (decisions > kMaxCrossingDecisions) return;
-                restart(ray, hit.point, hit.geometric_normal, ray.direction);
+                detail::respawn(ray, hit.point, hit.geometric_normal, ray.direction);
                 continue;
             }
         }
@@ -145,7 +129,7 @@ void splat_caustic_path(const Scene& scene, const SceneSphere& sphere, const Cam
             beta /= q;
             throughput /= q;
         }
-        restart(ray, hit.point, hit.geometric_normal, wi);
+        detail::respawn(ray, hit.point, hit.geometric_normal, wi);
     }
 }
 

@@ -354,17 +354,6 @@ GuidedSample sample_guided(Vertex& v, const guiding::DirLeaf& leaf, float alpha,
     return bs;
 }
 
-/// Makes `ray` spawn_ray(point, normal, direction), written in place: assigned from a
-/// temporary, g++ stored the temporary field by field and copied it by 16-byte loads that
-/// no store forwards to (a stall per bounce; see ray_copy.h).
-[[gnu::always_inline]] inline void respawn(Ray& ray, const glm::vec3& point,
-                                           const glm::vec3& normal, const glm::vec3& direction) {
-    ray.origin = offset_ray_origin(point, normal, direction);
-    ray.direction = direction;
-    ray.t_min = 0.0f;
-    ray.t_max = std::numeric_limits<float>::infinity();
-}
-
 /// What a path needs besides the scene: depth limit, roulette and MIS choices.
 struct TraceSettings {
     int max_depth = 5;
@@ -454,7 +443,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             // Camera rays go on through hidden objects (bounded: a ray grazing a hidden
             // surface many times must still end).
             if (++hidden > 64) break;
-            respawn(ray, hit.point, hit.geometric_normal, ray.direction);
+            detail::respawn(ray, hit.point, hit.geometric_normal, ray.direction);
             continue;
         }
         // Textures looked up and the normal map applied here, so the BSDFs get plain values.
@@ -487,7 +476,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             beta *= c.weight;
             if (c.crossed) {
                 if (decisions > kMaxCrossingDecisions) break;
-                respawn(ray, hit.point, hit.geometric_normal, ray.direction);
+                detail::respawn(ray, hit.point, hit.geometric_normal, ray.direction);
                 continue;
             }
         }
@@ -557,7 +546,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                 if (guide.recorder != nullptr)
                     guide.recorder->push(*leaf, hit.point, g.wi, g.pdf, beta);
                 if (!survives_roulette(settings, depth, dim, beta, sampler)) break;
-                respawn(ray, hit.point, hit.geometric_normal, g.wi);
+                detail::respawn(ray, hit.point, hit.geometric_normal, g.wi);
                 continue;
             }
         }
@@ -595,7 +584,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         else
             bounce = {light_only ? EmitterWeight::Zero : EmitterWeight::Mis, bs.pdf, hit.point};
         if (!survives_roulette(settings, depth, dim, beta, sampler)) break;
-        respawn(ray, hit.point, hit.geometric_normal, wi_world);
+        detail::respawn(ray, hit.point, hit.geometric_normal, wi_world);
     }
     return radiance;
 }
