@@ -12,22 +12,21 @@
 using namespace librt;
 
 int main(int argc, char** argv) {
-    CLI::App app{"The report's anti-aliasing: Gaussian pixel jitter, sigma = 0.5 pixel",
-                 "rt_antialiasing"};
+    apps::CommandLine command_line{
+        "The report's anti-aliasing: Gaussian pixel jitter, sigma = 0.5 pixel", "rt_antialiasing"};
     apps::AppOptions options;
     options.spp = 30;
-    apps::add_common_options(app, options);
+    apps::add_common_options(command_line.app(), options);
     bool no_jitter = false;
     float sigma = 0.5f;
     int zoom = 0;
-    app.add_flag("--no-jitter", no_jitter,
-                 "Every ray through the pixel centre (the aliased comparison)");
-    app.add_option("--sigma", sigma, "Standard deviation of the pixel jitter, in pixels")
-        ->capture_default_str();
-    app.add_option(
+    command_line.add_flag("--no-jitter", no_jitter,
+                          "Every ray through the pixel centre (the aliased comparison)");
+    command_line.add_option("--sigma", sigma, "Standard deviation of the pixel jitter, in pixels");
+    command_line.add_option(
         "--zoom", zoom,
         "Also write <output>_zoom.png: the white sphere's edge enlarged this many times");
-    return apps::run(app, argc, argv, [&] {
+    return apps::run(command_line, argc, argv, [&] {
         // Every parameter is checked before anything is loaded or allocated.
         apps::validate(options);
         CameraSettings camera = apps::camera_of(options);

@@ -9,20 +9,22 @@
 using namespace librt;
 
 int main(int argc, char** argv) {
-    CLI::App app{"The report's depth of field: Gaussian lens jitter, sigma 1, focal distance 55",
-                 "rt_depth_of_field"};
+    apps::CommandLine command_line{
+        "The report's depth of field: Gaussian lens jitter, sigma 1, focal distance 55",
+        "rt_depth_of_field"};
     apps::AppOptions options;
     options.spp = 80;
-    apps::add_common_options(app, options);
+    apps::add_common_options(command_line.app(), options);
     bool pinhole = false;
     float lens_sigma = 1.0f;
     float focal_distance = 55.0f;
-    app.add_flag("--pinhole", pinhole, "No lens jitter: everything sharp (the comparison)");
-    app.add_option("--lens-sigma", lens_sigma, "Standard deviation of the lens jitter, scene units")
-        ->capture_default_str();
-    app.add_option("--focal-distance", focal_distance, "Distance along each ray that is sharp")
-        ->capture_default_str();
-    return apps::run(app, argc, argv, [&] {
+    command_line.add_flag("--pinhole", pinhole,
+                          "No lens jitter: everything sharp (the comparison)");
+    command_line.add_option("--lens-sigma", lens_sigma,
+                            "Standard deviation of the lens jitter, scene units");
+    command_line.add_option("--focal-distance", focal_distance,
+                            "Distance along each ray that is sharp");
+    return apps::run(command_line, argc, argv, [&] {
         // Every parameter is checked before anything is loaded or allocated.
         apps::validate(options);
         CameraSettings camera = apps::camera_of(options);

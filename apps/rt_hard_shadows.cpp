@@ -8,12 +8,13 @@
 using namespace librt;
 
 int main(int argc, char** argv) {
-    CLI::App app{"The report's hard shadows: point light, direct lighting only", "rt_hard_shadows"};
+    apps::CommandLine command_line{"The report's hard shadows: point light, direct lighting only",
+                                   "rt_hard_shadows"};
     apps::AppOptions options;
     options.spp = 1;
     options.output = "hard_shadows.png";
-    apps::add_common_options(app, options);
-    return apps::run(app, argc, argv, [&] {
+    apps::add_common_options(command_line.app(), options);
+    return apps::run(command_line, argc, argv, [&] {
         // Every parameter is checked before anything is loaded or allocated.
         apps::validate(options);
         if (options.guiding)

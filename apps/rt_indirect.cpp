@@ -7,12 +7,13 @@
 using namespace librt;
 
 int main(int argc, char** argv) {
-    CLI::App app{"The report's indirect lighting: point light, path tracing", "rt_indirect"};
+    apps::CommandLine command_line{"The report's indirect lighting: point light, path tracing",
+                                   "rt_indirect"};
     apps::AppOptions options;
     options.spp = 30;
     options.output = "indirect.png";
-    apps::add_common_options(app, options);
-    return apps::run(app, argc, argv, [&] {
+    apps::add_common_options(command_line.app(), options);
+    return apps::run(command_line, argc, argv, [&] {
         // Every parameter is checked before anything is loaded or allocated.
         apps::validate(options);
         Scene scene;

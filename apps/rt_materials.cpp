@@ -20,6 +20,7 @@
 #include <librt/render/renderer.h>
 #include <librt/render/texture.h>
 
+#include <CLI/CLI.hpp>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 

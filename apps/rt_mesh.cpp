@@ -10,6 +10,8 @@
 
 #include <librt/render/integrators.h>
 
+#include <CLI/CLI.hpp>
+
 #include <map>
 
 using namespace librt;

@@ -15,6 +15,7 @@
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
 
+#include <CLI/CLI.hpp>
 #include <mpi.h>
 #include <sys/resource.h>
 

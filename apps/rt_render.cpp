@@ -18,6 +18,8 @@
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>

@@ -7,13 +7,13 @@
 using namespace librt;
 
 int main(int argc, char** argv) {
-    CLI::App app{"The report's soft shadows: a light sphere of radius 10, path tracing",
-                 "rt_soft_shadows"};
+    apps::CommandLine command_line{
+        "The report's soft shadows: a light sphere of radius 10, path tracing", "rt_soft_shadows"};
     apps::AppOptions options;
     options.spp = 30;
     options.output = "soft_shadows.png";
-    apps::add_common_options(app, options);
-    return apps::run(app, argc, argv, [&] {
+    apps::add_common_options(command_line.app(), options);
+    return apps::run(command_line, argc, argv, [&] {
         // Every parameter is checked before anything is loaded or allocated.
         apps::validate(options);
         Scene scene;

@@ -9,21 +9,21 @@
 using namespace librt;
 
 int main(int argc, char** argv) {
-    CLI::App app{"The report's synthesis image: every feature at once", "rt_synthesis"};
+    apps::CommandLine command_line{"The report's synthesis image: every feature at once",
+                                   "rt_synthesis"};
     apps::AppOptions options;
     options.spp = 80;
     options.output = "synthesis.png";
-    apps::add_common_options(app, options);
+    apps::add_common_options(command_line.app(), options);
     apps::MeshOptions mesh_options;
-    apps::add_mesh_options(app, mesh_options);
+    apps::add_mesh_options(command_line.app(), mesh_options);
     float lens_sigma = 1.0f;
     float focal_distance = 55.0f;
-    app.add_option("--lens-sigma", lens_sigma,
-                   "Standard deviation of the lens jitter (0 = pinhole)")
-        ->capture_default_str();
-    app.add_option("--focal-distance", focal_distance, "Distance along each ray that is sharp")
-        ->capture_default_str();
-    return apps::run(app, argc, argv, [&] {
+    command_line.add_option("--lens-sigma", lens_sigma,
+                            "Standard deviation of the lens jitter (0 = pinhole)");
+    command_line.add_option("--focal-distance", focal_distance,
+                            "Distance along each ray that is sharp");
+    return apps::run(command_line, argc, argv, [&] {
         // Every parameter is checked before anything is loaded or allocated.
         apps::validate(options);
         apps::validate(mesh_options);

@@ -13,6 +13,8 @@
 #include <librt/render/renderer.h>
 #include <librt/version.h>
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <atomic>
 #include <charconv>
@@ -345,6 +347,27 @@ void validate(const MeshOptions& o) {
             }
         }
     }
+}
+
+CommandLine::CommandLine(const std::string& description, const std::string& name)
+    : app_(std::make_unique<CLI::App>(description, name)) {}
+
+CommandLine::~CommandLine() = default;
+
+void CommandLine::add_flag(const std::string& name, bool& value, const std::string& help) {
+    app_->add_flag(name, value, help);
+}
+
+void CommandLine::add_option(const std::string& name, float& value, const std::string& help) {
+    app_->add_option(name, value, help)->capture_default_str();
+}
+
+void CommandLine::add_option(const std::string& name, int& value, const std::string& help) {
+    app_->add_option(name, value, help)->capture_default_str();
+}
+
+int run(CommandLine& command_line, int argc, char** argv, const std::function<int()>& body) {
+    return run(command_line.app(), argc, argv, body);
 }
 
 int run(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {

@@ -10,17 +10,22 @@
 #include <librt/render/sampler.h>
 #include <librt/render/scene.h>
 
-#include <CLI/CLI.hpp>
-
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 // Command-line plumbing shared by the rt_* apps: common options, error handling, and
 // "render, check, write".
+
+// CLI11's App, declared only: see CommandLine. The files that register options of their own
+// types include <CLI/CLI.hpp> themselves.
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace librt::apps {
 
@@ -81,6 +86,30 @@ private:
     bool drawn_ = false;
 };
 
+/// An app's command line, with CLI11 behind it: the report's small apps register their
+/// options here and compile without CLI11. Why: CLI11 2.1 (Debian 12) is header-only, and a
+/// file that builds a CLI::App compiles hundreds of its functions, most of a small app's
+/// build time (about 20 s each under the sanitizers, every CI run; docs/robustness.md).
+class CommandLine {
+public:
+    /// An app called `name`, described by `description` in --help.
+    CommandLine(const std::string& description, const std::string& name);
+    ~CommandLine();
+    CommandLine(const CommandLine&) = delete;
+    CommandLine& operator=(const CommandLine&) = delete;
+    /// The CLI11 app itself, for the functions below that register on it.
+    [[nodiscard]] CLI::App& app() { return *app_; }
+    /// A flag that sets `value`.
+    void add_flag(const std::string& name, bool& value, const std::string& help);
+    /// An option parsed into `value`, its default shown by --help.
+    void add_option(const std::string& name, float& value, const std::string& help);
+    /// The same for an integer.
+    void add_option(const std::string& name, int& value, const std::string& help);
+
+private:
+    std::unique_ptr<CLI::App> app_;
+};
+
 /// The flag SIGINT / SIGTERM set while run()'s body runs: a render's `cancel`.
 [[nodiscard]] const std::atomic<bool>* interrupt_flag();
 
@@ -128,6 +157,10 @@ void validate(const MeshOptions& options);
 /// Returns body's exit code otherwise. While body runs, SIGINT and SIGTERM request a
 /// clean stop (render_and_write then returns 130 without writing); a second one kills.
 [[nodiscard]] int run(CLI::App& app, int argc, char** argv, const std::function<int()>& body);
+
+/// run() on a CommandLine's app.
+[[nodiscard]] int run(CommandLine& command_line, int argc, char** argv,
+                      const std::function<int()>& body);
 
 /// Renders with the options' sample count, threads and seed (Ctrl-C or SIGTERM cancels:
 /// nothing is written, exit 130; see docs/robustness.md), prints a summary, writes options.output
