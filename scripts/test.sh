@@ -52,14 +52,40 @@ run_ctest tsan
 stage "fuzzing load_obj + BVH build, the image loaders, load_gltf and the BVH builders, ${LIBRT_FUZZ_SECONDS:-60} s each"
 cmake --preset fuzz
 cmake --build --preset fuzz -j "$jobs"
-# Each target works on a copy of its seed corpus, so new inputs stay out of the tree.
-for target in obj:obj_fuzz image:image_fuzz gltf:gltf_fuzz bvh:bvh_fuzz; do
-  corpus="$logs/corpus_${target%%:*}"
+# Each target works on a copy of its seed corpus, so new inputs stay out of the tree. A
+# fuzzer is one single-threaded process: they run $jobs at a time, each for the full time,
+# and each one's log is printed when it ends (a failing target fails the stage).
+fuzz_one() {
+  local name=$1 binary=$2 corpus="$logs/corpus_$1"
   mkdir -p "$corpus"
-  cp "tests/fuzz/corpus/${target%%:*}"/* "$corpus"/
-  ./build/fuzz/tests/fuzz/"${target##*:}" -max_total_time="${LIBRT_FUZZ_SECONDS:-60}" \
-      -max_len=4096 -rss_limit_mb=2048 -print_final_stats=1 "$corpus" 2>&1 | tail -n 12
+  cp "tests/fuzz/corpus/$name"/* "$corpus"/
+  ./build/fuzz/tests/fuzz/"$binary" -max_total_time="${LIBRT_FUZZ_SECONDS:-60}" \
+      -max_len=4096 -rss_limit_mb=2048 -print_final_stats=1 "$corpus" > "$logs/fuzz_$name.txt" 2>&1
+}
+# Waits for one target; prints its final stats, or its whole report when it failed.
+fuzz_report() {
+  if wait "$1"; then
+    tail -n 12 "$logs/fuzz_$2.txt"
+  else
+    cat "$logs/fuzz_$2.txt"
+    echo "fuzz target $2 failed"
+    return 1
+  fi
+}
+pids=() names=()
+fuzz_failed=0
+for target in obj:obj_fuzz image:image_fuzz gltf:gltf_fuzz bvh:bvh_fuzz; do
+  if [ "${#pids[@]}" -ge "$jobs" ]; then
+    fuzz_report "${pids[0]}" "${names[0]}" || fuzz_failed=1
+    pids=("${pids[@]:1}") names=("${names[@]:1}")
+  fi
+  fuzz_one "${target%%:*}" "${target##*:}" &
+  pids+=("$!") names+=("${target%%:*}")
 done
+for i in "${!pids[@]}"; do
+  fuzz_report "${pids[$i]}" "${names[$i]}" || fuzz_failed=1
+done
+[ "$fuzz_failed" = 0 ]
 
 stage "all stages passed"
 summary
