@@ -42,6 +42,8 @@ struct Options {
     std::string light_choice = "power";  // power | bounded (LightChoice)
     std::string integrator = "path";     // path | bdpt | brute
     bool caustic_paths = false;          // the path tracer's caustics traced from the lights
+    float light_paths = 1.0f;            // bdpt: fraction of samples tracing a light subpath
+    int roulette_depth = -1;             // first rouletted bounce; -1 = the integrator's own
     int threads = 0;
     std::uint64_t seed = 0;
     double time_limit = 0.0;
@@ -89,6 +91,13 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     if (o.caustic_paths && o.integrator != "path")
         bad("--caustic-paths", "on",
             "caustic light paths are the path tracer's: use --integrator path");
+    if (!(o.light_paths > 0.0f && o.light_paths <= 1.0f))
+        bad("--light-paths", std::to_string(o.light_paths), "must be in (0, 1]");
+    if (o.light_paths != 1.0f && o.integrator != "bdpt")
+        bad("--light-paths", std::to_string(o.light_paths), "needs --integrator bdpt");
+    if (o.roulette_depth < -1 || o.roulette_depth > 64)
+        bad("--roulette-depth", std::to_string(o.roulette_depth),
+            "must be in [0, 64] (or -1: the integrator's default)");
     if (o.caustic_paths && o.sampling.guiding)
         bad("--caustic-paths", "on", "cannot be combined with --guiding");
     if (!std::isfinite(o.time_limit) || o.time_limit < 0.0)
@@ -149,9 +158,12 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     // Kept in the image, alone (render_progressive's final frame) and under mpirun alike.
     pt.guiding.keep_training_samples = o.sampling.guiding;
     pt.caustic_paths.enabled = o.caustic_paths;
+    if (o.roulette_depth >= 0) pt.russian_roulette_depth = o.roulette_depth;
     PathTracer path_tracer(pt);
     BidirectionalSettings bd;
     bd.max_depth = std::min(o.max_depth, BidirectionalSettings::kMaxDepth);
+    bd.light_path_fraction = o.light_paths;
+    if (o.roulette_depth >= 0) bd.russian_roulette_depth = o.roulette_depth;
     BidirectionalPathTracer bidirectional(bd);
     PathTracerSettings brute_settings = pt;
     brute_settings.guiding = {};
@@ -216,6 +228,15 @@ int main(int argc, char** argv) {
     app.add_flag("--caustic-paths", o.caustic_paths,
                  "Path tracer: trace caustics (light reaching a seen surface through mirrors, "
                  "glass or smooth metal) from the lights and splat them");
+    app.add_option("--light-paths", o.light_paths,
+                   "bdpt: the fraction of samples that also trace a light subpath, in (0, 1]; "
+                   "below 1 a sample costs less, for scenes where light subpaths matter only "
+                   "for a few paths (docs/sampling.md)")
+        ->capture_default_str();
+    app.add_option("--roulette-depth", o.roulette_depth,
+                   "Bounces before Russian roulette may end a path (path, brute and bdpt; -1: "
+                   "the integrator's default, 3)")
+        ->capture_default_str();
     app.add_option("--light-choice", o.light_choice,
                    "How a shading point chooses the light it samples: power (by power alone) or "
                    "bounded (by power times a bound of its contribution there)")

@@ -55,16 +55,15 @@ void expect_agree(const testing::StatImage& a, const testing::StatImage& b, cons
             << what << " image channel " << c;
 }
 
-/// Renders `scene` at max depth `depth` with the bidirectional tracer (128 spp) and with
-/// the reference integrator `Reference` (ref_spp; brute force or the MIS path tracer), and
-/// expects them to agree (expect_agree).
+/// Renders `scene` at max depth `depth` with the bidirectional tracer (128 spp; settings
+/// `bd` with that depth) and with the reference integrator `Reference` (ref_spp; brute
+/// force or the MIS path tracer), and expects them to agree (expect_agree).
 template <class Reference>
 void expect_matches(const Scene& scene, int depth, int ref_spp, std::uint64_t seed,
-                    const char* what) {
+                    const char* what, BidirectionalSettings bd = {}) {
     PathTracerSettings pt;
     pt.max_depth = depth;
     pt.russian_roulette = false;
-    BidirectionalSettings bd;
     bd.max_depth = depth;
     Reference reference(pt);
     BidirectionalPathTracer bdpt(bd);
@@ -78,6 +77,20 @@ TEST(Bidirectional, RejectsDepthOutOfRange) {
     EXPECT_THROW(BidirectionalPathTracer(BidirectionalSettings{65}), Error);
 }
 
+TEST(Bidirectional, RejectsALightPathFractionOutsideZeroToOneAndANegativeRouletteDepth) {
+    for (const float f : {0.0f, -0.5f, 1.5f, std::nanf("")}) {
+        BidirectionalSettings bd;
+        bd.light_path_fraction = f;
+        EXPECT_THROW(BidirectionalPathTracer{bd}, Error) << f;
+    }
+    BidirectionalSettings bd;
+    bd.russian_roulette_depth = -1;
+    EXPECT_THROW(BidirectionalPathTracer{bd}, Error);
+    bd.russian_roulette_depth = 0;
+    bd.light_path_fraction = 0.01f;
+    EXPECT_NO_THROW(BidirectionalPathTracer{bd});
+}
+
 TEST(Bidirectional, AgreesWithBruteForceUnderAQuadLight) {
     Scene scene;
     build_box(scene, false, false, false);
@@ -88,6 +101,27 @@ TEST(Bidirectional, AgreesWithBruteForceUnderATwoSidedPanelWithGlassAndMetal) {
     Scene scene;
     build_box(scene, true, true, true);
     expect_matches<BruteForcePathTracer>(scene, 4, 2048, 3, "panel");
+}
+
+// A light subpath in a quarter of the samples, and roulette from the first bounce on: the
+// light-subpath strategies' contributions are divided by the fraction and every weight
+// counts the samples each strategy gets (a wrong count breaks the partition of unity and
+// shows as a bias); roulette leaves the weights alone and the mean unchanged.
+TEST(Bidirectional, AgreesWithBruteForceWithAQuarterOfTheLightPathsAndRoulette) {
+    Scene scene;
+    build_box(scene, true, true, true);
+    BidirectionalSettings bd;
+    bd.light_path_fraction = 0.25f;
+    bd.russian_roulette_depth = 1;
+    expect_matches<BruteForcePathTracer>(scene, 4, 2048, 13, "a quarter of the light paths", bd);
+}
+
+TEST(Bidirectional, AgreesWithBruteForceWithoutRoulette) {
+    Scene scene;
+    build_box(scene, true, true, true);
+    BidirectionalSettings bd;
+    bd.russian_roulette = false;
+    expect_matches<BruteForcePathTracer>(scene, 4, 2048, 17, "no roulette", bd);
 }
 
 // A light at infinity starts no light subpath; when the light sampler picks it for the
@@ -111,8 +145,8 @@ TEST(Bidirectional, AgreesWithThePathTracerUnderAPointLight) {
 /// The bidirectional tracer (max depth 3) through `camera` and a splat film against the
 /// brute-force tracer through the same camera, over 8 independent renders.
 void expect_splatting_matches_brute_force(const Scene& scene, const Camera& camera,
-                                          std::uint64_t seed, const char* what) {
-    BidirectionalSettings bd;
+                                          std::uint64_t seed, const char* what,
+                                          BidirectionalSettings bd = {}) {
     bd.max_depth = 3;
     BidirectionalPathTracer bdpt(bd);
     bdpt.preprocess(scene);
@@ -132,6 +166,36 @@ TEST(Bidirectional, LightTracingStrategiesAgreeThroughASplatFilm) {
     build_box(scene, true, true, false);
     expect_splatting_matches_brute_force(scene, Camera(box_camera_settings(16)), 100,
                                          "light tracing");
+}
+
+// The t = 1 strategies in a third of the samples: their splats are divided by the
+// fraction, as the other light-subpath strategies' contributions are.
+TEST(Bidirectional, LightTracingAgreesThroughASplatFilmWithAThirdOfTheLightPaths) {
+    Scene scene;
+    build_box(scene, true, true, false);
+    BidirectionalSettings bd;
+    bd.light_path_fraction = 1.0f / 3.0f;
+    bd.russian_roulette_depth = 1;
+    expect_splatting_matches_brute_force(scene, Camera(box_camera_settings(16)), 700,
+                                         "a third of the light paths", bd);
+}
+
+// A mirror on the floor under a light that faces down: the ceiling is lit mostly by light
+// the mirror sends up, which only the camera's BSDF rays (s = 0) and light subpaths joined
+// to the lens (t = 1) find, and the weights give t = 1 nearly all of it. In a quarter of
+// the samples those splats must count four times: left undivided the ceiling reads about
+// a quarter of its light, far outside the tolerance.
+TEST(Bidirectional, LightTracingOfAMirrorCausticAgreesWithAQuarterOfTheLightPaths) {
+    Scene scene;
+    build_box(scene, false, false, false);
+    testing::add_quad(scene, {-0.4f, 0.001f, -0.4f}, {0.8f, 0, 0}, {0, 0, 0.8f},
+                      scene.add_material(Material::mirror()));
+    scene.commit();
+    BidirectionalSettings bd;
+    bd.light_path_fraction = 0.25f;
+    bd.russian_roulette_depth = 1;
+    expect_splatting_matches_brute_force(scene, Camera(box_camera_settings(16)), 900,
+                                         "mirror caustic, a quarter of the light paths", bd);
 }
 
 // Camera rays pass what a light path's join to the lens would otherwise stop at: the space

@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -35,14 +36,17 @@ namespace librt {
 namespace {
 
 /// Sampler dimensions of the light subpath: its light choice (1D), origin (2D) and
-/// direction (2D), then per light vertex j >= 1 k_light_per_vertex dimensions from
-/// k_light_vertices + (j - 1) k_light_per_vertex: lobe (1D), direction (2D), lens point of
-/// its connection to the camera (2D). Between the camera subpath's bounces (below 7 * 66)
+/// direction (2D), whether this sample traces one (1D, k_light_path_choice), then per light
+/// vertex j >= 1 k_light_per_vertex dimensions from k_light_vertices + (j - 1)
+/// k_light_per_vertex: lobe (1D), direction (2D), lens point of its connection to the
+/// camera (2D), roulette (1D). Between the camera subpath's bounces (below 7 * 66)
 /// and the crossing decisions (SampleDimensions::k_pass_through), so no number is drawn
 /// twice in one sample.
 constexpr std::uint32_t k_light_base = 1u << 15u;
-constexpr std::uint32_t k_light_vertices = k_light_base + 5;
-constexpr std::uint32_t k_light_per_vertex = 5;
+constexpr std::uint32_t k_light_path_choice = k_light_base + 5;
+constexpr std::uint32_t k_light_vertices = k_light_base + 6;
+constexpr std::uint32_t k_light_per_vertex = 6;
+constexpr std::uint32_t k_light_vertex_roulette = 5;
 
 enum class VertexKind : std::uint8_t { Camera, Light, Surface };
 
@@ -91,6 +95,8 @@ struct Context {
     float margin;        ///< SplatFilm::margin()
     bool light_tracing;  ///< t = 1 strategies are used (and weighed)
     int max_depth;
+    float light_paths;   ///< BidirectionalSettings::light_path_fraction
+    int roulette_depth;  ///< first rouletted bounce (INT_MAX: no roulette)
 };
 
 /// A shadow segment from a (normal na) to b (normal nb; either may be 0, a point): the
@@ -251,6 +257,13 @@ float mis_weight(const Context& c, PathVertex* lv, PathVertex* cv, const PathVer
         const double ratio = double(nee) / double(origin);
         if (ratio > 0.0 && std::isfinite(ratio)) c2 = ratio * ratio;
     }
+    // Sample counts: a strategy that needs the light subpath (s' >= 2 or t' = 1) is taken
+    // in a fraction light_paths of the samples, the others in every sample; each term is
+    // (n' p' / n p)^2, so it is scaled by the square of its count over this strategy's.
+    const double fraction = c.light_paths;
+    const bool needs_light_path = s >= 2 || t == 1;
+    const double to_light_path = needs_light_path ? 1.0 : fraction * fraction;
+    const double to_camera_only = needs_light_path ? 1.0 / (fraction * fraction) : 1.0;
     // A zero density is a delta's (handled by the flags): remapped to 1 in the ratios.
     const auto remap = [](float f) { return f != 0.0f ? f : 1.0f; };
     double sum = 0.0;
@@ -258,15 +271,18 @@ float mis_weight(const Context& c, PathVertex* lv, PathVertex* cv, const PathVer
     for (int i = t - 1; i > 0; --i) {
         r *= double(remap(cv[i].pdf_rev)) / double(remap(cv[i].pdf_fwd));
         // i = 1 is the strategy that joins a light subpath to the lens (t = 1); with s = 0,
-        // i = t - 1 is next-event estimation (s' = 1).
+        // i = t - 1 is next-event estimation (s' = 1); every other i has s' = s + t - i >= 2.
+        const bool next_event = s == 0 && i == t - 1;
         if (!cv[i].delta && !cv[i - 1].delta && (i > 1 || c.light_tracing))
-            sum += r * r * (s == 0 && i == t - 1 ? c2 : 1.0);
+            sum += r * r * (next_event ? c2 * to_camera_only : to_light_path);
     }
     r = 1.0;
     for (int i = s - 1; i >= 0; --i) {
         r *= double(remap(lv[i].pdf_rev)) / double(remap(lv[i].pdf_fwd));
         const bool delta_light = i > 0 ? lv[i - 1].delta : lv[0].delta_position;
-        if (!lv[i].delta && !delta_light) sum += r * r * (i == 1 ? c2 : 1.0);
+        // s' = i: 0 and 1 need no light subpath.
+        if (!lv[i].delta && !delta_light)
+            sum += r * r * (i == 1 ? c2 : 1.0) * (i >= 2 ? to_light_path : to_camera_only);
     }
     if (s == 1) sum /= c2;
 
@@ -305,6 +321,9 @@ int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transp
                 std::uint32_t& decisions, Escape* escape) {
     int n = 1;
     int hidden_skips = 0;
+    // Roulette survives with the throughput relative to the walk's start (a light
+    // subpath's carries the light's radiance and densities).
+    const float start = max_component(beta);
     while (n < max_vertices) {
         Hit hit;
         if (!c.scene.intersect_for_shading(ray, hit)) {
@@ -377,6 +396,15 @@ int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transp
         }
         prev.pdf_rev = to_area(pdf_rev, v, prev);
         if (!(max_component(beta) > 0.0f)) break;
+        if (static_cast<int>(j) >= c.roulette_depth) {
+            // Survive with probability q, reweighted by 1/q (PathTracer's rule).
+            const float q = std::min(0.95f, max_component(beta) / start);
+            sampler.set_dimension(mode == Transport::Radiance
+                                      ? dim + SampleDimensions::k_bounce_roulette
+                                      : dim + k_light_vertex_roulette);
+            if (!(q > 0.0f) || sampler.next_1d() >= q) break;
+            beta /= q;
+        }
         detail::respawn(ray, hit.point, hit.geometric_normal, wi);
     }
     return n;
@@ -404,6 +432,12 @@ BidirectionalPathTracer::BidirectionalPathTracer(const BidirectionalSettings& se
     if (settings.max_depth < 0 || settings.max_depth > BidirectionalSettings::kMaxDepth)
         throw Error("max_depth = " + std::to_string(settings.max_depth) + ": must be in [0, " +
                     std::to_string(BidirectionalSettings::kMaxDepth) + "]");
+    if (!(settings.light_path_fraction > 0.0f && settings.light_path_fraction <= 1.0f))
+        throw Error("light_path_fraction = " + std::to_string(settings.light_path_fraction) +
+                    ": must be in (0, 1]");
+    if (settings.russian_roulette_depth < 0)
+        throw Error("russian_roulette_depth = " + std::to_string(settings.russian_roulette_depth) +
+                    ": must be >= 0");
 }
 
 void BidirectionalPathTracer::preprocess(const Scene& scene) { sphere_ = scene.bounding_sphere(); }
@@ -428,7 +462,10 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
                     tracing ? target.film : nullptr,
                     tracing ? target.film->margin() : 0.0f,
                     tracing,
-                    settings_.max_depth};
+                    settings_.max_depth,
+                    settings_.light_path_fraction,
+                    settings_.russian_roulette ? settings_.russian_roulette_depth
+                                               : std::numeric_limits<int>::max()};
     constexpr int kMax = BidirectionalSettings::kMaxDepth;
     PathVertex cv[kMax + 2];
     PathVertex lv[kMax + 1];
@@ -455,7 +492,15 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
     // The light subpath, from a light of finite extent chosen by power.
     int nl = 0;
     const LightSampler& lights = scene.light_sampler();
-    if (lights.any() && settings_.max_depth >= 1) {
+    // Whether this sample traces one (light_path_fraction): its strategies' contributions
+    // are divided by the fraction, and their weights count it.
+    bool traced = true;
+    if (settings_.light_path_fraction < 1.0f) {
+        sampler.set_dimension(k_light_path_choice);
+        traced = sampler.next_1d() < settings_.light_path_fraction;
+    }
+    const float per_light_path = 1.0f / settings_.light_path_fraction;
+    if (traced && lights.any() && settings_.max_depth >= 1) {
         const LightPathStart start = start_light_path(scene, sphere_, sampler, k_light_base);
         if (start.valid) {
             const LightLeSample& le = start.le;
@@ -566,7 +611,7 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
                 sampled = endpoint(VertexKind::Camera, cw.lens_point, glm::vec3(0.0f),
                                    glm::vec3(0.0f), cw.pdf_pos, kInvalidId, false);
                 const float w = mis_weight(c, lv, cv, sampled, s, 1);
-                c.film->add(cw.raster, contrib * w);
+                c.film->add(cw.raster, contrib * (w * per_light_path));
                 continue;
             }
             // Both subpaths' ends joined by a shadow segment (s >= 2, t >= 2).
@@ -582,7 +627,7 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
             if (!(max_component(contrib) > 0.0f)) continue;
             contrib *= segment(scene, qs.p, qs.ng, pt.p);
             if (!(max_component(contrib) > 0.0f)) continue;
-            radiance += contrib * mis_weight(c, lv, cv, sampled, s, t);
+            radiance += contrib * (mis_weight(c, lv, cv, sampled, s, t) * per_light_path);
         }
     }
     return guard(radiance);
