@@ -43,7 +43,23 @@ status=0
 [ "$status" -eq 1 ] || fail "bdpt --max-depth 65: exit status $status, expected 1"
 grep -q -- "--max-depth = 65: must be in \[0, 64\] with --integrator bdpt" "$dir/err.txt" ||
     fail "bdpt --max-depth: message: $(cat "$dir/err.txt")"
+for args in "--integrator bdpt --light-paths 0|--light-paths = 0.000000: must be in (0, 1]" \
+            "--integrator bdpt --light-paths 1.5|--light-paths = 1.500000: must be in (0, 1]" \
+            "--light-paths 0.5|--light-paths = 0.500000: needs --integrator bdpt" \
+            "--roulette-depth -2|--roulette-depth = -2: must be in [0, 64]"; do
+    status=0
+    # shellcheck disable=SC2086 # the options are split on purpose
+    "$app" "$dir/missing.glb" ${args%%|*} -o "$dir/out/image.png" 2>"$dir/err.txt" >/dev/null ||
+        status=$?
+    [ "$status" -eq 1 ] || fail "${args%%|*}: exit status $status, expected 1"
+    grep -qF -- "${args#*|}" "$dir/err.txt" || fail "${args%%|*}: message: $(cat "$dir/err.txt")"
+done
 [ -z "$(ls -A "$dir/out")" ] || fail "bad integrator options wrote $(ls -A "$dir/out")"
+
+# 1b'. A bidirectional render with a quarter of the light paths and early roulette.
+"$app" "$scene" --size 32x20 --spp 8 --integrator bdpt --light-paths 0.25 --roulette-depth 1 \
+    --threads 2 -q -o "$dir/bdpt.png" 2>"$dir/err.txt" || fail "--light-paths: $(cat "$dir/err.txt")"
+complete_png "$dir/bdpt.png" || fail "--light-paths: not a complete PNG"
 
 # 1c. --adaptive renders its budget (a pilot of 4, then 12 passes) and writes the image.
 "$app" "$scene" --size 48x32 --spp 16 --adaptive --threads 2 -o "$dir/adaptive.png" \
