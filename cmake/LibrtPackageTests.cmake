@@ -19,6 +19,15 @@ mark_as_advanced(LIBRT_EXAMPLE_CXX_FLAGS)
 
 set(_librt_package_script "${PROJECT_SOURCE_DIR}/cmake/RunPackageTest.cmake")
 
+# A single-config build passes its build type's flags on (CMAKE_CXX_FLAGS_<CONFIG>), so
+# the examples compile as the library did: the sanitizer presets' -g1, not Debug's -g,
+# (package.example.caustics under ASan: 14.1 s with -g, 12.9 s with -g1).
+set(_librt_config_flags "")
+if(CMAKE_BUILD_TYPE AND NOT CMAKE_CONFIGURATION_TYPES)
+  string(TOUPPER "${CMAKE_BUILD_TYPE}" _librt_config_upper)
+  set(_librt_config_flags "-DCXX_FLAGS_CONFIG=${CMAKE_CXX_FLAGS_${_librt_config_upper}}")
+endif()
+
 add_test(NAME package.install
   COMMAND "${CMAKE_COMMAND}"
     -D MODE=install
@@ -50,6 +59,7 @@ foreach(_list IN LISTS _librt_example_lists)
       -D CXX_COMPILER=${CMAKE_CXX_COMPILER}
       "-DCXX_FLAGS=${CMAKE_CXX_FLAGS} ${LIBRT_EXAMPLE_CXX_FLAGS}"
       "-DEXE_LINKER_FLAGS=${CMAKE_EXE_LINKER_FLAGS}"
+      ${_librt_config_flags}
       -P "${_librt_package_script}")
   set_tests_properties(package.example.${_name} PROPERTIES
     FIXTURES_REQUIRED librt_package_install

@@ -6,7 +6,8 @@
 #                 `pkg-config --cflags --libs librt` gives from PREFIX's librt.pc alone, runs
 #                 it, and runs PREFIX/bin/APP --version.
 #   MODE=example: NAME, SOURCE_DIR, BINARY_DIR, PREFIX, CONFIG, GENERATOR, MAKE_PROGRAM,
-#                 CXX_COMPILER, CXX_FLAGS, EXE_LINKER_FLAGS. Configures SOURCE_DIR afresh
+#                 CXX_COMPILER, CXX_FLAGS, EXE_LINKER_FLAGS (CXX_FLAGS_CONFIG: the
+#                 CONFIG build type's flags, when known). Configures SOURCE_DIR afresh
 #                 against PREFIX only, builds it, checks that librt came from PREFIX, runs
 #                 NAME.
 cmake_minimum_required(VERSION 3.22)
@@ -86,6 +87,11 @@ elseif(MODE STREQUAL "example")
   endif()
   if(CONFIG)
     list(APPEND configure_args "-DCMAKE_BUILD_TYPE=${CONFIG}")
+    # The build type's own flags too (the sanitizer presets' -g1 instead of Debug's -g).
+    if(DEFINED CXX_FLAGS_CONFIG)
+      string(TOUPPER "${CONFIG}" config_upper)
+      list(APPEND configure_args "-DCMAKE_CXX_FLAGS_${config_upper}=${CXX_FLAGS_CONFIG}")
+    endif()
   endif()
   run_step("configuring ${NAME}" "${CMAKE_COMMAND}" ${configure_args})
 
