@@ -5,7 +5,8 @@ glb_variant.py IN.glb OUT.glb EDIT [EDIT ...]
 
 Each EDIT is NAME.one-sided (doubleSided false: an emitter then emits from its front
 only), NAME.dielectric (metallicFactor 0), NAME.opaque (KHR_materials_transmission
-removed) or NAME.rough (roughnessFactor 1), NAME a material's name.
+removed) or NAME.rough (roughnessFactor 1), NAME a material's name; or NODE.raise (the
+node named NODE moved 2 mm up, +y: off a surface it rests on).
 docs/materials-and-lights.md uses it to measure which of cornell_pbr.glb's surfaces
 limit its emissive-panel target. The binary chunk is copied unchanged; only the JSON
 chunk is rewritten.
@@ -37,10 +38,21 @@ def main():
         sys.exit(f"{source}: JSON chunk: {e}")
     rest = data[20 + length:]
     materials = {m.get("name"): m for m in gltf.get("materials", [])}
+    nodes = {n.get("name"): n for n in gltf.get("nodes", [])}
     for edit in edits:
         name, dot, what = edit.rpartition(".")
         if not dot:
-            sys.exit(f"{edit}: an edit is NAME.one-sided, NAME.dielectric, NAME.opaque or NAME.rough")
+            sys.exit(f"{edit}: an edit is NAME.one-sided, NAME.dielectric, NAME.opaque, "
+                     "NAME.rough or NODE.raise")
+        if what == "raise":
+            if name not in nodes:
+                sys.exit(f"{edit}: {source} has no node named '{name}'")
+            node = nodes[name]
+            if "matrix" in node:
+                sys.exit(f"{edit}: node '{name}' is placed by a matrix; only a translation is moved")
+            t = node.setdefault("translation", [0, 0, 0])
+            t[1] += 0.002
+            continue
         if name not in materials:
             sys.exit(f"{edit}: {source} has no material named '{name}'")
         m = materials[name]
@@ -56,7 +68,7 @@ def main():
         elif what == "rough":
             m.setdefault("pbrMetallicRoughness", {})["roughnessFactor"] = 1
         else:
-            sys.exit(f"{edit}: the edit must be one-sided, dielectric, opaque or rough")
+            sys.exit(f"{edit}: the edit must be one-sided, dielectric, opaque, rough or raise")
     text = json.dumps(gltf, separators=(",", ":")).encode()
     text += b" " * (-len(text) % 4)  # chunks are 4-byte aligned; JSON pads with spaces
     body = struct.pack("<II", len(text), JSON_CHUNK) + text + rest
