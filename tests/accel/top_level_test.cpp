@@ -94,6 +94,27 @@ TEST(TopLevel, FlatListAndBvhAgreeWithBruteForce) {
                 others |= i != best_object && singles[i].intersect(ray, h);
             }
             EXPECT_EQ(top.occluded(ray, best_object), others) << "ray " << r;
+            // The closest hit ignoring that object is the nearest of the others; ignoring
+            // no object (kInvalidId) it is the hit itself.
+            float second = ray.t_max;
+            std::uint32_t second_object = kInvalidId;
+            for (std::uint32_t i = 0; i < count; ++i) {
+                ObjectHit h;
+                if (i != best_object && singles[i].intersect(ray, h) && h.primitive.t < second) {
+                    second = h.primitive.t;
+                    second_object = i;
+                }
+            }
+            Hit other;
+            ASSERT_EQ(top.intersect_ignoring(ray, other, best_object), others) << "ray " << r;
+            if (others) {
+                EXPECT_EQ(other.object_id, second_object) << "ray " << r;
+                EXPECT_EQ(other.t, second) << "ray " << r;
+            }
+            Hit same;
+            ASSERT_TRUE(top.intersect_ignoring(ray, same, kInvalidId)) << "ray " << r;
+            EXPECT_EQ(same.object_id, best_object) << "ray " << r;
+            EXPECT_EQ(same.t, best) << "ray " << r;
         }
         EXPECT_GT(hits, 1000);
     }
@@ -140,6 +161,27 @@ TEST(TopLevel, OccludedIgnoresExactlyItsObjectInTheFlatList) {
     }
     // The ignored object itself is often in the way while another one is too.
     EXPECT_GT(occluded_by_others_only, 400);
+}
+
+// A flat list of spheres only answers its closest-hit queries from every root at once;
+// ignoring an object goes through the box visit instead and must give the same nearest.
+TEST(TopLevel, IntersectIgnoringInAListOfSpheresOnly) {
+    TopLevel top;
+    for (int i = 0; i < 3; ++i) top.add_sphere(Sphere{{3.0f * float(i), 0, 0}, 1.0f});
+    top.build();
+    const Ray ray{{-5, 0, 0}, {1, 0, 0}};
+    Hit hit;
+    ASSERT_TRUE(top.intersect_ignoring(ray, hit, 0));
+    EXPECT_EQ(hit.object_id, 1u);
+    EXPECT_FLOAT_EQ(hit.t, 7.0f);
+    ASSERT_TRUE(top.intersect_ignoring(ray, hit, 1));
+    EXPECT_EQ(hit.object_id, 0u);
+    EXPECT_FLOAT_EQ(hit.t, 4.0f);
+    const Ray past{{-5, 0, 0}, {1, 0, 0}, 9.5f};  // t_min past the first two spheres
+    ASSERT_TRUE(top.intersect_ignoring(past, hit, 1));
+    EXPECT_EQ(hit.object_id, 2u);
+    EXPECT_FLOAT_EQ(hit.t, 10.0f);
+    EXPECT_FALSE(top.intersect_ignoring(past, hit, 2));
 }
 
 TEST(TopLevel, InstanceIdsAndBadInput) {

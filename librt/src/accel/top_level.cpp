@@ -96,12 +96,17 @@ template <bool AnyHit, class TestObject>
 // one by one as they are found, and a 16-byte copy of them (ObjectHit by value into
 // finish) is a load no store can forward to, a stall per query on the room's sphere hits
 // (perf on the synthesis; see docs/benchmarks.md). On a miss `hit` is left as it was.
-[[gnu::always_inline]] inline bool TopLevel::closest(const Ray& ray, ObjectHit& hit) const {
+template <bool kIgnoring>
+[[gnu::always_inline]] inline bool TopLevel::closest(const Ray& ray, ObjectHit& hit,
+                                                     std::uint32_t ignored_object) const {
     Ray r = detail::copy_by_floats(ray);  // no store-forwarding stall (ray_copy.h)
     const DoubleRay dray(r);
     std::uint32_t best_object = kInvalidId;
     PrimitiveHit& best = hit.primitive;
-    visit_objects<false>(r, [&](std::uint32_t id, Ray& current) {
+    const auto test_object = [&](std::uint32_t id, Ray& current) {
+        if constexpr (kIgnoring) {
+            if (id == ignored_object) return false;
+        }
         const Object& o = objects_[id];
         if (o.kind == ObjectKind::Sphere) {
             const double t =
@@ -130,7 +135,15 @@ template <bool AnyHit, class TestObject>
         }
         best_object = id;
         return true;
-    });
+    };
+    if constexpr (kIgnoring) {
+        // As occluded(): the ignored object's flat box dropped, the test above for top_.
+        visit_objects<false>(
+            r, test_object,
+            ignored_object < objects_.size() ? objects_[ignored_object].flat_bit : 0u);
+    } else {
+        visit_objects<false>(r, test_object);
+    }
     if (best_object == kInvalidId) return false;
     hit.object_id = best_object;
     return true;
@@ -232,6 +245,16 @@ bool TopLevel::intersect(const Ray& ray, Hit& hit, bool every_sphere_uv) const {
     } else if (!closest(ray, h)) {
         return false;
     }
+    finish(ray, h, every_sphere_uv, hit);
+    return true;
+}
+
+bool TopLevel::intersect_ignoring(const Ray& ray, Hit& hit, std::uint32_t ignored_object,
+                                  bool every_sphere_uv) const {
+    if (query_ == Query::None) throw_not_built();
+    // The visit serves a flat list of spheres too (closest_visit does, for its ties).
+    ObjectHit h;
+    if (!closest<true>(ray, h, ignored_object)) return false;
     finish(ray, h, every_sphere_uv, hit);
     return true;
 }

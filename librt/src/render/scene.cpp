@@ -382,6 +382,7 @@ void Scene::commit() {
     light_sampler_ = LightSampler(lights_);
     pass_through_surfaces_ = std::any_of(materials_.begin(), materials_.end(),
                                          [](const Material& m) { return may_pass_through(m); });
+    careful_queries_ = cut_outs_ || pass_through_surfaces_;
     committed_ = true;
 }
 

@@ -140,6 +140,10 @@ public:
     /// computed when `every_sphere_uv` is true or the sphere was added with uv = true; or
     /// false, `hit` left alone. Throws librt::Error before build().
     [[nodiscard]] bool intersect(const Ray& ray, Hit& hit, bool every_sphere_uv = true) const;
+    /// intersect(ray, hit, every_sphere_uv) over every object but `ignored_object` (the
+    /// surface a pane lies on, found past the pane itself). Throws librt::Error before build().
+    [[nodiscard]] bool intersect_ignoring(const Ray& ray, Hit& hit, std::uint32_t ignored_object,
+                                          bool every_sphere_uv = true) const;
     /// True when anything but object `ignored_object` lies in (ray.t_min, ray.t_max).
     /// Throws librt::Error before build().
     [[nodiscard]] bool occluded(const Ray& ray, std::uint32_t ignored_object = kInvalidId) const;
@@ -241,7 +245,10 @@ private:
         Spheres,  ///< every root of sphere_lanes_ at once, ties to Visit
     };
     [[noreturn]] static void throw_not_built();
-    bool closest(const Ray& ray, ObjectHit& hit) const;
+    /// The closest hit; with kIgnoring, of any object but `ignored_object` (a compile-time
+    /// switch: the renderers' query keeps its code).
+    template <bool kIgnoring = false>
+    bool closest(const Ray& ray, ObjectHit& hit, std::uint32_t ignored_object = kInvalidId) const;
     /// closest() for Query::Spheres (throws for Query::None): the nearest root of the flat
     /// list of spheres, or the visit when two roots are too close to tell apart by float t.
     bool closest_sphere(const Ray& ray, ObjectHit& hit) const;

@@ -151,12 +151,13 @@ public:
     [[nodiscard]] bool committed() const { return committed_; }
 
     /// Closest hit with t in (ray.t_min, ray.t_max); fills `hit` (see the class comment)
-    /// and returns true, or returns false and leaves `hit` alone. Throws librt::Error
-    /// before commit().
+    /// and returns true, or returns false and leaves `hit` alone. Where a pane (a material
+    /// that may pass light through) lies in another object's surface, that surface is the
+    /// hit. Throws librt::Error before commit().
     [[nodiscard]] bool intersect(const Ray& ray, Hit& hit) const {
         require_committed();
-        if (cut_outs_) [[unlikely]]
-            return intersect_past_cut_outs(ray, hit);
+        if (careful_queries_) [[unlikely]]
+            return intersect_carefully(ray, hit, true);
         return top_.intersect(ray, hit, true);
     }
     /// intersect() for renderers: the same hit, except that a sphere's uv (two inverse
@@ -165,8 +166,8 @@ public:
     /// test, always). What the integrators call.
     [[nodiscard]] bool intersect_for_shading(const Ray& ray, Hit& hit) const {
         require_committed();
-        if (cut_outs_) [[unlikely]]
-            return intersect_past_cut_outs(ray, hit);
+        if (careful_queries_) [[unlikely]]
+            return intersect_carefully(ray, hit, false);
         return top_.intersect(ray, hit, false);
     }
     /// True when anything lies in (ray.t_min, ray.t_max): for shadow rays. The object
@@ -313,6 +314,14 @@ private:
                                   ShadedMaterial& scratch) const;
     /// Sets m.anisotropy_direction (and scales m.anisotropy by its texture) at a hit.
     void anisotropy_at(const Hit& hit, Material& m) const;
+    /// The closest hit in a scene with cut-outs or panes: past the holes of alpha-tested
+    /// surfaces, and, where a pane (a material that may pass light through) lies in the
+    /// plane of another surface, that surface instead of the pane (surface_under_pane).
+    bool intersect_carefully(const Ray& ray, Hit& hit, bool every_sphere_uv) const;
+    /// Replaces `pane` (the closest hit of `ray`, on a material that may pass light
+    /// through) by the closest surface of another object within a relative 1e-5 of its t,
+    /// when there is one.
+    void surface_under_pane(const Ray& ray, Hit& pane) const;
     bool intersect_past_cut_outs(const Ray& ray, Hit& hit) const;
     bool occluded_past_cut_outs(const Ray& ray, std::uint32_t ignored_object) const;
 
@@ -334,6 +343,7 @@ private:
     bool unsampled_emitters_ = false;     ///< see has_unsampled_emitters()
     bool pass_through_surfaces_ = false;  ///< see has_pass_through_surfaces()
     bool cut_outs_ = false;               ///< some material cuts_out()
+    bool careful_queries_ = false;        ///< cut_outs_ or pass_through_surfaces_
     bool hidden_objects_ = false;         ///< see may_hide_objects()
     bool committed_ = false;
 };
