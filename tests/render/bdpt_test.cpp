@@ -230,28 +230,10 @@ namespace {
 // Through render(): the splats of the t = 1 strategies land in pixels other threads
 // render, and the image is still the same bits for any thread count and tile size.
 TEST(Bidirectional, RenderIsIdenticalForAnyThreadCountAndTileSize) {
-    Scene scene;
-    build_box(scene, true, true, true);
-    const Camera camera(box_camera_settings(24));
     BidirectionalSettings bd;
     bd.max_depth = 4;
     BidirectionalPathTracer bdpt(bd);
-    RenderSettings rs;
-    rs.samples_per_pixel = 4;
-    rs.threads = 1;
-    rs.tile_size = 16;
-    const Image one = render(scene, camera, bdpt, rs);
-    rs.threads = 2;
-    rs.tile_size = 5;
-    const Image two = render(scene, camera, bdpt, rs);
-    ASSERT_EQ(one.width, two.width);
-    double sum = 0.0;
-    for (int y = 0; y < one.height; ++y)
-        for (int x = 0; x < one.width; ++x) {
-            ASSERT_EQ(one.at(x, y), two.at(x, y)) << x << "," << y;
-            sum += double(one.at(x, y).x);
-        }
-    EXPECT_GT(sum, 0.0);
+    testing::expect_box_render_identical_for_any_threads_and_tiles(bdpt);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <librt/render/integrator.h>
 #include <librt/render/material.h>
 #include <librt/render/quad_light.h>
+#include <librt/render/renderer.h>
 #include <librt/render/sampler.h>
 #include <librt/render/scene.h>
 #include <librt/render/splat_film.h>
@@ -182,6 +183,33 @@ inline void expect_splatting_agrees(const Scene& scene, const Camera& camera,
                                 reference_spp));
     }
     expect_blocks_agree(a, b, what);
+}
+
+/// Renders the box (panel, glass pane and glossy metal) through render() with one thread
+/// and 16-pixel tiles, then two threads and 5-pixel tiles: a splatting integrator's splats
+/// land in pixels other threads render, and the image must still be the same bits (and
+/// not black).
+inline void expect_box_render_identical_for_any_threads_and_tiles(Integrator& integrator) {
+    Scene scene;
+    build_box(scene, true, true, true);
+    const Camera camera(box_camera_settings(24));
+    RenderSettings rs;
+    rs.samples_per_pixel = 4;
+    rs.threads = 1;
+    rs.tile_size = 16;
+    const Image one = render(scene, camera, integrator, rs);
+    rs.threads = 2;
+    rs.tile_size = 5;
+    const Image two = render(scene, camera, integrator, rs);
+    ASSERT_EQ(one.width, two.width);
+    ASSERT_EQ(one.height, two.height);
+    double sum = 0.0;
+    for (int y = 0; y < one.height; ++y)
+        for (int x = 0; x < one.width; ++x) {
+            ASSERT_EQ(one.at(x, y), two.at(x, y)) << x << "," << y;
+            sum += double(one.at(x, y).x);
+        }
+    EXPECT_GT(sum, 0.0);
 }
 
 }  // namespace librt::testing

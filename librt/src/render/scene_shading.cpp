@@ -134,6 +134,11 @@ float Scene::coverage(const Hit& hit) const {
     return a;
 }
 
+bool Scene::in_cut_out_hole(const Hit& hit) const {
+    const Material& m = material(hit);
+    return m.cuts_out() && coverage(hit) < m.alpha_cutoff;
+}
+
 bool Scene::intersect_carefully(const Ray& ray, Hit& hit, bool every_sphere_uv) const {
     Hit h;
     if (cut_outs_ ? !intersect_past_cut_outs(ray, h) : !top_.intersect(ray, h, every_sphere_uv))
@@ -156,10 +161,7 @@ void Scene::surface_under_pane(const Ray& ray, Hit& pane) const {
     probe.t_max = std::min(ray.t_max, pane.t + slack);
     Hit under;
     if (!top_.intersect_ignoring(probe, under, pane.object_id, true)) return;
-    if (cut_outs_) {
-        const Material& m = material(under);
-        if (m.cuts_out() && coverage(under) < m.alpha_cutoff) return;  // a hole there
-    }
+    if (cut_outs_ && in_cut_out_hole(under)) return;
     pane = under;
 }
 
@@ -170,8 +172,7 @@ bool Scene::intersect_past_cut_outs(const Ray& ray, Hit& hit) const {
     // the loop ends within the number of surfaces along the ray. Every sphere's uv is
     // computed: the alpha test reads it.
     while (top_.intersect(r, h, true)) {
-        const Material& m = material(h);
-        if (!m.cuts_out() || !(coverage(h) < m.alpha_cutoff)) {
+        if (!in_cut_out_hole(h)) {
             hit = h;
             return true;
         }
@@ -184,10 +185,7 @@ bool Scene::occluded_past_cut_outs(const Ray& ray, std::uint32_t ignored_object)
     Ray r = ray;
     Hit h;
     while (top_.intersect(r, h, true)) {
-        if (h.object_id != ignored_object) {
-            const Material& m = material(h);
-            if (!m.cuts_out() || !(coverage(h) < m.alpha_cutoff)) return true;
-        }
+        if (h.object_id != ignored_object && !in_cut_out_hole(h)) return true;
         r.t_min = h.t;
     }
     return false;

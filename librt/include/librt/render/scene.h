@@ -322,6 +322,9 @@ private:
     /// through) by the closest surface of another object within a relative 1e-5 of its t,
     /// when there is one.
     void surface_under_pane(const Ray& ray, Hit& pane) const;
+    /// True when `hit` falls in a hole of an alpha-tested surface (coverage below its
+    /// material's alpha_cutoff): rays pass there as if nothing were hit.
+    [[nodiscard]] bool in_cut_out_hole(const Hit& hit) const;
     bool intersect_past_cut_outs(const Ray& ray, Hit& hit) const;
     bool occluded_past_cut_outs(const Ray& ray, std::uint32_t ignored_object) const;
 
