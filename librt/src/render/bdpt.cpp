@@ -103,9 +103,8 @@ struct Context {
 /// fraction of light it lets through (transmittance, or 1 / 0 without Null lobes).
 glm::vec3 segment(const Scene& scene, const glm::vec3& a, const glm::vec3& na, const glm::vec3& b) {
     const Ray r = spawn_ray_to(a, na, b);
-    if (unoccluded(scene, r)) return glm::vec3(1.0f);
-    if (!scene.has_pass_through_surfaces()) return glm::vec3(0.0f);
-    return transmittance(scene, r);
+    if (scene.has_pass_through_surfaces()) return transmittance(scene, r);
+    return unoccluded(scene, r) ? glm::vec3(1.0f) : glm::vec3(0.0f);
 }
 
 /// The density of direction `to` at a surface vertex reached from direction `from` (both
@@ -571,10 +570,11 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
                 glm::vec3 contrib = pt.beta * f * ls.radiance / (chosen.pmf * ls.pdf);
                 if (!(max_component(contrib) > 0.0f)) continue;
                 const Ray shadow = spawn_ray_to(pt.p, pt.ng, ls.wi, ls.distance);
-                if (!unoccluded(scene, shadow, light.object)) {
-                    if (!scene.has_pass_through_surfaces()) continue;
+                if (scene.has_pass_through_surfaces()) {
                     contrib *= transmittance(scene, shadow, light.object);
                     if (!(max_component(contrib) > 0.0f)) continue;
+                } else if (!unoccluded(scene, shadow, light.object)) {
+                    continue;
                 }
                 float w;
                 if (is_infinite(light)) {

@@ -244,17 +244,17 @@ template <bool Guided = false, bool SplitCaustics = false>
     glm::vec3 fl = bsdf.f * s.radiance * cos_i;
     if (!(max_component(beta * fl) > 0.0f)) return glm::vec3(0.0f);
     // The light's own surface is skipped: the segment ends on it.
-    if (!unoccluded(scene, spawn_ray_to(hit.point, hit.geometric_normal, s.wi, s.distance),
-                    light.object)) {
-        // Something is in the way; if it may be a Null lobe, look through it (the light
-        // path a BSDF ray crossing it finds, so MIS below weighs the two alike). Asked
-        // only here, so an unblocked shadow ray costs what it did without Null lobes.
-        if (!scene.has_pass_through_surfaces()) return glm::vec3(0.0f);
-        // The ray built again rather than kept: kept, it was live across the query above
-        // and spilled at every light sample (callgrind on the synthesis).
+    if (scene.has_pass_through_surfaces()) {
+        // Null lobes may be in the way: look through them (the light path a BSDF ray
+        // crossing them finds, so MIS below weighs the two alike). transmittance() alone:
+        // its first closest hit answers what unoccluded() would, so asking that first
+        // only repeated the query for every blocked ray.
         fl *= transmittance(scene, spawn_ray_to(hit.point, hit.geometric_normal, s.wi, s.distance),
                             light.object);
         if (!(max_component(beta * fl) > 0.0f)) return glm::vec3(0.0f);
+    } else if (!unoccluded(scene, spawn_ray_to(hit.point, hit.geometric_normal, s.wi, s.distance),
+                           light.object)) {
+        return glm::vec3(0.0f);
     }
     // Monte Carlo estimate f L |cos| / p_light, times the MIS weight when asked.
     const float a = chosen.pmf * s.pdf;

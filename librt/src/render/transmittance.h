@@ -21,8 +21,10 @@ inline constexpr int kMaxShadowCrossings = 64;
 /// The fraction of light that arrives along shadow ray `ray` (from spawn_ray_to) through
 /// the surfaces it crosses: 0 at the first surface without a Null lobe, else the product
 /// of their pass_through() colours (object `ignored_object`, a light's own surface,
-/// skipped). For scenes with such surfaces (Scene::has_pass_through_surfaces); the others
-/// need only unoccluded()'s one any-hit query.
+/// skipped). For scenes with such surfaces (Scene::has_pass_through_surfaces), in place of
+/// unoccluded(): its first closest hit gives the same answer for a ray blocked by an
+/// opaque surface (asking unoccluded() first repeated the query for every blocked ray);
+/// the others need only unoccluded()'s one any-hit query.
 [[nodiscard]] glm::vec3 transmittance(const Scene& scene, Ray ray,
                                       std::uint32_t ignored_object = kInvalidId);
 
