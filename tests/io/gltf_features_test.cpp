@@ -10,7 +10,6 @@
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
-#include <stb/stb_image_write.h>
 
 #include <cmath>
 #include <string>
@@ -51,19 +50,6 @@ GltfScene load_text(const ScratchDir& dir, const std::string& name, const std::s
     const fs::path p = dir.path() / name;
     lt::write_file(p, bytes);
     return load_gltf(p);
-}
-
-/// A 2 x 1 RGBA PNG: red, then half-transparent blue.
-std::string tiny_png() {
-    const unsigned char px[8] = {255, 0, 0, 255, 0, 0, 255, 128};
-    std::string out;
-    stbi_write_png_to_func(
-        [](void* ctx, void* data, int size) {
-            static_cast<std::string*>(ctx)->append(static_cast<const char*>(data),
-                                                   std::size_t(size));
-        },
-        &out, 2, 1, 4, px, 8);
-    return out;
 }
 
 }  // namespace
@@ -161,7 +147,7 @@ TEST(GltfMeshes, SparseAccessorsReplaceValues) {
 
 TEST(GltfFiles, ExternalBinAndImagesDataUriImagesAndAMissingImage) {
     GltfBuilder b = lt::one_triangle();
-    const std::string png = tiny_png();
+    const std::string png = lt::tiny_png();
     ScratchDir dir;
     fs::create_directories(dir.path() / "sub dir");
     lt::write_file(dir.path() / "sub dir" / "tex.png", png);
@@ -248,7 +234,7 @@ TEST(GltfScene, MaterialsWithTheirExtensions) {
     GltfBuilder b = lt::one_triangle();
     b.doc["extensionsUsed"] = {"KHR_materials_emissive_strength", "KHR_materials_transmission",
                                "KHR_materials_ior", "KHR_texture_transform", "EXT_unknown_thing"};
-    b.doc["images"] = {{{"uri", "data:image/png;base64," + lt::base64(tiny_png())}}};
+    b.doc["images"] = {{{"uri", "data:image/png;base64," + lt::base64(lt::tiny_png())}}};
     b.doc["textures"] = {{{"source", 0}}};
     b.doc["materials"] = {
         {{"name", "all"},

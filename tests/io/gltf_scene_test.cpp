@@ -48,7 +48,8 @@ json glb_json(const fs::path& p) {
 }
 
 struct Expected {
-    std::size_t stored = 0, placed = 0, instances = 0, prototypes = 0, lights = 0;
+    std::size_t stored = 0, placed = 0, instances = 0, baked = 0, lights = 0;
+    std::size_t stored_meshes = 0;  ///< a TriangleMesh per primitive: prototype or baked mesh
     bool emissive = false;
     /// glTF materials some primitive uses, and scene textures: one per (texture, colour
     /// space) those materials reference (base colour and emissive sRGB, the others linear).
@@ -59,7 +60,8 @@ struct Expected {
 };
 
 /// From the JSON by the spec: n/3 triangles for mode 4 (n = indices' count, else
-/// POSITION's), n - 2 for strips and fans; an instance per (node, primitive).
+/// POSITION's), n - 2 for strips and fans; an instance per (node, primitive) of a mesh
+/// placed by several nodes, a baked mesh per primitive of one placed once.
 Expected expected_of(const json& doc) {
     Expected e;
     std::vector<std::size_t> tris, prims;
@@ -75,7 +77,7 @@ Expected expected_of(const json& doc) {
         tris.push_back(t);
         prims.push_back(mesh["primitives"].size());
         e.stored += t;
-        e.prototypes += mesh["primitives"].size();
+        e.stored_meshes += mesh["primitives"].size();
     }
     for (const json& m : doc.value("materials", json::array())) {
         const json f = m.value("emissiveFactor", json::array({0, 0, 0}));
@@ -101,12 +103,13 @@ Expected expected_of(const json& doc) {
         ref(m, "emissiveTexture", true);
         e.normal_mapped += ref(m, "normalTexture", false);
     }
+    std::vector<std::size_t> placements(tris.size(), 0);
     std::function<void(int)> visit = [&](int n) {
         const json& node = doc["nodes"][n];
         if (node.contains("mesh")) {
             const auto m = node["mesh"].get<std::size_t>();
             e.placed += tris[m];
-            e.instances += prims[m];
+            ++placements[m];
         }
         if (node.contains("extensions") && node["extensions"].contains("KHR_lights_punctual")) {
             e.lights += 1;  // point, spot and directional are all placed
@@ -114,6 +117,15 @@ Expected expected_of(const json& doc) {
         for (const json& c : node.value("children", json::array())) visit(c.get<int>());
     };
     for (const json& r : doc["scenes"][doc.value("scene", 0)]["nodes"]) visit(r.get<int>());
+    // A mesh placed by one node is baked into a world-space mesh; the others are a
+    // prototype per primitive, placed by an instance per (node, primitive).
+    for (std::size_t m = 0; m < tris.size(); ++m) {
+        if (placements[m] == 1) {
+            e.baked += prims[m];
+        } else {
+            e.instances += placements[m] * prims[m];
+        }
+    }
     return e;
 }
 
@@ -126,8 +138,11 @@ void check_data_file(const fs::path& p) {
     EXPECT_EQ(loaded.triangles_stored, want.stored);
     EXPECT_EQ(loaded.triangles_placed, want.placed);
     EXPECT_EQ(loaded.scene.instance_count(), want.instances);
-    // Stored once: one prototype per primitive, however many nodes place it.
-    EXPECT_EQ(loaded.scene.top_level().prototype_count(), want.prototypes);
+    // Stored once: one mesh per primitive (a prototype, or a baked mesh, which the top level
+    // stores alike), however many nodes place it.
+    EXPECT_EQ(loaded.scene.top_level().prototype_count(), want.stored_meshes);
+    // Every object is an instance or a baked mesh (the loader adds no other geometry).
+    EXPECT_EQ(loaded.scene.object_count(), want.instances + want.baked);
     const bool default_light = want.lights == 0 && !want.emissive;
     EXPECT_EQ(loaded.scene.lights().size(), want.lights + (default_light ? 1 : 0));
     for (const std::string& w : loaded.warnings)
@@ -497,6 +512,68 @@ TEST(SceneFile, ObjBecomesASceneFramedAndLit) {
     EXPECT_NEAR(glm::length(hit.point), 0.0f, 1e-4f);
 }
 
+// A mesh placed by one node is baked into world space; placed by two, it stays a prototype
+// with an instance per node. Both must put the same surface in the same place: hit points,
+// both normals and uvs, under a rotation, a non-uniform scale and a mirror (scale y < 0).
+TEST(GltfToScene, ABakedMeshMatchesTheSameMeshInstanced) {
+    GltfBuilder b = lt::one_triangle();
+    const std::vector<float> normals = {0, 0, 1, 0.6f, 0, 0.8f, 0, 0.6f, 0.8f};
+    const std::vector<float> uvs = {0, 0, 1, 0, 0, 1};
+    b.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] =
+        b.add_accessor(normals, lt::kFloat, "VEC3", 3);
+    b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] =
+        b.add_accessor(uvs, lt::kFloat, "VEC2", 3);
+    // Textured, so that the mesh keeps its uvs (without, a hit's uv is its barycentrics).
+    b.doc["images"] = {{{"uri", "data:image/png;base64," + lt::base64(lt::tiny_png())}}};
+    b.doc["textures"] = {{{"source", 0}}};
+    b.doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+    b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    const json placed = {{"mesh", 0},
+                         {"translation", {0.3, -0.2, 0.5}},
+                         {"rotation", {0.2, 0.3, 0.1, 0.9273618495495703}},
+                         {"scale", {2.0, -1.0, 1.5}}};
+    ScratchDir dir;
+    b.doc["nodes"] = {placed};
+    lt::write_file(dir.path() / "once.gltf", b.gltf());
+    b.doc["nodes"] = {placed, {{"mesh", 0}, {"translation", {100, 0, 0}}}};
+    b.doc["scenes"] = {{{"nodes", {0, 1}}}};
+    lt::write_file(dir.path() / "twice.gltf", b.gltf());
+    LoadedScene once = load_scene_file(dir.path() / "once.gltf");
+    LoadedScene twice = load_scene_file(dir.path() / "twice.gltf");
+    EXPECT_EQ(once.scene.instance_count(), 0u);
+    EXPECT_EQ(once.scene.object_count(), 1u);
+    EXPECT_EQ(twice.scene.instance_count(), 2u);
+    once.scene.commit();
+    twice.scene.commit();
+    // A fan of rays from one point toward the triangle's world box (in the once scene,
+    // whose bounds are the triangle's alone).
+    const glm::vec3 lo = once.bounds.lo, hi = once.bounds.hi;
+    const glm::vec3 eye = 0.5f * (lo + hi) + glm::vec3(1.0f, 2.0f, 6.0f);
+    int hits = 0;
+    for (int i = 0; i <= 20; ++i) {
+        for (int j = 0; j <= 20; ++j) {
+            const glm::vec3 target =
+                lo + (hi - lo) * glm::vec3(float(i) / 20.0f, float(j) / 20.0f, 0.5f);
+            const Ray ray(eye, target - eye);
+            Hit a, c;
+            const bool hit_once = once.scene.intersect(ray, a);
+            ASSERT_EQ(hit_once, twice.scene.intersect(ray, c)) << i << "," << j;
+            if (!hit_once) continue;
+            ++hits;
+            for (int k = 0; k < 3; ++k) {
+                EXPECT_NEAR(a.point[k], c.point[k], 1e-5f) << i << "," << j;
+                EXPECT_NEAR(a.geometric_normal[k], c.geometric_normal[k], 1e-5f) << i << "," << j;
+                EXPECT_NEAR(a.shading_normal[k], c.shading_normal[k], 1e-5f) << i << "," << j;
+            }
+            EXPECT_NEAR(a.uv.x, c.uv.x, 1e-5f);
+            EXPECT_NEAR(a.uv.y, c.uv.y, 1e-5f);
+            EXPECT_EQ(a.instance_id, kInvalidId);
+            EXPECT_NE(c.instance_id, kInvalidId);
+        }
+    }
+    EXPECT_GT(hits, 50);  // the fan covers the triangle, not only its box's empty half
+}
+
 TEST(GltfToScene, ANodeScaledToZeroIsWarnedAboutNotPlaced) {
     GltfBuilder b = lt::one_triangle();
     b.doc["nodes"] = {{{"mesh", 0}}, {{"mesh", 0}, {"scale", {0, 0, 0}}, {"name", "hidden"}}};
@@ -505,7 +582,9 @@ TEST(GltfToScene, ANodeScaledToZeroIsWarnedAboutNotPlaced) {
     const fs::path p = dir.path() / "hidden.gltf";
     lt::write_file(p, b.gltf());
     const LoadedScene loaded = load_scene_file(p);
-    EXPECT_EQ(loaded.scene.instance_count(), 1u);
+    // The visible node places the mesh, once: baked into a world-space mesh.
+    EXPECT_EQ(loaded.scene.object_count(), 1u);
+    EXPECT_EQ(loaded.scene.instance_count(), 0u);
     EXPECT_EQ(loaded.triangles_placed, 1u);
     bool warned = false;
     for (const std::string& w : loaded.warnings)

@@ -5,6 +5,7 @@
 // hand, so that the loader is checked against files it did not produce.
 
 #include <nlohmann/json.hpp>
+#include <stb/stb_image_write.h>
 
 #include <cstdint>
 #include <cstring>
@@ -154,6 +155,19 @@ inline GltfBuilder one_triangle() {
     b.doc["scenes"] = {{{"nodes", {0}}}};
     b.doc["scene"] = 0;
     return b;
+}
+
+/// A 2 x 1 RGBA PNG: red, then half-transparent blue.
+inline std::string tiny_png() {
+    const unsigned char px[8] = {255, 0, 0, 255, 0, 0, 255, 128};
+    std::string out;
+    stbi_write_png_to_func(
+        [](void* ctx, void* data, int size) {
+            static_cast<std::string*>(ctx)->append(static_cast<const char*>(data),
+                                                   std::size_t(size));
+        },
+        &out, 2, 1, 4, px, 8);
+    return out;
 }
 
 }  // namespace librt::testing

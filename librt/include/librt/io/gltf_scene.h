@@ -41,7 +41,10 @@ struct GltfMaterialTextures {
                                                     const GltfMaterialTextures& textures = {});
 
 /// Builds the Scene of `gltf` (taken by value: its vertex arrays are moved into the
-/// prototypes). Materials through material_from_gltf; each texture an ImageTexture once
+/// scene). A mesh placed by several nodes becomes a prototype per primitive, placed by an
+/// instance per node; a mesh placed by one node is baked into world space (transform())
+/// and added as a mesh per primitive, which traces faster. Materials through
+/// material_from_gltf; each texture an ImageTexture once
 /// per colour space it is used in, with its sampler's wrap modes (NEAREST magnification
 /// reads texels, anything else is bilinear; no mipmaps). A material's textures share one
 /// uv set (the first texture's; others warned and dropped), which its primitives store
