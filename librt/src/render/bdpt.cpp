@@ -102,9 +102,7 @@ struct Context {
 /// A shadow segment from a (normal na) to b (normal nb; either may be 0, a point): the
 /// fraction of light it lets through (transmittance, or 1 / 0 without Null lobes).
 glm::vec3 segment(const Scene& scene, const glm::vec3& a, const glm::vec3& na, const glm::vec3& b) {
-    const Ray r = spawn_ray_to(a, na, b);
-    if (scene.has_pass_through_surfaces()) return transmittance(scene, r);
-    return unoccluded(scene, r) ? glm::vec3(1.0f) : glm::vec3(0.0f);
+    return shadow_transmittance(scene, spawn_ray_to(a, na, b));
 }
 
 /// The density of direction `to` at a surface vertex reached from direction `from` (both
@@ -582,13 +580,9 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
                 const glm::vec3 f = bsdf_f(pt, ls.wi) * std::fabs(glm::dot(pt.ns, ls.wi));
                 glm::vec3 contrib = pt.beta * f * ls.radiance / (chosen.pmf * ls.pdf);
                 if (!(max_component(contrib) > 0.0f)) continue;
-                const Ray shadow = spawn_ray_to(pt.p, pt.ng, ls.wi, ls.distance);
-                if (scene.has_pass_through_surfaces()) {
-                    contrib *= transmittance(scene, shadow, light.object);
-                    if (!(max_component(contrib) > 0.0f)) continue;
-                } else if (!unoccluded(scene, shadow, light.object)) {
-                    continue;
-                }
+                contrib *= shadow_transmittance(
+                    scene, spawn_ray_to(pt.p, pt.ng, ls.wi, ls.distance), light.object);
+                if (!(max_component(contrib) > 0.0f)) continue;
                 float w;
                 if (is_infinite(light)) {
                     // PathTracer's two strategies (lights at infinity start no subpath).

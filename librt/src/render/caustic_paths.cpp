@@ -97,13 +97,9 @@ void splat_caustic_path(const Scene& scene, const SceneSphere& sphere, const Cam
             glm::vec3 contrib =
                 beta * f * (std::fabs(glm::dot(hit.shading_normal, cw.wi)) * cw.weight);
             if (!(max_component(contrib) > 0.0f)) return;
-            const Ray shadow = spawn_ray_to(hit.point, hit.geometric_normal, cw.view_start);
-            if (scene.has_pass_through_surfaces()) {
-                contrib *= transmittance(scene, shadow);
-                if (!(max_component(contrib) > 0.0f)) return;
-            } else if (!unoccluded(scene, shadow)) {
-                return;
-            }
+            contrib *= shadow_transmittance(
+                scene, spawn_ray_to(hit.point, hit.geometric_normal, cw.view_start));
+            if (!(max_component(contrib) > 0.0f)) return;
             film.add(cw.raster, contrib);
             return;
         }

@@ -3,6 +3,7 @@
 #include <librt/geometry/ray.h>
 #include <librt/render/sampler.h>
 #include <librt/render/scene.h>
+#include <librt/render/shadow_ray.h>
 
 #include <glm/vec3.hpp>
 
@@ -27,6 +28,15 @@ inline constexpr int kMaxShadowCrossings = 64;
 /// the others need only unoccluded()'s one any-hit query.
 [[nodiscard]] glm::vec3 transmittance(const Scene& scene, Ray ray,
                                       std::uint32_t ignored_object = kInvalidId);
+
+/// What shadow ray `ray` lets through: transmittance() in a scene with Null lobes, else
+/// unoccluded()'s one any-hit query as 1 or 0. (The path tracer's light sample writes this
+/// out itself, so that a blocked ray leaves the loop at once.)
+[[nodiscard]] inline glm::vec3 shadow_transmittance(const Scene& scene, const Ray& ray,
+                                                    std::uint32_t ignored_object = kInvalidId) {
+    if (scene.has_pass_through_surfaces()) return transmittance(scene, ray, ignored_object);
+    return unoccluded(scene, ray, ignored_object) ? glm::vec3(1.0f) : glm::vec3(0.0f);
+}
 
 /// Crossing decisions a path may take before it ends: a bound, so that a path grazing a
 /// stack of panes still ends (it also covers the max_depth bounces between panes).
