@@ -6,7 +6,7 @@ pfm_rmse.py [--near-above V] REF.pfm IMG.pfm [IMG.pfm ...]
 Prints each image's RMSE (also relative to the reference's mean) and MSE. With
 --near-above V it also splits the MSE into "near" (the pixels within 2 of one whose
 largest reference channel exceeds V: an emitter seen directly and its anti-aliased edge)
-and "room" (all others), the split docs/materials-and-lights.md's equal-time tables use.
+and "room" (all others), the split docs/light-targets.md's equal-time tables use.
 """
 import argparse
 import math

@@ -88,7 +88,7 @@ void build_panel_box(Scene& scene, float edge) {
     const char* one_sided = std::getenv("LIBRT_PANEL_ONE_SIDED");
     if (one_sided != nullptr && std::string(one_sided) == "quad") {
         // The panel as a one-sided quad light facing down (edge0 x edge1 = -y): no light
-        // into the gap between it and the ceiling (docs/materials-and-lights.md, Measured).
+        // into the gap between it and the ceiling (docs/light-targets.md).
         (void)scene.add_quad_light(QuadLight{
             corner, {edge, 0, 0}, {0, 0, edge}, k * glm::vec3(17.0f, 12.0f, 4.0f), false});
     } else if (one_sided != nullptr) {

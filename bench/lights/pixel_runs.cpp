@@ -11,7 +11,7 @@
 // over all RUNS x SPP samples (the mean of the channels), the standard deviation of the
 // run means, the per-sample variance it implies (sd^2 SPP), the median of the run means
 // over their mean and the fraction of runs below the mean.
-// docs/materials-and-lights.md uses it for cornell_pbr.glb's gold sphere and walls.
+// docs/light-targets.md uses it for cornell_pbr.glb's gold sphere and walls.
 
 #include <librt/core/error.h>
 #include <librt/io/scene_file.h>
