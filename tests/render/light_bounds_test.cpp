@@ -16,6 +16,8 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 namespace librt {
@@ -218,7 +220,7 @@ TEST(BoundedLightChoice, MisWithPerPointPmfEqualsBruteForce) {
     expect_bounded_mis_equals_brute(scene, 128, 1024, "four area lights");
 }
 
-TEST(BoundedLightChoice, MoreLightsThanTheBoundedLimitFallBackToPowerAndStayUnbiased) {
+TEST(BoundedLightChoice, MoreLightsThanTheBoundedLimitUseTheLightTreeAndStayUnbiased) {
     Scene scene;
     add_floor_and_ball(scene);
     // A ring of 24 small emissive triangles facing down over the floor, and 4 under it.
@@ -236,7 +238,173 @@ TEST(BoundedLightChoice, MoreLightsThanTheBoundedLimitFallBackToPowerAndStayUnbi
     scene.add_mesh(ring, scene.add_material(Material::emissive(glm::vec3(6.0f, 5.0f, 4.0f))));
     scene.commit();
     ASSERT_GT(scene.lights().size(), LightSampler::k_max_bounded);
+    // The tree is in use: under one triangle of the ring, that triangle gets more than its
+    // power share (1/28), and the four under the floor nothing (the power table gives them
+    // 4/28).
+    const LightSampler& ls = scene.light_sampler();
+    const LightChoicePoint under{{1.2f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, true};
+    std::uint32_t nearest = 0;
+    for (std::uint32_t i = 0; i < ls.size(); ++i) {
+        if (glm::length(ls.bounds(i).centre - glm::vec3(1.2f, 2.0f, 0.0f)) <
+            glm::length(ls.bounds(nearest).centre - glm::vec3(1.2f, 2.0f, 0.0f))) {
+            nearest = i;
+        }
+        if (ls.bounds(i).centre.y < 0.0f) {
+            EXPECT_EQ(ls.pmf(i, under), 0.0f) << "light " << i;
+        }
+    }
+    EXPECT_GT(ls.pmf(nearest, under), ls.pmf(nearest));
     expect_bounded_mis_equals_brute(scene, 64, 512, "28 emissive triangles");
+}
+
+/// `count` lights of every kind placed at random in a 10 x 4 x 10 box, turned at random,
+/// with powers spread over two orders of magnitude; and one sun and one sky.
+std::vector<Light> many_lights(int count, std::uint64_t seed) {
+    const std::vector<Light> kinds = every_kind();
+    std::vector<Light> lights;
+    Pcg32 rng(seed, 5);
+    for (int i = 0; i < count; ++i) {
+        Light l = kinds[std::size_t(i) % 7];  // the seven finite kinds
+        const glm::vec3 at{10.0f * rng.next_float() - 5.0f, 4.0f * rng.next_float() - 1.0f,
+                           10.0f * rng.next_float() - 5.0f};
+        const glm::vec3 dir = random_unit(rng);
+        const float scale = std::pow(10.0f, 2.0f * rng.next_float() - 1.0f);
+        std::visit(
+            [&](auto& src) {
+                using T = std::decay_t<decltype(src)>;
+                if constexpr (std::is_same_v<T, PointLight>) {
+                    src.position = at;
+                    src.intensity *= scale;
+                } else if constexpr (std::is_same_v<T, SphereLight>) {
+                    src.sphere.center = at;
+                    src.radiance *= scale;
+                } else if constexpr (std::is_same_v<T, QuadLight>) {
+                    src.corner = at;
+                    src.radiance *= scale;
+                    // Edges turned so that the normal is `dir`.
+                    const glm::vec3 t = glm::normalize(glm::cross(
+                        dir, std::fabs(dir.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
+                    src.edge0 = 0.5f * t;
+                    src.edge1 = 0.4f * glm::cross(dir, t);
+                } else if constexpr (std::is_same_v<T, DiskLight>) {
+                    src.center = at;
+                    src.normal = dir;
+                    src.radiance *= scale;
+                } else if constexpr (std::is_same_v<T, SpotLight>) {
+                    src.position = at;
+                    src.direction = dir;
+                    src.intensity *= scale;
+                } else if constexpr (std::is_same_v<T, TriangleLight>) {
+                    const glm::vec3 shift = at - src.p0;
+                    src.p0 += shift;
+                    src.p1 += shift;
+                    src.p2 += shift;
+                    src.radiance *= scale;
+                }
+            },
+            l.source);
+        lights.push_back(l);
+    }
+    lights.push_back(kinds[7]);  // the sun
+    lights.push_back(kinds[8]);  // the sky
+    return lights;
+}
+
+LightChoicePoint random_point(Pcg32& rng) {
+    LightChoicePoint at;
+    at.point = {12.0f * rng.next_float() - 6.0f, 5.0f * rng.next_float() - 1.5f,
+                12.0f * rng.next_float() - 6.0f};
+    at.normal = random_unit(rng);
+    at.reflect_only = rng.next_float() < 0.8f;
+    return at;
+}
+
+TEST(LightTree, PmfIsWhatSampleDrawsAndZeroOnlyForLightsThatBringNothing) {
+    const std::vector<Light> lights = many_lights(300, 11);
+    const LightSampler sampler(lights);
+    ASSERT_GT(lights.size(), LightSampler::k_max_bounded);
+    Pcg32 rng(99, 4);
+    int ruled_out = 0, pairs = 0;
+    for (int trial = 0; trial < 150; ++trial) {
+        const LightChoicePoint at = random_point(rng);
+        double sum = 0.0;
+        for (std::uint32_t i = 0; i < lights.size(); ++i) {
+            const float p = sampler.pmf(i, at);
+            ASSERT_GE(p, 0.0f);
+            sum += p;
+            ++pairs;
+            if (p == 0.0f) {
+                ++ruled_out;
+                EXPECT_FALSE(any_sample_arrives(lights[i], at, rng, 64))
+                    << "light " << i << " ruled out at (" << at.point.x << ", " << at.point.y
+                    << ", " << at.point.z << ") but its samples arrive";
+            }
+        }
+        // A walk may end at a node whose children are both bounded by 0 (the node's bound
+        // is looser than theirs): then nothing is chosen, and the pmfs sum to less than 1.
+        EXPECT_LE(sum, 1.0 + 1e-5) << "trial " << trial;
+        EXPECT_GT(sum, 0.0) << "trial " << trial;  // the sky always arrives
+        for (int k = 0; k < 20; ++k) {
+            const SampledLight s = sampler.sample(rng.next_float(), at);
+            if (!s.valid()) continue;
+            EXPECT_EQ(s.pmf, sampler.pmf(s.light, at)) << "light " << s.light;
+        }
+    }
+    EXPECT_GT(ruled_out, pairs / 10) << ruled_out << " of " << pairs;
+}
+
+TEST(LightTree, SampleFrequenciesMatchThePmfAndFavourNearLights) {
+    const std::vector<Light> lights = many_lights(300, 12);
+    const LightSampler sampler(lights);
+    Pcg32 rng(5, 9);
+    for (int point = 0; point < 3; ++point) {
+        const LightChoicePoint at = random_point(rng);
+        const int n = 200000;
+        std::vector<int> count(lights.size(), 0);
+        int none = 0;
+        for (int i = 0; i < n; ++i) {
+            const SampledLight s = sampler.sample(rng.next_float(), at);
+            if (s.valid()) {
+                ++count[s.light];
+            } else {
+                ++none;
+            }
+        }
+        double sum = 0.0;
+        for (std::uint32_t i = 0; i < lights.size(); ++i) {
+            const double p = sampler.pmf(i, at);
+            sum += p;
+            // Binomial count: within 5 standard deviations (+1 for p = 0 exactly).
+            const double sd = std::sqrt(n * p * (1.0 - p));
+            EXPECT_LE(std::fabs(count[i] - n * p), 5.0 * sd + 1.0)
+                << "point " << point << " light " << i << " pmf " << p;
+        }
+        const double q = 1.0 - sum;  // the walks that choose nothing
+        EXPECT_LE(std::fabs(none - n * q), 5.0 * std::sqrt(n * std::max(q, 0.0) * (1.0 - q)) + 1.0);
+    }
+    // Beside a light, the tree gives it far more than its power share.
+    std::uint32_t point_light = 0;  // every seventh light is a point light
+    const LightChoicePoint beside{
+        std::get<PointLight>(lights[point_light].source).position + glm::vec3(0.05f, 0.0f, 0.0f),
+        {-1.0f, 0.0f, 0.0f},
+        true};
+    EXPECT_GT(sampler.pmf(point_light, beside), 5.0f * sampler.pmf(point_light));
+}
+
+TEST(LightTree, CoincidentLightsShareByPower) {
+    // Forty point lights at one place: no split by position exists, the tree halves them by
+    // count, and from afar each gets its power share.
+    std::vector<Light> lights;
+    for (int i = 0; i < 40; ++i)
+        lights.push_back(light_of(PointLight{{1.0f, 2.0f, 3.0f}, glm::vec3(float(1 + i % 5))}));
+    const LightSampler sampler(lights);
+    const LightChoicePoint at{{0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, true};
+    double sum = 0.0;
+    for (std::uint32_t i = 0; i < lights.size(); ++i) {
+        EXPECT_NEAR(sampler.pmf(i, at), sampler.pmf(i), 1e-6f) << "light " << i;
+        sum += sampler.pmf(i, at);
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-5);
 }
 
 }  // namespace

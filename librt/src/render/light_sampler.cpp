@@ -1,3 +1,5 @@
+#include "render/light_tree.h"
+
 #include <librt/render/light_sampler.h>
 
 #include <algorithm>
@@ -34,6 +36,14 @@ LightSampler::LightSampler(std::span<const Light> lights) {
     }
     // Rounding must not leave u just below 1 without a light: the last chosen light ends at 1.
     for (std::size_t i = last; i < cdf_.size(); ++i) cdf_[i] = 1.0f;
+    if (lights.size() > k_max_bounded) {
+        std::vector<std::uint32_t> finite;
+        for (std::uint32_t i = 0; i < lights.size(); ++i) {
+            if (!(weight[i] > 0.0)) continue;  // never chosen
+            (bounds_[i].infinite ? infinite_ : finite).push_back(i);
+        }
+        tree_ = std::make_shared<const detail::LightTree>(bounds_, finite);
+    }
 }
 
 SampledLight LightSampler::search(float u) const {
@@ -68,12 +78,39 @@ double LightSampler::point_weights(const LightChoicePoint& at, double* w) const 
     return total;
 }
 
+double LightSampler::group_weights(const LightChoicePoint& at, double& finite) const {
+    finite = tree_->reaches(at) ? finite_share_ : 0.0;
+    double total = finite;
+    for (std::uint32_t i : infinite_)
+        if (importance(bounds_[i], at) > 0.0f) total += double(pmf_[i]);
+    return total;
+}
+
 SampledLight LightSampler::sample(float u, const LightChoicePoint& at) const {
-    if (bounds_.size() > k_max_bounded) {
-        const SampledLight s = sample(u);
-        // Chosen by power; a light its bound rules out here would give a zero sample.
-        if (s.valid() && !(importance(bounds_[s.light], at) > 0.0f)) return {};
-        return s;
+    if (tree_) {
+        if (!any()) return {};
+        double finite = 0.0;
+        const double total = group_weights(at, finite);
+        if (!(total > 0.0)) return {};
+        // The finite lights' share first (through the tree, u rescaled), then those at
+        // infinity in order.
+        const double target = double(u) * total;
+        if (target < finite) {
+            const float v = std::min(float(target / finite), 0x1.fffffep-1f);
+            const detail::LightTree::Choice c = tree_->sample(v, at);
+            if (c.light == kInvalidId || !(c.pmf > 0.0f)) return {};
+            return {c.light, float(double(c.pmf) * finite / total)};
+        }
+        double sum = finite;
+        std::uint32_t chosen = kInvalidId;
+        for (std::uint32_t i : infinite_) {
+            if (!(importance(bounds_[i], at) > 0.0f)) continue;
+            chosen = i;
+            sum += double(pmf_[i]);
+            if (target < sum) break;
+        }
+        if (chosen == kInvalidId) return {};
+        return {chosen, float(double(pmf_[chosen]) / total)};
     }
     double w[k_max_bounded];
     const double total = point_weights(at, w);
@@ -94,7 +131,17 @@ SampledLight LightSampler::sample(float u, const LightChoicePoint& at) const {
 
 float LightSampler::pmf(std::uint32_t light, const LightChoicePoint& at) const {
     if (light >= bounds_.size()) return 0.0f;
-    if (bounds_.size() > k_max_bounded) return pmf_[light];
+    if (tree_) {
+        if (!(pmf_[light] > 0.0f)) return 0.0f;
+        double finite = 0.0;
+        const double total = group_weights(at, finite);
+        if (!(total > 0.0)) return 0.0f;
+        if (bounds_[light].infinite)
+            return importance(bounds_[light], at) > 0.0f ? float(double(pmf_[light]) / total)
+                                                         : 0.0f;
+        if (!(finite > 0.0)) return 0.0f;
+        return float(double(tree_->pmf(light, at)) * finite / total);
+    }
     double w[k_max_bounded];
     const double total = point_weights(at, w);
     if (!(total > 0.0)) return 0.0f;

@@ -7,10 +7,15 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
 namespace librt {
+
+namespace detail {
+class LightTree;  // src/render/light_tree.h
+}  // namespace detail
 
 /// How a path tracer chooses the light it samples at a shading point.
 enum class LightChoice : std::uint8_t {
@@ -40,12 +45,13 @@ struct SampledLight {
 /// surface, or one facing away, gets probability 0 and costs no sample and no shadow ray;
 /// near lights get more samples than far ones. With at most k_max_bounded lights the pmf
 /// is computed per point (one bound per light: cheap, and exact to renormalise). Above
-/// that it stays the power table's, to keep the cost per shading point bounded: a light
-/// the power table chose but whose bound is 0 there is returned invalid (its sample would
-/// be 0), so shadow rays are still skipped. A light tree (pbrt-v4's BVHLightSampler) would
-/// extend the bound to many lights. Lights at infinity keep their share of the power
-/// table (their power has no distance to compare with a finite light's), finite lights
-/// share the rest in proportion to their bounds; both then renormalised over what is left.
+/// that the finite lights are chosen through a light tree (a binary tree over their
+/// bounds, as pbrt-v4's BVHLightSampler; private, src/render/light_tree.h): the walk from
+/// its root picks a child by the bound of all the lights below it, so the cost per
+/// shading point grows with the tree's depth, not the number of lights. Lights at infinity
+/// keep their share of the power table (their power has no distance to compare with a
+/// finite light's), finite lights share the rest by their bounds; both then renormalised
+/// over what is left.
 class LIBRT_API LightSampler {
 public:
     /// A sampler with no lights: sample() always returns an invalid choice.
@@ -81,11 +87,19 @@ private:
     [[nodiscard]] SampledLight search(float u) const;
     /// Per-point weights of every light into w (size() <= k_max_bounded); their sum.
     double point_weights(const LightChoicePoint& at, double* w) const;
+    /// Above k_max_bounded lights: the weights of the two groups at `at`, the finite lights
+    /// (finite_share_ when the tree reaches the point, else 0) and those at infinity (their
+    /// power-table pmfs, each where its bound allows); returns their sum.
+    double group_weights(const LightChoicePoint& at, double& finite) const;
 
     std::vector<float> pmf_;  ///< per light
     std::vector<float> cdf_;  ///< cdf_[i] = pmf_[0] + ... + pmf_[i]; the last positive is 1
     std::vector<LightBounds> bounds_;  ///< per light
     double finite_share_ = 0.0;        ///< sum of pmf_ over the lights not at infinity
+    /// Above k_max_bounded lights: the tree over the finite lights of positive power, and
+    /// the lights at infinity. Shared by copies (immutable).
+    std::shared_ptr<const detail::LightTree> tree_;
+    std::vector<std::uint32_t> infinite_;
 };
 
 }  // namespace librt
