@@ -39,11 +39,11 @@ struct Options {
     std::string size;  // "WxH"; empty = the camera's aspect, long side 640
     std::string camera;
     int max_depth = 5;
-    std::string light_choice = "power";  // power | bounded (LightChoice)
-    std::string integrator = "path";     // path | bdpt | brute
-    bool caustic_paths = false;          // the path tracer's caustics traced from the lights
-    float light_paths = 1.0f;            // bdpt: fraction of samples tracing a light subpath
-    int roulette_depth = -1;             // first rouletted bounce; -1 = the integrator's own
+    std::string light_choice = "auto";  // auto | power | bounded (LightChoice)
+    std::string integrator = "path";    // path | bdpt | brute
+    bool caustic_paths = false;         // the path tracer's caustics traced from the lights
+    float light_paths = 1.0f;           // bdpt: fraction of samples tracing a light subpath
+    int roulette_depth = -1;            // first rouletted bounce; -1 = the integrator's own
     int threads = 0;
     std::uint64_t seed = 0;
     double time_limit = 0.0;
@@ -76,8 +76,8 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     validate(check);
     if (o.max_depth < 0 || o.max_depth > 1000)
         bad("--max-depth", std::to_string(o.max_depth), "must be in [0, 1000]");
-    if (o.light_choice != "power" && o.light_choice != "bounded")
-        bad("--light-choice", o.light_choice, "must be power or bounded");
+    if (o.light_choice != "auto" && o.light_choice != "power" && o.light_choice != "bounded")
+        bad("--light-choice", o.light_choice, "must be auto, power or bounded");
     if (o.integrator != "path" && o.integrator != "bdpt" && o.integrator != "brute")
         bad("--integrator", o.integrator, "must be path, bdpt or brute");
     if (o.integrator == "bdpt" && o.max_depth > BidirectionalSettings::kMaxDepth)
@@ -152,7 +152,13 @@ int render_file(const Options& o, const apps::MpiJob& job) {
 
     PathTracerSettings pt;
     pt.max_depth = o.max_depth;
-    pt.light_choice = o.light_choice == "bounded" ? LightChoice::Bounded : LightChoice::Power;
+    // auto: by bound (through the light tree) when there are more lights than the bounded
+    // choice weighs one by one, where power alone sends most shadow rays to far lights;
+    // by power otherwise, as before the tree.
+    const bool many_lights = loaded.scene.lights().size() > LightSampler::k_max_bounded;
+    pt.light_choice = o.light_choice == "bounded" || (o.light_choice == "auto" && many_lights)
+                          ? LightChoice::Bounded
+                          : LightChoice::Power;
     pt.guiding.enabled = o.sampling.guiding;
     pt.guiding.training_passes = o.sampling.guiding_passes;
     // Kept in the image, alone (render_progressive's final frame) and under mpirun alike.
@@ -238,8 +244,9 @@ int main(int argc, char** argv) {
                    "the integrator's default, 3)")
         ->capture_default_str();
     app.add_option("--light-choice", o.light_choice,
-                   "How a shading point chooses the light it samples: power (by power alone) or "
-                   "bounded (by power times a bound of its contribution there)")
+                   "How a shading point chooses the light it samples: power (by power alone), "
+                   "bounded (by power times a bound of its contribution there; a light tree "
+                   "above 16 lights) or auto (bounded above 16 lights, else power)")
         ->capture_default_str();
     app.add_option("--threads", o.threads, "Worker threads, 0 = all cores")->capture_default_str();
     app.add_option("--seed", o.seed, "Random seed")->capture_default_str();
