@@ -91,13 +91,16 @@ void merge_cones(const LightTreeBounds& a, const LightTreeBounds& b, LightTreeBo
     out.theta_o = kPi;
     if (a.theta_o >= kPi || b.theta_o >= kPi) return;
     const float theta_d = std::acos(std::clamp(glm::dot(a.axis, b.axis), -1.0f, 1.0f));
+    // One cone holds the other. acos rounds an angle below ~3.5e-4 rad to 0, so axes that
+    // differ at all widen the kept cone by kConePad.
+    const float pad = a.axis == b.axis ? 0.0f : kConePad;
     if (std::min(theta_d + b.theta_o, kPi) <= a.theta_o) {
-        out.theta_o = a.theta_o;
+        out.theta_o = std::min(a.theta_o + pad, kPi);
         return;
     }
     if (std::min(theta_d + a.theta_o, kPi) <= b.theta_o) {
         out.axis = b.axis;
-        out.theta_o = b.theta_o;
+        out.theta_o = std::min(b.theta_o + pad, kPi);
         return;
     }
     const float theta_o = 0.5f * (a.theta_o + theta_d + b.theta_o) + kConePad;
@@ -196,8 +199,11 @@ LightTree::LightTree(std::span<const LightBounds> bounds, std::span<const std::u
       depth_(bounds.size(), 255) {
     if (lights.empty()) return;
     std::vector<std::uint32_t> order(lights.begin(), lights.end());
+    leaf_.resize(light_bounds_.size());
+    for (std::uint32_t l : order) leaf_[l] = tree_bounds(light_bounds_[l]);
     nodes_.reserve(2 * order.size() - 1);
     build(order, 0, 0);
+    leaf_ = {};  // only the build needs them
 }
 
 std::uint32_t LightTree::build(std::span<std::uint32_t> lights, int depth, std::uint64_t trail) {
@@ -206,7 +212,7 @@ std::uint32_t LightTree::build(std::span<std::uint32_t> lights, int depth, std::
     if (lights.size() == 1) {
         nodes_[at].leaf = true;
         nodes_[at].index = lights[0];
-        nodes_[at].bounds = tree_bounds(light_bounds_[lights[0]]);
+        nodes_[at].bounds = leaf_[lights[0]];
         trail_[lights[0]] = trail;
         depth_[lights[0]] = static_cast<std::uint8_t>(depth);
         return at;
@@ -234,8 +240,7 @@ std::uint32_t LightTree::build(std::span<std::uint32_t> lights, int depth, std::
             };
             for (std::uint32_t l : lights) {
                 const int b = bin_of(l);
-                const LightTreeBounds t = tree_bounds(light_bounds_[l]);
-                bin[b] = used[b] ? merge(bin[b], t) : t;
+                bin[b] = used[b] ? merge(bin[b], leaf_[l]) : leaf_[l];
                 used[b] = true;
             }
             std::array<float, kBins> below{};  // cost of bins [0, s)

@@ -71,6 +71,7 @@ private:
     std::uint32_t build(std::span<std::uint32_t> lights, int depth, std::uint64_t trail);
 
     std::vector<LightBounds> light_bounds_;  ///< every light's, indexed as the sampler's
+    std::vector<LightTreeBounds> leaf_;      ///< during the build: each light's tree bounds
     std::vector<Node> nodes_;
     /// Per light (index into light_bounds_): the path from the root, bit d set when the walk
     /// takes the second child at depth d, and its length; depth 255 for a light not here.
