@@ -95,6 +95,26 @@ glm::vec3 random_unit(Pcg32& rng) {
     return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
+/// Every light's pmf at `at`: each >= 0, and 0 only for a light none of whose `samples`
+/// own samples arrives (counted in ruled_out); returns their sum.
+double check_pmfs(const LightSampler& sampler, const std::vector<Light>& lights,
+                  const LightChoicePoint& at, Pcg32& rng, int samples, int& ruled_out) {
+    double sum = 0.0;
+    for (std::uint32_t i = 0; i < lights.size(); ++i) {
+        const float p = sampler.pmf(i, at);
+        EXPECT_GE(p, 0.0f);
+        sum += p;
+        // Conservative: a light some of whose samples arrive is never ruled out.
+        if (p == 0.0f) {
+            ++ruled_out;
+            EXPECT_FALSE(any_sample_arrives(lights[i], at, rng, samples))
+                << "light " << i << " ruled out at (" << at.point.x << ", " << at.point.y << ", "
+                << at.point.z << ") but its samples arrive";
+        }
+    }
+    return sum;
+}
+
 TEST(BoundedLightChoice, PmfSumsToOneAndIsZeroOnlyForLightsThatBringNothing) {
     const std::vector<Light> lights = every_kind();
     const LightSampler sampler(lights);
@@ -107,20 +127,8 @@ TEST(BoundedLightChoice, PmfSumsToOneAndIsZeroOnlyForLightsThatBringNothing) {
                     4.0f * rng.next_float() - 2.0f};
         at.normal = random_unit(rng);
         at.reflect_only = rng.next_float() < 0.8f;
-        double sum = 0.0;
-        for (std::uint32_t i = 0; i < lights.size(); ++i) {
-            const float p = sampler.pmf(i, at);
-            ASSERT_GE(p, 0.0f);
-            sum += p;
-            ++pairs;
-            // Conservative: a light some of whose samples arrive is never ruled out.
-            if (p == 0.0f) {
-                ++ruled_out;
-                EXPECT_FALSE(any_sample_arrives(lights[i], at, rng, 256))
-                    << "light " << i << " ruled out at (" << at.point.x << ", " << at.point.y
-                    << ", " << at.point.z << ") but its samples arrive";
-            }
-        }
+        const double sum = check_pmfs(sampler, lights, at, rng, 256, ruled_out);
+        pairs += int(lights.size());
         // The environment always arrives, so something is always chosen.
         EXPECT_NEAR(sum, 1.0, 1e-5) << "trial " << trial;
         // sample() returns the light and the pmf that pmf() reports.
@@ -327,19 +335,8 @@ TEST(LightTree, PmfIsWhatSampleDrawsAndZeroOnlyForLightsThatBringNothing) {
     int ruled_out = 0, pairs = 0;
     for (int trial = 0; trial < 150; ++trial) {
         const LightChoicePoint at = random_point(rng);
-        double sum = 0.0;
-        for (std::uint32_t i = 0; i < lights.size(); ++i) {
-            const float p = sampler.pmf(i, at);
-            ASSERT_GE(p, 0.0f);
-            sum += p;
-            ++pairs;
-            if (p == 0.0f) {
-                ++ruled_out;
-                EXPECT_FALSE(any_sample_arrives(lights[i], at, rng, 64))
-                    << "light " << i << " ruled out at (" << at.point.x << ", " << at.point.y
-                    << ", " << at.point.z << ") but its samples arrive";
-            }
-        }
+        const double sum = check_pmfs(sampler, lights, at, rng, 64, ruled_out);
+        pairs += int(lights.size());
         // A walk may end at a node whose children are both bounded by 0 (the node's bound
         // is looser than theirs): then nothing is chosen, and the pmfs sum to less than 1.
         EXPECT_LE(sum, 1.0 + 1e-5) << "trial " << trial;

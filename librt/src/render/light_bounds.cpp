@@ -1,3 +1,5 @@
+#include "render/cos_minus.h"
+
 #include <librt/render/light_bounds.h>
 
 #include <glm/geometric.hpp>
@@ -8,6 +10,8 @@
 
 namespace librt {
 namespace {
+
+using detail::cos_minus;
 
 /// Mean over channels: what the power light sampler weighs by too.
 float mean(const glm::vec3& v) { return (v.x + v.y + v.z) / 3.0f; }
@@ -96,15 +100,6 @@ LightBounds bounds_of(const EnvironmentLight& /*l*/, float phi) {
     b.phi = phi;
     b.infinite = true;  // lights from every direction: never provably nothing
     return b;
-}
-
-/// cos(max(0, theta - alpha)) from cos(theta) and alpha's cosine and sine: the largest
-/// cosine between a direction and any direction within alpha of the one at theta
-/// (the angle-difference identity cos(t - a) = cos t cos a + sin t sin a).
-float cos_minus(float cos_theta, float cos_alpha, float sin_alpha) {
-    if (cos_theta >= cos_alpha) return 1.0f;
-    const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
-    return cos_theta * cos_alpha + sin_theta * sin_alpha;
 }
 
 }  // namespace

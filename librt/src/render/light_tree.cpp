@@ -1,5 +1,7 @@
 #include "render/light_tree.h"
 
+#include "render/cos_minus.h"
+
 #include <librt/geometry/hit.h>
 
 #include <glm/geometric.hpp>
@@ -25,13 +27,6 @@ constexpr float kConePad = 1e-4f;
 constexpr int kMedianFromDepth = 32;
 /// Bins per axis of the split search.
 constexpr int kBins = 12;
-
-/// cos(max(0, theta - alpha)) from cos(theta) and alpha's cosine and sine (as light_bounds.cpp).
-float cos_minus(float cos_theta, float cos_alpha, float sin_alpha) {
-    if (cos_theta >= cos_alpha) return 1.0f;
-    const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
-    return cos_theta * cos_alpha + sin_theta * sin_alpha;
-}
 
 /// The cone's cosines and sine, computed once per node rather than per importance().
 void finish_cone(LightTreeBounds& b) {
