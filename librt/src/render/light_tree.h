@@ -63,9 +63,11 @@ private:
         std::uint32_t index = 0;
         bool leaf = false;
     };
-    /// The weight of node `n` at `at`: its light's importance() for a leaf, the node bound
-    /// for an interior node.
+    /// The weight of node `n` at `at`: its light's importance() for a leaf; for an interior
+    /// node the sum of its children's bounds (kLookahead levels down, light_tree.cpp).
     [[nodiscard]] float weight(const Node& n, const LightChoicePoint& at) const;
+    /// Node `n`'s weight from the bounds `levels` levels below it (0: its own bound).
+    [[nodiscard]] float weight_below(const Node& n, const LightChoicePoint& at, int levels) const;
     /// Builds the subtree over `lights` at `depth`, reached from the root by `trail`;
     /// returns its node index.
     std::uint32_t build(std::span<std::uint32_t> lights, int depth, std::uint64_t trail);
