@@ -132,7 +132,6 @@ SampledLight LightSampler::sample(float u, const LightChoicePoint& at) const {
 float LightSampler::pmf(std::uint32_t light, const LightChoicePoint& at) const {
     if (light >= bounds_.size()) return 0.0f;
     if (tree_) {
-        if (!(pmf_[light] > 0.0f)) return 0.0f;
         double finite = 0.0;
         const double total = group_weights(at, finite);
         if (!(total > 0.0)) return 0.0f;
