@@ -51,8 +51,9 @@ struct Options {
     std::string env;            // equirectangular .hdr lighting the scene; empty = none
     float env_strength = 1.0f;  // scale of the environment's radiance
     bool quiet = false;
-    apps::AppOptions sampling;  // --sampler, --filter, --filter-radius, --guiding(-passes)
-    int mpi_tile = 32;          // under mpirun: side of the tiles rank 0 hands out
+    bool allow_outside_files = false;  // the scene may read files outside its directory
+    apps::AppOptions sampling;         // --sampler, --filter, --filter-radius, --guiding(-passes)
+    int mpi_tile = 32;                 // under mpirun: side of the tiles rank 0 hands out
 };
 
 [[noreturn]] void bad(const std::string& option, const std::string& value, const char* rule) {
@@ -69,6 +70,7 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     if (root) check_image_path(o.output);
     SceneFileOptions file_options;
     file_options.camera = o.camera;
+    file_options.allow_outside_files = o.allow_outside_files;
     if (!o.size.empty()) apps::parse_size(o.size, 0.0f, file_options.width, file_options.height);
     RenderSettings check;
     check.samples_per_pixel = o.spp;
@@ -261,6 +263,9 @@ int main(int argc, char** argv) {
     app.add_option("--env-strength", o.env_strength, "Scale of the --env radiance")
         ->capture_default_str();
     app.add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
+    app.add_flag("--allow-outside-files", o.allow_outside_files,
+                 "Let the scene read buffers, images and MTL files outside its own directory "
+                 "tree (absolute paths, '..', symlinks leading out): only for a file you trust");
     apps::add_sampling_options(app, o.sampling);
     app.add_option("--mpi-tile", o.mpi_tile,
                    "Under mpirun: side of the square tiles rank 0 hands out to the ranks")

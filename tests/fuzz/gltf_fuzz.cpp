@@ -1,13 +1,19 @@
 // libFuzzer target: arbitrary bytes as a glTF file (.glb or .gltf, told apart by content)
-// -> load_gltf -> consistency of what it returns. Any outcome but a consistent GltfScene
-// or a librt::Error is a bug (crash, hang, sanitizer report, huge allocation).
+// -> load_gltf -> consistency of what it returns -> the Scene built from it, committed, and
+// a few pixels rendered, so what the loader passes on is fuzzed too. Any outcome but a
+// consistent GltfScene and finite pixels, or a librt::Error, is a bug (crash, hang,
+// sanitizer report, huge allocation).
 // Run: ./build/fuzz/tests/fuzz/gltf_fuzz -max_total_time=60 tests/fuzz/corpus/gltf
 
 #include <librt/core/error.h>
 #include <librt/io/gltf.h>
+#include <librt/io/gltf_scene.h>
+#include <librt/render/integrators.h>
+#include <librt/render/renderer.h>
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -62,6 +68,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             check(img.rgba.size() == std::size_t(img.width) * std::size_t(img.height) * 4);
         }
         (void)scene.triangles_placed();
+        // What the loader passed on, built, committed and rendered (4 x 4, 1 sample).
+        librt::SceneFileOptions file_options;
+        file_options.width = file_options.height = 4;
+        librt::LoadedScene loaded = librt::scene_from_gltf(scene, file_options);
+        loaded.scene.commit();
+        librt::PathTracer path_tracer;
+        librt::RenderSettings settings;
+        settings.threads = 1;
+        const librt::Image image =
+            librt::render(loaded.scene, librt::Camera(loaded.camera), path_tracer, settings);
+        for (const glm::vec3& p : image.pixels)
+            check(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
     } catch (const librt::Error&) {
         // Rejected with a message: the expected outcome for bad input.
     }

@@ -100,6 +100,8 @@ TEST(GltfMeshes, NormalisedAttributesAndColours) {
                        "VEC3", 3, true);
     b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = uv;
     b.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = n;
+    // Normals as normalised i16 need KHR_mesh_quantization (glTF 2.0, section 3.7.2.1).
+    b.doc["extensionsUsed"] = {"KHR_mesh_quantization"};
     b.doc["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = col;
     ScratchDir dir;
     const GltfScene s = load_text(dir, "norm.gltf", b.gltf());
@@ -287,7 +289,7 @@ TEST(GltfScene, MaterialsWithTheirExtensions) {
     EXPECT_TRUE(m.double_sided);
     // Only the unknown optional extension is a warning.
     ASSERT_EQ(s.warnings.size(), 1u) << lt::joined(s.warnings);
-    EXPECT_TRUE(lt::has(s.warnings[0], "extensionsUsed[4]: extension EXT_unknown_thing"));
+    EXPECT_TRUE(lt::has(s.warnings[0], "extensionsUsed[4]: extension 'EXT_unknown_thing'"));
 }
 
 // The glTF fuzzer's seeds (tests/fuzz/corpus/gltf, written by hand) are valid files that

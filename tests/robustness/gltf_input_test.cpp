@@ -196,13 +196,21 @@ TEST(BadGltf, ExtensionsAndNesting) {
     b.doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
     b.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
     load_error(dir, "req.gltf", b.gltf(),
-               "extensionsRequired[0]: extension KHR_draco_mesh_compression is required but not "
+               "extensionsRequired[0]: extension 'KHR_draco_mesh_compression' is required but not "
                "supported");
-    // Deep nesting in extras (tinygltf converts extras recursively): refused up front.
+    // Deep nesting where librt reads (tinygltf converts JSON recursively): refused up front,
+    // naming where.
     GltfBuilder d = lt::one_triangle();
-    std::string extras(100000, '[');
-    extras += std::string(100000, ']');
+    std::string deep(100000, '[');
+    deep += std::string(100000, ']');
     std::string text = d.with_buffer("").dump();
-    text.insert(text.size() - 1, ",\"extras\":" + extras);
-    load_error(dir, "deep.glb", GltfBuilder::make_glb(text, d.bin), "nested deeper than 64");
+    text.insert(text.size() - 1, ",\"nodes\":[{\"matrix\":" + deep + "}]");
+    load_error(dir, "deep.glb", GltfBuilder::make_glb(text, d.bin), "nodes[0].matrix[0][0][0]");
+    load_error(dir, "deep2.glb", GltfBuilder::make_glb(text, d.bin), "nested deeper than 64");
+    // In extras (free-form data librt never reads) it is left out while parsing, never
+    // built, so it costs nothing and loads.
+    std::string extras_text = d.with_buffer("").dump();
+    extras_text.insert(extras_text.size() - 1, ",\"extras\":" + deep);
+    const fs::path p = dir.write("extras.glb", GltfBuilder::make_glb(extras_text, d.bin));
+    EXPECT_EQ(load_gltf(p).triangles_stored(), 1u);
 }

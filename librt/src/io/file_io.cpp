@@ -237,4 +237,16 @@ void write_file_atomically(const fs::path& path, std::string_view bytes) {
     file.commit();
 }
 
+TreePath resolve_in_tree(const fs::path& dir, const fs::path& name) {
+    std::error_code ec;
+    const fs::path root = fs::weakly_canonical(dir.empty() ? fs::path(".") : dir, ec);
+    if (ec) throw Error(quoted(dir) + ": cannot resolve: " + ec.message());
+    TreePath out;
+    out.path = fs::weakly_canonical(name.is_absolute() ? name : root / name, ec);
+    if (ec) throw Error(quoted(name) + ": cannot resolve: " + ec.message());
+    const fs::path rel = out.path.lexically_relative(root);
+    out.inside = !rel.empty() && *rel.begin() != "..";
+    return out;
+}
+
 }  // namespace librt::detail

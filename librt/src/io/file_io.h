@@ -40,6 +40,21 @@ struct ReadRequest {
 [[nodiscard]] std::string read_regular_file(const std::filesystem::path& path,
                                             const ReadRequest& request);
 
+/// Where a file named by a scene file leads: `dir / name` made canonical (every symlink of
+/// the parts that exist followed, "." and ".." resolved), and whether that lies inside
+/// dir's own canonical tree. An absolute `name` stands for itself. Scene files may read
+/// only inside their tree unless the caller allows more (a downloaded scene must not read
+/// /etc/passwd, or a file a symlink beside it points to).
+struct TreePath {
+    std::filesystem::path path;  ///< the canonical path
+    bool inside = false;         ///< it lies in dir's tree
+};
+
+/// Resolves `name` against `dir` (see TreePath); throws librt::Error when the file system
+/// cannot resolve it.
+[[nodiscard]] TreePath resolve_in_tree(const std::filesystem::path& dir,
+                                       const std::filesystem::path& name);
+
 /// A file written completely or not at all (see the top of this header). Errors name the
 /// target: "cannot write 'path': reason".
 class AtomicFile {

@@ -62,11 +62,11 @@ const unsigned char* view_range(const tinygltf::Model& model, int view, std::siz
     check_index(ctx, path + ".bufferView", view, model.bufferViews.size(), "buffer view");
     const tinygltf::BufferView& bv = model.bufferViews[static_cast<std::size_t>(view)];
     check_index(ctx, indexed("bufferViews", std::size_t(view)) + ".buffer", bv.buffer,
-                model.buffers.size(), "buffer");
-    const tinygltf::Buffer& buffer = model.buffers[static_cast<std::size_t>(bv.buffer)];
+                ctx.buffer_count(), "buffer");
+    const std::string_view buffer = ctx.buffer(static_cast<std::size_t>(bv.buffer));
     // The view lies in the buffer (checked in the pre-pass against byteLength; checked
-    // again here against the bytes tinygltf really holds).
-    if (bv.byteOffset > buffer.data.size() || bv.byteLength > buffer.data.size() - bv.byteOffset)
+    // again here against the bytes really read).
+    if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset)
         ctx.fail(indexed("bufferViews", std::size_t(view)), "lies outside its buffer's data");
     // Last byte needed: offset + (count - 1) * stride + element, computed without overflow.
     const std::size_t length = bv.byteLength;
@@ -78,7 +78,7 @@ const unsigned char* view_range(const tinygltf::Model& model, int view, std::siz
                            std::to_string(offset) + " do not fit in bufferViews[" +
                            std::to_string(view) + "] (byteLength " + std::to_string(length) + ")");
     }
-    return buffer.data.data() + bv.byteOffset + offset;
+    return reinterpret_cast<const unsigned char*>(buffer.data()) + bv.byteOffset + offset;
 }
 
 /// Value j of element i as float: normalised integers to [0, 1] or [-1, 1] (glTF 2.0

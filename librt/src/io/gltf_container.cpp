@@ -5,6 +5,7 @@
 #include "io/gltf_internal.h"
 
 #include <librt/core/error.h>
+#include <librt/core/untrusted_text.h>
 
 #include <nlohmann/json.hpp>
 
@@ -157,7 +158,8 @@ void check_asset_and_extensions(const Json& doc, const Context& ctx) {
     if (version == asset->end() || !version->is_string())
         ctx.fail("asset.version", "missing: not a glTF 2.0 file");
     const std::string v = version->get<std::string>();
-    if (v.rfind("2.", 0) != 0) ctx.fail("asset.version", "'" + v + "': only glTF 2.x is read");
+    if (v.rfind("2.", 0) != 0)
+        ctx.fail("asset.version", quote_untrusted(v) + ": only glTF 2.x is read");
     if (const auto min = asset->find("minVersion"); min != asset->end()) {
         if (!min->is_string() || min->get<std::string>() != "2.0")
             ctx.fail("asset.minVersion", min->dump() + ": only glTF 2.0 is read");
@@ -173,12 +175,15 @@ void check_asset_and_extensions(const Json& doc, const Context& ctx) {
             if (!name.is_string()) ctx.fail(path, "must be a string");
             const std::string n = name.get<std::string>();
             if (supported_extensions().count(n) != 0) continue;
-            if (required) ctx.fail(path, "extension " + n + " is required but not supported");
+            if (required)
+                ctx.fail(path,
+                         "extension " + quote_untrusted(n) + " is required but not supported");
             // Required ones are listed in extensionsUsed too: warn only for the optional.
             const auto req = doc.find("extensionsRequired");
             const bool also_required = req != doc.end() && req->is_array() &&
                                        std::find(req->begin(), req->end(), n) != req->end();
-            if (!also_required) ctx.warn(path, "extension " + n + " is not supported; ignored");
+            if (!also_required)
+                ctx.warn(path, "extension " + quote_untrusted(n) + " is not supported; ignored");
         }
     }
 }
@@ -191,14 +196,16 @@ std::uint64_t base64_size(std::string_view payload) {
     return n / 4 * 3 + (n % 4 == 0 ? 0 : (n % 4) * 3 / 4) - pad;
 }
 
-/// byteLength of every buffer, checked against its source.
+/// byteLength of every buffer, checked against its source, whose place is recorded in
+/// facts.buffers (each distinct external file counted once in facts.external_bytes).
 std::vector<std::uint64_t> check_buffers(const Json& doc, const Container& container,
-                                         const std::string& base_dir, std::uint64_t max_file_bytes,
+                                         const std::string& base_dir, const LoadLimits& limits,
                                          const Context& ctx, JsonFacts& facts) {
     std::vector<std::uint64_t> lengths;
     const auto buffers = doc.find("buffers");
     if (buffers == doc.end()) return lengths;
     if (!buffers->is_array()) ctx.fail("buffers", "must be an array");
+    std::set<std::string, std::less<>> files_counted;
     for (std::size_t i = 0; i < buffers->size(); ++i) {
         const Json& b = (*buffers)[i];
         const std::string path = indexed("buffers", i);
@@ -208,6 +215,8 @@ std::vector<std::uint64_t> check_buffers(const Json& doc, const Container& conta
             ctx.fail(path + ".byteLength", "missing or not a non-negative integer");
         const std::uint64_t byte_length = len->get<std::uint64_t>();
         lengths.push_back(byte_length);
+        BufferSource source;
+        source.byte_length = byte_length;
         const auto uri = b.find("uri");
         if (uri == b.end()) {
             if (!container.binary || i != 0)
@@ -218,6 +227,7 @@ std::vector<std::uint64_t> check_buffers(const Json& doc, const Container& conta
                                                    " exceeds the .glb's BIN chunk of " +
                                                    std::to_string(container.bin.size()) + " bytes");
             }
+            facts.buffers.push_back(std::move(source));
             continue;
         }
         if (!uri->is_string()) ctx.fail(path + ".uri", "must be a string");
@@ -233,31 +243,78 @@ std::vector<std::uint64_t> check_buffers(const Json& doc, const Container& conta
                 ctx.fail(path, "byteLength " + std::to_string(byte_length) +
                                    " but its data: URI holds " + std::to_string(got) + " bytes");
             }
+            source.kind = BufferSource::Kind::Data;
+            std::string mime;
+            if (!tinygltf::DecodeDataURI(&source.data, mime, u, byte_length, true))
+                ctx.fail(path + ".uri", "its base64 data does not decode");
+            facts.buffers.push_back(std::move(source));
             continue;
         }
-        const std::string file = resolve_uri(base_dir, u);
-        std::error_code ec;
-        const fs::file_status status = fs::status(file, ec);
         const std::string where = path + ".uri";
-        if (status.type() == fs::file_type::not_found)
-            ctx.fail(where, "'" + u + "' (" + file + "): no such file");
-        if (status.type() != fs::file_type::regular)
-            ctx.fail(where, "'" + u + "' (" + file + "): not a regular file");
+        const std::string file =
+            file_in_scene_tree(base_dir, u, limits.allow_outside_files, where, ctx);
+        if (const std::string why = not_regular_reason(file); !why.empty())
+            ctx.fail(where, quote_untrusted(u) + " (" + quote_untrusted(file) + "): " + why);
+        std::error_code ec;
         const std::uint64_t size = fs::file_size(file, ec);
-        if (ec) ctx.fail(where, "'" + u + "' (" + file + "): " + ec.message());
-        if (size > max_file_bytes) {
-            ctx.fail(where, "'" + u + "': " + std::to_string(size) +
-                                " bytes, more than the limit of " + std::to_string(max_file_bytes));
+        if (ec) ctx.fail(where, quote_untrusted(u) + ": " + ec.message());
+        if (size > limits.max_file_bytes) {
+            ctx.fail(where, quote_untrusted(u) + ": " + std::to_string(size) +
+                                " bytes, more than the limit of " +
+                                std::to_string(limits.max_file_bytes));
         }
         if (size < byte_length) {
-            ctx.fail(path, "byteLength " + std::to_string(byte_length) + " but '" + u +
-                               "' has only " + std::to_string(size) + " bytes");
+            ctx.fail(path, "byteLength " + std::to_string(byte_length) + " but " +
+                               quote_untrusted(u) + " has only " + std::to_string(size) + " bytes");
         }
-        facts.external_bytes += size;
-        auto [it, fresh] = facts.buffer_files.emplace(file, byte_length);
-        if (!fresh) it->second = std::max(it->second, byte_length);
+        if (files_counted.insert(file).second) facts.external_bytes += size;
+        source.kind = BufferSource::Kind::File;
+        source.file = file;
+        facts.buffers.push_back(std::move(source));
     }
     return lengths;
+}
+
+/// Where each image's bytes are (facts.images); an external file must lie in the scene's
+/// tree (an error), while one that is missing or not a file is only recorded (a warning
+/// when a texture uses it, as a viewer shows the model without that texture).
+void check_images(const Json& doc, const std::string& base_dir, const LoadLimits& limits,
+                  const Context& ctx, JsonFacts& facts) {
+    const auto images = doc.find("images");
+    if (images == doc.end()) return;
+    if (!images->is_array()) ctx.fail("images", "must be an array");
+    for (std::size_t i = 0; i < images->size(); ++i) {
+        const Json& img = (*images)[i];
+        const std::string path = indexed("images", i);
+        if (!img.is_object()) ctx.fail(path, "must be an object");
+        ImageSource source;
+        if (const auto name = img.find("name"); name != img.end() && name->is_string())
+            source.name = name->get<std::string>();
+        const auto uri = img.find("uri");
+        const auto view = img.find("bufferView");
+        if ((uri == img.end()) == (view == img.end()))
+            ctx.fail(path, "must have exactly one of uri and bufferView");
+        if (view != img.end()) {
+            if (!view->is_number_integer()) ctx.fail(path + ".bufferView", "must be an integer");
+            source.buffer_view = view->get<int>();
+        } else {
+            if (!uri->is_string()) ctx.fail(path + ".uri", "must be a string");
+            const std::string u = uri->get<std::string>();
+            if (u.rfind("data:", 0) == 0) {
+                std::string mime;
+                if (!tinygltf::IsDataURI(u) ||
+                    !tinygltf::DecodeDataURI(&source.data, mime, u, 0, false))
+                    source.unreadable = "its data: URI is not base64 image data";
+            } else {
+                source.uri = u;
+                source.file =
+                    file_in_scene_tree(base_dir, u, limits.allow_outside_files, path + ".uri", ctx);
+                source.unreadable = not_regular_reason(source.file);
+                if (!source.unreadable.empty()) source.file.clear();
+            }
+        }
+        facts.images.push_back(std::move(source));
+    }
 }
 
 void check_buffer_views(const Json& doc, const std::vector<std::uint64_t>& buffer_lengths,
@@ -372,28 +429,213 @@ Container split_container(const std::string& bytes, const Context& ctx) {
     return c;
 }
 
-JsonFacts check_json(const Container& container, const std::string& base_dir,
-                     std::uint64_t max_file_bytes, const Context& ctx) {
-    Json doc;
-    try {
-        doc = Json::parse(container.json.begin(), container.json.end());
-    } catch (const Json::exception& e) {
-        // "[json.exception.parse_error.101] parse error at line 3, column 7: ..." -> from "parse".
+namespace {
+
+/// Builds the JSON tree through nlohmann's SAX interface, leaving out what librt never
+/// reads (every "extras", and extensions it does not support) so that free-form payloads
+/// cost no memory, and counting the tree's bytes as it grows: the parse fails before its
+/// tree passes the limit. The byte model is that of nlohmann::json on a 64-bit libstdc++
+/// (16-byte values; a std::map node of 80 bytes, rounded by malloc to 96, per object
+/// member; vectors that may hold twice their size; strings past the 15-byte SSO on the heap).
+class PrunedTreeBuilder {
+public:
+    PrunedTreeBuilder(const Context& ctx, std::uint64_t limit) : ctx_(ctx), limit_(limit) {}
+
+    bool null() { return value(Json(nullptr)); }
+    bool boolean(bool v) { return value(Json(v)); }
+    bool number_integer(Json::number_integer_t v) { return value(Json(v)); }
+    bool number_unsigned(Json::number_unsigned_t v) { return value(Json(v)); }
+    bool number_float(Json::number_float_t v, const std::string&) { return value(Json(v)); }
+    bool string(std::string& v) {
+        if (skipping()) return end_skipped_scalar();
+        charge(48 + heap_string(v.size()));
+        return value(Json(std::move(v)));
+    }
+    bool binary(Json::binary_t&) { return value(Json(nullptr)); }  // not produced by JSON text
+    bool start_object(std::size_t) { return start(Json::object(), 64); }
+    bool start_array(std::size_t) { return start(Json::array(), 32); }
+    bool end_object() { return end(); }
+    bool end_array() { return end(); }
+    bool key(std::string& k) {
+        if (skip_depth_ > 0) return true;
+        const Frame& parent = frames_.back();
+        // Extras are free-form application data; an unsupported extension is ignored.
+        skip_next_ = k == "extras" || (parent.extensions && supported_extensions().count(k) == 0);
+        key_ = std::move(k);
+        return true;
+    }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) {
+        // "[json.exception.parse_error.101] parse error at line 3, column 7: ..." -> from
+        // "parse", the offending token made printable and short by Error.
         std::string what = e.what();
         if (const auto at = what.find("] "); at != std::string::npos) what.erase(0, at + 2);
-        ctx.fail("", "broken JSON: " + what);
+        ctx_.fail("", "broken JSON: " + what);
+    }
+
+    /// The tree, without what was left out.
+    Json take() { return std::move(root_); }
+    /// Its estimated bytes.
+    [[nodiscard]] std::uint64_t bytes() const { return bytes_; }
+
+private:
+    struct Frame {
+        Json* node;       // the object or array being filled
+        std::string key;  // its key in its parent (or "[i]")
+        bool extensions;  // an "extensions" object: its members are extension names
+    };
+
+    static std::uint64_t heap_string(std::size_t n) { return n > 15 ? n + 1 : 0; }
+    bool skipping() const { return skip_depth_ > 0 || skip_next_; }
+    bool end_skipped_scalar() {
+        if (skip_depth_ == 0) skip_next_ = false;
+        return true;
+    }
+    void charge(std::uint64_t b) {
+        bytes_ += b;
+        if (bytes_ > limit_)
+            ctx_.fail(path(), "the JSON takes more than the " + std::to_string(limit_) +
+                                  " bytes of memory that loading this file may use (" +
+                                  "GltfLoadOptions::max_memory_bytes)");
+    }
+    std::string path() const {
+        std::string p;
+        for (std::size_t i = 1; i < frames_.size(); ++i) {
+            const std::string& k = frames_[i].key;
+            if (!p.empty() && k[0] != '[') p += '.';
+            p += k;
+        }
+        return p;
+    }
+    /// Adds v to the current container, returning where it now lives.
+    Json* place(Json v) {
+        if (frames_.empty()) {
+            root_ = std::move(v);
+            return &root_;
+        }
+        Json& parent = *frames_.back().node;
+        if (parent.is_array()) {
+            charge(32);
+            parent.push_back(std::move(v));
+            return &parent.back();
+        }
+        charge(96 + heap_string(key_.size()));
+        Json& slot = parent[key_];
+        slot = std::move(v);
+        return &slot;
+    }
+    bool value(Json v) {
+        if (skipping()) return end_skipped_scalar();
+        place(std::move(v));
+        return true;
+    }
+    bool start(Json v, std::uint64_t cost) {
+        if (skip_depth_ > 0 || skip_next_) {
+            skip_next_ = false;
+            ++skip_depth_;
+            return true;
+        }
+        if (frames_.size() + 1 > std::size_t(kMaxJsonDepth)) {
+            ctx_.fail(path(),
+                      "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+        }
+        std::string key;
+        if (!frames_.empty())
+            key = frames_.back().node->is_array()
+                      ? "[" + std::to_string(frames_.back().node->size()) + "]"
+                      : key_;
+        const bool extensions =
+            !frames_.empty() && frames_.back().node->is_object() && key_ == "extensions";
+        charge(cost);
+        Json* node = place(std::move(v));
+        frames_.push_back({node, std::move(key), extensions});
+        return true;
+    }
+    bool end() {
+        if (skip_depth_ > 0) {
+            --skip_depth_;
+            return true;
+        }
+        frames_.pop_back();
+        return true;
+    }
+
+    const Context& ctx_;
+    std::uint64_t limit_;
+    std::uint64_t bytes_ = 0;
+    Json root_;
+    std::vector<Frame> frames_;
+    std::string key_;
+    bool skip_next_ = false;  // the next value is left out
+    int skip_depth_ = 0;      // containers open inside a left-out value
+};
+
+/// Counts of what tinygltf's Model holds for the tree, times its types' sizes: the bytes
+/// the Model takes (an estimate: each JSON value stored costs at most 24 more bytes).
+std::uint64_t model_bytes(const Json& doc, std::uint64_t tree_bytes) {
+    auto count = [&](const char* key) -> std::uint64_t {
+        const auto it = doc.find(key);
+        return it != doc.end() && it->is_array() ? it->size() : 0;
+    };
+    std::uint64_t primitives = 0;
+    if (const auto meshes = doc.find("meshes"); meshes != doc.end() && meshes->is_array())
+        for (const Json& m : *meshes)
+            if (const auto p = m.find("primitives"); m.is_object() && p != m.end() && p->is_array())
+                primitives += p->size();
+    using namespace tinygltf;
+    return count("nodes") * sizeof(Node) + count("meshes") * sizeof(Mesh) +
+           primitives * sizeof(Primitive) + count("accessors") * sizeof(Accessor) +
+           count("bufferViews") * sizeof(BufferView) + count("buffers") * sizeof(Buffer) +
+           count("materials") * sizeof(Material) + count("textures") * sizeof(Texture) +
+           count("images") * sizeof(Image) + count("samplers") * sizeof(Sampler) +
+           count("cameras") * sizeof(Camera) + count("scenes") * sizeof(Scene) +
+           count("skins") * sizeof(Skin) + count("animations") * sizeof(Animation) +
+           tree_bytes * 3 / 2;
+}
+
+/// The tree as tinygltf is given it: buffers and images replaced by stand-ins that make
+/// it read nothing (their bytes are in JsonFacts).
+std::string tinygltf_text(Json& doc) {
+    if (const auto buffers = doc.find("buffers"); buffers != doc.end()) {
+        for (Json& b : *buffers)
+            b = Json{{"byteLength", 1}, {"uri", "data:application/octet-stream;base64,AA=="}};
+    }
+    if (const auto images = doc.find("images"); images != doc.end())
+        for (Json& img : *images) img = Json{{"uri", "librt-reads-this-image-itself"}};
+    return doc.dump();
+}
+
+}  // namespace
+
+JsonFacts check_json(const Container& container, const std::string& base_dir,
+                     const LoadLimits& limits, const Context& ctx) {
+    JsonFacts facts;
+    Json doc;
+    std::uint64_t tree_bytes = 0;
+    {
+        PrunedTreeBuilder builder(ctx, limits.memory);
+        try {
+            Json::sax_parse(container.json.begin(), container.json.end(), &builder);
+        } catch (const Json::exception& e) {
+            ctx.fail("", std::string("broken JSON: ") + e.what());
+        }
+        doc = builder.take();
+        tree_bytes = builder.bytes();
     }
     if (!doc.is_object()) ctx.fail("", "not a glTF file: the JSON is not an object");
-    JsonFacts facts;
     try {
         check_structure(doc, ctx);
         check_asset_and_extensions(doc, ctx);
-        const auto lengths = check_buffers(doc, container, base_dir, max_file_bytes, ctx, facts);
+        const auto lengths = check_buffers(doc, container, base_dir, limits, ctx, facts);
         check_buffer_views(doc, lengths, ctx);
+        check_images(doc, base_dir, limits, ctx, facts);
+        facts.model_bytes = model_bytes(doc, tree_bytes);
+        facts.tinygltf_json = tinygltf_text(doc);
     } catch (const Json::exception& e) {
         // A member of an unexpected JSON type that a check above did not test first.
         ctx.fail("", std::string("unexpected JSON: ") + e.what());
     }
+    // tinygltf's parse holds its own tree of the text (no larger than ours) and the Model.
+    facts.tinygltf_bytes = tree_bytes + facts.model_bytes + facts.tinygltf_json.size();
     return facts;
 }
 

@@ -1,15 +1,18 @@
 // File access and messages of the glTF loader: read_regular_file (the one place bytes
 // come from), tinygltf's routed file callbacks, and Context.
 
+#include "io/file_io.h"
 #include "io/gltf_internal.h"
 
 #include <librt/core/error.h>
+#include <librt/core/untrusted_text.h>
 
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <string>
@@ -67,7 +70,7 @@ void Context::warn(std::string_view json_path, std::string_view what) const {
     std::string message = file_ + ": ";
     if (!json_path.empty()) message.append(json_path).append(": ");
     message.append(what);
-    warnings_->push_back(std::move(message));
+    warnings_->push_back(printable(message, kMaxErrorBytes));
 }
 
 void Context::spend(std::uint64_t bytes, std::string_view json_path) {
@@ -116,64 +119,105 @@ std::string decode_uri(std::string_view uri) {
     return out;
 }
 
-std::string resolve_uri(const std::string& base_dir, std::string_view uri) {
+std::string not_regular_reason(const std::string& path) {
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0) {
+        if (errno == ENOENT || errno == ENOTDIR) return "no such file";
+        return std::string("cannot access: ") + std::strerror(errno);
+    }
+    if (S_ISREG(info.st_mode)) return {};
+    if (S_ISDIR(info.st_mode)) return "a directory, not a file";
+    if (S_ISCHR(info.st_mode)) return "a character device, not a file";
+    if (S_ISBLK(info.st_mode)) return "a block device, not a file";
+    if (S_ISFIFO(info.st_mode)) return "a FIFO, not a file";
+    if (S_ISSOCK(info.st_mode)) return "a socket, not a file";
+    return "not a regular file";
+}
+
+std::string file_in_scene_tree(const std::string& base_dir, std::string_view uri,
+                               bool allow_outside, const std::string& json_path,
+                               const Context& ctx) {
     std::string decoded = decode_uri(uri);
-    if (base_dir.empty()) return decoded;
-    return base_dir.back() == '/' ? base_dir + decoded : base_dir + "/" + decoded;
+    // RFC 3986 section 3.1: a scheme is a letter, then letters, digits, '+', '-' or '.',
+    // then ':', before any '/'. Only a file: URI names a local file; others never do.
+    std::size_t scheme_end = 0;
+    if (!decoded.empty() && std::isalpha(static_cast<unsigned char>(decoded[0]))) {
+        std::size_t k = 1;
+        while (k < decoded.size() && (std::isalnum(static_cast<unsigned char>(decoded[k])) ||
+                                      decoded[k] == '+' || decoded[k] == '-' || decoded[k] == '.'))
+            ++k;
+        if (k < decoded.size() && decoded[k] == ':') scheme_end = k + 1;
+    }
+    const std::string lift =
+        " (a scene file reads only files in its own directory tree; "
+        "GltfLoadOptions::allow_outside_files, rt_render --allow-outside-files, lifts this "
+        "for a file you trust)";
+    if (scheme_end != 0) {
+        const std::string scheme = decoded.substr(0, scheme_end);
+        bool is_file = scheme.size() == 5;
+        for (std::size_t k = 0; is_file && k < 4; ++k)
+            is_file = std::tolower(static_cast<unsigned char>(scheme[k])) == "file"[k];
+        if (!is_file)
+            ctx.fail(json_path, quote_untrusted(uri) +
+                                    ": only relative paths and data: URIs are read, not " +
+                                    quote_untrusted(scheme) + " URIs");
+        if (!allow_outside) ctx.fail(json_path, quote_untrusted(uri) + ": a file: URI" + lift);
+        decoded.erase(0, scheme_end);
+        // file://host/path: only an empty host (or localhost) names this machine.
+        if (decoded.rfind("//", 0) == 0) {
+            const std::size_t slash = decoded.find('/', 2);
+            const std::string host =
+                decoded.substr(2, slash == std::string::npos ? std::string::npos : slash - 2);
+            if (!host.empty() && host != "localhost")
+                ctx.fail(json_path, quote_untrusted(uri) + ": a file on another host");
+            decoded.erase(0, slash == std::string::npos ? decoded.size() : slash);
+        }
+    }
+    if (decoded.empty()) ctx.fail(json_path, "an empty uri names no file");
+    if (decoded.find('\0') != std::string::npos)
+        ctx.fail(json_path, quote_untrusted(uri) + ": a NUL byte in a file name");
+    const fs::path named(decoded);
+    if (named.is_absolute() && !allow_outside)
+        ctx.fail(json_path, quote_untrusted(uri) + ": an absolute path" + lift);
+    detail::TreePath file;
+    try {
+        file = detail::resolve_in_tree(base_dir, named);
+    } catch (const Error& e) {
+        ctx.fail(json_path, e.what());
+    }
+    if (!file.inside && !allow_outside) {
+        ctx.fail(json_path, quote_untrusted(uri) + ": leads outside the scene's directory" + lift);
+    }
+    return file.path.string();
 }
 
 namespace {
 
-bool routed_file_exists(const std::string& path, void* user_data) {
-    const auto* routing = static_cast<const FsRouting*>(user_data);
-    // tinygltf also tries the working directory; only the glTF's own directory counts.
-    if (path.compare(0, routing->base_dir.size(), routing->base_dir) != 0) return false;
-    struct stat info {};
-    return ::stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode);
+bool no_file_exists(const std::string&, void*) { return false; }
+std::string no_expand(const std::string& path, void*) { return path; }  // no ~ or $VAR
+bool no_read(std::vector<unsigned char>*, std::string* err, const std::string&, void*) {
+    if (err) *err += "tinygltf reads no file in librt";
+    return false;
 }
-
-std::string routed_expand(const std::string& path, void*) { return path; }  // no ~ or $VAR
-
-bool routed_read(std::vector<unsigned char>* out, std::string* err, const std::string& path,
-                 void* user_data) {
-    auto* routing = static_cast<FsRouting*>(user_data);
-    try {
-        const std::string bytes = read_regular_file(path, routing->max_bytes);
-        std::size_t keep = bytes.size();
-        if (const auto it = routing->truncate_to.find(path); it != routing->truncate_to.end())
-            keep = std::min<std::size_t>(keep, static_cast<std::size_t>(it->second));
-        out->assign(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(keep));
-        return true;
-    } catch (const Error& e) {
-        routing->failures[path] = e.what();
-        if (err) *err += e.what();
-        return false;
-    }
-}
-
-bool routed_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+bool no_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
     if (err) *err += "the glTF loader never writes files";
     return false;
 }
 
 }  // namespace
 
-tinygltf::FsCallbacks FsRouting::callbacks() {
+tinygltf::FsCallbacks no_file_access() {
     tinygltf::FsCallbacks callbacks{};
-    callbacks.FileExists = &routed_file_exists;
-    callbacks.ExpandFilePath = &routed_expand;
-    callbacks.ReadWholeFile = &routed_read;
-    callbacks.WriteWholeFile = &routed_write;
-    callbacks.user_data = this;
+    callbacks.FileExists = &no_file_exists;
+    callbacks.ExpandFilePath = &no_expand;
+    callbacks.ReadWholeFile = &no_read;
+    callbacks.WriteWholeFile = &no_write;
+    callbacks.user_data = nullptr;
     return callbacks;
 }
 
-bool keep_encoded_image(tinygltf::Image* image, int, std::string*, std::string*, int, int,
-                        const unsigned char* bytes, int size, void*) {
-    // Images in a buffer view are read from the (range-checked) buffer later; only bytes
-    // tinygltf loaded from a file or data: URI are kept here.
-    if (image->bufferView < 0 && bytes != nullptr && size > 0)
-        image->image.assign(bytes, bytes + size);
+bool ignore_image(tinygltf::Image* image, int, std::string*, std::string*, int, int,
+                  const unsigned char*, int, void*) {
     image->as_is = true;
     return true;
 }

@@ -45,13 +45,22 @@ public:
     void spend(std::uint64_t bytes, std::string_view json_path);
     /// Sets the allowance of decoded output in bytes.
     void set_budget(std::uint64_t bytes) { budget_ = bytes; }
+    /// Adds to the allowance (a file read raises the memory bound).
+    void add_budget(std::uint64_t bytes) { budget_ += bytes; }
     /// The file name used in messages.
     [[nodiscard]] const std::string& file() const { return file_; }
+    /// Sets the bytes of each buffers[i] (views into memory that outlives the Context).
+    void set_buffers(std::vector<std::string_view> buffers) { buffers_ = std::move(buffers); }
+    /// The bytes of buffers[index] (index checked by the caller).
+    [[nodiscard]] std::string_view buffer(std::size_t index) const { return buffers_[index]; }
+    /// How many buffers there are.
+    [[nodiscard]] std::size_t buffer_count() const { return buffers_.size(); }
 
 private:
     std::string file_;
     std::vector<std::string>* warnings_;
     std::uint64_t budget_ = 0;
+    std::vector<std::string_view> buffers_;
 };
 
 /// The file's bytes seen as glTF: the JSON text and, for a .glb, its BIN chunk.
@@ -66,30 +75,86 @@ struct Container {
 /// Splits the bytes into JSON and BIN, checking a .glb's header and chunk lengths.
 [[nodiscard]] Container split_container(const std::string& bytes, const Context& ctx);
 
-/// What the JSON pre-pass learned.
+/// Where one buffer's bytes come from. tinygltf never reads a file: librt reads each
+/// distinct file once (load_gltf) and accessors read the bytes through Context::buffer.
+struct BufferSource {
+    /// The source's kind.
+    enum class Kind {
+        Bin,   ///< the .glb's BIN chunk
+        File,  ///< an external file, `file`
+        Data,  ///< a data: URI, decoded into `data`
+    };
+    Kind kind = Kind::Bin;            ///< where the bytes are
+    std::string file;                 ///< Kind::File: canonical path, inside the scene's tree
+    std::vector<unsigned char> data;  ///< Kind::Data: the decoded bytes
+    std::uint64_t byte_length = 0;    ///< the buffer's byteLength (checked against the source)
+};
+
+/// Where one image's encoded bytes come from (at most one of file, buffer_view, data).
+struct ImageSource {
+    std::string name;                 ///< its name, may be empty
+    std::string uri;                  ///< its uri as written, when external (not data:)
+    std::string file;                 ///< canonical path of that file when it can be read
+    std::string unreadable;           ///< why an external uri cannot be read, else empty
+    int buffer_view = -1;             ///< its bufferView, else -1
+    std::vector<unsigned char> data;  ///< the bytes of a data: URI
+};
+
+/// Limits of one load, from GltfLoadOptions.
+struct LoadLimits {
+    std::uint64_t max_file_bytes = 0;  ///< largest file read
+    bool allow_outside_files = false;  ///< files outside the scene's directory may be read
+    std::uint64_t memory = 0;          ///< bytes the JSON stages may take (see check_json)
+    bool grow_with_reads = true;       ///< each file read raises the bound (no fixed bound)
+};
+
+/// The default memory bound of a load: kMemoryPerByteRead times the bytes of the files it
+/// reads, plus kMemoryBaseline.
+inline constexpr std::uint64_t kMemoryPerByteRead = 16;
+/// See kMemoryPerByteRead.
+inline constexpr std::uint64_t kMemoryBaseline = std::uint64_t{256} << 20u;
+
+/// What the JSON pre-pass learned, and the JSON that tinygltf parses.
 struct JsonFacts {
-    std::uint64_t external_bytes = 0;  ///< bytes of the external buffers it checked
-    /// External buffer files (as tinygltf will name them) and the bytes their buffers use:
-    /// a longer file is read only that far.
-    std::map<std::string, std::uint64_t> buffer_files;
+    /// The document as tinygltf reads it: no extras, no unsupported extensions, every
+    /// buffer a one-byte data: URI and every image an unreadable name (their bytes come
+    /// from `buffers` and `images`), so tinygltf never touches a file.
+    std::string tinygltf_json;
+    std::vector<BufferSource> buffers;  ///< one per buffers[i]
+    std::vector<ImageSource> images;    ///< one per images[i]
+    std::uint64_t external_bytes = 0;   ///< bytes of the distinct external buffer files
+    /// Estimated peak bytes of tinygltf's parse of tinygltf_json (its JSON tree and Model).
+    std::uint64_t tinygltf_bytes = 0;
+    /// Estimated bytes of the Model that stays while librt decodes it.
+    std::uint64_t model_bytes = 0;
 };
 
 /// Checks what tinygltf trusts or reads loosely, with JSON paths in the errors: the JSON
 /// parses to an object, is nested at most kMaxJsonDepth deep, asset.version is 2.x, every
 /// extensionsRequired entry is supported (extensionsUsed-only unknowns are warnings),
-/// integers fit the fields tinygltf stores them in, external buffers exist and are large
-/// enough, buffer views lie inside their buffers.
+/// integers fit the fields tinygltf stores them in, external buffers and images lie in the
+/// scene's directory tree (unless allowed), buffers exist and are large enough, buffer
+/// views lie inside their buffers. Extras and unsupported extensions are dropped while
+/// parsing, and the parse fails before its tree passes limits.memory.
 [[nodiscard]] JsonFacts check_json(const Container& container, const std::string& base_dir,
-                                   std::uint64_t max_file_bytes, const Context& ctx);
+                                   const LoadLimits& limits, const Context& ctx);
+
+/// The canonical path of the file a relative URI names from `base_dir`, refused (failing
+/// at json_path) when it is absolute, has a scheme, or leads outside base_dir's tree
+/// through "..", or a symlink, unless allow_outside. The file need not exist.
+[[nodiscard]] std::string file_in_scene_tree(const std::string& base_dir, std::string_view uri,
+                                             bool allow_outside, const std::string& json_path,
+                                             const Context& ctx);
+
+/// "a directory", "a FIFO"... for a path that is not a regular file; empty for a regular
+/// file; "no such file" when it does not exist.
+[[nodiscard]] std::string not_regular_reason(const std::string& path);
 
 /// Deepest JSON nesting accepted (tinygltf converts extras and extensions recursively).
 inline constexpr int kMaxJsonDepth = 64;
 
 /// Percent-decodes a URI reference into a relative path ("a%20b.png" -> "a b.png").
 [[nodiscard]] std::string decode_uri(std::string_view uri);
-
-/// The path tinygltf reads for `uri` relative to base_dir (its JoinPath, decoded URI).
-[[nodiscard]] std::string resolve_uri(const std::string& base_dir, std::string_view uri);
 
 /// "accessors[7]" and friends.
 [[nodiscard]] std::string indexed(std::string_view array, std::size_t index);
@@ -124,33 +189,24 @@ void read_meshes(const tinygltf::Model& model, Context& ctx, GltfScene& scene);
 /// after checking the node graph is a forest (no cycles, no node with two parents).
 void read_nodes(const tinygltf::Model& model, int scene_index, Context& ctx, GltfScene& scene);
 
-/// Reads materials, textures and samplers, and image names and URIs.
-void read_materials(const tinygltf::Model& model, Context& ctx, GltfScene& scene);
+/// Reads materials, textures and samplers, and image names and URIs (from `images`).
+void read_materials(const tinygltf::Model& model, const std::vector<ImageSource>& images,
+                    Context& ctx, GltfScene& scene);
 
-/// Reasons external files could not be read, by resolved path (filled by the tinygltf
-/// file callbacks, used in warnings about images).
-using ReadFailures = std::map<std::string, std::string>;
+/// Decodes the images textures use (PNG or JPEG) from their sources; an image that is
+/// missing or does not decode is a warning, and textures using it get image = -1. Each
+/// distinct file is read once: textures of an image naming the same file as an earlier
+/// one use the earlier image.
+void decode_images(const tinygltf::Model& model, const std::vector<ImageSource>& sources,
+                   const LoadLimits& limits, Context& ctx, GltfScene& scene);
 
-/// Decodes the images textures use (PNG or JPEG); an image that is missing or does not
-/// decode is a warning, and textures using it get image = -1.
-void decode_images(const tinygltf::Model& model, const ReadFailures& failures, Context& ctx,
-                   GltfScene& scene);
+/// tinygltf's file-system callbacks: every file is reported missing and no file is read
+/// or written (librt reads buffers and images itself, see JsonFacts).
+[[nodiscard]] tinygltf::FsCallbacks no_file_access();
 
-/// tinygltf's file-system callbacks routed through read_regular_file, refusing files
-/// outside base_dir's candidates and any writing; failures are recorded.
-struct FsRouting {
-    std::string base_dir;         ///< the directory URIs are relative to
-    std::uint64_t max_bytes = 0;  ///< size limit per file
-    ReadFailures failures;        ///< why reads failed
-    /// Files read only up to a length (JsonFacts::buffer_files).
-    std::map<std::string, std::uint64_t> truncate_to;
-    /// The callbacks, with this as their user data.
-    [[nodiscard]] tinygltf::FsCallbacks callbacks();
-};
-
-/// tinygltf image callback: keeps the encoded bytes (decoded later by decode_images).
-bool keep_encoded_image(tinygltf::Image* image, int image_index, std::string* err,
-                        std::string* warn, int req_width, int req_height,
-                        const unsigned char* bytes, int size, void* user_data);
+/// tinygltf image callback: keeps nothing (decode_images reads ImageSource instead).
+bool ignore_image(tinygltf::Image* image, int image_index, std::string* err, std::string* warn,
+                  int req_width, int req_height, const unsigned char* bytes, int size,
+                  void* user_data);
 
 }  // namespace librt::gltf_detail

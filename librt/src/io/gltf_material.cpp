@@ -3,11 +3,15 @@
 
 #include "io/gltf_internal.h"
 
+#include <librt/core/error.h>
+#include <librt/core/untrusted_text.h>
+
 #include <stb/stb_image.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -140,7 +144,8 @@ GltfMaterial read_material(const tinygltf::Material& m, const std::string& path,
     else if (m.alphaMode == "BLEND")
         g.alpha_mode = GltfAlphaMode::Blend;
     else
-        ctx.fail(path + ".alphaMode", "'" + m.alphaMode + "': must be OPAQUE, MASK or BLEND");
+        ctx.fail(path + ".alphaMode",
+                 quote_untrusted(m.alphaMode) + ": must be OPAQUE, MASK or BLEND");
     if (!std::isfinite(m.alphaCutoff) || m.alphaCutoff < 0)
         ctx.fail(path + ".alphaCutoff", "must be finite and >= 0");
     g.alpha_cutoff = float(m.alphaCutoff);
@@ -257,11 +262,12 @@ std::string decode(const unsigned char* bytes, std::size_t size, GltfImage& imag
 
 }  // namespace
 
-void read_materials(const tinygltf::Model& model, Context& ctx, GltfScene& scene) {
-    for (std::size_t i = 0; i < model.images.size(); ++i) {
+void read_materials(const tinygltf::Model& model, const std::vector<ImageSource>& images,
+                    Context& ctx, GltfScene& scene) {
+    for (const ImageSource& source : images) {
         GltfImage image;
-        image.name = model.images[i].name;
-        if (model.images[i].uri.rfind("data:", 0) != 0) image.uri = model.images[i].uri;
+        image.name = source.name;
+        image.uri = source.uri;
         scene.images.push_back(std::move(image));
     }
     for (std::size_t i = 0; i < model.textures.size(); ++i) {
@@ -291,45 +297,69 @@ void read_materials(const tinygltf::Model& model, Context& ctx, GltfScene& scene
             read_material(model.materials[i], indexed("materials", i), model.textures.size(), ctx));
 }
 
-void decode_images(const tinygltf::Model& model, const ReadFailures& failures, Context& ctx,
-                   GltfScene& scene) {
-    std::vector<unsigned char> used(model.images.size(), 0);
+void decode_images(const tinygltf::Model& model, const std::vector<ImageSource>& sources,
+                   const LoadLimits& limits, Context& ctx, GltfScene& scene) {
+    std::vector<unsigned char> used(sources.size(), 0);
     for (const GltfTexture& t : scene.textures)
         if (t.image >= 0) used[std::size_t(t.image)] = 1;
-    std::vector<unsigned char> ok(model.images.size(), 0);
-    for (std::size_t i = 0; i < model.images.size(); ++i) {
-        if (!used[i]) continue;
-        const tinygltf::Image& img = model.images[i];
+    std::vector<unsigned char> ok(sources.size(), 0);
+    // The first image that names each file: a file is read and decoded once, however
+    // many images name it, and textures of the others use that first image.
+    std::map<std::string, std::size_t> first_of_file;
+    std::vector<std::size_t> same_as(sources.size());
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+        same_as[i] = i;
+        if (!used[i] || sources[i].file.empty()) continue;
+        const auto [it, fresh] = first_of_file.emplace(sources[i].file, i);
+        if (!fresh) same_as[i] = it->second;
+    }
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+        if (!used[i] || same_as[i] != i) continue;
+        const ImageSource& source = sources[i];
         const std::string path = indexed("images", i);
-        std::string problem;
-        if (img.bufferView >= 0) {
-            // In range: the pre-pass checked the view against its buffer.
-            const tinygltf::BufferView& bv = model.bufferViews[std::size_t(img.bufferView)];
-            const tinygltf::Buffer& b = model.buffers[std::size_t(bv.buffer)];
-            if (bv.byteOffset + bv.byteLength > b.data.size())
+        std::string problem = source.unreadable;
+        std::string file_bytes;
+        std::string_view encoded;
+        if (!problem.empty()) {
+            if (!source.uri.empty()) problem = quote_untrusted(source.uri) + ": " + problem;
+        } else if (source.buffer_view >= 0) {
+            check_index(ctx, path + ".bufferView", source.buffer_view, model.bufferViews.size(),
+                        "buffer view");
+            // Its buffer exists and the view lies in it (the pre-pass checked both).
+            const tinygltf::BufferView& bv = model.bufferViews[std::size_t(source.buffer_view)];
+            const std::string_view buffer = ctx.buffer(std::size_t(bv.buffer));
+            if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset)
                 problem = "its buffer view lies outside the buffer";
             else
-                problem = decode(b.data.data() + bv.byteOffset, bv.byteLength, scene.images[i], ctx,
-                                 path);
-        } else if (!img.image.empty()) {
-            problem = decode(img.image.data(), img.image.size(), scene.images[i], ctx, path);
+                encoded = buffer.substr(bv.byteOffset, bv.byteLength);
+        } else if (!source.file.empty()) {
+            try {
+                file_bytes = read_regular_file(source.file, limits.max_file_bytes);
+                encoded = file_bytes;
+                // A file read raises the memory bound as much as it raises what is held.
+                if (limits.grow_with_reads) ctx.add_budget(kMemoryPerByteRead * file_bytes.size());
+            } catch (const Error& e) {
+                problem = e.what();
+            }
         } else {
-            const std::string file = resolve_uri("", img.uri);
-            problem = "'" + img.uri + "' could not be read";
-            for (const auto& [p, why] : failures)
-                if (p.size() >= file.size() &&
-                    p.compare(p.size() - file.size(), file.size(), file) == 0)
-                    problem = why;
-            if (failures.empty()) problem += " (no such file)";
+            encoded = std::string_view(reinterpret_cast<const char*>(source.data.data()),
+                                       source.data.size());
         }
+        if (problem.empty() && encoded.empty()) problem = "no image data";
+        if (problem.empty())
+            problem = decode(reinterpret_cast<const unsigned char*>(encoded.data()), encoded.size(),
+                             scene.images[i], ctx, path);
         if (problem.empty()) {
             ok[i] = 1;
         } else {
             ctx.warn(path, problem + "; textures using it are ignored (factors alone)");
         }
     }
-    for (GltfTexture& t : scene.textures)
-        if (t.image >= 0 && !ok[std::size_t(t.image)]) t.image = -1;
+    for (GltfTexture& t : scene.textures) {
+        if (t.image < 0) continue;
+        const std::size_t first = same_as[std::size_t(t.image)];
+        t.image = ok[first] ? int(first) : -1;
+    }
 }
 
 }  // namespace librt::gltf_detail

@@ -3,7 +3,9 @@
 
 #include "io/gltf_internal.h"
 
+#include <algorithm>
 #include <string>
+#include <string_view>
 
 namespace librt::gltf_detail {
 
@@ -17,6 +19,41 @@ std::vector<glm::vec<N, float>> to_vectors(const std::vector<float>& flat) {
     return out;
 }
 
+/// Whether attribute `name` may be stored as `component_type` (normalised or not): the
+/// glTF 2.0 specification's table of vertex attributes (section 3.7.2.1), widened by
+/// KHR_mesh_quantization's table when the file lists that extension in extensionsUsed.
+bool attribute_format_allowed(std::string_view name, int component_type, bool normalized,
+                              bool quantized) {
+    const bool f = component_type == TINYGLTF_COMPONENT_TYPE_FLOAT;
+    const bool ub = component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    const bool us = component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    const bool b = component_type == TINYGLTF_COMPONENT_TYPE_BYTE;
+    const bool s = component_type == TINYGLTF_COMPONENT_TYPE_SHORT;
+    if (f) return !normalized;
+    if (name == "COLOR_0") return (ub || us) && normalized;
+    if (name == "TEXCOORD_0" || name == "TEXCOORD_1")
+        return quantized ? (ub || us || b || s) : ((ub || us) && normalized);
+    if (name == "POSITION") return quantized && (ub || us || b || s);
+    // NORMAL and TANGENT: signed and normalised only.
+    return quantized && (b || s) && normalized;
+}
+
+/// Fails unless accessor `index` stores attribute `name` in a format the file may use.
+void check_attribute_format(const tinygltf::Model& model, int index, std::string_view name,
+                            const std::string& path, const Context& ctx) {
+    const tinygltf::Accessor& a = model.accessors[std::size_t(index)];
+    const auto& used = model.extensionsUsed;
+    const bool quantized =
+        std::find(used.begin(), used.end(), "KHR_mesh_quantization") != used.end();
+    if (attribute_format_allowed(name, a.componentType, a.normalized, quantized)) return;
+    std::string what = "componentType " + std::to_string(a.componentType) +
+                       (a.normalized ? " (normalized)" : "") + " is not allowed for " +
+                       std::string(name);
+    if (!quantized && attribute_format_allowed(name, a.componentType, a.normalized, true))
+        what += " unless KHR_mesh_quantization is in extensionsUsed";
+    ctx.fail(path + ": " + indexed("accessors", std::size_t(index)) + ".componentType", what);
+}
+
 /// Reads attribute `name` when present, checking its count; empty when absent.
 template <int N>
 std::vector<glm::vec<N, float>> attribute(const tinygltf::Model& model,
@@ -27,6 +64,7 @@ std::vector<glm::vec<N, float>> attribute(const tinygltf::Model& model,
     if (it == prim.attributes.end()) return {};
     const std::string at = path + ".attributes." + name;
     check_index(ctx, at, it->second, model.accessors.size(), "accessor");
+    check_attribute_format(model, it->second, name, at, ctx);
     if (accessor_count(model, it->second) != count) {
         ctx.fail(at, "count " + std::to_string(accessor_count(model, it->second)) +
                          " differs from POSITION's " + std::to_string(count));
@@ -112,6 +150,8 @@ void read_meshes(const tinygltf::Model& model, Context& ctx, GltfScene& scene) {
             g.material = prim.material;
             int components = 0;
             const std::string pos_path = path + ".attributes.POSITION";
+            check_index(ctx, pos_path, pos->second, model.accessors.size(), "accessor");
+            check_attribute_format(model, pos->second, "POSITION", pos_path, ctx);
             g.positions = to_vectors<3>(
                 read_float_accessor(model, pos->second, kVec3, pos_path, ctx, &components));
             const std::size_t count = g.positions.size();

@@ -4,6 +4,8 @@
 
 #include "io/gltf_internal.h"
 
+#include <librt/core/untrusted_text.h>
+
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -155,7 +157,8 @@ GltfCamera read_camera(const tinygltf::Camera& cam, const std::string& path, con
         c.znear = float(o.znear);
         c.zfar = float(o.zfar);
     } else {
-        ctx.fail(path + ".type", "'" + cam.type + "': must be perspective or orthographic");
+        ctx.fail(path + ".type",
+                 quote_untrusted(cam.type) + ": must be perspective or orthographic");
     }
     return c;
 }
@@ -170,7 +173,8 @@ GltfLight read_light(const tinygltf::Light& light, const std::string& path, cons
     else if (light.type == "directional")
         l.type = GltfLight::Type::Directional;
     else
-        ctx.fail(path + ".type", "'" + light.type + "': must be point, spot or directional");
+        ctx.fail(path + ".type",
+                 quote_untrusted(light.type) + ": must be point, spot or directional");
     if (!light.color.empty()) {
         if (light.color.size() != 3 || !finite(light.color) || light.color[0] < 0 ||
             light.color[1] < 0 || light.color[2] < 0)

@@ -115,15 +115,21 @@ void fill_missing_normals(TriangleMesh& mesh, const std::vector<std::int32_t>& v
 void report(const fs::path& path, const std::vector<std::string>& lines,
             const ObjLoadOptions& options) {
     if (options.warnings == nullptr) return;
-    for (const std::string& line : lines) options.warnings->push_back(path.string() + ": " + line);
+    for (const std::string& line : lines)
+        options.warnings->push_back(printable(path.string() + ": " + line, kMaxErrorBytes));
 }
 
 /// Reads the MTL files the OBJ names (mtllib, resolved against the OBJ's directory),
 /// appending their materials. A missing file is a warning (its materials are then unknown
 /// and their faces get the default material); anything else wrong is an Error.
-void load_mtllibs(const detail::ObjScanResult& scan, const fs::path& dir,
+void load_mtllibs(const detail::ObjScanResult& scan, const fs::path& obj_path, bool allow_outside,
                   std::vector<MeshMaterial>& materials, std::vector<std::string>& warnings,
                   std::vector<std::string>& file_warnings) {
+    const fs::path dir = obj_path.parent_path();
+    const std::string lift =
+        " (an OBJ reads only files in its own directory tree; "
+        "ObjLoadOptions::allow_outside_files, rt_render --allow-outside-files, lifts this "
+        "for a file you trust)";
     std::vector<std::string> seen;
     for (const auto& [rest, line] : scan.mtllibs) {
         // mtllib takes several files separated by spaces, but a single name may contain
@@ -148,6 +154,9 @@ void load_mtllibs(const detail::ObjScanResult& scan, const fs::path& dir,
             if (std::find(seen.begin(), seen.end(), name) != seen.end()) continue;
             seen.push_back(name);
             const fs::path mtl_path = dir / name;
+            if (!allow_outside && !detail::resolve_in_tree(dir, name).inside)
+                throw Error(obj_path.string() + ":" + std::to_string(line) + ": mtllib " +
+                            quote_untrusted(name) + " leads outside the OBJ's directory" + lift);
             if (!fs::exists(fs::symlink_status(mtl_path, ec)) || !fs::exists(mtl_path, ec)) {
                 warnings.push_back("line " + std::to_string(line) + ": MTL file '" +
                                    mtl_path.string() +
@@ -163,7 +172,12 @@ void load_mtllibs(const detail::ObjScanResult& scan, const fs::path& dir,
             // map_Kd is relative to the MTL's directory, which is the OBJ's.
             for (std::size_t i = first; i < materials.size(); ++i) {
                 std::string& tex = materials[i].diffuse_texture;
-                if (!tex.empty()) tex = (dir / tex).lexically_normal().string();
+                if (tex.empty()) continue;
+                if (!allow_outside && !detail::resolve_in_tree(dir, tex).inside)
+                    throw Error(mtl_path.string() + ": material " +
+                                quote_untrusted(materials[i].name) + ": map_Kd " +
+                                quote_untrusted(tex) + " leads outside the OBJ's directory" + lift);
+                tex = (dir / tex).lexically_normal().string();
             }
         }
     }
@@ -240,7 +254,7 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
     // definition of a name wins.
     std::vector<MeshMaterial> materials;
     std::vector<std::string> mtl_warnings;  // already "mtl_path:line: ..."
-    load_mtllibs(scan, dir, materials, warnings, mtl_warnings);
+    load_mtllibs(scan, path, options.allow_outside_files, materials, warnings, mtl_warnings);
     std::unordered_map<std::string, std::uint32_t> material_index;
     for (std::size_t i = 0; i < materials.size(); ++i) {
         material_index.try_emplace(materials[i].name, static_cast<std::uint32_t>(i));
@@ -393,7 +407,8 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
 
     report(path, warnings, options);
     if (options.warnings != nullptr) {
-        for (std::string& w : mtl_warnings) options.warnings->push_back(std::move(w));
+        for (std::string& w : mtl_warnings)
+            options.warnings->push_back(printable(w, kMaxErrorBytes));
     }
 
     try {

@@ -70,6 +70,7 @@ LoadedScene scene_from_obj(const std::filesystem::path& path, const SceneFileOpt
     LoadedScene out;
     ObjLoadOptions obj;
     obj.warnings = &out.warnings;
+    obj.allow_outside_files = options.allow_outside_files;
     TriangleMesh mesh = load_obj(path, obj);
     if (mesh.triangle_count() == 0) throw Error(path.string() + ": no triangles to render");
     out.bounds = mesh.bounds();
@@ -97,7 +98,11 @@ LoadedScene scene_from_obj(const std::filesystem::path& path, const SceneFileOpt
 LoadedScene load_scene_file(const std::filesystem::path& path, const SceneFileOptions& options) {
     const std::string ext = lower_extension(path);
     if (ext == ".obj") return scene_from_obj(path, options);
-    if (ext == ".gltf" || ext == ".glb") return scene_from_gltf(load_gltf(path), options);
+    if (ext == ".gltf" || ext == ".glb") {
+        GltfLoadOptions gltf;
+        gltf.allow_outside_files = options.allow_outside_files;
+        return scene_from_gltf(load_gltf(path, gltf), options);
+    }
     throw Error(path.string() + ": unknown scene format '" + ext +
                 "' (expected .gltf, .glb or .obj)");
 }

@@ -210,6 +210,13 @@ struct GltfLoadOptions {
     std::uint64_t max_file_bytes = std::uint64_t{1} << 30u;
     /// Decode the images that textures use (false leaves every GltfImage undecoded).
     bool decode_images = true;
+    /// Read buffers and images outside the directory tree of the glTF file (absolute paths,
+    /// "..", symlinks that lead out, file: URIs). Off: a scene file downloaded from anywhere
+    /// can read only the files that came with it; turn on only for files you trust.
+    bool allow_outside_files = false;
+    /// Most bytes loading may take; 0: 16 times the bytes of the files read, plus 256 MiB.
+    /// A file that would need more is refused (librt::Error) before the memory is taken.
+    std::uint64_t max_memory_bytes = 0;
 };
 
 /// Reads a glTF 2.0 file: JSON .gltf (buffers and images external or data: URIs) or

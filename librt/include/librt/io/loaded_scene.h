@@ -25,6 +25,9 @@ struct SceneFileOptions {
     int height = 0;  ///< image height; 0 (with width 0) = from the camera's aspect ratio
     /// Longest image side when the size follows the camera's aspect ratio.
     int default_long_side = 640;
+    /// Let the scene read files outside its own directory tree (GltfLoadOptions and
+    /// ObjLoadOptions::allow_outside_files): only for a file you trust.
+    bool allow_outside_files = false;
 };
 
 /// A scene file as librt renders it.

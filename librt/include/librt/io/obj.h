@@ -26,6 +26,10 @@ struct ObjLoadOptions {
     /// before a byte is read; 2 GiB by default. The mesh built from an OBJ takes about as
     /// much memory again as the file, so raise it only with memory to match.
     std::uint64_t max_file_bytes = std::uint64_t{1} << 31;
+    /// Read MTL files and map_Kd textures outside the OBJ's directory tree (absolute
+    /// paths, "..", symlinks that lead out). Off: such a name is a librt::Error, so an OBJ
+    /// downloaded from anywhere reads only the files that came with it.
+    bool allow_outside_files = false;
 };
 
 /// Reads a Wavefront OBJ (and its MTL, looked up in the OBJ's directory) into one mesh.

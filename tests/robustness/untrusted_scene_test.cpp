@@ -1,0 +1,438 @@
+// A glTF file is untrusted input (downloaded from anywhere): it may read only the files in
+// its own directory tree, its loading takes bounded memory, and its strings reach messages
+// escaped and capped. Every file here is written by the test.
+
+#include "io/gltf_test_util.h"
+#include "robustness/robustness_util.h"
+
+#include <librt/core/untrusted_text.h>
+#include <librt/io/gltf.h>
+#include <librt/io/obj.h>
+
+#include <gtest/gtest.h>
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <string>
+
+using namespace librt;
+using librt::testing::error_of;
+using librt::testing::GltfBuilder;
+using librt::testing::has;
+using librt::testing::ScratchDir;
+using nlohmann::json;
+namespace fs = std::filesystem;
+namespace lt = librt::testing;
+
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define LIBRT_TEST_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define LIBRT_TEST_SANITIZED 1
+#endif
+#endif
+
+namespace {
+
+/// One triangle whose buffer 0 is the external file `uri`; the .bin is written by the
+/// caller where `uri` leads.
+std::string triangle_with_buffer_uri(const std::string& uri, std::string* bin) {
+    GltfBuilder g;
+    const std::vector<float> pos = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    g.add_accessor(pos, lt::kFloat, "VEC3", 3);
+    g.doc["meshes"] =
+        json::array({{{"primitives", json::array({{{"attributes", {{"POSITION", 0}}}}})}}});
+    g.doc["nodes"] = json::array({{{"mesh", 0}}});
+    g.doc["scenes"] = json::array({{{"nodes", json::array({0})}}});
+    *bin = g.bin;
+    return g.with_buffer(uri).dump();
+}
+
+/// A .gltf whose one texture's image is `uri`.
+std::string textured_with_image_uri(const std::string& uri) {
+    std::string bin;
+    json doc = json::parse(triangle_with_buffer_uri("tri.bin", &bin));
+    doc["images"] = json::array({{{"uri", uri}}});
+    doc["textures"] = json::array({{{"source", 0}}});
+    return doc.dump();
+}
+
+/// Loads `path`, expecting an error that names the file, `json_path`, and the refusal.
+void expect_outside_refused(const fs::path& path, const std::string& json_path) {
+    const std::string msg = error_of([&] { (void)load_gltf(path); });
+    EXPECT_TRUE(has(msg, path.string() + ": " + json_path)) << msg;
+    EXPECT_TRUE(has(msg, "allow_outside_files")) << msg;
+}
+
+}  // namespace
+
+TEST(UntrustedGltf, BufferOutsideTheSceneTreeIsRefused) {
+    ScratchDir dir;
+    fs::create_directories(dir.path() / "scene");
+    std::string bin;
+    // The bytes the attack would read: a readable file beside the scene's directory.
+    (void)triangle_with_buffer_uri("x", &bin);
+    dir.write("secret.bin", bin);
+    const fs::path relative =
+        dir.write("scene/a.gltf", triangle_with_buffer_uri("../secret.bin", &bin));
+    expect_outside_refused(relative, "buffers[0].uri");
+    // "sub/../../secret.bin" and a percent-encoded "..".
+    expect_outside_refused(
+        dir.write("scene/b.gltf", triangle_with_buffer_uri("sub/../../secret.bin", &bin)),
+        "buffers[0].uri");
+    expect_outside_refused(
+        dir.write("scene/c.gltf", triangle_with_buffer_uri("%2e%2e/secret.bin", &bin)),
+        "buffers[0].uri");
+    const std::string absolute = (dir.path() / "secret.bin").string();
+    expect_outside_refused(dir.write("scene/d.gltf", triangle_with_buffer_uri(absolute, &bin)),
+                           "buffers[0].uri");
+    expect_outside_refused(
+        dir.write("scene/e.gltf", triangle_with_buffer_uri("file://" + absolute, &bin)),
+        "buffers[0].uri");
+    // A symlink inside the tree that leads out of it.
+    fs::create_symlink(dir.path() / "secret.bin", dir.path() / "scene" / "link.bin");
+    expect_outside_refused(dir.write("scene/f.gltf", triangle_with_buffer_uri("link.bin", &bin)),
+                           "buffers[0].uri");
+    // A directory symlink too.
+    fs::create_directory_symlink(dir.path(), dir.path() / "scene" / "up");
+    expect_outside_refused(
+        dir.write("scene/g.gltf", triangle_with_buffer_uri("up/secret.bin", &bin)),
+        "buffers[0].uri");
+    // Other schemes never name a local file.
+    const std::string msg = error_of([&] {
+        (void)load_gltf(dir.write("scene/h.gltf",
+                                  triangle_with_buffer_uri("http://example.invalid/x.bin", &bin)));
+    });
+    EXPECT_TRUE(has(msg, "buffers[0].uri: 'http://example.invalid/x.bin': only relative paths"))
+        << msg;
+
+    // The option lifts the rule for a trusted file; every one of them then loads.
+    GltfLoadOptions trusted;
+    trusted.allow_outside_files = true;
+    for (const char* name : {"a", "b", "c", "d", "e", "f", "g"}) {
+        const GltfScene s =
+            load_gltf(dir.path() / "scene" / (std::string(name) + ".gltf"), trusted);
+        EXPECT_EQ(s.triangles_stored(), 1u) << name;
+    }
+}
+
+TEST(UntrustedGltf, FilesInsideTheTreeStillLoad) {
+    ScratchDir dir;
+    fs::create_directories(dir.path() / "scene" / "data");
+    std::string bin;
+    const std::string json_text = triangle_with_buffer_uri("data/../data/tri.bin", &bin);
+    dir.write("scene/data/tri.bin", bin);
+    // A symlink that stays inside the tree is followed.
+    fs::create_symlink("data/tri.bin", dir.path() / "scene" / "alias.bin");
+    EXPECT_EQ(load_gltf(dir.write("scene/a.gltf", json_text)).triangles_stored(), 1u);
+    EXPECT_EQ(load_gltf(dir.write("scene/b.gltf", triangle_with_buffer_uri("alias.bin", &bin)))
+                  .triangles_stored(),
+              1u);
+}
+
+TEST(UntrustedGltf, ImageOutsideTheSceneTreeIsRefused) {
+    ScratchDir dir;
+    fs::create_directories(dir.path() / "scene");
+    std::string bin;
+    (void)triangle_with_buffer_uri("x", &bin);
+    dir.write("scene/tri.bin", bin);
+    dir.write("secret.png", lt::tiny_png());
+    expect_outside_refused(dir.write("scene/a.gltf", textured_with_image_uri("../secret.png")),
+                           "images[0].uri");
+    expect_outside_refused(
+        dir.write("scene/b.gltf", textured_with_image_uri((dir.path() / "secret.png").string())),
+        "images[0].uri");
+    // The same image inside the tree decodes.
+    dir.write("scene/inside.png", lt::tiny_png());
+    const GltfScene s = load_gltf(dir.write("scene/c.gltf", textured_with_image_uri("inside.png")));
+    ASSERT_EQ(s.images.size(), 1u);
+    EXPECT_EQ(s.images[0].width, 2);
+    EXPECT_EQ(s.textures[0].image, 0);
+    GltfLoadOptions trusted;
+    trusted.allow_outside_files = true;
+    const GltfScene t = load_gltf(dir.path() / "scene" / "a.gltf", trusted);
+    EXPECT_EQ(t.images[0].width, 2);
+}
+
+TEST(UntrustedGltf, SceneGivenWithoutADirectoryCannotReadAbsolutePaths) {
+    // A scene path with no directory part once let an absolute uri through as it was.
+    ScratchDir dir;
+    std::string bin;
+    (void)triangle_with_buffer_uri("x", &bin);
+    dir.write("secret.bin", bin);
+    fs::create_directories(dir.path() / "cwd");
+    dir.write("cwd/a.gltf", triangle_with_buffer_uri((dir.path() / "secret.bin").string(), &bin));
+    const fs::path before = fs::current_path();
+    fs::current_path(dir.path() / "cwd");
+    const std::string msg = error_of([&] { (void)load_gltf("a.gltf"); });
+    fs::current_path(before);
+    EXPECT_TRUE(has(msg, "a.gltf: buffers[0].uri")) << msg;
+    EXPECT_TRUE(has(msg, "an absolute path")) << msg;
+}
+
+TEST(UntrustedObj, MtlAndTexturesOutsideTheTreeAreRefused) {
+    ScratchDir dir;
+    fs::create_directories(dir.path() / "scene");
+    dir.write("outside.mtl", "newmtl red\nKd 1 0 0\n");
+    dir.write("outside.png", lt::tiny_png());
+    const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n";
+    const fs::path a = dir.write("scene/a.obj", "mtllib ../outside.mtl\n" + tri);
+    std::string msg = error_of([&] { (void)load_obj(a); });
+    EXPECT_TRUE(has(msg, a.string() + ":1: mtllib '../outside.mtl' leads outside")) << msg;
+    // A map_Kd in an MTL inside the tree that names a file outside it.
+    dir.write("scene/in.mtl",
+              "newmtl red\nKd 1 0 0\nmap_Kd " + (dir.path() / "outside.png").string() + "\n");
+    const fs::path b = dir.write("scene/b.obj", "mtllib in.mtl\n" + tri);
+    msg = error_of([&] { (void)load_obj(b); });
+    EXPECT_TRUE(has(msg, "in.mtl: material 'red': map_Kd")) << msg;
+    EXPECT_TRUE(has(msg, "leads outside the OBJ's directory")) << msg;
+    ObjLoadOptions trusted;
+    trusted.allow_outside_files = true;
+    const TriangleMesh m = load_obj(a, trusted);
+    ASSERT_EQ(m.materials.size(), 1u);
+    EXPECT_EQ(m.materials[0].diffuse.x, 1.0f);
+    EXPECT_NO_THROW((void)load_obj(b, trusted));
+    // Inside the tree: loads as before.
+    dir.write("scene/tex.png", lt::tiny_png());
+    dir.write("scene/ok.mtl", "newmtl red\nKd 1 0 0\nmap_Kd tex.png\n");
+    EXPECT_NO_THROW((void)load_obj(dir.write("scene/c.obj", "mtllib ok.mtl\n" + tri)));
+}
+
+TEST(UntrustedGltf, QuantizedPositionsNeedTheExtension) {
+    // glTF 2.0 section 3.7.2.1: POSITION is FLOAT unless KHR_mesh_quantization is used.
+    GltfBuilder g;
+    const std::vector<std::int16_t> pos = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    g.add_accessor(pos, lt::kI16, "VEC3", 3);
+    g.doc["meshes"] =
+        json::array({{{"primitives", json::array({{{"attributes", {{"POSITION", 0}}}}})}}});
+    g.doc["nodes"] = json::array({{{"mesh", 0}}});
+    ScratchDir dir;
+    const fs::path p = dir.write("q.glb", g.glb());
+    const std::string msg = error_of([&] { (void)load_gltf(p); });
+    EXPECT_TRUE(has(msg, "meshes[0].primitives[0].attributes.POSITION: accessors[0].componentType"))
+        << msg;
+    EXPECT_TRUE(has(msg, "unless KHR_mesh_quantization is in extensionsUsed")) << msg;
+    g.doc["extensionsUsed"] = json::array({"KHR_mesh_quantization"});
+    const GltfScene s = load_gltf(dir.write("r.glb", g.glb()));
+    ASSERT_EQ(s.meshes.size(), 1u);
+    EXPECT_EQ(s.meshes[0].primitives[0].positions[1], glm::vec3(1, 0, 0));
+    // Normals as unnormalised bytes are refused even with the extension.
+    const std::vector<std::int8_t> normals = {0, 0, 1, 0, 0, 1, 0, 0, 1};
+    g.add_accessor(normals, lt::kI8, "VEC3", 3);
+    g.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 1;
+    const std::string m2 = error_of([&] { (void)load_gltf(dir.write("s.glb", g.glb())); });
+    EXPECT_TRUE(has(m2, "is not allowed for NORMAL")) << m2;
+}
+
+TEST(UntrustedGltf, ControlCharactersInNamesAreEscapedAndLongValuesCapped) {
+    GltfBuilder g;
+    g.doc["materials"] = json::array(
+        {{{"name", "red\x1b[31m\a\r\nFORGED LINE"},
+          {"alphaMode", std::string("BL\x1b]0;title\aEND") + std::string(100000, 'x')}}});
+    ScratchDir dir;
+    const std::string msg = error_of([&] { (void)load_gltf(dir.write("c.gltf", g.gltf())); });
+    ASSERT_FALSE(msg.empty());
+    for (const char c : msg)
+        EXPECT_FALSE((static_cast<unsigned char>(c) < 0x20) || c == 0x7f)
+            << "control character " << int(c) << " in: " << msg;
+    EXPECT_TRUE(has(msg, "\\x1b]0;title\\x07END")) << msg;
+    EXPECT_LT(msg.size(), 400u) << "a 100 kB value should be cut to a few dozen bytes";
+    // An extension name with a CR/LF in extensionsUsed becomes a warning, escaped.
+    GltfBuilder h;
+    h.doc["extensionsUsed"] = json::array({"EXT_x\r\nwarning: forged"});
+    const GltfScene s = load_gltf(dir.write("d.gltf", h.gltf()));
+    const std::string all = lt::joined(s.warnings);
+    EXPECT_TRUE(has(all, "extensionsUsed[0]: extension 'EXT_x\\r\\nwarning: forged'")) << all;
+    for (const std::string& w : s.warnings)
+        for (const char c : w) EXPECT_GE(static_cast<unsigned char>(c), 0x20) << w;
+}
+
+TEST(UntrustedText, PrintableEscapesAndCuts) {
+    EXPECT_EQ(printable("a\x1b[0m\tb\n"), "a\\x1b[0m\\tb\\n");
+    EXPECT_EQ(printable("caf\xc3\xa9"), "caf\xc3\xa9");  // valid UTF-8 kept
+    EXPECT_EQ(printable("\xc2\x9b"
+                        "31m"),
+              "\\u009b31m");                                  // C1 CSI
+    EXPECT_EQ(printable("\xff\xc3"), "\\xff\\xc3");           // not UTF-8
+    EXPECT_EQ(printable("\xe0\x80\xaf"), "\\xe0\\x80\\xaf");  // overlong '/'
+    EXPECT_EQ(printable("abcdef", 4), "abcd\xE2\x80\xA6");
+    EXPECT_EQ(printable("\xc3\xa9\xc3\xa9", 3), "\xc3\xa9\xE2\x80\xA6");  // cut between chars
+    EXPECT_EQ(quote_untrusted(std::string(200, 'y')).size(), 1 + kMaxQuotedBytes + 3 + 1);
+    EXPECT_EQ(std::string(Error(std::string(100000, 'z')).what()).size(), kMaxErrorBytes + 3);
+    EXPECT_EQ(std::string(Error("x\ny").what()), "x\\ny");
+}
+
+// ---- memory: peak of loading <= 16 x the bytes read + 256 MiB, or a clear error ----
+
+namespace {
+
+/// Resident bytes of this process now (/proc/self/statm, field 2, in pages).
+std::uint64_t resident_bytes() {
+    std::ifstream statm("/proc/self/statm");
+    std::uint64_t size = 0, resident = 0;
+    statm >> size >> resident;
+    return resident * std::uint64_t(::sysconf(_SC_PAGESIZE));
+}
+
+struct ChildResult {
+    int exit_code = -1;            ///< 0: loaded, 1: librt::Error, other: crashed
+    std::uint64_t peak_added = 0;  ///< the child's peak resident bytes above the parent's
+    std::string message;           ///< the error's message
+};
+
+/// Runs f in a child process (so its peak memory is its own), under an address-space
+/// limit when `address_limit` is not 0.
+ChildResult in_child(const std::function<void()>& f, std::uint64_t address_limit = 0) {
+    ScratchDir dir;
+    const fs::path message_file = dir.path() / "message";
+    const std::uint64_t base = resident_bytes();
+    std::fflush(nullptr);
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        if (address_limit != 0) {
+            const rlimit lim{address_limit, address_limit};
+            ::setrlimit(RLIMIT_AS, &lim);
+        }
+        int code = 0;
+        try {
+            f();
+        } catch (const Error& e) {
+            std::ofstream(message_file) << e.what();
+            code = 1;
+        }
+        std::_Exit(code);
+    }
+    int status = 0;
+    rusage usage{};
+    ::wait4(pid, &status, 0, &usage);
+    ChildResult r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    const std::uint64_t peak = std::uint64_t(usage.ru_maxrss) * 1024;
+    r.peak_added = peak > base ? peak - base : 0;
+    r.message = lt::read_file(message_file);
+    return r;
+}
+
+/// Loads `path` in a child: it must load or fail with a librt::Error, and its peak memory
+/// must stay within the bound for `files_read` bytes of files.
+ChildResult expect_bounded_load(const fs::path& path, std::uint64_t files_read) {
+    const ChildResult r = in_child([&] { (void)load_gltf(path); });
+    EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1) << "crashed: " << r.exit_code;
+    const std::uint64_t bound = 16 * files_read + (std::uint64_t{256} << 20u);
+    EXPECT_LE(r.peak_added, bound)
+        << path << ": peak " << r.peak_added << " bytes, bound " << bound << "; " << r.message;
+    return r;
+}
+
+}  // namespace
+
+TEST(UntrustedGltfMemory, LargeExtrasCostNothing) {
+#ifdef LIBRT_TEST_SANITIZED
+    GTEST_SKIP() << "peak resident memory is not the program's own under a sanitizer "
+                    "(shadow memory, quarantine); measured in the release stage";
+#endif
+    // 15 MB of "0," in an extras array: once 0.94 GB at peak.
+    GltfBuilder g;
+    std::string text = g.doc.dump();
+    text.pop_back();
+    text += R"(,"extras":{"payload":[)";
+    for (int i = 0; i < 7'500'000; ++i) text += "0,";
+    text += "0]}}";
+    ScratchDir dir;
+    const fs::path p = dir.write("extras.gltf", text);
+    const ChildResult r = expect_bounded_load(p, text.size());
+    EXPECT_EQ(r.exit_code, 0) << r.message;
+    // Far below the bound: the extras are never built.
+    EXPECT_LT(r.peak_added, 4 * text.size()) << r.peak_added;
+}
+
+TEST(UntrustedGltfMemory, ManyImagesNamingOneFileReadItOnce) {
+#ifdef LIBRT_TEST_SANITIZED
+    GTEST_SKIP() << "peak resident memory is not the program's own under a sanitizer "
+                    "(shadow memory, quarantine); measured in the release stage";
+#endif
+    // 100 images (each used by a texture) naming one 10 MB file: once 1 GB at peak.
+    ScratchDir dir;
+    std::string bin;
+    json doc = json::parse(triangle_with_buffer_uri("tri.bin", &bin));
+    dir.write("tri.bin", bin);
+    const std::string big(10u << 20u, 'q');  // not an image: each decode fails
+    dir.write("big.png", big);
+    for (int i = 0; i < 100; ++i) {
+        doc["images"].push_back({{"uri", "big.png"}});
+        doc["textures"].push_back({{"source", i}});
+    }
+    const fs::path p = dir.write("many.gltf", doc.dump());
+    const ChildResult r = expect_bounded_load(p, doc.dump().size() + bin.size() + big.size());
+    EXPECT_EQ(r.exit_code, 0) << r.message;
+    EXPECT_LT(r.peak_added, 4 * big.size()) << "the file was read more than once";
+    // Once in the parent too: one warning for the file, every texture unusable.
+    const GltfScene s = load_gltf(p);
+    EXPECT_EQ(s.warnings.size(), 1u) << lt::joined(s.warnings);
+    for (const GltfTexture& t : s.textures) EXPECT_EQ(t.image, -1);
+}
+
+TEST(UntrustedGltfMemory, AMillionNodesStayWithinTheBoundOrAreRefused) {
+#ifdef LIBRT_TEST_SANITIZED
+    GTEST_SKIP() << "peak resident memory is not the program's own under a sanitizer "
+                    "(shadow memory, quarantine); measured in the release stage";
+#endif
+    GltfBuilder g;
+    const std::vector<float> pos = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    g.add_accessor(pos, lt::kFloat, "VEC3", 3);
+    g.doc["meshes"] =
+        json::array({{{"primitives", json::array({{{"attributes", {{"POSITION", 0}}}}})}}});
+    // Written as text: a million-element nlohmann tree would take the test itself seconds.
+    std::string text = g.with_buffer("").dump();
+    text.pop_back();
+    text += R"(,"nodes":[)";
+    for (int i = 0; i < 1'000'000; ++i) text += i == 0 ? R"({"mesh":0})" : R"(,{"mesh":0})";
+    text += R"(],"scenes":[{"nodes":[)";
+    for (int i = 0; i < 1'000'000; ++i) text += (i == 0 ? "" : ",") + std::to_string(i);
+    text += "]}]}";
+    ScratchDir dir;
+    const std::string glb = GltfBuilder::make_glb(text, g.bin);
+    const fs::path p = dir.write("nodes.glb", glb);
+    const ChildResult r = expect_bounded_load(p, glb.size());
+    if (r.exit_code == 1) {
+        EXPECT_TRUE(has(r.message, "nodes.glb: loading would take")) << r.message;
+    }
+}
+
+TEST(UntrustedGltfMemory, AllocationFailureIsAnErrorNotAnAbort) {
+#ifdef LIBRT_TEST_SANITIZED
+    GTEST_SKIP() << "a sanitizer reserves terabytes of address space: RLIMIT_AS cannot "
+                    "limit it; checked in the release stage";
+#endif
+    // A million nodes under an address-space limit far below what they need, with the
+    // loader's own bound lifted: allocation fails inside tinygltf. Once SIGABRT.
+    std::string text = R"({"asset":{"version":"2.0"},"nodes":[)";
+    for (int i = 0; i < 1'000'000; ++i) text += i == 0 ? R"({"name":"n"})" : R"(,{"name":"n"})";
+    text += "]}";
+    ScratchDir dir;
+    const fs::path p = dir.write("nodes.gltf", text);
+    GltfLoadOptions unbounded;
+    unbounded.max_memory_bytes = std::uint64_t{1} << 40u;
+    std::ifstream statm("/proc/self/statm");
+    std::uint64_t pages = 0;
+    statm >> pages;
+    const std::uint64_t now = pages * std::uint64_t(::sysconf(_SC_PAGESIZE));
+    // Failing at different stages: JSON tree, tinygltf's tree, its Model.
+    for (const std::uint64_t headroom_mib : {40u, 150u, 400u}) {
+        const ChildResult r =
+            in_child([&] { (void)load_gltf(p, unbounded); }, now + (headroom_mib << 20u));
+        EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1)
+            << headroom_mib << " MiB: crashed with exit " << r.exit_code;
+        if (headroom_mib == 40) {
+            EXPECT_EQ(r.exit_code, 1) << "expected a librt::Error";
+        }
+        if (r.exit_code == 1) {
+            EXPECT_TRUE(has(r.message, "nodes.gltf: out of memory while loading")) << r.message;
+        }
+    }
+}
