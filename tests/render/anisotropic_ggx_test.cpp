@@ -13,6 +13,7 @@
 #include "render/microfacet_test_util.h"
 #include "sampling/chi_square.h"
 #include "sampling/direction_bins.h"
+#include "sampling/sanitizer_scale.h"
 
 #include <librt/render/bsdf.h>
 #include <librt/render/material.h>
@@ -208,7 +209,14 @@ TEST(AnisotropicGgx, SampleWeightEvalPdfAndReciprocity) {
 // through the reflection (and refraction, or thin transmission) of wo, weighted by pdf()
 // times the Jacobian d omega_i / d omega_h; one cell for failed samples.
 TEST(AnisotropicGgx, SampledDirectionsFollowPdf) {
-    constexpr int n = 100'000;
+    // Under a sanitizer a tenth of the samples (sampling/sanitizer_scale.h), and a coarser
+    // quadrature to match: a normal's mass lands wholly in one cell, so the expected
+    // counts' error is first order in the node spacing. Relative to a count's standard
+    // error (1 / sqrt(n p)) it stays the same with the spacing ~ 1 / sqrt(n): nodes per
+    // axis in proportion to sqrt(n), nodes in all (the cost) to n.
+    const int n = testing::scaled_samples(100'000);
+    const double grid = std::sqrt(n / 100'000.0);
+    const int n_psi = static_cast<int>(2400 * grid), n_phi = static_cast<int>(960 * grid);
     for (const Alpha2 a : kPairs)
         for (const Case& c : anisotropic_cases(a))
             for (const double co : {0.9, 0.5, 0.2, 0.05}) {
@@ -276,7 +284,7 @@ TEST(AnisotropicGgx, SampledDirectionsFollowPdf) {
                             }
                         }
                     },
-                    2400, 960);
+                    n_psi, n_phi);
                 EXPECT_LE(integral, 1.003) << c.name << " cos_o " << co;
                 expected.back() = std::max(0.0, n - n * integral);
                 testing::expect_chi_square_passes(observed, expected,
@@ -289,7 +297,8 @@ TEST(AnisotropicGgx, SampledDirectionsFollowPdf) {
 // (F = 1) reflects exactly the anisotropic GGX single-scattering energy, the integral of
 // D G2 (wo.h) / cos_o over h, computed here with the double formulas.
 TEST(AnisotropicGgx, AlbedoAtMostOneAndWhiteFurnace) {
-    constexpr int n = 100'000;
+    const int n = testing::scaled_samples(100'000);  // a tenth under a sanitizer
+    const int n_white = testing::scaled_samples(200'000);
     for (const Alpha2 a : kPairs) {
         for (const Case& c : anisotropic_cases(a))
             for (const double co : {1.0, 0.7, 0.3, 0.05, 0.01}) {
@@ -314,14 +323,14 @@ TEST(AnisotropicGgx, AlbedoAtMostOneAndWhiteFurnace) {
                 const double expected = testing::ref_anisotropic_albedo(ol, ax, ay);
                 Pcg32 rng(4, 4);
                 double sum = 0.0, sum2 = 0.0;
-                for (int i = 0; i < 200'000; ++i) {
+                for (int i = 0; i < n_white; ++i) {
                     const BsdfSample s = sample(white, flat_point(), wo, 0.5f, rng.next_vec2());
                     const double w = s.valid() ? s.weight.x : 0.0;
                     sum += w;
                     sum2 += w * w;
                 }
-                const double mean = sum / 200'000,
-                             se = std::sqrt((sum2 / 200'000 - mean * mean) / 200'000);
+                const double mean = sum / n_white,
+                             se = std::sqrt((sum2 / n_white - mean * mean) / n_white);
                 EXPECT_LE(expected, 1.0 + 1e-3);
                 EXPECT_NEAR(mean, expected, 5.0 * se + 2e-4)
                     << ax << ", " << ay << " cos_o " << co << " phi " << phi;

@@ -1,6 +1,7 @@
-// Time-limited and interruptible rendering in passes. No test asserts on wall-clock
-// thresholds: time comes from a fake clock driven by the progress callback, and
-// cancellation from a flag that callback sets.
+// Time-limited and interruptible rendering in passes. No test depends on wall-clock time:
+// time comes from a fake clock driven by the progress callback, cancellation from a flag
+// that callback sets, and a pass that must still be running at a report is held by its
+// integrator until the report releases it.
 
 #include "render/film_test_util.h"
 
@@ -10,11 +11,11 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
-#include <chrono>
+#include <condition_variable>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 using namespace librt;
 using librt::testing::film_test_camera;
@@ -23,17 +24,34 @@ using librt::testing::same_records;
 
 namespace {
 
-// Fast until `slow` is set, then 1 ms per sample, so that a pass of a 48 x 48 image on
-// two threads lasts over a second, ten times the renderer's progress period: progress
-// reports arrive mid-pass.
-class Slowing final : public Integrator {
+// Fast, until hold() makes every sample wait for release(): a pass then cannot end before
+// the test's progress callback, which the renderer calls while the pass runs (about ten
+// times a second), releases it. Which report comes mid-pass is thus fixed, not a matter of
+// how long a pass takes on a loaded machine.
+class Gated final : public Integrator {
 public:
     [[nodiscard]] glm::vec3 li(const Scene& /*scene*/, const Ray& /*ray*/,
                                Sampler& sampler) const override {
-        if (slow.load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        std::unique_lock<std::mutex> lock(mutex_);
+        released_.wait(lock, [this] { return !held_; });
         return glm::vec3(sampler.next_1d());
     }
-    std::atomic<bool> slow{false};
+    void hold() {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        held_ = true;
+    }
+    void release() {
+        {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            held_ = false;
+        }
+        released_.notify_all();
+    }
+
+private:
+    mutable std::mutex mutex_;
+    mutable std::condition_variable released_;
+    bool held_ = false;
 };
 
 RenderSettings seeded(std::uint64_t seed) {
@@ -137,15 +155,16 @@ TEST_F(ProgressiveTest, TimeLimitStopsWithinOnePass) {
     EXPECT_TRUE(same_records(film, one_shot(8, false)));
 }
 
-// The third pass is slow, and the clock jumps past the limit at its first progress report:
-// that pass is abandoned and the film holds the two finished passes only.
+// The third pass is held at its first samples, and the clock jumps past the limit at its
+// first progress report; the next report releases it: that pass is abandoned and the film
+// holds the two finished passes only.
 TEST(Progressive, APassRunningAtTheTimeLimitIsDropped) {
     Scene scene;
     scene.commit();
     CameraSettings cs;
     cs.width = cs.height = 48;
     const Camera camera(cs);
-    Slowing integrator;
+    Gated integrator;
     ProgressiveSettings s = progressive(100, 1);
     s.time_limit = 10.0;
     double now = 0.0;
@@ -154,8 +173,9 @@ TEST(Progressive, APassRunningAtTheTimeLimitIsDropped) {
     s.render.progress = [&](const RenderProgress& p) {
         if (p.passes != 2) return;
         ++reports_after_second_pass;
-        if (reports_after_second_pass == 1) integrator.slow = true;  // the end of pass 2
-        if (reports_after_second_pass == 2) now = 50.0;              // within pass 3
+        if (reports_after_second_pass == 1) integrator.hold();     // the end of pass 2
+        if (reports_after_second_pass == 2) now = 50.0;            // within pass 3
+        if (reports_after_second_pass == 3) integrator.release();  // the limit was seen
     };
     Film film;
     const RenderStats stats = render_progressive(scene, camera, integrator, film, s);
@@ -163,15 +183,16 @@ TEST(Progressive, APassRunningAtTheTimeLimitIsDropped) {
     EXPECT_EQ(stats.passes, 2);
     EXPECT_EQ(stats.samples_per_pixel, 2u);
     EXPECT_EQ(uniform_sample_count(film), 2u);  // whole passes only
+    // Pass 3 stopped at the next pixel of each of the two threads.
     EXPECT_GE(stats.samples, 2u * 48u * 48u);
+    EXPECT_LE(stats.samples, 2u * 48u * 48u + 2u);
     // Exactly the first two samples of every pixel.
-    integrator.slow = false;
     Film reference(48, 48);
     (void)render_block(scene, camera, integrator, reference, {0, 0, 48, 48, 0, 2}, seeded(99));
     EXPECT_TRUE(same_records(film, reference));
 }
 
-// Cancelled by the progress callback in the middle of the (slow) fourth pass: the film of
+// Cancelled by the progress callback in the middle of the (held) fourth pass: the film of
 // the three finished passes comes back, each pixel the mean of 3 samples.
 TEST(Progressive, CancellationReturnsTheFinishedPassesOnly) {
     Scene scene;
@@ -179,7 +200,7 @@ TEST(Progressive, CancellationReturnsTheFinishedPassesOnly) {
     CameraSettings cs;
     cs.width = cs.height = 48;
     const Camera camera(cs);
-    Slowing integrator;
+    Gated integrator;
     std::atomic<bool> cancel{false};
     ProgressiveSettings s = progressive(100, 1);
     s.render.cancel = &cancel;
@@ -187,8 +208,11 @@ TEST(Progressive, CancellationReturnsTheFinishedPassesOnly) {
     s.render.progress = [&](const RenderProgress& p) {
         if (p.passes != 3) return;
         ++reports_after_third_pass;
-        if (reports_after_third_pass == 1) integrator.slow = true;  // the end of pass 3
-        if (reports_after_third_pass == 2) cancel = true;           // within pass 4
+        if (reports_after_third_pass == 1) integrator.hold();  // the end of pass 3
+        if (reports_after_third_pass == 2) {                   // within pass 4
+            cancel = true;
+            integrator.release();
+        }
     };
     Film film;
     const RenderStats stats = render_progressive(scene, camera, integrator, film, s);
@@ -197,7 +221,7 @@ TEST(Progressive, CancellationReturnsTheFinishedPassesOnly) {
     EXPECT_EQ(stats.passes, 3);
     EXPECT_EQ(stats.samples_per_pixel, 3u);
     EXPECT_EQ(uniform_sample_count(film), 3u);
-    integrator.slow = false;
+    EXPECT_LE(stats.samples, 3u * 48u * 48u + 2u);  // pass 4 stopped at the next pixels
     Film reference(48, 48);
     (void)render_block(scene, camera, integrator, reference, {0, 0, 48, 48, 0, 3}, seeded(99));
     EXPECT_TRUE(same_records(film, reference));
@@ -218,6 +242,8 @@ TEST(Progressive, CancellationReturnsTheFinishedPassesOnly) {
 TEST_F(ProgressiveTest, TheFirstPassAlwaysCompletes) {
     ProgressiveSettings s = progressive(50, 2);
     s.time_limit = 1e-9;
+    double now = 0.0;
+    s.clock = [&now] { return now += 1.0; };  // past the limit at every reading
     Film film;
     const RenderStats stats = render_progressive(scene_, camera_, integrator_, film, s);
     EXPECT_TRUE(stats.time_limit_reached);
@@ -258,10 +284,13 @@ TEST(Progressive, AThrowingProgressCallbackStopsTheRender) {
     CameraSettings cs;
     cs.width = cs.height = 48;
     const Camera camera(cs);
-    Slowing integrator;
-    integrator.slow = true;  // a pass lasts over a second: the callback is called mid-pass
+    Gated integrator;
+    integrator.hold();  // the first pass cannot end before the callback has been called
     ProgressiveSettings s = progressive(4, 1);
-    s.render.progress = [](const RenderProgress&) { throw std::runtime_error("display gone"); };
+    s.render.progress = [&](const RenderProgress&) {
+        integrator.release();
+        throw std::runtime_error("display gone");
+    };
     Film film;
     EXPECT_THROW((void)render_progressive(scene, camera, integrator, film, s), std::runtime_error);
     EXPECT_EQ(uniform_sample_count(film), 0u);

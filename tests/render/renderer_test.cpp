@@ -1,3 +1,5 @@
+#include "render/cancelling_integrator.h"
+
 #include <librt/core/error.h>
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
@@ -6,13 +8,11 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 using namespace librt;
 
@@ -40,16 +40,6 @@ public:
         if (ray.direction.x < 0.0f && sampler.next_1d() < 0.5f) {
             return {std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f};
         }
-        return glm::vec3(1.0f);
-    }
-};
-
-// Slow: ~0.2 ms per sample.
-class Slow final : public Integrator {
-public:
-    [[nodiscard]] glm::vec3 li(const Scene& /*scene*/, const Ray& /*ray*/,
-                               Sampler& /*sampler*/) const override {
-        std::this_thread::sleep_for(std::chrono::microseconds(200));
         return glm::vec3(1.0f);
     }
 };
@@ -170,30 +160,28 @@ TEST(Renderer, NonFiniteSamplesAreDroppedAndCounted) {
     EXPECT_EQ(stats.samples, 16u * 8u * 8u);
 }
 
-TEST(Renderer, CancellationReturnsPromptly) {
+// Cancelled from inside, by the integrator's 100th sample: the renderer checks the flag
+// before every pixel (one sample each here), so each of the two threads stops after at
+// most one more sample; unfinished pixels stay black.
+TEST(Renderer, CancellationStopsAtTheNextPixel) {
     const Scene scene = empty_scene();
-    const Camera camera = small_camera(256, 256, false);  // ~13 s of sleeping on one thread
-    Slow integrator;
+    const Camera camera = small_camera(256, 256, false);
     std::atomic<bool> cancel{false};
+    librt::testing::CancellingIntegrator integrator(cancel, 100);
     RenderSettings settings;
     settings.threads = 2;
     settings.progress = nullptr;
     settings.cancel = &cancel;
-    std::thread canceller([&] {
-        std::this_thread::sleep_for(std::chrono::milliseconds(100));
-        cancel = true;
-    });
     RenderStats stats;
-    const auto start = std::chrono::steady_clock::now();
     const Image image = render(scene, camera, integrator, settings, &stats);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    canceller.join();
     EXPECT_TRUE(stats.cancelled);
-    EXPECT_LT(seconds, 1.0);
-    EXPECT_GT(stats.samples, 0u);
-    EXPECT_LT(stats.samples, 256u * 256u);
-    EXPECT_EQ(image.width, 256);
+    EXPECT_EQ(stats.samples, integrator.calls());
+    EXPECT_GE(stats.samples, 100u);
+    EXPECT_LE(stats.samples, integrator.max_samples(2, 1));
+    ASSERT_EQ(image.width, 256);
+    std::uint64_t rendered = 0;  // pixels of the one sample, 1; the others black
+    for (const glm::vec3& p : image.pixels) rendered += p == glm::vec3(1.0f) ? 1 : 0;
+    EXPECT_EQ(rendered, stats.samples);
 
     // Cancelled before it starts: nothing rendered.
     settings.progress = [](const RenderProgress&) {};  // a callback must not change the result
@@ -202,6 +190,26 @@ TEST(Renderer, CancellationReturnsPromptly) {
     EXPECT_TRUE(none.cancelled);
     EXPECT_EQ(none.samples, 0u);
     EXPECT_EQ(black.at(128, 128), glm::vec3(0.0f));
+}
+
+// Within a pixel the flag is checked every 64 samples: a pixel of 2^20 samples cannot hold
+// up a cancelled render.
+TEST(Renderer, CancellationStopsWithinAPixel) {
+    const Scene scene = empty_scene();
+    const Camera camera = small_camera(2, 1, false);  // one pixel per thread
+    std::atomic<bool> cancel{false};
+    librt::testing::CancellingIntegrator integrator(cancel, 1000);
+    RenderSettings settings;
+    settings.samples_per_pixel = 1 << 20;
+    settings.threads = 2;
+    settings.tile_size = 1;
+    settings.progress = nullptr;
+    settings.cancel = &cancel;
+    RenderStats stats;
+    (void)render(scene, camera, integrator, settings, &stats);
+    EXPECT_TRUE(stats.cancelled);
+    EXPECT_GE(stats.samples, 1000u);
+    EXPECT_LE(stats.samples, integrator.max_samples(2, 64));
 }
 
 TEST(Renderer, IntegratorExceptionIsRethrown) {

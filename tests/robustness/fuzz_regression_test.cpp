@@ -1,6 +1,8 @@
 // Inputs the fuzzers found (kept in tests/fuzz/corpus/*/regression-*), replayed through
-// the same calls as the fuzz targets: each must end in a result or a librt::Error,
-// quickly and without a large allocation.
+// the same calls as the fuzz targets: each must end in a result or a librt::Error, the
+// error saying why it was refused before the large allocation or the slow decode (the
+// refusal, not a measured time, is what is checked: the fuzzers' own time and memory
+// limits find the slow inputs).
 
 #include "robustness/robustness_util.h"
 
@@ -9,7 +11,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <string>
 
 using namespace librt;
@@ -17,23 +18,12 @@ using librt::testing::error_of;
 using librt::testing::has;
 using librt::testing::ScratchDir;
 
-namespace {
-
-double seconds_to_load_texture(const std::filesystem::path& p, std::string& message) {
-    const auto start = std::chrono::steady_clock::now();
-    message = error_of([&] { (void)load_texture(p); });
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
-
 // image_fuzz, out of memory: a 14-byte PPM header claiming 2000000 x 90 texels made stb
 // allocate 540 MB and librt 2.2 GB of floats for pixels that were never there.
 TEST(FuzzRegression, ImageOomPpmHeaderClaimingHugeSize) {
     ScratchDir dir;
     const auto p = dir.write("regression-oom-ppm-2000000x90.ppm", "P6\n2000000 90\n");
-    std::string msg;
-    EXPECT_LT(seconds_to_load_texture(p, msg), 1.0);
+    const std::string msg = error_of([&] { (void)load_texture(p); });
     EXPECT_TRUE(has(msg, "2000000 x 90 texels, more than the limit")) << msg;
     EXPECT_TRUE(has(error_of([&] { (void)read_pfm(p); }), "not a valid PFM"));
 }
@@ -45,9 +35,11 @@ TEST(FuzzRegression, ImageSlowTruncatedPpm) {
     ScratchDir dir;
     const auto p = dir.write("regression-slow-ppm-20000x2000.ppm",
                              std::string("P6\n20000 2000\x1e\n690\n", 19));
-    std::string msg;
-    EXPECT_LT(seconds_to_load_texture(p, msg), 1.0);
-    EXPECT_TRUE(has(msg, "regression-slow-ppm-20000x2000.ppm")) << msg;
+    const std::string msg = error_of([&] { (void)load_texture(p); });
+    EXPECT_TRUE(has(msg,
+                    "20000x2000.ppm: the header claims 20000 x 2000 texels in a file of 19 "
+                    "bytes (corrupt or truncated)"))
+        << msg;
 }
 
 // image_fuzz, slow unit (35 s, 660 MB under ASan): an 83-byte TGA header claiming
@@ -60,7 +52,6 @@ TEST(FuzzRegression, ImageSlowTgaClaimingHugeSize) {
     tga += std::string("\x00\x00\x00\x00=00Pf\x00\x18\x00\x00\x00\x01", 15);
     ASSERT_EQ(tga.size(), 83u);
     const auto p = dir.write("regression-slow-tga-6168x6168.tga", tga);
-    std::string msg;
-    EXPECT_LT(seconds_to_load_texture(p, msg), 1.0);
+    const std::string msg = error_of([&] { (void)load_texture(p); });
     EXPECT_TRUE(has(msg, "6168 x 6168 texels in a file of 83 bytes")) << msg;
 }

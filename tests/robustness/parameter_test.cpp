@@ -21,7 +21,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <climits>
 #include <cmath>
 #include <limits>
@@ -136,19 +135,17 @@ TEST(BadParameter, RenderSettingsAndFilmSize) {
     EXPECT_EQ(stats.samples, 16u);
     EXPECT_EQ(image.pixels.size(), 16u);
 
-    // A film that cannot fit in memory is refused before allocating, and quickly.
+    // A film that cannot fit in memory is refused before allocating: by the size limit
+    // (the message names it); allocated first, it would end in std::bad_alloc, or render.
     for (const auto& [w, h] :
          {std::pair{65536, 65536}, std::pair{65536, 20000}, std::pair{30000, 30000}}) {
         CameraSettings big;
         big.width = w;
         big.height = h;
-        const auto start = std::chrono::steady_clock::now();
         const std::string msg =
             error_of([&] { (void)render(scene, Camera(big), integrator, RenderSettings{}); });
         EXPECT_TRUE(has(msg, std::to_string(w) + " x " + std::to_string(h))) << msg;
         EXPECT_TRUE(has(msg, "4 GiB")) << msg;
-        EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                  1.0);
     }
     expect_error([] { (void)Image(-1, 5); }, {"image size -1 x 5"});
     expect_error([] { (void)Image(INT_MAX, INT_MAX); }, {"image size 2147483647 x 2147483647"});
@@ -320,13 +317,12 @@ TEST(BadParameter, ProceduralCounts) {
     expect_error([] { (void)make_uv_sphere({}, 1, -3, 4); }, {"segments = -3"});
     expect_error([] { (void)make_uv_sphere({}, 1, INT_MAX, 4); }, {"segments = 2147483647"});
     expect_error([] { (void)make_uv_sphere({}, 1, 8, INT_MIN); }, {"rings = -2147483648"});
-    // Each count in range, their product absurd: refused before allocating ~34 GB.
-    const auto start = std::chrono::steady_clock::now();
+    // Each count in range, their product absurd: refused by the limit (the message names
+    // it) before allocating ~34 GB.
     expect_error([] { (void)make_uv_sphere({}, 1, 1 << 15, 1 << 15); },
                  {"make_uv_sphere", "segments = 32768, rings = 32768", "more than the limit"});
     expect_error([] { (void)make_teapot(4096); },
                  {"make_teapot", "tessellation = 4096", "vertices"});
-    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
     expect_error([] { (void)make_teapot(-1); }, {"tessellation = -1"});
     expect_error([] { (void)make_icosphere({}, 1, -1); }, {"subdivisions = -1"});
     expect_error([] { (void)make_icosphere({kNan, 0, 0}, 1, 2); }, {"make_icosphere", "center"});
