@@ -12,6 +12,7 @@
 #include <librt/io/exr.h>
 #include <librt/io/image_io.h>
 #include <librt/mpi/render_mpi.h>
+#include <librt/mpi/same_job.h>
 #include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
 
@@ -26,6 +27,7 @@
 #include <exception>
 #include <iostream>
 #include <string>
+#include <vector>
 
 using namespace librt;
 
@@ -173,6 +175,20 @@ int main(int argc, char** argv) {
         }
         if (!single) check_all_ranks(MPI_COMM_WORLD, setup_error);
         if (!setup_error.empty()) throw Error(setup_error);
+        // Every rank was given the same options (the scene is built in code from them): each
+        // option as typed, or "(default)". Not --threads and --quiet, which may differ.
+        if (!single) {
+            std::vector<JobItem> items;
+            for (const CLI::Option* option : app.get_options()) {
+                const std::string name = option->get_name();
+                if (name == "--help" || name == "--threads" || name == "--quiet") continue;
+                std::string value = option->count() == 0 ? "(default)" : "";
+                for (const std::string& r : option->results())
+                    value += (value.empty() ? "" : " ") + r;
+                items.push_back({name, value});
+            }
+            check_same_job(MPI_COMM_WORLD, items);
+        }
 
         PathTracer tracer(apps::path_tracer_settings(options));
         FailingIntegrator failing(tracer, fail_how, fail_after);

@@ -10,6 +10,7 @@
 #include "common/scene_app.h"
 
 #include <librt/core/error.h>
+#include <librt/io/file_digest.h>
 #include <librt/io/hdr_image.h>
 #include <librt/io/image_io.h>
 #include <librt/io/scene_file.h>
@@ -27,6 +28,8 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 using namespace librt;
 
@@ -62,6 +65,46 @@ struct Options {
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// What every rank of an MPI job must agree on (MpiJob::check_same_job): every option that
+// shapes the image or its file, the scene file's and the sky's bytes as digests (the files
+// a glTF or OBJ refers to, .bin, .mtl, textures, are not read here). Not --threads nor
+// --quiet, which may differ between ranks. A new option that shapes the image goes here.
+std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
+    const auto exact = [](double v) {  // round-trips a float or double exactly
+        char text[32];
+        std::snprintf(text, sizeof text, "%.17g", v);
+        return std::string(text);
+    };
+    const auto on = [](bool b) { return std::string(b ? "on" : "off"); };
+    const auto given = [](const std::string& v) { return v.empty() ? "(none)" : v; };
+    const apps::AppOptions& s = o.sampling;
+    return {
+        {"scene file", to_string(file_digest(o.scene))},
+        {"--env", o.env.empty() ? "(none)" : to_string(file_digest(o.env))},
+        {"--output", o.output},
+        {"--spp", std::to_string(o.spp)},
+        {"--size", given(o.size)},
+        {"--camera", given(o.camera)},
+        {"--max-depth", std::to_string(o.max_depth)},
+        {"--light-choice", o.light_choice},
+        {"--integrator", o.integrator},
+        {"--caustic-paths", on(o.caustic_paths)},
+        {"--light-paths", exact(o.light_paths)},
+        {"--roulette-depth", std::to_string(o.roulette_depth)},
+        {"--seed", std::to_string(o.seed)},
+        {"--time-limit", exact(o.time_limit)},
+        {"--exposure", exact(o.exposure_ev)},
+        {"--env-strength", exact(o.env_strength)},
+        {"--sampler", s.sampler},
+        {"--filter", given(s.filter)},
+        {"--filter-radius", s.filter_radius ? exact(*s.filter_radius) : "(the filter's)"},
+        {"--guiding", on(s.guiding)},
+        {"--guiding-passes", std::to_string(s.guiding_passes)},
+        {"--adaptive", on(s.adaptive)},
+        {"--mpi-tile", std::to_string(o.mpi_tile)},
+    };
 }
 
 int render_file(const Options& o, const apps::MpiJob& job) {
@@ -119,6 +162,8 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         bad("--env-strength", std::to_string(o.env_strength), "must be finite and >= 0");
     if (o.env.empty() && o.env_strength != 1.0f)
         bad("--env-strength", std::to_string(o.env_strength), "needs --env");
+    // Under mpirun: every rank was given the same job, before the long load.
+    if (job.distributed()) job.check_same_job(job_items(o));
     // The sky is read before the scene, so a bad file fails before the long load.
     std::optional<EnvironmentLight> environment;
     if (!o.env.empty())

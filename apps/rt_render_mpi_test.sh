@@ -12,7 +12,13 @@
 #              rendering, each end the job with a non-zero exit, a message naming that rank
 #              and no output file (nor temporary); Ctrl-C (SIGINT to mpirun) stops every
 #              rank and writes nothing; --time-limit is refused under mpirun.
-# Usage: rt_render_mpi_test.sh identical|gltf|failures <rt_render> <mpirun> <scratch dir> <data dir>
+#   mismatch   ranks given different jobs (MPMD: `mpirun -np 1 app args : -np 1 app other`):
+#              another scene file, --integrator bdpt (whose splats once left the ranks
+#              waiting for each other forever), --spp, --guiding or the output's format on
+#              one rank; every rank must exit non-zero, quickly (under `timeout`, so a hang
+#              fails), nothing written, with the message naming that rank and the item.
+# Usage: rt_render_mpi_test.sh identical|gltf|failures|mismatch <rt_render> <mpirun>
+#        <scratch dir> <data dir>
 set -euo pipefail
 mode=$1
 app=$2
@@ -85,6 +91,61 @@ if [ "$mode" = gltf ]; then
   fi
   identical gltf.png "$gltf" "${frame[@]}"
   identical gltf-sobol-mitchell.exr "$gltf" "${frame[@]}" --sampler sobol --filter mitchell
+  rm -rf "$dir"
+  exit 0
+fi
+
+if [ "$mode" = mismatch ]; then
+  # A different scene: the tetrahedron moved up.
+  other="$dir/other.obj"
+  sed 's/^v 0 1.5 0$/v 0 2 0/' "$scene" >"$other"
+  cmp -s "$scene" "$other" && fail "other.obj equals tetra.obj"
+  mkdir -p "$dir/out"
+  out="$dir/out/frame.png"
+  common=(--size 64x40 --threads 1 --mpi-tile 16 --quiet)
+  # Each rank runs through this wrapper, which records its exit status in rc.<rank> and
+  # exits 0: mpirun would otherwise kill the other ranks once one fails, and a rank left
+  # waiting would go unseen. So every rank must end by itself, within the timeout.
+  wrapper='"$0" "$@"; echo $? >"'"$dir"'/rc.$OMPI_COMM_WORLD_RANK"'
+  # mismatch <what> <ranks> <pattern> <rank 0's args> -- <last rank's args>: the first
+  # ranks-1 ranks run the first arguments, the last rank the others.
+  mismatch() {
+    local what=$1 ranks=$2 pattern=$3
+    shift 3
+    local first=() last=()
+    while [ "$1" != -- ]; do first+=("$1"); shift; done
+    shift
+    last=("$@")
+    rm -f "$dir"/rc.*
+    local status=0
+    timeout 60 "$mpirun" "${flags[@]}" \
+      -np $((ranks - 1)) bash -c "$wrapper" "$app" "${first[@]}" "${common[@]}" : \
+      -np 1 bash -c "$wrapper" "$app" "${last[@]}" "${common[@]}" >"$dir/log" 2>&1 || status=$?
+    local log
+    log=$(cat "$dir/log")
+    [ "$status" -ne 124 ] || fail "$what: still running after 60 s (a hang); output: $log"
+    [ "$status" -eq 0 ] || fail "$what: mpirun exit status $status; output: $log"
+    grep -Eq "$pattern" <<<"$log" || fail "$what: no message matching '$pattern': $log"
+    local r
+    for ((r = 0; r < ranks; ++r)); do
+      [ -f "$dir/rc.$r" ] || fail "$what: rank $r did not end by itself; output: $log"
+      [ "$(cat "$dir/rc.$r")" -ne 0 ] || fail "$what: rank $r exited 0; output: $log"
+    done
+    [ -z "$(ls -A "$dir/out")" ] || fail "$what: files written: $(ls -A "$dir/out")"
+    echo "$what: every rank exits $(cat "$dir"/rc.* | sort -u | tr '\n' ' ')with '$(grep -Eo "$pattern" <<<"$log" | head -1)'"
+  }
+  mismatch "another scene file on rank 1" 2 \
+    "rank 1: scene file differs from rank 0 \(fnv1a64 [0-9a-f]{16}, 119 bytes vs fnv1a64 [0-9a-f]{16}, 121 bytes\)" \
+    "$scene" --spp 4 -o "$out" -- "$other" --spp 4 -o "$out"
+  mismatch "--integrator bdpt on rank 1" 2 "rank 1: --integrator differs from rank 0 \(bdpt vs path\)" \
+    "$scene" --spp 4 -o "$out" -- "$scene" --spp 4 -o "$out" --integrator bdpt
+  mismatch "--spp on rank 2 of 3" 3 "rank 2: --spp differs from rank 0 \(8 vs 4\)" \
+    "$scene" --spp 4 -o "$out" -- "$scene" --spp 8 -o "$out"
+  mismatch "--guiding on rank 1" 2 "rank 1: --guiding differs from rank 0 \(on vs off\)" \
+    "$scene" --spp 4 -o "$out" -- "$scene" --spp 4 -o "$out" --guiding
+  mismatch "another output format on rank 1" 2 \
+    "rank 1: --output differs from rank 0 \(.*frame\.exr vs .*frame\.png\)" \
+    "$scene" --spp 4 -o "$out" -- "$scene" --spp 4 -o "$dir/out/frame.exr"
   rm -rf "$dir"
   exit 0
 fi

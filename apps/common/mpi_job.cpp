@@ -3,6 +3,7 @@
 
 #include <librt/core/error.h>
 #include <librt/mpi/render_mpi.h>
+#include <librt/mpi/same_job.h>
 
 #include <mpi.h>
 
@@ -70,6 +71,21 @@ void MpiJob::setup_succeeded() const {
     if (!distributed() || setup_checked_) return;
     setup_checked_ = true;
     check_all_ranks({});
+}
+
+void MpiJob::check_same_job(const std::vector<std::pair<std::string, std::string>>& items) const {
+    if (!distributed() || setup_checked_) return;
+    // A rank that failed before this call (a bad option) joins the set-up check from run():
+    // the others meet it in check_all_ranks below. Both calls throw on every rank alike, so
+    // run() must then not start a check of its own (setup_checked_): no rank would join it.
+    // Once both pass, setup_succeeded()'s check is still to come.
+    std::vector<JobItem> job;
+    job.reserve(items.size());
+    for (const auto& [name, value] : items) job.push_back({name, value});
+    setup_checked_ = true;
+    check_all_ranks({});
+    librt::check_same_job(MPI_COMM_WORLD, job);
+    setup_checked_ = false;
 }
 
 void MpiJob::check_all_ranks(const std::string& local_error) const {

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 // The MPI job an app may have been started in by mpirun, for apps that also run alone
@@ -72,6 +73,14 @@ public:
     /// built): waits for every rank's set-up and throws like run() when one failed. Does
     /// nothing alone.
     void setup_succeeded() const;
+
+    /// Collective, before setup_succeeded(): every rank passes what shapes its image, as
+    /// (name, value) pairs ("--spp", "16"; "scene file", its digest), and when a rank's
+    /// differ from rank 0's every rank throws librt::Error naming the rank and the item,
+    /// "rank 1: --integrator differs from rank 0 (bdpt vs path)" (librt::check_same_job,
+    /// mpi/same_job.h). A rank whose set-up failed before this call is reported first, as
+    /// by setup_succeeded(). Does nothing alone.
+    void check_same_job(const std::vector<std::pair<std::string, std::string>>& items) const;
 
     /// Collective: every rank passes the error of its set-up (empty when it worked). When
     /// any failed, throws librt::Error on every rank, "rank R: <message>" for the lowest

@@ -13,6 +13,9 @@ int MpiJob::run(const std::function<int()>& body) const { return body(); }
 
 void MpiJob::setup_succeeded() const {}
 
+void MpiJob::check_same_job(
+    const std::vector<std::pair<std::string, std::string>>& /*items*/) const {}
+
 void MpiJob::check_all_ranks(const std::string& local_error) const {
     if (!local_error.empty()) throw Error(local_error);
 }

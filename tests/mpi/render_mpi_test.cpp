@@ -185,6 +185,43 @@ TEST(RenderMpi, BadSettingsThrowOnEveryRank) {
     expect_error(s, "adaptive.radius = 0");
 }
 
+// Ranks given different jobs fail on every rank before any tile, naming the rank and what
+// differs. Here rank 1 on splatted while rank 0 did not: rank 0 finished without its splats
+// and waited in MPI_Finalize, rank 1 waited for ever to send them.
+TEST(RenderMpi, RanksGivenDifferentJobsFailOnEveryRank) {
+    int size = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    if (size == 1) GTEST_SKIP() << "needs ranks to compare";
+    const Scene scene = film_test_scene();
+    const Camera camera = film_test_camera(8, 8);
+    PathTracer path_tracer;
+    librt::testing::RandomSplatter splatter;
+    const auto message = [&](Integrator& integrator, const MpiRenderSettings& s) {
+        try {
+            (void)render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    MpiRenderSettings s;
+    s.render.threads = 1;
+    const std::string more = size == 3 ? "; 1 more rank differs" : "";
+    EXPECT_EQ(message(world_rank() == 0 ? static_cast<Integrator&>(path_tracer) : splatter, s),
+              "rank 1: integrator splats differs from rank 0 (yes vs no)" + more);
+    MpiRenderSettings other = s;
+    other.render.samples_per_pixel = 2;
+    other.tile_size = 4;
+    EXPECT_EQ(message(path_tracer, world_rank() == size - 1 ? other : s),
+              "rank " + std::to_string(size - 1) +
+                  ": tile_size differs from rank 0 (4 vs 32); also samples_per_pixel");
+    // Agreeing again, the ranks render.
+    const Film film = render_mpi(MPI_COMM_WORLD, scene, camera, path_tracer, s);
+    if (world_rank() == 0) {
+        EXPECT_EQ(uniform_sample_count(film), 1u);
+    }
+}
+
 namespace {
 
 // The path tracer, each sample delayed by `delay` (on rank 0 only, or on every rank). The

@@ -28,6 +28,7 @@
 
 #include <librt/core/error.h>
 #include <librt/mpi/render_mpi.h>
+#include <librt/mpi/same_job.h>
 #include <librt/render/adaptive_sampling.h>
 #include <librt/render/pass_combination.h>
 #include <librt/render/scene.h>
@@ -36,6 +37,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstddef>
+#include <cstdio>
 #include <exception>
 #include <optional>
 #include <span>
@@ -399,6 +401,33 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
     return film;
 }
 
+// What every rank must agree on before the protocol starts: what shapes its messages (the
+// tiling, the records a tile carries, whether splats follow) and the samples. A rank that
+// disagreed would wait for messages that never come (a worker whose integrator splats
+// sent splats rank 0 never received, both waiting for ever), or its tiles would carry
+// another image. Not the integrator's class: a rank may wrap it (rt_mpi_render's failing
+// rank does), and its settings are the caller's to compare. Not settings that only rank 0
+// or a rank's own threads use (root_renders, threads, the threads' tile_size, progress,
+// cancel).
+std::vector<JobItem> protocol_items(const Camera& camera, const Integrator& integrator,
+                                    const MpiRenderSettings& s) {
+    const AdaptiveSampling& a = s.render.adaptive;
+    char max_factor[32];  // every digit: two factors that differ must show it
+    std::snprintf(max_factor, sizeof max_factor, "%.17g", a.max_factor);
+    return {
+        {"image size", std::to_string(camera.width()) + "x" + std::to_string(camera.height())},
+        {"tile_size", std::to_string(s.tile_size)},
+        {"samples_per_pixel", std::to_string(s.render.samples_per_pixel)},
+        {"seed", std::to_string(s.render.seed)},
+        {"sampler", s.render.sampler == SamplerKind::Sobol ? "sobol" : "independent"},
+        {"adaptive", a.enabled ? "pilot " + std::to_string(a.pilot_samples) + ", radius " +
+                                     std::to_string(a.radius) + ", max_factor " + max_factor
+                               : "off"},
+        {"aovs", s.aovs ? "on" : "off"},
+        {"integrator splats", integrator.splats() ? "yes" : "no"},
+    };
+}
+
 // Any other rank: asks rank 0 for jobs until told there are none left.
 Film run_worker(MPI_Comm comm, const Scene& scene, const Camera& camera, Integrator& integrator,
                 const MpiRenderSettings& s, MpiRenderStats& stats) {
@@ -522,6 +551,7 @@ Film render_mpi(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
         MPI_Comm& comm;
         ~Free() { MPI_Comm_free(&comm); }
     } const free_own{own};
+    check_same_job(own, protocol_items(camera, integrator, settings));
     return rank == 0 ? run_root(own, size, scene, camera, integrator, settings, out, image)
                      : run_worker(own, scene, camera, integrator, settings, out);
 }

@@ -72,8 +72,13 @@ LIBRT_API void validate(const MpiRenderSettings& settings);
 
 /// Renders `scene` through `camera` with `integrator` over the ranks of `comm`, a
 /// collective call: every rank of `comm` must call it with the same scene, camera and
-/// settings (each rank builds or loads its own copy). Its messages travel on a duplicate
-/// of `comm` (MPI_Comm_dup), so they never mix with the caller's or with those of the
+/// settings (each rank builds or loads its own copy). What it can see of that is checked
+/// first (check_same_job, mpi/same_job.h): the image size, tile_size, samples_per_pixel,
+/// seed, sampler, adaptive sampling, aovs and whether the integrator splats; a rank that
+/// differs fails the call on every rank, "rank 1: integrator splats differs from rank 0
+/// (yes vs no)". The scene and the integrator are the caller's to compare (an app hashes
+/// its scene file and options, as rt_render does). Its messages travel on
+/// a duplicate of `comm` (MPI_Comm_dup), so they never mix with the caller's or with those of the
 /// next call (calls in a row, e.g. the frames of an animation, are safe). Calls
 /// integrator.preprocess(scene) on each rank. Returns the whole film on rank 0 (every
 /// pixel holding settings.render.samples_per_pixel samples, but see adaptive sampling; resolve() or
