@@ -140,10 +140,11 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        // Every rank parsed the same line; one of them speaks.
+        // Every rank parsed the same line; one of them speaks. Exit 1 for a bad command
+        // line, 0 for --help (not CLI11's own codes), as apps::run.
         const int code = rank == 0 ? app.exit(e) : e.get_exit_code();
         MPI_Finalize();
-        return code;
+        return code == 0 ? 0 : 1;
     }
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);

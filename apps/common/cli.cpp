@@ -381,7 +381,10 @@ int run(CLI::App& app, int argc, char** argv, const std::function<int()>& body) 
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // app.exit prints CLI11's message (or the help / version text) and returns CLI11's
+        // own code (e.g. 109 for an unknown option); the apps' convention is 1 for any
+        // bad command line (docs/robustness.md) and 0 for --help and --version.
+        return app.exit(e) == 0 ? 0 : 1;
     }
     // The library chose its SIMD path without printing; a refused LIBRT_SIMD is said here.
     if (const std::string& note = librt::simd_path_note(); !note.empty())

@@ -153,7 +153,8 @@ void validate(const MeshOptions& options);
 
 /// Parses the command line (adding --version, and making every option take its last value
 /// when repeated) and runs `body`. A librt::Error (or any other exception) is
-/// printed on stderr and gives exit code 1; command-line errors give CLI11's code.
+/// printed on stderr and gives exit code 1; so does a bad command line (CLI11's message on
+/// stderr); --help and --version exit 0.
 /// Returns body's exit code otherwise. While body runs, SIGINT and SIGTERM request a
 /// clean stop (render_and_write then returns 130 without writing); a second one kills.
 [[nodiscard]] int run(CLI::App& app, int argc, char** argv, const std::function<int()>& body);

@@ -150,11 +150,10 @@ TEST(GltfOrthographic, BadMagnificationsAndClipsNameTheJsonPath) {
         return std::pair{p.string(), load_error(p)};
     };
     for (const auto& [args, part] : std::vector<std::pair<std::vector<double>, std::string>>{
-             {{0.0, 1.0, 0.0, 10.0},
-              "cameras[0].orthographic.xmag: 0.000000: must be finite and not 0"},
-             {{1.0, 0.0, 0.0, 10.0}, "cameras[0].orthographic.ymag: 0.000000"},
+             {{0.0, 1.0, 0.0, 10.0}, "cameras[0].orthographic.xmag: 0: must be finite and not 0"},
+             {{1.0, 0.0, 0.0, 10.0}, "cameras[0].orthographic.ymag: 0:"},
              {{1e300, 1.0, 0.0, 10.0}, "cameras[0].orthographic.xmag"},
-             {{1.0, 1.0, -1.0, 10.0}, "cameras[0].orthographic: znear = -1.000000"},
+             {{1.0, 1.0, -1.0, 10.0}, "cameras[0].orthographic: znear = -1, zfar = 10"},
              {{1.0, 1.0, 5.0, 5.0}, "needs 0 <= znear < zfar"}}) {
         const auto [file, message] = error_of(args[0], args[1], args[2], args[3]);
         EXPECT_TRUE(lt::has(message, file)) << message;

@@ -588,6 +588,7 @@ TEST(GltfToScene, ANodeScaledToZeroIsWarnedAboutNotPlaced) {
     EXPECT_EQ(loaded.triangles_placed, 1u);
     bool warned = false;
     for (const std::string& w : loaded.warnings)
-        warned = warned || w.find("'hidden': singular transform") != std::string::npos;
+        warned = warned ||
+                 w.find("nodes[1] 'hidden': its world transform is singular") != std::string::npos;
     EXPECT_TRUE(warned);
 }

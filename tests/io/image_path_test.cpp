@@ -9,6 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cerrno>
+#include <cstring>
+#include <fstream>
 #include <string>
 
 using namespace librt;
@@ -48,4 +51,30 @@ TEST(ImagePath, CheckImagePathRefusesWhatWriteImageCannotWrite) {
     std::filesystem::create_directory(dir.path() / "d.png");
     EXPECT_NE(message(dir.path() / "d.png").find("a directory"), std::string::npos);
     EXPECT_TRUE(std::filesystem::is_empty(dir.path() / "d.png"));
+}
+
+TEST(ImagePath, AnOverLongPathSaysSoNotNoDirectory) {
+    ScratchDir dir;
+    auto message = [](const std::filesystem::path& p) {
+        try {
+            check_image_path(p);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    const std::string too_long(300, 'a');  // over NAME_MAX (255) on Linux file systems
+    const std::string reason = std::strerror(ENAMETOOLONG);
+    // A directory component too long: the directory is not missing, its name is too long.
+    const std::string in_dir = message(dir.path() / too_long / "x.png");
+    EXPECT_NE(in_dir.find(reason), std::string::npos) << in_dir;
+    EXPECT_EQ(in_dir.find("no directory"), std::string::npos) << in_dir;
+    // The file's own name too long: said before rendering, not when the file is created.
+    const std::string file = message(dir.path() / (too_long + ".png"));
+    EXPECT_NE(file.find(reason), std::string::npos) << file;
+    // A path component that is a regular file.
+    std::ofstream(dir.path() / "plain").put('x');
+    const std::string not_dir = message(dir.path() / "plain" / "x.png");
+    EXPECT_EQ(not_dir.find("no directory"), std::string::npos) << not_dir;
+    EXPECT_NE(not_dir.find(std::strerror(ENOTDIR)), std::string::npos) << not_dir;
 }

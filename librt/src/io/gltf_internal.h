@@ -14,7 +14,9 @@
 
 #include <tiny_gltf.h>
 
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -155,6 +157,24 @@ inline constexpr int kMaxJsonDepth = 64;
 
 /// Percent-decodes a URI reference into a relative path ("a%20b.png" -> "a b.png").
 [[nodiscard]] std::string decode_uri(std::string_view uri);
+
+/// A number as messages show it: six significant digits, exponent when large or small
+/// ("1e+300", "0.5"), where std::to_string would print 301 digits or "0.000000".
+[[nodiscard]] inline std::string number_text(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
+
+/// `v` as a float, or a failure naming json_path when it is not finite or does not fit a
+/// float (|v| > 3.4e38 would become infinite, a value that the double parsed as finite).
+[[nodiscard]] inline float finite_float(double v, const std::string& json_path,
+                                        const Context& ctx) {
+    if (!std::isfinite(v)) ctx.fail(json_path, "is not finite");
+    if (!std::isfinite(float(v)))
+        ctx.fail(json_path, number_text(v) + ": beyond the float range (|value| <= 3.4e38)");
+    return float(v);
+}
 
 /// "accessors[7]" and friends.
 [[nodiscard]] std::string indexed(std::string_view array, std::size_t index);

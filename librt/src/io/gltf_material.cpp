@@ -26,8 +26,8 @@ using tinygltf::Value;
 float unit_factor(double v, float lo, float hi, const std::string& path, const Context& ctx) {
     if (!std::isfinite(v)) ctx.fail(path, "is not finite");
     if (v < lo || v > hi) {
-        ctx.warn(path, std::to_string(v) + " outside [" + std::to_string(lo) + ", " +
-                           std::to_string(hi) + "]; clamped");
+        ctx.warn(path, number_text(v) + " outside [" + number_text(lo) + ", " + number_text(hi) +
+                           "]; clamped");
         v = std::clamp(v, double(lo), double(hi));
     }
     return float(v);
@@ -61,8 +61,7 @@ void read_transform(const ExtensionMap& extensions, GltfTextureRef& ref, const s
     vec2("scale", ref.transform.scale);
     double rotation = 0.0;
     if (ext_number(t, "rotation", &rotation)) {
-        if (!std::isfinite(rotation)) ctx.fail(at + ".rotation", "is not finite");
-        ref.transform.rotation = float(rotation);
+        ref.transform.rotation = finite_float(rotation, at + ".rotation", ctx);
     }
     if (t.IsObject() && t.Has("texCoord")) {
         if (!t.Get("texCoord").IsInt()) ctx.fail(at + ".texCoord", "must be an integer");
@@ -70,15 +69,17 @@ void read_transform(const ExtensionMap& extensions, GltfTextureRef& ref, const s
     }
 }
 
+/// `scale` is normalTexture.scale or occlusionTexture.strength (`scale_key` names it), 1
+/// for the others.
 GltfTextureRef texture_ref(int index, int tex_coord, double scale, const ExtensionMap& extensions,
-                           const std::string& path, std::size_t texture_count, const Context& ctx) {
+                           const std::string& path, std::size_t texture_count, const Context& ctx,
+                           const char* scale_key = "scale") {
     GltfTextureRef ref;
     if (index == -1) return ref;
     check_index(ctx, path + ".index", index, texture_count, "texture");
     ref.texture = index;
     ref.tex_coord = tex_coord;
-    if (!std::isfinite(scale)) ctx.fail(path, "scale or strength is not finite");
-    ref.scale = float(scale);
+    ref.scale = finite_float(scale, path + "." + scale_key, ctx);
     read_transform(extensions, ref, path, ctx);
     if (ref.tex_coord < 0 || ref.tex_coord > 1) {
         ctx.warn(path + ".texCoord", std::to_string(ref.tex_coord) +
@@ -129,7 +130,7 @@ GltfMaterial read_material(const tinygltf::Material& m, const std::string& path,
                                    path + ".normalTexture", textures, ctx);
     const auto& ot = m.occlusionTexture;
     g.occlusion_texture = texture_ref(ot.index, ot.texCoord, ot.strength, ot.extensions,
-                                      path + ".occlusionTexture", textures, ctx);
+                                      path + ".occlusionTexture", textures, ctx, "strength");
     if (m.emissiveFactor.size() != 3) ctx.fail(path + ".emissiveFactor", "must have 3 numbers");
     for (int i = 0; i < 3; ++i)
         g.emissive_factor[i] = unit_factor(m.emissiveFactor[std::size_t(i)], 0, 1,
@@ -148,17 +149,16 @@ GltfMaterial read_material(const tinygltf::Material& m, const std::string& path,
                  quote_untrusted(m.alphaMode) + ": must be OPAQUE, MASK or BLEND");
     if (!std::isfinite(m.alphaCutoff) || m.alphaCutoff < 0)
         ctx.fail(path + ".alphaCutoff", "must be finite and >= 0");
-    g.alpha_cutoff = float(m.alphaCutoff);
+    g.alpha_cutoff = finite_float(m.alphaCutoff, path + ".alphaCutoff", ctx);
     g.double_sided = m.doubleSided;
 
     const std::string ep = path + ".extensions.";
     double v = 0.0;
     if (const auto it = m.extensions.find("KHR_materials_emissive_strength");
         it != m.extensions.end() && ext_number(it->second, "emissiveStrength", &v)) {
-        if (!std::isfinite(v) || v < 0)
-            ctx.fail(ep + "KHR_materials_emissive_strength.emissiveStrength",
-                     "must be finite and >= 0");
-        g.emissive_strength = float(v);
+        const std::string at = ep + "KHR_materials_emissive_strength.emissiveStrength";
+        if (!std::isfinite(v) || v < 0) ctx.fail(at, "must be finite and >= 0");
+        g.emissive_strength = finite_float(v, at, ctx);
     }
     if (const auto it = m.extensions.find("KHR_materials_transmission"); it != m.extensions.end()) {
         const std::string tp = ep + "KHR_materials_transmission";
@@ -180,15 +180,16 @@ GltfMaterial read_material(const tinygltf::Material& m, const std::string& path,
         };
         if (number("anisotropyStrength", &v))
             g.anisotropy_strength = unit_factor(v, 0, 1, ap + ".anisotropyStrength", ctx);
-        if (number("anisotropyRotation", &v)) g.anisotropy_rotation = float(v);
+        if (number("anisotropyRotation", &v))
+            g.anisotropy_rotation = finite_float(v, ap + ".anisotropyRotation", ctx);
         g.anisotropy_texture = ext_texture(a, "anisotropyTexture", ap, textures, ctx);
     }
     if (const auto it = m.extensions.find("KHR_materials_ior");
         it != m.extensions.end() && ext_number(it->second, "ior", &v)) {
         // The extension allows 0 (a reflection-only limit) or >= 1.
         if (!std::isfinite(v) || (v != 0.0 && v < 1.0))
-            ctx.fail(ep + "KHR_materials_ior.ior", std::to_string(v) + ": must be 0 or >= 1");
-        g.ior = float(v);
+            ctx.fail(ep + "KHR_materials_ior.ior", number_text(v) + ": must be 0 or >= 1");
+        g.ior = finite_float(v, ep + "KHR_materials_ior.ior", ctx);
     }
     return g;
 }

@@ -3,7 +3,10 @@
 
 #include "io/gltf_internal.h"
 
+#include <librt/geometry/mesh.h>
+
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <string_view>
 
@@ -155,6 +158,19 @@ void read_meshes(const tinygltf::Model& model, Context& ctx, GltfScene& scene) {
             g.positions = to_vectors<3>(
                 read_float_accessor(model, pos->second, kVec3, pos_path, ctx, &components));
             const std::size_t count = g.positions.size();
+            // Refused here, where the accessor's path is known (TriangleMesh's own check
+            // would come later, naming neither file nor accessor).
+            for (std::size_t i = 0; i < count; ++i) {
+                const glm::vec3& q = g.positions[i];
+                const float largest = std::max({std::abs(q.x), std::abs(q.y), std::abs(q.z)});
+                if (largest > kMaxMeshCoordinate) {
+                    ctx.fail(pos_path, "vertex " + std::to_string(i) + " = (" + number_text(q.x) +
+                                           ", " + number_text(q.y) + ", " + number_text(q.z) +
+                                           "): coordinate " + number_text(largest) +
+                                           " exceeds 2^40 (1.1e12), the largest librt traces "
+                                           "(ray distances to it would overflow float)");
+                }
+            }
             g.normals = attribute<3>(model, prim, "NORMAL", kVec3, count, path, ctx);
             g.tangents = attribute<4>(model, prim, "TANGENT", kVec4, count, path, ctx);
             g.uv0 = attribute<2>(model, prim, "TEXCOORD_0", kVec2, count, path, ctx);

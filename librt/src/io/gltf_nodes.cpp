@@ -10,7 +10,9 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -32,20 +34,30 @@ glm::mat4 local_matrix(const tinygltf::Node& node, const std::string& path, cons
         if (node.matrix.size() != 16) ctx.fail(path + ".matrix", "must have 16 numbers");
         if (!finite(node.matrix)) ctx.fail(path + ".matrix", "has a number that is not finite");
         if (trs) ctx.warn(path, "both matrix and translation/rotation/scale given; matrix used");
+        // glTF stores matrices column by column, as glm does: the last row is elements 3, 7,
+        // 11 and 15. The spec requires a matrix decomposable into TRS, so affine.
+        const auto& e = node.matrix;
+        if (e[3] != 0.0 || e[7] != 0.0 || e[11] != 0.0 || e[15] != 1.0) {
+            ctx.fail(path + ".matrix", "not affine (last row " + number_text(e[3]) + " " +
+                                           number_text(e[7]) + " " + number_text(e[11]) + " " +
+                                           number_text(e[15]) + ", must be 0 0 0 1)");
+        }
         glm::mat4 m;
-        // glTF stores matrices column by column, as glm does.
         for (int c = 0; c < 4; ++c)
             for (int r = 0; r < 4; ++r)
-                m[c][r] = static_cast<float>(node.matrix[std::size_t(c * 4 + r)]);
+                m[c][r] = finite_float(node.matrix[std::size_t(c * 4 + r)],
+                                       indexed(path + ".matrix", std::size_t(c * 4 + r)), ctx);
         return m;
     }
     glm::mat4 m(1.0f);
     if (!node.translation.empty()) {
         if (node.translation.size() != 3 || !finite(node.translation))
             ctx.fail(path + ".translation", "must be 3 finite numbers");
-        m = glm::translate(glm::mat4(1.0f),
-                           glm::vec3(float(node.translation[0]), float(node.translation[1]),
-                                     float(node.translation[2])));
+        glm::vec3 t;
+        for (int i = 0; i < 3; ++i)
+            t[i] = finite_float(node.translation[std::size_t(i)],
+                                indexed(path + ".translation", std::size_t(i)), ctx);
+        m = glm::translate(glm::mat4(1.0f), t);
     }
     if (!node.rotation.empty()) {
         if (node.rotation.size() != 4 || !finite(node.rotation))
@@ -64,8 +76,11 @@ glm::mat4 local_matrix(const tinygltf::Node& node, const std::string& path, cons
     if (!node.scale.empty()) {
         if (node.scale.size() != 3 || !finite(node.scale))
             ctx.fail(path + ".scale", "must be 3 finite numbers");
-        m = glm::scale(m,
-                       glm::vec3(float(node.scale[0]), float(node.scale[1]), float(node.scale[2])));
+        glm::vec3 s;
+        for (int i = 0; i < 3; ++i)
+            s[i] = finite_float(node.scale[std::size_t(i)],
+                                indexed(path + ".scale", std::size_t(i)), ctx);
+        m = glm::scale(m, s);
     }
     return m;
 }
@@ -119,21 +134,25 @@ std::vector<int> check_forest(const tinygltf::Model& model, const Context& ctx) 
 GltfCamera read_camera(const tinygltf::Camera& cam, const std::string& path, const Context& ctx) {
     GltfCamera c;
     c.name = cam.name;
+    // > 0 as the float librt keeps: 1e-300 rounds to 0 and 1e300 to infinity.
     auto positive = [&](double v, const std::string& where) {
-        if (!(v > 0.0) || !std::isfinite(v)) ctx.fail(where, std::to_string(v) + ": must be > 0");
-        return float(v);
+        if (!(v > 0.0)) ctx.fail(where, number_text(v) + ": must be > 0");
+        const float f = finite_float(v, where, ctx);
+        if (!(f > 0.0f))
+            ctx.fail(where, number_text(v) + ": must be > 0 (it rounds to 0 as a float)");
+        return f;
     };
     if (cam.type == "perspective") {
         const auto& p = cam.perspective;
         c.type = GltfCamera::Type::Perspective;
         c.yfov = positive(p.yfov, path + ".perspective.yfov");
         if (p.yfov >= std::numbers::pi)
-            ctx.fail(path + ".perspective.yfov", std::to_string(p.yfov) + ": must be < pi");
+            ctx.fail(path + ".perspective.yfov", number_text(p.yfov) + ": must be < pi");
         c.znear = positive(p.znear, path + ".perspective.znear");
         if (p.aspectRatio != 0.0)
             c.aspect_ratio = positive(p.aspectRatio, path + ".perspective.aspectRatio");
         if (p.zfar != 0.0 && (!std::isfinite(p.zfar) || p.zfar <= p.znear))
-            ctx.fail(path + ".perspective.zfar", std::to_string(p.zfar) + ": must be > znear");
+            ctx.fail(path + ".perspective.zfar", number_text(p.zfar) + ": must be > znear");
         c.zfar = float(p.zfar);
     } else if (cam.type == "orthographic") {
         const auto& o = cam.orthographic;
@@ -143,18 +162,17 @@ GltfCamera read_camera(const tinygltf::Camera& cam, const std::string& path, con
         const auto magnitude = [&](double v, const char* name) {
             const std::string where = path + ".orthographic." + name;
             if (v == 0.0 || !std::isfinite(v) || !std::isfinite(float(v)) || float(v) == 0.0f)
-                ctx.fail(where, std::to_string(v) + ": must be finite and not 0");
-            if (v < 0.0) ctx.warn(where, std::to_string(v) + ": negative, its magnitude is used");
+                ctx.fail(where, number_text(v) + ": must be finite and not 0");
+            if (v < 0.0) ctx.warn(where, number_text(v) + ": negative, its magnitude is used");
             return std::abs(float(v));
         };
         c.xmag = magnitude(o.xmag, "xmag");
         c.ymag = magnitude(o.ymag, "ymag");
         if (!(o.znear >= 0.0) || !std::isfinite(o.zfar) || !(o.zfar > o.znear)) {
-            ctx.fail(path + ".orthographic", "znear = " + std::to_string(o.znear) +
-                                                 ", zfar = " + std::to_string(o.zfar) +
-                                                 ": needs 0 <= znear < zfar");
+            ctx.fail(path + ".orthographic", "znear = " + number_text(o.znear) + ", zfar = " +
+                                                 number_text(o.zfar) + ": needs 0 <= znear < zfar");
         }
-        c.znear = float(o.znear);
+        c.znear = finite_float(o.znear, path + ".orthographic.znear", ctx);
         c.zfar = float(o.zfar);
     } else {
         ctx.fail(path + ".type",
@@ -179,15 +197,17 @@ GltfLight read_light(const tinygltf::Light& light, const std::string& path, cons
         if (light.color.size() != 3 || !finite(light.color) || light.color[0] < 0 ||
             light.color[1] < 0 || light.color[2] < 0)
             ctx.fail(path + ".color", "must be 3 finite numbers >= 0");
-        l.color = glm::vec3(float(light.color[0]), float(light.color[1]), float(light.color[2]));
+        for (int i = 0; i < 3; ++i)
+            l.color[i] = finite_float(light.color[std::size_t(i)],
+                                      indexed(path + ".color", std::size_t(i)), ctx);
     }
     if (!std::isfinite(light.intensity) || light.intensity < 0)
-        ctx.fail(path + ".intensity",
-                 std::to_string(light.intensity) + ": must be finite and >= 0");
-    l.intensity = float(light.intensity);
+        ctx.fail(path + ".intensity", number_text(light.intensity) + ": must be finite and >= 0");
+    l.intensity = finite_float(light.intensity, path + ".intensity", ctx);
     if (!std::isfinite(light.range) || light.range < 0)
-        ctx.fail(path + ".range", std::to_string(light.range) + ": must be > 0");
-    l.range = float(light.range);
+        ctx.fail(path + ".range", number_text(light.range) + ": must be > 0");
+    // A range beyond float is as good as none (infinite).
+    l.range = float(std::min(light.range, double(std::numeric_limits<float>::max())));
     if (l.type == GltfLight::Type::Spot) {
         const double inner = light.spot.innerConeAngle, outer = light.spot.outerConeAngle;
         if (!(inner >= 0.0) || !(inner < outer) || !(outer <= std::numbers::pi / 2 + 1e-6))
@@ -266,7 +286,10 @@ void read_nodes(const tinygltf::Model& model, int scene_index, Context& ctx, Glt
         const glm::mat4 world = parent_world * local_matrix(node, path, ctx);
         const float* w = glm::value_ptr(world);
         for (int i = 0; i < 16; ++i)
-            if (!std::isfinite(w[i])) ctx.fail(path, "its world transform is not finite");
+            if (!std::isfinite(w[i]))
+                ctx.fail(path,
+                         "its world transform (its own composed with its ancestors') "
+                         "overflows float");
         if (node.skin != -1)
             ctx.warn(path + ".skin", "skinning ignored: the mesh is placed by the node");
         if (node.mesh != -1) {

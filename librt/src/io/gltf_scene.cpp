@@ -2,6 +2,7 @@
 
 #include <librt/core/error.h>
 #include <librt/io/gltf_scene.h>
+#include <librt/render/camera.h>
 #include <librt/render/texture.h>
 
 #include <glm/geometric.hpp>
@@ -10,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <map>
 #include <tuple>
 #include <utility>
@@ -74,12 +77,39 @@ void choose_size(const SceneFileOptions& o, float aspect, CameraSettings& c) {
     }
 }
 
+/// Smallest |determinant| of a world transform librt inverts: below it the inverse (which
+/// instances and normals need) overflows float or is noise.
+constexpr double kMinDeterminant = 1e-30;
+
+/// Why the linear part of `world` cannot be inverted in float, or "" when it can. The
+/// determinant in double, so that the message gives its true value (in float a 1e30 scale's
+/// overflows to infinity and a tiny one's underflows to 0).
+std::string singular_reason(const glm::mat4& world) {
+    const double det = glm::determinant(glm::dmat3(glm::mat3(world)));
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", det);
+    if (!std::isfinite(det)) return std::string("its world transform's determinant is ") + text;
+    if (det == 0.0)
+        return "its world transform is singular (determinant 0: scaled to zero or flattened)";
+    if (std::abs(det) > double(std::numeric_limits<float>::max()))
+        return std::string("its world transform's determinant ") + text +
+               " overflows float (a scale too large to invert)";
+    if (std::abs(det) < kMinDeterminant)
+        return std::string("its world transform's determinant ") + text +
+               " is below 1e-30 (a scale too small to invert)";
+    return {};
+}
+
 /// True when `inst` places its mesh: a mesh index in range and an invertible transform (a
 /// node scaled to zero places nothing; librt's instances need an inverse).
 bool places_something(const GltfInstance& inst, std::size_t mesh_count) {
     if (inst.mesh < 0 || std::size_t(inst.mesh) >= mesh_count) return false;
-    const float det = glm::determinant(glm::mat3(inst.world));
-    return std::isfinite(det) && std::abs(det) >= 1e-30f;
+    return singular_reason(inst.world).empty();
+}
+
+/// "nodes[4] 'name'": a node's JSON path and name, as messages give it.
+std::string node_text(int node, const std::string& name) {
+    return "nodes[" + std::to_string(node) + "] '" + name + "'";
 }
 
 /// Bounds of a primitive's positions.
@@ -135,21 +165,25 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
             GltfPrimitive& prim = gltf.meshes[mi].primitives[pi];
             if (prim.triangles.empty()) continue;
             const gltf_detail::SceneMaterial& material = materials.material(prim.material);
+            const std::string where =
+                "meshes[" + std::to_string(mi) + "].primitives[" + std::to_string(pi) + "]";
             TriangleMesh mesh;
             const BBox bounds = bounds_of(prim.positions);
             mesh.positions = std::move(prim.positions);
             mesh.triangles = std::move(prim.triangles);
             mesh.normals = std::move(prim.normals);
-            // The uv set and tangents its material's textures and normal map read.
-            materials.attributes(
-                prim, material, mesh,
-                "meshes[" + std::to_string(mi) + "].primitives[" + std::to_string(pi) + "]");
-            out.triangles_stored += mesh.triangles.size();
-            if (placements[mi] == 1) {
-                baked[mi].push_back({std::move(mesh), material.id});
-            } else {
-                prototypes[mi].push_back(
-                    {scene.add_mesh_prototype(std::move(mesh)), material.id, bounds});
+            try {
+                // The uv set and tangents its material's textures and normal map read.
+                materials.attributes(prim, material, mesh, where);
+                out.triangles_stored += mesh.triangles.size();
+                if (placements[mi] == 1) {
+                    baked[mi].push_back({std::move(mesh), material.id});
+                } else {
+                    prototypes[mi].push_back(
+                        {scene.add_mesh_prototype(std::move(mesh)), material.id, bounds});
+                }
+            } catch (const Error& e) {
+                throw Error(where + ": " + e.what());  // a mesh TriangleMesh refuses
             }
             prim = GltfPrimitive{};  // free the attributes librt does not use
         }
@@ -159,10 +193,10 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
     for (std::size_t ii = 0; ii < gltf.instances.size(); ++ii) {
         const GltfInstance& inst = gltf.instances[ii];
         if (inst.mesh < 0 || std::size_t(inst.mesh) >= prototypes.size()) continue;
-        const std::string node =
-            "nodes[" + std::to_string(inst.node) + "] '" + inst.node_name + "'";
-        if (!places_something(inst, gltf.meshes.size())) {
-            out.warnings.push_back(node + ": singular transform (zero scale): not placed");
+        const std::string node = node_text(inst.node, inst.node_name);
+        if (const std::string why = singular_reason(inst.world); !why.empty()) {
+            out.warnings.push_back(node + ": " + why + ": meshes[" + std::to_string(inst.mesh) +
+                                   "] not placed");
             continue;
         }
         placed[ii] = true;
@@ -178,7 +212,8 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
                 out.bounds.extend(transformed(p.bounds, inst.world));
             }
         } catch (const Error& e) {
-            throw Error(node + ": " + e.what());  // a matrix that is not affine, say
+            // Positions the transform takes beyond librt's range, say.
+            throw Error(node + " placing meshes[" + std::to_string(inst.mesh) + "]: " + e.what());
         }
     }
     // Triangles placed by instances: per instance, its mesh's prototypes' triangles (the
@@ -199,7 +234,9 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
     // docs/render-your-own-scene.md). Spot and sun shine down the node's local -z.
     std::size_t lights = 0;
     for (const GltfLight& l : gltf.lights) {
-        const std::string who = "light '" + l.name + "'";
+        const std::string who = "extensions.KHR_lights_punctual.lights[" + std::to_string(l.light) +
+                                "] '" + l.name + "' placed by nodes[" + std::to_string(l.node) +
+                                "]";
         if (l.range > 0.0f && l.type != GltfLight::Type::Directional)
             out.warnings.push_back(who + ": range ignored (infinite)");
         const glm::vec3 position = glm::vec3(l.world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
@@ -227,7 +264,9 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
             }
         } catch (const Error& e) {
             // A degenerate node transform (e.g. scaled to zero) gives no direction.
-            out.warnings.push_back(who + ": " + e.what() + ": ignored");
+            const std::string why = singular_reason(l.world);
+            out.warnings.push_back(who + ": " + (why.empty() ? std::string(e.what()) : why) +
+                                   ": ignored");
             continue;
         }
         ++lights;
@@ -241,6 +280,11 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
     // Camera: the file's (placed by its node), else one framing the bounds.
     const GltfCamera* camera = choose_camera(gltf, options.camera);
     if (camera != nullptr) {
+        const std::string who = "cameras[" + std::to_string(camera->camera) + "] '" + camera->name +
+                                "' placed by nodes[" + std::to_string(camera->node) + "]";
+        // A view direction needs an invertible transform (a node scaled to zero has none).
+        if (const std::string why = singular_reason(camera->world); !why.empty())
+            throw Error(who + ": " + why + ": no view direction");
         CameraSettings& c = out.camera;
         out.camera_name =
             camera->name.empty() ? "camera " + std::to_string(camera->camera) : camera->name;
@@ -271,6 +315,12 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
         // zfar (optional in glTF) likewise.
         c.near_clip = camera->znear;
         if (camera->zfar > camera->znear) c.far_clip = camera->zfar;
+        // Checked here, naming the glTF camera, rather than when the app builds it.
+        try {
+            (void)Camera(c);
+        } catch (const Error& e) {
+            throw Error(who + ": " + e.what());
+        }
     } else {
         CameraSettings size;
         choose_size(options, 4.0f / 3.0f, size);

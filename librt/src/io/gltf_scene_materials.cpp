@@ -3,6 +3,7 @@
 
 #include "io/gltf_scene_materials.h"
 
+#include <librt/core/error.h>
 #include <librt/geometry/tangents.h>
 #include <librt/io/gltf_scene.h>
 
@@ -146,9 +147,14 @@ const SceneMaterial& MaterialBuilder::material(int index) {
                             "coverage); the same for every BLEND material of the file");
     }
     if (m.ior == 0.0f) warnings_.push_back(who + "KHR_materials_ior 0 read as 1.5");
-    const Material material = material_from_gltf(m, ids);
+    Material material;
+    try {
+        material = material_from_gltf(m, ids);
+        out.id = scene_.add_material(material);
+    } catch (const Error& e) {
+        throw Error(who + e.what());  // a value Material refuses, named with the material
+    }
     emissive_ = emissive_ || material.emits();
-    out.id = scene_.add_material(material);
     // A normal map and an anisotropy direction both need the tangent frame, and so uvs
     // (TEXCOORD_0 when no texture chose a set) for generated tangents.
     out.needs_tangents = material.needs_tangent_frame();

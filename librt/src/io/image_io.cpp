@@ -5,6 +5,7 @@
 #include <librt/io/image_io.h>
 
 #include <stb/stb_image_write.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -236,9 +237,24 @@ void check_image_path(const fs::path& path) {
     std::error_code ec;
     if (fs::is_directory(path, ec)) throw Error("cannot write " + quoted(path) + ": a directory");
     const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-    if (!fs::is_directory(dir, ec)) {
+    // The reason the system gives (a name too long, a component that is a file, no
+    // permission), not "no directory" for every failure.
+    const fs::file_status status = fs::status(dir, ec);
+    if (ec && status.type() != fs::file_type::not_found)
+        throw Error("cannot write " + quoted(path) + ": directory " + quoted(dir) + ": " +
+                    ec.message());
+    if (status.type() == fs::file_type::not_found)
         throw Error("cannot write " + quoted(path) + ": no directory " + quoted(dir));
-    }
+    if (status.type() != fs::file_type::directory)
+        throw Error("cannot write " + quoted(path) + ": directory " + quoted(dir) + ": " +
+                    std::strerror(ENOTDIR));
+    // A file name longer than the directory allows (NAME_MAX, 255 bytes on most file
+    // systems) fails only when the file is created: said here, before a long render.
+    const long name_max = ::pathconf(dir.c_str(), _PC_NAME_MAX);
+    if (name_max > 0 && path.filename().native().size() > std::size_t(name_max))
+        throw Error("cannot write " + quoted(path) + ": " + std::strerror(ENAMETOOLONG) +
+                    " (its name has " + std::to_string(path.filename().native().size()) +
+                    " bytes, the directory allows " + std::to_string(name_max) + ")");
 }
 
 void write_image(const fs::path& path, const Image& image, const ToneMap& tone_map) {

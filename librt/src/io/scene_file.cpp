@@ -99,9 +99,22 @@ LoadedScene load_scene_file(const std::filesystem::path& path, const SceneFileOp
     const std::string ext = lower_extension(path);
     if (ext == ".obj") return scene_from_obj(path, options);
     if (ext == ".gltf" || ext == ".glb") {
-        GltfLoadOptions gltf;
-        gltf.allow_outside_files = options.allow_outside_files;
-        return scene_from_gltf(load_gltf(path, gltf), options);
+        GltfLoadOptions load_options;
+        load_options.allow_outside_files = options.allow_outside_files;
+        // Its errors and warnings name the file already.
+        GltfScene gltf = load_gltf(path, load_options);
+        const std::size_t named = gltf.warnings.size();
+        // scene_from_gltf's messages give the JSON path (it does not know the file): the
+        // file is prefixed here, so that every message says "file: JSON path: what".
+        const std::string file = path.string() + ": ";
+        try {
+            LoadedScene out = scene_from_gltf(std::move(gltf), options);
+            for (std::size_t i = named; i < out.warnings.size(); ++i)
+                out.warnings[i].insert(0, file);
+            return out;
+        } catch (const Error& e) {
+            throw Error(file + e.what());
+        }
     }
     throw Error(path.string() + ": unknown scene format '" + ext +
                 "' (expected .gltf, .glb or .obj)");

@@ -234,7 +234,9 @@ struct GltfLoadOptions {
 ///   9000". They cover: not glTF, broken JSON, a truncated .glb or a wrong chunk length, a
 ///   path that is missing, not a regular file (FIFO, device, directory) or larger than
 ///   max_file_bytes, a missing .bin, a buffer view or accessor outside its buffer,
-///   indices out of range, references to missing objects, non-finite numbers, a cycle in
+///   indices out of range, references to missing objects, non-finite numbers and numbers
+///   a float cannot hold (yfov 1e-300 rounds to 0, znear 1e300 to infinity), a POSITION
+///   coordinate beyond kMaxMeshCoordinate, a node matrix that is not affine, a cycle in
 ///   the node graph or a node with two parents, an extension in extensionsRequired that
 ///   librt does not support. Memory is bounded by a multiple of the bytes read.
 /// - Warnings (GltfScene::warnings): an unknown extension only in extensionsUsed, a

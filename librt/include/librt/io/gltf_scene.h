@@ -55,8 +55,12 @@ struct GltfMaterialTextures {
 /// directional lights likewise; COLOR_0 (unless all white) is kept as the mesh's vertex
 /// colours (Scene::shade multiplies them in); orthographic cameras, occlusion and
 /// transmission textures are warned about or ignored. A scene with no supported light and no
-/// emissive surface gets default_light() (warned). Throws librt::Error for a camera option
-/// naming no camera ("camera = NAME: ..."), or a value Scene refuses.
+/// emissive surface gets default_light() (warned). A node whose world transform cannot be
+/// inverted in float (determinant 0, beyond float or below 1e-30) places no mesh or light
+/// (warned) and is refused for the camera. Throws librt::Error for a camera option naming
+/// no camera ("camera = NAME: ..."), a camera Camera refuses, or a value Scene refuses,
+/// each prefixed with the JSON path of the object concerned ("nodes[4] 'lamp': ..."); the
+/// messages do not name the file (load_scene_file prefixes it).
 [[nodiscard]] LIBRT_API LoadedScene scene_from_gltf(GltfScene gltf,
                                                     const SceneFileOptions& options = {});
 

@@ -19,7 +19,9 @@ namespace librt {
 
 /// Loads a scene file chosen by extension (case-insensitive): .obj through scene_from_obj,
 /// .gltf and .glb through load_gltf and scene_from_gltf. Throws librt::Error naming the
-/// path for any other extension, and the loaders' errors.
+/// path for any other extension, and the loaders' errors. Every glTF error and warning reads
+/// "path: JSON path: what": scene_from_gltf's (which knows the JSON path, not the file) get
+/// the path prefixed here.
 [[nodiscard]] LIBRT_API LoadedScene load_scene_file(const std::filesystem::path& path,
                                                     const SceneFileOptions& options = {});
 
