@@ -4,7 +4,7 @@
 #    writing nothing;
 # 2. SIGINT mid-render writes a complete image of the finished passes (exit 130, flagged);
 # 3. --time-limit stops the render and writes the finished passes (exit 0, flagged);
-# --adaptive renders its budget.
+# --adaptive renders its budget; a truncated --env .hdr is refused with a message naming it.
 # Usage: rt_render_test.sh <rt_render> <scratch directory>
 set -euo pipefail
 set -m  # job control: a background job of a non-interactive shell would ignore SIGINT
@@ -62,6 +62,25 @@ complete_png "$dir/bdpt.png" || fail "--light-paths: not a complete PNG"
     >"$dir/out.txt" 2>"$dir/err.txt" || fail "--adaptive: $(cat "$dir/err.txt")"
 complete_png "$dir/adaptive.png" || fail "--adaptive: not a complete PNG"
 grep -q "16 of 16 spp in 16 passes" "$dir/out.txt" || fail "--adaptive: summary: $(cat "$dir/out.txt")"
+
+# 1d. A truncated --env sky (issue 37, defect 6): its header claims 16 x 4 texels, its
+# data holds 2 run-length scanlines. Refused with a message naming it before the scene is
+# read (stb_image would have lit the scene with a zero-filled sky and exited 0).
+sky="$dir/truncated.hdr"
+{
+    printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 16\n'
+    for _ in 1 2; do
+        printf '\x02\x02\x00\x10'  # a run-length scanline of 16 texels
+        for _ in R G B E; do printf '\x10'; printf '\x81%.0s' {1..16}; done  # 16 bytes each
+    done
+} >"$sky"
+status=0
+"$app" "$scene" --env "$sky" --size 8x8 --spp 1 -o "$dir/out/sky.png" 2>"$dir/err.txt" >/dev/null ||
+    status=$?
+[ "$status" -eq 1 ] || fail "truncated --env: exit status $status, expected 1"
+grep -qF "$sky: truncated: the data ends in scanline 3 of 4" "$dir/err.txt" ||
+    fail "truncated --env: message: $(cat "$dir/err.txt")"
+[ -z "$(ls -A "$dir/out")" ] || fail "truncated --env wrote $(ls -A "$dir/out")"
 
 # 2. SIGINT during a render that would take hours, once its first pass is surely done: the
 # app has used 1 s of CPU (loading this scene and a pass of it take milliseconds), an

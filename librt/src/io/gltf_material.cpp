@@ -245,9 +245,14 @@ std::string decode(const unsigned char* bytes, std::size_t size, GltfImage& imag
     const std::uint64_t texels = std::uint64_t(w) * std::uint64_t(h);
     if (texels > kMaxTexels)
         return std::to_string(w) + " x " + std::to_string(h) + " texels, more than the limit";
-    // No format compresses a texel below 1/4096 byte: a larger claim is corrupt (as in
-    // load_texture).
-    if (texels > 4096u * std::uint64_t(size) + 65536u)
+    // A PNG is judged by its decoded size alone (the budget, below): stb inflates its
+    // data to the size the header gives and fails when the zlib stream ends short, so a
+    // small file claiming a big image costs no decoding, and a valid one (8192^2 1-bit
+    // texels deflate to 8 KB) must not be refused for compressing well. stb's JPEG
+    // decoder reads zeros past the end of its data instead and decodes a truncated file
+    // to a wrong image at the claimed size's cost: for JPEG a claim of more than 4096
+    // texels per byte is refused as corrupt (as in load_texture).
+    if (jpeg && texels > 4096u * std::uint64_t(size) + 65536u)
         return "its header claims more texels than the data can hold";
     ctx.spend(texels * 4, path);
     std::unique_ptr<stbi_uc, void (*)(void*)> data(

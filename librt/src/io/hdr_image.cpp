@@ -9,12 +9,94 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 
 namespace librt {
 namespace {
 
 constexpr std::uint64_t kMaxHdrFileBytes = std::uint64_t{1} << 30;
 constexpr std::uint64_t kMaxHdrPixels = std::uint64_t{1} << 26;
+
+// stb_image (v2.27, stbi__hdr_load) reads a scanline run-length encoded ("new-style":
+// 2, 2, width high, width low, then each of the 4 components as runs) only for widths in
+// [8, 32767]; other widths, and files whose first scanline lacks that start, are flat:
+// 4 bytes (R, G, B, E) per texel. It reads no old-style runs (a 1, 1, 1, n texel is taken
+// as a colour), so these two are the only layouts.
+bool rle_width(int w) { return w >= 8 && w < 32768; }
+
+// The fewest data bytes stb can decode a w x h image from. A new-style scanline takes its
+// 4-byte start, then per component at least one (count, value) pair per 127 texels (a
+// count byte c > 128 repeats the next byte c - 128 times); a flat texel takes 4 bytes,
+// more than that for any width stb run-length decodes.
+std::uint64_t min_data_bytes(int w, int h) {
+    const auto W = std::uint64_t(w), H = std::uint64_t(h);
+    if (!rle_width(w)) return 4 * W * H;
+    return H * (4 + 4 * 2 * ((W + 126) / 127));
+}
+
+// Where the texels start: after the "#?RADIANCE" line, the header lines up to a blank
+// one and the resolution line, each ended by '\n' (as stb reads them); bytes.size() if
+// the file ends before.
+std::size_t data_offset(std::string_view bytes) {
+    std::size_t pos = 0;
+    const auto next_line = [&]() {
+        const std::size_t end = bytes.find('\n', pos);
+        const std::size_t length = (end == std::string_view::npos ? bytes.size() : end) - pos;
+        pos = end == std::string_view::npos ? bytes.size() : end + 1;
+        return length;
+    };
+    next_line();  // #?RADIANCE or #?RGBE
+    while (pos < bytes.size() && next_line() != 0) {
+    }
+    next_line();  // -Y h +X w
+    return pos;
+}
+
+// Walks the texel data as stbi__hdr_load will read it, without decoding, and returns why
+// stb cannot decode it correctly, or "" if it can. stb does not check for the end of its
+// input there: a run-length scanline cut short makes it loop forever (its byte reader
+// returns 0 at the end, a run of 0 texels), and a file cut at a scanline's end comes back
+// as a zero-filled image (a missing scanline start sends it back to texel 0 reading flat
+// texels). A scanline without a run-length start after run-length ones sends it back to
+// texel 0 too, so such a mix is refused as well.
+std::string check_data(std::string_view data, int w, int h) {
+    const auto W = std::uint64_t(w), H = std::uint64_t(h);
+    const auto truncated = [&](std::uint64_t row) {
+        return "truncated: the data ends in scanline " + std::to_string(row + 1) + " of " +
+               std::to_string(h);
+    };
+    const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(data[i]); };
+    const bool rle =
+        rle_width(w) && data.size() >= 4 && byte(0) == 2 && byte(1) == 2 && (byte(2) & 0x80) == 0;
+    if (!rle) {
+        if (data.size() < 4 * W * H) return truncated(data.size() / (4 * W));
+        return {};
+    }
+    std::size_t pos = 0;
+    for (std::uint64_t row = 0; row < H; ++row) {
+        if (data.size() - pos < 4) return truncated(row);
+        if (byte(pos) != 2 || byte(pos + 1) != 2 || (byte(pos + 2) & 0x80) != 0)
+            return "scanline " + std::to_string(row + 1) +
+                   " is not run-length encoded while the first is (a mix stb cannot read)";
+        if ((std::uint64_t(byte(pos + 2)) << 8 | byte(pos + 3)) != W)
+            return "scanline " + std::to_string(row + 1) + " has a bad length";
+        pos += 4;
+        for (int component = 0; component < 4; ++component) {
+            for (std::uint64_t x = 0; x < W;) {
+                if (pos >= data.size()) return truncated(row);
+                const unsigned count = byte(pos++);
+                const std::uint64_t texels = count > 128 ? count - 128 : count;
+                if (texels > W - x)
+                    return "scanline " + std::to_string(row + 1) + ": a run past its end";
+                const std::uint64_t stored = count > 128 ? 1 : count;
+                if (data.size() - pos < stored) return truncated(row);
+                pos += stored;
+                x += texels;
+            }
+        }
+    }
+    return {};
+}
 
 }  // namespace
 
@@ -39,6 +121,15 @@ EnvironmentImage load_hdr_image(const std::filesystem::path& path) {
         std::uint64_t(w) * std::uint64_t(h) > kMaxHdrPixels)
         throw Error("cannot load HDR image " + name + ": bad or oversized header (" +
                     std::to_string(w) + " x " + std::to_string(h) + ")");
+    // Then the data, still before stb allocates: a header claiming more texels than the
+    // file's bytes can encode, or data stb would misread (check_data).
+    const std::string_view texels = std::string_view(bytes).substr(data_offset(bytes));
+    if (texels.size() < min_data_bytes(w, h))
+        throw Error("cannot load HDR image " + name + ": the header claims " + std::to_string(w) +
+                    " x " + std::to_string(h) + " texels in a file of " +
+                    std::to_string(bytes.size()) + " bytes (corrupt or truncated)");
+    if (const std::string reason = check_data(texels, w, h); !reason.empty())
+        throw Error("cannot load HDR image " + name + ": " + reason);
     std::unique_ptr<float, void (*)(void*)> data(
         stbi_loadf_from_memory(encoded, size, &w, &h, &channels, 3), stbi_image_free);
     if (!data)

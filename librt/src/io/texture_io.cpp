@@ -48,14 +48,17 @@ ImageTexture load_texture(const std::filesystem::path& path) {
             throw Error(msg.str());
         }
         // A header that claims far more texels than the file could encode is corrupt or
-        // truncated: stb would allocate for it and then decode zeros (or, for binary
-        // PNM, return uninitialised memory) at great length. No format compresses a
-        // texel into less than 1/4096 byte (deflate peaks near 1/344 for RGB, a
-        // constant-colour JPEG near 1/1000), so that is the bound; 64 Ki texels are
-        // always allowed.
+        // truncated: stb would allocate for it and then decode zeros (JPEG, TGA, ...; for
+        // binary PNM, uninitialised memory) at great length. Those formats hold no more
+        // than 4096 texels per byte (a constant-colour JPEG about 1000), so that is the
+        // bound; 64 Ki texels are always allowed. Not for PNG: stb inflates its data to
+        // the size the header gives and fails when the zlib stream ends short, and a
+        // valid PNG can hold far more (an 8192^2 1-bit image deflates to 8 KB), so the
+        // texel limit above is its only bound.
         const std::uint64_t file_bytes = bytes.size();
         const std::uint64_t texels = std::uint64_t(w) * std::uint64_t(h);
-        if (texels > 4096u * file_bytes + 65536u) {
+        const bool png = bytes.size() >= 8 && bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0;
+        if (!png && texels > 4096u * file_bytes + 65536u) {
             std::ostringstream msg;
             msg << "cannot load texture " << name << ": the header claims " << w << " x " << h
                 << " texels in a file of " << file_bytes << " bytes (corrupt or truncated)";

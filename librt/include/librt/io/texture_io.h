@@ -15,9 +15,10 @@ inline constexpr std::uint64_t kMaxTextureTexels = std::uint64_t{1} << 26u;
 /// values to linear (an alpha channel is dropped, grey is replicated). Throws librt::Error
 /// naming the path (and stb's reason) when the file is missing, a directory, unreadable,
 /// cannot be decoded, has more than kMaxTextureTexels texels (checked from the header,
-/// before decoding), claims more than 4096 texels per byte of file (no format compresses
-/// that well: corrupt or truncated), or is a binary PPM/PGM shorter than its raster (stb
-/// would return uninitialised memory as texels).
+/// before decoding), is not a PNG and claims more than 4096 texels per byte of file (no
+/// such format compresses that well: corrupt or truncated), or is a binary PPM/PGM shorter
+/// than its raster (stb would return uninitialised memory as texels). A PNG whose data
+/// ends short fails to decode (its zlib stream ends before the scanlines do).
 [[nodiscard]] LIBRT_API ImageTexture load_texture(const std::filesystem::path& path);
 
 }  // namespace librt
