@@ -104,6 +104,7 @@ std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
         {"--guiding-passes", std::to_string(s.guiding_passes)},
         {"--adaptive", on(s.adaptive)},
         {"--mpi-tile", std::to_string(o.mpi_tile)},
+        {"--allow-outside-files", on(o.allow_outside_files)},
     };
 }
 

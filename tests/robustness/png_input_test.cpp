@@ -170,3 +170,26 @@ TEST(BadPng, TruncatedImageDataIsRefused) {
             << lt::joined(s.warnings);
     }
 }
+
+TEST(BadPng, DataInflatingPastItsHeaderIsRefusedBeforeDecoding) {
+    // A 16 x 16 grey header over a stream that inflates to 64 MiB (zeros deflate about
+    // 1000:1): stb would grow its buffer to hold all of it. Counted and refused instead.
+    namespace lt = librt::testing;
+    ScratchDir dir;
+    const std::string bomb = deflated(std::string(std::size_t{64} << 20u, '\0'));
+    const auto p = dir.write("bomb.png", png(16, 16, 8, 0, bomb));
+    const std::string msg = error_of([&] { (void)load_texture(p); });
+    EXPECT_TRUE(has(msg, "inflates to more than the 272 bytes its header's 16 x 16")) << msg;
+    lt::GltfBuilder b = lt::one_triangle();
+    b.doc["images"] = {{{"uri", "bomb.png"}}};
+    b.doc["textures"] = {{{"source", 0}}};
+    const GltfScene s = load_gltf(dir.write("bomb.gltf", b.gltf()));
+    EXPECT_EQ(s.textures[0].image, -1);
+    EXPECT_TRUE(has(lt::joined(s.warnings), "images[0]: its image data inflates"))
+        << lt::joined(s.warnings);
+    // Interlaced (Adam7): the same stream, the same refusal.
+    std::string interlaced = png(16, 16, 8, 0, bomb);
+    interlaced[28] = 1;  // IHDR interlace method (its CRC is not checked by stb)
+    EXPECT_TRUE(has(error_of([&] { (void)load_texture(dir.write("i.png", interlaced)); }),
+                    "inflates to more than"));
+}

@@ -2,6 +2,7 @@
 // librt reads), textures, samplers and image decoding (stb_image, PNG and JPEG only).
 
 #include "io/gltf_internal.h"
+#include "io/png_check.h"
 
 #include <librt/core/error.h>
 #include <librt/core/untrusted_text.h>
@@ -254,9 +255,19 @@ std::string decode(const unsigned char* bytes, std::size_t size, GltfImage& imag
     // texels per byte is refused as corrupt (as in load_texture).
     if (jpeg && texels > 4096u * std::uint64_t(size) + 65536u)
         return "its header claims more texels than the data can hold";
-    ctx.spend(texels * 4, path);
+    // A PNG's inflated data is held beside the output while stb decodes: charged, then
+    // given back.
+    std::uint64_t held = 0;
+    if (png) {
+        const detail::PngDataCheck check = detail::check_png_data(
+            std::string_view(reinterpret_cast<const char*>(bytes), size));
+        if (!check.problem.empty()) return check.problem;
+        held = check.raw_bytes;
+    }
+    ctx.spend(texels * 4 + held, path);
     std::unique_ptr<stbi_uc, void (*)(void*)> data(
         stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4), stbi_image_free);
+    ctx.add_budget(held);
     if (!data)
         return std::string("cannot decode: ") +
                (stbi_failure_reason() ? stbi_failure_reason() : "?");

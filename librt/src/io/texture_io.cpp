@@ -1,4 +1,5 @@
 #include "io/file_io.h"
+#include "io/png_check.h"
 
 #include <librt/core/error.h>
 #include <librt/io/texture_io.h>
@@ -63,6 +64,10 @@ ImageTexture load_texture(const std::filesystem::path& path) {
             msg << "cannot load texture " << name << ": the header claims " << w << " x " << h
                 << " texels in a file of " << file_bytes << " bytes (corrupt or truncated)";
             throw Error(msg.str());
+        }
+        if (png) {
+            if (const auto check = detail::check_png_data(bytes); !check.problem.empty())
+                throw Error("cannot load texture " + name + ": " + check.problem);
         }
         // stb's binary PNM reader does not check for a short read: a truncated P5/P6
         // file would come back as uninitialised memory. Its raster is w h c bytes (two
