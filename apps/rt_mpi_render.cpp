@@ -165,6 +165,9 @@ int main(int argc, char** argv) {
         Scene scene;
         std::string setup_error;
         try {
+            // Rank 0 writes: its output is checked first (a temporary created and removed),
+            // so an unwritable -o stops every rank before the scene is built.
+            if (rank == 0) check_image_path(options.output);
             apps::add_room(scene);
             apps::add_report_spheres(scene);
             const bool fail_here = rank == fail_rank && fail_how == FailHow::Setup;

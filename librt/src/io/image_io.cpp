@@ -1,6 +1,7 @@
 #include "io/file_io.h"
 
 #include <librt/core/error.h>
+#include <librt/io/check_writable.h>
 #include <librt/io/exr.h>
 #include <librt/io/image_io.h>
 
@@ -239,6 +240,7 @@ void check_image_path(const fs::path& path) {
     if (!fs::is_directory(dir, ec)) {
         throw Error("cannot write " + quoted(path) + ": no directory " + quoted(dir));
     }
+    check_writable(path);
 }
 
 void write_image(const fs::path& path, const Image& image, const ToneMap& tone_map) {
