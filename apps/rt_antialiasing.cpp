@@ -5,6 +5,7 @@
 // edge where the staircase shows.
 #include "common/cli.h"
 
+#include <librt/io/image_io.h>
 #include <librt/render/integrators.h>
 
 #include <filesystem>
@@ -33,8 +34,10 @@ int main(int argc, char** argv) {
         camera.pixel_jitter = no_jitter ? PixelJitter::None : PixelJitter::Gaussian;
         camera.pixel_sigma = sigma;
         (void)Camera(camera);  // validates --sigma
-        if (options.output.empty())
+        if (options.output.empty()) {
             options.output = no_jitter ? "antialiasing_no_jitter.png" : "antialiasing.png";
+            check_image_path(options.output);  // validate() checked a given -o
+        }
         Scene scene;
         apps::add_report_scene(scene, apps::LightKind::Sphere, options.power);
         scene.commit();

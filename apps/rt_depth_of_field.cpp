@@ -4,6 +4,7 @@
 // renders the comparison (default name depth_of_field_pinhole.png).
 #include "common/cli.h"
 
+#include <librt/io/image_io.h>
 #include <librt/render/integrators.h>
 
 using namespace librt;
@@ -33,8 +34,10 @@ int main(int argc, char** argv) {
         camera.lens_sigma = lens_sigma;
         camera.focal_distance = focal_distance;
         (void)Camera(camera);  // validates --lens-sigma and --focal-distance
-        if (options.output.empty())
+        if (options.output.empty()) {
             options.output = pinhole ? "depth_of_field_pinhole.png" : "depth_of_field.png";
+            check_image_path(options.output);  // validate() checked a given -o
+        }
         Scene scene;
         apps::add_report_scene(scene, apps::LightKind::Sphere, options.power);
         scene.commit();

@@ -213,6 +213,9 @@ int render_gallery(const Options& o) {
     int width = 0, height = 0;
     apps::parse_size(o.size, kAspect, width, height);
     check_image_size(width, height);
+    // The render's films, copies and output buffers must fit, before any is allocated.
+    apps::check_render_memory("--size", o.size, width, height,
+                              apps::progressive_output_bytes_per_pixel(o.output, {}));
     RenderSettings check;
     check.samples_per_pixel = o.spp;
     check.threads = o.threads;

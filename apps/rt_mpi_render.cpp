@@ -85,12 +85,15 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 
 // Writes `beauty` (the film resolved, or joined to kept training passes): EXR with the
 // film's other layers (beauty linear), PFM/HDR linear, PNG tone-mapped.
-void write_film(const std::string& path, const Film& film, const Image& beauty, bool exr_float,
+void write_film(const std::string& path, const Film& film, const Image& beauty, bool exr_half,
                 const ToneMap& tone) {
     if (ends_with(path, ".exr")) {
         ImageLayers layers = resolve_layers(film);
         layers.beauty = beauty;
-        write_exr(path, layers, exr_float ? ExrPixelType::Float : ExrPixelType::Half);
+        ExrWriteOptions options;
+        options.colour = exr_half ? ExrPixelType::Half : ExrPixelType::Float;
+        for (const std::string& w : write_exr(path, layers, options).warnings)
+            std::cerr << "warning: " << w << '\n';
     } else {
         write_image(path, beauty, tone);
     }
@@ -115,7 +118,8 @@ int main(int argc, char** argv) {
     app.get_option("--threads")->description("Worker threads per rank, 0 = all cores");
     int tile = 32;
     bool single = false;
-    bool exr_float = false;
+    bool exr_float = false;  // the default now; accepted so that older command lines run
+    bool exr_half = false;
     bool root_schedules_only = false;
     int fail_rank = -1;
     FailHow fail_how = FailHow::Render;
@@ -124,7 +128,10 @@ int main(int argc, char** argv) {
     app.add_flag("--single-process", single,
                  "Render in this process with librt::render_block, no MPI scheduling (the "
                  "reference the MPI render equals byte for byte)");
-    app.add_flag("--exr-float", exr_float, "EXR channels as 32-bit float (default: half)");
+    app.add_flag("--exr-float", exr_float, "EXR channels as 32-bit float (the default)");
+    app.add_flag("--exr-half", exr_half,
+                 "EXR beauty, albedo and normal as 16-bit half (values above 65504 clamped to "
+                 "it, with a warning)");
     app.add_flag("--root-schedules-only", root_schedules_only,
                  "Rank 0 only schedules and gathers, rendering nothing");
     app.add_option("--fail-rank", fail_rank, "Test only: make this rank fail");
@@ -161,6 +168,9 @@ int main(int argc, char** argv) {
         Scene scene;
         std::string setup_error;
         try {
+            // Rank 0 writes: its output is checked first (a temporary created and removed),
+            // so an unwritable -o stops every rank before the scene is built.
+            if (rank == 0) check_image_path(options.output);
             apps::add_room(scene);
             apps::add_report_spheres(scene);
             const bool fail_here = rank == fail_rank && fail_how == FailHow::Setup;
@@ -260,7 +270,7 @@ int main(int argc, char** argv) {
             if (rank == 0) std::fprintf(stderr, "interrupted: nothing written\n");
             code = 130;
         } else if (rank == 0) {
-            write_film(options.output, film, image, exr_float, tone);
+            write_film(options.output, film, image, exr_half && !exr_float, tone);
             if (!options.quiet) {
                 std::printf("%dx%d, %d spp, %d rank%s x %d threads: %.3f s\n", film.width,
                             film.height, options.spp, size, size == 1 ? "" : "s", options.threads,

@@ -51,6 +51,7 @@ struct Options {
     std::uint64_t seed = 0;
     double time_limit = 0.0;
     float exposure_ev = 0.0f;
+    bool exr_half = false;      // EXR colour channels as half floats (clamped to 65504)
     std::string env;            // equirectangular .hdr lighting the scene; empty = none
     float env_strength = 1.0f;  // scale of the environment's radiance
     bool quiet = false;
@@ -105,6 +106,7 @@ std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
         {"--adaptive", on(s.adaptive)},
         {"--mpi-tile", std::to_string(o.mpi_tile)},
         {"--allow-outside-files", on(o.allow_outside_files)},
+        {"--exr-half", on(o.exr_half)},
     };
 }
 
@@ -154,11 +156,22 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         bad("--time-limit", std::to_string(o.time_limit),
             "is not available under mpirun (use --spp)");
     apps::validate_sampling(o.sampling);
+    // The render's films, copies and output buffers must fit, before any is allocated.
+    if (!o.size.empty()) {
+        RenderMemoryOptions memory;
+        memory.splats = o.integrator == "bdpt" || o.caustic_paths;
+        memory.adaptive = o.sampling.adaptive;
+        memory.keeps_training = o.sampling.guiding;
+        apps::check_render_memory("--size", o.size, file_options.width, file_options.height,
+                                  apps::progressive_output_bytes_per_pixel(o.output, memory));
+    }
     if (o.mpi_tile < 1 || o.mpi_tile > 1024)
         bad("--mpi-tile", std::to_string(o.mpi_tile), "must be in [1, 1024]");
     if (!std::isfinite(o.exposure_ev) || std::abs(o.exposure_ev) > 64.0f)
         bad("--exposure", std::to_string(o.exposure_ev), "must be in [-64, 64] (EV stops)");
     const float scale = std::exp2(o.exposure_ev);
+    if (o.exr_half && apps::lower_extension(o.output) != ".exr")
+        bad("--exr-half", "on", "needs an .exr output");
     if (!std::isfinite(o.env_strength) || o.env_strength < 0.0f)
         bad("--env-strength", std::to_string(o.env_strength), "must be finite and >= 0");
     if (o.env.empty() && o.env_strength != 1.0f)
@@ -237,7 +250,8 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         ms.aovs = apps::lower_extension(o.output) == ".exr";
         return apps::render_over_ranks(job, loaded.scene, camera, integrator, ms, o.quiet, o.output,
                                        [&](const Film& film, const Image& image) {
-                                           apps::write_output(o.output, film, image, scale);
+                                           apps::write_output(o.output, film, image, scale,
+                                                              o.exr_half);
                                        });
     }
     apps::ProgressiveOutput out;
@@ -249,6 +263,7 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     out.time_limit = o.time_limit;
     out.adaptive = o.sampling.adaptive;
     out.scale = scale;
+    out.exr_half = o.exr_half;
     out.quiet = o.quiet;
     out.started = t0;
     return apps::render_progressively_and_write(loaded.scene, camera, integrator, out);
@@ -303,6 +318,9 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--exposure", o.exposure_ev, "Exposure in stops: the image is scaled by 2^EV")
         ->capture_default_str();
+    app.add_flag("--exr-half", o.exr_half,
+                 "EXR beauty, albedo and normal as 16-bit half floats (smaller file; values "
+                 "above 65504 are clamped to it, with a warning); default 32-bit float");
     app.add_option("--env", o.env,
                    "Equirectangular Radiance .hdr lighting the scene from every direction "
                    "(importance-sampled; seen by rays that leave the scene)");

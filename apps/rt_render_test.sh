@@ -4,12 +4,15 @@
 #    writing nothing;
 # 2. SIGINT mid-render writes a complete image of the finished passes (exit 130, flagged);
 # 3. --time-limit stops the render and writes the finished passes (exit 0, flagged);
-# --adaptive renders its budget; a truncated --env .hdr is refused with a message naming it.
-# Usage: rt_render_test.sh <rt_render> <scratch directory>
+# --adaptive renders its budget; a truncated --env .hdr is refused with a message naming it;
+# 4. (issue 37) an unwritable output and a --size whose render would not fit in memory fail
+#    before the scene is loaded; an emitter of strength 1e5 comes out of the EXR finite.
+# Usage: rt_render_test.sh <rt_render> <scratch directory> <exr_values>
 set -euo pipefail
 set -m  # job control: a background job of a non-interactive shell would ignore SIGINT
 app=$1
 dir=$2
+exr_values=$3
 rm -rf "$dir"
 mkdir -p "$dir/out"
 scene="$dir/quad.obj"
@@ -113,5 +116,84 @@ status=0
 grep -q "time limit reached: wrote partial image" "$dir/err.txt" ||
     fail "time limit: message: $(cat "$dir/err.txt")"
 complete_png "$out" || fail "time limit: $out is not a complete PNG"
+# 4a. Issue 37, defect 5: the output's directory is tried (a temporary created and removed)
+# before the scene is looked at. The scene does not exist: had it been loaded first, its
+# error would be the one reported. /sys refuses files even to root (EACCES, or EROFS where
+# it is mounted read-only); /proc has no room for them; a file is no directory.
+: >"$dir/plain_file"
+mkdir -p "$dir/checks"
+unwritable() {  # unwritable <output> <expected text>
+    local status=0
+    "$app" "$dir/missing.glb" -o "$1" >"$dir/out.txt" 2>"$dir/err.txt" || status=$?
+    [ "$status" -eq 1 ] || fail "-o $1: exit status $status, expected 1"
+    grep -qF -- "$2" "$dir/err.txt" || fail "-o $1: message: $(cat "$dir/err.txt")"
+    if grep -q "missing.glb" "$dir/err.txt"; then fail "-o $1: the scene came first"; fi
+    [ ! -s "$dir/out.txt" ] || fail "-o $1: printed $(cat "$dir/out.txt")"
+}
+unwritable /sys/rt_render_test.png "cannot write '/sys/rt_render_test.png': "
+unwritable /proc/rt_render_test.exr "cannot write '/proc/rt_render_test.exr': "
+unwritable /proc/version/x.png "cannot write '/proc/version/x.png': no directory"
+unwritable "$dir/plain_file/out.png" "cannot write '$dir/plain_file/out.png': no directory"
+if [ "$(id -u)" -ne 0 ]; then  # root writes into a mode-555 directory regardless
+    mkdir -p "$dir/read_only" && chmod 555 "$dir/read_only"
+    unwritable "$dir/read_only/x.png" "cannot write '$dir/read_only/x.png': Permission denied"
+    [ -z "$(ls -A "$dir/read_only")" ] || fail "read-only directory: $(ls -A "$dir/read_only")"
+    chmod 755 "$dir/read_only"
+fi
+[ -z "$(ls -A "$dir/checks")" ] || fail "the output checks wrote $(ls -A "$dir/checks")"
+
+# 4b. A --size whose render (films, the pass's copy, image, writer buffers: 76 bytes per
+# pixel for a PNG) would take more than 16 GiB is refused before anything is allocated or
+# the scene read: under a 1 GiB address-space limit, where allocating it would fail.
+# One pixel less per side fits, so there the (missing) scene is what fails.
+status=0
+(ulimit -v 1048576; "$app" "$dir/missing.glb" --size 15035x15035 -o "$dir/checks/big.png") \
+    >/dev/null 2>"$dir/err.txt" || status=$?
+[ "$status" -eq 1 ] || fail "--size 15035x15035: exit status $status: $(cat "$dir/err.txt")"
+grep -qF -- "--size = 15035x15035: the render would need 17179893100 bytes (16 GiB: 15035 x 15035 pixels of 76 bytes" \
+    "$dir/err.txt" || fail "--size 15035x15035: message: $(cat "$dir/err.txt")"
+grep -qF -- "more than the 16 GiB limit" "$dir/err.txt" || fail "--size: $(cat "$dir/err.txt")"
+status=0
+(ulimit -v 1048576; "$app" "$dir/missing.glb" --size 15034x15034 -o "$dir/checks/big.png") \
+    >/dev/null 2>"$dir/err.txt" || status=$?
+[ "$status" -eq 1 ] || fail "--size 15034x15034: exit status $status: $(cat "$dir/err.txt")"
+grep -q "missing.glb" "$dir/err.txt" || fail "--size 15034x15034: $(cat "$dir/err.txt")"
+# An EXR render (AOV films, layers and tinyexr's buffers) takes more per pixel.
+status=0
+"$app" "$dir/missing.glb" --size 10000x7000 -o "$dir/checks/big.exr" >/dev/null 2>"$dir/err.txt" ||
+    status=$?
+grep -qF -- "--size = 10000x7000: the render would need" "$dir/err.txt" ||
+    fail "--size 10000x7000 (EXR): $(cat "$dir/err.txt")"
+[ -z "$(ls -A "$dir/checks")" ] || fail "the size checks wrote $(ls -A "$dir/checks")"
+
+# 4c. Issue 37, defect 4: an emitter of strength 1e5 seen directly. The EXR beauty was half
+# floats, where 1e5 is +inf; it is float now: every value finite (depth too: the quad fills
+# the view's centre, and a miss's +inf depth is by design, so only the colour layers and the
+# sample count are asserted), the brightest pixel exactly 1e5. --exr-half clamps to 65504
+# and says so.
+printf 'newmtl bright\nKd 0 0 0\nKe 100000 100000 100000\n' >"$dir/bright.mtl"
+printf 'mtllib bright.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nusemtl bright\nf 1 2 3 4\n' \
+    >"$dir/bright.obj"
+"$app" "$dir/bright.obj" --size 32x24 --spp 2 --threads 2 -q -o "$dir/bright.exr" \
+    2>"$dir/err.txt" || fail "bright EXR: $(cat "$dir/err.txt")"
+"$exr_values" "$dir/bright.exr" >"$dir/values.txt" || fail "bright EXR: unreadable"
+for layer in beauty albedo normal sample_count; do
+    grep -q "^$layer: [0-9]* values, 0 not finite" "$dir/values.txt" ||
+        fail "bright EXR: $layer: $(cat "$dir/values.txt")"
+done
+grep -q "^beauty: .* max 100000$" "$dir/values.txt" || fail "bright EXR: $(cat "$dir/values.txt")"
+[ ! -s "$dir/err.txt" ] || fail "bright EXR (float): warned $(cat "$dir/err.txt")"
+"$app" "$dir/bright.obj" --size 32x24 --spp 2 --threads 2 -q --exr-half \
+    -o "$dir/bright_half.exr" 2>"$dir/err.txt" || fail "--exr-half: $(cat "$dir/err.txt")"
+grep -q "^warning: '$dir/bright_half.exr': [0-9]* beauty value(s) above 65504, the largest half float, clamped to it (largest 100000)" \
+    "$dir/err.txt" || fail "--exr-half: warning: $(cat "$dir/err.txt")"
+"$exr_values" "$dir/bright_half.exr" >"$dir/values.txt" || fail "--exr-half: unreadable"
+grep -q "^beauty: [0-9]* values, 0 not finite, max 65504$" "$dir/values.txt" ||
+    fail "--exr-half: $(cat "$dir/values.txt")"
+status=0
+"$app" "$dir/bright.obj" --exr-half -o "$dir/checks/half.png" 2>"$dir/err.txt" || status=$?
+grep -qF -- "--exr-half = on: needs an .exr output" "$dir/err.txt" ||
+    fail "--exr-half with a PNG: $(cat "$dir/err.txt")"
+
 rm -rf "$dir"
 echo "bad extension rejected first; SIGINT and the time limit wrote complete partial images"

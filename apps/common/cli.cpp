@@ -17,11 +17,14 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <thread>
@@ -286,6 +289,49 @@ void validate_sampling(const AppOptions& o) {
     }
 }
 
+std::uint64_t writer_bytes_per_pixel(const std::string& path, bool layers) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    constexpr std::uint64_t k_linear = sizeof(glm::vec3);  // an Image's pixel
+    constexpr std::uint64_t k_rgb8 = 3;
+    if (ext == ".exr") {
+        // ImageLayers: beauty, albedo, normal, depth, sample count; then as many bytes in
+        // float planes, in tinyexr's compressed blocks and in its file image.
+        const std::uint64_t planes =
+            layers ? 3 * k_linear + 2 * sizeof(float) : k_linear + k_linear;
+        return 4 * planes;
+    }
+    if (ext == ".png") {
+        // The display copy, its 8-bit RGB, stb's filtered rows, its deflate output and
+        // the encoded bytes.
+        return k_linear + 4 * k_rgb8;
+    }
+    return 2 * k_linear;  // .pfm, .hdr: the scaled copy and the encoded file (at most as large)
+}
+
+void check_render_memory(const std::string& option, const std::string& value, long long width,
+                         long long height, std::uint64_t bytes_per_pixel) {
+    const auto w = static_cast<unsigned long long>(std::max(width, 0LL));
+    const auto h = static_cast<unsigned long long>(std::max(height, 0LL));
+    const std::uint64_t max_pixels =
+        k_max_render_bytes / std::max<std::uint64_t>(bytes_per_pixel, 1);
+    if (w == 0 || h <= max_pixels / w) return;  // by division: no product can wrap around
+    std::uint64_t pixels = 0;
+    std::uint64_t bytes = 0;
+    const bool exact = !__builtin_mul_overflow(w, h, &pixels) &&
+                       !__builtin_mul_overflow(pixels, bytes_per_pixel, &bytes);
+    const double gib = double(w) * double(h) * double(bytes_per_pixel) / double(1ull << 30u);
+    char text[300];
+    std::snprintf(text, sizeof text,
+                  "the render would need %s bytes (%.4g GiB: %llu x %llu pixels of %llu bytes, "
+                  "for the films, their copies and the output), more than the %llu GiB limit",
+                  exact ? std::to_string(bytes).c_str() : "over 2^64", gib, w, h,
+                  static_cast<unsigned long long>(bytes_per_pixel),
+                  static_cast<unsigned long long>(k_max_render_bytes >> 30u));
+    bad_option(option.c_str(), value, text);
+}
+
 void validate(const AppOptions& o) {
     constexpr int kMaxSide = 65536;  // the camera's limit
     const auto side = [&](const char* option, int v) {
@@ -301,6 +347,22 @@ void validate(const AppOptions& o) {
     // The film (and rt_mesh's BVH timing, a ray per pixel) must fit before anything is
     // allocated: 65536 x 65536 would need 48 GiB.
     check_image_size(camera.width, camera.height);
+    // And everything render_and_write holds: render()'s films and image, then the image
+    // and the writer's buffers.
+    RenderMemoryOptions memory;
+    memory.adaptive = o.adaptive;
+    memory.keeps_training = o.guiding;
+    const std::uint64_t per_pixel =
+        std::max(render_bytes_per_pixel(memory),
+                 sizeof(glm::vec3) + writer_bytes_per_pixel(o.output, false));
+    if (o.size) {
+        check_render_memory("--size", std::to_string(*o.size), camera.width, camera.height,
+                            per_pixel);
+    } else {
+        check_render_memory("--width",
+                            std::to_string(o.width) + ", --height = " + std::to_string(o.height),
+                            camera.width, camera.height, per_pixel);
+    }
     RenderSettings settings;
     settings.samples_per_pixel = o.spp;
     settings.threads = o.threads;
@@ -325,6 +387,10 @@ void validate(const AppOptions& o) {
         bad_option("--power", typed(o.power),
                    "must be finite and >= 0, with the light's radiance still finite");
     }
+    // The output last: its format and that its directory takes a file (a temporary is
+    // created and removed), so an unwritable -o fails now, not after the render. Apps that
+    // pick a default name later check it then.
+    if (!o.output.empty()) check_image_path(o.output);
 }
 
 void validate(const MeshOptions& o) {

@@ -4,8 +4,10 @@
 
 #include <librt/core/image.h>
 #include <librt/render/camera.h>
+#include <librt/render/film.h>
 #include <librt/render/integrator.h>
 #include <librt/render/integrators.h>
+#include <librt/render/render_memory.h>
 #include <librt/render/renderer.h>
 #include <librt/render/sampler.h>
 #include <librt/render/scene.h>
@@ -131,6 +133,22 @@ void add_mesh_options(CLI::App& app, MeshOptions& options);
 /// option that cannot be used (size, film, samples, threads, bounces, exposure, power).
 /// Each app calls it first, before it loads or allocates anything.
 void validate(const AppOptions& options);
+
+/// Most memory the pixels of an app's render may take: the films, their copies, the image
+/// and the output writer's buffers together (docs/robustness.md). The film's own limit.
+inline constexpr std::uint64_t k_max_render_bytes = Film::k_max_bytes;
+
+/// Bytes per pixel the writer of `path` (by extension) allocates beside the linear image it
+/// is given: a tone-mapped or scaled copy and the encoder's buffers; for EXR with `layers`,
+/// the resolved AOV layers, their float planes, tinyexr's compressed blocks and its file
+/// image (each at most the planes' size).
+[[nodiscard]] std::uint64_t writer_bytes_per_pixel(const std::string& path, bool layers);
+
+/// Throws librt::Error "option = value: the render would need N GiB (B bytes per pixel ...),
+/// more than the 16 GiB limit" when width x height pixels of `bytes_per_pixel` exceed
+/// k_max_render_bytes (compared by division: no overflow). Nothing is allocated.
+void check_render_memory(const std::string& option, const std::string& value, long long width,
+                         long long height, std::uint64_t bytes_per_pixel);
 
 /// The same for the mesh options (--mesh-fit, --mesh-scale, --mesh-offset, --mesh-rotate).
 void validate(const MeshOptions& options);

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -72,18 +73,32 @@ Image display_image(const Image& linear, float scale) {
     return out;
 }
 
-void write_output(const std::string& path, const Film& film, const Image& beauty, float scale) {
+void write_output(const std::string& path, const Film& film, const Image& beauty, float scale,
+                  bool exr_half) {
     const std::string ext = lower_extension(path);
     if (ext == ".exr") {
         ImageLayers layers = resolve_layers(film);
         layers.beauty = beauty;
         for (glm::vec3& p : layers.beauty.pixels) p *= scale;
-        write_exr(path, layers);
+        ExrWriteOptions options;
+        options.colour = exr_half ? ExrPixelType::Half : ExrPixelType::Float;
+        for (const std::string& w : write_exr(path, layers, options).warnings)
+            std::cerr << "warning: " << w << '\n';
     } else if (ext == ".png") {
         write_png(path, display_image(beauty, scale), ToneMap{1.0f, 1.0f});
     } else {
         write_image(path, beauty, ToneMap{scale, 1.0f});
     }
+}
+
+std::uint64_t progressive_output_bytes_per_pixel(const std::string& output,
+                                                 RenderMemoryOptions memory) {
+    memory.aovs = lower_extension(output) == ".exr";
+    const std::uint64_t film = sizeof(FilmPixel) + (memory.aovs ? sizeof(AovPixel) : 0) +
+                               (memory.splats ? 3 * sizeof(std::int64_t) : 0);
+    const std::uint64_t writing =
+        film + sizeof(glm::vec3) + writer_bytes_per_pixel(output, memory.aovs);
+    return std::max(progressive_bytes_per_pixel(memory), writing);
 }
 
 int render_progressively_and_write(const Scene& scene, const Camera& camera,
@@ -111,7 +126,7 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
         std::cerr << "interrupted before the first pass finished: nothing written\n";
         return 130;
     }
-    write_output(o.output, film, image, o.scale);
+    write_output(o.output, film, image, o.scale, o.exr_half);
     const bool partial = stats.samples_per_pixel < std::uint32_t(o.spp);
     if (!o.quiet || partial) {
         const double rate = stats.seconds > 0.0 ? double(stats.samples) / stats.seconds : 0.0;

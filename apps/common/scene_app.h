@@ -4,6 +4,7 @@
 #include <librt/render/camera.h>
 #include <librt/render/film.h>
 #include <librt/render/integrators.h>
+#include <librt/render/render_memory.h>
 #include <librt/render/sampler.h>
 #include <librt/render/scene.h>
 
@@ -28,6 +29,7 @@ struct ProgressiveOutput {
     double time_limit = 0.0;                         ///< seconds, 0 = none
     bool adaptive = false;  ///< --adaptive: spp is the mean; passes spread by noise
     float scale = 1.0f;     ///< exposure: the linear image is multiplied by this
+    bool exr_half = false;  ///< --exr-half: EXR colour channels as half (clamped to 65504)
     bool quiet = false;     ///< no progress bar and no summary
     /// When the app started its work (the summary's "total" counts from here).
     std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
@@ -44,8 +46,16 @@ void parse_size(const std::string& text, float aspect, int& width, int& height);
 [[nodiscard]] Image display_image(const Image& linear, float scale);
 
 /// Writes `beauty` (resolve(film), or the film joined to kept training passes): PNG
-/// display-encoded, EXR with the film's other layers, HDR / PFM linear.
-void write_output(const std::string& path, const Film& film, const Image& beauty, float scale);
+/// display-encoded, EXR with the film's other layers (32-bit float; colour as half when
+/// `exr_half`, values beyond 65504 clamped and warned about on stderr), HDR / PFM linear.
+void write_output(const std::string& path, const Film& film, const Image& beauty, float scale,
+                  bool exr_half = false);
+
+/// The most bytes per pixel render_progressively_and_write holds at once for `output`
+/// (AOVs for .exr) and `memory`'s other choices: render_progressive's films, copies and
+/// image, or afterwards the film, the image and the writer's buffers, whichever is more.
+[[nodiscard]] std::uint64_t progressive_output_bytes_per_pixel(const std::string& output,
+                                                               RenderMemoryOptions memory);
 
 /// Renders `scene` through `camera` one sample per pixel per pass (render_progressive),
 /// with a progress bar, until o.spp samples, Ctrl-C or the time limit; writes the finished

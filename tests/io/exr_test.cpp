@@ -78,7 +78,7 @@ void expect_half_close(const Image& written, const Image& read, const char* laye
 TEST_F(ExrTest, FloatRoundTripIsExactForEveryLayer) {
     const ImageLayers layers = random_layers(17, 9);
     const fs::path path = dir_ / "all.exr";
-    write_exr(path, layers, ExrPixelType::Float);
+    write_exr(path, layers, {ExrPixelType::Float});
     EXPECT_EQ(entries(), 1u);  // no temporary left behind
     const ImageLayers back = read_exr(path);
     expect_same(layers.beauty, back.beauty, "beauty");
@@ -91,7 +91,7 @@ TEST_F(ExrTest, FloatRoundTripIsExactForEveryLayer) {
 TEST_F(ExrTest, HalfRoundTripIsWithinHalfPrecision) {
     const ImageLayers layers = random_layers(23, 5);
     const fs::path path = dir_ / "half.exr";
-    write_exr(path, layers, ExrPixelType::Half);
+    EXPECT_TRUE(write_exr(path, layers, {ExrPixelType::Half}).warnings.empty());
     const ImageLayers back = read_exr(path);
     expect_half_close(layers.beauty, back.beauty, "beauty");
     expect_half_close(layers.albedo, back.albedo, "albedo");
@@ -100,15 +100,57 @@ TEST_F(ExrTest, HalfRoundTripIsWithinHalfPrecision) {
     expect_same(layers.depth, back.depth, "depth");
     expect_same(layers.sample_count, back.sample_count, "sample_count");
     // Half really is smaller than float: the file is a half-precision one.
-    write_exr(dir_ / "float.exr", layers, ExrPixelType::Float);
+    write_exr(dir_ / "float.exr", layers, {ExrPixelType::Float});
     EXPECT_LT(fs::file_size(path), fs::file_size(dir_ / "float.exr"));
+}
+
+// Issue 37, defect 4: the beauty was written as half by default, so radiance above 65504
+// (an emitter of strength 1e5 seen directly) became +inf in the file. The default is float:
+// the value comes back as written, finite, and nothing is reported.
+TEST_F(ExrTest, DefaultBeautyIsFloatAndKeepsValuesAboveTheHalfRange) {
+    ImageLayers layers;
+    layers.beauty = Image(3, 2);
+    layers.beauty.at(1, 0) = {1e5f, 2e5f, 65520.0f};
+    layers.beauty.at(2, 1) = {3e38f, 0.25f, 1.0f};
+    const fs::path path = dir_ / "bright.exr";
+    const ExrWriteResult result = write_exr(path, layers);
+    EXPECT_TRUE(result.warnings.empty());
+    const ImageLayers back = read_exr(path);
+    expect_same(layers.beauty, back.beauty, "beauty");
+    for (const glm::vec3& p : back.beauty.pixels)
+        for (int c = 0; c < 3; ++c) EXPECT_TRUE(std::isfinite(p[c]));
+}
+
+// Half on request: values beyond the largest half are clamped to +-65504 (never +inf) and
+// each layer that had any is reported once, naming the file, the count and the largest.
+TEST_F(ExrTest, HalfClampsToTheLargestHalfWithAWarning) {
+    ImageLayers layers = random_layers(4, 3);
+    layers.beauty.at(1, 0) = {1e5f, 70000.0f, 0.5f};
+    layers.beauty.at(3, 2) = {std::numeric_limits<float>::infinity(), 65504.0f, 2.0f};
+    layers.albedo.at(0, 0) = {-1e6f, 0.5f, 0.5f};  // not a real albedo: the clamp is per layer
+    const fs::path path = dir_ / "half.exr";
+    const ExrWriteResult result = write_exr(path, layers, {ExrPixelType::Half});
+    ASSERT_EQ(result.warnings.size(), 2u);
+    const std::string& beauty = result.warnings[0];
+    EXPECT_NE(beauty.find("half.exr"), std::string::npos) << beauty;
+    EXPECT_NE(beauty.find("3 beauty value(s) above 65504"), std::string::npos) << beauty;
+    EXPECT_NE(beauty.find("(largest inf)"), std::string::npos) << beauty;
+    EXPECT_NE(result.warnings[1].find("1 albedo value(s) above 65504"), std::string::npos)
+        << result.warnings[1];
+    EXPECT_NE(result.warnings[1].find("(largest 1e+06)"), std::string::npos) << result.warnings[1];
+    const ImageLayers back = read_exr(path);
+    EXPECT_EQ(back.beauty.at(1, 0), glm::vec3(65504.0f, 65504.0f, 0.5f));
+    EXPECT_EQ(back.beauty.at(3, 2), glm::vec3(65504.0f, 65504.0f, 2.0f));
+    EXPECT_EQ(back.albedo.at(0, 0).x, -65504.0f);
+    for (const glm::vec3& p : back.beauty.pixels)
+        for (int c = 0; c < 3; ++c) EXPECT_TRUE(std::isfinite(p[c]));
 }
 
 TEST_F(ExrTest, OptionalLayersAreOmitted) {
     ImageLayers layers;
     layers.beauty = Image(4, 3);
     layers.beauty.at(1, 2) = {0.5f, 1.5f, 2.5f};
-    write_exr(dir_ / "beauty.exr", layers, ExrPixelType::Float);
+    write_exr(dir_ / "beauty.exr", layers, {ExrPixelType::Float});
     const ImageLayers back = read_exr(dir_ / "beauty.exr");
     expect_same(layers.beauty, back.beauty, "beauty");
     EXPECT_TRUE(back.albedo.pixels.empty());
@@ -128,7 +170,7 @@ TEST_F(ExrTest, RenderedFilmLayersRoundTrip) {
     Film film;
     (void)render_progressive(scene, camera, integrator, film, s);
     const ImageLayers layers = resolve_layers(film);
-    write_exr(dir_ / "render.exr", layers, ExrPixelType::Float);
+    write_exr(dir_ / "render.exr", layers, {ExrPixelType::Float});
     const ImageLayers back = read_exr(dir_ / "render.exr");
     expect_same(resolve(film), back.beauty, "beauty");
     expect_same(layers.albedo, back.albedo, "albedo");
@@ -185,7 +227,7 @@ TEST_F(ExrTest, ReadingBadFilesNamesTheFile) {
     { std::ofstream(dir_ / "text.exr") << "this is not an OpenEXR file at all"; }
     expect_error(dir_ / "text.exr");
     // A valid file cut short.
-    write_exr(dir_ / "whole.exr", random_layers(32, 32), ExrPixelType::Float);
+    write_exr(dir_ / "whole.exr", random_layers(32, 32), {ExrPixelType::Float});
     fs::copy_file(dir_ / "whole.exr", dir_ / "cut.exr");
     fs::resize_file(dir_ / "cut.exr", fs::file_size(dir_ / "whole.exr") / 2);
     expect_error(dir_ / "cut.exr");

@@ -86,6 +86,25 @@ status=0
 "$apps/rt_synthesis" --mesh tiny.obj --size 8 --spp 1 --threads 1 -q -o tiny.png || status=$?
 [ "$status" -eq 0 ] || fail "rt_synthesis --mesh tiny.obj: exit status $status"
 
+# Issue 37, defect 5, in the report apps: an -o that cannot be written (/sys takes no files,
+# even from root) fails in apps::validate, before the scene is built or a pixel rendered;
+# so does a size whose render (here with --guiding: the film, the half film, the kept sums,
+# the image, 124 bytes per pixel) would exceed 16 GiB, while its image alone is under 4 GiB.
+# Not quiet: a render would print its summary on stdout before the write failed (as it did).
+for app in rt_hard_shadows rt_antialiasing rt_synthesis; do
+  status=0
+  "$apps/$app" --size 8 --spp 1 --threads 1 -o /sys/librt_out.png >stdout.txt 2>stderr.txt ||
+    status=$?
+  [ "$status" -eq 1 ] || fail "$app -o /sys/librt_out.png: exit status $status"
+  grep -qF "cannot write '/sys/librt_out.png': " stderr.txt ||
+    fail "$app -o /sys/...: $(cat stderr.txt)"
+  [ ! -s stdout.txt ] || fail "$app -o /sys/...: rendered first: $(cat stdout.txt)"
+done
+expect_error "--size = 12000: the render would need 17856000000 bytes" \
+  rt_synthesis --size 12000 --guiding -q
+expect_error "--width = 12000, --height = 12000: the render would need 17856000000 bytes" \
+  rt_indirect --width 12000 --height 12000 --guiding -q
+
 if [ "$failures" -gt 0 ]; then
   echo "$failures failure(s)" >&2
   exit 1

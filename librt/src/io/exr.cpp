@@ -112,6 +112,34 @@ void add_rgb(std::vector<Channel>& channels, const Image& image, const std::stri
     }
 }
 
+// The largest finite half, (2 - 2^-10) x 2^15 (IEEE 754 binary16): tinyexr rounds anything
+// from 65520 up, and an infinity, to an infinite half.
+constexpr float k_max_half = 65504.0f;
+
+// Clamps the half channels named prefix + names[i] (the last three added) to +-65504; a
+// warning naming the layer when any value was larger.
+void clamp_to_half(std::vector<Channel>& channels, const fs::path& path, const char* layer,
+                   std::vector<std::string>& warnings) {
+    std::size_t clamped = 0;
+    float largest = 0.0f;
+    for (std::size_t c = channels.size() - 3; c < channels.size(); ++c) {
+        for (float& v : channels[c].values) {
+            if (std::fabs(v) > k_max_half) {  // false for NaN, refused later
+                ++clamped;
+                largest = std::max(largest, std::fabs(v));
+                v = std::copysign(k_max_half, v);
+            }
+        }
+    }
+    if (clamped == 0) return;
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  ": %zu %s value(s) above 65504, the largest half float, clamped to it "
+                  "(largest %g); write float channels to keep them",
+                  clamped, layer, double(largest));
+    warnings.push_back(quoted(path) + text);
+}
+
 struct ErrorMessage {
     const char* text = nullptr;
     ~ErrorMessage() {
@@ -122,7 +150,8 @@ struct ErrorMessage {
 
 }  // namespace
 
-void write_exr(const fs::path& path, const ImageLayers& layers, ExrPixelType type) {
+ExrWriteResult write_exr(const fs::path& path, const ImageLayers& layers,
+                         const ExrWriteOptions& options) {
     const Image& beauty = layers.beauty;
     const auto pixel_count = static_cast<std::size_t>(std::max(beauty.width, 0)) *
                              static_cast<std::size_t>(std::max(beauty.height, 0));
@@ -131,20 +160,23 @@ void write_exr(const fs::path& path, const ImageLayers& layers, ExrPixelType typ
                     " x " + std::to_string(beauty.height) + " with " +
                     std::to_string(beauty.pixels.size()) + " pixels");
     }
-    const int colour =
-        type == ExrPixelType::Half ? TINYEXR_PIXELTYPE_HALF : TINYEXR_PIXELTYPE_FLOAT;
+    const bool half = options.colour == ExrPixelType::Half;
+    const int colour = half ? TINYEXR_PIXELTYPE_HALF : TINYEXR_PIXELTYPE_FLOAT;
+    ExrWriteResult result;
     std::vector<Channel> channels;
     add_rgb(channels, beauty, "", "RGB", colour);
+    if (half) clamp_to_half(channels, path, "beauty", result.warnings);
     if (!layers.albedo.pixels.empty() || layers.albedo.width != 0) {
         check_layer_size(path, "albedo", layers.albedo.pixels.size(), pixel_count);
         add_rgb(channels, layers.albedo, "albedo.", "RGB", colour);
+        if (half) clamp_to_half(channels, path, "albedo", result.warnings);
     }
     if (!layers.normal.pixels.empty() || layers.normal.width != 0) {
         check_layer_size(path, "normal", layers.normal.pixels.size(), pixel_count);
         add_rgb(channels, layers.normal, "normal.", "XYZ", colour);
+        if (half) clamp_to_half(channels, path, "normal", result.warnings);
     }
-    // Depth and the sample count stay 32-bit whatever `type` says: half would round a
-    // depth of 1000 to a multiple of 0.5 and a count above 2048 to an even number.
+    // Depth and the sample count stay 32-bit whatever options.colour says (exr.h).
     if (!layers.depth.empty()) {
         check_layer_size(path, "depth", layers.depth.size(), pixel_count);
         channels.push_back({"Z", TINYEXR_PIXELTYPE_FLOAT, layers.depth});
@@ -191,6 +223,7 @@ void write_exr(const fs::path& path, const ImageLayers& layers, ExrPixelType typ
         throw Error("cannot write " + quoted(path) + ": tinyexr: " + error.str());
     }
     write_file_atomically(path, memory, size);
+    return result;
 }
 
 ImageLayers read_exr(const fs::path& path) {

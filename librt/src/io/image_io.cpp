@@ -1,6 +1,7 @@
 #include "io/file_io.h"
 
 #include <librt/core/error.h>
+#include <librt/io/check_writable.h>
 #include <librt/io/exr.h>
 #include <librt/io/image_io.h>
 
@@ -255,6 +256,7 @@ void check_image_path(const fs::path& path) {
         throw Error("cannot write " + quoted(path) + ": " + std::strerror(ENAMETOOLONG) +
                     " (its name has " + std::to_string(path.filename().native().size()) +
                     " bytes, the directory allows " + std::to_string(name_max) + ")");
+    check_writable(path);
 }
 
 void write_image(const fs::path& path, const Image& image, const ToneMap& tone_map) {

@@ -30,13 +30,14 @@ LIBRT_API void write_pfm(const std::filesystem::path& path, const Image& image);
 LIBRT_API void write_hdr(const std::filesystem::path& path, const Image& image);
 
 /// Chooses the format by extension (case-insensitive): ".png" is tone-mapped with
-/// `tone_map`; ".pfm", ".hdr" and ".exr" (io/exr.h, beauty only, half floats) stay linear
+/// `tone_map`; ".pfm", ".hdr" and ".exr" (io/exr.h, beauty only, 32-bit float) stay linear
 /// but are multiplied by tone_map.exposure (no gamma, no clamp), so that 1.0 is display
 /// white in HDR viewers. Any other extension throws librt::Error naming the path.
 LIBRT_API void write_image(const std::filesystem::path& path, const Image& image,
                            const ToneMap& tone_map = {});
 /// Checks, before any work, that write_image could write `path`: a known extension (.png,
-/// .pfm, .hdr, .exr), not a directory, in an existing directory. Throws librt::Error naming
-/// the path and the problem; writes nothing.
+/// .pfm, .hdr, .exr), not a directory, in an existing directory in which a file can be
+/// created (check_writable: a temporary is created and removed). Throws librt::Error naming
+/// the path and the problem; leaves nothing behind.
 LIBRT_API void check_image_path(const std::filesystem::path& path);
 }  // namespace librt
