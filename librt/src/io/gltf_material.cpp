@@ -259,8 +259,8 @@ std::string decode(const unsigned char* bytes, std::size_t size, GltfImage& imag
     // given back.
     std::uint64_t held = 0;
     if (png) {
-        const detail::PngDataCheck check = detail::check_png_data(
-            std::string_view(reinterpret_cast<const char*>(bytes), size));
+        const detail::PngDataCheck check =
+            detail::check_png_data(std::string_view(reinterpret_cast<const char*>(bytes), size));
         if (!check.problem.empty()) return check.problem;
         held = check.raw_bytes;
     }

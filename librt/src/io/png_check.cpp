@@ -13,7 +13,9 @@ namespace {
 
 std::uint32_t be32(std::string_view b, std::size_t at) {
     // PNG integers are big-endian.
-    const auto u = [&](std::size_t k) { return std::uint32_t(static_cast<unsigned char>(b[at + k])); };
+    const auto u = [&](std::size_t k) {
+        return std::uint32_t(static_cast<unsigned char>(b[at + k]));
+    };
     return u(0) << 24u | u(1) << 16u | u(2) << 8u | u(3);
 }
 
@@ -80,9 +82,10 @@ PngDataCheck check_png_data(std::string_view bytes) {
                 const int status = inflate(&z, Z_NO_FLUSH);
                 produced += scratch.size() - z.avail_out;
                 if (produced > expected) {
-                    out.problem = "its image data inflates to more than the " + std::to_string(expected) +
-                           " bytes its header's " + std::to_string(w) + " x " +
-                           std::to_string(h) + " pixels hold (corrupt or hostile)";
+                    out.problem = "its image data inflates to more than the " +
+                                  std::to_string(expected) + " bytes its header's " +
+                                  std::to_string(w) + " x " + std::to_string(h) +
+                                  " pixels hold (corrupt or hostile)";
                     return out;
                 }
                 // The end, or a broken stream (stb reports that).

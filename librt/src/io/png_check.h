@@ -10,7 +10,7 @@ namespace librt::detail {
 
 /// What check_png_data found.
 struct PngDataCheck {
-    std::string problem;         ///< why it cannot be decoded within its header, or ""
+    std::string problem;          ///< why it cannot be decoded within its header, or ""
     std::uint64_t raw_bytes = 0;  ///< the inflated data its header gives (stb holds it too)
 };
 
