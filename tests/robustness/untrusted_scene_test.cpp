@@ -393,7 +393,10 @@ TEST(UntrustedGltfMemory, AMillionNodesStayWithinTheBoundOrAreRefused) {
     text += R"(,"nodes":[)";
     for (int i = 0; i < 1'000'000; ++i) text += i == 0 ? R"({"mesh":0})" : R"(,{"mesh":0})";
     text += R"(],"scenes":[{"nodes":[)";
-    for (int i = 0; i < 1'000'000; ++i) text += (i == 0 ? "" : ",") + std::to_string(i);
+    for (int i = 0; i < 1'000'000; ++i) {
+        if (i != 0) text += ',';
+        text += std::to_string(i);
+    }
     text += "]}]}";
     ScratchDir dir;
     const std::string glb = GltfBuilder::make_glb(text, g.bin);
