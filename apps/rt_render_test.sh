@@ -132,8 +132,8 @@ unwritable() {  # unwritable <output> <expected text>
 }
 unwritable /sys/rt_render_test.png "cannot write '/sys/rt_render_test.png': "
 unwritable /proc/rt_render_test.exr "cannot write '/proc/rt_render_test.exr': "
-unwritable /proc/version/x.png "cannot write '/proc/version/x.png': no directory"
-unwritable "$dir/plain_file/out.png" "cannot write '$dir/plain_file/out.png': no directory"
+unwritable /proc/version/x.png "cannot write '/proc/version/x.png': directory '/proc/version': Not a directory"
+unwritable "$dir/plain_file/out.png" "cannot write '$dir/plain_file/out.png': directory '$dir/plain_file': Not a directory"
 if [ "$(id -u)" -ne 0 ]; then  # root writes into a mode-555 directory regardless
     mkdir -p "$dir/read_only" && chmod 555 "$dir/read_only"
     unwritable "$dir/read_only/x.png" "cannot write '$dir/read_only/x.png': Permission denied"

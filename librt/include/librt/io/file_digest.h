@@ -11,6 +11,7 @@
 
 namespace librt {
 
+/// A file's content in 16 bytes: its FNV-1a digest and its size.
 struct FileDigest {
     std::uint64_t fnv1a64 = 0;  ///< core/fnv1a.h over every byte of the file
     std::uint64_t bytes = 0;    ///< the file's size

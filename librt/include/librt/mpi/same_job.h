@@ -19,8 +19,8 @@ namespace librt {
 /// and its value as text, readable where that is cheap ("16", "bdpt") and a digest for what
 /// is large (a file: io/file_digest.h).
 struct JobItem {
-    std::string name;
-    std::string value;
+    std::string name;   ///< what the user calls it: "--spp", "scene file"
+    std::string value;  ///< its value as text, or a digest
 };
 
 /// Collective over `comm`: rank 0's items are broadcast and every rank compares its own with
