@@ -261,8 +261,8 @@ std::string decode(const unsigned char* bytes, std::size_t size, GltfImage& imag
     // refuse a valid 8192^2 image of a few kilobytes, whose output alone fills the
     // 256 MiB every file is allowed (docs/robustness.md).
     if (png) {
-        const detail::PngDataCheck check = detail::check_png_data(
-            std::string_view(reinterpret_cast<const char*>(bytes), size));
+        const detail::PngDataCheck check =
+            detail::check_png_data(std::string_view(reinterpret_cast<const char*>(bytes), size));
         if (!check.problem.empty()) return check.problem;
     }
     ctx.spend(texels * 4, path);
