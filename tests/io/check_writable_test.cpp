@@ -3,6 +3,7 @@
 // nothing behind and names the path and the system's reason.
 
 #include "io/temp_dir_test.h"
+#include "robustness/robustness_util.h"
 
 #include <librt/core/error.h>
 #include <librt/io/check_writable.h>
@@ -16,23 +17,12 @@
 #include <vector>
 
 using namespace librt;
+using librt::testing::error_of;
 namespace fs = std::filesystem;
 
 namespace {
 
 class CheckWritable : public librt::testing::TempDirTest {};
-
-// The message of the Error `f` throws ("" and a failure when it throws none).
-template <class F>
-std::string error_of(F&& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no librt::Error";
-    return "";
-}
 
 }  // namespace
 
