@@ -145,16 +145,24 @@ fi
 # 4b. A --size whose render (films, the pass's copy, image, writer buffers: 76 bytes per
 # pixel for a PNG) would take more than 16 GiB is refused before anything is allocated or
 # the scene read: under a 1 GiB address-space limit, where allocating it would fail.
-# One pixel less per side fits, so there the (missing) scene is what fails.
+# One pixel less per side fits, so there the (missing) scene is what fails. A sanitized
+# build reserves terabytes of address space for its shadow memory and cannot start under
+# such a limit: there the limit is left out (the message and exit status still show the
+# refusal came first, before the scene), and the release stage keeps it.
+address_limit=1048576
+if ldd "$app" 2>/dev/null | grep -qE 'lib(asan|tsan)'; then
+    address_limit=unlimited
+    echo "note: $app is sanitized: the --size checks run without an address-space limit"
+fi
 status=0
-(ulimit -v 1048576; "$app" "$dir/missing.glb" --size 15035x15035 -o "$dir/checks/big.png") \
+(ulimit -v "$address_limit"; "$app" "$dir/missing.glb" --size 15035x15035 -o "$dir/checks/big.png") \
     >/dev/null 2>"$dir/err.txt" || status=$?
 [ "$status" -eq 1 ] || fail "--size 15035x15035: exit status $status: $(cat "$dir/err.txt")"
 grep -qF -- "--size = 15035x15035: the render would need 17179893100 bytes (16 GiB: 15035 x 15035 pixels of 76 bytes" \
     "$dir/err.txt" || fail "--size 15035x15035: message: $(cat "$dir/err.txt")"
 grep -qF -- "more than the 16 GiB limit" "$dir/err.txt" || fail "--size: $(cat "$dir/err.txt")"
 status=0
-(ulimit -v 1048576; "$app" "$dir/missing.glb" --size 15034x15034 -o "$dir/checks/big.png") \
+(ulimit -v "$address_limit"; "$app" "$dir/missing.glb" --size 15034x15034 -o "$dir/checks/big.png") \
     >/dev/null 2>"$dir/err.txt" || status=$?
 [ "$status" -eq 1 ] || fail "--size 15034x15034: exit status $status: $(cat "$dir/err.txt")"
 grep -q "missing.glb" "$dir/err.txt" || fail "--size 15034x15034: $(cat "$dir/err.txt")"
