@@ -556,7 +556,8 @@ TEST(RenderMpi, AdaptiveSamplingCancelledBeforeTheCountsStopsEveryRank) {
     if (world_rank() == 0) {
         // Progress weighs a pilot tile 16 / 64 of a tile: 11 of the 12 pilots are back.
         const double all_but_one_pilot = 11.0 / 12.0 * 16.0 / 64.0;
-        s.render.progress = [&](const RenderProgress& p) {
+        // By value: the constant's scope ends before the render calls this.
+        s.render.progress = [&tracer, ranks, all_but_one_pilot](const RenderProgress& p) {
             if (ranks == 1 || p.fraction >= all_but_one_pilot - 1e-9) tracer.cancel();
         };
     }
