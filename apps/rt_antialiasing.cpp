@@ -5,8 +5,8 @@
 // edge where the staircase shows.
 #include "common/cli.h"
 
+#include <librt/integrator/integrators.h>
 #include <librt/io/image_io.h>
-#include <librt/render/integrators.h>
 
 #include <filesystem>
 

@@ -4,8 +4,8 @@
 // renders the comparison (default name depth_of_field_pinhole.png).
 #include "common/cli.h"
 
+#include <librt/integrator/integrators.h>
 #include <librt/io/image_io.h>
-#include <librt/render/integrators.h>
 
 using namespace librt;
 

@@ -3,7 +3,7 @@
 #include "common/cli.h"
 
 #include <librt/core/error.h>
-#include <librt/render/integrators.h>
+#include <librt/integrator/integrators.h>
 
 using namespace librt;
 

@@ -2,7 +2,7 @@
 // bounces (5 bounces, 30 samples per pixel).
 #include "common/cli.h"
 
-#include <librt/render/integrators.h>
+#include <librt/integrator/integrators.h>
 
 using namespace librt;
 

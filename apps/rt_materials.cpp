@@ -13,12 +13,12 @@
 #include <librt/core/image.h>
 #include <librt/geometry/mesh.h>
 #include <librt/geometry/sphere.h>
+#include <librt/integrator/integrators.h>
 #include <librt/io/hdr_image.h>
 #include <librt/io/image_io.h>
-#include <librt/render/environment_light.h>
-#include <librt/render/integrators.h>
+#include <librt/light/environment_light.h>
+#include <librt/material/texture.h>
 #include <librt/render/renderer.h>
-#include <librt/render/texture.h>
 
 #include <CLI/CLI.hpp>
 #include <glm/geometric.hpp>

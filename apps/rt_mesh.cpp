@@ -8,7 +8,7 @@
 #include "common/bvh_timing.h"
 #include "common/cli.h"
 
-#include <librt/render/integrators.h>
+#include <librt/integrator/integrators.h>
 
 #include <CLI/CLI.hpp>
 

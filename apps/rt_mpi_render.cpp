@@ -9,11 +9,11 @@
 #include <librt/accel/simd.h>
 #include <librt/core/error.h>
 #include <librt/core/tone_map.h>
+#include <librt/integrator/integrators.h>
 #include <librt/io/exr.h>
 #include <librt/io/image_io.h>
 #include <librt/mpi/render_mpi.h>
 #include <librt/mpi/same_job.h>
-#include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
 
 #include <CLI/CLI.hpp>

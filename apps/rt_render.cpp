@@ -10,13 +10,13 @@
 #include "common/scene_app.h"
 
 #include <librt/core/error.h>
+#include <librt/integrator/bdpt.h>
+#include <librt/integrator/integrators.h>
 #include <librt/io/file_digest.h>
 #include <librt/io/hdr_image.h>
 #include <librt/io/image_io.h>
 #include <librt/io/scene_file.h>
-#include <librt/render/bdpt.h>
-#include <librt/render/environment_light.h>
-#include <librt/render/integrators.h>
+#include <librt/light/environment_light.h>
 #include <librt/render/renderer.h>
 
 #include <CLI/CLI.hpp>

@@ -2,7 +2,7 @@
 // 10, sampled at a random point per shadow ray (5 bounces, 30 samples per pixel).
 #include "common/cli.h"
 
-#include <librt/render/integrators.h>
+#include <librt/integrator/integrators.h>
 
 using namespace librt;
 

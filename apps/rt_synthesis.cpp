@@ -4,7 +4,7 @@
 // 0.45; 80 samples per pixel at 512x512.
 #include "common/cli.h"
 
-#include <librt/render/integrators.h>
+#include <librt/integrator/integrators.h>
 
 using namespace librt;
 

@@ -2,9 +2,9 @@
 // (pixel, sample, seed) and the draws of a 3-bounce path in the documented allocation
 // (pixel 2D, lens 2D, then per bounce light choice 1D, light 2D, BSDF 2D, roulette 1D).
 
-#include <librt/render/sampler.h>
 #include <librt/sampling/filter.h>
 #include <librt/sampling/rng.h>
+#include <librt/sampling/sampler.h>
 
 #include <benchmark/benchmark.h>
 

@@ -2,16 +2,22 @@
 # other in one direction only (docs/architecture.md), and the renderer reads no files.
 #   1. A file of area A (librt/include/librt/A/ or librt/src/A/) includes librt headers
 #      (<librt/B/...> or the private "B/...") only of the areas A may use:
-#        core      <- core
-#        geometry  <- core, geometry
-#        sampling  <- core, geometry, sampling
-#        accel     <- core, geometry, sampling, accel
-#        render    <- core, geometry, sampling, accel, render
-#        io        <- all of the above and io (a loader may build render types)
-#        mpi       <- core, geometry, sampling, accel, render, mpi (the optional librt::mpi)
+#        core       <- core
+#        geometry   <- core, geometry
+#        sampling   <- core .. sampling
+#        accel      <- core .. accel
+#        material   <- core .. accel, material (textures, BSDFs)
+#        light      <- core .. material, light (a triangle light's emission is a texture)
+#        film       <- core .. light, film (cameras, films)
+#        scene      <- core .. film, scene (the scene, its shading points, shadow rays)
+#        integrator <- core .. scene, integrator
+#        render     <- core .. integrator, render (the drivers: passes, tiles, AOVs)
+#        io         <- all of the above and io (a loader may build render types)
+#        mpi        <- everything but io, and mpi (the optional librt::mpi)
 #      plus <librt/export.h> and <librt/version.h> everywhere.
-#   2. render/ does no file I/O: no <fstream>, <filesystem>, stb, fopen, std::ifstream /
-#      ofstream / fstream, std::filesystem. Files are read and written in io/.
+#   2. The renderer's areas (material .. render) do no file I/O: no <fstream>,
+#      <filesystem>, stb, fopen, std::ifstream / ofstream / fstream, std::filesystem.
+#      Files are read and written in io/.
 # Fails naming file:line. Comments (from // to the end of the line) are ignored.
 #   ROOT: the repository root
 # It first checks itself on a scratch tree, so a broken rule cannot pass silently.
@@ -19,14 +25,16 @@ cmake_minimum_required(VERSION 3.22)
 include("${CMAKE_CURRENT_LIST_DIR}/LibrtSourceScan.cmake")
 librt_require_root()
 
-set(_areas core geometry sampling accel render io mpi)
-set(_uses_core core)
-set(_uses_geometry core geometry)
-set(_uses_sampling core geometry sampling)
-set(_uses_accel core geometry sampling accel)
-set(_uses_render core geometry sampling accel render)
-set(_uses_io core geometry sampling accel render io)
-set(_uses_mpi core geometry sampling accel render mpi)
+set(_areas core geometry sampling accel material light film scene integrator render io mpi)
+# Each area uses itself and the areas before it; mpi uses everything but io.
+set(_before "")
+foreach(_area IN LISTS _areas)
+  list(APPEND _before ${_area})
+  set(_uses_${_area} ${_before})
+endforeach()
+list(REMOVE_ITEM _uses_mpi io)
+# The renderer's areas (everything between accel and io) read and write no files.
+set(_no_file_io material light film scene integrator render)
 set(_file_io_patterns
   "#[ \t]*include[ \t]*<(fstream|filesystem|stb/[^>]*)>"
   "(^|[^A-Za-z0-9_])fopen[ \t]*\\("
@@ -62,7 +70,7 @@ function(librt_check_layering root files out_var)
         string(STRIP "${line}" shown)
         string(APPEND found "\n  ${rel}:${number}: ${area}/ may not include ${used}/: ${shown}")
       endif()
-      if(area STREQUAL "render")
+      if(area IN_LIST _no_file_io)
         foreach(pattern IN LISTS _file_io_patterns)
           if(code MATCHES "${pattern}")
             string(STRIP "${line}" shown)
@@ -85,12 +93,12 @@ file(WRITE "${_scratch}/librt/src/render/bad.cpp"
   "#include <stb/stb_image.h>\nFILE* f = std::fopen(name, \"rb\")\nstd::ifstream in(p)\n"
   "auto s = std::filesystem::status(p)\n")
 file(WRITE "${_scratch}/librt/include/librt/accel/bad.h"
-  "#include <librt/render/scene.h>\n#include \"io/obj_scan.h\"\n")
+  "#include <librt/scene/scene.h>\n#include \"io/obj_scan.h\"\n")
 file(WRITE "${_scratch}/librt/src/render/good.cpp"
   "#include <librt/accel/bvh.h>\n#include <librt/export.h>\n#include <sstream>\n"
   "// std::ifstream in a comment\nstd::ostringstream msg\nint my_fopen_count = 0\n")
 file(WRITE "${_scratch}/librt/src/io/good.cpp"
-  "#include <librt/render/scene.h>\n#include <fstream>\n#include \"io/obj_scan.h\"\n")
+  "#include <librt/scene/scene.h>\n#include <fstream>\n#include \"io/obj_scan.h\"\n")
 librt_check_layering("${_scratch}"
   "librt/src/render/bad.cpp;librt/include/librt/accel/bad.h;librt/src/render/good.cpp;librt/src/io/good.cpp"
   _self)

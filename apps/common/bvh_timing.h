@@ -1,8 +1,8 @@
 #pragma once
 
 #include <librt/accel/bvh_builder.h>
+#include <librt/film/camera.h>
 #include <librt/geometry/mesh.h>
-#include <librt/render/camera.h>
 
 // The report's BVH claim ("the BVH made it 7x faster"), measured: the camera's primary
 // rays cast against the mesh alone through a BVH and through the naive linear scan.

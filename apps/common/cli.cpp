@@ -8,8 +8,8 @@
 #include <librt/accel/simd.h>
 #include <librt/core/error.h>
 #include <librt/core/tone_map.h>
+#include <librt/integrator/integrators.h>
 #include <librt/io/image_io.h>
-#include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
 #include <librt/version.h>
 

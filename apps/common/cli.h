@@ -3,14 +3,14 @@
 #include "report_scene.h"
 
 #include <librt/core/image.h>
-#include <librt/render/camera.h>
-#include <librt/render/film.h>
-#include <librt/render/integrator.h>
-#include <librt/render/integrators.h>
+#include <librt/film/camera.h>
+#include <librt/film/film.h>
+#include <librt/integrator/integrator.h>
+#include <librt/integrator/integrators.h>
 #include <librt/render/render_memory.h>
 #include <librt/render/renderer.h>
-#include <librt/render/sampler.h>
-#include <librt/render/scene.h>
+#include <librt/sampling/sampler.h>
+#include <librt/scene/scene.h>
 
 #include <atomic>
 #include <cstdint>

@@ -1,10 +1,10 @@
 #pragma once
 
-#include <librt/render/camera.h>
-#include <librt/render/film.h>
-#include <librt/render/integrator.h>
+#include <librt/film/camera.h>
+#include <librt/film/film.h>
+#include <librt/integrator/integrator.h>
 #include <librt/render/renderer.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <cstdint>
 #include <functional>

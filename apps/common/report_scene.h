@@ -1,8 +1,8 @@
 #pragma once
 
+#include <librt/film/camera.h>
 #include <librt/geometry/mesh.h>
-#include <librt/render/camera.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <glm/vec3.hpp>
 

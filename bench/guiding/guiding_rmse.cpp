@@ -8,12 +8,12 @@
 //   librt_guiding_rmse [--size N] [--ref-spp N] [--threads N] [--hole H] [--spp a,b,c]
 //       [--passes P] [--keep 0|1] [--filter 0|1] [--alpha A] [--ref CACHE.pfm]
 
+#include <librt/film/camera.h>
 #include <librt/geometry/mesh.h>
+#include <librt/integrator/integrators.h>
 #include <librt/io/image_io.h>
-#include <librt/render/camera.h>
-#include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <cmath>
 #include <cstdio>

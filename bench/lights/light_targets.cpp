@@ -24,13 +24,13 @@
 // panel 1 cm under the ceiling, gold, thin glass and plastic), seen from the file's own
 // camera (the same eye, direction and 40 degree field of view as the panel box's).
 
+#include <librt/integrator/bdpt.h>
+#include <librt/integrator/integrators.h>
 #include <librt/io/gltf.h>
 #include <librt/io/gltf_scene.h>
 #include <librt/io/hdr_image.h>
-#include <librt/render/bdpt.h>
-#include <librt/render/integrators.h>
-#include <librt/render/sampler.h>
-#include <librt/render/scene.h>
+#include <librt/sampling/sampler.h>
+#include <librt/scene/scene.h>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>

@@ -2,7 +2,7 @@
 // time (one thread): the path tracer choosing the light it samples at each vertex by power
 // alone (LightChoice::Power, the same table everywhere) against by power times a bound of
 // each light's contribution at the point (LightChoice::Bounded; above the light sampler's
-// 16 bounded lights, through the light tree of src/render/light_tree.h). The reference is
+// 16 bounded lights, through the light tree of src/light/light_tree.h). The reference is
 // rendered by Bounded too (Power's would be far noisier in the same time); that the tree
 // is unbiased is the unit tests' business (tests/render/light_bounds_test.cpp: MIS with
 // the tree equals brute force).
@@ -21,10 +21,10 @@
 // its own seed), and the equal-time RMSE ratio Power / Bounded =
 // sqrt(MSE_power * t_power / (MSE_bounded * t_bounded)) (> 1: Bounded is better).
 
-#include <librt/render/integrators.h>
-#include <librt/render/sampler.h>
-#include <librt/render/scene.h>
+#include <librt/integrator/integrators.h>
 #include <librt/sampling/rng.h>
+#include <librt/sampling/sampler.h>
+#include <librt/scene/scene.h>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>

@@ -14,9 +14,9 @@
 // docs/light-targets.md uses it for cornell_pbr.glb's gold sphere and walls.
 
 #include <librt/core/error.h>
+#include <librt/film/film.h>
+#include <librt/integrator/integrators.h>
 #include <librt/io/scene_file.h>
-#include <librt/render/film.h>
-#include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
 
 #include <algorithm>

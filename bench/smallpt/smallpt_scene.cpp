@@ -16,11 +16,11 @@
 //       Prints the RMSE over all pixels and channels.
 
 #include <librt/core/error.h>
+#include <librt/film/camera.h>
+#include <librt/integrator/integrators.h>
 #include <librt/io/image_io.h>
-#include <librt/render/camera.h>
-#include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <glm/geometric.hpp>
 

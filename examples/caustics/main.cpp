@@ -5,11 +5,11 @@
 // from the light (caustics_split.png). Usage: caustics [samples per pixel] [width].
 
 #include <librt/core/error.h>
+#include <librt/integrator/integrators.h>
 #include <librt/io/image_io.h>
-#include <librt/render/integrators.h>
-#include <librt/render/point_light.h>
+#include <librt/light/point_light.h>
 #include <librt/render/renderer.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <glm/vec3.hpp>
 

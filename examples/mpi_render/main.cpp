@@ -3,10 +3,10 @@
 // unless the two images are bit-identical.
 
 #include <librt/core/error.h>
+#include <librt/integrator/integrators.h>
 #include <librt/io/image_io.h>
 #include <librt/mpi/render_mpi.h>
-#include <librt/render/integrators.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <glm/vec3.hpp>
 #include <mpi.h>

@@ -5,12 +5,12 @@
 #include <librt/core/error.h>
 #include <librt/geometry/mesh.h>
 #include <librt/geometry/procedural.h>
+#include <librt/integrator/integrators.h>
 #include <librt/io/image_io.h>
 #include <librt/io/obj.h>
 #include <librt/io/obj_materials.h>
-#include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <glm/vec3.hpp>
 

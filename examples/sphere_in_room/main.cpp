@@ -2,10 +2,10 @@
 // sphere_in_room.png. The walls are huge spheres, as in the report librt grew out of.
 
 #include <librt/core/error.h>
+#include <librt/integrator/integrators.h>
 #include <librt/io/image_io.h>
-#include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <glm/vec3.hpp>
 

@@ -8,8 +8,8 @@
 #include "robustness/robustness_util.h"
 
 #include <librt/core/error.h>
+#include <librt/integrator/integrators.h>
 #include <librt/io/scene_file.h>
-#include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
 
 #include <gtest/gtest.h>

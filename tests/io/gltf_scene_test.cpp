@@ -9,11 +9,11 @@
 #include "test_support.h"
 
 #include <librt/core/error.h>
+#include <librt/integrator/integrators.h>
 #include <librt/io/gltf.h>
 #include <librt/io/gltf_scene.h>
 #include <librt/io/scene_file.h>
-#include <librt/render/bsdf.h>
-#include <librt/render/integrators.h>
+#include <librt/material/bsdf.h>
 #include <librt/render/renderer.h>
 #include <librt/sampling/warp.h>
 

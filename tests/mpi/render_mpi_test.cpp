@@ -7,8 +7,8 @@
 #include "render/splat_test_util.h"
 
 #include <librt/core/error.h>
+#include <librt/integrator/integrators.h>
 #include <librt/mpi/render_mpi.h>
-#include <librt/render/integrators.h>
 #include <librt/render/renderer.h>
 
 #include <gtest/gtest.h>

@@ -6,7 +6,7 @@
 #include <librt/core/error.h>
 #include <librt/render/adaptive_sampling.h>
 #include <librt/render/renderer.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

@@ -9,9 +9,9 @@
 #include "render/anisotropic_ggx_test_util.h"
 #include "render/integrator_test_util.h"
 
-#include <librt/render/integrators.h>
-#include <librt/render/material.h>
-#include <librt/render/scene.h>
+#include <librt/integrator/integrators.h>
+#include <librt/material/material.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

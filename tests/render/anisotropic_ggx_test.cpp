@@ -6,17 +6,17 @@
 // chi-square of sample() against pdf() (down to 87 degrees), weight == eval cos / pdf,
 // reciprocity, albedo <= 1, and a white conductor's albedo equals an independent quadrature.
 
+#include "material/bsdf_metallic_roughness.h"
+#include "material/microfacet_anisotropic.h"
 #include "render/anisotropic_ggx_test_util.h"
 #include "render/bsdf_chi_square_util.h"
-#include "render/bsdf_metallic_roughness.h"
-#include "render/microfacet_anisotropic.h"
 #include "render/microfacet_test_util.h"
 #include "sampling/chi_square.h"
 #include "sampling/direction_bins.h"
 #include "sampling/sanitizer_scale.h"
 
-#include <librt/render/bsdf.h>
-#include <librt/render/material.h>
+#include <librt/material/bsdf.h>
+#include <librt/material/material.h>
 #include <librt/sampling/rng.h>
 
 #include <gtest/gtest.h>

@@ -6,8 +6,8 @@
 
 #include <librt/core/error.h>
 #include <librt/geometry/sphere.h>
-#include <librt/render/material.h>
-#include <librt/render/scene.h>
+#include <librt/material/material.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

@@ -5,12 +5,12 @@
 // Mitchell-Netravali cubic written out here (Mitchell and Netravali 1988, eq. 8), not from
 // librt's filter.
 
+#include <librt/film/camera.h>
+#include <librt/film/film.h>
 #include <librt/geometry/procedural.h>
-#include <librt/render/camera.h>
-#include <librt/render/film.h>
-#include <librt/render/integrator.h>
+#include <librt/integrator/integrator.h>
 #include <librt/render/renderer.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

@@ -2,12 +2,12 @@
 // distance along the camera ray to a plane, the normal that plane's, and the albedo the
 // first non-specular surface's, tinted by the mirrors and glass on the way.
 
+#include <librt/film/camera.h>
+#include <librt/film/film.h>
 #include <librt/geometry/procedural.h>
-#include <librt/render/camera.h>
-#include <librt/render/film.h>
-#include <librt/render/integrators.h>
+#include <librt/integrator/integrators.h>
 #include <librt/render/renderer.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

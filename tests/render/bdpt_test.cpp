@@ -6,20 +6,20 @@
 // renders.
 
 #include "box_scene_test_util.h"
+#include "film/camera_importance.h"
 #include "integrator_test_util.h"
 
 #include <librt/core/error.h>
-#include <librt/render/bdpt.h>
-#include <librt/render/camera.h>
-#include <librt/render/camera_importance.h>
-#include <librt/render/integrators.h>
-#include <librt/render/material.h>
-#include <librt/render/point_light.h>
-#include <librt/render/quad_light.h>
+#include <librt/film/camera.h>
+#include <librt/film/splat_film.h>
+#include <librt/integrator/bdpt.h>
+#include <librt/integrator/integrators.h>
+#include <librt/light/point_light.h>
+#include <librt/light/quad_light.h>
+#include <librt/material/material.h>
 #include <librt/render/renderer.h>
-#include <librt/render/sampler.h>
-#include <librt/render/scene.h>
-#include <librt/render/splat_film.h>
+#include <librt/sampling/sampler.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

@@ -5,18 +5,18 @@
 // K independent renders through a real camera: per render each 4 x 4 block's mean of the
 // pixels plus the resolved splats, compared with 5 standard errors of the renders' spread.
 
+#include "film/camera_importance.h"
 #include "integrator_test_util.h"
 
-#include <librt/render/camera.h>
-#include <librt/render/camera_importance.h>
-#include <librt/render/environment_light.h>
-#include <librt/render/integrator.h>
-#include <librt/render/material.h>
-#include <librt/render/quad_light.h>
+#include <librt/film/camera.h>
+#include <librt/film/splat_film.h>
+#include <librt/integrator/integrator.h>
+#include <librt/light/environment_light.h>
+#include <librt/light/quad_light.h>
+#include <librt/material/material.h>
 #include <librt/render/renderer.h>
-#include <librt/render/sampler.h>
-#include <librt/render/scene.h>
-#include <librt/render/splat_film.h>
+#include <librt/sampling/sampler.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

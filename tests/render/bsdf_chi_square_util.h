@@ -7,8 +7,8 @@
 #include "sampling/chi_square.h"
 #include "sampling/direction_bins.h"
 
-#include <librt/render/bsdf.h>
-#include <librt/render/material.h>
+#include <librt/material/bsdf.h>
+#include <librt/material/material.h>
 #include <librt/sampling/rng.h>
 
 #include <gtest/gtest.h>

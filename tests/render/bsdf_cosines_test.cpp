@@ -2,9 +2,9 @@
 // a kind that provides eval_cos / pdf_cos must give what its eval / pdf give in the local
 // frame, and ShadingFrame::facing must be ShadingFrame::at's second half.
 
-#include "render/bsdf_diffuse.h"
+#include "material/bsdf_diffuse.h"
 
-#include <librt/render/bsdf.h>
+#include <librt/material/bsdf.h>
 #include <librt/sampling/rng.h>
 #include <librt/sampling/warp.h>
 

@@ -8,9 +8,9 @@
 
 #include "integrator_test_util.h"
 
-#include <librt/render/integrators.h>
-#include <librt/render/scene.h>
-#include <librt/render/sphere_light.h>
+#include <librt/integrator/integrators.h>
+#include <librt/light/sphere_light.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,11 @@
-#include <librt/render/camera.h>
-#include <librt/render/camera_importance.h>
-#include <librt/render/sampler.h>
-#include <librt/render/splat_film.h>
+#include "film/camera_importance.h"
+
+#include <librt/film/camera.h>
+#include <librt/film/splat_film.h>
 #include <librt/sampling/filter.h>
 #include <librt/sampling/jitter.h>
 #include <librt/sampling/rng.h>
+#include <librt/sampling/sampler.h>
 
 #include <gtest/gtest.h>
 

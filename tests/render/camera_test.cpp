@@ -1,5 +1,5 @@
 #include <librt/core/error.h>
-#include <librt/render/camera.h>
+#include <librt/film/camera.h>
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 // cancellation tests stop at a point counted in samples rather than after a sleep (which,
 // on a loaded machine, may come before the first sample or after the last one).
 
-#include <librt/render/integrator.h>
+#include <librt/integrator/integrator.h>
 
 #include <atomic>
 #include <cstdint>

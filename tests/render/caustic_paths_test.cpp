@@ -3,21 +3,21 @@
 // split path tracer against brute force in a box with a panel, a glass pane and a glossy
 // metal, and what must not change: li() alone, bad settings, thread and tile counts.
 
-#include "render/caustic_paths.h"
+#include "integrator/caustic_paths.h"
 
 #include "box_scene_test_util.h"
 
 #include <librt/core/error.h>
-#include <librt/render/camera.h>
-#include <librt/render/integrators.h>
-#include <librt/render/material.h>
-#include <librt/render/point_light.h>
-#include <librt/render/quad_light.h>
+#include <librt/film/camera.h>
+#include <librt/integrator/integrators.h>
+#include <librt/light/point_light.h>
+#include <librt/light/quad_light.h>
+#include <librt/light/sphere_light.h>
+#include <librt/material/material.h>
 #include <librt/render/renderer.h>
-#include <librt/render/sampler.h>
-#include <librt/render/scene.h>
-#include <librt/render/sphere_light.h>
+#include <librt/sampling/sampler.h>
 #include <librt/sampling/warp.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

@@ -9,8 +9,8 @@
 
 #include "integrator_test_util.h"
 
-#include <librt/render/camera.h>
-#include <librt/render/integrators.h>
+#include <librt/film/camera.h>
+#include <librt/integrator/integrators.h>
 #include <librt/render/renderer.h>
 
 #include <gtest/gtest.h>

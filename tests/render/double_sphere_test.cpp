@@ -2,7 +2,7 @@
 // item 5): smallpt's walls of radius 1e5 stay exactly where their author put them.
 
 #include <librt/core/error.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

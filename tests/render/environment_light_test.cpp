@@ -6,8 +6,8 @@
 
 #include <librt/core/error.h>
 #include <librt/io/hdr_image.h>
-#include <librt/render/scene.h>
 #include <librt/sampling/rng.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

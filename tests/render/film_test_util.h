@@ -4,11 +4,11 @@
 // sphere light, a glowing diffuse), a jittered camera with depth of field and a path
 // tracer, shared by the film, progressive and EXR tests.
 
+#include <librt/film/camera.h>
+#include <librt/film/film.h>
 #include <librt/geometry/procedural.h>
-#include <librt/render/camera.h>
-#include <librt/render/film.h>
-#include <librt/render/integrators.h>
-#include <librt/render/scene.h>
+#include <librt/integrator/integrators.h>
+#include <librt/scene/scene.h>
 
 #include <cmath>
 #include <cstring>

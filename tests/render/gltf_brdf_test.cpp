@@ -7,11 +7,11 @@
 #include "render/integrator_test_util.h"
 #include "render/microfacet_test_util.h"
 
-#include <librt/render/bsdf.h>
-#include <librt/render/integrators.h>
-#include <librt/render/material.h>
-#include <librt/render/scene.h>
+#include <librt/integrator/integrators.h>
+#include <librt/material/bsdf.h>
+#include <librt/material/material.h>
 #include <librt/sampling/rng.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

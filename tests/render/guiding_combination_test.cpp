@@ -7,10 +7,10 @@
 
 #include "integrator_test_util.h"
 
-#include <librt/render/camera.h>
-#include <librt/render/integrators.h>
+#include <librt/film/camera.h>
+#include <librt/integrator/integrators.h>
 #include <librt/render/renderer.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

@@ -3,12 +3,12 @@
 // sampler follows (chi-square of samples against pdf), records reach the neighbours of
 // their leaf, and the learned tree does not depend on the order records arrive in.
 
-#include "render/guiding/quad_tree.h"
-#include "render/guiding/sd_tree.h"
+#include "integrator/guiding/quad_tree.h"
+#include "integrator/guiding/sd_tree.h"
 #include "sampling/chi_square.h"
 
 #include <librt/geometry/bbox.h>
-#include <librt/render/guiding.h>
+#include <librt/integrator/guiding.h>
 #include <librt/sampling/rng.h>
 #include <librt/sampling/warp.h>
 

@@ -4,20 +4,20 @@
 // errors derived from the sample variance (whole image and 4 x 4 blocks); a guided render
 // is bit-identical across runs, thread counts and tile sizes; guiding off changes nothing.
 
+#include "integrator/guiding/quad_tree.h"
+#include "integrator/guiding/sd_tree.h"
 #include "integrator_test_util.h"
-#include "render/guiding/quad_tree.h"
-#include "render/guiding/sd_tree.h"
 #include "sampling/chi_square.h"
 
 #include <librt/core/error.h>
+#include <librt/film/camera.h>
+#include <librt/film/film.h>
 #include <librt/geometry/mesh.h>
-#include <librt/render/camera.h>
-#include <librt/render/film.h>
-#include <librt/render/integrators.h>
+#include <librt/integrator/integrators.h>
 #include <librt/render/renderer.h>
-#include <librt/render/scene.h>
 #include <librt/sampling/rng.h>
 #include <librt/sampling/warp.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

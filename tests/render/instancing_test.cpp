@@ -3,7 +3,7 @@
 
 #include <librt/core/error.h>
 #include <librt/geometry/procedural.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

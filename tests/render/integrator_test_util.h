@@ -6,10 +6,10 @@
 // sample variance.
 
 #include <librt/geometry/ray.h>
-#include <librt/render/integrator.h>
-#include <librt/render/material.h>
-#include <librt/render/sampler.h>
-#include <librt/render/scene.h>
+#include <librt/integrator/integrator.h>
+#include <librt/material/material.h>
+#include <librt/sampling/sampler.h>
+#include <librt/scene/scene.h>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>

@@ -6,11 +6,11 @@
 // so the light sample adds at most L pdf_l pdf_b / (pdf_l^2 + pdf_b^2) <= L / 2 and the
 // BSDF sample at most L: no sample exceeds 1.5 L. The estimate stays unbiased (brute force).
 
-#include <librt/render/integrators.h>
-#include <librt/render/material.h>
-#include <librt/render/quad_light.h>
-#include <librt/render/sampler.h>
-#include <librt/render/scene.h>
+#include <librt/integrator/integrators.h>
+#include <librt/light/quad_light.h>
+#include <librt/material/material.h>
+#include <librt/sampling/sampler.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

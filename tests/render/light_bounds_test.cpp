@@ -5,11 +5,11 @@
 
 #include "light_scene_test_util.h"
 
-#include <librt/render/integrators.h>
-#include <librt/render/light_bounds.h>
-#include <librt/render/light_sampler.h>
-#include <librt/render/scene.h>
+#include <librt/integrator/integrators.h>
+#include <librt/light/light_bounds.h>
+#include <librt/light/light_sampler.h>
 #include <librt/sampling/rng.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

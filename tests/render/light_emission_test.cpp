@@ -6,10 +6,10 @@
 #include "render/bsdf_chi_square_util.h"
 #include "sampling/direction_bins.h"
 
-#include <librt/render/light.h>
-#include <librt/render/scene.h>
-#include <librt/render/texture.h>
+#include <librt/light/light.h>
+#include <librt/material/texture.h>
 #include <librt/sampling/rng.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

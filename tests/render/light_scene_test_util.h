@@ -6,10 +6,10 @@
 
 #include "integrator_test_util.h"
 
-#include <librt/render/integrators.h>
-#include <librt/render/light.h>
-#include <librt/render/scene.h>
+#include <librt/integrator/integrators.h>
+#include <librt/light/light.h>
 #include <librt/sampling/rng.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

@@ -3,12 +3,12 @@
 // probabilities it reports, and shadow rays built by spawn_ray_to stop short of the target.
 
 #include "sampling/chi_square.h"
+#include "scene/shadow_ray.h"
 
-#include <librt/render/light.h>
-#include <librt/render/light_sampler.h>
-#include <librt/render/scene.h>
-#include <librt/render/shadow_ray.h>
+#include <librt/light/light.h>
+#include <librt/light/light_sampler.h>
 #include <librt/sampling/rng.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

@@ -1,16 +1,16 @@
 // Materials, lights, textures and the specular scattering of the dielectric BSDF (incl. a
 // glass slab).
 
+#include "material/specular.h"
 #include "robustness/robustness_util.h"
 
 #include <librt/core/error.h>
 #include <librt/io/texture_io.h>
-#include <librt/render/bsdf.h>
-#include <librt/render/light.h>
-#include <librt/render/material.h>
-#include <librt/render/scene.h>
-#include <librt/render/specular.h>
-#include <librt/render/texture.h>
+#include <librt/light/light.h>
+#include <librt/material/bsdf.h>
+#include <librt/material/material.h>
+#include <librt/material/texture.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

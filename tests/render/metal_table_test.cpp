@@ -3,7 +3,7 @@
 // (Au, Ag, Cu; the rows around 650, 550 and 450 nm are copied below), and the
 // Lorentz-Drude model of Rakic et al., Appl. Opt. 37, 5271 (1998), Table 1, for Al.
 
-#include <librt/render/material.h>
+#include <librt/material/material.h>
 
 #include <gtest/gtest.h>
 

@@ -4,8 +4,8 @@
 // and an independent double-precision GGX (D, Smith Lambda) written from the papers for
 // the quadratures the library is checked against.
 
-#include <librt/render/bsdf.h>
-#include <librt/render/material.h>
+#include <librt/material/bsdf.h>
+#include <librt/material/material.h>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>

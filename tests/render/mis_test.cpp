@@ -6,8 +6,8 @@
 
 #include "integrator_test_util.h"
 
-#include <librt/render/integrators.h>
-#include <librt/render/scene.h>
+#include <librt/integrator/integrators.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

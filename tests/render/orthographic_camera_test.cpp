@@ -4,9 +4,9 @@
 // a perspective camera, and its parameters validated.
 
 #include <librt/core/error.h>
+#include <librt/film/camera.h>
 #include <librt/geometry/sphere.h>
-#include <librt/render/camera.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

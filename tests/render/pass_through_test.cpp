@@ -5,13 +5,13 @@
 // the energy balance of the two parts (reflection + pass-through = 1 for a white,
 // non-absorbing pane), and a floor lit through a pane against quadrature over the light.
 
-#include <librt/render/bsdf.h>
-#include <librt/render/integrators.h>
-#include <librt/render/material.h>
-#include <librt/render/quad_light.h>
-#include <librt/render/sampler.h>
-#include <librt/render/scene.h>
+#include <librt/integrator/integrators.h>
+#include <librt/light/quad_light.h>
+#include <librt/material/bsdf.h>
+#include <librt/material/material.h>
 #include <librt/sampling/rng.h>
+#include <librt/sampling/sampler.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

@@ -4,8 +4,8 @@
 #include "light_scene_test_util.h"
 
 #include <librt/core/error.h>
-#include <librt/render/integrators.h>
-#include <librt/render/scene.h>
+#include <librt/integrator/integrators.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // the sizes of the records the renderer allocates, added up as docs/robustness.md says.
 
 #include <librt/core/image.h>
-#include <librt/render/film.h>
+#include <librt/film/film.h>
 #include <librt/render/render_memory.h>
 
 #include <gtest/gtest.h>

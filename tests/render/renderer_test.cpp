@@ -1,9 +1,9 @@
 #include "render/cancelling_integrator.h"
 
 #include <librt/core/error.h>
-#include <librt/render/integrators.h>
+#include <librt/integrator/integrators.h>
 #include <librt/render/renderer.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 #include "robustness/robustness_util.h"
 
 #include <librt/core/error.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

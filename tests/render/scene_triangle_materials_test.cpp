@@ -2,7 +2,7 @@
 
 #include "robustness/robustness_util.h"
 
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

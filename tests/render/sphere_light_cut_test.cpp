@@ -7,11 +7,11 @@
 
 #include "sampling/chi_square.h"
 
-#include <librt/render/scene.h>
-#include <librt/render/sphere_light.h>
-#include <librt/render/sphere_light_cuts.h>
+#include <librt/light/sphere_light.h>
+#include <librt/light/sphere_light_cuts.h>
 #include <librt/sampling/rng.h>
 #include <librt/sampling/warp.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

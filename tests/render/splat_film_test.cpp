@@ -1,5 +1,5 @@
 #include <librt/core/error.h>
-#include <librt/render/splat_film.h>
+#include <librt/film/splat_film.h>
 #include <librt/sampling/filter.h>
 #include <librt/sampling/rng.h>
 

@@ -11,7 +11,7 @@
 #include <librt/core/error.h>
 #include <librt/render/pass_combination.h>
 #include <librt/render/renderer.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

@@ -3,10 +3,11 @@
 // Toy integrators that splat (Integrator::splats), whose images are known in closed form or
 // depend on every random number they draw, shared by the render and MPI splatting tests.
 
-#include <librt/render/camera.h>
-#include <librt/render/camera_importance.h>
-#include <librt/render/integrator.h>
-#include <librt/render/splat_film.h>
+#include "film/camera_importance.h"
+
+#include <librt/film/camera.h>
+#include <librt/film/splat_film.h>
+#include <librt/integrator/integrator.h>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>

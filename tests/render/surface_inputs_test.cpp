@@ -2,9 +2,9 @@
 // with given and generated tangents, one-sided backs, and the alpha test of cut-outs.
 
 #include <librt/geometry/tangents.h>
-#include <librt/render/bsdf.h>
-#include <librt/render/normal_map.h>
-#include <librt/render/scene.h>
+#include <librt/material/bsdf.h>
+#include <librt/material/normal_map.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

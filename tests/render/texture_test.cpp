@@ -3,7 +3,7 @@
 
 #include <librt/core/error.h>
 #include <librt/io/gltf.h>
-#include <librt/render/texture.h>
+#include <librt/material/texture.h>
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 #include <librt/io/obj.h>
 #include <librt/io/obj_materials.h>
 #include <librt/io/texture_io.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

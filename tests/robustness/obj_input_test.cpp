@@ -7,7 +7,7 @@
 
 #include <librt/io/obj.h>
 #include <librt/io/obj_materials.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

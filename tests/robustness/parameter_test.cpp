@@ -8,16 +8,16 @@
 
 #include <librt/accel/bvh_builder.h>
 #include <librt/accel/triangle_bvh.h>
+#include <librt/film/camera.h>
 #include <librt/geometry/mesh.h>
 #include <librt/geometry/procedural.h>
+#include <librt/integrator/integrators.h>
 #include <librt/io/image_io.h>
 #include <librt/io/obj_materials.h>
 #include <librt/io/texture_io.h>
-#include <librt/render/camera.h>
-#include <librt/render/integrators.h>
+#include <librt/material/texture.h>
 #include <librt/render/renderer.h>
-#include <librt/render/scene.h>
-#include <librt/render/texture.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

@@ -5,11 +5,11 @@
 
 #include "robustness/robustness_util.h"
 
+#include <librt/film/camera.h>
 #include <librt/geometry/procedural.h>
-#include <librt/render/camera.h>
-#include <librt/render/integrators.h>
+#include <librt/integrator/integrators.h>
 #include <librt/render/renderer.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

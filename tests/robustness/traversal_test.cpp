@@ -8,7 +8,7 @@
 #include <librt/accel/bvh_builder.h>
 #include <librt/accel/bvh_traversal.h>
 #include <librt/accel/triangle_bvh.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-#include <librt/render/sampler.h>
 #include <librt/sampling/rng.h>
+#include <librt/sampling/sampler.h>
 #include <librt/sampling/sobol.h>
 #include <librt/sampling/warp.h>
 

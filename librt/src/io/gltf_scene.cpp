@@ -1,9 +1,9 @@
 #include "io/gltf_scene_materials.h"
 
 #include <librt/core/error.h>
+#include <librt/film/camera.h>
 #include <librt/io/gltf_scene.h>
-#include <librt/render/camera.h>
-#include <librt/render/texture.h>
+#include <librt/material/texture.h>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>

@@ -5,7 +5,7 @@
 // and the uv set and tangents a primitive's mesh needs for them. Private to io/.
 
 #include <librt/io/gltf.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <cstdint>
 #include <map>

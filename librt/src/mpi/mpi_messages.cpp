@@ -4,8 +4,9 @@
 
 #include "mpi/mpi_messages.h"
 
+#include "film/camera_importance.h"
+
 #include <librt/core/error.h>
-#include <librt/render/camera_importance.h>
 
 #include <algorithm>
 #include <cstring>

@@ -4,9 +4,9 @@
 // tiling, a tile's records packed into a message and back, the splat sums, and thin
 // wrappers of MPI's send and receive that throw librt::Error. Internal to librt::mpi.
 
-#include <librt/render/camera.h>
-#include <librt/render/film.h>
-#include <librt/render/splat_film.h>
+#include <librt/film/camera.h>
+#include <librt/film/film.h>
+#include <librt/film/splat_film.h>
 
 #include <mpi.h>
 

@@ -31,7 +31,7 @@
 #include <librt/mpi/same_job.h>
 #include <librt/render/adaptive_sampling.h>
 #include <librt/render/pass_combination.h>
-#include <librt/render/scene.h>
+#include <librt/scene/scene.h>
 
 #include <algorithm>
 #include <atomic>

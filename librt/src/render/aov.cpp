@@ -1,8 +1,8 @@
 #include "render/aov.h"
 
-#include <librt/render/bsdf.h>
-#include <librt/render/scene.h>
+#include <librt/material/bsdf.h>
 #include <librt/sampling/rng.h>
+#include <librt/scene/scene.h>
 
 #include <glm/geometric.hpp>
 

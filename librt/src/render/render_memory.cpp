@@ -1,5 +1,5 @@
 #include <librt/core/image.h>
-#include <librt/render/film.h>
+#include <librt/film/film.h>
 #include <librt/render/render_memory.h>
 
 #include <glm/ext/vector_double3.hpp>

@@ -2,11 +2,11 @@
 // render_progressive. Over 400 lines: the entry points share the loop's private
 // types, so they stay in one file.
 
+#include "film/camera_importance.h"
 #include "render/aov.h"
 
 #include <librt/core/error.h>
 #include <librt/core/finite.h>
-#include <librt/render/camera_importance.h>
 #include <librt/render/pass_combination.h>
 #include <librt/render/renderer.h>
 

@@ -7,7 +7,7 @@
 namespace librt {
 
 /// A rendered image with its AOV layers (arbitrary output variables), what denoisers and
-/// compositors read: the film resolves into it (render/film.h) and io/exr.h writes it.
+/// compositors read: the film resolves into it (film/film.h) and io/exr.h writes it.
 /// Every layer but `beauty` is optional (empty = absent); a present one has the beauty's
 /// size, row-major with the top row first.
 struct ImageLayers {

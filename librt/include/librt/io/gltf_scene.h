@@ -3,7 +3,7 @@
 #include <librt/export.h>
 #include <librt/io/gltf.h>
 #include <librt/io/loaded_scene.h>
-#include <librt/render/material.h>
+#include <librt/material/material.h>
 
 #include <cstdint>
 

@@ -1,7 +1,7 @@
 #pragma once
 
 #include <librt/export.h>
-#include <librt/render/environment_light.h>
+#include <librt/light/environment_light.h>
 
 #include <filesystem>
 

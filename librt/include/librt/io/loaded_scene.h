@@ -1,10 +1,10 @@
 #pragma once
 
 #include <librt/export.h>
+#include <librt/film/camera.h>
 #include <librt/geometry/bbox.h>
-#include <librt/render/camera.h>
-#include <librt/render/point_light.h>
-#include <librt/render/scene.h>
+#include <librt/light/point_light.h>
+#include <librt/scene/scene.h>
 
 #include <cstddef>
 #include <string>

@@ -3,8 +3,8 @@
 #include <librt/export.h>
 #include <librt/geometry/hit.h>
 #include <librt/geometry/mesh.h>
-#include <librt/render/material.h>
-#include <librt/render/scene.h>
+#include <librt/material/material.h>
+#include <librt/scene/scene.h>
 
 #include <cstdint>
 #include <map>

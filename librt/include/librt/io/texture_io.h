@@ -1,7 +1,7 @@
 #pragma once
 
 #include <librt/export.h>
-#include <librt/render/texture.h>
+#include <librt/material/texture.h>
 
 #include <cstdint>
 #include <filesystem>

@@ -2,9 +2,9 @@
 
 #include <librt/core/image.h>
 #include <librt/export.h>
-#include <librt/render/camera.h>
-#include <librt/render/film.h>
-#include <librt/render/integrator.h>
+#include <librt/film/camera.h>
+#include <librt/film/film.h>
+#include <librt/integrator/integrator.h>
 #include <librt/render/renderer.h>
 
 #include <mpi.h>

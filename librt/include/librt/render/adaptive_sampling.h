@@ -1,7 +1,7 @@
 #pragma once
 
 #include <librt/export.h>
-#include <librt/render/film.h>
+#include <librt/film/film.h>
 
 #include <cstdint>
 #include <vector>

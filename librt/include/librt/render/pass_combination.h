@@ -11,7 +11,7 @@
 
 #include <librt/core/image.h>
 #include <librt/export.h>
-#include <librt/render/film.h>
+#include <librt/film/film.h>
 
 #include <glm/ext/vector_double3.hpp>
 

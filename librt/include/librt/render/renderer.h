@@ -2,12 +2,12 @@
 
 #include <librt/core/image.h>
 #include <librt/export.h>
+#include <librt/film/camera.h>
+#include <librt/film/film.h>
+#include <librt/integrator/integrator.h>
 #include <librt/render/adaptive_sampling.h>
-#include <librt/render/camera.h>
-#include <librt/render/film.h>
-#include <librt/render/integrator.h>
 #include <librt/render/pass_combination.h>
-#include <librt/render/sampler.h>
+#include <librt/sampling/sampler.h>
 
 #include <atomic>
 #include <cstdint>

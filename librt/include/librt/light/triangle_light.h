@@ -1,0 +1,73 @@
+#pragma once
+
+#include <librt/export.h>
+#include <librt/light/light_sample.h>
+#include <librt/material/texture.h>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <memory>
+
+namespace librt {
+
+/// One emitting triangle of a mesh (Scene::commit makes one for every triangle whose
+/// material emits). It emits `radiance` (times its emission texture at the emitting point,
+/// when it has one) from its front, the side cross(p1 - p0, p2 - p0) points to, and, when
+/// two-sided, from its back too, as Scene::shade makes an emissive material do when a ray
+/// hits it. Sampled uniformly over the solid angle it subtends (spherical triangle, Arvo
+/// 1995; pdf 1 / omega), so a point close to it (a ceiling just above a panel) gets light
+/// samples of weight at most 2 pi L; when it looks small (area / distance to its centroid
+/// squared below 0.1), uniformly by area (pdf per solid angle d^2 / (A |cos|)), about as
+/// good there and cheaper.
+struct TriangleLight {
+    glm::vec3 p0{0.0f};        ///< first corner (Triangle's convention)
+    glm::vec3 p1{0.0f};        ///< second corner
+    glm::vec3 p2{0.0f};        ///< third corner
+    glm::vec3 radiance{0.0f};  ///< emitted radiance L (W / (sr m^2)) per channel (the factor)
+    /// Emits from the back as well (false: a glTF material that is not doubleSided).
+    bool two_sided = true;
+    /// Texture whose RGB multiplies radiance at the emitting point (the material's emission
+    /// texture, shared by every triangle using it); null: the radiance is uniform.
+    std::shared_ptr<const ImageTexture> texture;
+    glm::vec2 uv0{0.0f, 0.0f};  ///< texture coordinate at p0 (the slot's transform applied)
+    glm::vec2 uv1{1.0f, 0.0f};  ///< texture coordinate at p1
+    glm::vec2 uv2{0.0f, 1.0f};  ///< texture coordinate at p2
+    /// The texture's mean over the triangle, as power() uses it (mean_texture_estimate);
+    /// 1 without a texture.
+    glm::vec3 mean_texture{1.0f};
+};
+
+/// A point on the triangle (uniform in solid angle, or in area when it looks small), as a direction
+/// from ref with its solid-angle density and the radiance emitted there; invalid when ref lies in
+/// the triangle's plane, behind a one-sided triangle, or the triangle is degenerate. Its distance
+/// is where the shadow ray must end: the emitting point less the ray offsets' worst case along wi
+/// (ray_offset_scale of ref and of the point, over |cos| at the emitter), so a shadow ray from a
+/// surface just beside the triangle does not end on it.
+[[nodiscard]] LIBRT_API LightLiSample sample_li(const TriangleLight& light, const glm::vec3& ref,
+                                                glm::vec2 u);
+/// The solid-angle density of sample_li at ref for unit direction wi; 0 if wi misses (or
+/// meets a one-sided triangle's back).
+[[nodiscard]] LIBRT_API float pdf_li(const TriangleLight& light, const glm::vec3& ref,
+                                     const glm::vec3& wi);
+/// A ray leaving the light (for paths that start there): a point uniform by area (pdf_pos
+/// 1 / A), a direction cosine-weighted about the normal of the side it leaves (one-sided:
+/// the front, pdf_dir cos / pi; two-sided: either side with probability 1/2, |cos| /
+/// (2 pi)), radiance radiance_at the point. Invalid for a degenerate triangle.
+[[nodiscard]] LIBRT_API LightLeSample sample_le(const TriangleLight& light, glm::vec2 u_pos,
+                                                glm::vec2 u_dir);
+/// The densities sample_le gives a ray from `origin` on the triangle along unit
+/// `direction`: pos 1 / A, dir as sample_le's (0 behind a one-sided triangle). The
+/// triangle's own normal is used; `normal` is not looked at, nor whether origin lies on it.
+[[nodiscard]] LIBRT_API LightLePdf pdf_le(const TriangleLight& light, const glm::vec3& origin,
+                                          const glm::vec3& normal, const glm::vec3& direction);
+/// Total emitted power per channel: L pi A times the texture's mean, times 2 when two-sided.
+[[nodiscard]] LIBRT_API glm::vec3 power(const TriangleLight& light);
+/// The radiance emitted at barycentrics (b1, b2) (the point p0 + b1 (p1 - p0) + b2 (p2 - p0)).
+[[nodiscard]] LIBRT_API glm::vec3 radiance_at(const TriangleLight& light, glm::vec2 b);
+/// A cheap estimate of the texture's mean over the triangle (for power only, which steers
+/// the light choice and never biases it): the average of 16 lookups at the centres of a
+/// 4 x 4 stratification of the triangle (1 without a texture).
+[[nodiscard]] LIBRT_API glm::vec3 mean_texture_estimate(const TriangleLight& light);
+
+}  // namespace librt

@@ -1,0 +1,196 @@
+#include "geometry/spawn_ray.h"
+#include "light/emission.h"
+#include "light/planar_light.h"
+
+#include <librt/geometry/ray_offset.h>
+#include <librt/light/triangle_light.h>
+#include <librt/sampling/spherical_triangle.h>
+#include <librt/sampling/warp.h>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <cmath>
+
+namespace librt {
+namespace {
+
+// The texture coordinate at barycentrics b, interpolated as a hit on the triangle
+// interpolates it (the slot's affine transform commutes with the interpolation).
+glm::vec2 uv_at(const TriangleLight& light, glm::vec2 b) {
+    return (1.0f - b.x - b.y) * light.uv0 + b.x * light.uv1 + b.y * light.uv2;
+}
+
+}  // namespace
+
+glm::vec3 radiance_at(const TriangleLight& light, glm::vec2 b) {
+    if (!light.texture) return light.radiance;
+    return light.radiance * light.texture->lookup(uv_at(light, b));
+}
+
+glm::vec3 mean_texture_estimate(const TriangleLight& light) {
+    if (!light.texture) return glm::vec3(1.0f);
+    constexpr int n = 4;
+    glm::vec3 sum(0.0f);
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const glm::vec2 u{(float(i) + 0.5f) / n, (float(j) + 0.5f) / n};
+            sum += light.texture->lookup(uv_at(light, sample_uniform_triangle(u)));
+        }
+    return sum / float(n * n);
+}
+
+namespace {
+
+// Which sampler a reference point gets (sample_li and pdf_li decide alike): spherical
+// triangle sampling when the triangle looks big from ref, A / d_c^2 >= 0.1 (d_c the
+// distance to its centroid; about its solid angle, cheap to get without trigonometry).
+// Below that its points lie within ~10 degrees of each other as seen from ref, so d^2 / cos
+// varies little over it and uniform area sampling is about as good and much cheaper: on
+// light_targets' one-sided panel, spherical sampling everywhere took 1.7x the time per
+// sample for the same variance. Above it, near the emitter, area sampling's weights
+// d^2 / (A cos) explode and spherical sampling's stay below 2 pi L. (pbrt-v4 switches at
+// a solid angle of 3e-4 sr; its threshold favours variance, this one time at equal error.)
+constexpr float k_min_spherical_size = 0.1f;
+
+bool spherical_sampling(const TriangleLight& light, const glm::vec3& ref, float area) {
+    const glm::vec3 d = (light.p0 + light.p1 + light.p2) * (1.0f / 3.0f) - ref;
+    return area >= k_min_spherical_size * glm::dot(d, d);
+}
+
+// The unit directions from ref to the corners and the solid angle they span, or a solid
+// angle of 0 when ref is in the triangle's plane, behind a one-sided triangle, or the
+// triangle is degenerate. n is its unit front normal.
+struct Corners {
+    glm::vec3 a{0.0f}, b{0.0f}, c{0.0f};
+    float solid_angle = 0.0f;
+};
+Corners corners_from(const TriangleLight& light, const glm::vec3& ref, const glm::vec3& n) {
+    const float side = glm::dot(ref - light.p0, n);  // > 0 in front
+    if (!(side != 0.0f) || (!light.two_sided && !(side > 0.0f))) return {};
+    const glm::vec3 a = light.p0 - ref, b = light.p1 - ref, c = light.p2 - ref;
+    const float la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+    if (!(la > 0.0f) || !(lb > 0.0f) || !(lc > 0.0f)) return {};
+    Corners k{a / la, b / lb, c / lc, 0.0f};
+    k.solid_angle = spherical_triangle_solid_angle(k.a, k.b, k.c);
+    return k;
+}
+
+// Barycentrics (b1, b2) of a point q of the triangle's plane (sub-triangle areas over the
+// whole, signed along n; len = |cross(e1, e2)|).
+glm::vec2 barycentrics(const TriangleLight& light, const glm::vec3& q, const glm::vec3& n,
+                       float len) {
+    const glm::vec3 e1 = light.p1 - light.p0, e2 = light.p2 - light.p0;
+    const glm::vec3 d = q - light.p0;
+    return {glm::dot(glm::cross(d, e2), n) / len, glm::dot(glm::cross(e1, d), n) / len};
+}
+
+// How far the shadow ray toward the emitting point q (ray parameter t along wi from ref,
+// dn = wi . n) may go without meeting the emitter's own plane. A triangle light's shadow
+// ray cannot skip its object (the mesh may hold other triangles that do shade), and the
+// ray's origin is offset_ray_origin'd off the receiving surface: by up to
+// ray_offset_scale(ref) toward the plane, which along wi is that over |dn|. Beside an
+// emitter (a ceiling 1 cm above a panel) that exceeds kShadowEpsilon's relative margin and
+// every shadow ray hit the panel itself. So end the segment short of the plane by the
+// origin's offset plus q's own rounding (ray_offset_scale(q)), both over |dn| (pbrt-v4
+// likewise offsets both ends of a shadow ray, SpawnRayTo), then by the relative
+// kShadowEpsilon, as every shadow ray did before spawn_ray_to left the margin to the light.
+// 0 (nothing can be in between) when the point is that close to the plane.
+float shadow_distance(float t, float dn, const glm::vec3& ref, const glm::vec3& q) {
+    const float margin = (ray_offset_scale(ref) + ray_offset_scale(q)) / std::fabs(dn);
+    return t > margin ? (t - margin) * (1.0f - kShadowEpsilon) : 0.0f;
+}
+
+// True when ref lies in the triangle's plane up to the rounding of a surface point (the
+// ray offset's scale): a point of the emitter itself, or of a coplanar triangle of its
+// mesh. Nothing there can see the triangle but along the plane, yet a spherical triangle
+// drawn from a point 10^-7 off its plane spans a hemisphere, with a shadow ray too short to
+// meet anything: an emissive panel with a specular layer lit itself (PathTracer read a
+// glTF panel 1 % too bright, brute force did not).
+bool in_plane(const TriangleLight& light, const glm::vec3& ref, const glm::vec3& n) {
+    return !(std::fabs(glm::dot(ref - light.p0, n)) > ray_offset_scale(ref));
+}
+
+}  // namespace
+
+LightLiSample sample_li(const TriangleLight& light, const glm::vec3& ref, glm::vec2 u) {
+    const glm::vec3 e1 = light.p1 - light.p0, e2 = light.p2 - light.p0;
+    const glm::vec3 c = glm::cross(e1, e2);
+    const float len = glm::length(c);
+    if (!(len > 0.0f)) return {};
+    const glm::vec3 n = c / len;
+    if (in_plane(light, ref, n)) return {};
+    if (spherical_sampling(light, ref, 0.5f * len)) {
+        const Corners k = corners_from(light, ref, n);
+        const float omega = k.solid_angle;
+        if (!(omega > 0.0f)) return {};
+        // Uniform over the solid angle: the weight L cos / pdf = L cos omega stays below
+        // 2 pi L however close ref is, where area sampling's d^2 / (A cos) explodes.
+        const SphericalTriangleSample st = sample_spherical_triangle(k.a, k.b, k.c, omega, u);
+        const float dn = glm::dot(st.direction, n);
+        const float t = glm::dot(light.p0 - ref, n) / dn;
+        if (!(st.solid_angle > 0.0f) || !(t > 0.0f) || !std::isfinite(t)) return {};
+        const glm::vec3 q = ref + t * st.direction;
+        LightLiSample s{st.direction, light.radiance, 1.0f / omega, shadow_distance(t, dn, ref, q),
+                        false};
+        if (light.texture) {
+            const glm::vec2 b = glm::clamp(barycentrics(light, q, n, len), 0.0f, 1.0f);
+            s.radiance = radiance_at(light, b);
+        }
+        return s;
+    }
+    const glm::vec2 b = sample_uniform_triangle(u);
+    const glm::vec3 p = light.p0 + b.x * e1 + b.y * e2;
+    LightLiSample s = planar::toward(ref, p, n, 0.5f * len, light.radiance, light.two_sided);
+    if (!s.valid()) return s;
+    s.distance = shadow_distance(s.distance, glm::dot(s.wi, n), ref, p);
+    if (light.texture) s.radiance = radiance_at(light, b);
+    return s;
+}
+
+float pdf_li(const TriangleLight& light, const glm::vec3& ref, const glm::vec3& wi) {
+    const glm::vec3 e1 = light.p1 - light.p0, e2 = light.p2 - light.p0;
+    const glm::vec3 c = glm::cross(e1, e2);
+    const float len = glm::length(c);
+    if (!(len > 0.0f)) return 0.0f;
+    const glm::vec3 n = c / len;
+    if (in_plane(light, ref, n)) return 0.0f;
+    const planar::PlaneHit h = planar::hit_plane(light.p0, n, ref, wi, light.two_sided);
+    if (!(h.t > 0.0f)) return 0.0f;
+    const glm::vec2 b = barycentrics(light, h.point, n, len);
+    if (b.x < 0.0f || b.y < 0.0f || b.x + b.y > 1.0f) return 0.0f;
+    if (spherical_sampling(light, ref, 0.5f * len)) {
+        const float omega = corners_from(light, ref, n).solid_angle;
+        return omega > 0.0f ? 1.0f / omega : 0.0f;
+    }
+    return planar::pdf_of(h, 0.5f * len);
+}
+
+LightLeSample sample_le(const TriangleLight& light, glm::vec2 u_pos, glm::vec2 u_dir) {
+    const glm::vec3 e1 = light.p1 - light.p0, e2 = light.p2 - light.p0;
+    const glm::vec3 c = glm::cross(e1, e2);
+    const float len = glm::length(c);
+    if (!(len > 0.0f) || !std::isfinite(len)) return {};
+    const glm::vec2 b = sample_uniform_triangle(u_pos);
+    const glm::vec3 p = light.p0 + b.x * e1 + b.y * e2;
+    return emission::leave_surface(p, c / len, 2.0f / len, radiance_at(light, b), light.two_sided,
+                                   u_dir);
+}
+
+LightLePdf pdf_le(const TriangleLight& light, const glm::vec3& /*origin*/,
+                  const glm::vec3& /*normal*/, const glm::vec3& direction) {
+    const glm::vec3 c = glm::cross(light.p1 - light.p0, light.p2 - light.p0);
+    const float len = glm::length(c);
+    if (!(len > 0.0f) || !std::isfinite(len)) return {};
+    return {2.0f / len, emission::direction_pdf(c / len, light.two_sided, direction)};
+}
+
+glm::vec3 power(const TriangleLight& light) {
+    // Lambertian emitter: L pi per unit area and side (pbrt 4th ed. 12.5), the texture by
+    // its estimated mean.
+    const float area = 0.5f * glm::length(glm::cross(light.p1 - light.p0, light.p2 - light.p0));
+    const float sides = light.two_sided ? 2.0f : 1.0f;
+    return light.radiance * light.mean_texture * (sides * k_pi * area);
+}
+
+}  // namespace librt

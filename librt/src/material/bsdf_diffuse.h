@@ -1,0 +1,52 @@
+#pragma once
+
+// The Lambertian BSDF (MaterialKind::Diffuse): f = albedo / pi on wo's side of the surface.
+
+#include <librt/material/bsdf.h>
+#include <librt/sampling/warp.h>
+
+namespace librt::bsdfs {
+
+struct Diffuse {
+    static constexpr BsdfLobe kLobes = BsdfLobe::DiffuseReflection;
+
+    /// Reflects only where both the shading and the geometric normal say "above": a
+    /// direction under the real surface would leak light through it.
+    static bool reaches(const ShadingPoint& p, const glm::vec3& wi) {
+        return wi.z > 0.0f && p.frame.above_geometry(wi);
+    }
+
+    static BsdfSample sample(const Material& /*m*/, const ShadingPoint& p, const glm::vec3& /*wo*/,
+                             float /*uc*/, glm::vec2 u) {
+        const glm::vec3 wi = sample_cosine_hemisphere(u);
+        // Below the true surface (a bent shading normal): no sample, the path ends there.
+        if (!p.frame.above_geometry(wi)) return {};
+        // Cosine sampling: (albedo / pi) cos / (cos / pi) = albedo.
+        return {wi, p.albedo, cosine_hemisphere_pdf(wi.z), kLobes};
+    }
+
+    static glm::vec3 eval(const Material& /*m*/, const ShadingPoint& p, const glm::vec3& /*wo*/,
+                          const glm::vec3& wi) {
+        // Lambert: f = albedo / pi.
+        return reaches(p, wi) ? p.albedo * k_inv_pi : glm::vec3(0.0f);
+    }
+
+    static float pdf(const Material& /*m*/, const ShadingPoint& p, const glm::vec3& /*wo*/,
+                     const glm::vec3& wi) {
+        return reaches(p, wi) ? cosine_hemisphere_pdf(wi.z) : 0.0f;
+    }
+
+    /// Lambert depends on wi only through its cosines with the shading normal (cos_s, wi.z
+    /// in the local frame) and the geometric normal (cos_g), both turned to wo's side: eval()
+    /// and pdf() from those, so that the path loop weighs a light sample with world-space
+    /// dot products and builds no local frame for it (bsdf_dispatch.h's eval_pdf_cosines).
+    static bool reaches_cos(float cos_s, float cos_g) { return cos_s > 0.0f && cos_g > 0.0f; }
+    static glm::vec3 eval_cos(const ShadingPoint& p, float cos_s, float cos_g) {
+        return reaches_cos(cos_s, cos_g) ? p.albedo * k_inv_pi : glm::vec3(0.0f);
+    }
+    static float pdf_cos(float cos_s, float cos_g) {
+        return reaches_cos(cos_s, cos_g) ? cosine_hemisphere_pdf(cos_s) : 0.0f;
+    }
+};
+
+}  // namespace librt::bsdfs

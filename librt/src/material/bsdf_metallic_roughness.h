@@ -1,0 +1,217 @@
+#pragma once
+
+// The glTF 2.0 metallic-roughness material (MaterialKind::MetallicRoughness) as the glTF
+// 2.0 specification, Appendix B, defines it (with KHR_materials_ior and a thin-walled
+// KHR_materials_transmission):
+//   material   = mix(dielectric, metal, metallic)
+//   metal      = specular_brdf(alpha) * (c + (1 - c) (1 - |V.H|)^5)        (conductor_fresnel)
+//   dielectric = mix(base, specular_brdf(alpha), Fr)                       (fresnel_mix)
+//   Fr         = f0 + (1 - f0) (1 - |V.H|)^5,  f0 = ((ior - 1) / (ior + 1))^2 (0.04 at 1.5)
+//   base       = mix(c / pi, specular_btdf(alpha), transmission)
+//   specular_brdf = D V with GGX D and the height-correlated Smith V = G2 / (4 |N.L| |N.V|)
+// with c the base colour and alpha = roughness^2. The transmission lobe is thin-walled
+// (the extension's default without KHR_materials_volume): c D V evaluated at wi mirrored
+// through the surface plane, i.e. the light leaves undeviated by refraction.
+//
+// Sampling: one lobe (GGX reflection by visible normals, cosine diffuse, or the mirrored
+// GGX transmission) chosen with probability proportional to an estimate of its directional
+// albedo at wo (Schlick Fresnel at cos_o times the lobe's colour), and the pdf is the whole
+// mixture's, so MIS sees one density. Estimating per lobe what it contributes keeps the
+// one-sample mixture's variance low without tables; the specular lobe keeps at least a
+// small share because its Fresnel at wo.h can exceed the estimate at cos_o.
+// Smooth transmission (roughness at GGX's alpha floor, no anisotropy) is a Null lobe: a
+// thin wall of roughness 0 lets light through undeviated, so it is exactly a transparent
+// surface of colour (1 - metallic) (1 - Fr(cos_o)) transmission c. The integrators cross
+// it without a bounce and shadow rays see lights through it (pass_through); sample / eval /
+// pdf keep the reflection lobes. As a GGX lobe of alpha 10^-3 it was a spike that next-event
+// estimation could not light through: only a BSDF ray that happened to reach a light did.
+// Anisotropic GGX when Material::anisotropy > 0 (microfacet_anisotropic.h), as
+// KHR_materials_anisotropy extends this material. Material::albedo scales every lobe (1 by
+// default); base colour is its own field, because a black base colour still reflects the
+// dielectric specular (bsdf.h's albedo contract).
+
+#include "material/microfacet.h"
+#include "material/microfacet_anisotropic.h"
+#include "material/specular.h"
+
+#include <librt/material/bsdf.h>
+#include <librt/sampling/warp.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace librt::bsdfs {
+
+struct MetallicRoughness {
+    static constexpr BsdfLobe kLobes =
+        BsdfLobe::Diffuse | BsdfLobe::Glossy | BsdfLobe::Reflection | BsdfLobe::Transmission;
+
+    static BsdfLobe lobes(const Material& m) {
+        const BsdfLobe refl = BsdfLobe::Diffuse | BsdfLobe::Glossy | BsdfLobe::Reflection;
+        if (!(m.transmission > 0.0f && m.metallic < 1.0f)) return refl;
+        return smooth_transmission(m) ? refl | BsdfLobe::Null : refl | BsdfLobe::Transmission;
+    }
+
+    /// True when the transmission is a Null lobe: the surface transmits (transmission > 0,
+    /// not wholly metal), isotropic, with roughness^2 at or below GGX's alpha floor.
+    static bool smooth_transmission(const Material& m) {
+        return m.transmission > 0.0f && m.metallic < 1.0f && !(m.anisotropy > 0.0f) &&
+               m.roughness * m.roughness <= microfacet::kMinAlpha;
+    }
+
+    /// Any point may be smooth and transmit: the textures scale roughness and metallic.
+    static bool may_pass_through(const Material& m) { return m.transmission > 0.0f; }
+
+    /// The Null lobe's colour for wo: the dielectric base layer's transmitted share with
+    /// the half vector at the normal, (1 - metallic) (1 - Fr(cos_o)) transmission c.
+    static glm::vec3 pass_through(const Material& m, const ShadingPoint& p, const glm::vec3& wo) {
+        if (!smooth_transmission(m)) return glm::vec3(0.0f);
+        const float fr = microfacet::schlick(glm::vec3(f0_dielectric(m.ior)), std::fabs(wo.z)).x;
+        return p.albedo * ((1.0f - m.metallic) * (1.0f - fr) * m.transmission) * m.base_color;
+    }
+
+    static float f0_dielectric(float ior) {
+        const float r = (ior - 1.0f) / (ior + 1.0f);  // glTF KHR_materials_ior
+        return r * r;
+    }
+
+    /// Probabilities of the specular, diffuse and transmission lobes at wo.
+    static std::array<float, 3> lobe_probabilities(const Material& m, const glm::vec3& wo) {
+        const glm::vec3& c = m.base_color;
+        const float fd = microfacet::schlick(glm::vec3(f0_dielectric(m.ior)), wo.z).x;
+        const float fm = (microfacet::schlick(c, wo.z).x + microfacet::schlick(c, wo.z).y +
+                          microfacet::schlick(c, wo.z).z) /
+                         3.0f;
+        const float mean_c = (c.x + c.y + c.z) / 3.0f;
+        const float dielectric = (1.0f - m.metallic) * (1.0f - fd) * mean_c;
+        float w_spec = (1.0f - m.metallic) * fd + m.metallic * fm;
+        const float w_diff = dielectric * (1.0f - m.transmission);
+        // A Null lobe is no lobe of sample(): the integrator crosses it (pass_through).
+        const float w_trans = smooth_transmission(m) ? 0.0f : dielectric * m.transmission;
+        w_spec = std::max(w_spec, 0.1f * (w_spec + w_diff + w_trans) + 1e-4f);
+        const float total = w_spec + w_diff + w_trans;
+        return {w_spec / total, w_diff / total, w_trans / total};
+    }
+
+    /// Where wi may go: reflection above both normals, (thin) transmission below both.
+    static bool valid_side(const ShadingPoint& p, const glm::vec3& wo, const glm::vec3& wi) {
+        if (wo.z <= 0.0f || wi.z == 0.0f) return false;
+        return wi.z > 0.0f ? p.frame.above_geometry(wi) : !p.frame.above_geometry(wi);
+    }
+
+    [[gnu::noinline]] static BsdfSample sample(const Material& m, const ShadingPoint& p,
+                                               const glm::vec3& wo, float uc, glm::vec2 u) {
+        if (m.anisotropy > 0.0f) [[unlikely]]
+            return sample_anisotropic(m, p, wo, uc, u);
+        if (wo.z <= 0.0f) return {};
+        return sample_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo,
+                           uc, u);
+    }
+
+    [[gnu::noinline]] static glm::vec3 eval(const Material& m, const ShadingPoint& p,
+                                            const glm::vec3& wo, const glm::vec3& wi) {
+        if (m.anisotropy > 0.0f) [[unlikely]]
+            return eval_anisotropic(m, p, wo, wi);
+        if (!valid_side(p, wo, wi)) return glm::vec3(0.0f);
+        return eval_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
+    }
+
+    [[gnu::noinline]] static float pdf(const Material& m, const ShadingPoint& p,
+                                       const glm::vec3& wo, const glm::vec3& wi) {
+        if (m.anisotropy > 0.0f) [[unlikely]]
+            return pdf_anisotropic(m, p, wo, wi);
+        if (!valid_side(p, wo, wi)) return 0.0f;
+        return pdf_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, wo, wi);
+    }
+
+    /// The sample for wo.z > 0, given the GGX lobe.
+    template <class Ggx>
+    static BsdfSample sample_with(const Ggx& ggx, const Material& m, const ShadingPoint& p,
+                                  const glm::vec3& wo, float uc, glm::vec2 u) {
+        const auto prob = lobe_probabilities(m, wo);
+        glm::vec3 wi;
+        BsdfLobe lobe;
+        if (uc < prob[0]) {
+            wi = reflect(-wo, ggx.sample_visible_normal(wo, u));
+            lobe = BsdfLobe::Glossy | BsdfLobe::Reflection;
+        } else if (uc < prob[0] + prob[1] || !(prob[2] > 0.0f)) {
+            wi = sample_cosine_hemisphere(u);
+            lobe = BsdfLobe::DiffuseReflection;
+        } else {
+            wi = reflect(-wo, ggx.sample_visible_normal(wo, u));
+            wi.z = -wi.z;  // thin-walled: the reflection mirrored through the surface
+            lobe = BsdfLobe::Glossy | BsdfLobe::Transmission;
+        }
+        // A reflection that went under the surface is no sample of its lobe (nor of the
+        // other side's): without this check it would be counted with the wrong density.
+        const bool wants_transmission = has(lobe, BsdfLobe::Transmission);
+        if ((wi.z < 0.0f) != wants_transmission || !valid_side(p, wo, wi)) return {};
+        const float density = pdf_with(ggx, m, wo, wi);
+        if (!(density > 0.0f)) return {};
+        return {wi, eval_with(ggx, m, p, wo, wi) * std::fabs(wi.z) / density, density, lobe};
+    }
+
+    /// eval() on a valid side, given the GGX lobe.
+    template <class Ggx>
+    static glm::vec3 eval_with(const Ggx& ggx, const Material& m, const ShadingPoint& p,
+                               const glm::vec3& wo, const glm::vec3& wi) {
+        const bool transmitted = wi.z < 0.0f;
+        const glm::vec3 wr(wi.x, wi.y, std::fabs(wi.z));  // thin transmission: mirrored wi
+        const glm::vec3 h = glm::normalize(wo + wr);
+        const float vh = std::fabs(glm::dot(wo, h));
+        // specular_brdf = D V, V = G2 / (4 |N.L| |N.V|) (glTF 2.0 Appendix B).
+        const float dv = ggx.d(h) * ggx.g2(wo, wr) / (4.0f * wo.z * wr.z);
+        const float fr = microfacet::schlick(glm::vec3(f0_dielectric(m.ior)), vh).x;
+        const glm::vec3& c = m.base_color;
+        glm::vec3 f;
+        if (transmitted) {
+            if (smooth_transmission(m)) return glm::vec3(0.0f);  // the Null lobe's, not f's
+            // Only the dielectric's base layer transmits: (1 - Fr) transmission c D V.
+            f = (1.0f - m.metallic) * (1.0f - fr) * m.transmission * c * dv;
+        } else {
+            const glm::vec3 dielectric =
+                (1.0f - fr) * (1.0f - m.transmission) * c * k_inv_pi + glm::vec3(fr * dv);
+            const glm::vec3 metal = microfacet::schlick(c, vh) * dv;
+            f = (1.0f - m.metallic) * dielectric + m.metallic * metal;
+        }
+        return p.albedo * f;
+    }
+
+    /// pdf() on a valid side, given the GGX lobe.
+    template <class Ggx>
+    static float pdf_with(const Ggx& ggx, const Material& m, const glm::vec3& wo,
+                          const glm::vec3& wi) {
+        const auto prob = lobe_probabilities(m, wo);
+        const glm::vec3 wr(wi.x, wi.y, std::fabs(wi.z));
+        const glm::vec3 h = glm::normalize(wo + wr);
+        const float glossy = ggx.reflection_pdf(wo, h);
+        if (wi.z < 0.0f) return prob[2] * glossy;
+        return prob[0] * glossy + prob[1] * cosine_hemisphere_pdf(wi.z);
+    }
+
+    // Anisotropic materials, out of line (see microfacet_anisotropic.h).
+    [[gnu::noinline, gnu::cold]] static BsdfSample sample_anisotropic(const Material& m,
+                                                                      const ShadingPoint& p,
+                                                                      const glm::vec3& wo, float uc,
+                                                                      glm::vec2 u) {
+        if (wo.z <= 0.0f) return {};
+        return sample_with(microfacet::anisotropic_lobe(m, p), m, p, wo, uc, u);
+    }
+    [[gnu::noinline, gnu::cold]] static glm::vec3 eval_anisotropic(const Material& m,
+                                                                   const ShadingPoint& p,
+                                                                   const glm::vec3& wo,
+                                                                   const glm::vec3& wi) {
+        if (!valid_side(p, wo, wi)) return glm::vec3(0.0f);
+        return eval_with(microfacet::anisotropic_lobe(m, p), m, p, wo, wi);
+    }
+    [[gnu::noinline, gnu::cold]] static float pdf_anisotropic(const Material& m,
+                                                              const ShadingPoint& p,
+                                                              const glm::vec3& wo,
+                                                              const glm::vec3& wi) {
+        if (!valid_side(p, wo, wi)) return 0.0f;
+        return pdf_with(microfacet::anisotropic_lobe(m, p), m, wo, wi);
+    }
+};
+
+}  // namespace librt::bsdfs

@@ -1,0 +1,34 @@
+#pragma once
+
+// The perfect mirror (MaterialKind::Mirror): one specular reflection lobe, tinted by albedo.
+
+#include "material/specular.h"
+
+#include <librt/material/bsdf.h>
+
+namespace librt::bsdfs {
+
+struct Mirror {
+    static constexpr BsdfLobe kLobes = BsdfLobe::SpecularReflection;
+
+    static BsdfSample sample(const Material& /*m*/, const ShadingPoint& p, const glm::vec3& wo,
+                             float /*uc*/, glm::vec2 /*u*/) {
+        // Reflection about the local +z (the shading normal): (-x, -y, z).
+        glm::vec3 wi(-wo.x, -wo.y, wo.z);
+        // A shading normal bent too far reflects below the real surface: use the geometric one.
+        if (!p.frame.above_geometry(wi)) wi = reflect(-wo, p.frame.geometric);
+        return {wi, p.albedo, 1.0f, kLobes};
+    }
+
+    static glm::vec3 eval(const Material& /*m*/, const ShadingPoint& /*p*/, const glm::vec3& /*wo*/,
+                          const glm::vec3& /*wi*/) {
+        return glm::vec3(0.0f);  // a delta lobe has no value at a given direction
+    }
+
+    static float pdf(const Material& /*m*/, const ShadingPoint& /*p*/, const glm::vec3& /*wo*/,
+                     const glm::vec3& /*wi*/) {
+        return 0.0f;
+    }
+};
+
+}  // namespace librt::bsdfs

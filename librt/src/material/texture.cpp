@@ -1,0 +1,167 @@
+#include <librt/core/error.h>
+#include <librt/core/finite.h>
+#include <librt/material/texture.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+
+namespace librt {
+namespace {
+
+// Position modulo n in [0, n) for any integer, negative ones included.
+int wrap(int i, int n) {
+    const int m = i % n;
+    return m < 0 ? m + n : m;
+}
+
+// Texel index i (any integer) to [0, n) by mirrored repeat: period 2n, the second half
+// reversed (texel n maps to n - 1, -1 to 0).
+int mirror(int i, int n) {
+    const int m = wrap(i, 2 * n);
+    return m < n ? m : 2 * n - 1 - m;
+}
+
+void check_size(int width, int height, std::size_t texels, std::size_t per_texel) {
+    if (width <= 0 || height <= 0) {
+        std::ostringstream msg;
+        msg << "texture size " << width << " x " << height << ": must be positive";
+        throw Error(msg.str());
+    }
+    if (texels != std::size_t(width) * std::size_t(height) * per_texel) {
+        std::ostringstream msg;
+        msg << "texture of " << width << " x " << height << " given " << texels / per_texel
+            << " texels";
+        throw Error(msg.str());
+    }
+}
+
+}  // namespace
+
+float srgb_to_linear(float c) {
+    // sRGB decoding: linear segment near black, power 2.4 elsewhere.
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+ImageTexture::ImageTexture(int width, int height, std::vector<glm::vec3> linear_texels)
+    : width_(width), height_(height), texels_(std::move(linear_texels)) {
+    check_size(width, height, texels_.size(), 1);
+}
+
+ImageTexture ImageTexture::from_rgba8(int width, int height, std::span<const std::uint8_t> rgba,
+                                      ColorSpace space, const TextureSampling& sampling) {
+    check_size(width, height, rgba.size(), 4);
+    // Decoding through a table: 256 values instead of a pow per texel channel.
+    std::array<float, 256> to_linear{};
+    for (int i = 0; i < 256; ++i) {
+        const float c = float(i) / 255.0f;
+        to_linear[std::size_t(i)] = space == ColorSpace::Srgb ? srgb_to_linear(c) : c;
+    }
+    const std::size_t n = rgba.size() / 4;
+    std::vector<glm::vec3> texels(n);
+    bool translucent = false;
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint8_t* p = &rgba[4 * i];
+        texels[i] = {to_linear[p[0]], to_linear[p[1]], to_linear[p[2]]};
+        translucent = translucent || p[3] != 255;
+    }
+    ImageTexture t(width, height, std::move(texels));
+    if (translucent) {
+        t.alpha_.resize(n);
+        for (std::size_t i = 0; i < n; ++i) t.alpha_[i] = float(rgba[4 * i + 3]) / 255.0f;
+    }
+    t.sampling_ = sampling;
+    return t;
+}
+
+template <class Texel>
+Texel ImageTexture::filtered(glm::vec2 uv, const std::vector<Texel>& texels,
+                             const Texel& fallback) const {
+    if (texels.empty()) return fallback;
+    if (!finite(uv)) return texels.front();
+    const auto at = [&](int x, int y) -> const Texel& {
+        return texels[std::size_t(y) * std::size_t(width_) + std::size_t(x)];
+    };
+    // c is the coordinate with 0 at the image's first column / row, in texture widths;
+    // `repeat_c` its fractional part as the report's lookup computed it (kept to the
+    // operation, so map_Kd renders bit for bit as before).
+    const auto axis = [&](float c, float repeat_c, int n, TextureWrap mode) -> Axis {
+        if (sampling_.filter == TextureFilter::Nearest) {
+            // The texel containing c: floor(c n), wrapped (c bounded first: no int overflow).
+            float s;
+            if (mode == TextureWrap::Repeat) {
+                s = std::floor(repeat_c * float(n));
+                return {std::min(int(s), n - 1), 0, 0.0f};
+            }
+            if (mode == TextureWrap::ClampToEdge) {
+                s = std::floor(std::clamp(c, 0.0f, 1.0f) * float(n));
+                return {std::min(int(s), n - 1), 0, 0.0f};
+            }
+            s = std::floor((c - 2.0f * std::floor(0.5f * c)) * float(n));
+            return {mirror(int(s), n), 0, 0.0f};
+        }
+        // Continuous texel coordinates, texel centres at integer + 0.5.
+        float s;
+        if (mode == TextureWrap::Repeat)
+            s = repeat_c * float(n) - 0.5f;
+        else if (mode == TextureWrap::ClampToEdge)
+            s = std::clamp(c, -1.0f, 2.0f) * float(n) - 0.5f;
+        else
+            s = (c - 2.0f * std::floor(0.5f * c)) * float(n) - 0.5f;  // c in [0, 2)
+        const float fs = std::floor(s);
+        const int i = int(fs);
+        Axis a{i, i + 1, s - fs};
+        if (mode == TextureWrap::Repeat) {
+            a.i0 = wrap(a.i0, n);
+            a.i1 = wrap(a.i1, n);
+        } else if (mode == TextureWrap::ClampToEdge) {
+            a.i0 = std::clamp(a.i0, 0, n - 1);
+            a.i1 = std::clamp(a.i1, 0, n - 1);
+        } else {
+            a.i0 = mirror(a.i0, n);
+            a.i1 = mirror(a.i1, n);
+        }
+        return a;
+    };
+    // Keep only the fractional part first, so huge coordinates do not overflow int; v
+    // flipped (row 0 = top).
+    const float u = uv.x - std::floor(uv.x);
+    const float v = uv.y - std::floor(uv.y);
+    const Axis ax = axis(uv.x, u, width_, sampling_.wrap_u);
+    const Axis ay = axis(1.0f - uv.y, 1.0f - v, height_, sampling_.wrap_v);
+    if (sampling_.filter == TextureFilter::Nearest) return at(ax.i0, ay.i0);
+    const Texel top = (1.0f - ax.w1) * at(ax.i0, ay.i0) + ax.w1 * at(ax.i1, ay.i0);
+    const Texel bottom = (1.0f - ax.w1) * at(ax.i0, ay.i1) + ax.w1 * at(ax.i1, ay.i1);
+    return (1.0f - ay.w1) * top + ay.w1 * bottom;
+}
+
+glm::vec3 ImageTexture::lookup(glm::vec2 uv) const {
+    return filtered(uv, texels_, glm::vec3(0.0f));
+}
+
+float ImageTexture::lookup_alpha(glm::vec2 uv) const {
+    if (alpha_.empty()) return 1.0f;
+    return filtered(uv, alpha_, 1.0f);
+}
+
+glm::mat3x2 make_texture_transform(const TextureTransform& t, bool gltf_uvs) {
+    // KHR_texture_transform: T(offset) R(rotation) S(scale). R as the implementations and
+    // the extension's sample model use it, (1, 0) -> (cos, -sin): the extension's GLSL
+    // listing has the transpose, a known erratum (KhronosGroup/glTF issue #1563).
+    const float c = std::cos(t.rotation), s = std::sin(t.rotation);
+    glm::mat3x2 m;  // glm: m[column][row]; uv' = m * (u, v, 1)
+    m[0] = glm::vec2(c * t.scale.x, -s * t.scale.x);
+    m[1] = glm::vec2(s * t.scale.y, c * t.scale.y);
+    m[2] = t.offset;
+    if (gltf_uvs) {
+        // Then v' = 1 - v: glTF's v runs down, ImageTexture's up.
+        m[0].y = -m[0].y;
+        m[1].y = -m[1].y;
+        m[2].y = 1.0f - m[2].y;
+    }
+    return m;
+}
+
+}  // namespace librt

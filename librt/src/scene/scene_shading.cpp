@@ -1,0 +1,194 @@
+// The Scene's per-hit material inputs (textures, normal maps, one-sided backs) and the
+// alpha test of cut-out materials; kept out of scene.cpp, and out of line, so a scene
+// without them pays one predictable branch per query.
+
+#include <librt/material/bsdf.h>
+#include <librt/material/normal_map.h>
+#include <librt/scene/scene.h>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <new>
+
+namespace librt {
+
+glm::vec3 apply_normal_map(const glm::vec3& texel, float scale, const glm::vec3& n,
+                           const glm::vec4& tangent, const glm::vec3& geometric) {
+    // glTF 2.0 sec. 3.9.3: the texel maps to [-1, 1]; normalTexture.scale scales x and y.
+    const float x = (2.0f * texel.x - 1.0f) * scale, y = (2.0f * texel.y - 1.0f) * scale;
+    const float z = 2.0f * texel.z - 1.0f;
+    if (x == 0.0f && y == 0.0f) return n;  // flat: the interpolated normal, unchanged
+    // Gram-Schmidt: the tangent's part perpendicular to n.
+    const glm::vec3 t_raw = glm::vec3(tangent) - glm::dot(n, glm::vec3(tangent)) * n;
+    const float t_len = glm::length(t_raw);
+    if (!(t_len > 1e-12f) || !std::isfinite(t_len)) return n;
+    const glm::vec3 t = t_raw / t_len;
+    const glm::vec3 b = (tangent.w < 0.0f ? -1.0f : 1.0f) * glm::cross(n, t);
+    glm::vec3 m = x * t + y * b + z * n;
+    float len = glm::length(m);
+    if (!(len > 0.0f) || !std::isfinite(len)) return n;
+    m /= len;
+    // Keep it on the geometric side (see kMinNormalMapCosine): lean it toward the
+    // geometric normal by what its cosine lacks.
+    const float c = glm::dot(m, geometric);
+    if (c < kMinNormalMapCosine) {
+        m += (kMinNormalMapCosine - c) * geometric;
+        len = glm::length(m);
+        if (!(len > 0.0f)) return n;
+        m /= len;
+    }
+    return m;
+}
+
+const Material& Scene::shade_varying(Hit& hit, const glm::vec3& direction,
+                                     ShadedMaterial& scratch) const {
+    const Material& stored = material(hit);
+    const bool colored = top_.has_colors(hit.object_id);
+    if (!stored.varies_per_hit() && !colored) return stored;
+    if (!stored.double_sided && !(glm::dot(direction, hit.geometric_normal) < 0.0f)) {
+        // The back of a one-sided surface: absorbs, emits nothing.
+        return *new (&scratch.material_) Material(Material::emissive(glm::vec3(0.0f)));
+    }
+    // Material is trivially copyable and destructible: a new copy over the last one.
+    Material& m = *new (&scratch.material_) Material(stored);
+    const auto lookup = [&](const TextureSlot& s) {
+        return textures_[std::size_t(s.texture)].lookup(s.map(hit.uv));
+    };
+    if (m.base_color_texture.bound()) m.base_color *= lookup(m.base_color_texture);
+    if (colored) {
+        // glTF COLOR_0 multiplies the base colour; for librt's other kinds, the albedo.
+        const glm::vec3 c = glm::clamp(glm::vec3(top_.color(hit)), 0.0f, 1.0f);
+        if (m.kind == MaterialKind::MetallicRoughness)
+            m.base_color *= c;
+        else
+            m.albedo *= c;
+    }
+    if (m.metallic_roughness_texture.bound()) {
+        // glTF: roughness in the green channel, metalness in the blue one (both linear).
+        const glm::vec3 mr = lookup(m.metallic_roughness_texture);
+        m.roughness *= mr.y;
+        m.metallic *= mr.z;
+    }
+    if (m.emission_texture.bound()) m.emission *= lookup(m.emission_texture);
+    if (m.normal_texture.bound()) {
+        const glm::vec4 t = top_.tangent(hit);
+        hit.shading_normal = apply_normal_map(lookup(m.normal_texture), m.normal_scale,
+                                              hit.shading_normal, t, hit.geometric_normal);
+    }
+    if (m.anisotropy > 0.0f) anisotropy_at(hit, m);
+    return m;
+}
+
+void Scene::anisotropy_at(const Hit& hit, Material& m) const {
+    // KHR_materials_anisotropy: the direction (cos r, sin r) in tangent-bitangent space, or
+    // the texture's RG direction turned by r; the texture's B scales the strength.
+    float c = std::cos(m.anisotropy_rotation), s = std::sin(m.anisotropy_rotation);
+    if (m.anisotropy_texture.bound()) {
+        const TextureSlot& slot = m.anisotropy_texture;
+        const glm::vec3 tex = textures_[std::size_t(slot.texture)].lookup(slot.map(hit.uv));
+        m.anisotropy *= std::clamp(tex.z, 0.0f, 1.0f);
+        const float x = 2.0f * tex.x - 1.0f, y = 2.0f * tex.y - 1.0f;
+        const float len = std::sqrt(x * x + y * y);
+        if (len > 0.0f) {
+            // The rotation applied to the texture's direction: angle sum.
+            const float cx = x / len, sy = y / len;
+            const float c2 = c * cx - s * sy, s2 = s * cx + c * sy;
+            c = c2;
+            s = s2;
+        }
+    }
+    // The surface's tangent (increasing u) and bitangent: a mesh's tangents, else a
+    // sphere's dP/du (east about +y: u is the azimuth around +y) with b = n x t.
+    const glm::vec3& n = hit.shading_normal;
+    glm::vec3 t(0.0f);
+    float handedness = 1.0f;
+    const glm::vec4 tangent = top_.tangent(hit);
+    if (tangent != glm::vec4(0.0f)) {
+        t = glm::vec3(tangent);
+        handedness = tangent.w < 0.0f ? -1.0f : 1.0f;
+    } else if (top_.kind(hit.object_id) == ObjectKind::Sphere) {
+        t = {-hit.geometric_normal.z, 0.0f, hit.geometric_normal.x};
+    }
+    // Gram-Schmidt onto the shading plane; none (a pole, or a mesh without uvs): zero, and
+    // the BSDFs use their frame's own x axis.
+    t -= glm::dot(n, t) * n;
+    const float len = glm::length(t);
+    if (!(len > 1e-12f) || !std::isfinite(len)) {
+        m.anisotropy_direction = glm::vec3(0.0f);
+        return;
+    }
+    t /= len;
+    const glm::vec3 b = handedness * glm::cross(n, t);
+    m.anisotropy_direction = c * t + s * b;
+}
+
+float Scene::coverage(const Hit& hit) const {
+    const Material& m = material(hit);
+    float a = m.alpha * std::clamp(top_.color(hit).w, 0.0f, 1.0f);
+    if (m.base_color_texture.bound()) {
+        const TextureSlot& s = m.base_color_texture;
+        a *= textures_[std::size_t(s.texture)].lookup_alpha(s.map(hit.uv));
+    }
+    return a;
+}
+
+bool Scene::in_cut_out_hole(const Hit& hit) const {
+    const Material& m = material(hit);
+    return m.cuts_out() && coverage(hit) < m.alpha_cutoff;
+}
+
+bool Scene::intersect_carefully(const Ray& ray, Hit& hit, bool every_sphere_uv) const {
+    Hit h;
+    if (cut_outs_ ? !intersect_past_cut_outs(ray, h) : !top_.intersect(ray, h, every_sphere_uv))
+        return false;
+    if (pass_through_surfaces_ && may_pass_through(material(h))) surface_under_pane(ray, h);
+    hit = h;
+    return true;
+}
+
+// A pane lying on another surface (cornell_pbr.glb's glass cube, its bottom in the floor's
+// plane) meets a ray at the same t as that surface, give or take rounding, and which one
+// the query returns is chance. Crossing the pane then restarts the ray past its plane, so
+// the surface was lost (the floor inside that cube rendered at half its brightness): the
+// other surface is taken instead, as if the pane were not there. 1e-5 of t covers the
+// rounding of two hits on one plane, far below any gap a scene means.
+void Scene::surface_under_pane(const Ray& ray, Hit& pane) const {
+    const float slack = 1e-5f * pane.t;
+    Ray probe = ray;
+    probe.t_min = std::max(ray.t_min, pane.t - slack);
+    probe.t_max = std::min(ray.t_max, pane.t + slack);
+    Hit under;
+    if (!top_.intersect_ignoring(probe, under, pane.object_id, true)) return;
+    if (cut_outs_ && in_cut_out_hole(under)) return;
+    pane = under;
+}
+
+bool Scene::intersect_past_cut_outs(const Ray& ray, Hit& hit) const {
+    Ray r = ray;
+    Hit h;
+    // Each pass starts past the last hole (t_min is exclusive), so t grows strictly and
+    // the loop ends within the number of surfaces along the ray. Every sphere's uv is
+    // computed: the alpha test reads it.
+    while (top_.intersect(r, h, true)) {
+        if (!in_cut_out_hole(h)) {
+            hit = h;
+            return true;
+        }
+        r.t_min = h.t;
+    }
+    return false;
+}
+
+bool Scene::occluded_past_cut_outs(const Ray& ray, std::uint32_t ignored_object) const {
+    Ray r = ray;
+    Hit h;
+    while (top_.intersect(r, h, true)) {
+        if (h.object_id != ignored_object && !in_cut_out_hole(h)) return true;
+        r.t_min = h.t;
+    }
+    return false;
+}
+
+}  // namespace librt
