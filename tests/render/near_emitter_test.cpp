@@ -6,13 +6,13 @@
 // equals the brute-force one on a room whose two-sided panel hangs just under the ceiling.
 
 #include "light_scene_test_util.h"
+#include "sampling/spherical_triangle.h"
 #include "scene/shadow_ray.h"
 
 #include <librt/geometry/ray_offset.h>
 #include <librt/integrator/integrators.h>
 #include <librt/light/triangle_light.h>
 #include <librt/sampling/rng.h>
-#include <librt/sampling/spherical_triangle.h>
 #include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>

@@ -3,10 +3,11 @@
 // density 1 / omega, binned over a subdivision of the triangle whose cells' probabilities
 // are their exact solid angles.
 
+#include "sampling/spherical_triangle.h"
+
 #include "chi_square.h"
 
 #include <librt/sampling/rng.h>
-#include <librt/sampling/spherical_triangle.h>
 
 #include <gtest/gtest.h>
 

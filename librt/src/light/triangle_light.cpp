@@ -1,10 +1,10 @@
 #include "geometry/spawn_ray.h"
 #include "light/emission.h"
 #include "light/planar_light.h"
+#include "sampling/spherical_triangle.h"
 
 #include <librt/geometry/ray_offset.h>
 #include <librt/light/triangle_light.h>
-#include <librt/sampling/spherical_triangle.h>
 #include <librt/sampling/warp.h>
 
 #include <glm/common.hpp>

@@ -1,4 +1,4 @@
-#include <librt/sampling/spherical_triangle.h>
+#include "sampling/spherical_triangle.h"
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
