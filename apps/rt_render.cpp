@@ -1,5 +1,5 @@
 // rt_render: renders a scene file the user brings, glTF 2.0 (.gltf, .glb) or OBJ (with its
-// MTL), through io/scene_file.h, progressively (render_progressive): Ctrl-C or the time
+// MTL), through loader/scene_file.h, progressively (render_progressive): Ctrl-C or the time
 // limit ends the render and the finished passes are written, flagged as partial. PNG is
 // sRGB-encoded after clamping (exposure 2^EV first); .hdr, .pfm and .exr stay linear
 // (times 2^EV), .exr with AOV layers (albedo, normal, depth, sample count). Under mpirun
@@ -15,8 +15,8 @@
 #include <librt/io/file_digest.h>
 #include <librt/io/hdr_image.h>
 #include <librt/io/image_io.h>
-#include <librt/io/scene_file.h>
 #include <librt/light/environment_light.h>
+#include <librt/loader/scene_file.h>
 #include <librt/render/renderer.h>
 
 #include <CLI/CLI.hpp>

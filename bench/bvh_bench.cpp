@@ -38,7 +38,7 @@
 #include <librt/accel/triangle_bvh.h>
 #include <librt/geometry/mesh.h>
 #include <librt/geometry/procedural.h>
-#include <librt/io/obj.h>
+#include <librt/obj/obj.h>
 
 #include <benchmark/benchmark.h>
 

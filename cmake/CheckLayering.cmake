@@ -12,8 +12,12 @@
 #        scene      <- core .. film, scene (the scene, its shading points, shadow rays)
 #        integrator <- core .. scene, integrator
 #        render     <- core .. integrator, render (the drivers: passes, tiles, AOVs)
-#        io         <- all of the above and io (a loader may build render types)
-#        mpi        <- everything but io, and mpi (the optional librt::mpi)
+#        io         <- all of the above and io (files and images; a loader may build
+#                      any type of the renderer)
+#        obj        <- core .. io, obj (OBJ and MTL)
+#        gltf       <- core .. obj, gltf (glTF 2.0)
+#        loader     <- core .. gltf, loader (a scene file of any format)
+#        mpi        <- core .. render, mpi (the optional librt::mpi reads no files)
 #      plus <librt/export.h> and <librt/version.h> everywhere.
 #   2. The renderer's areas (material .. render) do no file I/O: no <fstream>,
 #      <filesystem>, stb, fopen, std::ifstream / ofstream / fstream, std::filesystem.
@@ -25,14 +29,15 @@ cmake_minimum_required(VERSION 3.22)
 include("${CMAKE_CURRENT_LIST_DIR}/LibrtSourceScan.cmake")
 librt_require_root()
 
-set(_areas core geometry sampling accel material light film scene integrator render io mpi)
-# Each area uses itself and the areas before it; mpi uses everything but io.
+set(_areas core geometry sampling accel material light film scene integrator render io obj gltf
+           loader mpi)
+# Each area uses itself and the areas before it; mpi uses the renderer, not the loaders.
 set(_before "")
 foreach(_area IN LISTS _areas)
   list(APPEND _before ${_area})
   set(_uses_${_area} ${_before})
 endforeach()
-list(REMOVE_ITEM _uses_mpi io)
+list(REMOVE_ITEM _uses_mpi io obj gltf loader)
 # The renderer's areas (everything between accel and io) read and write no files.
 set(_no_file_io material light film scene integrator render)
 set(_file_io_patterns
@@ -89,16 +94,16 @@ librt_scratch_folder(librt_layering_selftest _scratch)
 file(MAKE_DIRECTORY "${_scratch}/librt/src/render" "${_scratch}/librt/include/librt/accel"
      "${_scratch}/librt/src/io")
 file(WRITE "${_scratch}/librt/src/render/bad.cpp"
-  "#include <librt/io/obj.h>\n#include <fstream>\n#include <filesystem>\n"
+  "#include <librt/obj/obj.h>\n#include <fstream>\n#include <filesystem>\n"
   "#include <stb/stb_image.h>\nFILE* f = std::fopen(name, \"rb\")\nstd::ifstream in(p)\n"
   "auto s = std::filesystem::status(p)\n")
 file(WRITE "${_scratch}/librt/include/librt/accel/bad.h"
-  "#include <librt/scene/scene.h>\n#include \"io/obj_scan.h\"\n")
+  "#include <librt/scene/scene.h>\n#include \"obj/obj_scan.h\"\n")
 file(WRITE "${_scratch}/librt/src/render/good.cpp"
   "#include <librt/accel/bvh.h>\n#include <librt/export.h>\n#include <sstream>\n"
   "// std::ifstream in a comment\nstd::ostringstream msg\nint my_fopen_count = 0\n")
 file(WRITE "${_scratch}/librt/src/io/good.cpp"
-  "#include <librt/scene/scene.h>\n#include <fstream>\n#include \"io/obj_scan.h\"\n")
+  "#include <librt/scene/scene.h>\n#include <fstream>\n#include \"io/file_io.h\"\n")
 librt_check_layering("${_scratch}"
   "librt/src/render/bad.cpp;librt/include/librt/accel/bad.h;librt/src/render/good.cpp;librt/src/io/good.cpp"
   _self)

@@ -2,8 +2,8 @@
 
 #include <librt/core/error.h>
 #include <librt/geometry/procedural.h>
-#include <librt/io/obj.h>
-#include <librt/io/obj_materials.h>
+#include <librt/obj/obj.h>
+#include <librt/obj/obj_materials.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 

@@ -14,7 +14,7 @@
 
 #include <librt/accel/top_level.h>
 #include <librt/accel/triangle_bvh.h>
-#include <librt/io/obj.h>
+#include <librt/obj/obj.h>
 
 #include <benchmark/benchmark.h>
 

@@ -24,10 +24,10 @@
 // panel 1 cm under the ceiling, gold, thin glass and plastic), seen from the file's own
 // camera (the same eye, direction and 40 degree field of view as the panel box's).
 
+#include <librt/gltf/gltf.h>
+#include <librt/gltf/gltf_scene.h>
 #include <librt/integrator/bdpt.h>
 #include <librt/integrator/integrators.h>
-#include <librt/io/gltf.h>
-#include <librt/io/gltf_scene.h>
 #include <librt/io/hdr_image.h>
 #include <librt/sampling/sampler.h>
 #include <librt/scene/scene.h>

@@ -16,7 +16,7 @@
 #include <librt/core/error.h>
 #include <librt/film/film.h>
 #include <librt/integrator/integrators.h>
-#include <librt/io/scene_file.h>
+#include <librt/loader/scene_file.h>
 #include <librt/render/renderer.h>
 
 #include <algorithm>

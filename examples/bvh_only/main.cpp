@@ -6,7 +6,7 @@
 #include <librt/accel/triangle_bvh.h>
 #include <librt/core/error.h>
 #include <librt/geometry/mesh.h>
-#include <librt/io/obj.h>
+#include <librt/obj/obj.h>
 #include <librt/version.h>
 
 #include <glm/geometric.hpp>

@@ -7,8 +7,8 @@
 #include <librt/geometry/procedural.h>
 #include <librt/integrator/integrators.h>
 #include <librt/io/image_io.h>
-#include <librt/io/obj.h>
-#include <librt/io/obj_materials.h>
+#include <librt/obj/obj.h>
+#include <librt/obj/obj_materials.h>
 #include <librt/render/renderer.h>
 #include <librt/scene/scene.h>
 

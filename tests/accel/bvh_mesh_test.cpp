@@ -6,7 +6,7 @@
 
 #include <librt/accel/triangle_bvh.h>
 #include <librt/geometry/procedural.h>
-#include <librt/io/obj.h>
+#include <librt/obj/obj.h>
 
 #include <gtest/gtest.h>
 

@@ -17,7 +17,7 @@
 #include <librt/accel/triangle_bvh.h>
 #include <librt/core/error.h>
 #include <librt/geometry/procedural.h>
-#include <librt/io/obj.h>
+#include <librt/obj/obj.h>
 
 #include <gtest/gtest.h>
 

@@ -6,9 +6,9 @@
 // Run: ./build/fuzz/tests/fuzz/gltf_fuzz -max_total_time=60 tests/fuzz/corpus/gltf
 
 #include <librt/core/error.h>
+#include <librt/gltf/gltf.h>
+#include <librt/gltf/gltf_scene.h>
 #include <librt/integrator/integrators.h>
-#include <librt/io/gltf.h>
-#include <librt/io/gltf_scene.h>
 #include <librt/render/renderer.h>
 
 #include <unistd.h>

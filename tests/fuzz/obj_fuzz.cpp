@@ -4,7 +4,7 @@
 
 #include <librt/accel/triangle_bvh.h>
 #include <librt/core/error.h>
-#include <librt/io/obj.h>
+#include <librt/obj/obj.h>
 
 #include <glm/geometric.hpp>
 #include <unistd.h>

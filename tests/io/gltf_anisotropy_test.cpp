@@ -7,8 +7,8 @@
 #include "robustness/robustness_util.h"
 
 #include <librt/core/error.h>
-#include <librt/io/gltf.h>
-#include <librt/io/gltf_scene.h>
+#include <librt/gltf/gltf.h>
+#include <librt/gltf/gltf_scene.h>
 
 #include <gtest/gtest.h>
 

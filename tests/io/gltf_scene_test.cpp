@@ -9,10 +9,10 @@
 #include "test_support.h"
 
 #include <librt/core/error.h>
+#include <librt/gltf/gltf.h>
+#include <librt/gltf/gltf_scene.h>
 #include <librt/integrator/integrators.h>
-#include <librt/io/gltf.h>
-#include <librt/io/gltf_scene.h>
-#include <librt/io/scene_file.h>
+#include <librt/loader/scene_file.h>
 #include <librt/material/bsdf.h>
 #include <librt/render/renderer.h>
 #include <librt/sampling/warp.h>

@@ -7,7 +7,7 @@
 #include "robustness/robustness_util.h"
 #include "test_support.h"
 
-#include <librt/io/gltf.h>
+#include <librt/gltf/gltf.h>
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
-// MTL -> scene material mapping and texture loading (io/obj_materials.h, io/texture_io.h):
+// MTL -> scene material mapping and texture loading (obj/obj_materials.h, io/texture_io.h):
 // the policy, texture de-duplication, and warnings returned instead of printed.
 
 #include "robustness/robustness_util.h"
 
 #include <librt/core/error.h>
-#include <librt/io/obj_materials.h>
 #include <librt/io/texture_io.h>
+#include <librt/obj/obj_materials.h>
 #include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>

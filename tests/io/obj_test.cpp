@@ -1,7 +1,7 @@
 #include "test_support.h"
 
 #include <librt/core/error.h>
-#include <librt/io/obj.h>
+#include <librt/obj/obj.h>
 
 #include <gtest/gtest.h>
 

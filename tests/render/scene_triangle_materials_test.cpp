@@ -1,4 +1,4 @@
-// Scene::add_mesh with one scene material per triangle (what io/obj_materials.h builds on).
+// Scene::add_mesh with one scene material per triangle (what obj/obj_materials.h builds on).
 
 #include "robustness/robustness_util.h"
 

@@ -2,7 +2,7 @@
 // exact texel positions, nearest filtering, alpha, and the KHR_texture_transform map.
 
 #include <librt/core/error.h>
-#include <librt/io/gltf.h>
+#include <librt/gltf/gltf.h>
 #include <librt/material/texture.h>
 
 #include <gtest/gtest.h>

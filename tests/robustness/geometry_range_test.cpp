@@ -7,7 +7,7 @@
 
 #include <librt/accel/bvh_builder.h>
 #include <librt/accel/triangle_bvh.h>
-#include <librt/io/obj.h>
+#include <librt/obj/obj.h>
 
 #include <gtest/gtest.h>
 

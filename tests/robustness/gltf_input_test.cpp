@@ -5,7 +5,7 @@
 #include "io/gltf_test_util.h"
 #include "robustness/robustness_util.h"
 
-#include <librt/io/gltf.h>
+#include <librt/gltf/gltf.h>
 
 #include <gtest/gtest.h>
 

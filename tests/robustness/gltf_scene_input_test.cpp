@@ -5,7 +5,7 @@
 #include "io/gltf_test_util.h"
 #include "robustness/robustness_util.h"
 
-#include <librt/io/scene_file.h>
+#include <librt/loader/scene_file.h>
 
 #include <gtest/gtest.h>
 

@@ -5,9 +5,9 @@
 #include "robustness/obj_input_util.h"
 #include "robustness/robustness_util.h"
 
-#include <librt/io/obj.h>
-#include <librt/io/obj_materials.h>
 #include <librt/io/texture_io.h>
+#include <librt/obj/obj.h>
+#include <librt/obj/obj_materials.h>
 #include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>

@@ -5,8 +5,8 @@
 #include "robustness/obj_input_util.h"
 #include "robustness/robustness_util.h"
 
-#include <librt/io/obj.h>
-#include <librt/io/obj_materials.h>
+#include <librt/obj/obj.h>
+#include <librt/obj/obj_materials.h>
 #include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>

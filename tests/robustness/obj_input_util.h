@@ -4,7 +4,7 @@
 // load that collects the warnings.
 
 #include <librt/geometry/mesh.h>
-#include <librt/io/obj.h>
+#include <librt/obj/obj.h>
 
 #include <filesystem>
 #include <string>

@@ -13,9 +13,9 @@
 #include <librt/geometry/procedural.h>
 #include <librt/integrator/integrators.h>
 #include <librt/io/image_io.h>
-#include <librt/io/obj_materials.h>
 #include <librt/io/texture_io.h>
 #include <librt/material/texture.h>
+#include <librt/obj/obj_materials.h>
 #include <librt/render/renderer.h>
 #include <librt/scene/scene.h>
 

@@ -5,8 +5,8 @@
 #include "robustness/robustness_util.h"
 
 #include <librt/io/image_io.h>
-#include <librt/io/obj.h>
 #include <librt/io/texture_io.h>
+#include <librt/obj/obj.h>
 
 #include <gtest/gtest.h>
 

@@ -6,8 +6,8 @@
 #include "robustness/robustness_util.h"
 
 #include <librt/core/untrusted_text.h>
-#include <librt/io/gltf.h>
-#include <librt/io/obj.h>
+#include <librt/gltf/gltf.h>
+#include <librt/obj/obj.h>
 
 #include <gtest/gtest.h>
 

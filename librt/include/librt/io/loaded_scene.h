@@ -11,7 +11,7 @@
 #include <vector>
 
 // What a scene file (glTF or OBJ) becomes: a Scene ready to commit, the camera to render
-// it through, and what had to be left out. io/gltf_scene.h and io/scene_file.h fill it.
+// it through, and what had to be left out. gltf/gltf_scene.h and loader/scene_file.h fill it.
 
 namespace librt {
 

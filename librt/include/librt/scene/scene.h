@@ -92,7 +92,7 @@ public:
     /// for comparisons; SAH, the default, is faster to trace).
     std::uint32_t add_mesh(TriangleMesh mesh, std::uint32_t material, BvhBuilder builder);
     /// Adds a mesh whose triangle i uses scene material triangle_materials[i] (the mesh's
-    /// own materials are ignored; io/obj_materials.h add_mesh_with_mtl maps them to scene
+    /// own materials are ignored; obj/obj_materials.h add_mesh_with_mtl maps them to scene
     /// materials and calls this); returns its object id. Throws librt::Error for an invalid
     /// mesh (librt::validate), a count of ids other than the triangle count, or an unknown
     /// material id.

@@ -5,12 +5,12 @@
 
 #include <filesystem>
 
-// One entry point for "render this file": glTF (.gltf, .glb) through io/gltf_scene.h, or a
+// One entry point for "render this file": glTF (.gltf, .glb) through gltf/gltf_scene.h, or a
 // Wavefront OBJ with its MTL materials as a whole scene.
 
 namespace librt {
 
-/// An OBJ (and its MTL) as a scene: one mesh with its MTL materials (io/obj_materials.h
+/// An OBJ (and its MTL) as a scene: one mesh with its MTL materials (obj/obj_materials.h
 /// add_mesh_with_mtl; faces without a material are diffuse 0.8), default_camera() framing
 /// it and, unless some MTL material emits, default_light(). Throws librt::Error from
 /// load_obj, or for a mesh with no triangles.

@@ -1,7 +1,7 @@
 // Materials (metallic-roughness and the KHR_materials_* / KHR_texture_transform extensions
 // librt reads), textures, samplers and image decoding (stb_image, PNG and JPEG only).
 
-#include "io/gltf_internal.h"
+#include "gltf/gltf_internal.h"
 #include "io/png_check.h"
 
 #include <librt/core/error.h>

@@ -1,11 +1,11 @@
 // glTF materials to librt's MetallicRoughness kind, with their textures, samplers,
 // KHR_texture_transform, alpha modes and double-sidedness (see gltf_scene_materials.h).
 
-#include "io/gltf_scene_materials.h"
+#include "gltf/gltf_scene_materials.h"
 
 #include <librt/core/error.h>
 #include <librt/geometry/tangents.h>
-#include <librt/io/gltf_scene.h>
+#include <librt/gltf/gltf_scene.h>
 
 #include <glm/common.hpp>
 

@@ -2,7 +2,7 @@
 // pre-pass over the JSON with nlohmann-json that checks what tinygltf would trust or read
 // loosely (see check_json), so every such error names its JSON path.
 
-#include "io/gltf_internal.h"
+#include "gltf/gltf_internal.h"
 
 #include <librt/core/error.h>
 #include <librt/core/untrusted_text.h>

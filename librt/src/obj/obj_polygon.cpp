@@ -1,4 +1,4 @@
-#include "io/obj_polygon.h"
+#include "obj/obj_polygon.h"
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>

@@ -2,7 +2,7 @@
 // from the chosen scene's roots without recursion, composing transforms into the world
 // matrices of instances, cameras and lights.
 
-#include "io/gltf_internal.h"
+#include "gltf/gltf_internal.h"
 
 #include <librt/core/untrusted_text.h>
 

@@ -1,13 +1,13 @@
 #pragma once
 
 #include <librt/export.h>
-#include <librt/io/gltf.h>
+#include <librt/gltf/gltf.h>
 #include <librt/io/loaded_scene.h>
 #include <librt/material/material.h>
 
 #include <cstdint>
 
-// A loaded glTF file (io/gltf.h) turned into a librt Scene and camera: every primitive of
+// A loaded glTF file (gltf/gltf.h) turned into a librt Scene and camera: every primitive of
 // a glTF mesh becomes one mesh prototype, stored and BVH-built once, and every node placing
 // the mesh an instance of each; materials, textures, punctual lights and cameras mapped to
 // librt's.

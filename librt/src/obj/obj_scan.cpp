@@ -1,4 +1,4 @@
-#include "io/obj_scan.h"
+#include "obj/obj_scan.h"
 
 #include <librt/core/error.h>
 

@@ -4,7 +4,7 @@
 // materials, their textures to scene textures (once per image, sampler and colour space),
 // and the uv set and tangents a primitive's mesh needs for them. Private to io/.
 
-#include <librt/io/gltf.h>
+#include <librt/gltf/gltf.h>
 #include <librt/scene/scene.h>
 
 #include <cstdint>

@@ -3,13 +3,13 @@
 // obj_save.cpp.
 
 #include "io/file_io.h"
-#include "io/obj_mtl.h"
-#include "io/obj_polygon.h"
-#include "io/obj_scan.h"
-#include "io/obj_vertices.h"
+#include "obj/obj_mtl.h"
+#include "obj/obj_polygon.h"
+#include "obj/obj_scan.h"
+#include "obj/obj_vertices.h"
 
 #include <librt/core/error.h>
-#include <librt/io/obj.h>
+#include <librt/obj/obj.h>
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>

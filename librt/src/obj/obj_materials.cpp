@@ -1,6 +1,6 @@
 #include <librt/core/error.h>
-#include <librt/io/obj_materials.h>
 #include <librt/io/texture_io.h>
+#include <librt/obj/obj_materials.h>
 
 #include <cstdio>
 #include <string>

@@ -1,8 +1,8 @@
-#include "io/gltf_scene_materials.h"
+#include "gltf/gltf_scene_materials.h"
 
 #include <librt/core/error.h>
 #include <librt/film/camera.h>
-#include <librt/io/gltf_scene.h>
+#include <librt/gltf/gltf_scene.h>
 #include <librt/material/texture.h>
 
 #include <glm/geometric.hpp>

@@ -1,9 +1,9 @@
 #include <librt/core/error.h>
-#include <librt/io/gltf.h>
-#include <librt/io/gltf_scene.h>
-#include <librt/io/obj.h>
-#include <librt/io/obj_materials.h>
-#include <librt/io/scene_file.h>
+#include <librt/gltf/gltf.h>
+#include <librt/gltf/gltf_scene.h>
+#include <librt/loader/scene_file.h>
+#include <librt/obj/obj.h>
+#include <librt/obj/obj_materials.h>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>

@@ -3,7 +3,7 @@
 #include "io/file_io.h"
 
 #include <librt/core/error.h>
-#include <librt/io/obj.h>
+#include <librt/obj/obj.h>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>

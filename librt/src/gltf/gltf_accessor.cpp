@@ -2,7 +2,7 @@
 // buffer's real size) before anything is allocated, and the output is charged to the
 // Context's allowance, so a huge declared count fails instead of allocating.
 
-#include "io/gltf_internal.h"
+#include "gltf/gltf_internal.h"
 
 #include <algorithm>
 #include <cmath>

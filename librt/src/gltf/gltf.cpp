@@ -1,11 +1,11 @@
 // load_gltf: reads the file, checks the container and the JSON (with paths), lets
 // tinygltf parse, then reads materials, the node graph and meshes, and decodes images.
 
-#include "io/gltf_internal.h"
+#include "gltf/gltf_internal.h"
 
 #include <librt/core/error.h>
 #include <librt/core/untrusted_text.h>
-#include <librt/io/gltf.h>
+#include <librt/gltf/gltf.h>
 
 #include <algorithm>
 #include <atomic>

@@ -1,6 +1,6 @@
-#include "io/obj_mtl.h"
+#include "obj/obj_mtl.h"
 
-#include "io/obj_scan.h"
+#include "obj/obj_scan.h"
 
 #include <librt/core/error.h>
 

@@ -63,7 +63,7 @@ struct ObjLoadOptions {
 ///   (an empty mesh). A UTF-8 byte order mark is skipped. Lines may end in LF, CRLF or CR,
 ///   the last one with or without a newline, and be of any length.
 /// - A missing MTL file is a warning, not an error: the faces get the default material.
-///   MTL files are read by librt itself (io/obj_mtl.h): numbers as strictly as the OBJ's
+///   MTL files are read by librt itself (obj/obj_mtl.h): numbers as strictly as the OBJ's
 ///   ("path:line: problem"); material names, in newmtl and usemtl alike, are the whole rest
 ///   of the line, spaces included; map_Kd options are skipped and backslashes in its path
 ///   become slashes; values replaced (d outside [0, 1], a transparent material's Ni <= 0)

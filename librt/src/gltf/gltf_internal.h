@@ -1,6 +1,6 @@
 #pragma once
 
-// Private pieces of load_gltf (librt/io/gltf.h), one stage a file:
+// Private pieces of load_gltf (librt/gltf/gltf.h), one stage a file:
 //   gltf_file.cpp       reading bytes (the one function that touches the file system)
 //   gltf_container.cpp  GLB container checks, then a JSON pre-pass on nlohmann-json
 //   gltf_accessor.cpp   accessors -> floats / indices, range-checked before allocating
@@ -10,7 +10,7 @@
 //   gltf.cpp            load_gltf: the stages in order
 // tinygltf types never leave librt/src.
 
-#include <librt/io/gltf.h>
+#include <librt/gltf/gltf.h>
 
 #include <tiny_gltf.h>
 

@@ -1,7 +1,7 @@
 // glTF meshes to GltfMesh: attributes read and checked, indices range-checked, strips and
 // fans turned into triangles.
 
-#include "io/gltf_internal.h"
+#include "gltf/gltf_internal.h"
 
 #include <librt/geometry/mesh.h>
 

@@ -1,8 +1,8 @@
 // File access and messages of the glTF loader: read_regular_file (the one place bytes
 // come from), tinygltf's routed file callbacks, and Context.
 
+#include "gltf/gltf_internal.h"
 #include "io/file_io.h"
-#include "io/gltf_internal.h"
 
 #include <librt/core/error.h>
 #include <librt/core/untrusted_text.h>
