@@ -114,6 +114,81 @@ if(_self MATCHES "good\\.cpp" OR NOT _bad_count EQUAL 9)
   message(FATAL_ERROR "self-check: expected the 9 bad lines and no good one, found:${_self}")
 endif()
 
+# ---- BEGIN rule: MaterialKind:: only in material/ and io/ (issue 43) -------------------
+# The renderer asks a material what it does through the BSDF kinds' answers
+# (src/material/bsdf_dispatch.h: lobes_of, transmits, near_specular, casts_caustics,
+# is_lambertian, multiply_color), never by naming its kind, so a new kind cannot be
+# forgotten by a switch outside material/. `MaterialKind::` (or `using enum MaterialKind`)
+# may appear only in librt/{include/librt,src}/material/ (the kinds and their dispatch)
+# and io/ (loaders build materials). Self-contained: its own scratch self-check and scan.
+set(_material_kind_areas material io)
+set(_material_kind_patterns
+  "(^|[^A-Za-z0-9_])MaterialKind[ \t]*::"
+  "using[ \t]+enum[ \t]+(librt[ \t]*::[ \t]*)?MaterialKind([^A-Za-z0-9_]|$)")
+
+# Sets out_var to one "\n  file:line: problem" per line outside material/ and io/ that
+# names a MaterialKind enumerator.
+function(librt_check_material_kind root files out_var)
+  set(found "")
+  foreach(rel IN LISTS files)
+    if(NOT rel MATCHES "^librt/(include/librt|src)/([a-z_]+)/")
+      continue()
+    endif()
+    if(CMAKE_MATCH_2 IN_LIST _material_kind_areas)
+      continue()
+    endif()
+    file(STRINGS "${root}/${rel}" lines)
+    set(number 0)
+    foreach(line IN LISTS lines)
+      math(EXPR number "${number} + 1")
+      librt_code_of_line("${line}" code)
+      foreach(pattern IN LISTS _material_kind_patterns)
+        if(code MATCHES "${pattern}")
+          string(STRIP "${line}" shown)
+          string(APPEND found "\n  ${rel}:${number}: only material/ and io/ name a "
+                              "MaterialKind (ask the BSDF, material/bsdf_dispatch.h): ${shown}")
+          break()
+        endif()
+      endforeach()
+    endforeach()
+  endforeach()
+  set(${out_var} "${found}" PARENT_SCOPE)
+endfunction()
+
+librt_scratch_folder(librt_material_kind_selftest _kind_scratch)
+file(MAKE_DIRECTORY "${_kind_scratch}/librt/src/integrator" "${_kind_scratch}/librt/src/material"
+     "${_kind_scratch}/librt/include/librt/io" "${_kind_scratch}/librt/include/librt/scene")
+file(WRITE "${_kind_scratch}/librt/src/integrator/bad.cpp"
+  "if (m.kind == MaterialKind::Diffuse) {\ncase librt::MaterialKind ::Mirror:\n"
+  "using enum MaterialKind;\n")
+file(WRITE "${_kind_scratch}/librt/include/librt/scene/bad.h"
+  "return m.kind != MaterialKind::Emissive;\n")
+file(WRITE "${_kind_scratch}/librt/src/integrator/good.cpp"
+  "// MaterialKind::Diffuse in a comment\nif (bsdfs::is_lambertian(m)) {\n"
+  "MyMaterialKind::Value v;\nMaterialKind kind = m.kind;\n")
+file(WRITE "${_kind_scratch}/librt/src/material/good.h"
+  "case MaterialKind::Mirror:\nstatic constexpr MaterialKind kKind = MaterialKind::Mirror;\n")
+file(WRITE "${_kind_scratch}/librt/include/librt/io/good.h"
+  "m.kind = MaterialKind::MetallicRoughness;\n")
+librt_check_material_kind("${_kind_scratch}"
+  "librt/src/integrator/bad.cpp;librt/include/librt/scene/bad.h;librt/src/integrator/good.cpp;librt/src/material/good.h;librt/include/librt/io/good.h"
+  _kind_self)
+file(REMOVE_RECURSE "${_kind_scratch}")
+string(REGEX MATCHALL "/bad\\.(cpp|h):" _kind_bad_hits "${_kind_self}")
+list(LENGTH _kind_bad_hits _kind_bad_count)
+if(_kind_self MATCHES "good\\.(cpp|h)" OR NOT _kind_bad_count EQUAL 4)
+  message(FATAL_ERROR
+    "MaterialKind self-check: expected the 4 bad lines and no good one, found:${_kind_self}")
+endif()
+
+librt_library_files("${ROOT}" _kind_files _kind_file_count)
+librt_check_material_kind("${ROOT}" "${_kind_files}" _kind_found)
+if(_kind_found)
+  message(FATAL_ERROR "a MaterialKind named outside material/ and io/ (docs/architecture.md, "
+                      "\"a material kind\"):${_kind_found}")
+endif()
+# ---- END rule: MaterialKind:: only in material/ and io/ -----------------------------------
+
 librt_library_files("${ROOT}" _files _file_count)
 librt_check_layering("${ROOT}" "${_files}" _found)
 if(_found)

@@ -19,6 +19,8 @@
 // together are all paths, each set estimated without bias, so their sum is unbiased: no
 // MIS weight is needed across them, and neither part pays for the other's densities.
 
+#include "material/bsdf_dispatch.h"
+
 #include <librt/material/material.h>
 
 #include <cstdint>
@@ -33,26 +35,11 @@ struct SceneSphere;
 
 /// True when a surface of material m (per-hit inputs applied, Scene::shade) is a caustic
 /// caster G: every part of its BSDF is specular or a microfacet lobe of perceptual
-/// roughness <= max_roughness, with no diffuse part (a metallic-roughness material only
-/// when wholly metal or wholly transmissive). The same test on both sides of the split.
+/// roughness <= max_roughness, with no diffuse part; each BSDF kind says when it is one
+/// (bsdfs::casts_caustics). The same test on both sides of the split.
 /// Inline: the tests call it, and a shared librt exports only the public API.
 [[nodiscard]] inline bool casts_caustics(const Material& m, float max_roughness) {
-    switch (m.kind) {
-        case MaterialKind::Mirror:
-        case MaterialKind::Dielectric:
-            return true;
-        case MaterialKind::Conductor:
-        case MaterialKind::RoughDielectric:
-            return m.roughness <= max_roughness;
-        case MaterialKind::MetallicRoughness:
-            // Its Lambert layer weighs (1 - metallic)(1 - transmission): a caster only
-            // without it.
-            return m.roughness <= max_roughness && (m.metallic >= 1.0f || m.transmission >= 1.0f);
-        case MaterialKind::Diffuse:
-        case MaterialKind::Emissive:
-            break;
-    }
-    return false;
+    return bsdfs::casts_caustics(m, max_roughness);
 }
 
 /// Where a camera path stands against the caustic set: after its first scattering vertex

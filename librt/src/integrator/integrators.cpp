@@ -138,7 +138,7 @@ struct Vertex {
     // Lambert first, outside dispatch(): g++ keeps dispatch() with this lambda out of line
     // (a call and an EvalPdf through memory per light sample: callgrind on the synthesis,
     // 46M instructions); the same expressions as its Diffuse case below.
-    if (v.m.kind == MaterialKind::Diffuse) [[likely]] {
+    if (bsdfs::is_lambertian(v.m)) [[likely]] {
         const float cos_s = glm::dot(v.n, wi), cos_g = glm::dot(v.g, wi);
         cos_i = std::fabs(cos_s);
         // Diffuse::eval_cos, from the albedo alone (no ShadingPoint built).
@@ -284,9 +284,7 @@ struct GuideContext {
 /// any mixture would, and its vertices are left unguided.
 bool near_specular(const Material& m) {
     constexpr float kRoughness = 0.1f;
-    if (!(m.roughness < kRoughness)) return false;
-    return m.kind == MaterialKind::Conductor || m.kind == MaterialKind::RoughDielectric ||
-           (m.kind == MaterialKind::MetallicRoughness && m.metallic >= 1.0f);
+    return bsdfs::near_specular(m, kRoughness);
 }
 
 /// A direction drawn at a guided vertex: wi (world), f |cos| / pdf and the mixture's pdf.
@@ -316,7 +314,7 @@ GuidedSample sample_guided(Vertex& v, const guiding::DirLeaf& leaf, float alpha,
     // each a random subset, and Sobol' would lose its 2D stratification at guided bounces).
     if (u.x < alpha) {
         u.x = std::min(u.x / alpha, 0x1.fffffep-1f);
-        if (v.m.kind == MaterialKind::Diffuse) {
+        if (bsdfs::is_lambertian(v.m)) {
             g.wi = Frame::from_normal(v.n).to_world(sample_cosine_hemisphere(u));
         } else {
             const ShadingPoint& sp = v.point();
@@ -466,7 +464,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         }
         // Lambert's lobes are a constant: no dispatch for the common kind.
         const BsdfLobe material_lobes =
-            m.kind == MaterialKind::Diffuse ? bsdfs::Diffuse::kLobes : bsdfs::lobes_of(m);
+            bsdfs::is_lambertian(m) ? bsdfs::Diffuse::kLobes : bsdfs::lobes_of(m);
         if (has(material_lobes, BsdfLobe::Null)) [[unlikely]] {
             // A crossing is no bounce: depth, the last vertex's MIS state (bounce) and light
             // choice point stay, so an emitter found behind it is weighed against the light
@@ -553,14 +551,13 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         sampler.set_dimension(dim + SampleDimensions::k_bounce_lobe);
         // Lambert's one lobe needs no choice: its kind test first spares the lobe count.
         static_assert(!chooses_lobe(bsdfs::Diffuse::kLobes));
-        const float uc = m.kind != MaterialKind::Diffuse && chooses_lobe(material_lobes)
-                             ? sampler.next_1d()
-                             : 0.0f;
+        const float uc =
+            !bsdfs::is_lambertian(m) && chooses_lobe(material_lobes) ? sampler.next_1d() : 0.0f;
         sampler.set_dimension(dim + SampleDimensions::k_bounce_bsdf);
         const glm::vec2 u = sampler.next_2d();
         glm::vec3 wi_world;
         BsdfSample bs;
-        if (m.kind == MaterialKind::Diffuse) [[likely]] {
+        if (bsdfs::is_lambertian(m)) [[likely]] {
             // Lambert in world space, as before the BSDF seam: its sample needs only the
             // shading frame's to_world, so neither the geometric normal's local copy nor
             // the ShadingPoint is built (callgrind on the synthesis: fewer instructions

@@ -16,13 +16,23 @@
 namespace librt::bsdfs {
 
 struct Conductor {
-    static constexpr BsdfLobe kLobes = BsdfLobe::Glossy | BsdfLobe::Reflection;
+    static constexpr MaterialKind kKind = MaterialKind::Conductor;
+    /// The rough lobe; at roughness 0 it is a specular reflection.
+    static constexpr BsdfLobe kRough = BsdfLobe::Glossy | BsdfLobe::Reflection;
+    static constexpr BsdfLobe kLobes = kRough | BsdfLobe::Specular;
+
+    static bool transmits(const Material& /*m*/) { return false; }
+    static bool near_specular(const Material& m, float limit) { return m.roughness < limit; }
+    static bool casts_caustics(const Material& m, float max_roughness) {
+        return m.roughness <= max_roughness;
+    }
+    static void multiply_color(Material& m, const glm::vec3& c) { m.albedo *= c; }
 
     /// Roughness 0 without anisotropy: a smooth mirror (anisotropy makes alpha_t > 0).
     static bool smooth(const Material& m) { return m.roughness <= 0.0f && m.anisotropy <= 0.0f; }
 
     static BsdfLobe lobes(const Material& m) {
-        return smooth(m) ? BsdfLobe::SpecularReflection : kLobes;
+        return smooth(m) ? BsdfLobe::SpecularReflection : kRough;
     }
 
     /// wi is a reflection that both normals agree on.
@@ -31,9 +41,9 @@ struct Conductor {
     }
 
     [[gnu::noinline]] static BsdfSample sample(const Material& m, const ShadingPoint& p,
-                                               const glm::vec3& wo, float /*uc*/, glm::vec2 u) {
+                                               const glm::vec3& wo, float uc, glm::vec2 u) {
         if (m.anisotropy > 0.0f) [[unlikely]]
-            return sample_anisotropic(m, p, wo, u);
+            return microfacet::sample_anisotropic<Conductor>(m, p, wo, uc, u);
         if (m.roughness <= 0.0f) {
             glm::vec3 wi(-wo.x, -wo.y, wo.z);
             if (!p.frame.above_geometry(wi)) wi = reflect(-wo, p.frame.geometric);
@@ -42,13 +52,13 @@ struct Conductor {
         }
         if (wo.z <= 0.0f) return {};
         return sample_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo,
-                           u);
+                           uc, u);
     }
 
     [[gnu::noinline]] static glm::vec3 eval(const Material& m, const ShadingPoint& p,
                                             const glm::vec3& wo, const glm::vec3& wi) {
         if (m.anisotropy > 0.0f) [[unlikely]]
-            return eval_anisotropic(m, p, wo, wi);
+            return microfacet::eval_anisotropic<Conductor>(m, p, wo, wi);
         if (m.roughness <= 0.0f || !reaches(p, wo, wi)) return glm::vec3(0.0f);
         return eval_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
     }
@@ -56,15 +66,15 @@ struct Conductor {
     [[gnu::noinline]] static float pdf(const Material& m, const ShadingPoint& p,
                                        const glm::vec3& wo, const glm::vec3& wi) {
         if (m.anisotropy > 0.0f) [[unlikely]]
-            return pdf_anisotropic(m, p, wo, wi);
+            return microfacet::pdf_anisotropic<Conductor>(m, p, wo, wi);
         if (m.roughness <= 0.0f || !reaches(p, wo, wi)) return 0.0f;
-        return pdf_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, wo, wi);
+        return pdf_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
     }
 
-    /// The rough sample for wo.z > 0, given the lobe.
+    /// The rough sample for wo.z > 0, given the lobe (one lobe: uc is unused).
     template <class Ggx>
     static BsdfSample sample_with(const Ggx& ggx, const Material& m, const ShadingPoint& p,
-                                  const glm::vec3& wo, glm::vec2 u) {
+                                  const glm::vec3& wo, float /*uc*/, glm::vec2 u) {
         const glm::vec3 h = ggx.sample_visible_normal(wo, u);
         const glm::vec3 wi = reflect(-wo, h);
         if (!reaches(p, wo, wi)) return {};
@@ -72,7 +82,7 @@ struct Conductor {
         // f cos_i / pdf with pdf = vndf / (4 wo.h): F G2 / G1(wo).
         const glm::vec3 f = microfacet::fresnel_conductor(oh, m.eta, m.k);
         const float g = ggx.g2(wo, wi) / ggx.g1(wo);
-        return {wi, p.albedo * f * g, pdf_with(ggx, wo, wi), kLobes};
+        return {wi, p.albedo * f * g, pdf_with(ggx, m, p, wo, wi), kRough};
     }
 
     /// eval() for a reflection that reaches, given the lobe.
@@ -87,31 +97,9 @@ struct Conductor {
 
     /// pdf() for a reflection that reaches, given the lobe.
     template <class Ggx>
-    static float pdf_with(const Ggx& ggx, const glm::vec3& wo, const glm::vec3& wi) {
+    static float pdf_with(const Ggx& ggx, const Material& /*m*/, const ShadingPoint& /*p*/,
+                          const glm::vec3& wo, const glm::vec3& wi) {
         return ggx.reflection_pdf(wo, glm::normalize(wo + wi));
-    }
-
-    // Anisotropic materials, out of line (see microfacet_anisotropic.h).
-    [[gnu::noinline, gnu::cold]] static BsdfSample sample_anisotropic(const Material& m,
-                                                                      const ShadingPoint& p,
-                                                                      const glm::vec3& wo,
-                                                                      glm::vec2 u) {
-        if (wo.z <= 0.0f) return {};
-        return sample_with(microfacet::anisotropic_lobe(m, p), m, p, wo, u);
-    }
-    [[gnu::noinline, gnu::cold]] static glm::vec3 eval_anisotropic(const Material& m,
-                                                                   const ShadingPoint& p,
-                                                                   const glm::vec3& wo,
-                                                                   const glm::vec3& wi) {
-        if (!reaches(p, wo, wi)) return glm::vec3(0.0f);
-        return eval_with(microfacet::anisotropic_lobe(m, p), m, p, wo, wi);
-    }
-    [[gnu::noinline, gnu::cold]] static float pdf_anisotropic(const Material& m,
-                                                              const ShadingPoint& p,
-                                                              const glm::vec3& wo,
-                                                              const glm::vec3& wi) {
-        if (!reaches(p, wo, wi)) return 0.0f;
-        return pdf_with(microfacet::anisotropic_lobe(m, p), wo, wi);
     }
 };
 

@@ -14,8 +14,14 @@
 namespace librt::bsdfs {
 
 struct Dielectric {
+    static constexpr MaterialKind kKind = MaterialKind::Dielectric;
     static constexpr BsdfLobe kLobes =
         BsdfLobe::SpecularReflection | BsdfLobe::SpecularTransmission;
+
+    static bool transmits(const Material& /*m*/) { return true; }
+    static bool near_specular(const Material& /*m*/, float /*limit*/) { return true; }
+    static bool casts_caustics(const Material& /*m*/, float /*max_roughness*/) { return true; }
+    static void multiply_color(Material& m, const glm::vec3& c) { m.albedo *= c; }
 
     struct Scattered {
         glm::vec3 wi;

@@ -8,7 +8,13 @@
 namespace librt::bsdfs {
 
 struct Diffuse {
+    static constexpr MaterialKind kKind = MaterialKind::Diffuse;
     static constexpr BsdfLobe kLobes = BsdfLobe::DiffuseReflection;
+
+    static bool transmits(const Material& /*m*/) { return false; }
+    static bool near_specular(const Material& /*m*/, float /*limit*/) { return false; }
+    static bool casts_caustics(const Material& /*m*/, float /*max_roughness*/) { return false; }
+    static void multiply_color(Material& m, const glm::vec3& c) { m.albedo *= c; }
 
     /// Reflects only where both the shading and the geometric normal say "above": a
     /// direction under the real surface would leak light through it.
@@ -39,7 +45,8 @@ struct Diffuse {
     /// Lambert depends on wi only through its cosines with the shading normal (cos_s, wi.z
     /// in the local frame) and the geometric normal (cos_g), both turned to wo's side: eval()
     /// and pdf() from those, so that the path loop weighs a light sample with world-space
-    /// dot products and builds no local frame for it (bsdf_dispatch.h's eval_pdf_cosines).
+    /// dot products and builds no local frame for it (light_eval in
+    /// src/integrator/integrators.cpp takes eval_cos / pdf_cos from any kind that has them).
     static bool reaches_cos(float cos_s, float cos_g) { return cos_s > 0.0f && cos_g > 0.0f; }
     static glm::vec3 eval_cos(const ShadingPoint& p, float cos_s, float cos_g) {
         return reaches_cos(cos_s, cos_g) ? p.albedo * k_inv_pi : glm::vec3(0.0f);

@@ -1,9 +1,12 @@
 #pragma once
 
-// The one dispatch point from MaterialKind to its BSDF: each kind's type (in its own
-// bsdf_<kind>.h) provides kLobes and static sample / eval / pdf; a new kind adds its header
-// and one case in dispatch(). Private, and inline so that the integrators' path loop
-// calls the BSDFs without a call through the public, out-of-line functions of bsdf.h.
+// The one dispatch point from MaterialKind to its BSDF: each kind is a type in its own
+// bsdf_<kind>.h that satisfies BsdfKind (bsdf_kind.h: its kKind, kLobes, sample / eval /
+// pdf and the facts the integrators and the scene ask: transmits, near_specular,
+// casts_caustics, multiply_color); a new kind adds its header and one case in dispatch().
+// A MaterialKind without a case, or a type that misses a fact, does not compile.
+// Private, and inline so that the integrators' path loop calls the BSDFs without a call
+// through the public, out-of-line functions of bsdf.h.
 // The microfacet kinds (Conductor, RoughDielectric, MetallicRoughness) mark their own
 // sample / eval / pdf gnu::noinline: their bodies (isotropic and anisotropic) inlined into
 // the path loop made g++ stop inlining the loop's helpers (microfacet_anisotropic.h).
@@ -11,6 +14,8 @@
 #include "material/bsdf_conductor.h"
 #include "material/bsdf_dielectric.h"
 #include "material/bsdf_diffuse.h"
+#include "material/bsdf_emissive.h"
+#include "material/bsdf_kind.h"
 #include "material/bsdf_metallic_roughness.h"
 #include "material/bsdf_mirror.h"
 #include "material/bsdf_rough_dielectric.h"
@@ -20,47 +25,80 @@
 namespace librt {
 namespace bsdfs {
 
-/// A surface that scatters nothing (MaterialKind::Emissive: a light's own surface).
-struct Black {
-    static constexpr BsdfLobe kLobes = BsdfLobe::None;
-    static BsdfSample sample(const Material&, const ShadingPoint&, const glm::vec3&, float,
-                             glm::vec2) {
-        return {};
-    }
-    static glm::vec3 eval(const Material&, const ShadingPoint&, const glm::vec3&,
-                          const glm::vec3&) {
-        return glm::vec3(0.0f);
-    }
-    static float pdf(const Material&, const ShadingPoint&, const glm::vec3&, const glm::vec3&) {
-        return 0.0f;
-    }
-};
+/// The value dispatch() hands its function for kind T: a T, once checked to answer every
+/// fact of BsdfKind.
+template <BsdfKind T>
+[[gnu::always_inline]] constexpr T bsdf_of() {
+    return T{};
+}
 
-/// The one dispatch point from MaterialKind to its BSDF type: each type provides kLobes
-/// and static sample / eval / pdf. A new kind adds its header and one case here.
+// A MaterialKind without a case in dispatch() is an error, not a warning (-Wswitch).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic error "-Wswitch"
+/// The one dispatch point from MaterialKind to its BSDF type: fn(bsdf) with bsdf an
+/// object of the kind's type (bsdf_of<T>()). A new kind adds its header and one case here;
+/// the case label is the type's own kKind, so a type cannot sit under another's enumerator.
 template <class Fn>
-inline decltype(auto) dispatch(MaterialKind kind, Fn&& fn) {
+constexpr decltype(auto) dispatch(MaterialKind kind, Fn&& fn) {
     switch (kind) {
-        case MaterialKind::Diffuse:
-            return fn(bsdfs::Diffuse{});
-        case MaterialKind::Mirror:
-            return fn(bsdfs::Mirror{});
-        case MaterialKind::Dielectric:
-            return fn(bsdfs::Dielectric{});
-        case MaterialKind::Conductor:
-            return fn(bsdfs::Conductor{});
-        case MaterialKind::RoughDielectric:
-            return fn(bsdfs::RoughDielectric{});
-        case MaterialKind::MetallicRoughness:
-            return fn(bsdfs::MetallicRoughness{});
-        case MaterialKind::Emissive:
+        case Diffuse::kKind:
+            return fn(bsdf_of<Diffuse>());
+        case Mirror::kKind:
+            return fn(bsdf_of<Mirror>());
+        case Dielectric::kKind:
+            return fn(bsdf_of<Dielectric>());
+        case Conductor::kKind:
+            return fn(bsdf_of<Conductor>());
+        case RoughDielectric::kKind:
+            return fn(bsdf_of<RoughDielectric>());
+        case MetallicRoughness::kKind:
+            return fn(bsdf_of<MetallicRoughness>());
+        case Emissive::kKind:
             break;
     }
-    return fn(bsdfs::Black{});
+    // Emissive, and a value outside the enumerators (only a cast makes one): it scatters
+    // nothing.
+    return fn(bsdf_of<Emissive>());
+}
+#pragma GCC diagnostic pop
+
+/// True when `kind` has its own case in dispatch() (false for a value outside the
+/// enumerators): what a test walks to visit every kind.
+[[nodiscard]] constexpr bool has_bsdf(MaterialKind kind) {
+    return dispatch(kind, [](auto bsdf) { return decltype(bsdf)::kKind; }) == kind;
+}
+
+/// True when m is Lambertian (bsdfs::Diffuse): the one kind the path loop handles inline,
+/// in world space, without the dispatch (integrators.cpp's fast paths).
+[[nodiscard]] constexpr bool is_lambertian(const Material& m) { return m.kind == Diffuse::kKind; }
+
+/// Whether some ray may pass a surface of material m (BsdfKind::transmits): false for an
+/// occluder that no sample() crosses.
+[[nodiscard]] inline bool transmits(const Material& m) {
+    return dispatch(m.kind, [&](auto bsdf) { return decltype(bsdf)::transmits(m); });
+}
+
+/// Whether m's lobes are all narrower than perceptual roughness `limit`, without a diffuse
+/// part (BsdfKind::near_specular).
+[[nodiscard]] inline bool near_specular(const Material& m, float limit) {
+    return dispatch(m.kind, [&](auto bsdf) { return decltype(bsdf)::near_specular(m, limit); });
+}
+
+/// Whether m (per-hit inputs applied) is a caustic caster at max_roughness
+/// (BsdfKind::casts_caustics; caustic_paths.h).
+[[nodiscard]] inline bool casts_caustics(const Material& m, float max_roughness) {
+    return dispatch(m.kind,
+                    [&](auto bsdf) { return decltype(bsdf)::casts_caustics(m, max_roughness); });
+}
+
+/// Multiplies m's colour by c, a per-vertex colour (BsdfKind::multiply_color).
+inline void multiply_color(Material& m, const glm::vec3& c) {
+    dispatch(m.kind, [&](auto bsdf) { decltype(bsdf)::multiply_color(m, c); });
 }
 
 /// lobes() of bsdf.h, inline: a type whose lobes depend on its parameters (a rough kind
-/// at roughness 0 is specular) provides static lobes(m); the others their kLobes.
+/// at roughness 0 is specular) provides static lobes(m), a subset of its kLobes; the
+/// others have their kLobes.
 [[nodiscard]] inline BsdfLobe lobes_of(const Material& m) {
     return dispatch(m.kind, [&](auto bsdf) {
         using T = decltype(bsdf);

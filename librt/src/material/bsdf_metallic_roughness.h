@@ -44,8 +44,24 @@
 namespace librt::bsdfs {
 
 struct MetallicRoughness {
-    static constexpr BsdfLobe kLobes =
-        BsdfLobe::Diffuse | BsdfLobe::Glossy | BsdfLobe::Reflection | BsdfLobe::Transmission;
+    static constexpr MaterialKind kKind = MaterialKind::MetallicRoughness;
+    static constexpr BsdfLobe kLobes = BsdfLobe::Diffuse | BsdfLobe::Glossy | BsdfLobe::Reflection |
+                                       BsdfLobe::Transmission | BsdfLobe::Null;
+
+    /// Any transmission factor: the metallic texture may lower metallic at a point.
+    static bool transmits(const Material& m) { return m.transmission > 0.0f; }
+    /// Wholly metal only: its one GGX reflection. (A wholly transmissive one has no Lambert
+    /// layer either but stays guided, as it was when this rule lived in the path loop.)
+    static bool near_specular(const Material& m, float limit) {
+        return m.roughness < limit && m.metallic >= 1.0f;
+    }
+    /// Its Lambert layer weighs (1 - metallic)(1 - transmission): a caster only without it.
+    static bool casts_caustics(const Material& m, float max_roughness) {
+        return m.roughness <= max_roughness && (m.metallic >= 1.0f || m.transmission >= 1.0f);
+    }
+    /// glTF: COLOR_0 multiplies the base colour (albedo scales every lobe, the dielectric
+    /// specular too, which the vertex colour does not tint).
+    static void multiply_color(Material& m, const glm::vec3& c) { m.base_color *= c; }
 
     static BsdfLobe lobes(const Material& m) {
         const BsdfLobe refl = BsdfLobe::Diffuse | BsdfLobe::Glossy | BsdfLobe::Reflection;
@@ -95,7 +111,7 @@ struct MetallicRoughness {
     }
 
     /// Where wi may go: reflection above both normals, (thin) transmission below both.
-    static bool valid_side(const ShadingPoint& p, const glm::vec3& wo, const glm::vec3& wi) {
+    static bool reaches(const ShadingPoint& p, const glm::vec3& wo, const glm::vec3& wi) {
         if (wo.z <= 0.0f || wi.z == 0.0f) return false;
         return wi.z > 0.0f ? p.frame.above_geometry(wi) : !p.frame.above_geometry(wi);
     }
@@ -103,7 +119,7 @@ struct MetallicRoughness {
     [[gnu::noinline]] static BsdfSample sample(const Material& m, const ShadingPoint& p,
                                                const glm::vec3& wo, float uc, glm::vec2 u) {
         if (m.anisotropy > 0.0f) [[unlikely]]
-            return sample_anisotropic(m, p, wo, uc, u);
+            return microfacet::sample_anisotropic<MetallicRoughness>(m, p, wo, uc, u);
         if (wo.z <= 0.0f) return {};
         return sample_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo,
                            uc, u);
@@ -112,17 +128,17 @@ struct MetallicRoughness {
     [[gnu::noinline]] static glm::vec3 eval(const Material& m, const ShadingPoint& p,
                                             const glm::vec3& wo, const glm::vec3& wi) {
         if (m.anisotropy > 0.0f) [[unlikely]]
-            return eval_anisotropic(m, p, wo, wi);
-        if (!valid_side(p, wo, wi)) return glm::vec3(0.0f);
+            return microfacet::eval_anisotropic<MetallicRoughness>(m, p, wo, wi);
+        if (!reaches(p, wo, wi)) return glm::vec3(0.0f);
         return eval_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
     }
 
     [[gnu::noinline]] static float pdf(const Material& m, const ShadingPoint& p,
                                        const glm::vec3& wo, const glm::vec3& wi) {
         if (m.anisotropy > 0.0f) [[unlikely]]
-            return pdf_anisotropic(m, p, wo, wi);
-        if (!valid_side(p, wo, wi)) return 0.0f;
-        return pdf_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, wo, wi);
+            return microfacet::pdf_anisotropic<MetallicRoughness>(m, p, wo, wi);
+        if (!reaches(p, wo, wi)) return 0.0f;
+        return pdf_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
     }
 
     /// The sample for wo.z > 0, given the GGX lobe.
@@ -146,8 +162,8 @@ struct MetallicRoughness {
         // A reflection that went under the surface is no sample of its lobe (nor of the
         // other side's): without this check it would be counted with the wrong density.
         const bool wants_transmission = has(lobe, BsdfLobe::Transmission);
-        if ((wi.z < 0.0f) != wants_transmission || !valid_side(p, wo, wi)) return {};
-        const float density = pdf_with(ggx, m, wo, wi);
+        if ((wi.z < 0.0f) != wants_transmission || !reaches(p, wo, wi)) return {};
+        const float density = pdf_with(ggx, m, p, wo, wi);
         if (!(density > 0.0f)) return {};
         return {wi, eval_with(ggx, m, p, wo, wi) * std::fabs(wi.z) / density, density, lobe};
     }
@@ -180,37 +196,14 @@ struct MetallicRoughness {
 
     /// pdf() on a valid side, given the GGX lobe.
     template <class Ggx>
-    static float pdf_with(const Ggx& ggx, const Material& m, const glm::vec3& wo,
-                          const glm::vec3& wi) {
+    static float pdf_with(const Ggx& ggx, const Material& m, const ShadingPoint& /*p*/,
+                          const glm::vec3& wo, const glm::vec3& wi) {
         const auto prob = lobe_probabilities(m, wo);
         const glm::vec3 wr(wi.x, wi.y, std::fabs(wi.z));
         const glm::vec3 h = glm::normalize(wo + wr);
         const float glossy = ggx.reflection_pdf(wo, h);
         if (wi.z < 0.0f) return prob[2] * glossy;
         return prob[0] * glossy + prob[1] * cosine_hemisphere_pdf(wi.z);
-    }
-
-    // Anisotropic materials, out of line (see microfacet_anisotropic.h).
-    [[gnu::noinline, gnu::cold]] static BsdfSample sample_anisotropic(const Material& m,
-                                                                      const ShadingPoint& p,
-                                                                      const glm::vec3& wo, float uc,
-                                                                      glm::vec2 u) {
-        if (wo.z <= 0.0f) return {};
-        return sample_with(microfacet::anisotropic_lobe(m, p), m, p, wo, uc, u);
-    }
-    [[gnu::noinline, gnu::cold]] static glm::vec3 eval_anisotropic(const Material& m,
-                                                                   const ShadingPoint& p,
-                                                                   const glm::vec3& wo,
-                                                                   const glm::vec3& wi) {
-        if (!valid_side(p, wo, wi)) return glm::vec3(0.0f);
-        return eval_with(microfacet::anisotropic_lobe(m, p), m, p, wo, wi);
-    }
-    [[gnu::noinline, gnu::cold]] static float pdf_anisotropic(const Material& m,
-                                                              const ShadingPoint& p,
-                                                              const glm::vec3& wo,
-                                                              const glm::vec3& wi) {
-        if (!valid_side(p, wo, wi)) return 0.0f;
-        return pdf_with(microfacet::anisotropic_lobe(m, p), m, wo, wi);
     }
 };
 

@@ -9,7 +9,13 @@
 namespace librt::bsdfs {
 
 struct Mirror {
+    static constexpr MaterialKind kKind = MaterialKind::Mirror;
     static constexpr BsdfLobe kLobes = BsdfLobe::SpecularReflection;
+
+    static bool transmits(const Material& /*m*/) { return false; }
+    static bool near_specular(const Material& /*m*/, float /*limit*/) { return true; }
+    static bool casts_caustics(const Material& /*m*/, float /*max_roughness*/) { return true; }
+    static void multiply_color(Material& m, const glm::vec3& c) { m.albedo *= c; }
 
     static BsdfSample sample(const Material& /*m*/, const ShadingPoint& p, const glm::vec3& wo,
                              float /*uc*/, glm::vec2 /*u*/) {

@@ -21,13 +21,23 @@
 namespace librt::bsdfs {
 
 struct RoughDielectric {
-    static constexpr BsdfLobe kLobes =
+    static constexpr MaterialKind kKind = MaterialKind::RoughDielectric;
+    /// The rough lobes; at roughness 0 they are the smooth Dielectric's.
+    static constexpr BsdfLobe kRough =
         BsdfLobe::Glossy | BsdfLobe::Reflection | BsdfLobe::Transmission;
+    static constexpr BsdfLobe kLobes = kRough | Dielectric::kLobes;
+
+    static bool transmits(const Material& /*m*/) { return true; }
+    static bool near_specular(const Material& m, float limit) { return m.roughness < limit; }
+    static bool casts_caustics(const Material& m, float max_roughness) {
+        return m.roughness <= max_roughness;
+    }
+    static void multiply_color(Material& m, const glm::vec3& c) { m.albedo *= c; }
 
     /// Roughness 0 without anisotropy: the smooth Dielectric.
     static bool smooth(const Material& m) { return m.roughness <= 0.0f && m.anisotropy <= 0.0f; }
 
-    static BsdfLobe lobes(const Material& m) { return smooth(m) ? Dielectric::kLobes : kLobes; }
+    static BsdfLobe lobes(const Material& m) { return smooth(m) ? Dielectric::kLobes : kRough; }
 
     /// Index on wi's side of the surface over that on wo's side, for a transmission.
     static float eta_t(const ShadingPoint& p, float ior) {
@@ -37,7 +47,7 @@ struct RoughDielectric {
     [[gnu::noinline]] static BsdfSample sample(const Material& m, const ShadingPoint& p,
                                                const glm::vec3& wo, float uc, glm::vec2 u) {
         if (m.anisotropy > 0.0f) [[unlikely]]
-            return sample_anisotropic(m, p, wo, uc, u);
+            return microfacet::sample_anisotropic<RoughDielectric>(m, p, wo, uc, u);
         if (m.roughness <= 0.0f) return Dielectric::sample(m, p, wo, uc, u);
         if (wo.z <= 0.0f) return {};
         return sample_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo,
@@ -66,7 +76,12 @@ struct RoughDielectric {
         const float g = ggx.g2(wo, wi) / ggx.g1(wo);
         const BsdfLobe lobe =
             BsdfLobe::Glossy | (transmitted ? BsdfLobe::Transmission : BsdfLobe::Reflection);
-        return {wi, p.albedo * g, pdf_with(ggx, p, m.ior, wo, wi), lobe};
+        return {wi, p.albedo * g, pdf_with(ggx, m, p, wo, wi), lobe};
+    }
+
+    /// wo above the shading normal and wi on a valid side for the lobe its side implies.
+    static bool reaches(const ShadingPoint& p, const glm::vec3& wo, const glm::vec3& wi) {
+        return wo.z > 0.0f && valid_side(p, wi, wi.z < 0.0f);
     }
 
     /// Reflection stays above both normals, transmission goes below both.
@@ -96,19 +111,17 @@ struct RoughDielectric {
     [[gnu::noinline]] static glm::vec3 eval(const Material& m, const ShadingPoint& p,
                                             const glm::vec3& wo, const glm::vec3& wi) {
         if (m.anisotropy > 0.0f) [[unlikely]]
-            return eval_anisotropic(m, p, wo, wi);
-        if (m.roughness <= 0.0f || wo.z <= 0.0f || !valid_side(p, wi, wi.z < 0.0f))
-            return glm::vec3(0.0f);
+            return microfacet::eval_anisotropic<RoughDielectric>(m, p, wo, wi);
+        if (m.roughness <= 0.0f || !reaches(p, wo, wi)) return glm::vec3(0.0f);
         return eval_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
     }
 
     [[gnu::noinline]] static float pdf(const Material& m, const ShadingPoint& p,
                                        const glm::vec3& wo, const glm::vec3& wi) {
         if (m.anisotropy > 0.0f) [[unlikely]]
-            return pdf_anisotropic(m, p, wo, wi);
-        if (m.roughness <= 0.0f || wo.z <= 0.0f || !valid_side(p, wi, wi.z < 0.0f)) return 0.0f;
-        return pdf_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, p, m.ior, wo,
-                        wi);
+            return microfacet::pdf_anisotropic<RoughDielectric>(m, p, wo, wi);
+        if (m.roughness <= 0.0f || !reaches(p, wo, wi)) return 0.0f;
+        return pdf_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
     }
 
     /// eval() for wo.z > 0 and wi on a valid side, given the lobe.
@@ -131,9 +144,9 @@ struct RoughDielectric {
 
     /// pdf() for wo.z > 0 and wi on a valid side, given the lobe.
     template <class Ggx>
-    static float pdf_with(const Ggx& ggx, const ShadingPoint& p, float ior, const glm::vec3& wo,
-                          const glm::vec3& wi) {
-        const float eta = eta_t(p, ior);
+    static float pdf_with(const Ggx& ggx, const Material& m, const ShadingPoint& p,
+                          const glm::vec3& wo, const glm::vec3& wi) {
+        const float eta = eta_t(p, m.ior);
         const glm::vec3 h = half_vector(wo, wi, eta);
         if (h.z <= 0.0f) return 0.0f;
         const float oh = glm::dot(wo, h), ih = glm::dot(wi, h);
@@ -144,29 +157,6 @@ struct RoughDielectric {
         // divided through by eta^2).
         const float denom = ih + oh / eta;
         return (1.0f - f) * vndf * std::fabs(ih) / (denom * denom);
-    }
-
-    // Anisotropic materials, out of line (see microfacet_anisotropic.h).
-    [[gnu::noinline, gnu::cold]] static BsdfSample sample_anisotropic(const Material& m,
-                                                                      const ShadingPoint& p,
-                                                                      const glm::vec3& wo, float uc,
-                                                                      glm::vec2 u) {
-        if (wo.z <= 0.0f) return {};
-        return sample_with(microfacet::anisotropic_lobe(m, p), m, p, wo, uc, u);
-    }
-    [[gnu::noinline, gnu::cold]] static glm::vec3 eval_anisotropic(const Material& m,
-                                                                   const ShadingPoint& p,
-                                                                   const glm::vec3& wo,
-                                                                   const glm::vec3& wi) {
-        if (wo.z <= 0.0f || !valid_side(p, wi, wi.z < 0.0f)) return glm::vec3(0.0f);
-        return eval_with(microfacet::anisotropic_lobe(m, p), m, p, wo, wi);
-    }
-    [[gnu::noinline, gnu::cold]] static float pdf_anisotropic(const Material& m,
-                                                              const ShadingPoint& p,
-                                                              const glm::vec3& wo,
-                                                              const glm::vec3& wi) {
-        if (wo.z <= 0.0f || !valid_side(p, wi, wi.z < 0.0f)) return 0.0f;
-        return pdf_with(microfacet::anisotropic_lobe(m, p), p, m.ior, wo, wi);
     }
 };
 

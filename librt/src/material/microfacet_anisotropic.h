@@ -4,7 +4,8 @@
 // direction (alpha_x) and another across it (alpha_y), its Smith Lambda and its visible
 // normal sampling, and the lobe types the rough BSDFs are written against
 // (IsotropicGgx: the functions of microfacet.h unchanged; AnisotropicGgx: these, in a
-// frame turned about the normal so that its x axis is the anisotropy direction).
+// frame turned about the normal so that its x axis is the anisotropy direction), and the
+// one out-of-line anisotropic sample / eval / pdf of those BSDFs (templates over the kind).
 // Local shading frame as in microfacet.h: +z is the macro normal. Formulas from Heitz
 // 2014, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs" (JCGT
 // 3(2)), and Heitz 2018, "Sampling the GGX Distribution of Visible Normals" (JCGT 7(4)).
@@ -146,7 +147,8 @@ struct AnisotropicGgx {
 /// along the normal). Only for m.anisotropy > 0.
 ///
 /// How the rough BSDFs use it: their sample / eval / pdf are out of line (gnu::noinline)
-/// and test m.anisotropy > 0 first, handing anisotropic materials to cold functions; the
+/// and test m.anisotropy > 0 first, handing anisotropic materials to the cold functions
+/// below (sample_anisotropic, eval_anisotropic, pdf_anisotropic); the
 /// isotropic code after that test is the code from before anisotropy existed. Why out of
 /// line: the path loop inlines every BSDF, and with the anisotropic code (even only its
 /// branches and calls) inlined there g++ stopped inlining the loop's own helpers
@@ -163,6 +165,42 @@ struct AnisotropicGgx {
         g.s = y / len;
     }
     return g;
+}
+
+// The anisotropic sample / eval / pdf of a rough BSDF `Kind` (Conductor, RoughDielectric,
+// MetallicRoughness), written once: Kind's sample_with / eval_with / pdf_with given the
+// material's AnisotropicGgx, behind Kind's side test reaches(p, wo, wi). Each kind's
+// sample / eval / pdf hand a material with anisotropy > 0 to these, out of line and cold
+// (see anisotropic_lobe for why).
+
+/// Kind's sample() for an anisotropic material.
+template <class Kind>
+[[nodiscard, gnu::noinline, gnu::cold]] BsdfSample sample_anisotropic(const Material& m,
+                                                                      const ShadingPoint& p,
+                                                                      const glm::vec3& wo, float uc,
+                                                                      glm::vec2 u) {
+    if (wo.z <= 0.0f) return {};
+    return Kind::sample_with(anisotropic_lobe(m, p), m, p, wo, uc, u);
+}
+
+/// Kind's eval() for an anisotropic material.
+template <class Kind>
+[[nodiscard, gnu::noinline, gnu::cold]] glm::vec3 eval_anisotropic(const Material& m,
+                                                                   const ShadingPoint& p,
+                                                                   const glm::vec3& wo,
+                                                                   const glm::vec3& wi) {
+    if (!Kind::reaches(p, wo, wi)) return glm::vec3(0.0f);
+    return Kind::eval_with(anisotropic_lobe(m, p), m, p, wo, wi);
+}
+
+/// Kind's pdf() for an anisotropic material.
+template <class Kind>
+[[nodiscard, gnu::noinline, gnu::cold]] float pdf_anisotropic(const Material& m,
+                                                              const ShadingPoint& p,
+                                                              const glm::vec3& wo,
+                                                              const glm::vec3& wi) {
+    if (!Kind::reaches(p, wo, wi)) return 0.0f;
+    return Kind::pdf_with(anisotropic_lobe(m, p), m, p, wo, wi);
 }
 
 }  // namespace librt::microfacet

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cmath>
 
-// Smooth-surface optics shared by the BSDFs (mirror, glass, and later the specular limits
-// of rough ones). Directions are unit vectors in any orthonormal coordinates.
+// Smooth-surface optics shared by the BSDFs: the mirror and smooth glass, and the rough
+// kinds (conductor, rough glass, glTF metallic-roughness), which reflect and refract about a
+// sampled microfacet normal and at roughness 0 are their smooth limits. Directions are unit
+// vectors in any orthonormal coordinates.
 
 namespace librt {
 

@@ -1,3 +1,5 @@
+#include "material/bsdf_dispatch.h"
+
 #include <librt/core/error.h>
 #include <librt/material/bsdf.h>
 #include <librt/scene/scene.h>
@@ -22,27 +24,12 @@ bool needs_uv(const Material& m) { return m.albedo_texture >= 0 || m.varies_per_
 // holes rays pass through: a light sample there would count light no ray can see.
 bool light_sampled(const Material& m) { return m.emits() && !m.cuts_out(); }
 
-// Whether no ray passes a sphere of this material: no transmission of any kind (glass,
-// rough glass, glTF transmission), no alpha test's holes, and no emission (an emitter is a
-// light of its own, which BSDF sampling must be free to find past the cut). A one-sided
-// back absorbs, so it stays opaque; hiding from the camera lets only camera rays through,
-// and those take no light sample before their first hit.
-bool opaque(const Material& m) {
-    if (m.emits() || m.cuts_out()) return false;
-    switch (m.kind) {
-        case MaterialKind::Diffuse:
-        case MaterialKind::Mirror:
-        case MaterialKind::Conductor:
-            return true;
-        case MaterialKind::MetallicRoughness:
-            return m.transmission == 0.0f;
-        case MaterialKind::Dielectric:
-        case MaterialKind::RoughDielectric:
-        case MaterialKind::Emissive:
-            return false;
-    }
-    return false;
-}
+// Whether no ray passes a sphere of this material: its BSDF transmits nothing (glass,
+// rough glass, glTF transmission do: bsdfs::transmits), no alpha test's holes, and no
+// emission (an emitter is a light of its own, which BSDF sampling must be free to find past
+// the cut). A one-sided back absorbs, so it stays opaque; hiding from the camera lets only
+// camera rays through, and those take no light sample before their first hit.
+bool opaque(const Material& m) { return !m.emits() && !m.cuts_out() && !bsdfs::transmits(m); }
 
 }  // namespace
 

@@ -2,6 +2,8 @@
 // alpha test of cut-out materials; kept out of scene.cpp, and out of line, so a scene
 // without them pays one predictable branch per query.
 
+#include "material/bsdf_dispatch.h"
+
 #include <librt/material/bsdf.h>
 #include <librt/material/normal_map.h>
 #include <librt/scene/scene.h>
@@ -58,12 +60,9 @@ const Material& Scene::shade_varying(Hit& hit, const glm::vec3& direction,
     };
     if (m.base_color_texture.bound()) m.base_color *= lookup(m.base_color_texture);
     if (colored) {
-        // glTF COLOR_0 multiplies the base colour; for librt's other kinds, the albedo.
-        const glm::vec3 c = glm::clamp(glm::vec3(top_.color(hit)), 0.0f, 1.0f);
-        if (m.kind == MaterialKind::MetallicRoughness)
-            m.base_color *= c;
-        else
-            m.albedo *= c;
+        // glTF COLOR_0 multiplies the material's colour: the base colour of a glTF
+        // material, the albedo of librt's other kinds (each kind says which).
+        bsdfs::multiply_color(m, glm::clamp(glm::vec3(top_.color(hit)), 0.0f, 1.0f));
     }
     if (m.metallic_roughness_texture.bound()) {
         // glTF: roughness in the green channel, metalness in the blue one (both linear).

@@ -14,10 +14,10 @@
 // tagged Material (sample, eval, pdf, after Nori's BSDF interface) and lobe flags that
 // tell the integrator what kind of scattering a material has (after Mitsuba's BSDFFlags),
 // so that it asks "is this vertex specular?" instead of switching on the material kind.
-// Each kind's formulas live in their own private header (librt/src/render/bsdf_*.h); the
-// one switch over MaterialKind is in bsdf.cpp. Directions are unit vectors in the local
-// shading frame, both pointing away from the surface: wo toward where the light goes (the
-// previous path vertex), wi toward where it comes from.
+// Each kind's formulas live in their own private header (librt/src/material/bsdf_*.h); the
+// one switch over MaterialKind is src/material/bsdf_dispatch.h. Directions are unit vectors
+// in the local shading frame, both pointing away from the surface: wo toward where the
+// light goes (the previous path vertex), wi toward where it comes from.
 
 namespace librt {
 

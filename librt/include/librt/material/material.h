@@ -33,7 +33,8 @@ enum class Metal : std::uint8_t {
 /// materials are plain copyable values stored contiguously in the Scene, a hit refers to
 /// one by a 32-bit id instead of a shared_ptr, and the BSDF functions of bsdf.h dispatch
 /// on `kind` in one switch without an indirect call. A new kind adds its enumerator, its
-/// parameters here, its BSDF header in librt/src/render/ and one case in bsdf.cpp.
+/// parameters here, its BSDF header librt/src/material/bsdf_<kind>.h and one case in
+/// src/material/bsdf_dispatch.h (docs/architecture.md, "Adding a BSDF kind").
 ///
 /// Emission is honoured for every kind (a diffuse surface may also glow, which the white
 /// furnace test uses); Emissive only adds "reflects nothing".
