@@ -120,8 +120,9 @@ endif()
 # is_lambertian, multiply_color), never by naming its kind, so a new kind cannot be
 # forgotten by a switch outside material/. `MaterialKind::` (or `using enum MaterialKind`)
 # may appear only in librt/{include/librt,src}/material/ (the kinds and their dispatch)
-# and io/ (loaders build materials). Self-contained: its own scratch self-check and scan.
-set(_material_kind_areas material io)
+# and the loaders (io/, obj/, gltf/, loader/: they build materials). Self-contained: its
+# own scratch self-check and scan.
+set(_material_kind_areas material io obj gltf loader)
 set(_material_kind_patterns
   "(^|[^A-Za-z0-9_])MaterialKind[ \t]*::"
   "using[ \t]+enum[ \t]+(librt[ \t]*::[ \t]*)?MaterialKind([^A-Za-z0-9_]|$)")
@@ -145,7 +146,7 @@ function(librt_check_material_kind root files out_var)
       foreach(pattern IN LISTS _material_kind_patterns)
         if(code MATCHES "${pattern}")
           string(STRIP "${line}" shown)
-          string(APPEND found "\n  ${rel}:${number}: only material/ and io/ name a "
+          string(APPEND found "\n  ${rel}:${number}: only material/ and the loaders name a "
                               "MaterialKind (ask the BSDF, material/bsdf_dispatch.h): ${shown}")
           break()
         endif()
@@ -184,7 +185,8 @@ endif()
 librt_library_files("${ROOT}" _kind_files _kind_file_count)
 librt_check_material_kind("${ROOT}" "${_kind_files}" _kind_found)
 if(_kind_found)
-  message(FATAL_ERROR "a MaterialKind named outside material/ and io/ (docs/architecture.md, "
+  message(FATAL_ERROR "a MaterialKind named outside material/ and the loaders "
+                      "(docs/architecture.md, "
                       "\"a material kind\"):${_kind_found}")
 endif()
 # ---- END rule: MaterialKind:: only in material/ and io/ -----------------------------------
