@@ -7,12 +7,14 @@
 // for byte the one-process image (common/mpi_job.h, docs/distributed.md).
 #include "common/cli.h"
 #include "common/mpi_job.h"
+#include "common/output_image.h"
 #include "common/scene_app.h"
 
 #include <librt/core/error.h>
 #include <librt/integrator/bdpt.h>
 #include <librt/integrator/integrators.h>
 #include <librt/io/file_digest.h>
+#include <librt/io/file_extension.h>
 #include <librt/io/hdr_image.h>
 #include <librt/io/image_io.h>
 #include <librt/io/scene_file.h>
@@ -170,7 +172,7 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     if (!std::isfinite(o.exposure_ev) || std::abs(o.exposure_ev) > 64.0f)
         bad("--exposure", std::to_string(o.exposure_ev), "must be in [-64, 64] (EV stops)");
     const float scale = std::exp2(o.exposure_ev);
-    if (o.exr_half && apps::lower_extension(o.output) != ".exr")
+    if (o.exr_half && lower_extension(o.output) != ".exr")
         bad("--exr-half", "on", "needs an .exr output");
     if (!std::isfinite(o.env_strength) || o.env_strength < 0.0f)
         bad("--env-strength", std::to_string(o.env_strength), "must be finite and >= 0");
@@ -247,12 +249,12 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         ms.render.sampler = apps::sampler_kind(o.sampling);
         ms.render.adaptive.enabled = o.sampling.adaptive;
         ms.tile_size = o.mpi_tile;
-        ms.aovs = apps::lower_extension(o.output) == ".exr";
-        return apps::render_over_ranks(job, loaded.scene, camera, integrator, ms, o.quiet, o.output,
-                                       [&](const Film& film, const Image& image) {
-                                           apps::write_output(o.output, film, image, scale,
-                                                              o.exr_half);
-                                       });
+        ms.aovs = lower_extension(o.output) == ".exr";
+        return apps::render_over_ranks(
+            job, loaded.scene, camera, integrator, ms, o.quiet, o.output,
+            [&](const Film& film, const Image& image) {
+                apps::write_output(o.output, image, apps::display_look(scale, o.exr_half), &film);
+            });
     }
     apps::ProgressiveOutput out;
     out.output = o.output;
