@@ -17,6 +17,7 @@
 #include <librt/version.h>
 
 #include <CLI/CLI.hpp>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <atomic>
@@ -537,6 +538,12 @@ int render_and_write(const Scene& scene, const CameraSettings& camera_settings,
         }
     }
     return 0;
+}
+
+double peak_rss_mib() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return double(usage.ru_maxrss) / 1024.0;  // Linux reports ru_maxrss in KiB
 }
 
 void write_zoomed_crop(const std::string& path, const Image& image, int cx, int cy, int side,

@@ -9,8 +9,6 @@
 #include <librt/io/image_io.h>
 #include <librt/render/renderer.h>
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -21,17 +19,6 @@
 #include <thread>
 
 namespace librt::apps {
-
-namespace {
-
-/// Peak resident memory of this process in MiB (Linux reports ru_maxrss in KiB).
-double peak_rss_mib() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    return double(usage.ru_maxrss) / 1024.0;
-}
-
-}  // namespace
 
 void parse_size(const std::string& text, float aspect, int& width, int& height) {
     const auto bad = [&text](const char* rule) { throw Error("--size = " + text + ": " + rule); };
