@@ -5,12 +5,13 @@
 // (--single-process renders that reference without MPI scheduling). Runs without mpirun
 // too, as one rank. See docs/distributed.md.
 #include "common/cli.h"
+#include "common/output_image.h"
 
 #include <librt/accel/simd.h>
 #include <librt/core/error.h>
 #include <librt/core/tone_map.h>
 #include <librt/integrator/integrators.h>
-#include <librt/io/exr.h>
+#include <librt/io/file_extension.h>
 #include <librt/io/image_io.h>
 #include <librt/mpi/render_mpi.h>
 #include <librt/mpi/same_job.h>
@@ -76,27 +77,6 @@ double cpu_seconds() {
     getrusage(RUSAGE_SELF, &usage);
     return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
            1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
-bool ends_with(const std::string& s, const std::string& suffix) {
-    return s.size() >= suffix.size() &&
-           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-// Writes `beauty` (the film resolved, or joined to kept training passes): EXR with the
-// film's other layers (beauty linear), PFM/HDR linear, PNG tone-mapped.
-void write_film(const std::string& path, const Film& film, const Image& beauty, bool exr_half,
-                const ToneMap& tone) {
-    if (ends_with(path, ".exr")) {
-        ImageLayers layers = resolve_layers(film);
-        layers.beauty = beauty;
-        ExrWriteOptions options;
-        options.colour = exr_half ? ExrPixelType::Half : ExrPixelType::Float;
-        for (const std::string& w : write_exr(path, layers, options).warnings)
-            std::cerr << "warning: " << w << '\n';
-    } else {
-        write_image(path, beauty, tone);
-    }
 }
 
 }  // namespace
@@ -220,7 +200,7 @@ int main(int argc, char** argv) {
         settings.render.adaptive.enabled = options.adaptive;
         settings.render.cancel = &g_cancel;
         settings.tile_size = tile;
-        settings.aovs = ends_with(options.output, ".exr");
+        settings.aovs = lower_extension(options.output) == ".exr";
         settings.root_renders = !root_schedules_only;
 
         const auto start = std::chrono::steady_clock::now();
@@ -270,7 +250,9 @@ int main(int argc, char** argv) {
             if (rank == 0) std::fprintf(stderr, "interrupted: nothing written\n");
             code = 130;
         } else if (rank == 0) {
-            write_film(options.output, film, image, exr_half && !exr_float, tone);
+            apps::OutputLook look = apps::report_look(options.exposure);
+            look.exr_half = exr_half && !exr_float;
+            apps::write_output(options.output, image, look, &film);
             if (!options.quiet) {
                 std::printf("%dx%d, %d spp, %d rank%s x %d threads: %.3f s\n", film.width,
                             film.height, options.spp, size, size == 1 ? "" : "s", options.threads,

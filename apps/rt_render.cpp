@@ -7,12 +7,14 @@
 // for byte the one-process image (common/mpi_job.h, docs/distributed.md).
 #include "common/cli.h"
 #include "common/mpi_job.h"
+#include "common/output_image.h"
 #include "common/scene_app.h"
 
 #include <librt/core/error.h>
 #include <librt/integrator/bdpt.h>
 #include <librt/integrator/integrators.h>
 #include <librt/io/file_digest.h>
+#include <librt/io/file_extension.h>
 #include <librt/io/hdr_image.h>
 #include <librt/io/image_io.h>
 #include <librt/light/environment_light.h>
@@ -22,10 +24,12 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -35,6 +39,70 @@ using namespace librt;
 
 namespace {
 
+/// --integrator.
+enum class IntegratorKind { Path, Bidirectional, BruteForce };
+
+/// --light-choice: one of LightChoice's, or Auto (decided by the scene's light count).
+enum class LightChoiceOption { Auto, Power, Bounded };
+
+/// A name on the command line and the value it stands for.
+template <class Kind>
+struct Named {
+    const char* name;
+    Kind kind;
+};
+
+constexpr std::array<Named<IntegratorKind>, 3> kIntegrators{{
+    {"path", IntegratorKind::Path},
+    {"bdpt", IntegratorKind::Bidirectional},
+    {"brute", IntegratorKind::BruteForce},
+}};
+
+constexpr std::array<Named<LightChoiceOption>, 3> kLightChoices{{
+    {"auto", LightChoiceOption::Auto},
+    {"power", LightChoiceOption::Power},
+    {"bounded", LightChoiceOption::Bounded},
+}};
+
+/// An option that names one of a few values: the text as typed and, when it names one, the
+/// value (CLI11 parses it once, through Option::each). An unknown name is not CLI11's error
+/// but check_choices', which names the text as the other rules do.
+template <class Kind>
+struct Choice {
+    std::string typed;
+    std::optional<Kind> kind;
+};
+
+/// The name of `kind` in `names`.
+template <class Kind, std::size_t N>
+std::string name_of(const std::array<Named<Kind>, N>& names, Kind kind) {
+    for (const Named<Kind>& n : names) {
+        if (n.kind == kind) return n.name;
+    }
+    return "?";
+}
+
+/// `choice` set to the default `kind`.
+template <class Kind, std::size_t N>
+Choice<Kind> choice_of(const std::array<Named<Kind>, N>& names, Kind kind) {
+    return {name_of(names, kind), kind};
+}
+
+/// Registers `choice` as option `name`: each value given is looked up in `names` (exactly:
+/// the names are lower case), the last one counting.
+template <class Kind, std::size_t N>
+CLI::Option* add_choice(CLI::App& app, const std::string& name, Choice<Kind>& choice,
+                        const std::array<Named<Kind>, N>& names, const std::string& help) {
+    return app.add_option(name, choice.typed, help)
+        ->capture_default_str()
+        ->each([&choice, &names](const std::string& text) {
+            choice.kind.reset();
+            for (const Named<Kind>& n : names) {
+                if (text == n.name) choice.kind = n.kind;
+            }
+        });
+}
+
 struct Options {
     std::string scene;
     std::string output = "render.png";
@@ -42,11 +110,11 @@ struct Options {
     std::string size;  // "WxH"; empty = the camera's aspect, long side 640
     std::string camera;
     int max_depth = 5;
-    std::string light_choice = "auto";  // auto | power | bounded (LightChoice)
-    std::string integrator = "path";    // path | bdpt | brute
-    bool caustic_paths = false;         // the path tracer's caustics traced from the lights
-    float light_paths = 1.0f;           // bdpt: fraction of samples tracing a light subpath
-    int roulette_depth = -1;            // first rouletted bounce; -1 = the integrator's own
+    Choice<LightChoiceOption> light_choice = choice_of(kLightChoices, LightChoiceOption::Auto);
+    Choice<IntegratorKind> integrator = choice_of(kIntegrators, IntegratorKind::Path);
+    bool caustic_paths = false;  // the path tracer's caustics traced from the lights
+    float light_paths = 1.0f;    // bdpt: fraction of samples tracing a light subpath
+    int roulette_depth = -1;     // first rouletted bounce; -1 = the integrator's own
     int threads = 0;
     std::uint64_t seed = 0;
     double time_limit = 0.0;
@@ -58,6 +126,11 @@ struct Options {
     bool allow_outside_files = false;  // the scene may read files outside its directory
     apps::AppOptions sampling;         // --sampler, --filter, --filter-radius, --guiding(-passes)
     int mpi_tile = 32;                 // under mpirun: side of the tiles rank 0 hands out
+
+    /// --integrator, once check_choices has passed.
+    [[nodiscard]] IntegratorKind integrator_kind() const { return *integrator.kind; }
+    /// --light-choice, once check_choices has passed.
+    [[nodiscard]] LightChoiceOption light_choice_kind() const { return *light_choice.kind; }
 };
 
 [[noreturn]] void bad(const std::string& option, const std::string& value, const char* rule) {
@@ -89,8 +162,8 @@ std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
         {"--size", given(o.size)},
         {"--camera", given(o.camera)},
         {"--max-depth", std::to_string(o.max_depth)},
-        {"--light-choice", o.light_choice},
-        {"--integrator", o.integrator},
+        {"--light-choice", name_of(kLightChoices, o.light_choice_kind())},
+        {"--integrator", name_of(kIntegrators, o.integrator_kind())},
         {"--caustic-paths", on(o.caustic_paths)},
         {"--light-paths", exact(o.light_paths)},
         {"--roulette-depth", std::to_string(o.roulette_depth)},
@@ -110,10 +183,84 @@ std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
     };
 }
 
-int render_file(const Options& o, const apps::MpiJob& job) {
-    const bool root = job.rank() == 0;  // alone, or the rank that writes
-    // Everything the user typed is checked before the scene is loaded.
-    if (root) check_image_path(o.output);
+// The rules, in the order a command line meets them (the first broken one is the error,
+// "--option = value: rule"). render_file calls them before the scene is loaded.
+
+/// --max-depth's range, then the names of --light-choice and --integrator.
+void check_choices(const Options& o) {
+    if (o.max_depth < 0 || o.max_depth > 1000)
+        bad("--max-depth", std::to_string(o.max_depth), "must be in [0, 1000]");
+    if (!o.light_choice.kind)
+        bad("--light-choice", o.light_choice.typed, "must be auto, power or bounded");
+    if (!o.integrator.kind) bad("--integrator", o.integrator.typed, "must be path, bdpt or brute");
+}
+
+/// The integrator's own options: their ranges, and each only with the integrator it is for.
+void check_integrator_options(const Options& o) {
+    const IntegratorKind kind = o.integrator_kind();
+    if (kind == IntegratorKind::Bidirectional && o.max_depth > BidirectionalSettings::kMaxDepth)
+        bad("--max-depth", std::to_string(o.max_depth),
+            "must be in [0, 64] with --integrator bdpt");
+    static_assert(BidirectionalSettings::kMaxDepth == 64, "the message above");
+    if (kind != IntegratorKind::Path && o.sampling.guiding)
+        bad("--guiding", "on", "path guiding is the path tracer's: use --integrator path");
+    if (o.sampling.guiding_passes < 1 || o.sampling.guiding_passes > 20)
+        bad("--guiding-passes", std::to_string(o.sampling.guiding_passes), "must be in [1, 20]");
+    if (o.caustic_paths && kind != IntegratorKind::Path)
+        bad("--caustic-paths", "on",
+            "caustic light paths are the path tracer's: use --integrator path");
+    if (!(o.light_paths > 0.0f && o.light_paths <= 1.0f))
+        bad("--light-paths", std::to_string(o.light_paths), "must be in (0, 1]");
+    if (o.light_paths != 1.0f && kind != IntegratorKind::Bidirectional)
+        bad("--light-paths", std::to_string(o.light_paths), "needs --integrator bdpt");
+    if (o.roulette_depth < -1 || o.roulette_depth > 64)
+        bad("--roulette-depth", std::to_string(o.roulette_depth),
+            "must be in [0, 64] (or -1: the integrator's default)");
+    if (o.caustic_paths && o.sampling.guiding)
+        bad("--caustic-paths", "on", "cannot be combined with --guiding");
+}
+
+/// --time-limit: finite, and not under mpirun. Ranks render whole tiles with all their
+/// samples, not passes over the image: a frame stopped by the clock would hold different
+/// sample counts in different tiles.
+void check_time_limit(const Options& o, bool distributed) {
+    if (!std::isfinite(o.time_limit) || o.time_limit < 0.0)
+        bad("--time-limit", std::to_string(o.time_limit), "must be finite and >= 0 (0 = none)");
+    if (distributed && o.time_limit > 0.0)
+        bad("--time-limit", std::to_string(o.time_limit),
+            "is not available under mpirun (use --spp)");
+}
+
+/// With --size: the render's films, copies and output buffers must fit, before any is
+/// allocated.
+void check_memory(const Options& o, const SceneFileOptions& file_options) {
+    if (o.size.empty()) return;
+    RenderMemoryOptions memory;
+    memory.splats = o.integrator_kind() == IntegratorKind::Bidirectional || o.caustic_paths;
+    memory.adaptive = o.sampling.adaptive;
+    memory.keeps_training = o.sampling.guiding;
+    apps::check_render_memory("--size", o.size, file_options.width, file_options.height,
+                              apps::progressive_output_bytes_per_pixel(o.output, memory));
+}
+
+/// --mpi-tile, and the options of the image file and of the sky.
+void check_output_options(const Options& o) {
+    if (o.mpi_tile < 1 || o.mpi_tile > 1024)
+        bad("--mpi-tile", std::to_string(o.mpi_tile), "must be in [1, 1024]");
+    if (!std::isfinite(o.exposure_ev) || std::abs(o.exposure_ev) > 64.0f)
+        bad("--exposure", std::to_string(o.exposure_ev), "must be in [-64, 64] (EV stops)");
+    if (o.exr_half && lower_extension(o.output) != ".exr")
+        bad("--exr-half", "on", "needs an .exr output");
+    if (!std::isfinite(o.env_strength) || o.env_strength < 0.0f)
+        bad("--env-strength", std::to_string(o.env_strength), "must be finite and >= 0");
+    if (o.env.empty() && o.env_strength != 1.0f)
+        bad("--env-strength", std::to_string(o.env_strength), "needs --env");
+}
+
+/// Checks everything the user typed, before the scene is loaded; returns what the scene
+/// file is loaded with.
+SceneFileOptions check_command_line(const Options& o, const apps::MpiJob& job) {
+    if (job.rank() == 0) check_image_path(o.output);  // alone, or the rank that writes
     SceneFileOptions file_options;
     file_options.camera = o.camera;
     file_options.allow_outside_files = o.allow_outside_files;
@@ -122,60 +269,62 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     check.samples_per_pixel = o.spp;
     check.threads = o.threads;
     validate(check);
-    if (o.max_depth < 0 || o.max_depth > 1000)
-        bad("--max-depth", std::to_string(o.max_depth), "must be in [0, 1000]");
-    if (o.light_choice != "auto" && o.light_choice != "power" && o.light_choice != "bounded")
-        bad("--light-choice", o.light_choice, "must be auto, power or bounded");
-    if (o.integrator != "path" && o.integrator != "bdpt" && o.integrator != "brute")
-        bad("--integrator", o.integrator, "must be path, bdpt or brute");
-    if (o.integrator == "bdpt" && o.max_depth > BidirectionalSettings::kMaxDepth)
-        bad("--max-depth", std::to_string(o.max_depth),
-            "must be in [0, 64] with --integrator bdpt");
-    static_assert(BidirectionalSettings::kMaxDepth == 64, "the message above");
-    if (o.integrator != "path" && o.sampling.guiding)
-        bad("--guiding", "on", "path guiding is the path tracer's: use --integrator path");
-    if (o.sampling.guiding_passes < 1 || o.sampling.guiding_passes > 20)
-        bad("--guiding-passes", std::to_string(o.sampling.guiding_passes), "must be in [1, 20]");
-    if (o.caustic_paths && o.integrator != "path")
-        bad("--caustic-paths", "on",
-            "caustic light paths are the path tracer's: use --integrator path");
-    if (!(o.light_paths > 0.0f && o.light_paths <= 1.0f))
-        bad("--light-paths", std::to_string(o.light_paths), "must be in (0, 1]");
-    if (o.light_paths != 1.0f && o.integrator != "bdpt")
-        bad("--light-paths", std::to_string(o.light_paths), "needs --integrator bdpt");
-    if (o.roulette_depth < -1 || o.roulette_depth > 64)
-        bad("--roulette-depth", std::to_string(o.roulette_depth),
-            "must be in [0, 64] (or -1: the integrator's default)");
-    if (o.caustic_paths && o.sampling.guiding)
-        bad("--caustic-paths", "on", "cannot be combined with --guiding");
-    if (!std::isfinite(o.time_limit) || o.time_limit < 0.0)
-        bad("--time-limit", std::to_string(o.time_limit), "must be finite and >= 0 (0 = none)");
-    // Ranks render whole tiles with all their samples, not passes over the image: a frame
-    // stopped by the clock would hold different sample counts in different tiles.
-    if (job.distributed() && o.time_limit > 0.0)
-        bad("--time-limit", std::to_string(o.time_limit),
-            "is not available under mpirun (use --spp)");
+    check_choices(o);
+    check_integrator_options(o);
+    check_time_limit(o, job.distributed());
     apps::validate_sampling(o.sampling);
-    // The render's films, copies and output buffers must fit, before any is allocated.
-    if (!o.size.empty()) {
-        RenderMemoryOptions memory;
-        memory.splats = o.integrator == "bdpt" || o.caustic_paths;
-        memory.adaptive = o.sampling.adaptive;
-        memory.keeps_training = o.sampling.guiding;
-        apps::check_render_memory("--size", o.size, file_options.width, file_options.height,
-                                  apps::progressive_output_bytes_per_pixel(o.output, memory));
+    check_memory(o, file_options);
+    check_output_options(o);
+    return file_options;
+}
+
+/// The path tracer's settings (the brute-force tracer's too, without guiding). auto: by bound
+/// (through the light tree) when there are more lights than the bounded choice weighs one by
+/// one, where power alone sends most shadow rays to far lights; by power otherwise, as before
+/// the tree.
+PathTracerSettings path_tracer_settings(const Options& o, std::size_t light_count) {
+    PathTracerSettings pt;
+    pt.max_depth = o.max_depth;
+    const LightChoiceOption choice = o.light_choice_kind();
+    const bool many_lights = light_count > LightSampler::k_max_bounded;
+    pt.light_choice =
+        choice == LightChoiceOption::Bounded || (choice == LightChoiceOption::Auto && many_lights)
+            ? LightChoice::Bounded
+            : LightChoice::Power;
+    pt.guiding.enabled = o.sampling.guiding;
+    pt.guiding.training_passes = o.sampling.guiding_passes;
+    // Kept in the image, alone (render_progressive's final frame) and under mpirun alike.
+    pt.guiding.keep_training_samples = o.sampling.guiding;
+    pt.caustic_paths.enabled = o.caustic_paths;
+    if (o.roulette_depth >= 0) pt.russian_roulette_depth = o.roulette_depth;
+    return pt;
+}
+
+/// The integrator --integrator names, and only that one.
+std::unique_ptr<GuardedIntegrator> make_integrator(const Options& o, std::size_t light_count) {
+    switch (o.integrator_kind()) {
+        case IntegratorKind::Path:
+            return std::make_unique<PathTracer>(path_tracer_settings(o, light_count));
+        case IntegratorKind::Bidirectional: {
+            BidirectionalSettings bd;
+            bd.max_depth = std::min(o.max_depth, BidirectionalSettings::kMaxDepth);
+            bd.light_path_fraction = o.light_paths;
+            if (o.roulette_depth >= 0) bd.russian_roulette_depth = o.roulette_depth;
+            return std::make_unique<BidirectionalPathTracer>(bd);
+        }
+        case IntegratorKind::BruteForce: {
+            PathTracerSettings brute = path_tracer_settings(o, light_count);
+            brute.guiding = {};
+            return std::make_unique<BruteForcePathTracer>(brute);
+        }
     }
-    if (o.mpi_tile < 1 || o.mpi_tile > 1024)
-        bad("--mpi-tile", std::to_string(o.mpi_tile), "must be in [1, 1024]");
-    if (!std::isfinite(o.exposure_ev) || std::abs(o.exposure_ev) > 64.0f)
-        bad("--exposure", std::to_string(o.exposure_ev), "must be in [-64, 64] (EV stops)");
+    throw Error("--integrator: unknown kind");  // unreachable: check_choices refused it
+}
+
+int render_file(const Options& o, const apps::MpiJob& job) {
+    const bool root = job.rank() == 0;  // alone, or the rank that writes
+    const SceneFileOptions file_options = check_command_line(o, job);
     const float scale = std::exp2(o.exposure_ev);
-    if (o.exr_half && apps::lower_extension(o.output) != ".exr")
-        bad("--exr-half", "on", "needs an .exr output");
-    if (!std::isfinite(o.env_strength) || o.env_strength < 0.0f)
-        bad("--env-strength", std::to_string(o.env_strength), "must be finite and >= 0");
-    if (o.env.empty() && o.env_strength != 1.0f)
-        bad("--env-strength", std::to_string(o.env_strength), "needs --env");
     // Under mpirun: every rank was given the same job, before the long load.
     if (job.distributed()) job.check_same_job(job_items(o));
     // The sky is read before the scene, so a bad file fails before the long load.
@@ -211,34 +360,8 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         std::fflush(stdout);
     }
 
-    PathTracerSettings pt;
-    pt.max_depth = o.max_depth;
-    // auto: by bound (through the light tree) when there are more lights than the bounded
-    // choice weighs one by one, where power alone sends most shadow rays to far lights;
-    // by power otherwise, as before the tree.
-    const bool many_lights = loaded.scene.lights().size() > LightSampler::k_max_bounded;
-    pt.light_choice = o.light_choice == "bounded" || (o.light_choice == "auto" && many_lights)
-                          ? LightChoice::Bounded
-                          : LightChoice::Power;
-    pt.guiding.enabled = o.sampling.guiding;
-    pt.guiding.training_passes = o.sampling.guiding_passes;
-    // Kept in the image, alone (render_progressive's final frame) and under mpirun alike.
-    pt.guiding.keep_training_samples = o.sampling.guiding;
-    pt.caustic_paths.enabled = o.caustic_paths;
-    if (o.roulette_depth >= 0) pt.russian_roulette_depth = o.roulette_depth;
-    PathTracer path_tracer(pt);
-    BidirectionalSettings bd;
-    bd.max_depth = std::min(o.max_depth, BidirectionalSettings::kMaxDepth);
-    bd.light_path_fraction = o.light_paths;
-    if (o.roulette_depth >= 0) bd.russian_roulette_depth = o.roulette_depth;
-    BidirectionalPathTracer bidirectional(bd);
-    PathTracerSettings brute_settings = pt;
-    brute_settings.guiding = {};
-    BruteForcePathTracer brute(brute_settings);
-    GuardedIntegrator& integrator =
-        o.integrator == "bdpt"    ? static_cast<GuardedIntegrator&>(bidirectional)
-        : o.integrator == "brute" ? static_cast<GuardedIntegrator&>(brute)
-                                  : path_tracer;
+    const std::unique_ptr<GuardedIntegrator> integrator =
+        make_integrator(o, loaded.scene.lights().size());
     if (job.distributed()) {
         apps::MpiJobSettings ms;
         ms.render.samples_per_pixel = o.spp;
@@ -247,12 +370,12 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         ms.render.sampler = apps::sampler_kind(o.sampling);
         ms.render.adaptive.enabled = o.sampling.adaptive;
         ms.tile_size = o.mpi_tile;
-        ms.aovs = apps::lower_extension(o.output) == ".exr";
-        return apps::render_over_ranks(job, loaded.scene, camera, integrator, ms, o.quiet, o.output,
-                                       [&](const Film& film, const Image& image) {
-                                           apps::write_output(o.output, film, image, scale,
-                                                              o.exr_half);
-                                       });
+        ms.aovs = lower_extension(o.output) == ".exr";
+        return apps::render_over_ranks(
+            job, loaded.scene, camera, *integrator, ms, o.quiet, o.output,
+            [&](const Film& film, const Image& image) {
+                apps::write_output(o.output, image, apps::display_look(scale, o.exr_half), &film);
+            });
     }
     apps::ProgressiveOutput out;
     out.output = o.output;
@@ -266,7 +389,7 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     out.exr_half = o.exr_half;
     out.quiet = o.quiet;
     out.started = t0;
-    return apps::render_progressively_and_write(loaded.scene, camera, integrator, out);
+    return apps::render_progressively_and_write(loaded.scene, camera, *integrator, out);
 }
 
 }  // namespace
@@ -288,12 +411,11 @@ int main(int argc, char** argv) {
     app.add_option("--camera", o.camera,
                    "The file's camera: index (in node order) or name; default: the first");
     app.add_option("--max-depth", o.max_depth, "Scattering events per path")->capture_default_str();
-    app.add_option("--integrator", o.integrator,
-                   "path (unidirectional, MIS), bdpt (bidirectional: paths from the camera and "
-                   "from the lights joined, for light that reaches the camera through small "
-                   "bright regions or caustics) or brute (no light sampling: a reference that "
-                   "point, spot and sun lights cannot light)")
-        ->capture_default_str();
+    add_choice(app, "--integrator", o.integrator, kIntegrators,
+               "path (unidirectional, MIS), bdpt (bidirectional: paths from the camera and "
+               "from the lights joined, for light that reaches the camera through small "
+               "bright regions or caustics) or brute (no light sampling: a reference that "
+               "point, spot and sun lights cannot light)");
     app.add_flag("--caustic-paths", o.caustic_paths,
                  "Path tracer: trace caustics (light reaching a seen surface through mirrors, "
                  "glass or smooth metal) from the lights and splat them");
@@ -306,11 +428,10 @@ int main(int argc, char** argv) {
                    "Bounces before Russian roulette may end a path (path, brute and bdpt; -1: "
                    "the integrator's default, 3)")
         ->capture_default_str();
-    app.add_option("--light-choice", o.light_choice,
-                   "How a shading point chooses the light it samples: power (by power alone), "
-                   "bounded (by power times a bound of its contribution there; a light tree "
-                   "above 16 lights) or auto (bounded above 16 lights, else power)")
-        ->capture_default_str();
+    add_choice(app, "--light-choice", o.light_choice, kLightChoices,
+               "How a shading point chooses the light it samples: power (by power alone), "
+               "bounded (by power times a bound of its contribution there; a light tree "
+               "above 16 lights) or auto (bounded above 16 lights, else power)");
     app.add_option("--threads", o.threads, "Worker threads, 0 = all cores")->capture_default_str();
     app.add_option("--seed", o.seed, "Random seed")->capture_default_str();
     app.add_option("--time-limit", o.time_limit,

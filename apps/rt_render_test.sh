@@ -45,7 +45,11 @@ grep -q -- "--max-depth = 65: must be in \[0, 64\] with --integrator bdpt" "$dir
 for args in "--integrator bdpt --light-paths 0|--light-paths = 0.000000: must be in (0, 1]" \
             "--integrator bdpt --light-paths 1.5|--light-paths = 1.500000: must be in (0, 1]" \
             "--light-paths 0.5|--light-paths = 0.500000: needs --integrator bdpt" \
-            "--roulette-depth -2|--roulette-depth = -2: must be in [0, 64]"; do
+            "--roulette-depth -2|--roulette-depth = -2: must be in [0, 64]" \
+            "--light-choice nearest|--light-choice = nearest: must be auto, power or bounded" \
+            "--integrator Path|--integrator = Path: must be path, bdpt or brute" \
+            "--integrator path --integrator brute --caustic-paths|--caustic-paths = on: caustic light paths are the path tracer's" \
+            "--integrator bdpt --integrator path --light-paths 0.5|--light-paths = 0.500000: needs --integrator bdpt"; do
     status=0
     # shellcheck disable=SC2086 # the options are split on purpose
     "$app" "$dir/missing.glb" ${args%%|*} -o "$dir/out/image.png" 2>"$dir/err.txt" >/dev/null ||
@@ -53,6 +57,14 @@ for args in "--integrator bdpt --light-paths 0|--light-paths = 0.000000: must be
     [ "$status" -eq 1 ] || fail "${args%%|*}: exit status $status, expected 1"
     grep -qF -- "${args#*|}" "$dir/err.txt" || fail "${args%%|*}: message: $(cat "$dir/err.txt")"
 done
+# A repeated choice takes its last value, as every option does: a bad one given first is
+# replaced, and the run goes on to the (missing) scene.
+status=0
+"$app" "$dir/missing.glb" --integrator lightcuts --integrator bdpt --light-choice x \
+    --light-choice bounded -o "$dir/out/image.png" 2>"$dir/err.txt" >/dev/null || status=$?
+[ "$status" -eq 1 ] || fail "repeated choices: exit status $status, expected 1"
+grep -q "missing.glb" "$dir/err.txt" && ! grep -q -- "--integrator =\|--light-choice =" "$dir/err.txt" ||
+    fail "repeated choices: message: $(cat "$dir/err.txt")"
 [ -z "$(ls -A "$dir/out")" ] || fail "bad integrator options wrote $(ls -A "$dir/out")"
 
 # 1b'. A bidirectional render with a quarter of the light paths and early roulette.

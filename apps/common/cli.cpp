@@ -5,15 +5,19 @@
 
 #include "cli.h"
 
+#include "output_image.h"
+
 #include <librt/accel/simd.h>
 #include <librt/core/error.h>
 #include <librt/core/tone_map.h>
 #include <librt/integrator/integrators.h>
+#include <librt/io/file_extension.h>
 #include <librt/io/image_io.h>
 #include <librt/render/renderer.h>
 #include <librt/version.h>
 
 #include <CLI/CLI.hpp>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <atomic>
@@ -290,9 +294,7 @@ void validate_sampling(const AppOptions& o) {
 }
 
 std::uint64_t writer_bytes_per_pixel(const std::string& path, bool layers) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string ext = lower_extension(path);
     constexpr std::uint64_t k_linear = sizeof(glm::vec3);  // an Image's pixel
     constexpr std::uint64_t k_rgb8 = 3;
     if (ext == ".exr") {
@@ -513,7 +515,7 @@ int render_and_write(const Scene& scene, const CameraSettings& camera_settings,
                      static_cast<unsigned long long>(stats.nonfinite_samples + guarded));
     }
 
-    write_image(o.output, image, tone_map);
+    write_output(o.output, image, report_look(o.exposure));
     if (!o.quiet) std::printf("wrote %s\n", o.output.c_str());
     if (g_cancel.load()) {
         std::cerr << "interrupted after " << o.output << " was written\n";
@@ -538,6 +540,12 @@ int render_and_write(const Scene& scene, const CameraSettings& camera_settings,
     return 0;
 }
 
+double peak_rss_mib() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return double(usage.ru_maxrss) / 1024.0;  // Linux reports ru_maxrss in KiB
+}
+
 void write_zoomed_crop(const std::string& path, const Image& image, int cx, int cy, int side,
                        int zoom, float exposure) {
     side = std::clamp(side, 1, std::min(image.width, image.height));
@@ -548,7 +556,7 @@ void write_zoomed_crop(const std::string& path, const Image& image, int cx, int 
     for (int y = 0; y < crop.height; ++y) {
         for (int x = 0; x < crop.width; ++x) crop.at(x, y) = image.at(x0 + x / zoom, y0 + y / zoom);
     }
-    write_image(path, crop, ToneMap{exposure * kReportExposure, 0.45f});
+    write_output(path, crop, report_look(exposure));
 }
 
 }  // namespace librt::apps

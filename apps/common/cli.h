@@ -112,6 +112,9 @@ private:
     std::unique_ptr<CLI::App> app_;
 };
 
+/// Peak resident memory of this process in MiB, for the apps' summaries.
+[[nodiscard]] double peak_rss_mib();
+
 /// The flag SIGINT / SIGTERM set while run()'s body runs: a render's `cancel`.
 [[nodiscard]] const std::atomic<bool>* interrupt_flag();
 

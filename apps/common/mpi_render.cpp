@@ -3,23 +3,10 @@
 #include "cli.h"
 #include "mpi_job.h"
 
-#include <sys/resource.h>
-
 #include <cstdio>
 #include <iostream>
 
 namespace librt::apps {
-
-namespace {
-
-/// Peak resident memory of this process in MiB (Linux reports ru_maxrss in KiB).
-double peak_rss_mib() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    return double(usage.ru_maxrss) / 1024.0;
-}
-
-}  // namespace
 
 int render_over_ranks(const MpiJob& job, const Scene& scene, const Camera& camera,
                       Integrator& integrator, MpiJobSettings settings, bool quiet,

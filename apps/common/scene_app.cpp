@@ -1,13 +1,13 @@
 #include "scene_app.h"
 
 #include "cli.h"
+#include "output_image.h"
 
 #include <librt/core/error.h>
 #include <librt/io/exr.h>
+#include <librt/io/file_extension.h>
 #include <librt/io/image_io.h>
 #include <librt/render/renderer.h>
-
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <cctype>
@@ -19,23 +19,6 @@
 #include <thread>
 
 namespace librt::apps {
-
-namespace {
-
-/// IEC 61966-2-1 sRGB encoding of a linear value in [0, 1]: 12.92 c below 0.0031308, else
-/// 1.055 c^(1/2.4) - 0.055.
-float srgb_encode(float c) {
-    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-}
-
-/// Peak resident memory of this process in MiB (Linux reports ru_maxrss in KiB).
-double peak_rss_mib() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    return double(usage.ru_maxrss) / 1024.0;
-}
-
-}  // namespace
 
 void parse_size(const std::string& text, float aspect, int& width, int& height) {
     const auto bad = [&text](const char* rule) { throw Error("--size = " + text + ": " + rule); };
@@ -53,42 +36,6 @@ void parse_size(const std::string& text, float aspect, int& width, int& height) 
     if (w < 1 || h < 1 || w > 65536 || h > 65536) bad("each side must be in [1, 65536]");
     width = int(w);
     height = int(h);
-}
-
-std::string lower_extension(const std::string& path) {
-    std::string e = std::filesystem::path(path).extension().string();
-    std::transform(e.begin(), e.end(), e.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return e;
-}
-
-Image display_image(const Image& linear, float scale) {
-    Image out = linear;
-    for (glm::vec3& p : out.pixels) {
-        for (int c = 0; c < 3; ++c) {
-            const float v = scale * p[c];
-            p[c] = srgb_encode(v > 0.0f ? std::min(v, 1.0f) : 0.0f);
-        }
-    }
-    return out;
-}
-
-void write_output(const std::string& path, const Film& film, const Image& beauty, float scale,
-                  bool exr_half) {
-    const std::string ext = lower_extension(path);
-    if (ext == ".exr") {
-        ImageLayers layers = resolve_layers(film);
-        layers.beauty = beauty;
-        for (glm::vec3& p : layers.beauty.pixels) p *= scale;
-        ExrWriteOptions options;
-        options.colour = exr_half ? ExrPixelType::Half : ExrPixelType::Float;
-        for (const std::string& w : write_exr(path, layers, options).warnings)
-            std::cerr << "warning: " << w << '\n';
-    } else if (ext == ".png") {
-        write_png(path, display_image(beauty, scale), ToneMap{1.0f, 1.0f});
-    } else {
-        write_image(path, beauty, ToneMap{scale, 1.0f});
-    }
 }
 
 std::uint64_t progressive_output_bytes_per_pixel(const std::string& output,
@@ -126,7 +73,7 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
         std::cerr << "interrupted before the first pass finished: nothing written\n";
         return 130;
     }
-    write_output(o.output, film, image, o.scale, o.exr_half);
+    write_output(o.output, image, display_look(o.scale, o.exr_half), &film);
     const bool partial = stats.samples_per_pixel < std::uint32_t(o.spp);
     if (!o.quiet || partial) {
         const double rate = stats.seconds > 0.0 ? double(stats.samples) / stats.seconds : 0.0;

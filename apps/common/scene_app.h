@@ -39,18 +39,6 @@ struct ProgressiveOutput {
 /// round(W / aspect); each side in [1, 65536]. Throws librt::Error "--size = text: rule".
 void parse_size(const std::string& text, float aspect, int& width, int& height);
 
-/// The file extension of `path`, lower-cased, with its dot (".png").
-[[nodiscard]] std::string lower_extension(const std::string& path);
-
-/// The display image: exposure `scale`, clamp to [0, 1] (NaN -> 0), sRGB-encoded.
-[[nodiscard]] Image display_image(const Image& linear, float scale);
-
-/// Writes `beauty` (resolve(film), or the film joined to kept training passes): PNG
-/// display-encoded, EXR with the film's other layers (32-bit float; colour as half when
-/// `exr_half`, values beyond 65504 clamped and warned about on stderr), HDR / PFM linear.
-void write_output(const std::string& path, const Film& film, const Image& beauty, float scale,
-                  bool exr_half = false);
-
 /// The most bytes per pixel render_progressively_and_write holds at once for `output`
 /// (AOVs for .exr) and `memory`'s other choices: render_progressive's films, copies and
 /// image, or afterwards the film, the image and the writer's buffers, whichever is more.

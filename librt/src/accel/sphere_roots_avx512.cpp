@@ -1,12 +1,16 @@
-// The AVX-512 sphere-root kernel (sphere_roots.h): eight spheres per instruction, with the
-// lane masks in mask registers. The same operations in the same order as the SSE2 kernel in
-// sphere_roots.cpp, lane by lane; only this file is compiled for AVX-512 F (a target pragma,
-// as wide_avx512.cpp does), and it runs only when simd_path_supported() says the CPU has it.
+// The AVX-512 sphere-root kernel (sphere_roots.h): eight spheres per instruction, the lane
+// masks in mask registers, through sphere_roots_kernel.h with the lane policy below. Only
+// this file is compiled for AVX-512 F (a target pragma, as wide_avx512.cpp does), and it runs
+// only when simd_path_supported() says the CPU has it; the policy, the kernel template and
+// the entry point are declared under the pragma, as in sphere_roots_avx.cpp.
 
 #include "accel/sphere_roots.h"
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #include <immintrin.h>
+
+#include <concepts>
+#include <cstdint>
 
 #if defined(__clang__)
 #pragma clang attribute push(__attribute__((target("avx512f"))), apply_to = function)
@@ -19,72 +23,56 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 
+// The kernel template is declared here, under the target, so that its instantiation with this
+// file's policy is compiled for it (its own includes came first, above, as baseline code).
+#include "accel/sphere_roots_kernel.h"
+
 namespace librt::detail {
+namespace {
+
+/// The SphereLaneOps policy of AVX-512 F: eight lanes, masks as the bits of a mask register.
+struct Avx512Lanes {
+    using Vec = __m512d;
+    using Mask = __mmask8;
+    static constexpr std::uint32_t kWidth = 8;
+    static Vec set1(double x) { return _mm512_set1_pd(x); }
+    static Vec load(const double* p) { return _mm512_loadu_pd(p); }
+    static void store(double* p, Vec v) { _mm512_storeu_pd(p, v); }
+    static Vec add(Vec a, Vec b) { return _mm512_add_pd(a, b); }
+    static Vec sub(Vec a, Vec b) { return _mm512_sub_pd(a, b); }
+    static Vec mul(Vec a, Vec b) { return _mm512_mul_pd(a, b); }
+    static Vec div(Vec a, Vec b) { return _mm512_div_pd(a, b); }
+    static Vec sqrt(Vec a) { return _mm512_sqrt_pd(a); }
+    static Vec min(Vec a, Vec b) { return _mm512_min_pd(a, b); }
+    static Vec max(Vec a, Vec b) { return _mm512_max_pd(a, b); }
+    static Mask ge(Vec a, Vec b) { return _mm512_cmp_pd_mask(a, b, _CMP_GE_OQ); }
+    static Mask gt(Vec a, Vec b) { return _mm512_cmp_pd_mask(a, b, _CMP_GT_OQ); }
+    static Mask lt(Vec a, Vec b) { return _mm512_cmp_pd_mask(a, b, _CMP_LT_OQ); }
+    static Mask ne(Vec a, Vec b) { return _mm512_cmp_pd_mask(a, b, _CMP_NEQ_UQ); }
+    static Mask both(Mask m, Mask n) { return Mask(m & n); }
+    static Mask but_not(Mask m, Mask n) { return Mask(Mask(~m) & n); }
+    static Vec select(Mask m, Vec a, Vec b) { return _mm512_mask_blend_pd(m, b, a); }
+    // On the bits, as integers: AVX-512 F has no floating-point and, or and xor (DQ has).
+    static Vec copysign(Vec a, Vec b) {
+        const __m512i sign = _mm512_set1_epi64(std::int64_t(0x8000000000000000ULL));
+        return _mm512_castsi512_pd(
+            _mm512_or_si512(_mm512_andnot_si512(sign, _mm512_castpd_si512(a)),
+                            _mm512_and_si512(sign, _mm512_castpd_si512(b))));
+    }
+    static Vec negate(Vec a) {
+        const __m512i sign = _mm512_set1_epi64(std::int64_t(0x8000000000000000ULL));
+        return _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(a), sign));
+    }
+    static std::uint32_t bits(Mask m) { return std::uint32_t(m); }
+};
+
+}  // namespace
 
 std::uint32_t sphere_roots_avx512(const SphereLanes& spheres, const DoubleRay& ray, double t_min,
                                   double t_max, double* roots) {
-    const __m512d ox = _mm512_set1_pd(ray.origin.x), oy = _mm512_set1_pd(ray.origin.y),
-                  oz = _mm512_set1_pd(ray.origin.z);
-    const __m512d dx = _mm512_set1_pd(ray.direction.x), dy = _mm512_set1_pd(ray.direction.y),
-                  dz = _mm512_set1_pd(ray.direction.z);
-    const __m512d a = _mm512_set1_pd(ray.a), inv_a = _mm512_set1_pd(ray.inv_a);
-    const __m512d lo = _mm512_set1_pd(t_min), hi = _mm512_set1_pd(t_max);
-    const __m512d zero = _mm512_setzero_pd();
-    const __m512i sign = _mm512_set1_epi64(std::int64_t(0x8000000000000000ULL));
-    const __m512d none = _mm512_set1_pd(__builtin_nan(""));
-    const __m512d inf = _mm512_set1_pd(__builtin_inf());
-    std::uint32_t mask = 0;
-    for (std::uint32_t i = 0; i < spheres.count; i += 8) {
-        const __m512d r2 = _mm512_loadu_pd(spheres.r2 + i);
-        // oc = o - c; b = oc . d; c = oc . oc - r^2 (glm's dot: (x + y) + z).
-        const __m512d ocx = _mm512_sub_pd(ox, _mm512_loadu_pd(spheres.cx + i));
-        const __m512d ocy = _mm512_sub_pd(oy, _mm512_loadu_pd(spheres.cy + i));
-        const __m512d ocz = _mm512_sub_pd(oz, _mm512_loadu_pd(spheres.cz + i));
-        const __m512d b = _mm512_add_pd(
-            _mm512_add_pd(_mm512_mul_pd(ocx, dx), _mm512_mul_pd(ocy, dy)), _mm512_mul_pd(ocz, dz));
-        const __m512d c = _mm512_sub_pd(
-            _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(ocx, ocx), _mm512_mul_pd(ocy, ocy)),
-                          _mm512_mul_pd(ocz, ocz)),
-            r2);
-        // Outside and moving away: no root (the scalar test's early return).
-        const __mmask8 away =
-            _mm512_cmp_pd_mask(b, zero, _CMP_GE_OQ) & _mm512_cmp_pd_mask(c, zero, _CMP_GT_OQ);
-        // Half-chord^2 = r^2 - |oc - (b / a) d|^2.
-        const __m512d s = _mm512_mul_pd(b, inv_a);
-        const __m512d clx = _mm512_sub_pd(ocx, _mm512_mul_pd(s, dx));
-        const __m512d cly = _mm512_sub_pd(ocy, _mm512_mul_pd(s, dy));
-        const __m512d clz = _mm512_sub_pd(ocz, _mm512_mul_pd(s, dz));
-        const __m512d hc2 = _mm512_sub_pd(
-            r2, _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(clx, clx), _mm512_mul_pd(cly, cly)),
-                              _mm512_mul_pd(clz, clz)));
-        const __mmask8 meets = __mmask8(~away) & _mm512_cmp_pd_mask(hc2, zero, _CMP_GE_OQ);
-        // q = -(b + copysign(sqrt(hc2 a), b)); roots q / a and c / q (q / a when q = 0).
-        const __m512i root = _mm512_castpd_si512(_mm512_sqrt_pd(_mm512_mul_pd(hc2, a)));
-        const __m512i b_bits = _mm512_castpd_si512(b);
-        const __m512d signed_root = _mm512_castsi512_pd(
-            _mm512_or_si512(_mm512_andnot_si512(sign, root), _mm512_and_si512(sign, b_bits)));
-        const __m512d q = _mm512_castsi512_pd(
-            _mm512_xor_si512(_mm512_castpd_si512(_mm512_add_pd(b, signed_root)), sign));
-        const __m512d t_a = _mm512_mul_pd(q, inv_a);
-        const __mmask8 q_nonzero = _mm512_cmp_pd_mask(q, zero, _CMP_NEQ_UQ);
-        const __m512d t_b = _mm512_mask_blend_pd(q_nonzero, t_a, _mm512_div_pd(c, q));
-        // std::min(t_a, t_b) is t_b < t_a ? t_b : t_a, which minpd(t_b, t_a) is; max likewise.
-        const __m512d near = _mm512_min_pd(t_b, t_a), far = _mm512_max_pd(t_b, t_a);
-        const __mmask8 near_in =
-            _mm512_cmp_pd_mask(near, lo, _CMP_GT_OQ) & _mm512_cmp_pd_mask(near, hi, _CMP_LT_OQ);
-        const __mmask8 far_in =
-            _mm512_cmp_pd_mask(far, lo, _CMP_GT_OQ) & _mm512_cmp_pd_mask(far, hi, _CMP_LT_OQ);
-        const __m512d t =
-            _mm512_mask_blend_pd(near_in, _mm512_mask_blend_pd(far_in, none, far), near);
-        const __m512d result = _mm512_mask_blend_pd(meets, none, t);
-        // A hit is a root >= 0 (TopLevel's test); the others become +inf.
-        const __mmask8 hit = _mm512_cmp_pd_mask(result, zero, _CMP_GE_OQ);
-        _mm512_storeu_pd(roots + i, _mm512_mask_blend_pd(hit, inf, result));
-        mask |= std::uint32_t(hit) << i;
-    }
-    // Lanes past count (a count not a multiple of 8) hold the empty sphere: their bit is never set.
-    return mask;
+    return sphere_roots_lanes<Avx512Lanes>(spheres, ray, t_min, t_max, roots);
 }
+
 }  // namespace librt::detail
 
 #if defined(__clang__)

@@ -29,6 +29,57 @@ glm::vec3 unit_or(const glm::vec3& v, const glm::vec3& fallback) {
     return v / std::sqrt(len2);
 }
 
+/// The triangle a mesh hit lies on, in the mesh's own space, and the hit's barycentric
+/// weights: what finish() and finish_instance() interpolate.
+struct TriangleAt {
+    const TriangleMesh& mesh;
+    const glm::uvec3& idx;
+    float b0, b1, b2;
+    const glm::vec3& p0;
+    const glm::vec3& p1;
+    const glm::vec3& p2;
+};
+
+// u and v by 4-byte loads: closest() has just stored (t, u) as 8 bytes and v as 4, and g++
+// read (u, v) as one 8-byte load across both, which no store forwards to (a stall per mesh
+// hit; geometry/ray_copy.h).
+[[gnu::always_inline]] inline TriangleAt triangle_at(const TriangleMesh& mesh,
+                                                     const PrimitiveHit& prim) {
+    const glm::uvec3& idx = mesh.triangles[prim.primitive_id];
+    const float b1 = detail::load_alone(prim.u), b2 = detail::load_alone(prim.v);
+    return {mesh,
+            idx,
+            1.0f - b1 - b2,
+            b1,
+            b2,
+            mesh.positions[idx.x],
+            mesh.positions[idx.y],
+            mesh.positions[idx.z]};
+}
+
+/// The rest of a mesh hit once its point and geometric normal are set: the shading normal
+/// (the vertex normals, each through `map_normal`, interpolated and turned to the geometric
+/// normal's side), the uv (the vertices', or the barycentrics without) and the primitive.
+template <class MapNormal>
+[[gnu::always_inline]] inline void complete_mesh_hit(const TriangleAt& tri,
+                                                     std::uint32_t primitive_id,
+                                                     MapNormal&& map_normal, Hit& hit) {
+    const TriangleMesh& mesh = tri.mesh;
+    const glm::uvec3& idx = tri.idx;
+    hit.shading_normal = hit.geometric_normal;
+    if (!mesh.normals.empty()) {
+        const glm::vec3 n = tri.b0 * map_normal(mesh.normals[idx.x]) +
+                            tri.b1 * map_normal(mesh.normals[idx.y]) +
+                            tri.b2 * map_normal(mesh.normals[idx.z]);
+        const glm::vec3 ns = unit_or(n, hit.geometric_normal);
+        hit.shading_normal = glm::dot(ns, hit.geometric_normal) < 0.0f ? -ns : ns;
+    }
+    hit.uv = mesh.uvs.empty()
+                 ? glm::vec2(tri.b1, tri.b2)
+                 : tri.b0 * mesh.uvs[idx.x] + tri.b1 * mesh.uvs[idx.y] + tri.b2 * mesh.uvs[idx.z];
+    hit.primitive_id = primitive_id;
+}
+
 }  // namespace
 
 void TopLevel::throw_not_built() {
@@ -320,65 +371,35 @@ void TopLevel::finish(const Ray& ray, const ObjectHit& object_hit, bool every_sp
         hit.instance_id = o.index;
         return;
     }
-    const TriangleMesh& mesh = prototypes_[o.index].mesh;
-    const glm::uvec3& idx = mesh.triangles[prim.primitive_id];
-    // u and v by 4-byte loads: closest() has just stored (t, u) as 8 bytes and v as 4, and
-    // g++ read (u, v) as one 8-byte load across both, which no store forwards to (a stall
-    // per mesh hit; geometry/ray_copy.h).
-    const float b1 = detail::load_alone(prim.u), b2 = detail::load_alone(prim.v);
-    const float b0 = 1.0f - b1 - b2;
-    const glm::vec3& p0 = mesh.positions[idx.x];
-    const glm::vec3& p1 = mesh.positions[idx.y];
-    const glm::vec3& p2 = mesh.positions[idx.z];
+    const TriangleAt tri = triangle_at(prototypes_[o.index].mesh, prim);
     // Barycentric interpolation lands closer to the plane than o + t d does.
-    hit.point = b0 * p0 + b1 * p1 + b2 * p2;
-    hit.geometric_normal = unit_or(glm::cross(p1 - p0, p2 - p0), back);
-    hit.shading_normal = hit.geometric_normal;
-    if (!mesh.normals.empty()) {
-        const glm::vec3 n =
-            b0 * mesh.normals[idx.x] + b1 * mesh.normals[idx.y] + b2 * mesh.normals[idx.z];
-        const glm::vec3 ns = unit_or(n, hit.geometric_normal);
-        hit.shading_normal = glm::dot(ns, hit.geometric_normal) < 0.0f ? -ns : ns;
-    }
-    hit.uv = mesh.uvs.empty() ? glm::vec2(b1, b2)
-                              : b0 * mesh.uvs[idx.x] + b1 * mesh.uvs[idx.y] + b2 * mesh.uvs[idx.z];
-    hit.primitive_id = prim.primitive_id;
+    hit.point = tri.b0 * tri.p0 + tri.b1 * tri.p1 + tri.b2 * tri.p2;
+    hit.geometric_normal = unit_or(glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0), back);
+    complete_mesh_hit(
+        tri, prim.primitive_id, [](const glm::vec3& n) -> const glm::vec3& { return n; }, hit);
 }
 
 // Out of line so that the spheres' and meshes' path in finish() stays as lean as it was
 // before instances existed (the room's walls are finished millions of times).
 [[gnu::noinline]] void TopLevel::finish_instance(const Ray& ray, const Instance& inst,
                                                  const PrimitiveHit& prim, Hit& hit) const {
-    const TriangleMesh& mesh = prototypes_[inst.prototype].mesh;
-    const glm::uvec3& idx = mesh.triangles[prim.primitive_id];
-    // By 4-byte loads, as in finish().
-    const float b1 = detail::load_alone(prim.u), b2 = detail::load_alone(prim.v);
-    const float b0 = 1.0f - b1 - b2;
-    const glm::vec3& p0 = mesh.positions[idx.x];
-    const glm::vec3& p1 = mesh.positions[idx.y];
-    const glm::vec3& p2 = mesh.positions[idx.z];
+    const TriangleAt tri = triangle_at(prototypes_[inst.prototype].mesh, prim);
     // The point by the matrix, the winding's normal by the inverse transpose: under a
     // mirroring matrix that is what transform() gives a baked copy, which swaps two corners.
-    hit.point = inst.to_world * (b0 * p0 + b1 * p1 + b2 * p2) + inst.to_world_shift;
+    hit.point =
+        inst.to_world * (tri.b0 * tri.p0 + tri.b1 * tri.p1 + tri.b2 * tri.p2) + inst.to_world_shift;
     hit.geometric_normal =
-        unit_or(inst.normal_matrix * glm::cross(p1 - p0, p2 - p0), -ray.direction);
-    hit.shading_normal = hit.geometric_normal;
-    if (!mesh.normals.empty()) {
-        // Each vertex normal mapped and renormalised before interpolation, as transform()
-        // does to a baked copy (a zero normal stays zero).
-        const auto map = [&](const glm::vec3& n) {
+        unit_or(inst.normal_matrix * glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0), -ray.direction);
+    // Each vertex normal mapped and renormalised before interpolation, as transform() does to
+    // a baked copy (a zero normal stays zero).
+    complete_mesh_hit(
+        tri, prim.primitive_id,
+        [&](const glm::vec3& n) {
             const glm::vec3 m = inst.normal_matrix * n;
             const float len = glm::length(m);
             return len > 0.0f ? m / len : m;
-        };
-        const glm::vec3 n = b0 * map(mesh.normals[idx.x]) + b1 * map(mesh.normals[idx.y]) +
-                            b2 * map(mesh.normals[idx.z]);
-        const glm::vec3 ns = unit_or(n, hit.geometric_normal);
-        hit.shading_normal = glm::dot(ns, hit.geometric_normal) < 0.0f ? -ns : ns;
-    }
-    hit.uv = mesh.uvs.empty() ? glm::vec2(b1, b2)
-                              : b0 * mesh.uvs[idx.x] + b1 * mesh.uvs[idx.y] + b2 * mesh.uvs[idx.z];
-    hit.primitive_id = prim.primitive_id;
+        },
+        hit);
 }
 
 }  // namespace librt

@@ -3,6 +3,7 @@
 #include <librt/core/error.h>
 #include <librt/io/check_writable.h>
 #include <librt/io/exr.h>
+#include <librt/io/file_extension.h>
 #include <librt/io/image_io.h>
 
 #include <stb/stb_image_write.h>
@@ -217,17 +218,6 @@ void write_hdr(const fs::path& path, const Image& image) {
     }
     write_file_atomically(path, encoded);
 }
-
-namespace {
-
-std::string lower_extension(const fs::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
-
-}  // namespace
 
 void check_image_path(const fs::path& path) {
     const std::string ext = lower_extension(path);

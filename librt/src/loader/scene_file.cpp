@@ -1,6 +1,7 @@
 #include <librt/core/error.h>
 #include <librt/gltf/gltf.h>
 #include <librt/gltf/gltf_scene.h>
+#include <librt/io/file_extension.h>
 #include <librt/loader/scene_file.h>
 #include <librt/obj/obj.h>
 #include <librt/obj/obj_materials.h>
@@ -30,13 +31,6 @@ void check_bounds(const BBox& b, const char* what) {
 /// Radius of the sphere around the box (half its diagonal), at least a tiny positive size
 /// so a single point or flat box still gives a usable camera.
 float radius_of(const BBox& b) { return std::max(0.5f * glm::length(b.diagonal()), 1e-6f); }
-
-std::string lower_extension(const std::filesystem::path& p) {
-    std::string e = p.extension().string();
-    std::transform(e.begin(), e.end(), e.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return e;
-}
 
 }  // namespace
 

@@ -1,6 +1,7 @@
-// load_obj: a strict pre-pass (obj_scan), tinyobjloader, then faces checked, triangulated
-// (obj_polygon) and their corners unified into vertices (obj_vertices). save_obj is in
-// obj_save.cpp.
+// load_obj, in steps: the file read (read_obj_text), a strict pre-pass (obj_scan), tinyobjloader
+// (read_with_tinyobj), the MTL files (load_materials), then faces checked, triangulated
+// (obj_polygon) and their corners unified into vertices (obj_vertices) by add_faces, and the
+// vertices' uvs and normals (add_vertex_attributes). save_obj is in obj_save.cpp.
 
 #include "io/file_io.h"
 #include "obj/obj_mtl.h"
@@ -183,12 +184,10 @@ void load_mtllibs(const detail::ObjScanResult& scan, const fs::path& obj_path, b
     }
 }
 
-}  // namespace
-
-TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
-    // A regular file only (a FIFO would block, /dev/zero never end), within the size limit,
-    // and refused by its first 64 KiB when those are binary (a 2 GB sparse file of zeros
-    // is refused at once, not after reading it all).
+/// The OBJ's text: a regular file only (a FIFO would block, /dev/zero never end), within the
+/// size limit, and refused by its first 64 KiB when those are binary (a 2 GB sparse file of
+/// zeros is refused at once, not after reading it all).
+std::string read_obj_text(const fs::path& path, const ObjLoadOptions& options) {
     detail::ReadRequest request;
     request.what = "an OBJ file";
     request.max_bytes = options.max_file_bytes;
@@ -196,35 +195,50 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
     request.check_head = [&](std::string_view head) {
         detail::check_obj_head(head, path.string());
     };
-    std::string text = detail::read_regular_file(path, request);
-    const fs::path dir = path.parent_path();
+    return detail::read_regular_file(path, request);
+}
 
-    // Our own strict pass first: it names the line of what tinyobjloader would misread
-    // silently (bad numbers, bad indices, binary data).
+/// Our own strict pass, before tinyobjloader: it names the line of what tinyobjloader would
+/// misread silently (bad numbers, bad indices, binary data). Trailing comments it accepted
+/// would make tinyobjloader fail on `f 1 2 3 # c`: they are blanked in `text` (in place, no
+/// copy of the file).
+detail::ObjScanResult scan_and_blank_comments(std::string& text, const fs::path& path,
+                                              const ObjLoadOptions& options) {
     detail::ObjScanOptions scan_options;
     scan_options.check_uv_indices = options.load_uvs;
     scan_options.check_normal_indices = options.load_normals;
     detail::ObjScanResult scan = detail::scan_obj(text, path.string(), scan_options);
-    // Trailing comments the scan accepted would make tinyobjloader fail on `f 1 2 3 # c`:
-    // blank them (in place, no copy of the file).
     for (const std::size_t at : scan.trailing_comments) {
         for (std::size_t i = at; i < text.size() && text[i] != '\n' && text[i] != '\r'; ++i) {
             text[i] = ' ';
         }
     }
+    return scan;
+}
 
-    // We triangulate ourselves (triangulate = false): tinyobjloader's triangulation reads
-    // positions through unchecked indices (n-gons) or silently drops faces with bad ones
-    // (quads), before we could check them. No vertex colours. No material reader either:
-    // tinyobjloader cuts usemtl names at the first space and reads MTL numbers leniently, so
-    // the MTL files and the usemtl switches come from our own reader and scan.
-    ViewBuffer buffer(std::string_view(text).substr(scan.skip));
-    std::istream stream(&buffer);
+/// What tinyobjloader read: the file's attributes and faces, and the messages of its we
+/// keep (in the form of our other warnings).
+struct TinyObjRead {
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
+    std::vector<std::string> messages;
+};
+
+/// Runs tinyobjloader on the scanned text. We triangulate ourselves (triangulate = false):
+/// tinyobjloader's triangulation reads positions through unchecked indices (n-gons) or
+/// silently drops faces with bad ones (quads), before we could check them. No vertex
+/// colours. No material reader either: tinyobjloader cuts usemtl names at the first space
+/// and reads MTL numbers leniently, so the MTL files and the usemtl switches come from our
+/// own reader and scan. Throws Error with its error lines when it fails.
+TinyObjRead read_with_tinyobj(const std::string& text, const detail::ObjScanResult& scan,
+                              const fs::path& path) {
+    ViewBuffer buffer(std::string_view(text).substr(scan.skip));
+    std::istream stream(&buffer);
+    TinyObjRead read;
     std::vector<tinyobj::material_t> unused_materials;
     std::string tiny_warning, tiny_error;
-    if (!tinyobj::LoadObj(&attrib, &shapes, &unused_materials, &tiny_warning, &tiny_error, &stream,
+    if (!tinyobj::LoadObj(&read.attrib, &read.shapes, &unused_materials, &tiny_warning, &tiny_error,
+                          &stream,
                           /*readMatFn=*/nullptr, /*triangulate=*/false,
                           /*default_vcols_fallback=*/false)) {
         const std::vector<std::string> lines = split_lines(tiny_error);
@@ -233,7 +247,6 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
         if (lines.empty()) message += " cannot parse";
         throw Error(message);
     }
-    std::vector<std::string> warnings = std::move(scan.warnings);
     for (std::string& line : split_lines(tiny_warning)) {
         // The scan reported these, with their line numbers (short faces, bad indices), or
         // they concern materials, which tinyobjloader does not read here.
@@ -243,79 +256,97 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
         }
         // "Empty group name. line: N" in the form of our other warnings.
         if (const std::size_t at = line.rfind("Empty group name. line: ", 0); at == 0) {
-            warnings.push_back("line " + line.substr(24) + ": 'g' without a name");
+            read.messages.push_back("line " + line.substr(24) + ": 'g' without a name");
             continue;
         }
-        warnings.push_back(std::move(line));
+        read.messages.push_back(std::move(line));
     }
-    for (std::string& line : split_lines(tiny_error)) warnings.push_back(std::move(line));
+    for (std::string& line : split_lines(tiny_error)) read.messages.push_back(std::move(line));
+    return read;
+}
 
-    // Materials: the MTL files in mtllib order, then a name -> index map where the first
-    // definition of a name wins.
-    std::vector<MeshMaterial> materials;
-    std::vector<std::string> mtl_warnings;  // already "mtl_path:line: ..."
-    load_mtllibs(scan, path, options.allow_outside_files, materials, warnings, mtl_warnings);
+/// The OBJ's materials and which one each usemtl name selects.
+struct ObjMaterials {
+    std::vector<MeshMaterial> materials;    ///< the MTL files' materials, in mtllib order
+    std::vector<std::string> mtl_warnings;  ///< already "mtl_path:line: ..."
+    /// Per usemtl name (scan.material_names): its material, or default_material.
+    std::vector<std::uint32_t> by_name;
+    std::uint32_t default_material = 0;  ///< one past the MTL files' materials
+};
+
+/// Loads the MTL files and resolves the usemtl names against them, where the first
+/// definition of a name wins. A name no MTL file defines gets the default material, warned
+/// about once (at its first use) in `warnings`.
+ObjMaterials load_materials(const detail::ObjScanResult& scan, const fs::path& path,
+                            bool allow_outside, std::vector<std::string>& warnings) {
+    ObjMaterials m;
+    load_mtllibs(scan, path, allow_outside, m.materials, warnings, m.mtl_warnings);
     std::unordered_map<std::string, std::uint32_t> material_index;
-    for (std::size_t i = 0; i < materials.size(); ++i) {
-        material_index.try_emplace(materials[i].name, static_cast<std::uint32_t>(i));
+    for (std::size_t i = 0; i < m.materials.size(); ++i) {
+        material_index.try_emplace(m.materials[i].name, static_cast<std::uint32_t>(i));
     }
-    const auto default_material = static_cast<std::uint32_t>(materials.size());
-    // Per usemtl name: its material, or the default (warned about once, at its first use).
-    std::vector<std::uint32_t> name_material(scan.material_names.size(), default_material);
+    m.default_material = static_cast<std::uint32_t>(m.materials.size());
+    m.by_name.assign(scan.material_names.size(), m.default_material);
     for (std::size_t i = 0; i < scan.material_names.size(); ++i) {
         const auto& [name, line] = scan.material_names[i];
         const auto it = material_index.find(name);
         if (it != material_index.end()) {
-            name_material[i] = it->second;
+            m.by_name[i] = it->second;
         } else {
             warnings.push_back("line " + std::to_string(line) + ": usemtl '" + name +
                                "': no such material in the MTL file(s); its faces get the "
                                "default material");
         }
     }
+    return m;
+}
 
-    const std::size_t nv = attrib.vertices.size() / 3;
-    const std::size_t nvt = attrib.texcoords.size() / 2;
-    const std::size_t nvn = attrib.normals.size() / 3;
-    if (nv >= std::numeric_limits<std::uint32_t>::max()) {
-        throw Error(path.string() + ": too many positions (" + std::to_string(nv) + ")");
-    }
-
-    // Reserve the exact triangle count: a polygon of n corners makes n - 2 triangles.
-    std::size_t triangle_estimate = 0;
+/// The exact triangle count of the faces (a polygon of n corners makes n - 2 triangles), for
+/// reserving. Throws Error for a face of 256+ corners: num_face_vertices is a byte, and such
+/// a face has wrapped around.
+std::size_t count_triangles(const std::vector<tinyobj::shape_t>& shapes, const fs::path& path) {
+    std::size_t triangles = 0;
     for (const tinyobj::shape_t& shape : shapes) {
         std::size_t corner_count = 0;
         for (const unsigned char n : shape.mesh.num_face_vertices) {
             corner_count += n;
-            triangle_estimate += n >= 3 ? n - 2u : 0u;
+            triangles += n >= 3 ? n - 2u : 0u;
         }
-        // num_face_vertices is a byte: a face of 256+ corners has wrapped around.
         if (corner_count != shape.mesh.indices.size()) {
             throw Error(path.string() + ": a face in '" + shape.name +
                         "' has more than 255 corners (not supported)");
         }
     }
+    return triangles;
+}
 
-    TriangleMesh mesh;
-    mesh.triangles.reserve(triangle_estimate);
-    mesh.material_ids.reserve(triangle_estimate);
-    mesh.positions.resize(nv);
-    for (std::size_t i = 0; i < nv; ++i) mesh.positions[i] = to_vec3(&attrib.vertices[3 * i]);
-    VertexUnifier unifier(mesh.positions);
+/// What add_faces met besides triangles.
+struct FaceTally {
+    std::size_t faces = 0;             ///< every face, short ones too (the scan counts the same)
+    std::size_t zero_area = 0;         ///< polygons that triangulate to nothing, skipped
+    std::size_t not_simple = 0;        ///< polygons overlapping themselves, skipped
+    std::size_t first_not_simple = 0;  ///< 1-based face number of the first, 0 = none
+    bool uses_default = false;         ///< a triangle has the default material
+};
 
-    bool uses_default = false;
+/// Checks each face's corners (Error "path: face N: ..."), unifies them into `mesh`'s
+/// vertices, triangulates the polygons and gives each triangle the material of the usemtl
+/// switch in force.
+FaceTally add_faces(const TinyObjRead& read, const detail::ObjScanResult& scan,
+                    const ObjMaterials& materials, const fs::path& path,
+                    const ObjLoadOptions& options, VertexUnifier& unifier, TriangleMesh& mesh) {
+    const std::size_t nv = read.attrib.vertices.size() / 3;
+    const std::size_t nvt = read.attrib.texcoords.size() / 2;
+    const std::size_t nvn = read.attrib.normals.size() / 3;
+    FaceTally tally;
     std::size_t run = 0;  // the usemtl switch in force (scan.material_runs)
-    std::size_t skipped = 0, not_simple = 0;
-    std::size_t face_number = 0;  // 1-based in file order, for messages
-    std::size_t not_simple_face = 0;
     std::vector<std::uint32_t> corners;
     PolygonScratch scratch;
-
-    for (const tinyobj::shape_t& shape : shapes) {
+    for (const tinyobj::shape_t& shape : read.shapes) {
         const tinyobj::mesh_t& m = shape.mesh;
         std::size_t offset = 0;
         for (std::size_t f = 0; f < m.num_face_vertices.size(); ++f) {
-            ++face_number;
+            const std::size_t face_number = ++tally.faces;  // 1-based in file order
             const std::size_t n = m.num_face_vertices[f];
             corners.clear();
             for (std::size_t k = 0; k < n; ++k) {
@@ -338,7 +369,8 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
                 ++run;
             }
             const std::uint32_t material =
-                run == 0 ? default_material : name_material[scan.material_runs[run - 1].name];
+                run == 0 ? materials.default_material
+                         : materials.by_name[scan.material_runs[run - 1].name];
 
             const std::size_t before = mesh.triangles.size();
             if (n == 3) {
@@ -346,39 +378,37 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
             } else if (const Polygon p =
                            triangulate_polygon(mesh.positions, corners, scratch, mesh.triangles);
                        p != Polygon::Triangulated) {
-                ++(p == Polygon::ZeroArea ? skipped : not_simple);
-                if (p == Polygon::NotSimple && not_simple_face == 0) not_simple_face = face_number;
+                ++(p == Polygon::ZeroArea ? tally.zero_area : tally.not_simple);
+                if (p == Polygon::NotSimple && tally.first_not_simple == 0)
+                    tally.first_not_simple = face_number;
                 continue;
             }
-            uses_default = uses_default || material == default_material;
+            tally.uses_default = tally.uses_default || material == materials.default_material;
             mesh.material_ids.insert(mesh.material_ids.end(), mesh.triangles.size() - before,
                                      material);
         }
     }
-    if (face_number != scan.face_count) {
-        // The usemtl switches are counted in the scan's faces: the two must agree.
-        throw Error(path.string() + ": internal error: tinyobjloader read " +
-                    std::to_string(face_number) + " faces, the scan " +
-                    std::to_string(scan.face_count));
-    }
-    if (skipped > 0) {
-        warnings.push_back(std::to_string(skipped) +
+    return tally;
+}
+
+/// The warnings about the polygons add_faces skipped.
+void warn_skipped(const FaceTally& tally, std::vector<std::string>& warnings) {
+    if (tally.zero_area > 0) {
+        warnings.push_back(std::to_string(tally.zero_area) +
                            " polygon(s) of zero area triangulate to nothing and were skipped");
     }
-    if (not_simple > 0) {
-        warnings.push_back(std::to_string(not_simple) +
+    if (tally.not_simple > 0) {
+        warnings.push_back(std::to_string(tally.not_simple) +
                            " polygon(s) overlapping themselves (first: face " +
-                           std::to_string(not_simple_face) +
+                           std::to_string(tally.first_not_simple) +
                            ") have no triangulation of the same area and were skipped");
     }
+}
 
-    mesh.materials = std::move(materials);
-    if (uses_default) {
-        MeshMaterial fallback;
-        fallback.name = "default";
-        mesh.materials.push_back(fallback);
-    }
-
+/// The unified vertices' texture coordinates and normals, when any corner had one; a
+/// vertex without a normal gets its triangles' area-weighted normal.
+void add_vertex_attributes(const tinyobj::attrib_t& attrib, const VertexUnifier& unifier,
+                           TriangleMesh& mesh) {
     const std::vector<std::int32_t>& vt = unifier.vt();
     const std::vector<std::int32_t>& vn = unifier.vn();
     const bool any_vt = std::any_of(vt.begin(), vt.end(), [](std::int32_t i) { return i >= 0; });
@@ -404,13 +434,50 @@ TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
         }
         if (missing) fill_missing_normals(mesh, vn);
     }
+}
+
+}  // namespace
+
+TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
+    std::string text = read_obj_text(path, options);
+    detail::ObjScanResult scan = scan_and_blank_comments(text, path, options);
+    const TinyObjRead read = read_with_tinyobj(text, scan, path);
+    std::vector<std::string> warnings = std::move(scan.warnings);
+    warnings.insert(warnings.end(), read.messages.begin(), read.messages.end());
+    ObjMaterials materials = load_materials(scan, path, options.allow_outside_files, warnings);
+
+    const std::size_t nv = read.attrib.vertices.size() / 3;
+    if (nv >= std::numeric_limits<std::uint32_t>::max()) {
+        throw Error(path.string() + ": too many positions (" + std::to_string(nv) + ")");
+    }
+    const std::size_t triangle_count = count_triangles(read.shapes, path);
+    TriangleMesh mesh;
+    mesh.triangles.reserve(triangle_count);
+    mesh.material_ids.reserve(triangle_count);
+    mesh.positions.resize(nv);
+    for (std::size_t i = 0; i < nv; ++i) mesh.positions[i] = to_vec3(&read.attrib.vertices[3 * i]);
+    VertexUnifier unifier(mesh.positions);
+    const FaceTally tally = add_faces(read, scan, materials, path, options, unifier, mesh);
+    if (tally.faces != scan.face_count) {
+        // The usemtl switches are counted in the scan's faces: the two must agree.
+        throw Error(path.string() + ": internal error: tinyobjloader read " +
+                    std::to_string(tally.faces) + " faces, the scan " +
+                    std::to_string(scan.face_count));
+    }
+    warn_skipped(tally, warnings);
+    mesh.materials = std::move(materials.materials);
+    if (tally.uses_default) {
+        MeshMaterial fallback;
+        fallback.name = "default";
+        mesh.materials.push_back(fallback);
+    }
+    add_vertex_attributes(read.attrib, unifier, mesh);
 
     report(path, warnings, options);
     if (options.warnings != nullptr) {
-        for (std::string& w : mtl_warnings)
+        for (std::string& w : materials.mtl_warnings)
             options.warnings->push_back(printable(w, kMaxErrorBytes));
     }
-
     try {
         if (options.transform != glm::mat4(1.0f)) transform(mesh, options.transform);
         validate(mesh);
