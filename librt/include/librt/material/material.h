@@ -33,7 +33,7 @@ enum class Metal : std::uint8_t {
 /// materials are plain copyable values stored contiguously in the Scene, a hit refers to
 /// one by a 32-bit id instead of a shared_ptr, and the BSDF functions of bsdf.h dispatch
 /// on `kind` in one switch without an indirect call. A new kind adds its enumerator, its
-/// parameters here, its BSDF header librt/src/material/bsdf_<kind>.h and one case in
+/// parameters here, a BSDF header of its own in librt/src/material/ and one case in
 /// src/material/bsdf_dispatch.h (docs/architecture.md, "Adding a BSDF kind").
 ///
 /// Emission is honoured for every kind (a diffuse surface may also glow, which the white
