@@ -71,10 +71,15 @@ public:
     LightSampler();
     /// A sampler over `lights`, indexed as given.
     explicit LightSampler(std::span<const Light> lights);
-    // Out of line: LightBounds is private (src/light/light_bounds.h), complete only there.
+    // Copies, moves and the destructor are out of line: LightBounds is private
+    // (src/light/light_bounds.h), complete only there.
+    /// A copy (the light tree is shared: immutable).
     LightSampler(const LightSampler& other);
+    /// Takes other's tables.
     LightSampler(LightSampler&& other) noexcept;
+    /// A copy (the light tree is shared: immutable).
     LightSampler& operator=(const LightSampler& other);
+    /// Takes other's tables.
     LightSampler& operator=(LightSampler&& other) noexcept;
     ~LightSampler();
 
