@@ -191,8 +191,81 @@ if(_kind_found)
 endif()
 # ---- END rule: MaterialKind:: only in material/ and io/ -----------------------------------
 
+# ---- Light-variant access (issue 43): begin -----------------------------------------------
+# 3. Only light/ looks inside a Light's variant (LightSource): std::get_if / get /
+#    holds_alternative of a ...Light kind, or a light's `.source` (what std::visit takes).
+#    Everywhere else asks the Light functions of light/light.h (light_type, is_infinite,
+#    surface_normal, preprocess, sample_li ...), so adding a light kind touches light/ and
+#    the LightSource registration only. io/ builds lights through Scene's add_*_light and
+#    needs no exception.
+set(_light_variant_areas light)
+set(_light_variant_patterns
+  "(get_if|holds_alternative|get)[ \t]*<[ \t]*(librt::)?[A-Za-z0-9_]*Light[ \t]*>"
+  "[Ll]ight[A-Za-z0-9_]*(\\([^)]*\\))?\\.source([^A-Za-z0-9_]|$)")
+
+# Sets out_var to one "\n  file:line: problem" per line of `files` (paths relative to
+# `root`) outside light/ that opens a Light's variant.
+function(librt_check_light_variant root files out_var)
+  set(found "")
+  foreach(rel IN LISTS files)
+    if(NOT rel MATCHES "^librt/(include/librt|src)/([a-z_]+)/")
+      continue()
+    endif()
+    if("${CMAKE_MATCH_2}" IN_LIST _light_variant_areas)
+      continue()
+    endif()
+    # One list element per line: ; and [ ] would split or join CMake list elements.
+    file(READ "${root}/${rel}" content)
+    string(REPLACE ";" "," content "${content}")
+    string(REPLACE "[" "(" content "${content}")
+    string(REPLACE "]" ")" content "${content}")
+    string(REPLACE "\n" ";" lines "${content}")
+    set(number 0)
+    foreach(line IN LISTS lines)
+      math(EXPR number "${number} + 1")
+      librt_code_of_line("${line}" code)
+      foreach(pattern IN LISTS _light_variant_patterns)
+        if(code MATCHES "${pattern}")
+          string(STRIP "${line}" shown)
+          string(APPEND found "\n  ${rel}:${number}: light-variant access belongs in light/: ${shown}")
+          break()
+        endif()
+      endforeach()
+    endforeach()
+  endforeach()
+  set(${out_var} "${found}" PARENT_SCOPE)
+endfunction()
+
+# Its self-check: each bad line reported once, at its line number; no good line.
+librt_scratch_folder(librt_light_variant_selftest _light_scratch)
+file(MAKE_DIRECTORY "${_light_scratch}/librt/src/scene" "${_light_scratch}/librt/src/light")
+file(WRITE "${_light_scratch}/librt/src/scene/bad.cpp"
+  "int a = 0;\n"
+  "if (auto* e = std::get_if<EnvironmentLight>(&lights_[i].source)) e->r = 1;\n"
+  "bool p = std::holds_alternative<PointLight>(l.light.source);\n"
+  "const auto& s = std::get<librt::SphereLight>(light.source);\n"
+  "    return std::visit([&](const auto& s) { return s.type(); },\n"
+  "                      light.source);\n")
+file(WRITE "${_light_scratch}/librt/src/scene/good.cpp"
+  "const std::uint32_t image = texture.source;  // std::get_if<PointLight>(&light.source)\n"
+  "LightType t = light_type(light);\nauto v = std::get_if<int>(&x);\n")
+file(WRITE "${_light_scratch}/librt/src/light/good.cpp"
+  "auto* s = std::get_if<SphereLight>(&light.source);\n")
+librt_check_light_variant("${_light_scratch}"
+  "librt/src/scene/bad.cpp;librt/src/scene/good.cpp;librt/src/light/good.cpp" _light_self)
+file(REMOVE_RECURSE "${_light_scratch}")
+string(REGEX MATCHALL "/bad\\.cpp:[0-9]+:" _light_bad_hits "${_light_self}")
+if(_light_self MATCHES "good\\.cpp" OR NOT _light_bad_hits STREQUAL
+   "/bad.cpp:2:;/bad.cpp:3:;/bad.cpp:4:;/bad.cpp:6:")
+  message(FATAL_ERROR "light-variant self-check: expected bad.cpp lines 2, 3, 4 and 6 and no "
+                      "good line, found:${_light_self}")
+endif()
+# ---- Light-variant access: end -------------------------------------------------------------
+
 librt_library_files("${ROOT}" _files _file_count)
 librt_check_layering("${ROOT}" "${_files}" _found)
+librt_check_light_variant("${ROOT}" "${_files}" _light_found)  # light-variant access
+string(APPEND _found "${_light_found}")
 if(_found)
   message(FATAL_ERROR "layering broken (see docs/architecture.md):${_found}")
 endif()

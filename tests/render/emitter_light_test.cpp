@@ -3,10 +3,10 @@
 // its light samples from behind are rejected; a textured one's light samples carry the
 // texture at the sampled point; the MIS path tracer equals the brute-force one for both.
 
+#include "light/light_bounds.h"
 #include "light_scene_test_util.h"
 
 #include <librt/integrator/integrators.h>
-#include <librt/light/light_bounds.h>
 #include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>

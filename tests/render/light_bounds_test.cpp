@@ -3,10 +3,11 @@
 // the point, is what the sampler draws, and the MIS path tracer using it (its BSDF-hit
 // weights taking the same per-point pmf) equals the brute-force tracer.
 
+#include "light/light_bounds.h"
+
 #include "light_scene_test_util.h"
 
 #include <librt/integrator/integrators.h>
-#include <librt/light/light_bounds.h>
 #include <librt/light/light_sampler.h>
 #include <librt/sampling/rng.h>
 #include <librt/scene/scene.h>

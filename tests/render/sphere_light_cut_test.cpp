@@ -5,10 +5,10 @@
 // a sample, area-uniform by chi-square), and the irradiance the cap estimate gives against
 // brute-force cosine sampling of the hemisphere with the burying sphere as occluder.
 
+#include "light/sphere_light_cuts.h"
 #include "sampling/chi_square.h"
 
 #include <librt/light/sphere_light.h>
-#include <librt/light/sphere_light_cuts.h>
 #include <librt/sampling/rng.h>
 #include <librt/sampling/warp.h>
 #include <librt/scene/scene.h>

@@ -139,25 +139,6 @@ float to_area(float pdf_dir, const PathVertex& from, const PathVertex& to) {
     return pdf;
 }
 
-/// The unit normal of a light's surface at point p (0 for a point or spot light).
-glm::vec3 light_normal(const Light& light, const glm::vec3& p) {
-    return std::visit(
-        [&](const auto& l) -> glm::vec3 {
-            using T = std::decay_t<decltype(l)>;
-            if constexpr (std::is_same_v<T, TriangleLight>)
-                return glm::normalize(glm::cross(l.p1 - l.p0, l.p2 - l.p0));
-            else if constexpr (std::is_same_v<T, QuadLight>)
-                return glm::normalize(glm::cross(l.edge0, l.edge1));
-            else if constexpr (std::is_same_v<T, DiskLight>)
-                return glm::normalize(l.normal);
-            else if constexpr (std::is_same_v<T, SphereLight>)
-                return glm::normalize(p - l.sphere.center);
-            else
-                return glm::vec3(0.0f);
-        },
-        light.source);
-}
-
 /// Density of the light vertex v (an emitter, light `v.light`) as the origin of a light
 /// subpath emitting toward `toward`: light choice times sample_le's origin density.
 float light_origin_pdf(const Context& c, const PathVertex& v, const PathVertex& toward) {
@@ -591,7 +572,7 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
                             : power_heuristic(chosen.pmf * ls.pdf, bsdf_pdf(pt, pt.wo, ls.wi));
                 } else {
                     const glm::vec3 q = pt.p + ls.wi * ls.distance;
-                    const glm::vec3 nq = light_normal(light, q);
+                    const glm::vec3 nq = surface_normal(light, q);
                     const LightLePdf le = pdf_le(light, sphere_, q, nq, -ls.wi);
                     sampled = endpoint(VertexKind::Light, q, nq, glm::vec3(0.0f),
                                        chosen.pmf * le.pos, chosen.light, ls.is_delta);

@@ -234,7 +234,7 @@ template <bool Guided = false, bool SplitCaustics = false>
     }
     // Sphere lights (the report scenes' kind) called directly: std::visit over all the
     // light types costs a dispatch per sample; the same sample_li either way.
-    const SphereLight* sphere = std::get_if<SphereLight>(&light.source);
+    const SphereLight* sphere = as_sphere_light(light);
     const LightLiSample s =
         sphere != nullptr ? sample_li(*sphere, hit.point, u) : sample_other_li(light, hit.point, u);
     if (!s.valid()) return glm::vec3(0.0f);

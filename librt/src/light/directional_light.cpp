@@ -1,8 +1,10 @@
 #include "light/emission.h"
+#include "light/light_bounds.h"
 
 #include <librt/core/error.h>
 #include <librt/core/finite.h>
 #include <librt/light/directional_light.h>
+#include <librt/light/scene_summary.h>
 #include <librt/sampling/warp.h>
 
 #include <glm/geometric.hpp>
@@ -114,5 +116,16 @@ glm::vec3 power(const DirectionalLight& light) {
     const float r = light.scene_radius > 0.0f ? light.scene_radius : 1.0f;
     return light.irradiance * (k_pi * r * r);
 }
+
+LightBounds DirectionalLight::bounds() const {
+    LightBounds b = detail::infinite_light_bounds(power(*this));
+    b.cone = true;
+    b.axis = glm::normalize(to_light);
+    // The cone of directions toward the sun's disk, widened by 1e-4 rad against rounding.
+    b.cos_cone = std::cos(std::min(angular_radius + 1e-4f, k_pi));
+    return b;
+}
+
+void DirectionalLight::preprocess(const SceneSummary& scene) { scene_radius = scene.sphere.radius; }
 
 }  // namespace librt

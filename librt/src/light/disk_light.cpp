@@ -1,4 +1,5 @@
 #include "light/emission.h"
+#include "light/light_bounds.h"
 #include "light/light_validation.h"
 #include "light/planar_light.h"
 
@@ -114,6 +115,12 @@ LightLePdf pdf_le(const DiskLight& light, const glm::vec3& /*origin*/, const glm
 glm::vec3 power(const DiskLight& light) {
     // Lambertian emitter: L pi per unit area and emitting side.
     return light.radiance * (k_pi * polygon_area(light.radius) * (light.two_sided ? 2.0f : 1.0f));
+}
+
+LightBounds DiskLight::bounds() const {
+    LightBounds b = detail::finite_light_bounds(center, radius, power(*this));
+    detail::bound_planar(b, normal, !two_sided);
+    return b;
 }
 
 }  // namespace librt

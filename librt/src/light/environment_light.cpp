@@ -1,8 +1,10 @@
 #include "light/emission.h"
+#include "light/light_bounds.h"
 
 #include <librt/core/error.h>
 #include <librt/core/finite.h>
 #include <librt/light/environment_light.h>
+#include <librt/light/scene_summary.h>
 #include <librt/sampling/warp.h>
 
 #include <glm/geometric.hpp>
@@ -167,5 +169,11 @@ glm::vec3 power(const EnvironmentLight& light) {
     // Mean radiance over the sphere times 4 pi sr times pi R^2 m^2.
     return light.data->mean_radiance * (light.scale * 4.0f * k_pi * k_pi * r * r);
 }
+
+LightBounds EnvironmentLight::bounds() const {
+    return detail::infinite_light_bounds(power(*this));  // lights from every direction
+}
+
+void EnvironmentLight::preprocess(const SceneSummary& scene) { scene_radius = scene.sphere.radius; }
 
 }  // namespace librt

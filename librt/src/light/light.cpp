@@ -1,6 +1,51 @@
+#include "light/light_bounds.h"
+
 #include <librt/light/light.h>
 
+#include <concepts>
+#include <cstddef>
+#include <utility>
+
 namespace librt {
+namespace {
+
+/// What every light kind answers for itself (light.h): the members the dispatch below
+/// and the light sampler call, with the types they must return.
+template <class Kind>
+concept LightKind = requires(const Kind& light, Kind& mutable_light, const glm::vec3& p,
+                             const SceneSummary& scene, const glm::vec3& ref, glm::vec2 u) {
+    { light.type() } -> std::same_as<LightType>;
+    { light.surface_normal(p) } -> std::same_as<glm::vec3>;
+    { light.bounds() } -> std::same_as<LightBounds>;
+    mutable_light.preprocess(scene);
+    { sample_li(light, ref, u) } -> std::same_as<LightLiSample>;
+    { pdf_li(light, ref, p) } -> std::same_as<float>;
+    { power(light) } -> std::same_as<glm::vec3>;
+};
+
+/// True, or a compile error naming the kind that does not answer.
+template <class Kind>
+constexpr bool answers_for_itself() {
+    static_assert(LightKind<Kind>,
+                  "a LightSource alternative must be a LightKind (light.cpp): type(), "
+                  "surface_normal(p), bounds(), preprocess(scene), sample_li, pdf_li, power");
+    return true;
+}
+template <std::size_t... I>
+constexpr bool every_kind_answers(std::index_sequence<I...> /*kinds*/) {
+    return (answers_for_itself<std::variant_alternative_t<I, LightSource>>() && ...);
+}
+static_assert(every_kind_answers(std::make_index_sequence<std::variant_size_v<LightSource>>()));
+
+}  // namespace
+
+glm::vec3 surface_normal(const Light& light, const glm::vec3& p) {
+    return std::visit([&](const auto& source) { return source.surface_normal(p); }, light.source);
+}
+
+void preprocess(Light& light, const SceneSummary& scene) {
+    std::visit([&](auto& source) { source.preprocess(scene); }, light.source);
+}
 
 float pdf_li(const Light& light, const glm::vec3& ref, const glm::vec3& wi) {
     return std::visit([&](const auto& source) { return pdf_li(source, ref, wi); }, light.source);

@@ -1,6 +1,6 @@
-#include "light/cos_minus.h"
+#include "light/light_bounds.h"
 
-#include <librt/light/light_bounds.h>
+#include "light/importance_bound.h"
 
 #include <glm/geometric.hpp>
 
@@ -13,8 +13,12 @@ namespace {
 
 using detail::cos_minus;
 
-/// Mean over channels: what the power light sampler weighs by too.
-float mean(const glm::vec3& v) { return (v.x + v.y + v.z) / 3.0f; }
+/// Mean over channels, what the power light sampler weighs by too; 0 when negative or not
+/// finite.
+float phi_of(const glm::vec3& power) {
+    const float phi = std::max(0.0f, (power.x + power.y + power.z) / 3.0f);
+    return std::isfinite(phi) ? phi : 0.0f;
+}
 
 /// The bounds' radius padded so that rounding in a light's own sample_li (its points and
 /// directions are computed in float) can never put an emitting point outside the sphere:
@@ -25,17 +29,26 @@ float padded(const glm::vec3& centre, float radius) {
     return radius * (1.0f + 1e-4f) + 1e-5f * magnitude;
 }
 
-LightBounds finite(const glm::vec3& centre, float radius, float phi) {
+}  // namespace
+
+namespace detail {
+
+LightBounds finite_light_bounds(const glm::vec3& centre, float radius, const glm::vec3& power) {
     LightBounds b;
     b.centre = centre;
     b.radius = padded(centre, radius);
-    b.phi = phi;
+    b.phi = phi_of(power);
     return b;
 }
 
-/// A planar emitter of normal `normal`: one-sided ones emit into its front hemisphere only,
-/// with radiance times cos falling toward the plane.
-void planar(LightBounds& b, const glm::vec3& normal, bool one_sided) {
+LightBounds infinite_light_bounds(const glm::vec3& power) {
+    LightBounds b;
+    b.phi = phi_of(power);
+    b.infinite = true;
+    return b;
+}
+
+void bound_planar(LightBounds& b, const glm::vec3& normal, bool one_sided) {
     if (!one_sided) return;
     b.cone = true;
     b.axis = glm::normalize(normal);
@@ -43,116 +56,49 @@ void planar(LightBounds& b, const glm::vec3& normal, bool one_sided) {
     b.emitter_cosine = true;
 }
 
-LightBounds bounds_of(const PointLight& l, float phi) { return finite(l.position, 0.0f, phi); }
-
-LightBounds bounds_of(const SphereLight& l, float phi) {
-    return finite(l.sphere.center, l.sphere.radius, phi);
-}
-
-LightBounds bounds_of(const TriangleLight& l, float phi) {
-    // Centroid and the farthest corner: not the smallest sphere, but it contains the triangle.
-    const glm::vec3 c = (l.p0 + l.p1 + l.p2) / 3.0f;
-    const float r = std::max({glm::length(l.p0 - c), glm::length(l.p1 - c), glm::length(l.p2 - c)});
-    LightBounds b = finite(c, r, phi);
-    const glm::vec3 n = glm::cross(l.p1 - l.p0, l.p2 - l.p0);
-    // A degenerate triangle has no normal (and no power): no cone.
-    planar(b, n, !l.two_sided && glm::dot(n, n) > 0.0f);
-    return b;
-}
-
-LightBounds bounds_of(const QuadLight& l, float phi) {
-    const glm::vec3 c = l.corner + 0.5f * (l.edge0 + l.edge1);
-    // Half the longer diagonal reaches every corner from the centre.
-    const float r = 0.5f * std::max(glm::length(l.edge0 + l.edge1), glm::length(l.edge0 - l.edge1));
-    LightBounds b = finite(c, r, phi);
-    planar(b, glm::cross(l.edge0, l.edge1), !l.two_sided);
-    return b;
-}
-
-LightBounds bounds_of(const DiskLight& l, float phi) {
-    LightBounds b = finite(l.center, l.radius, phi);
-    planar(b, l.normal, !l.two_sided);
-    return b;
-}
-
-LightBounds bounds_of(const SpotLight& l, float phi) {
-    LightBounds b = finite(l.position, 0.0f, phi);
-    b.cone = true;
-    b.axis = glm::normalize(l.direction);
-    // spot_falloff is 0 from the outer angle on; a 1e-4 slack keeps rounding conservative.
-    b.cos_cone = std::cos(l.outer_angle) - 1e-4f;
-    return b;
-}
-
-LightBounds bounds_of(const DirectionalLight& l, float phi) {
-    LightBounds b;
-    b.phi = phi;
-    b.infinite = true;
-    b.cone = true;
-    b.axis = glm::normalize(l.to_light);
-    // The cone of directions toward the sun's disk, widened by 1e-4 rad against rounding.
-    b.cos_cone = std::cos(std::min(l.angular_radius + 1e-4f, 3.14159265f));
-    return b;
-}
-
-LightBounds bounds_of(const EnvironmentLight& /*l*/, float phi) {
-    LightBounds b;
-    b.phi = phi;
-    b.infinite = true;  // lights from every direction: never provably nothing
-    return b;
-}
-
-}  // namespace
+}  // namespace detail
 
 LightBounds light_bounds(const Light& light) {
-    const float phi = std::max(0.0f, mean(power(light)));
-    LightBounds b =
-        std::visit([&](const auto& source) { return bounds_of(source, phi); }, light.source);
-    if (!std::isfinite(b.phi)) b.phi = 0.0f;
-    return b;
+    return std::visit([](const auto& source) { return source.bounds(); }, light.source);
+}
+
+// The hooks of detail::importance_bound for one light's bounds (importance_bound.h).
+
+/// A planar one-sided emitter: behind its plane (which holds the centre) nothing, near or
+/// far; a margin of 1e-5 of the distances keeps rounding on the safe side.
+static bool ruled_out(const LightBounds& b, const LightChoicePoint& /*at*/,
+                      const glm::vec3& to_light, float d2) {
+    if (!(b.cone && b.emitter_cosine)) return false;
+    const float side = -glm::dot(b.axis, to_light);
+    return side < -1e-5f * (std::sqrt(d2) + b.radius);
+}
+
+/// The distance term alone, with r^2 standing in for d^2 (a floor also keeps a point light
+/// at the point finite).
+static float inside_weight(const LightBounds& b, float /*d2*/, float r2) {
+    return b.phi / std::max(r2, 1e-12f);
+}
+
+/// The largest cosine between the emitter's axis and a direction from an emitting point
+/// toward the shading point: outside the cone nothing, and a planar emitter's radiance
+/// falls as that cosine.
+static bool emitter_bound(const LightBounds& b, const glm::vec3& w, float cos_a, float sin_a,
+                          float& weight) {
+    if (!b.cone) return true;
+    const float c = cos_minus(-glm::dot(b.axis, w), cos_a, sin_a);
+    if (!(c > b.cos_cone)) return false;
+    if (b.emitter_cosine) weight *= c;
+    return true;
 }
 
 float importance(const LightBounds& b, const LightChoicePoint& at) {
+    if (!b.infinite) return detail::importance_bound(b, at);
     if (!(b.phi > 0.0f)) return 0.0f;
-    if (b.infinite) {
-        if (!b.cone || !at.reflect_only) return b.phi;
-        // A sun: its directions lie within acos(cos_cone) of the axis.
-        const float sin_cone = std::sqrt(std::max(0.0f, 1.0f - b.cos_cone * b.cos_cone));
-        const float c = cos_minus(glm::dot(at.normal, b.axis), b.cos_cone, sin_cone);
-        return c > 0.0f ? b.phi * c : 0.0f;
-    }
-    const glm::vec3 to_light = b.centre - at.point;
-    const float d2 = glm::dot(to_light, to_light);
-    const float r2 = b.radius * b.radius;
-    if (b.cone && b.emitter_cosine) {
-        // A planar one-sided emitter: behind its plane (which holds the centre) nothing, near
-        // or far; a margin of 1e-5 of the distances keeps rounding on the safe side.
-        const float side = -glm::dot(b.axis, to_light);
-        if (side < -1e-5f * (std::sqrt(d2) + b.radius)) return 0.0f;
-    }
-    // Inside the bounding sphere no direction can be ruled out: the distance term alone,
-    // with r^2 standing in for d^2 (a floor also keeps a point light at the point finite).
-    if (!(d2 > r2)) return b.phi / std::max(r2, 1e-12f);
-    const float d = std::sqrt(d2);
-    const glm::vec3 w = to_light / d;
-    // alpha: half the angle the bounding sphere subtends from the point.
-    const float sin_a = b.radius / d;
-    const float cos_a = std::sqrt(std::max(0.0f, 1.0f - sin_a * sin_a));
-    float weight = b.phi / d2;
-    if (at.reflect_only) {
-        // The largest cosine any emitting point makes with the surface's normal.
-        const float c = cos_minus(glm::dot(at.normal, w), cos_a, sin_a);
-        if (!(c > 0.0f)) return 0.0f;
-        weight *= c;
-    }
-    if (b.cone) {
-        // The largest cosine between the emitter's axis and a direction from an emitting
-        // point toward the shading point.
-        const float c = cos_minus(-glm::dot(b.axis, w), cos_a, sin_a);
-        if (!(c > b.cos_cone)) return 0.0f;
-        if (b.emitter_cosine) weight *= c;
-    }
-    return weight;
+    if (!b.cone || !at.reflect_only) return b.phi;
+    // A sun: its directions lie within acos(cos_cone) of the axis.
+    const float sin_cone = std::sqrt(std::max(0.0f, 1.0f - b.cos_cone * b.cos_cone));
+    const float c = cos_minus(glm::dot(at.normal, b.axis), b.cos_cone, sin_cone);
+    return c > 0.0f ? b.phi * c : 0.0f;
 }
 
 }  // namespace librt

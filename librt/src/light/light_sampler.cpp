@@ -1,3 +1,4 @@
+#include "light/light_bounds.h"
 #include "light/light_tree.h"
 
 #include <librt/light/light_sampler.h>
@@ -6,6 +7,15 @@
 #include <cmath>
 
 namespace librt {
+
+LightSampler::LightSampler() = default;
+LightSampler::LightSampler(const LightSampler& other) = default;
+LightSampler::LightSampler(LightSampler&& other) noexcept = default;
+LightSampler& LightSampler::operator=(const LightSampler& other) = default;
+LightSampler& LightSampler::operator=(LightSampler&& other) noexcept = default;
+LightSampler::~LightSampler() = default;
+
+const LightBounds& LightSampler::bounds(std::uint32_t light) const { return bounds_[light]; }
 
 LightSampler::LightSampler(std::span<const Light> lights) {
     std::vector<double> weight(lights.size());

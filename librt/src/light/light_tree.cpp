@@ -1,8 +1,9 @@
 #include "light/light_tree.h"
 
-#include "light/cos_minus.h"
+#include "light/importance_bound.h"
 
 #include <librt/geometry/hit.h>
+#include <librt/sampling/warp.h>
 
 #include <glm/geometric.hpp>
 
@@ -10,12 +11,10 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 namespace librt::detail {
 namespace {
 
-constexpr float kPi = std::numbers::pi_v<float>;
 /// The emission spread given a spot's hard edge, 1e-3 rad: an angle the float cosines of
 /// importance() resolve (their rounding near 1 is ~5e-4 rad), so rounding never rules out
 /// a point inside the cone.
@@ -36,8 +35,8 @@ constexpr int kLookahead = 1;
 
 /// The cone's cosines and sine, computed once per node rather than per importance().
 void finish_cone(LightTreeBounds& b) {
-    b.cos_o = std::cos(std::min(b.theta_o, kPi));
-    b.sin_o = std::sin(std::min(b.theta_o, kPi));
+    b.cos_o = std::cos(std::min(b.theta_o, k_pi));
+    b.sin_o = std::sin(std::min(b.theta_o, k_pi));
     b.cos_e = std::cos(b.theta_e);
 }
 
@@ -51,11 +50,11 @@ LightTreeBounds tree_bounds(const LightBounds& b) {
     t.phi = b.phi;
     t.axis = b.axis;
     if (!b.cone) {
-        t.theta_o = kPi;  // every direction (point, sphere, two-sided planar lights)
-        t.theta_e = kPi / 2.0f;
+        t.theta_o = k_pi;  // every direction (point, sphere, two-sided planar lights)
+        t.theta_e = k_pi / 2.0f;
     } else if (b.emitter_cosine) {
         t.theta_o = 0.0f;  // a one-sided planar emitter: its normal, then a cosine lobe
-        t.theta_e = kPi / 2.0f;
+        t.theta_e = k_pi / 2.0f;
     } else {
         t.theta_o = std::acos(std::clamp(b.cos_cone, -1.0f, 1.0f));  // a spot's cone
         t.theta_e = kSpotEdge;
@@ -89,23 +88,23 @@ void merge_spheres(const LightTreeBounds& a, const LightTreeBounds& b, LightTree
 void merge_cones(const LightTreeBounds& a, const LightTreeBounds& b, LightTreeBounds& out) {
     out.theta_e = std::max(a.theta_e, b.theta_e);
     out.axis = a.axis;
-    out.theta_o = kPi;
-    if (a.theta_o >= kPi || b.theta_o >= kPi) return;
+    out.theta_o = k_pi;
+    if (a.theta_o >= k_pi || b.theta_o >= k_pi) return;
     const float theta_d = std::acos(std::clamp(glm::dot(a.axis, b.axis), -1.0f, 1.0f));
     // One cone holds the other. acos rounds an angle below ~3.5e-4 rad to 0, so axes that
     // differ at all widen the kept cone by kConePad.
     const float pad = a.axis == b.axis ? 0.0f : kConePad;
-    if (std::min(theta_d + b.theta_o, kPi) <= a.theta_o) {
-        out.theta_o = std::min(a.theta_o + pad, kPi);
+    if (std::min(theta_d + b.theta_o, k_pi) <= a.theta_o) {
+        out.theta_o = std::min(a.theta_o + pad, k_pi);
         return;
     }
-    if (std::min(theta_d + a.theta_o, kPi) <= b.theta_o) {
+    if (std::min(theta_d + a.theta_o, k_pi) <= b.theta_o) {
         out.axis = b.axis;
-        out.theta_o = std::min(b.theta_o + pad, kPi);
+        out.theta_o = std::min(b.theta_o + pad, k_pi);
         return;
     }
     const float theta_o = 0.5f * (a.theta_o + theta_d + b.theta_o) + kConePad;
-    if (theta_o >= kPi) return;
+    if (theta_o >= k_pi) return;
     // Turn a's axis toward b's by theta_o - theta_a, in the plane of both.
     const glm::vec3 side = b.axis - glm::dot(a.axis, b.axis) * a.axis;
     const float side_length = glm::length(side);
@@ -139,10 +138,10 @@ LightTreeBounds merge(const LightTreeBounds& a, const LightTreeBounds& b) {
 /// The solid-angle measure of a node's emission (pbrt-v4's M_Omega): 4 pi for every
 /// direction, 2 pi (1 - cos theta_o) plus the cosine lobe's rim otherwise.
 float orientation_measure(const LightTreeBounds& b) {
-    const float theta_o = std::min(b.theta_o, kPi);
-    const float theta_w = std::min(theta_o + b.theta_e, kPi);
-    return 2.0f * kPi * (1.0f - std::cos(theta_o)) +
-           0.5f * kPi *
+    const float theta_o = std::min(b.theta_o, k_pi);
+    const float theta_w = std::min(theta_o + b.theta_e, k_pi);
+    return 2.0f * k_pi * (1.0f - std::cos(theta_o)) +
+           0.5f * k_pi *
                (2.0f * theta_w * std::sin(theta_o) - std::cos(theta_o - 2.0f * theta_w) -
                 2.0f * theta_o * std::sin(theta_o) + std::cos(theta_o));
 }
@@ -156,42 +155,39 @@ float split_cost(const LightTreeBounds& b) {
 
 }  // namespace
 
+// The hooks of importance_bound for a node's bounds (importance_bound.h).
+
+/// Wholly below a reflecting receiver's plane: the box corner farthest along the normal.
+static bool ruled_out(const LightTreeBounds& b, const LightChoicePoint& at,
+                      const glm::vec3& /*to_light*/, float /*d2*/) {
+    if (!at.reflect_only) return false;
+    const glm::vec3 far{at.normal.x > 0.0f ? b.hi.x : b.lo.x, at.normal.y > 0.0f ? b.hi.y : b.lo.y,
+                        at.normal.z > 0.0f ? b.hi.z : b.lo.z};
+    const glm::vec3 reach = far - at.point;
+    const float margin = 1e-5f * (std::fabs(reach.x) + std::fabs(reach.y) + std::fabs(reach.z));
+    return glm::dot(at.normal, reach) < -margin;
+}
+
+/// The distance term alone, to the centre (so the walk still leans toward where the point
+/// is), floored at (r/2)^2.
+static float inside_weight(const LightTreeBounds& b, float d2, float r2) {
+    return b.phi / std::max(std::max(d2, 0.25f * r2), 1e-12f);
+}
+
+/// cos theta': theta' = max(0, theta_w - theta_o - theta_u), theta_w the angle between the
+/// axis and the direction from the lights to the point, theta_u (here a) the sphere's
+/// half angle; nothing beyond the emission spread theta_e.
+static bool emitter_bound(const LightTreeBounds& b, const glm::vec3& w, float cos_a, float sin_a,
+                          float& weight) {
+    if (!(b.theta_o < k_pi)) return true;
+    const float c = cos_minus(cos_minus(-glm::dot(b.axis, w), b.cos_o, b.sin_o), cos_a, sin_a);
+    if (!(c > b.cos_e)) return false;
+    weight *= std::max(c, 0.0f);
+    return true;
+}
+
 float importance(const LightTreeBounds& b, const LightChoicePoint& at) {
-    if (!(b.phi > 0.0f)) return 0.0f;
-    if (at.reflect_only) {
-        // Wholly below the receiver's plane: the box corner farthest along the normal.
-        const glm::vec3 far{at.normal.x > 0.0f ? b.hi.x : b.lo.x,
-                            at.normal.y > 0.0f ? b.hi.y : b.lo.y,
-                            at.normal.z > 0.0f ? b.hi.z : b.lo.z};
-        const glm::vec3 reach = far - at.point;
-        const float margin = 1e-5f * (std::fabs(reach.x) + std::fabs(reach.y) + std::fabs(reach.z));
-        if (glm::dot(at.normal, reach) < -margin) return 0.0f;
-    }
-    const glm::vec3 to_lights = b.centre - at.point;
-    const float d2 = glm::dot(to_lights, to_lights);
-    const float r2 = b.radius * b.radius;
-    // Inside the sphere no direction can be ruled out: the distance term alone, to the
-    // centre (so the walk still leans toward where the point is), floored at (r/2)^2.
-    if (!(d2 > r2)) return b.phi / std::max(std::max(d2, 0.25f * r2), 1e-12f);
-    const float d = std::sqrt(d2);
-    const glm::vec3 w = to_lights / d;
-    // theta_u: half the angle the sphere subtends from the point.
-    const float sin_u = b.radius / d;
-    const float cos_u = std::sqrt(std::max(0.0f, 1.0f - sin_u * sin_u));
-    float weight = b.phi / d2;
-    if (at.reflect_only) {
-        const float c = cos_minus(glm::dot(at.normal, w), cos_u, sin_u);
-        if (!(c > 0.0f)) return 0.0f;
-        weight *= c;
-    }
-    if (b.theta_o < kPi) {
-        // cos theta': theta' = max(0, theta_w - theta_o - theta_u), theta_w the angle between
-        // the axis and the direction from the lights to the point.
-        const float c = cos_minus(cos_minus(-glm::dot(b.axis, w), b.cos_o, b.sin_o), cos_u, sin_u);
-        if (!(c > b.cos_e)) return 0.0f;
-        weight *= std::max(c, 0.0f);
-    }
-    return weight;
+    return importance_bound(b, at);
 }
 
 LightTree::LightTree(std::span<const LightBounds> bounds, std::span<const std::uint32_t> lights)

@@ -4,7 +4,7 @@
 // above LightSampler::k_max_bounded lights). The node layout can change without touching
 // the API.
 
-#include <librt/light/light_bounds.h>
+#include "light/light_bounds.h"
 
 #include <glm/vec3.hpp>
 

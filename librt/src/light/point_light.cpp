@@ -1,3 +1,4 @@
+#include "light/light_bounds.h"
 #include "light/light_validation.h"
 
 #include <librt/core/finite.h>
@@ -38,6 +39,10 @@ LightLeSample sample_le(const PointLight& light, glm::vec2 /*u_pos*/, glm::vec2 
 LightLePdf pdf_le(const PointLight& /*light*/, const glm::vec3& /*origin*/,
                   const glm::vec3& /*normal*/, const glm::vec3& /*direction*/) {
     return {1.0f, uniform_sphere_pdf()};
+}
+
+LightBounds PointLight::bounds() const {
+    return detail::finite_light_bounds(position, 0.0f, power(*this));
 }
 
 }  // namespace librt

@@ -1,4 +1,5 @@
 #include "light/emission.h"
+#include "light/light_bounds.h"
 #include "light/light_validation.h"
 #include "light/planar_light.h"
 
@@ -8,6 +9,8 @@
 #include <librt/sampling/warp.h>
 
 #include <glm/geometric.hpp>
+
+#include <algorithm>
 
 namespace librt {
 
@@ -73,6 +76,15 @@ glm::vec3 power(const QuadLight& light) {
     // Lambertian emitter: L pi per unit area and emitting side.
     const float area = glm::length(glm::cross(light.edge0, light.edge1));
     return light.radiance * (k_pi * area * (light.two_sided ? 2.0f : 1.0f));
+}
+
+LightBounds QuadLight::bounds() const {
+    const glm::vec3 c = corner + 0.5f * (edge0 + edge1);
+    // Half the longer diagonal reaches every corner from the centre.
+    const float r = 0.5f * std::max(glm::length(edge0 + edge1), glm::length(edge0 - edge1));
+    LightBounds b = detail::finite_light_bounds(c, r, power(*this));
+    detail::bound_planar(b, glm::cross(edge0, edge1), !two_sided);
+    return b;
 }
 
 }  // namespace librt

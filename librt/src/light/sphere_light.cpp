@@ -1,5 +1,7 @@
 #include "light/emission.h"
+#include "light/light_bounds.h"
 #include "light/light_validation.h"
+#include "light/sphere_light_cuts.h"
 
 #include <librt/core/error.h>
 #include <librt/light/sphere_light.h>
@@ -131,6 +133,10 @@ glm::vec3 power(const SphereLight& light) {
     const double r = light.sphere.radius;
     const double k = 4.0 * double(k_pi) * double(k_pi) * r * r;
     return glm::vec3(glm::dvec3(light.radiance) * k);
+}
+
+LightBounds SphereLight::bounds() const {
+    return detail::finite_light_bounds(sphere.center, sphere.radius, power(*this));
 }
 
 }  // namespace librt

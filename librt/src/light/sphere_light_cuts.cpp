@@ -1,12 +1,15 @@
+#include "light/sphere_light_cuts.h"
+
 #include <librt/geometry/ray_offset.h>
+#include <librt/light/scene_summary.h>
 #include <librt/light/sphere_light.h>
-#include <librt/light/sphere_light_cuts.h>
+#include <librt/sampling/warp.h>
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+#include <memory>
 #include <vector>
 
 namespace librt {
@@ -57,7 +60,6 @@ SphereLightCuts make_sphere_light_cuts(const SphereCut* cuts, int count) {
     // the cap about -a of radius acos(-h), its outside part the cap about +a of radius
     // pi minus that; the angle between the parts' axes is angle(a_i, a_j) for equal sides,
     // pi minus it otherwise. Touching parts count as sharing: rounding decides nothing.
-    constexpr double kPi = std::numbers::pi;
     constexpr double kMargin = 1e-9;
     for (int i = 0; i < out.count; ++i)
         for (int j = 0; j < out.count; ++j) {
@@ -67,9 +69,9 @@ SphereLightCuts make_sphere_light_cuts(const SphereCut* cuts, int count) {
             const double between = std::acos(std::clamp(glm::dot(ci.axis, cj.axis), -1.0, 1.0));
             for (int si = 0; si < 2; ++si)
                 for (int sj = 0; sj < 2; ++sj) {
-                    const double ti = si == 1 ? ci.inside_angle : kPi - ci.inside_angle;
-                    const double tj = sj == 1 ? cj.inside_angle : kPi - cj.inside_angle;
-                    const double axes = si == sj ? between : kPi - between;
+                    const double ti = si == 1 ? ci.inside_angle : k_pi_double - ci.inside_angle;
+                    const double tj = sj == 1 ? cj.inside_angle : k_pi_double - cj.inside_angle;
+                    const double axes = si == sj ? between : k_pi_double - between;
                     if (axes > ti + tj + kMargin)
                         out.disjoint[std::size_t(i)][std::size_t(si)] |=
                             std::uint16_t(1u << (2 * j + sj));
@@ -132,6 +134,19 @@ VisibleCap visible_cap(const SphereLight& light, const glm::vec3& p) {
         best.z1 = 1.0;
     }
     return best;
+}
+
+void SphereLight::preprocess(const SceneSummary& scene) {
+    std::vector<SphereCut> found;
+    const glm::dvec3 light_center(sphere.center);
+    const double light_radius = sphere.radius;
+    for (const DoubleSphere& s : scene.opaque_spheres)
+        if (const std::optional<SphereCut> cut =
+                sphere_cut(light_center, light_radius, s.center, s.radius2))
+            found.push_back(*cut);
+    cuts = found.empty() ? nullptr
+                         : std::make_shared<const SphereLightCuts>(
+                               make_sphere_light_cuts(found.data(), int(found.size())));
 }
 
 }  // namespace librt

@@ -1,4 +1,5 @@
 #include "light/emission.h"
+#include "light/light_bounds.h"
 #include "light/light_validation.h"
 
 #include <librt/core/error.h>
@@ -100,6 +101,15 @@ glm::vec3 power(const SpotLight& light) {
     // strength, plus the quadratic ramp's (cos(inner) - cos(outer)) / 3.
     const float ci = std::cos(light.inner_angle), co = std::cos(light.outer_angle);
     return light.intensity * (2.0f * k_pi * ((1.0f - ci) + (ci - co) / 3.0f));
+}
+
+LightBounds SpotLight::bounds() const {
+    LightBounds b = detail::finite_light_bounds(position, 0.0f, power(*this));
+    b.cone = true;
+    b.axis = glm::normalize(direction);
+    // spot_falloff is 0 from the outer angle on; a 1e-4 slack keeps rounding conservative.
+    b.cos_cone = std::cos(outer_angle) - 1e-4f;
+    return b;
 }
 
 }  // namespace librt

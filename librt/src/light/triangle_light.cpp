@@ -1,5 +1,6 @@
 #include "geometry/spawn_ray.h"
 #include "light/emission.h"
+#include "light/light_bounds.h"
 #include "light/planar_light.h"
 #include "sampling/spherical_triangle.h"
 
@@ -10,6 +11,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace librt {
@@ -191,6 +193,17 @@ glm::vec3 power(const TriangleLight& light) {
     const float area = 0.5f * glm::length(glm::cross(light.p1 - light.p0, light.p2 - light.p0));
     const float sides = light.two_sided ? 2.0f : 1.0f;
     return light.radiance * light.mean_texture * (sides * k_pi * area);
+}
+
+LightBounds TriangleLight::bounds() const {
+    // Centroid and the farthest corner: not the smallest sphere, but it contains the triangle.
+    const glm::vec3 c = (p0 + p1 + p2) / 3.0f;
+    const float r = std::max({glm::length(p0 - c), glm::length(p1 - c), glm::length(p2 - c)});
+    LightBounds b = detail::finite_light_bounds(c, r, power(*this));
+    const glm::vec3 n = glm::cross(p1 - p0, p2 - p0);
+    // A degenerate triangle has no normal (and no power): no cone.
+    detail::bound_planar(b, n, !two_sided && glm::dot(n, n) > 0.0f);
+    return b;
 }
 
 }  // namespace librt

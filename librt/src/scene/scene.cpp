@@ -319,14 +319,6 @@ void Scene::make_triangle_lights() {
             lights_.back().camera_visible = o.camera_visible;
         }
     }
-    // Lights at infinity need the scene's size for their power (what the sampler weighs).
-    const float radius = bounding_sphere().radius;
-    infinite_lights_.clear();
-    for (std::uint32_t i = 0; i < lights_.size(); ++i) {
-        if (auto* e = std::get_if<EnvironmentLight>(&lights_[i].source)) e->scene_radius = radius;
-        if (auto* d = std::get_if<DirectionalLight>(&lights_[i].source)) d->scene_radius = radius;
-        if (is_infinite(lights_[i])) infinite_lights_.push_back(i);
-    }
 }
 
 SceneSphere Scene::bounding_sphere() const {
@@ -335,37 +327,30 @@ SceneSphere Scene::bounding_sphere() const {
     return {b.center(), 0.5f * glm::length(b.hi - b.lo)};
 }
 
-void Scene::make_sphere_light_cuts() {
-    std::vector<SphereCut> found;
-    for (std::uint32_t i = 0; i < added_lights_; ++i) {
-        auto* light = std::get_if<SphereLight>(&lights_[i].source);
-        if (light == nullptr) continue;
-        found.clear();
-        const glm::dvec3 center(light->sphere.center);
-        const double radius = light->sphere.radius;
-        for (std::uint32_t id = 0; id < objects_.size(); ++id) {
-            // Only top-level analytic spheres of an opaque material that are no light's.
-            if (id == lights_[i].object || light_of_object(id) != kInvalidId) continue;
-            if (top_.kind(id) != ObjectKind::Sphere) continue;
-            const std::uint32_t m = objects_[id].material;
-            if (m == kInvalidId || !opaque(materials_[m])) continue;
-            const DoubleSphere& s = top_.sphere_geometry(id);
-            if (const std::optional<SphereCut> cut =
-                    sphere_cut(center, radius, s.center, s.radius2))
-                found.push_back(*cut);
-        }
-        light->cuts = found.empty()
-                          ? nullptr
-                          : std::make_shared<const SphereLightCuts>(
-                                librt::make_sphere_light_cuts(found.data(), int(found.size())));
+void Scene::preprocess_lights() {
+    // Only top-level analytic spheres of an opaque material that are no light's may bury
+    // a sphere light.
+    std::vector<DoubleSphere> opaque_spheres;
+    for (std::uint32_t id = 0; id < objects_.size(); ++id) {
+        if (light_of_object(id) != kInvalidId || top_.kind(id) != ObjectKind::Sphere) continue;
+        const std::uint32_t m = objects_[id].material;
+        if (m == kInvalidId || !opaque(materials_[m])) continue;
+        opaque_spheres.push_back(top_.sphere_geometry(id));
+    }
+    // Lights at infinity need the scene's size for their power (what the sampler weighs).
+    const SceneSummary summary{bounding_sphere(), opaque_spheres};
+    infinite_lights_.clear();
+    for (std::uint32_t i = 0; i < lights_.size(); ++i) {
+        preprocess(lights_[i], summary);
+        if (is_infinite(lights_[i])) infinite_lights_.push_back(i);
     }
 }
 
 void Scene::commit() {
     if (committed_) return;
     top_.build();
-    make_sphere_light_cuts();
     make_triangle_lights();
+    preprocess_lights();
     light_sampler_ = LightSampler(lights_);
     pass_through_surfaces_ = std::any_of(materials_.begin(), materials_.end(),
                                          [](const Material& m) { return may_pass_through(m); });

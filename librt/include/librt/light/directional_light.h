@@ -2,11 +2,15 @@
 
 #include <librt/export.h>
 #include <librt/light/light_sample.h>
+#include <librt/light/light_type.h>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace librt {
+
+struct LightBounds;   // src/light/light_bounds.h: the light sampler's
+struct SceneSummary;  // scene_summary.h
 
 /// A directional (sun) light: light arriving from `to_light` with irradiance E (W/m^2) on
 /// a surface facing it. With angular_radius 0 it is a delta light; with angular_radius
@@ -17,7 +21,22 @@ struct DirectionalLight {
     glm::vec3 to_light{0.0f, 1.0f, 0.0f};  ///< toward the sun (need not be unit)
     glm::vec3 irradiance{0.0f};            ///< W/m^2 on a surface facing the sun
     float angular_radius = 0.0f;           ///< radians; the real sun's is about 0.00465
-    float scene_radius = 0.0f;             ///< set by Scene::commit, for power()
+    float scene_radius = 0.0f;             ///< set by preprocess, for power()
+
+    /// LightType::DeltaDirection without angular radius, else Infinite (a disk of
+    /// directions that escaping rays see).
+    [[nodiscard]] LightType type() const {
+        return angular_radius > 0.0f ? LightType::Infinite : LightType::DeltaDirection;
+    }
+    /// 0: a light at infinity has no surface in the scene (its rays start on a disk facing
+    /// along them, LightLeSample::normal).
+    [[nodiscard]] static glm::vec3 surface_normal(const glm::vec3& /*p*/) {
+        return glm::vec3(0.0f);
+    }
+    /// At infinity, the cone of directions toward the sun.
+    [[nodiscard]] LIBRT_API LightBounds bounds() const;
+    /// Takes the scene's radius, which power() needs (the sun lights the scene's disk).
+    LIBRT_API void preprocess(const SceneSummary& scene);
 };
 
 /// Throws librt::Error naming the parameter and value for a non-finite or zero direction,

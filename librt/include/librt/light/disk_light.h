@@ -2,11 +2,16 @@
 
 #include <librt/export.h>
 #include <librt/light/light_sample.h>
+#include <librt/light/light_type.h>
 
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace librt {
+
+struct LightBounds;   // src/light/light_bounds.h: the light sampler's
+struct SceneSummary;  // scene_summary.h
 
 /// A disk area light emitting a uniform radiance, its front along `normal`. Its surface,
 /// for rays and for sampling alike, is the regular polygon of kDiskLightSides sides
@@ -20,6 +25,17 @@ struct DiskLight {
     float radius = 1.0f;                  ///< circumradius of the polygon
     glm::vec3 radiance{0.0f};             ///< emitted radiance L (W / (sr m^2)) per channel
     bool two_sided = false;               ///< emits from the back as well
+
+    /// A surface: LightType::Area.
+    [[nodiscard]] static constexpr LightType type() { return LightType::Area; }
+    /// The unit front normal (the same at every point p).
+    [[nodiscard]] glm::vec3 surface_normal(const glm::vec3& /*p*/) const {
+        return glm::normalize(normal);
+    }
+    /// The sphere of its circumradius; the front hemisphere when one-sided.
+    [[nodiscard]] LIBRT_API LightBounds bounds() const;
+    /// Nothing to learn of the scene.
+    static void preprocess(const SceneSummary& /*scene*/) {}
 };
 
 /// Number of sides of the polygon that stands for a disk.

@@ -2,6 +2,7 @@
 
 #include <librt/export.h>
 #include <librt/light/light_sample.h>
+#include <librt/light/light_type.h>
 #include <librt/sampling/distribution.h>
 
 #include <glm/mat3x3.hpp>
@@ -12,6 +13,9 @@
 #include <vector>
 
 namespace librt {
+
+struct LightBounds;   // src/light/light_bounds.h: the light sampler's
+struct SceneSummary;  // scene_summary.h
 
 /// An equirectangular radiance image (W / (sr m^2) per channel), rows top to bottom. Pixel
 /// (x, y) covers u in [x / w, (x + 1) / w), v in [y / h, (y + 1) / h) with, in the light's
@@ -41,7 +45,19 @@ struct EnvironmentLight {
     std::shared_ptr<const EnvironmentData> data;  ///< image and density; null: black
     glm::mat3 rotation{1.0f};                     ///< light frame to world (orthonormal)
     float scale = 1.0f;                           ///< multiplies the radiance
-    float scene_radius = 0.0f;                    ///< set by Scene::commit, for power()
+    float scene_radius = 0.0f;                    ///< set by preprocess, for power()
+
+    /// LightType::Infinite: every direction, seen by escaping rays.
+    [[nodiscard]] static constexpr LightType type() { return LightType::Infinite; }
+    /// 0: a light at infinity has no surface in the scene (its rays start on a disk facing
+    /// along them, LightLeSample::normal).
+    [[nodiscard]] static glm::vec3 surface_normal(const glm::vec3& /*p*/) {
+        return glm::vec3(0.0f);
+    }
+    /// At infinity, every direction.
+    [[nodiscard]] LIBRT_API LightBounds bounds() const;
+    /// Takes the scene's radius, which power() needs.
+    LIBRT_API void preprocess(const SceneSummary& scene);
 
     /// An environment of constant radiance.
     [[nodiscard]] LIBRT_API static EnvironmentLight constant(const glm::vec3& radiance);

@@ -6,8 +6,10 @@
 #include <librt/light/disk_light.h>
 #include <librt/light/environment_light.h>
 #include <librt/light/light_sample.h>
+#include <librt/light/light_type.h>
 #include <librt/light/point_light.h>
 #include <librt/light/quad_light.h>
+#include <librt/light/scene_summary.h>
 #include <librt/light/sphere_light.h>
 #include <librt/light/spot_light.h>
 #include <librt/light/triangle_light.h>
@@ -18,13 +20,19 @@
 #include <cstdint>
 #include <variant>
 
-// The light seam. A light type is a plain struct in its own header (point_light.h,
-// sphere_light.h) with three free functions: sample_li(light, ref, u) -> LightLiSample,
-// pdf_li(light, ref, wi) and power(light), and for paths that start at lights
-// sample_le(light, u_pos, u_dir) and pdf_le(light, origin, normal, direction) (lights at
-// infinity take the scene's SceneSphere after the light). Adding one is that header, its
-// .cpp, and its name in LightSource. A light at infinity that escaping rays see
-// (environment, sun with an angular radius) also has escaped_radiance(light, dir).
+// The light seam. A light kind is a plain struct in its own header (point_light.h,
+// sphere_light.h) that answers for itself: members type() (LightType: delta position,
+// delta direction, area, infinite), surface_normal(p), bounds() (for the light sampler)
+// and preprocess(SceneSummary) (what it learns of the scene: lights at infinity its
+// radius), and free functions sample_li(light, ref, u) -> LightLiSample, pdf_li(light,
+// ref, wi) and power(light), and for paths that start at lights sample_le(light, u_pos,
+// u_dir) and pdf_le(light, origin, normal, direction) (lights at infinity take the scene's
+// SceneSphere after the light). A light at infinity that escaping rays see (environment,
+// sun with an angular radius) also has escaped_radiance(light, dir). Adding one is that
+// header, its .cpp, and its name in LightSource; light.cpp checks every kind has the
+// members (LightKind), and the functions below reach each kind only through std::visit
+// with no fallback, so a kind that lacks one fails to compile. Code outside light/ asks
+// these functions, never the variant's alternatives (cmake/CheckLayering.cmake).
 
 namespace librt {
 
@@ -52,10 +60,31 @@ struct Light {
     bool camera_visible = true;
 };
 
-/// True for lights at infinity, which rays that leave the scene may see.
+/// What kind of emitter the light is (its kind's type()).
+[[nodiscard]] inline LightType light_type(const Light& light) {
+    return std::visit([](const auto& source) { return source.type(); }, light.source);
+}
+
+/// True for lights at infinity (a sun, an environment): no position, the scene's radius
+/// from preprocess; those of LightType::Infinite are seen by rays that leave the scene.
 [[nodiscard]] inline bool is_infinite(const Light& light) {
-    return std::holds_alternative<EnvironmentLight>(light.source) ||
-           std::holds_alternative<DirectionalLight>(light.source);
+    return is_at_infinity(light_type(light));
+}
+
+/// The unit normal of the light's surface at point p on it (an area light's; 0 for a
+/// light of a delta position or at infinity): what a path vertex on the light needs.
+[[nodiscard]] LIBRT_API glm::vec3 surface_normal(const Light& light, const glm::vec3& p);
+
+/// Lets the light learn what it needs of its scene (Scene::commit calls it for every
+/// light once the geometry is built): lights at infinity take its radius, sphere lights
+/// find the opaque spheres that bury part of them.
+LIBRT_API void preprocess(Light& light, const SceneSummary& scene);
+
+/// The SphereLight the light is, or nullptr: for the path loop's fast path, which calls
+/// the sphere light's inline sample_li directly (the report scenes' kind) rather than
+/// through std::visit's dispatch.
+[[nodiscard]] inline const SphereLight* as_sphere_light(const Light& light) {
+    return std::get_if<SphereLight>(&light.source);
 }
 
 /// The radiance a ray escaping the scene along unit direction dir receives from the light

@@ -3,7 +3,8 @@
 #include <librt/export.h>
 #include <librt/geometry/hit.h>
 #include <librt/light/light.h>
-#include <librt/light/light_bounds.h>
+
+#include <glm/vec3.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -13,14 +14,25 @@
 
 namespace librt {
 
+struct LightBounds;  // src/light/light_bounds.h
 namespace detail {
 class LightTree;  // src/light/light_tree.h
 }  // namespace detail
 
+/// Where a light is to be chosen for: a shading point and what its BSDF can receive.
+struct LightChoicePoint {
+    glm::vec3 point{0.0f};  ///< the shading point (the light sample's reference point)
+    /// Unit geometric normal on the side the path arrived from.
+    glm::vec3 normal{0.0f, 0.0f, 1.0f};
+    /// The BSDF only reflects (no transmission lobe): light from below the surface's
+    /// geometric plane gives nothing, so a light wholly below it is worth nothing.
+    bool reflect_only = false;
+};
+
 /// How a path tracer chooses the light it samples at a shading point.
 enum class LightChoice : std::uint8_t {
     Power,    ///< by power alone, the same table everywhere (LightSampler::sample(u))
-    Bounded,  ///< by power times a bound of the contribution at the point (light_bounds.h)
+    Bounded,  ///< by power times a bound of the contribution at the point (each light's bounds())
 };
 
 /// One light chosen by a LightSampler, with the probability of that choice.
@@ -41,7 +53,8 @@ struct SampledLight {
 /// (they add nothing). Choosing is a binary search in the cumulative distribution.
 ///
 /// The overloads taking a LightChoicePoint choose by power times a bound of each light's
-/// contribution at that point instead (light_bounds.h): a light wholly below a reflecting
+/// contribution at that point instead (each light's bounds(), src/light/light_bounds.h): a
+/// light wholly below a reflecting
 /// surface, or one facing away, gets probability 0 and costs no sample and no shadow ray;
 /// near lights get more samples than far ones. With at most k_max_bounded lights the pmf
 /// is computed per point (one bound per light: cheap, and exact to renormalise). Above
@@ -55,9 +68,20 @@ struct SampledLight {
 class LIBRT_API LightSampler {
 public:
     /// A sampler with no lights: sample() always returns an invalid choice.
-    LightSampler() = default;
+    LightSampler();
     /// A sampler over `lights`, indexed as given.
     explicit LightSampler(std::span<const Light> lights);
+    // Copies, moves and the destructor are out of line: LightBounds is private
+    // (src/light/light_bounds.h), complete only there.
+    /// A copy (the light tree is shared: immutable).
+    LightSampler(const LightSampler& other);
+    /// Takes other's tables.
+    LightSampler(LightSampler&& other) noexcept;
+    /// A copy (the light tree is shared: immutable).
+    LightSampler& operator=(const LightSampler& other);
+    /// Takes other's tables.
+    LightSampler& operator=(LightSampler&& other) noexcept;
+    ~LightSampler();
 
     /// The light chosen by u in [0, 1).
     [[nodiscard]] SampledLight sample(float u) const {
@@ -73,8 +97,9 @@ public:
     /// Probability that sample(u, at) chooses light `light` (0 for an unknown index):
     /// what the MIS weight of a BSDF-sampled ray that hits it from `at` must use.
     [[nodiscard]] float pmf(std::uint32_t light, const LightChoicePoint& at) const;
-    /// The bounds of light `light` (index < size()).
-    [[nodiscard]] const LightBounds& bounds(std::uint32_t light) const { return bounds_[light]; }
+    /// The bounds of light `light` (index < size()); for the tests of the private
+    /// src/light/light_bounds.h.
+    [[nodiscard]] const LightBounds& bounds(std::uint32_t light) const;
     /// Up to this many lights the per-point choice renormalises over every light.
     static constexpr std::size_t k_max_bounded = 16;
 

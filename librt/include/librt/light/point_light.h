@@ -2,12 +2,16 @@
 
 #include <librt/export.h>
 #include <librt/light/light_sample.h>
+#include <librt/light/light_type.h>
 #include <librt/sampling/warp.h>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace librt {
+
+struct LightBounds;   // src/light/light_bounds.h: the light sampler's
+struct SceneSummary;  // scene_summary.h
 
 /// An isotropic point light (the report's first light). Not part of the geometry: no ray
 /// can hit it, only shadow rays aimed at it see it.
@@ -27,6 +31,17 @@ struct PointLight {
     [[nodiscard]] static PointLight from_power(const glm::vec3& position, float power) {
         return from_power(position, glm::vec3(power));
     }
+
+    /// A point: LightType::DeltaPosition.
+    [[nodiscard]] static constexpr LightType type() { return LightType::DeltaPosition; }
+    /// 0: a point has no surface.
+    [[nodiscard]] static glm::vec3 surface_normal(const glm::vec3& /*p*/) {
+        return glm::vec3(0.0f);
+    }
+    /// A sphere of radius 0 at the position, every direction.
+    [[nodiscard]] LIBRT_API LightBounds bounds() const;
+    /// Nothing to learn of the scene.
+    static void preprocess(const SceneSummary& /*scene*/) {}
 };
 
 /// Throws librt::Error naming the parameter and value if position or intensity is not

@@ -2,11 +2,16 @@
 
 #include <librt/export.h>
 #include <librt/light/light_sample.h>
+#include <librt/light/light_type.h>
 
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace librt {
+
+struct LightBounds;   // src/light/light_bounds.h: the light sampler's
+struct SceneSummary;  // scene_summary.h
 
 /// A parallelogram area light: the points corner + s edge0 + t edge1 for s, t in [0, 1],
 /// emitting a uniform radiance. Its front faces along edge0 x edge1; a one-sided light
@@ -18,6 +23,17 @@ struct QuadLight {
     glm::vec3 edge1{0.0f};     ///< second edge from the corner
     glm::vec3 radiance{0.0f};  ///< emitted radiance L (W / (sr m^2)) per channel
     bool two_sided = false;    ///< emits from the back as well
+
+    /// A surface: LightType::Area.
+    [[nodiscard]] static constexpr LightType type() { return LightType::Area; }
+    /// The unit front normal, edge0 x edge1 (the same at every point p).
+    [[nodiscard]] glm::vec3 surface_normal(const glm::vec3& /*p*/) const {
+        return glm::normalize(glm::cross(edge0, edge1));
+    }
+    /// The sphere through its corners about its centre; the front hemisphere when one-sided.
+    [[nodiscard]] LIBRT_API LightBounds bounds() const;
+    /// Nothing to learn of the scene.
+    static void preprocess(const SceneSummary& /*scene*/) {}
 };
 
 /// Throws librt::Error naming the parameter and value if a vector is not finite, the

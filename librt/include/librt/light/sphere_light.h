@@ -3,9 +3,10 @@
 #include <librt/export.h>
 #include <librt/geometry/sphere.h>
 #include <librt/light/light_sample.h>
-#include <librt/light/sphere_light_cuts.h>
+#include <librt/light/light_type.h>
 #include <librt/sampling/warp.h>
 
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -14,16 +15,31 @@
 
 namespace librt {
 
+struct LightBounds;      // src/light/light_bounds.h: the light sampler's
+struct SceneSummary;     // scene_summary.h
+struct SphereLightCuts;  // src/light/sphere_light_cuts.h
+
 /// A spherical area light (the report's later light): a sphere whose surface emits a
 /// uniform radiance, equal in every outgoing direction. Scene::add_sphere_light also adds
 /// the sphere as an emissive object, so camera and bounce rays can hit it.
 struct SphereLight {
     Sphere sphere;             ///< the emitting surface
     glm::vec3 radiance{0.0f};  ///< emitted radiance L (W / (sr m^2)) per channel
-    /// The opaque spheres that bury part of the light (sphere_light_cuts.h), or none:
-    /// Scene::commit fills it for the scene's copy of the light (any value given is
+    /// The opaque spheres that bury part of the light (src/light/sphere_light_cuts.h), or
+    /// none: preprocess fills it for the scene's copy of the light (any value given is
     /// replaced); sample_li and pdf_li then see only the part a point can see.
     std::shared_ptr<const SphereLightCuts> cuts{};
+
+    /// A surface: LightType::Area.
+    [[nodiscard]] static constexpr LightType type() { return LightType::Area; }
+    /// The unit outward normal at p (a point on the sphere).
+    [[nodiscard]] glm::vec3 surface_normal(const glm::vec3& p) const {
+        return glm::normalize(p - sphere.center);
+    }
+    /// The sphere itself, every direction.
+    [[nodiscard]] LIBRT_API LightBounds bounds() const;
+    /// Finds the scene's opaque spheres that bury part of it (cuts).
+    LIBRT_API void preprocess(const SceneSummary& scene);
 
     /// The uniform radiance with which a sphere of the given radius emits `power` in
     /// total: power = L * pi * (4 pi r^2), so L = power / (4 pi^2 r^2). Far away it then

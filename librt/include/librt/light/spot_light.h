@@ -2,11 +2,15 @@
 
 #include <librt/export.h>
 #include <librt/light/light_sample.h>
+#include <librt/light/light_type.h>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace librt {
+
+struct LightBounds;   // src/light/light_bounds.h: the light sampler's
+struct SceneSummary;  // scene_summary.h
 
 /// A spot light: a point emitting intensity I (W/sr) along `direction`, falling off
 /// smoothly between the inner and outer cone angles as glTF KHR_lights_punctual defines:
@@ -18,6 +22,17 @@ struct SpotLight {
     glm::vec3 intensity{0.0f};               ///< on the axis, W/sr per channel
     float inner_angle = 0.0f;                ///< radians, full intensity inside
     float outer_angle = 0.7853982f;          ///< radians (glTF default pi/4), dark outside
+
+    /// A point: LightType::DeltaPosition.
+    [[nodiscard]] static constexpr LightType type() { return LightType::DeltaPosition; }
+    /// 0: a point has no surface.
+    [[nodiscard]] static glm::vec3 surface_normal(const glm::vec3& /*p*/) {
+        return glm::vec3(0.0f);
+    }
+    /// A sphere of radius 0 at the position, the directions of the outer cone.
+    [[nodiscard]] LIBRT_API LightBounds bounds() const;
+    /// Nothing to learn of the scene.
+    static void preprocess(const SceneSummary& /*scene*/) {}
 };
 
 /// Throws librt::Error naming the parameter and value for non-finite vectors, a zero

@@ -2,14 +2,19 @@
 
 #include <librt/export.h>
 #include <librt/light/light_sample.h>
+#include <librt/light/light_type.h>
 #include <librt/material/texture.h>
 
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <memory>
 
 namespace librt {
+
+struct LightBounds;   // src/light/light_bounds.h: the light sampler's
+struct SceneSummary;  // scene_summary.h
 
 /// One emitting triangle of a mesh (Scene::commit makes one for every triangle whose
 /// material emits). It emits `radiance` (times its emission texture at the emitting point,
@@ -36,6 +41,18 @@ struct TriangleLight {
     /// The texture's mean over the triangle, as power() uses it (mean_texture_estimate);
     /// 1 without a texture.
     glm::vec3 mean_texture{1.0f};
+
+    /// A surface: LightType::Area.
+    [[nodiscard]] static constexpr LightType type() { return LightType::Area; }
+    /// The unit front normal, (p1 - p0) x (p2 - p0) (the same at every point p).
+    [[nodiscard]] glm::vec3 surface_normal(const glm::vec3& /*p*/) const {
+        return glm::normalize(glm::cross(p1 - p0, p2 - p0));
+    }
+    /// A sphere about the centroid through the farthest corner; the front hemisphere when
+    /// one-sided.
+    [[nodiscard]] LIBRT_API LightBounds bounds() const;
+    /// Nothing to learn of the scene.
+    static void preprocess(const SceneSummary& /*scene*/) {}
 };
 
 /// A point on the triangle (uniform in solid angle, or in area when it looks small), as a direction

@@ -16,6 +16,8 @@
 namespace librt {
 
 inline constexpr float k_pi = std::numbers::pi_v<float>;
+/// pi for arithmetic in double (the sphere-light cuts, whose walls are radius 1e5).
+inline constexpr double k_pi_double = std::numbers::pi;
 inline constexpr float k_inv_pi = std::numbers::inv_pi_v<float>;
 
 /// An orthonormal, right-handed frame (t, b, n) with t x b = n.

@@ -307,8 +307,10 @@ private:
     std::uint32_t add_light(Light light);
     std::uint32_t add_surface_light(Light light, TriangleMesh surface, const glm::vec3& radiance);
     void make_triangle_lights();
-    /// Fills each sphere light's cuts: the opaque analytic spheres that bury part of it.
-    void make_sphere_light_cuts();
+    /// Lets every light learn what it needs of the scene (preprocess in light/light.h:
+    /// the scene's size, the opaque analytic spheres that may bury a sphere light) and
+    /// lists the lights at infinity.
+    void preprocess_lights();
     void check_texture_ids(const Material& material) const;
     const Material& shade_varying(Hit& hit, const glm::vec3& direction,
                                   ShadedMaterial& scratch) const;

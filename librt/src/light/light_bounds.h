@@ -1,16 +1,18 @@
 #pragma once
 
+// Private: a cheap upper bound of what one light can give a shading point, for choosing
+// lights by their likely contribution there rather than by power alone (the idea of
+// pbrt-v4's LightBounds, Conty & Kulla 2018's light-tree importance). Each light kind
+// summarises itself once (its bounds() member, reached through light_bounds(Light)) by a
+// sphere around its emitting points, a cone of the directions it emits into, and its
+// power; importance() then costs a dozen multiplications and one square root per light
+// and shading point. The light tree (light_tree.h) bounds groups of lights the same way.
+
 #include <librt/export.h>
 #include <librt/light/light.h>
+#include <librt/light/light_sampler.h>
 
 #include <glm/vec3.hpp>
-
-// A cheap upper bound of what one light can give a shading point, for choosing lights by
-// their likely contribution there rather than by power alone (the idea of pbrt-v4's
-// LightBounds, Conty & Kulla 2018's light-tree importance, reduced to one light: no tree).
-// A light is summarised once (light_bounds) by a sphere around its emitting points, a
-// cone of the directions it emits into, and its power; importance() then costs a dozen
-// multiplications and one square root per light and shading point.
 
 namespace librt {
 
@@ -34,17 +36,8 @@ struct LightBounds {
     bool infinite = false;
 };
 
-/// Where a light is to be chosen for: a shading point and what its BSDF can receive.
-struct LightChoicePoint {
-    glm::vec3 point{0.0f};  ///< the shading point (the light sample's reference point)
-    /// Unit geometric normal on the side the path arrived from.
-    glm::vec3 normal{0.0f, 0.0f, 1.0f};
-    /// The BSDF only reflects (no transmission lobe): light from below the surface's
-    /// geometric plane gives nothing, so a light wholly below it is worth nothing.
-    bool reflect_only = false;
-};
-
-/// The bounds of `light` (computed once per light, by the light sampler).
+/// The bounds of `light` (computed once per light, by the light sampler): its kind's
+/// bounds().
 [[nodiscard]] LIBRT_API LightBounds light_bounds(const Light& light);
 
 /// A weight proportional to an upper bound of the light's contribution at `at`:
@@ -53,5 +46,22 @@ struct LightChoicePoint {
 /// Exactly 0 only when the light provably gives `at` nothing: wholly below a reflecting
 /// surface's plane, the point behind a one-sided emitter or outside a spot's cone, or phi 0.
 [[nodiscard]] LIBRT_API float importance(const LightBounds& bounds, const LightChoicePoint& at);
+
+namespace detail {
+
+/// The bounds of a light emitting `power` (W per channel) from within the sphere (centre,
+/// radius) into every direction: the radius padded so that rounding in the light's own
+/// sample_li can never put an emitting point outside it; phi the power's mean over
+/// channels (0 when negative or not finite).
+[[nodiscard]] LightBounds finite_light_bounds(const glm::vec3& centre, float radius,
+                                              const glm::vec3& power);
+/// The bounds of a light at infinity emitting `power`, from every direction.
+[[nodiscard]] LightBounds infinite_light_bounds(const glm::vec3& power);
+/// Narrows b to a planar emitter of normal `normal`: a one-sided one emits into its front
+/// hemisphere only, with radiance times cos falling toward the plane; a two-sided one
+/// everywhere (b unchanged).
+void bound_planar(LightBounds& b, const glm::vec3& normal, bool one_sided);
+
+}  // namespace detail
 
 }  // namespace librt

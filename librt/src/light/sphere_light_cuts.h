@@ -1,5 +1,8 @@
 #pragma once
 
+// Private: the data of SphereLight::cuts, which sphere_light.h holds behind a pointer to
+// an incomplete type (no app needs its layout); tests reach it through librt/src.
+
 #include <librt/export.h>
 
 #include <glm/ext/vector_double3.hpp>
@@ -10,9 +13,9 @@
 #include <optional>
 
 // Opaque spheres that bury part of a sphere light (smallpt's radius-600 light, of which
-// only an 18-unit cap pokes through the ceiling ball). Scene::commit finds them; a
-// SphereLight's sample_li then samples only the part of the light a shading point can see
-// (docs/sampling.md, "Buried sphere lights").
+// only an 18-unit cap pokes through the ceiling ball). SphereLight::preprocess finds them
+// among the scene's opaque spheres (SceneSummary); its sample_li then samples only the
+// part of the light a shading point can see (docs/sampling.md, "Buried sphere lights").
 
 namespace librt {
 
