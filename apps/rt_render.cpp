@@ -232,8 +232,10 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     bd.light_path_fraction = o.light_paths;
     if (o.roulette_depth >= 0) bd.russian_roulette_depth = o.roulette_depth;
     BidirectionalPathTracer bidirectional(bd);
-    PathTracerSettings brute_settings = pt;
-    brute_settings.guiding = {};
+    // The brute-force tracer takes only the settings it reads (it refuses PathTracer's own).
+    PathTracerSettings brute_settings;
+    brute_settings.max_depth = pt.max_depth;
+    brute_settings.russian_roulette_depth = pt.russian_roulette_depth;
     BruteForcePathTracer brute(brute_settings);
     GuardedIntegrator& integrator =
         o.integrator == "bdpt"    ? static_cast<GuardedIntegrator&>(bidirectional)

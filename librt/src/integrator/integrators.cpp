@@ -740,9 +740,30 @@ glm::vec3 PathTracer::li_guided(const Scene& scene, const Ray& ray, Sampler& sam
     return guard(l);
 }
 
+namespace {
+/// The brute-force tracer refuses the fields only PathTracer reads, rather than ignore them:
+/// it samples no light, so it has no light sample to weigh (mis), no light to choose
+/// (light_choice), no mixture to guide (guiding) and no caustic to leave to light paths
+/// (caustic_paths). pbrt-v4 and Mitsuba 3 stop on a parameter the integrator does not
+/// use, and a reference that silently drops what it was asked for could compare against
+/// a different image than the caller meant. Their defaults (what ignoring gives) pass.
+void refuse_path_tracer_only(const PathTracerSettings& s) {
+    const auto refuse = [](const std::string& field_and_value) {
+        throw Error(field_and_value +
+                    ": a PathTracer setting; BruteForcePathTracer samples no light and would "
+                    "ignore it (leave it at its default)");
+    };
+    if (!s.mis) refuse("mis = false");
+    if (s.light_choice != LightChoice::Power) refuse("light_choice = Bounded");
+    if (s.guiding.enabled) refuse("guiding.enabled = true");
+    if (s.caustic_paths.enabled) refuse("caustic_paths.enabled = true");
+}
+}  // namespace
+
 BruteForcePathTracer::BruteForcePathTracer(const PathTracerSettings& settings)
     : settings_(settings) {
     check(settings);
+    refuse_path_tracer_only(settings);
 }
 
 glm::vec3 BruteForcePathTracer::li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
