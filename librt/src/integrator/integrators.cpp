@@ -480,13 +480,16 @@ template <bool Guided>
 }
 
 /// Step: the BSDF's own sample at v (whose material is m), from bounce dimensions `dim`,
-/// its direction in world space in `wi_world` when valid. Lambert in world space,
-/// as Diffuse::sample draws it: its sample needs only the shading frame's to_world, so
+/// into `bs` and its direction in world space into `wi_world`; false when there is none
+/// (absorbed, or below the real surface) and the path ends. Lambert in world space, as
+/// Diffuse::sample draws it: its sample needs only the shading frame's to_world, so
 /// neither the geometric normal's local copy nor the ShadingPoint is built (callgrind on the
 /// synthesis: fewer instructions per vertex). The other kinds out of line (sample_other).
-[[gnu::always_inline]] inline BsdfSample sample_bsdf_at(Vertex& v, const Material& m,
-                                                        BsdfLobe material_lobes, Sampler& sampler,
-                                                        std::uint32_t dim, glm::vec3& wi_world) {
+/// Each kind's validity is tested in its own branch: Lambert's lobe is then known.
+[[gnu::always_inline]] inline bool sample_bsdf_at(Vertex& v, const Material& m,
+                                                  BsdfLobe material_lobes, Sampler& sampler,
+                                                  std::uint32_t dim, BsdfSample& bs,
+                                                  glm::vec3& wi_world) {
     sampler.set_dimension(dim + SampleDimensions::k_bounce_lobe);
     // Lambert's one lobe needs no choice: its kind test first spares the lobe count.
     static_assert(!chooses_lobe(bsdfs::Diffuse::kLobes));
@@ -498,11 +501,13 @@ template <bool Guided>
         glm::vec3 wl;
         wi_world = lambert_direction(v.n, u, wl);
         // Below the real surface ends the path, as Diffuse::sample does.
-        if (!(glm::dot(wi_world, v.g) > 0.0f)) return {};
+        if (!(glm::dot(wi_world, v.g) > 0.0f)) return false;
         // Cosine sampling: (albedo / pi) cos / (cos / pi) = albedo.
-        return {wl, v.albedo, cosine_hemisphere_pdf(wl.z), bsdfs::Diffuse::kLobes};
+        bs = {wl, v.albedo, cosine_hemisphere_pdf(wl.z), bsdfs::Diffuse::kLobes};
+        return bs.valid();
     }
-    return sample_other(v, uc, u, wi_world);
+    bs = sample_other(v, uc, u, wi_world);
+    return bs.valid();
 }
 
 /// One path from `camera_ray` following `S`; see the class comments in integrators.h.
@@ -637,8 +642,8 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             }
         }
         glm::vec3 wi_world;
-        const BsdfSample bs = sample_bsdf_at(v, m, material_lobes, sampler, dim, wi_world);
-        if (!bs.valid()) break;  // absorbed, or below the real surface
+        BsdfSample bs;
+        if (!sample_bsdf_at(v, m, material_lobes, sampler, dim, bs, wi_world)) break;
         beta *= bs.weight;
         if (has(bs.lobe, BsdfLobe::Specular))
             bounce = {EmitterWeight::Full, 0.0f, hit.point};
