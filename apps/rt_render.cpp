@@ -278,7 +278,7 @@ SceneFileOptions check_command_line(const Options& o, const apps::MpiJob& job) {
     return file_options;
 }
 
-/// The path tracer's settings (the brute-force tracer's too, without guiding). auto: by bound
+/// The path tracer's settings. --light-choice auto: by bound
 /// (through the light tree) when there are more lights than the bounded choice weighs one by
 /// one, where power alone sends most shadow rays to far lights; by power otherwise, as before
 /// the tree.
@@ -313,8 +313,10 @@ std::unique_ptr<GuardedIntegrator> make_integrator(const Options& o, std::size_t
             return std::make_unique<BidirectionalPathTracer>(bd);
         }
         case IntegratorKind::BruteForce: {
-            PathTracerSettings brute = path_tracer_settings(o, light_count);
-            brute.guiding = {};
+            // Only the settings it reads: it refuses the path tracer's own.
+            PathTracerSettings brute;
+            brute.max_depth = o.max_depth;
+            if (o.roulette_depth >= 0) brute.russian_roulette_depth = o.roulette_depth;
             return std::make_unique<BruteForcePathTracer>(brute);
         }
     }

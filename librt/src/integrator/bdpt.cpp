@@ -99,6 +99,19 @@ struct Context {
     int roulette_depth;  ///< first rouletted bounce (INT_MAX: no roulette)
 };
 
+/// The two subpaths of one sample, and what every strategy joining them shares.
+struct Subpaths {
+    /// The camera subpath: z0 on the lens, then the camera walk's surface vertices.
+    PathVertex* camera_path;
+    int camera_length;  ///< vertices in camera_path (>= 1)
+    /// The light subpath: y0 on a light, then the light walk's vertices; slot 0 holds a
+    /// value even without one (s = 1's weight swaps its own y0 in and back).
+    PathVertex* light_path;
+    int light_length;      ///< vertices in light_path (0: none traced in this sample)
+    float light_nee;       ///< nee_area_pdf(y0, y1): mis_weight's s' = 1 term for every s >= 2
+    float per_light_path;  ///< 1 / light_path_fraction, the factor of s >= 2 and t = 1
+};
+
 /// A shadow segment from a (normal na) to b (normal nb; either may be 0, a point): the
 /// fraction of light it lets through (transmittance, or 1 / 0 without Null lobes).
 glm::vec3 segment(const Scene& scene, const glm::vec3& a, const glm::vec3& na, const glm::vec3& b) {
@@ -191,25 +204,27 @@ float pdf_to(const Context& c, const PathVertex& v, const PathVertex* prev,
     return to_area(bsdf_pdf(v, from, to), v, next);
 }
 
-/// The power-heuristic weight of the path of light vertices lv[0, s) and camera vertices
-/// cv[0, t) made by strategy (s, t); `sampled` replaces lv[0] (s = 1) or cv[0] (t = 1),
-/// the endpoint that strategy drew itself. Every other strategy's density comes from the
+/// The power-heuristic weight of the path of light vertices light_path[0, s) and camera
+/// vertices camera_path[0, t) made by strategy (s, t); `sampled` replaces light_path[0]
+/// (s = 1) or camera_path[0] (t = 1), the endpoint that strategy drew itself (nullptr for
+/// the others). Every other strategy's density comes from the
 /// ratios of reverse to forward densities along the path (pbrt 3rd ed. eq. 16.19-16.20);
 /// the densities of the connection's two ends and their neighbours are the ones that
-/// change, set here and restored after. `light_nee` is nee_area_pdf(lv[0], lv[1]), which
+/// change, set here and restored after. paths.light_nee is nee_area_pdf(y0, y1), which
 /// every s >= 2 strategy needs and which is the same for all of them: computed once per
 /// light subpath (nee_area_pdf's share of a bidirectional render's instructions fell from
 /// 4.3 % to 2.9 %, callgrind on cornell_pbr.glb).
-float mis_weight(const Context& c, PathVertex* lv, PathVertex* cv, const PathVertex& sampled, int s,
-                 int t, float light_nee) {
+float mis_weight(const Context& c, Subpaths& paths, const PathVertex* sampled, int s, int t) {
     if (s + t == 2) return 1.0f;
-    const PathVertex saved_end = s == 1 ? lv[0] : cv[0];
-    if (s == 1) lv[0] = sampled;
-    if (t == 1) cv[0] = sampled;
-    PathVertex* qs = s > 0 ? &lv[s - 1] : nullptr;
-    PathVertex* pt = &cv[t - 1];
-    PathVertex* qs_minus = s > 1 ? &lv[s - 2] : nullptr;
-    PathVertex* pt_minus = t > 1 ? &cv[t - 2] : nullptr;
+    PathVertex* const light_path = paths.light_path;
+    PathVertex* const camera_path = paths.camera_path;
+    const PathVertex saved_end = s == 1 ? light_path[0] : camera_path[0];
+    if (s == 1) light_path[0] = *sampled;
+    if (t == 1) camera_path[0] = *sampled;
+    PathVertex* qs = s > 0 ? &light_path[s - 1] : nullptr;
+    PathVertex* pt = &camera_path[t - 1];
+    PathVertex* qs_minus = s > 1 ? &light_path[s - 2] : nullptr;
+    PathVertex* pt_minus = t > 1 ? &camera_path[t - 2] : nullptr;
     // Save what changes.
     const float pt_rev = pt->pdf_rev;
     const bool pt_delta = pt->delta;
@@ -235,12 +250,12 @@ float mis_weight(const Context& c, PathVertex* lv, PathVertex* cv, const PathVer
     // path's own density is the real one, so every other term is divided by c^2. Without
     // this a light close to x1 (a ceiling just above a panel), which sample_li draws by
     // solid angle, got the tiny weight that area sampling would deserve there.
-    const PathVertex* x0 = s > 0 ? &lv[0] : pt;
-    const PathVertex* x1 = s > 1 ? &lv[1] : (s == 1 ? pt : pt_minus);
-    const float origin = s > 0 ? lv[0].pdf_fwd : pt->pdf_rev;
+    const PathVertex* x0 = s > 0 ? &light_path[0] : pt;
+    const PathVertex* x1 = s > 1 ? &light_path[1] : (s == 1 ? pt : pt_minus);
+    const float origin = s > 0 ? light_path[0].pdf_fwd : pt->pdf_rev;
     double c2 = 1.0;
     if (x1 != nullptr && x0->light != kInvalidId && !x0->delta_position && origin > 0.0f) {
-        const float nee = s >= 2 ? light_nee : nee_area_pdf(c, *x0, *x1);
+        const float nee = s >= 2 ? paths.light_nee : nee_area_pdf(c, *x0, *x1);
         const double ratio = double(nee) / double(origin);
         if (ratio > 0.0 && std::isfinite(ratio)) c2 = ratio * ratio;
     }
@@ -256,19 +271,19 @@ float mis_weight(const Context& c, PathVertex* lv, PathVertex* cv, const PathVer
     double sum = 0.0;
     double r = 1.0;
     for (int i = t - 1; i > 0; --i) {
-        r *= double(remap(cv[i].pdf_rev)) / double(remap(cv[i].pdf_fwd));
+        r *= double(remap(camera_path[i].pdf_rev)) / double(remap(camera_path[i].pdf_fwd));
         // i = 1 is the strategy that joins a light subpath to the lens (t = 1); with s = 0,
         // i = t - 1 is next-event estimation (s' = 1); every other i has s' = s + t - i >= 2.
         const bool next_event = s == 0 && i == t - 1;
-        if (!cv[i].delta && !cv[i - 1].delta && (i > 1 || c.light_tracing))
+        if (!camera_path[i].delta && !camera_path[i - 1].delta && (i > 1 || c.light_tracing))
             sum += r * r * (next_event ? c2 * to_camera_only : to_light_path);
     }
     r = 1.0;
     for (int i = s - 1; i >= 0; --i) {
-        r *= double(remap(lv[i].pdf_rev)) / double(remap(lv[i].pdf_fwd));
-        const bool delta_light = i > 0 ? lv[i - 1].delta : lv[0].delta_position;
+        r *= double(remap(light_path[i].pdf_rev)) / double(remap(light_path[i].pdf_fwd));
+        const bool delta_light = i > 0 ? light_path[i - 1].delta : light_path[0].delta_position;
         // s' = i: 0 and 1 need no light subpath.
-        if (!lv[i].delta && !delta_light)
+        if (!light_path[i].delta && !delta_light)
             sum += r * r * (i == 1 ? c2 : 1.0) * (i >= 2 ? to_light_path : to_camera_only);
     }
     if (s == 1) sum /= c2;
@@ -281,8 +296,8 @@ float mis_weight(const Context& c, PathVertex* lv, PathVertex* cv, const PathVer
         qs->delta = qs_delta;
     }
     if (qs_minus != nullptr) qs_minus->pdf_rev = qs_minus_rev;
-    if (s == 1) lv[0] = saved_end;
-    if (t == 1) cv[0] = saved_end;
+    if (s == 1) light_path[0] = saved_end;
+    if (t == 1) camera_path[0] = saved_end;
     const double w = 1.0 / (1.0 + sum);
     return std::isfinite(w) ? float(w) : 0.0f;
 }
@@ -412,6 +427,141 @@ bool connectible(const PathVertex& v) {
     return v.kind != VertexKind::Surface || has_non_specular(bsdfs::lobes_of(*v.material));
 }
 
+/// Lights at infinity: what the camera walk's last ray met, against next-event estimation
+/// at the vertex it left (s = 0 and s = 1 only: PathTracer's weights, as lights at infinity
+/// start no light subpath).
+glm::vec3 escaped_light(const Context& c, const Escape& escape, const Subpaths& paths) {
+    glm::vec3 sum(0.0f);
+    for (const std::uint32_t i : c.scene.infinite_lights()) {
+        const Light& light = c.scene.lights()[i];
+        if (escape.from == 0 && !light.camera_visible) continue;
+        const glm::vec3 le = escaped_radiance(light, escape.direction);
+        if (!(max_component(le) > 0.0f)) continue;
+        float w = 1.0f;
+        if (escape.from > 0 && escape.pdf_dir > 0.0f) {
+            const float pl = c.scene.light_sampler().pmf(i) *
+                             pdf_li(light, paths.camera_path[escape.from].p, escape.direction);
+            w = power_heuristic(escape.pdf_dir, pl);
+        }
+        sum += escape.beta * le * w;
+    }
+    return sum;
+}
+
+/// Strategy s = 0: camera vertex z(t-1) (t >= 2) is on an emitter the camera walk hit.
+glm::vec3 camera_path_hits_light(const Context& c, Subpaths& paths, int t) {
+    const PathVertex& pt = paths.camera_path[t - 1];
+    const glm::vec3 le = emitted(c, pt);
+    if (!(max_component(le) > 0.0f)) return glm::vec3(0.0f);
+    // An emitter no light samples (an emissive mesh): only this strategy finds it.
+    const float w = pt.light == kInvalidId ? 1.0f : mis_weight(c, paths, nullptr, 0, t);
+    return pt.beta * le * w;
+}
+
+/// Strategy s = 1: next-event estimation from camera vertex z(t-1) (t >= 2), its light and
+/// point drawn by sample_li from that bounce's light dimensions, as PathTracer draws them
+/// (it needs no light subpath).
+glm::vec3 connect_to_light(const Context& c, Subpaths& paths, int t, Sampler& sampler) {
+    const Scene& scene = c.scene;
+    const LightSampler& lights = scene.light_sampler();
+    const PathVertex& pt = paths.camera_path[t - 1];
+    if (!connectible(pt)) return glm::vec3(0.0f);
+    const std::uint32_t dim = SampleDimensions::bounce(static_cast<std::uint32_t>(t - 2));
+    sampler.set_dimension(dim + SampleDimensions::k_bounce_light_choice);
+    const float u_light = lights.size() > 1 ? sampler.next_1d() : 0.0f;
+    sampler.set_dimension(dim + SampleDimensions::k_bounce_light);
+    const glm::vec2 u = sampler.next_2d();
+    const SampledLight chosen = lights.sample(u_light);
+    if (!chosen.valid()) return glm::vec3(0.0f);
+    const Light& light = scene.lights()[chosen.light];
+    const LightLiSample ls = sample_li(light, pt.p, u);
+    if (!ls.valid()) return glm::vec3(0.0f);
+    const glm::vec3 f = bsdf_f(pt, ls.wi) * std::fabs(glm::dot(pt.ns, ls.wi));
+    glm::vec3 contrib = pt.beta * f * ls.radiance / (chosen.pmf * ls.pdf);
+    if (!(max_component(contrib) > 0.0f)) return glm::vec3(0.0f);
+    contrib *=
+        shadow_transmittance(scene, spawn_ray_to(pt.p, pt.ng, ls.wi, ls.distance), light.object);
+    if (!(max_component(contrib) > 0.0f)) return glm::vec3(0.0f);
+    float w;
+    if (is_infinite(light)) {
+        // PathTracer's two strategies (lights at infinity start no subpath).
+        w = ls.is_delta ? 1.0f : power_heuristic(chosen.pmf * ls.pdf, bsdf_pdf(pt, pt.wo, ls.wi));
+    } else {
+        // The light endpoint y0 this strategy drew, as the weight sees it.
+        const glm::vec3 q = pt.p + ls.wi * ls.distance;
+        const glm::vec3 nq = surface_normal(light, q);
+        const LightLePdf le = pdf_le(light, c.sphere, q, nq, -ls.wi);
+        const PathVertex sampled = endpoint(VertexKind::Light, q, nq, glm::vec3(0.0f),
+                                            chosen.pmf * le.pos, chosen.light, ls.is_delta);
+        w = mis_weight(c, paths, &sampled, 1, t);
+    }
+    return contrib * w;
+}
+
+/// Strategy t = 1: light vertex y(s-1) (s >= 2) joined to a point on the lens drawn from
+/// that light vertex's lens dimensions, splatted where it lands on the film.
+void splat_to_camera(const Context& c, Subpaths& paths, int s, Sampler& sampler) {
+    const PathVertex& qs = paths.light_path[s - 1];
+    if (!connectible(qs)) return;
+    const auto j = static_cast<std::uint32_t>(s - 2);
+    sampler.set_dimension(k_light_vertices + j * k_light_per_vertex + 3);
+    const glm::vec2 u_lens = sampler.next_2d();
+    const CameraWi cw = sample_wi(*c.camera, qs.p, u_lens, c.margin);
+    if (!cw.valid) return;
+    const glm::vec3 f = bsdf_f(qs, cw.wi) * shading_correction(qs.ns, qs.ng, qs.wo, cw.wi);
+    glm::vec3 contrib = qs.beta * f * (std::fabs(glm::dot(qs.ns, cw.wi)) * cw.weight);
+    if (!(max_component(contrib) > 0.0f)) return;
+    contrib *= segment(c.scene, qs.p, qs.ng, cw.view_start);
+    if (!(max_component(contrib) > 0.0f)) return;
+    // The camera endpoint z0 this strategy drew, as the weight sees it.
+    const PathVertex sampled = endpoint(VertexKind::Camera, cw.lens_point, glm::vec3(0.0f),
+                                        glm::vec3(0.0f), cw.pdf_pos, kInvalidId, false);
+    const float w = mis_weight(c, paths, &sampled, s, 1);
+    c.film->add(cw.raster, contrib * (w * paths.per_light_path));
+}
+
+/// Strategy s >= 2, t >= 2: the ends y(s-1) and z(t-1) of both subpaths joined by a shadow
+/// segment.
+glm::vec3 connect_subpaths(const Context& c, Subpaths& paths, int s, int t) {
+    const PathVertex& qs = paths.light_path[s - 1];
+    const PathVertex& pt = paths.camera_path[t - 1];
+    if (!connectible(qs) || !connectible(pt)) return glm::vec3(0.0f);
+    glm::vec3 d = pt.p - qs.p;
+    const float d2 = glm::dot(d, d);
+    if (!(d2 > 0.0f)) return glm::vec3(0.0f);
+    d /= std::sqrt(d2);
+    const glm::vec3 fq = bsdf_f(qs, d) * shading_correction(qs.ns, qs.ng, qs.wo, d);
+    const glm::vec3 fp = bsdf_f(pt, -d);
+    const float g = std::fabs(glm::dot(qs.ns, d)) * std::fabs(glm::dot(pt.ns, d)) / d2;
+    glm::vec3 contrib = qs.beta * fq * fp * pt.beta * g;
+    if (!(max_component(contrib) > 0.0f)) return glm::vec3(0.0f);
+    contrib *= segment(c.scene, qs.p, qs.ng, pt.p);
+    if (!(max_component(contrib) > 0.0f)) return glm::vec3(0.0f);
+    return contrib * (mis_weight(c, paths, nullptr, s, t) * paths.per_light_path);
+}
+
+/// The light subpath of one sample, into light_path; returns its length (0: none). Traced
+/// in a fraction c.light_paths of the samples (chosen by the sample's own number), from a
+/// light of finite extent chosen by power (start_light_path), its walk up to max_depth + 1
+/// vertices.
+int trace_light_path(const Context& c, Sampler& sampler, PathVertex* light_path,
+                     ShadedMaterial* scratch, std::uint32_t& decisions) {
+    if (c.light_paths < 1.0f) {
+        sampler.set_dimension(k_light_path_choice);
+        if (!(sampler.next_1d() < c.light_paths)) return 0;
+    }
+    if (!c.scene.light_sampler().any() || c.max_depth < 1) return 0;
+    const LightPathStart start = start_light_path(c.scene, c.sphere, sampler, k_light_base);
+    if (!start.valid) return 0;
+    const LightLeSample& le = start.le;
+    const float pdf0 = start.chosen.pmf * le.pdf_pos;
+    light_path[0] = endpoint(VertexKind::Light, le.origin, le.normal, le.radiance / pdf0, pdf0,
+                             start.chosen.light, le.delta_position);
+    const glm::vec3 beta = light_path[0].beta * (start.cosine() / le.pdf_dir);
+    return random_walk(c, start.ray(), beta, le.pdf_dir, Transport::Importance, sampler, light_path,
+                       scratch, c.max_depth + 1, decisions, nullptr);
+}
+
 }  // namespace
 
 BidirectionalPathTracer::BidirectionalPathTracer(const BidirectionalSettings& settings)
@@ -454,8 +604,8 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
                     settings_.russian_roulette ? settings_.russian_roulette_depth
                                                : std::numeric_limits<int>::max()};
     constexpr int kMax = BidirectionalSettings::kMaxDepth;
-    PathVertex cv[kMax + 2];
-    PathVertex lv[kMax + 1];
+    PathVertex camera_path[kMax + 2];
+    PathVertex light_path[kMax + 1];
     ShadedMaterial camera_scratch[kMax + 2];
     ShadedMaterial light_scratch[kMax + 1];
     std::uint32_t decisions = 0;
@@ -468,155 +618,46 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
     ray.t_max *= len;
 
     // The camera subpath: z0 on the lens, then up to max_depth + 1 surface vertices.
-    cv[0] = endpoint(VertexKind::Camera, ray.origin, glm::vec3(0.0f), glm::vec3(1.0f), 1.0f,
-                     kInvalidId, false);
+    camera_path[0] = endpoint(VertexKind::Camera, ray.origin, glm::vec3(0.0f), glm::vec3(1.0f),
+                              1.0f, kInvalidId, false);
     // The density of the camera ray's direction (what the t = 1 strategy's ratio needs).
     const float camera_pdf = tracing ? pdf_we(*c.camera, ray, c.margin).dir : 1.0f;
     Escape escape;
-    const int nc = random_walk(c, ray, glm::vec3(1.0f), camera_pdf, Transport::Radiance, sampler,
-                               cv, camera_scratch, settings_.max_depth + 2, decisions, &escape);
-
-    // The light subpath, from a light of finite extent chosen by power.
-    int nl = 0;
-    const LightSampler& lights = scene.light_sampler();
-    // Whether this sample traces one (light_path_fraction): its strategies' contributions
-    // are divided by the fraction, and their weights count it.
-    bool traced = true;
-    if (settings_.light_path_fraction < 1.0f) {
-        sampler.set_dimension(k_light_path_choice);
-        traced = sampler.next_1d() < settings_.light_path_fraction;
-    }
-    const float per_light_path = 1.0f / settings_.light_path_fraction;
-    if (traced && lights.any() && settings_.max_depth >= 1) {
-        const LightPathStart start = start_light_path(scene, sphere_, sampler, k_light_base);
-        if (start.valid) {
-            const LightLeSample& le = start.le;
-            const float pdf0 = start.chosen.pmf * le.pdf_pos;
-            lv[0] = endpoint(VertexKind::Light, le.origin, le.normal, le.radiance / pdf0, pdf0,
-                             start.chosen.light, le.delta_position);
-            const glm::vec3 beta = lv[0].beta * (start.cosine() / le.pdf_dir);
-            nl = random_walk(c, start.ray(), beta, le.pdf_dir, Transport::Importance, sampler, lv,
-                             light_scratch, settings_.max_depth + 1, decisions, nullptr);
-        }
-    }
+    const int camera_length =
+        random_walk(c, ray, glm::vec3(1.0f), camera_pdf, Transport::Radiance, sampler, camera_path,
+                    camera_scratch, settings_.max_depth + 2, decisions, &escape);
+    const int light_length = trace_light_path(c, sampler, light_path, light_scratch, decisions);
+    Subpaths paths{
+        camera_path, camera_length, light_path, light_length,
+        // What mis_weight's s' = 1 correction needs for every s >= 2 (see there).
+        light_length >= 2 && light_path[0].light != kInvalidId && !light_path[0].delta_position
+            ? nee_area_pdf(c, light_path[0], light_path[1])
+            : 0.0f,
+        1.0f / settings_.light_path_fraction};
+    // Without a light subpath, s = 1's weight still swaps its vertex into light_path[0] and
+    // back: give that slot a value.
+    if (light_length == 0) light_path[0] = PathVertex{};
 
     glm::vec3 radiance(0.0f);
-    PathVertex sampled{};
-    // What mis_weight's s' = 1 correction needs for every s >= 2 strategy (see there).
-    const float light_nee = nl >= 2 && lv[0].light != kInvalidId && !lv[0].delta_position
-                                ? nee_area_pdf(c, lv[0], lv[1])
-                                : 0.0f;
-    // Without a light subpath, s = 1's weight still swaps its vertex into lv[0] and back:
-    // give that slot a value.
-    if (nl == 0) lv[0] = PathVertex{};
-
-    // Lights at infinity: what the camera walk's last ray met, against next-event
-    // estimation at the vertex it left (s = 0 and s = 1 only: PathTracer's weights).
-    if (escape.escaped && escape.from <= settings_.max_depth) {
-        for (const std::uint32_t i : scene.infinite_lights()) {
-            const Light& light = scene.lights()[i];
-            if (escape.from == 0 && !light.camera_visible) continue;
-            const glm::vec3 le = escaped_radiance(light, escape.direction);
-            if (!(max_component(le) > 0.0f)) continue;
-            float w = 1.0f;
-            if (escape.from > 0 && escape.pdf_dir > 0.0f) {
-                const float pl = lights.pmf(i) * pdf_li(light, cv[escape.from].p, escape.direction);
-                w = power_heuristic(escape.pdf_dir, pl);
-            }
-            radiance += escape.beta * le * w;
-        }
-    }
-
-    for (int t = 1; t <= nc; ++t) {
-        PathVertex& pt = cv[t - 1];
+    if (escape.escaped && escape.from <= settings_.max_depth)
+        radiance += escaped_light(c, escape, paths);
+    // Every (s, t) of s light and t camera vertices within the depth limit, t outer so the
+    // sum keeps one order.
+    for (int t = 1; t <= camera_length; ++t) {
         // s = 1 (next-event estimation) needs no light subpath: it draws its own light.
-        for (int s = 0; s <= std::max(nl, 1); ++s) {
+        for (int s = 0; s <= std::max(light_length, 1); ++s) {
             const int depth = s + t - 2;
             if ((s == 1 && t == 1) || depth < 0 || depth > settings_.max_depth) continue;
             if (t == 1 && !tracing) continue;
             if (s == 0) {
-                // The camera walk hit an emitter.
-                if (t < 2) continue;
-                const glm::vec3 le = emitted(c, pt);
-                if (!(max_component(le) > 0.0f)) continue;
-                const float w =
-                    pt.light == kInvalidId ? 1.0f : mis_weight(c, lv, cv, sampled, 0, t, 0.0f);
-                radiance += pt.beta * le * w;
-                continue;
+                if (t >= 2) radiance += camera_path_hits_light(c, paths, t);
+            } else if (s == 1) {
+                radiance += connect_to_light(c, paths, t, sampler);
+            } else if (t == 1) {
+                splat_to_camera(c, paths, s, sampler);
+            } else {
+                radiance += connect_subpaths(c, paths, s, t);
             }
-            if (s == 1) {
-                // Next-event estimation from camera vertex pt (t >= 2).
-                if (!connectible(pt)) continue;
-                const std::uint32_t dim =
-                    SampleDimensions::bounce(static_cast<std::uint32_t>(t - 2));
-                sampler.set_dimension(dim + SampleDimensions::k_bounce_light_choice);
-                const float u_light = lights.size() > 1 ? sampler.next_1d() : 0.0f;
-                sampler.set_dimension(dim + SampleDimensions::k_bounce_light);
-                const glm::vec2 u = sampler.next_2d();
-                const SampledLight chosen = lights.sample(u_light);
-                if (!chosen.valid()) continue;
-                const Light& light = scene.lights()[chosen.light];
-                const LightLiSample ls = sample_li(light, pt.p, u);
-                if (!ls.valid()) continue;
-                const glm::vec3 f = bsdf_f(pt, ls.wi) * std::fabs(glm::dot(pt.ns, ls.wi));
-                glm::vec3 contrib = pt.beta * f * ls.radiance / (chosen.pmf * ls.pdf);
-                if (!(max_component(contrib) > 0.0f)) continue;
-                contrib *= shadow_transmittance(
-                    scene, spawn_ray_to(pt.p, pt.ng, ls.wi, ls.distance), light.object);
-                if (!(max_component(contrib) > 0.0f)) continue;
-                float w;
-                if (is_infinite(light)) {
-                    // PathTracer's two strategies (lights at infinity start no subpath).
-                    w = ls.is_delta
-                            ? 1.0f
-                            : power_heuristic(chosen.pmf * ls.pdf, bsdf_pdf(pt, pt.wo, ls.wi));
-                } else {
-                    const glm::vec3 q = pt.p + ls.wi * ls.distance;
-                    const glm::vec3 nq = surface_normal(light, q);
-                    const LightLePdf le = pdf_le(light, sphere_, q, nq, -ls.wi);
-                    sampled = endpoint(VertexKind::Light, q, nq, glm::vec3(0.0f),
-                                       chosen.pmf * le.pos, chosen.light, ls.is_delta);
-                    w = mis_weight(c, lv, cv, sampled, 1, t, 0.0f);
-                }
-                radiance += contrib * w;
-                continue;
-            }
-            PathVertex& qs = lv[s - 1];
-            if (!connectible(qs)) continue;
-            if (t == 1) {
-                // Join the light vertex qs (s >= 2) to the lens; splat.
-                const auto j = static_cast<std::uint32_t>(s - 2);
-                sampler.set_dimension(k_light_vertices + j * k_light_per_vertex + 3);
-                const glm::vec2 u_lens = sampler.next_2d();
-                const CameraWi cw = sample_wi(*c.camera, qs.p, u_lens, c.margin);
-                if (!cw.valid) continue;
-                const glm::vec3 f =
-                    bsdf_f(qs, cw.wi) * shading_correction(qs.ns, qs.ng, qs.wo, cw.wi);
-                glm::vec3 contrib = qs.beta * f * (std::fabs(glm::dot(qs.ns, cw.wi)) * cw.weight);
-                if (!(max_component(contrib) > 0.0f)) continue;
-                contrib *= segment(scene, qs.p, qs.ng, cw.view_start);
-                if (!(max_component(contrib) > 0.0f)) continue;
-                sampled = endpoint(VertexKind::Camera, cw.lens_point, glm::vec3(0.0f),
-                                   glm::vec3(0.0f), cw.pdf_pos, kInvalidId, false);
-                const float w = mis_weight(c, lv, cv, sampled, s, 1, light_nee);
-                c.film->add(cw.raster, contrib * (w * per_light_path));
-                continue;
-            }
-            // Both subpaths' ends joined by a shadow segment (s >= 2, t >= 2).
-            if (!connectible(pt)) continue;
-            glm::vec3 d = pt.p - qs.p;
-            const float d2 = glm::dot(d, d);
-            if (!(d2 > 0.0f)) continue;
-            d /= std::sqrt(d2);
-            const glm::vec3 fq = bsdf_f(qs, d) * shading_correction(qs.ns, qs.ng, qs.wo, d);
-            const glm::vec3 fp = bsdf_f(pt, -d);
-            const float g = std::fabs(glm::dot(qs.ns, d)) * std::fabs(glm::dot(pt.ns, d)) / d2;
-            glm::vec3 contrib = qs.beta * fq * fp * pt.beta * g;
-            if (!(max_component(contrib) > 0.0f)) continue;
-            contrib *= segment(scene, qs.p, qs.ng, pt.p);
-            if (!(max_component(contrib) > 0.0f)) continue;
-            radiance +=
-                contrib * (mis_weight(c, lv, cv, sampled, s, t, light_nee) * per_light_path);
         }
     }
     return guard(radiance);

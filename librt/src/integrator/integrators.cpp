@@ -287,6 +287,16 @@ bool near_specular(const Material& m) {
     return bsdfs::near_specular(m, kRoughness);
 }
 
+/// Lambert's sampling: a cosine-weighted direction about the unit normal n, in world space,
+/// and in `local` in the frame about n (its z the cosine). The local direction first: the
+/// frame built after its sincos call is not saved and restored around it.
+[[gnu::always_inline]] inline glm::vec3 lambert_direction(const glm::vec3& n, glm::vec2 u,
+                                                          glm::vec3& local) {
+    local = sample_cosine_hemisphere(u);
+    const Frame frame = Frame::from_normal(n);
+    return frame.to_world(local);
+}
+
 /// A direction drawn at a guided vertex: wi (world), f |cos| / pdf and the mixture's pdf.
 struct GuidedSample {
     glm::vec3 wi{0.0f};
@@ -315,7 +325,8 @@ GuidedSample sample_guided(Vertex& v, const guiding::DirLeaf& leaf, float alpha,
     if (u.x < alpha) {
         u.x = std::min(u.x / alpha, 0x1.fffffep-1f);
         if (bsdfs::is_lambertian(v.m)) {
-            g.wi = Frame::from_normal(v.n).to_world(sample_cosine_hemisphere(u));
+            glm::vec3 local;
+            g.wi = lambert_direction(v.n, u, local);
         } else {
             const ShadingPoint& sp = v.point();
             const BsdfSample bs = bsdfs::dispatch(v.m.kind, [&](auto bsdf) {
@@ -384,6 +395,119 @@ struct SplitTraceSettings : TraceSettings {
     return max_component(beta) > 0.0f;
 }
 
+/// Where a path's contributions go: its estimate, and with Guided a training path's
+/// recorder, which shares each contribution out to the vertices before it.
+template <bool Guided>
+struct PathRadiance {
+    glm::vec3 sum{0.0f};
+    guiding::PathRecorder* recorder = nullptr;  ///< Guided and training only
+
+    [[gnu::always_inline]] void add(const glm::vec3& c) {
+        sum += c;
+        if constexpr (Guided) {
+            if (recorder != nullptr) recorder->add(c);
+        }
+    }
+};
+
+/// Step: the path left the scene along unit direction `dir` after `bounce` (depth 0: the
+/// camera ray): the lights at infinity, weighed as the strategy weighs emitters. A training
+/// path also gives its last vertex what the light sample taken there weighed away.
+template <Strategy S, bool Guided>
+[[gnu::always_inline]] inline void add_escaped(const Scene& scene, const glm::vec3& dir,
+                                               const Bounce& bounce, int depth,
+                                               const LightChoicePoint* chosen,
+                                               const glm::vec3& beta, PathRadiance<Guided>& out) {
+    out.add(beta * escaped(scene, dir, bounce, S == Strategy::Brute, depth == 0, chosen));
+    if constexpr (Guided) {
+        if (out.recorder != nullptr && depth > 0)
+            out.recorder->add_to_last(beta * (escaped(scene, dir, bounce, true, false, chosen) -
+                                              escaped(scene, dir, bounce, false, false, chosen)));
+    }
+}
+
+/// Step: the emission of emitter `m` hit along unit direction `dir` after `bounce`, with
+/// its MIS weight. SplitCaustics: a light that starts light paths, reached through
+/// casters only (`chain` Open), closes a caustic path, which the light path counts.
+template <Strategy S, bool Guided, bool SplitCaustics>
+[[gnu::always_inline]] inline void add_emission(const Scene& scene, const Hit& hit,
+                                                const Material& m, const glm::vec3& dir,
+                                                const Bounce& bounce,
+                                                const LightChoicePoint* chosen, CausticChain chain,
+                                                const glm::vec3& beta, PathRadiance<Guided>& out) {
+    // Brute force weighs every emitter fully (a one-sided light's back stays dark).
+    float w = emitter_weight(scene, hit, dir, S == Strategy::Brute ? Bounce{} : bounce, chosen);
+    if constexpr (SplitCaustics) {
+        if (chain == CausticChain::Open && scene.light_of_hit(hit) != kInvalidId) w = 0.0f;
+    }
+    if (w > 0.0f) out.add(beta * m.emission * w);
+    if constexpr (Guided) {
+        // The guide learns the full emission: what the light sample weighed away too.
+        if (out.recorder != nullptr) {
+            const float full = emitter_weight(scene, hit, dir, Bounce{}, chosen);
+            if (full > w) out.recorder->add_to_last(beta * m.emission * (full - w));
+        }
+    }
+}
+
+/// How a vertex is guided: the SD-tree leaf at it and the BSDF's share alpha of the
+/// sampling mixture; no leaf: the plain BSDF sample.
+struct GuidedVertex {
+    const guiding::DirLeaf* leaf = nullptr;
+    float alpha = 1.0f;
+};
+
+/// Step (Guided): whether the vertex at `p` with material `m` is guided. Not at a specular
+/// lobe (a delta has no density to mix) nor a near-specular one; nor where the leaf has
+/// learned nothing and the path is not recorded (the plain BSDF path gives the same
+/// directions, without the mixture's bookkeeping).
+template <bool Guided>
+[[gnu::always_inline]] inline GuidedVertex guided_vertex(const GuideContext& guide,
+                                                         const Material& m, BsdfLobe material_lobes,
+                                                         const glm::vec3& p) {
+    GuidedVertex g;
+    if constexpr (Guided) {
+        if (has_non_specular(material_lobes) && !has(material_lobes, BsdfLobe::Specular) &&
+            !near_specular(m)) {
+            g.leaf = &guide.tree->leaf_at(p);
+            g.alpha = g.leaf->sampling.total() > 0.0f ? guide.bsdf_fraction : 1.0f;
+            if (g.alpha >= 1.0f && guide.recorder == nullptr) g.leaf = nullptr;
+        }
+    }
+    return g;
+}
+
+/// Step: the BSDF's own sample at v (whose material is m), from bounce dimensions `dim`,
+/// into `bs` and its direction in world space into `wi_world`; false when there is none
+/// (absorbed, or below the real surface) and the path ends. Lambert in world space, as
+/// Diffuse::sample draws it: its sample needs only the shading frame's to_world, so
+/// neither the geometric normal's local copy nor the ShadingPoint is built (callgrind on the
+/// synthesis: fewer instructions per vertex). The other kinds out of line (sample_other).
+/// Each kind's validity is tested in its own branch: Lambert's lobe is then known.
+[[gnu::always_inline]] inline bool sample_bsdf_at(Vertex& v, const Material& m,
+                                                  BsdfLobe material_lobes, Sampler& sampler,
+                                                  std::uint32_t dim, BsdfSample& bs,
+                                                  glm::vec3& wi_world) {
+    sampler.set_dimension(dim + SampleDimensions::k_bounce_lobe);
+    // Lambert's one lobe needs no choice: its kind test first spares the lobe count.
+    static_assert(!chooses_lobe(bsdfs::Diffuse::kLobes));
+    const float uc =
+        !bsdfs::is_lambertian(m) && chooses_lobe(material_lobes) ? sampler.next_1d() : 0.0f;
+    sampler.set_dimension(dim + SampleDimensions::k_bounce_bsdf);
+    const glm::vec2 u = sampler.next_2d();
+    if (bsdfs::is_lambertian(m)) [[likely]] {
+        glm::vec3 wl;
+        wi_world = lambert_direction(v.n, u, wl);
+        // Below the real surface ends the path, as Diffuse::sample does.
+        if (!(glm::dot(wi_world, v.g) > 0.0f)) return false;
+        // Cosine sampling: (albedo / pi) cos / (cos / pi) = albedo.
+        bs = {wl, v.albedo, cosine_hemisphere_pdf(wl.z), bsdfs::Diffuse::kLobes};
+        return bs.valid();
+    }
+    bs = sample_other(v, uc, u, wi_world);
+    return bs.valid();
+}
+
 /// One path from `camera_ray` following `S`; see the class comments in integrators.h.
 /// `Bounded`: lights are chosen by LightChoice::Bounded. A template parameter, so that the
 /// default (power) loop keeps its code and registers unchanged (callgrind on the synthesis).
@@ -391,23 +515,22 @@ struct SplitTraceSettings : TraceSettings {
 /// unguided loop carries none of its code. SplitCaustics: the path counts no caustic path
 /// (caustic_paths.h), which splat_caustic_path adds; its own instantiation as well, whose
 /// settings are a SplitTraceSettings.
+///
+/// Per hit, in order: the emission there (add_emission), a Null lobe crossed (cross_null),
+/// next-event estimation (sample_direct), the next direction (sample_guided at a guided
+/// vertex, else sample_bsdf_at), Russian roulette (survives_roulette).
 template <Strategy S, bool Bounded, bool Guided = false, bool SplitCaustics = false>
 glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                 const TraceSettings& settings, const GuideContext& guide = {}) {
     static_assert(!(SplitCaustics && (Guided || S != Strategy::Path)));
-    glm::vec3 radiance(0.0f);
     // Every contribution goes through here: a training path shares it out to its vertices.
-    const auto add = [&](const glm::vec3& c) {
-        radiance += c;
-        if constexpr (Guided) {
-            if (guide.recorder != nullptr) guide.recorder->add(c);
-        }
-    };
+    PathRadiance<Guided> out;
+    if constexpr (Guided) out.recorder = guide.recorder;
     glm::vec3 beta(1.0f);                          // path throughput
     Ray ray = detail::copy_by_floats(camera_ray);  // no store-forwarding stall (ray_copy.h)
     // Work with unit directions (the BSDF frames need them); rescale t's range.
     const float len = glm::length(ray.direction);
-    if (!(len > 0.0f) || !std::isfinite(len)) return radiance;
+    if (!(len > 0.0f) || !std::isfinite(len)) return out.sum;
     ray.direction /= len;
     ray.t_min *= len;
     ray.t_max *= len;
@@ -423,14 +546,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
     ShadedMaterial shaded;  // a textured hit's material (Scene::shade); unused otherwise
     for (int depth = 0;;) {
         if (!scene.intersect_for_shading(ray, hit)) {
-            add(beta *
-                escaped(scene, ray.direction, bounce, S == Strategy::Brute, depth == 0, chosen));
-            if constexpr (Guided) {
-                if (guide.recorder != nullptr && depth > 0)
-                    guide.recorder->add_to_last(
-                        beta * (escaped(scene, ray.direction, bounce, true, false, chosen) -
-                                escaped(scene, ray.direction, bounce, false, false, chosen)));
-            }
+            add_escaped<S>(scene, ray.direction, bounce, depth, chosen, beta, out);
             break;
         }
         // may_hide_objects() first: a flag that never changes during a render (depth == 0
@@ -446,22 +562,9 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         }
         // Textures looked up and the normal map applied here, so the BSDFs get plain values.
         const Material& m = scene.shade(hit, ray.direction, shaded);
-        if (m.emits()) {
-            // Brute force weighs every emitter fully (a one-sided light's back stays dark).
-            float w = emitter_weight(scene, hit, ray.direction,
-                                     S == Strategy::Brute ? Bounce{} : bounce, chosen);
-            // A light that starts light paths, hit through casters only: a caustic path.
-            if constexpr (SplitCaustics) {
-                if (chain == CausticChain::Open && scene.light_of_hit(hit) != kInvalidId) w = 0.0f;
-            }
-            if (w > 0.0f) add(beta * m.emission * w);
-            if constexpr (Guided) {
-                if (guide.recorder != nullptr) {
-                    const float full = emitter_weight(scene, hit, ray.direction, Bounce{}, chosen);
-                    if (full > w) guide.recorder->add_to_last(beta * m.emission * (full - w));
-                }
-            }
-        }
+        if (m.emits())
+            add_emission<S, Guided, SplitCaustics>(scene, hit, m, ray.direction, bounce, chosen,
+                                                   chain, beta, out);
         // Lambert's lobes are a constant: no dispatch for the common kind.
         const BsdfLobe material_lobes =
             bsdfs::is_lambertian(m) ? bsdfs::Diffuse::kLobes : bsdfs::lobes_of(m);
@@ -509,72 +612,36 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             // The point, its normal and whether light from below its plane can count.
             chosen_at = {hit.point, v.g, !has(material_lobes, BsdfLobe::Transmission)};
         }
-        // A guided vertex: no specular lobe (a delta has no density to mix).
-        const guiding::DirLeaf* leaf = nullptr;
-        float alpha = 1.0f;
-        if constexpr (Guided) {
-            if (has_non_specular(material_lobes) && !has(material_lobes, BsdfLobe::Specular) &&
-                !near_specular(m)) {
-                leaf = &guide.tree->leaf_at(hit.point);
-                alpha = leaf->sampling.total() > 0.0f ? guide.bsdf_fraction : 1.0f;
-                // Nothing to guide and nothing to record: the plain BSDF path below (the
-                // same directions, without the mixture's bookkeeping).
-                if (alpha >= 1.0f && guide.recorder == nullptr) leaf = nullptr;
-            }
-        }
+        const GuidedVertex guided = guided_vertex<Guided>(guide, m, material_lobes, hit.point);
         if (S != Strategy::Brute && has_non_specular(material_lobes)) {
             // A caustic path's light sample (at a caster after D) is the light path's to
             // take: there only lights at infinity, which start none, count.
             const bool infinite_only = SplitCaustics && chain == CausticChain::Open;
-            add(beta * sample_direct<Guided, SplitCaustics>(scene, hit, v, beta, sampler,
-                                                            !light_only, chosen, leaf, alpha,
-                                                            infinite_only));
-            if constexpr (S == Strategy::Direct) return radiance;
+            out.add(beta * sample_direct<Guided, SplitCaustics>(scene, hit, v, beta, sampler,
+                                                                !light_only, chosen, guided.leaf,
+                                                                guided.alpha, infinite_only));
+            if constexpr (S == Strategy::Direct) return out.sum;
             // The last bounce: what it finds counts only if it emits without being a light
             // (lights got weight 1 from the light sample just taken). With no such emitter,
             // save the ray.
-            if (last && light_only && !scene.has_unsampled_emitters()) return radiance;
+            if (last && light_only && !scene.has_unsampled_emitters()) return out.sum;
         }
         if constexpr (Guided) {
-            if (leaf != nullptr) {
-                const GuidedSample g = sample_guided(v, *leaf, alpha, sampler, dim);
+            if (guided.leaf != nullptr) {
+                const GuidedSample g = sample_guided(v, *guided.leaf, guided.alpha, sampler, dim);
                 if (!(max_component(g.weight) > 0.0f)) break;
                 beta *= g.weight;
                 bounce = {light_only ? EmitterWeight::Zero : EmitterWeight::Mis, g.pdf, hit.point};
                 if (guide.recorder != nullptr)
-                    guide.recorder->push(*leaf, hit.point, g.wi, g.pdf, beta);
+                    guide.recorder->push(*guided.leaf, hit.point, g.wi, g.pdf, beta);
                 if (!survives_roulette(settings, depth, dim, beta, sampler)) break;
                 detail::respawn(ray, hit.point, hit.geometric_normal, g.wi);
                 continue;
             }
         }
-        sampler.set_dimension(dim + SampleDimensions::k_bounce_lobe);
-        // Lambert's one lobe needs no choice: its kind test first spares the lobe count.
-        static_assert(!chooses_lobe(bsdfs::Diffuse::kLobes));
-        const float uc =
-            !bsdfs::is_lambertian(m) && chooses_lobe(material_lobes) ? sampler.next_1d() : 0.0f;
-        sampler.set_dimension(dim + SampleDimensions::k_bounce_bsdf);
-        const glm::vec2 u = sampler.next_2d();
         glm::vec3 wi_world;
         BsdfSample bs;
-        if (bsdfs::is_lambertian(m)) [[likely]] {
-            // Lambert in world space, as before the BSDF seam: its sample needs only the
-            // shading frame's to_world, so neither the geometric normal's local copy nor
-            // the ShadingPoint is built (callgrind on the synthesis: fewer instructions
-            // per vertex). Below the real surface ends the path, as Diffuse::sample does.
-            // The local direction first: the frame built after its sincos call is not
-            // saved and restored around it (the same values).
-            const glm::vec3 wl = sample_cosine_hemisphere(u);
-            const Frame frame = Frame::from_normal(v.n);
-            wi_world = frame.to_world(wl);
-            if (!(glm::dot(wi_world, v.g) > 0.0f)) break;
-            // Cosine sampling: (albedo / pi) cos / (cos / pi) = albedo.
-            bs = {wl, v.albedo, cosine_hemisphere_pdf(wl.z), bsdfs::Diffuse::kLobes};
-            if (!bs.valid()) break;
-        } else {
-            bs = sample_other(v, uc, u, wi_world);
-            if (!bs.valid()) break;  // absorbed, or below the real surface
-        }
+        if (!sample_bsdf_at(v, m, material_lobes, sampler, dim, bs, wi_world)) break;
         beta *= bs.weight;
         if (has(bs.lobe, BsdfLobe::Specular))
             bounce = {EmitterWeight::Full, 0.0f, hit.point};
@@ -583,7 +650,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         if (!survives_roulette(settings, depth, dim, beta, sampler)) break;
         detail::respawn(ray, hit.point, hit.geometric_normal, wi_world);
     }
-    return radiance;
+    return out.sum;
 }
 
 /// trace<S, true>, never inlined: PathTracer::li inlines the default light choice's loop,
@@ -676,9 +743,30 @@ glm::vec3 PathTracer::li_guided(const Scene& scene, const Ray& ray, Sampler& sam
     return guard(l);
 }
 
+namespace {
+/// The brute-force tracer refuses the fields only PathTracer reads, rather than ignore them:
+/// it samples no light, so it has no light sample to weigh (mis), no light to choose
+/// (light_choice), no mixture to guide (guiding) and no caustic to leave to light paths
+/// (caustic_paths). pbrt-v4 and Mitsuba 3 stop on a parameter the integrator does not
+/// use, and a reference that silently drops what it was asked for could compare against
+/// a different image than the caller meant. Their defaults (what ignoring gives) pass.
+void refuse_path_tracer_only(const PathTracerSettings& s) {
+    const auto refuse = [](const std::string& field_and_value) {
+        throw Error(field_and_value +
+                    ": a PathTracer setting; BruteForcePathTracer samples no light and would "
+                    "ignore it (leave it at its default)");
+    };
+    if (!s.mis) refuse("mis = false");
+    if (s.light_choice != LightChoice::Power) refuse("light_choice = Bounded");
+    if (s.guiding.enabled) refuse("guiding.enabled = true");
+    if (s.caustic_paths.enabled) refuse("caustic_paths.enabled = true");
+}
+}  // namespace
+
 BruteForcePathTracer::BruteForcePathTracer(const PathTracerSettings& settings)
     : settings_(settings) {
     check(settings);
+    refuse_path_tracer_only(settings);
 }
 
 glm::vec3 BruteForcePathTracer::li(const Scene& scene, const Ray& ray, Sampler& sampler) const {

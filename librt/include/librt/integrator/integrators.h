@@ -98,17 +98,20 @@ struct PathTracerSettings {
     /// is the camera ray's first hit), so 0 may end a path after its first bounce and d
     /// leaves every path of at most d bounces untouched.
     int russian_roulette_depth = 3;
-    /// PathTracer only: weigh light and BSDF samples by the power heuristic (true), or give
-    /// light samples the whole weight and count nothing for light-sampled emitters that a
-    /// BSDF-sampled ray hits (false: next-event estimation only, the report's rule).
+    /// PathTracer only (BruteForcePathTracer refuses false): weigh light and BSDF samples
+    /// by the power heuristic (true), or give light samples the whole weight and count
+    /// nothing for light-sampled emitters that a BSDF-sampled ray hits (false: next-event
+    /// estimation only, the report's rule).
     bool mis = true;
-    /// PathTracer only: how the light sampled at a vertex is chosen. Bounded spends no
-    /// sample on lights that cannot reach the point and favours near ones; Power (the
-    /// default) keeps images bit-identical to before.
+    /// PathTracer only (BruteForcePathTracer refuses Bounded): how the light sampled at a
+    /// vertex is chosen. Bounded spends no sample on lights that cannot reach the point and
+    /// favours near ones; Power (the default) keeps images bit-identical to before.
     LightChoice light_choice = LightChoice::Power;
-    /// PathTracer only: path guiding (guiding.h), off by default.
+    /// PathTracer only: path guiding (guiding.h), off by default (BruteForcePathTracer
+    /// refuses it on).
     GuidingSettings guiding{};
-    /// PathTracer only: caustics traced from the lights (not with guiding), off by default.
+    /// PathTracer only: caustics traced from the lights (not with guiding), off by default
+    /// (BruteForcePathTracer refuses them on).
     CausticPathSettings caustic_paths{};
 };
 
@@ -183,7 +186,9 @@ private:
 /// renders black), which is why it is the ground truth only for area lights.
 class LIBRT_API BruteForcePathTracer final : public GuardedIntegrator {
 public:
-    /// Throws librt::Error naming max_depth or russian_roulette_depth when out of range.
+    /// Throws librt::Error naming max_depth or russian_roulette_depth when out of range,
+    /// or a PathTracer-only field set away from its default (mis = false, light_choice =
+    /// Bounded, guiding.enabled, caustic_paths.enabled): it would have no effect here.
     explicit BruteForcePathTracer(const PathTracerSettings& settings = {});
     /// One sample of the radiance along ray.
     [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray, Sampler& sampler) const override;
