@@ -84,7 +84,7 @@ void wait_for_answer(MPI_Comm comm, MPI_Status& status) {
 
 // The settings of a rank's blocks: no progress (render_mpi reports it itself, on rank 0's
 // calling thread), the rank's cancel flag, and no adaptive sampling (the jobs say each
-// pixel's samples).
+// pixel's samples; render_block refuses the setting).
 RenderSettings block_settings(const MpiRenderSettings& s, const std::atomic<bool>* cancel) {
     RenderSettings r = s.render;
     r.progress = {};

@@ -326,6 +326,17 @@ void check_block(const Camera& camera, const Film& film, FilmOrigin origin,
     }
 }
 
+// render_block's refusal of adaptive sampling, which it cannot honour: the block (or each
+// pixel's end) says the samples, and the counts need the whole image's pilot.
+void check_not_adaptive(const RenderSettings& settings) {
+    if (settings.adaptive.enabled) {
+        throw Error(
+            "adaptive.enabled = true: render_block renders the samples its block says "
+            "(adaptive sampling is render()'s, render_progressive()'s and render_mpi()'s; "
+            "render_block_to_counts takes each pixel's count)");
+    }
+}
+
 RenderStats render_checked_block(const Scene& scene, const Camera& camera,
                                  const Integrator& integrator, Film& film, FilmOrigin origin,
                                  const RenderBlock& block, const std::uint32_t* ends,
@@ -362,6 +373,7 @@ RenderStats render_block(const Scene& scene, const Camera& camera, const Integra
                          Film& film, FilmOrigin origin, const RenderBlock& block,
                          const RenderSettings& settings) {
     validate_threads_and_tiles(settings);
+    check_not_adaptive(settings);
     check_block(camera, film, origin, block, nullptr);
     return render_checked_block(scene, camera, integrator, film, origin, block, nullptr, settings);
 }
@@ -371,6 +383,7 @@ RenderStats render_block_to_counts(const Scene& scene, const Camera& camera,
                                    const RenderBlock& block, std::span<const std::uint32_t> ends,
                                    const RenderSettings& settings) {
     validate_threads_and_tiles(settings);
+    check_not_adaptive(settings);
     check_block(camera, film, origin, block, &ends);
     RenderBlock marked = block;
     marked.count = 1;  // run_block skips a block of no samples; with ends it reads no count
