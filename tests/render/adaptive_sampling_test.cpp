@@ -450,11 +450,13 @@ TEST(AdaptiveSampling, TilesRenderedToTheirCountsGiveRendersFilm) {
 
     const std::uint32_t pilot = adaptive_pilot_samples(settings.adaptive, 24);
     ASSERT_EQ(pilot, 4u);
+    RenderSettings blocks = settings;  // the blocks say the samples: no adaptive setting
+    blocks.adaptive.enabled = false;
     Film film(40, 24);
-    (void)render_block(scene, camera, integrator, film, {0, 0, 40, 24, 0, pilot / 2}, settings);
+    (void)render_block(scene, camera, integrator, film, {0, 0, 40, 24, 0, pilot / 2}, blocks);
     const Film half = film;
     (void)render_block(scene, camera, integrator, film, {0, 0, 40, 24, pilot / 2, pilot / 2},
-                       settings);
+                       blocks);
     const std::vector<std::uint32_t> counts =
         adaptive_sample_counts(half, film, 24, settings.adaptive);
     constexpr int kTile = 16;
@@ -471,7 +473,7 @@ TEST(AdaptiveSampling, TilesRenderedToTheirCountsGiveRendersFilm) {
             }
             const RenderStats stats =
                 render_block_to_counts(scene, camera, integrator, tile, {x0, y0},
-                                       {x0, y0, x1, y1, pilot, 0}, ends, settings);
+                                       {x0, y0, x1, y1, pilot, 0}, ends, blocks);
             EXPECT_FALSE(stats.cancelled);
             std::uint64_t wanted = 0;
             for (const std::uint32_t e : ends) wanted += e - pilot;
@@ -482,6 +484,44 @@ TEST(AdaptiveSampling, TilesRenderedToTheirCountsGiveRendersFilm) {
     }
     EXPECT_TRUE(librt::testing::same_records(film, expected));
     EXPECT_GT(film.at(30, 12).samples, film.at(10, 12).samples);
+}
+
+// render_block cannot honour adaptive sampling (its block says the samples; the counts
+// need the whole image's pilot), so it refuses the setting, naming it, before rendering:
+// it used to ignore it silently, rendering the block's samples in every pixel.
+TEST(AdaptiveSampling, RenderBlockRefusesTheAdaptiveSetting) {
+    const Scene scene = empty_scene();
+    const Camera camera = flat_camera(8, 6);
+    Bernoulli integrator(0.5f, 0.5f);
+    RenderSettings settings;
+    settings.samples_per_pixel = 16;
+    settings.adaptive.enabled = true;
+    Film film(8, 6);
+    const auto expect_refusal = [&](const auto& call, const char* what) {
+        try {
+            call();
+            ADD_FAILURE() << what << ": no error for adaptive.enabled";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("adaptive.enabled"), std::string::npos)
+                << what << ": " << e.what();
+        }
+        EXPECT_EQ(film.at(3, 2).samples, 0u) << what << " rendered before refusing";
+    };
+    expect_refusal(
+        [&] {
+            (void)render_block(scene, camera, integrator, film, {0, 0, 8, 6, 0, 4}, settings);
+        },
+        "render_block");
+    const std::vector<std::uint32_t> ends(film.pixels.size(), 4);
+    expect_refusal(
+        [&] {
+            (void)render_block_to_counts(scene, camera, integrator, film, {}, {0, 0, 8, 6, 0, 0},
+                                         ends, settings);
+        },
+        "render_block_to_counts");
+    settings.adaptive.enabled = false;  // the same block without it renders
+    (void)render_block(scene, camera, integrator, film, {0, 0, 8, 6, 0, 4}, settings);
+    EXPECT_EQ(film.at(3, 2).samples, 4u);
 }
 
 TEST(AdaptiveSampling, RenderBlockToCountsRefusesBadCounts) {

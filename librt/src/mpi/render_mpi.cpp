@@ -25,6 +25,7 @@
 // are read together.
 
 #include "mpi/mpi_messages.h"
+#include "render/pass_sequence.h"
 
 #include <librt/core/error.h>
 #include <librt/mpi/render_mpi.h>
@@ -81,89 +82,77 @@ void wait_for_answer(MPI_Comm comm, MPI_Status& status) {
     }
 }
 
+// The settings of a rank's blocks: no progress (render_mpi reports it itself, on rank 0's
+// calling thread), the rank's cancel flag, and no adaptive sampling (the jobs say each
+// pixel's samples; render_block refuses the setting).
 RenderSettings block_settings(const MpiRenderSettings& s, const std::atomic<bool>* cancel) {
     RenderSettings r = s.render;
-    r.progress = {};  // render_mpi reports progress itself, on rank 0's calling thread
+    r.progress = {};
     r.cancel = cancel;
+    r.adaptive = AdaptiveSampling{};
     return r;
 }
 
-// Adaptive sampling's pilot (adaptive_pilot_samples; 0: every pixel gets every sample).
-std::uint32_t pilot_of(const MpiRenderSettings& s) {
-    return s.render.adaptive.enabled
-               ? adaptive_pilot_samples(s.render.adaptive,
-                                        static_cast<std::uint32_t>(s.render.samples_per_pixel))
-               : 0;
-}
-
-// Whether tiles are rendered in halves for kept training passes (as render() does): the
-// same answer on every rank, so every rank agrees on the records a tile carries. Asked
-// after preprocess() (PathTracer builds its guide there). Not with adaptive sampling, as
-// in render(): its pixels hold different counts.
-bool keeps_halves(const Integrator& integrator, const MpiRenderSettings& s) {
-    return integrator.keeps_training_samples() && s.render.samples_per_pixel >= 2 &&
-           pilot_of(s) == 0;
-}
-
-// Renders samples [0, spp) of the pixels `r` onto `film` placed at `origin`. With
-// `halves`, as two blocks (the same sums as one), copying the rect's records into `half`
-// (a film of the same size and placement) between them; with `split_splats` too (kept
-// training passes), a splatting integrator's splats of the first block then go to
-// half.splats, of the second to film.splats.
-RenderStats render_tile(const Scene& scene, const Camera& camera, const Integrator& integrator,
-                        Film& film, FilmOrigin origin, const Rect& r, std::uint32_t spp,
-                        bool halves, bool split_splats, Film& half, const RenderSettings& rs) {
-    if (!halves)
-        return render_block(scene, camera, integrator, film, origin,
-                            {r.x0, r.y0, r.x1, r.y1, 0, spp}, rs);
-    const std::uint32_t a = spp / 2;
-    // The first halves' splats go to half.splats, the rest stay in film.splats (see
-    // run_root): the splats of the image at half its samples, and what completes them.
-    if (split_splats) std::swap(film.splats, half.splats);
-    RenderStats st;
-    try {
-        st = render_block(scene, camera, integrator, film, origin, {r.x0, r.y0, r.x1, r.y1, 0, a},
-                          rs);
-    } catch (...) {
-        if (split_splats) std::swap(film.splats, half.splats);
-        throw;
-    }
-    if (split_splats) std::swap(film.splats, half.splats);
-    if (st.cancelled) return st;
-    const auto row = static_cast<std::ptrdiff_t>(r.x1 - r.x0);
-    for (int y = r.y0; y < r.y1; ++y) {
-        const std::size_t i = film.index(r.x0 - origin.x, y - origin.y);
-        std::copy_n(film.pixels.begin() + static_cast<std::ptrdiff_t>(i), row,
-                    half.pixels.begin() + static_cast<std::ptrdiff_t>(i));
-    }
-    const RenderStats b = render_block(scene, camera, integrator, film, origin,
-                                       {r.x0, r.y0, r.x1, r.y1, a, spp - a}, rs);
-    st.samples += b.samples;
-    st.nonfinite_samples += b.nonfinite_samples;
-    st.cancelled = b.cancelled;
-    return st;
-}
-
-// What a rank renders for job j (the jobs of run_root): tile j from no samples, to spp or
-// (adaptive sampling) to the pilot in its two halves; or job count + t, tile t continued
-// from the pilot to each pixel's count (`ends`: one per pixel of `film`).
+// What a rank renders for job j (the jobs of run_root), as render() renders the whole
+// image (PassSequence): tile j from no samples through the plan's uniform stage, to spp or
+// (adaptive sampling) to the pilot, in its two halves when the plan says, copying the
+// tile's records into `half` (a film of the same size and placement) between them; or job
+// count + t, tile t's rest stage, from the pilot on to each pixel's count (`ends`: one per
+// pixel of `film`). With kept training passes, a splatting integrator's splats of the
+// first half go to half.splats, of the second to film.splats (see run_root): the splats
+// of the image at half its samples, and what completes them.
 struct Job {
     const Scene& scene;
     const Camera& camera;
     const Integrator& integrator;
     const Tiling& tiling;
-    std::uint32_t spp, pilot;
-    bool kept;  // kept training passes: tiles in halves, their splats apart
+    RenderPlan plan;
     RenderStats render(int job, Film& film, FilmOrigin origin, Film& half,
                        std::span<const std::uint32_t> ends, const RenderSettings& rs) const {
         const Rect r = tiling.rect(job % tiling.count);
-        if (job >= tiling.count) {
-            return render_block_to_counts(scene, camera, integrator, film, origin,
-                                          {r.x0, r.y0, r.x1, r.y1, pilot, 0}, ends, rs);
+        RenderStats stats;
+        PassRunner runner;
+        const bool rest = job >= tiling.count;
+        // The rest stage is one pass (no pass size), to the counts themselves: `ends`.
+        runner.pass = [&](std::uint32_t first, std::uint32_t count, const std::uint32_t*) {
+            const RenderBlock block{r.x0, r.y0, r.x1, r.y1, first, count};
+            if (rest) {
+                const RenderStats st = render_block_to_counts(scene, camera, integrator, film,
+                                                              origin, block, ends, rs);
+                stats.samples += st.samples;
+                stats.nonfinite_samples += st.nonfinite_samples;
+                stats.cancelled = st.cancelled;
+                return !st.cancelled;
+            }
+            const bool split_splats = plan.keep && first < plan.half_level();
+            if (split_splats) std::swap(film.splats, half.splats);
+            RenderStats st;
+            try {
+                st = render_block(scene, camera, integrator, film, origin, block, rs);
+            } catch (...) {
+                if (split_splats) std::swap(film.splats, half.splats);
+                throw;
+            }
+            if (split_splats) std::swap(film.splats, half.splats);
+            stats.samples += st.samples;
+            stats.nonfinite_samples += st.nonfinite_samples;
+            stats.cancelled = st.cancelled;
+            return !st.cancelled;
+        };
+        runner.reached_half = [&] {
+            const auto row = static_cast<std::ptrdiff_t>(r.x1 - r.x0);
+            for (int y = r.y0; y < r.y1; ++y) {
+                const std::size_t i = film.index(r.x0 - origin.x, y - origin.y);
+                std::copy_n(film.pixels.begin() + static_cast<std::ptrdiff_t>(i), row,
+                            half.pixels.begin() + static_cast<std::ptrdiff_t>(i));
+            }
+        };
+        if (rest) {
+            PassSequence(plan, plan.pilot).run_rest(runner, ends);
+        } else {
+            PassSequence(plan, 0).run_uniform(runner);
         }
-        const bool halves = kept || pilot > 0;
-        return render_tile(scene, camera, integrator, film, origin, r, pilot > 0 ? pilot : spp,
-                           halves, kept, half, rs);
+        return stats;
     }
 };
 
@@ -181,33 +170,36 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
     Film film;
     Film half;  // the film at half its samples (radiance only): kept passes' or the pilot's
     PassCombination kept_passes;
-    bool kept = false;
+    RenderPlan plan;
     bool splatting = false;
     const std::uint32_t spp = static_cast<std::uint32_t>(s.render.samples_per_pixel);
-    std::uint32_t pilot = 0;
     // The workers' splats (kSplats): of their second halves with `kept`, else all; and of
     // their first halves. Rank 0's own thread splats into film.splats and half.splats.
     std::optional<SplatFilm> worker_splats, worker_first_splats;
     Tiling tiling(camera.width(), camera.height(), std::max(1, s.tile_size));
     try {
         validate(s);
-        pilot = pilot_of(s);
+        plan = plan_of(s.render);
         film = Film(camera.width(), camera.height(), s.aovs);
         integrator.preprocess(scene);
-        kept = keeps_halves(integrator, s);  // known after preprocess()
+        // Known after preprocess(); the same answer on every rank, so every rank agrees on
+        // the records a tile carries.
+        plan.keep = keeps_training_passes(plan, integrator);
         splatting = integrator.splats();
-        if (kept || pilot > 0) half = Film(camera.width(), camera.height());
+        if (plan.in_halves()) half = Film(camera.width(), camera.height());
         // Every rank learns the same guide (training is deterministic), so the tiles
         // merge into the one-process image; rank 0 keeps the passes as render() does.
         train(scene, camera, integrator, block_settings(s, s.render.cancel),
-              kept ? &kept_passes : nullptr);
+              plan.keep ? &kept_passes : nullptr);
     } catch (...) {
         failure = "rank 0 failed: " + message_of(std::current_exception());
         stopping = true;
     }
+    const std::uint32_t pilot = plan.pilot;
+    const bool kept = plan.keep;
     const int count = tiling.count;
     const int jobs = pilot > 0 ? 2 * count : count;
-    const Job job_of{scene, camera, integrator, tiling, spp, pilot, kept};
+    const Job job_of{scene, camera, integrator, tiling, plan};
     stats.tiles = jobs;
     stats.tiles_per_rank.assign(static_cast<std::size_t>(size), 0);
 
@@ -302,7 +294,7 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
         if (pilot > 0 && !stopping && !counts_ready.load() &&
             gathered_pilots + local_pilots.load() == count) {
             try {
-                counts = adaptive_sample_counts(half, film, spp, s.render.adaptive);
+                counts = plan.counts(half, film);  // the sequence's step between its stages
                 counts_ready = true;
                 for (const int w : std::exchange(waiting, {})) answer(w);
             } catch (...) {
@@ -441,7 +433,8 @@ Film run_worker(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
     int job = -1;
     try {
         validate(s);
-        const std::uint32_t pilot = pilot_of(s);
+        RenderPlan plan = plan_of(s.render);
+        const std::uint32_t pilot = plan.pilot;
         stats.tiles = pilot > 0 ? 2 * tiling.count : tiling.count;
         integrator.preprocess(scene);
         const RenderSettings rs = block_settings(s, s.render.cancel);
@@ -449,15 +442,10 @@ Film run_worker(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
         // rendered in halves teaches PathTracer the same guide, as its records are integer
         // sums that no order or split changes.
         train(scene, camera, integrator, rs);
-        const bool kept = keeps_halves(integrator, s);
+        plan.keep = keeps_training_passes(plan, integrator);
+        const bool kept = plan.keep;
         const bool splatting = integrator.splats();
-        const Job job_of{scene,
-                         camera,
-                         integrator,
-                         tiling,
-                         static_cast<std::uint32_t>(s.render.samples_per_pixel),
-                         pilot,
-                         kept};
+        const Job job_of{scene, camera, integrator, tiling, plan};
         // A splatting integrator's splats over all this worker's tiles (of the first halves
         // in `first_splats` with `kept`): whole-image films, sent once at the end.
         std::optional<SplatFilm> splats, first_splats;

@@ -1,12 +1,11 @@
-// The render loop (run_block) and the entry points built on it: render, render_block and
-// render_progressive. Over 400 lines: the entry points share the loop's private
-// types, so they stay in one file.
+// The entry points built on the render loop (block_loop.h) and the pass sequence
+// (pass_sequence.h): train, render, render_block, render_block_to_counts and
+// render_progressive, with the checks of their settings, films and blocks.
 
-#include "film/camera_importance.h"
-#include "render/aov.h"
+#include "render/block_loop.h"
+#include "render/pass_sequence.h"
 
 #include <librt/core/error.h>
-#include <librt/core/finite.h>
 #include <librt/render/pass_combination.h>
 #include <librt/render/renderer.h>
 
@@ -15,14 +14,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <ctime>
-#include <exception>
-#include <mutex>
+#include <functional>
 #include <string>
-#include <system_error>
-#include <thread>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -40,10 +34,6 @@ double seconds_since(Clock::time_point start) {
 /// CLOCK_PROCESS_CPUTIME_ID: the same on Linux and portable.
 double cpu_now() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
-struct Tile {
-    int x0, y0, x1, y1;  // pixel range [x0, x1) x [y0, y1)
-};
-
 void validate_threads_and_tiles(const RenderSettings& s) {
     if (s.threads < 0 || s.threads > 1024) {
         throw Error("threads = " + std::to_string(s.threads) + ": must be in [0, 1024]");
@@ -55,252 +45,6 @@ void validate_threads_and_tiles(const RenderSettings& s) {
         throw Error("sampler = " + std::to_string(static_cast<int>(s.sampler)) +
                     ": must be SamplerKind::Independent or SamplerKind::Sobol");
     }
-}
-
-/// How run_block ended.
-struct BlockOutcome {
-    std::uint64_t samples = 0;    // Integrator::li (or li_splatting) calls
-    std::uint64_t nonfinite = 0;  // of which non-finite
-    bool complete = false;        // every pixel of the block got all its samples
-    bool cancelled = false;       // settings.cancel stopped it
-    bool aborted = false;         // `tick` stopped it
-};
-
-/// Called on the calling thread about ten times a second with the fraction of the
-/// block's tiles done; returning true stops the block (as a cancellation would).
-using Tick = std::function<bool(double fraction)>;
-
-/// Where the samples of `film` splat to, for an integrator that splats (none otherwise):
-/// film.splats, created over the whole camera image - splats land anywhere, whatever
-/// region or sample range the block covers - or checked to be that size.
-SplatTarget splat_target(const Camera& camera, const Integrator& integrator, Film& film) {
-    if (!integrator.splats()) return {};
-    if (!film.splats) {
-        film.splats.emplace(camera.width(), camera.height(), splat_filter_settings(camera));
-    } else if (film.splats->width() != camera.width() || film.splats->height() != camera.height()) {
-        throw Error("film splats " + std::to_string(film.splats->width()) + " x " +
-                    std::to_string(film.splats->height()) + ": must be the camera's " +
-                    std::to_string(camera.width()) + " x " + std::to_string(camera.height()));
-    }
-    return {&camera, &*film.splats};
-}
-
-// The one render loop under every entry point: threads take the block's tiles from an
-// atomic counter and render each pixel's samples onto its film record, in sample order.
-// The calling thread watches (ticks) until the workers are done.
-// With `ends` (adaptive sampling: one count per film pixel, film.pixels.size()), each pixel of the
-// block is rendered from the samples it holds up to its own end instead of [first, first + count).
-BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrator& integrator,
-                       Film& film, FilmOrigin origin, const RenderBlock& block,
-                       const RenderSettings& settings, const Tick& tick,
-                       const std::uint32_t* ends = nullptr) {
-    BlockOutcome outcome;
-    const SplatTarget target = splat_target(camera, integrator, film);
-    const int width = block.x1 - block.x0;
-    const int height = block.y1 - block.y0;
-    if (width <= 0 || height <= 0 || block.count == 0) {
-        outcome.complete = true;
-        return outcome;
-    }
-    // Tiles of the block in row-major order; each is written by exactly one thread. A tile
-    // larger than the block is the block (and keeps the index arithmetic far from overflow).
-    const int tile = std::min(settings.tile_size, std::max(width, height));
-    const int tiles_x = (width + tile - 1) / tile;
-    const int tiles_y = (height + tile - 1) / tile;
-    const auto tile_count = static_cast<std::size_t>(tiles_x) * static_cast<std::size_t>(tiles_y);
-    const auto tile_at = [&](std::size_t i) {
-        const int tx = static_cast<int>(i % static_cast<std::size_t>(tiles_x));
-        const int ty = static_cast<int>(i / static_cast<std::size_t>(tiles_x));
-        return Tile{block.x0 + tx * tile, block.y0 + ty * tile,
-                    block.x0 + std::min(width, (tx + 1) * tile),
-                    block.y0 + std::min(height, (ty + 1) * tile)};
-    };
-
-    unsigned thread_count = settings.threads > 0 ? static_cast<unsigned>(settings.threads)
-                                                 : std::thread::hardware_concurrency();
-    thread_count = std::clamp<unsigned>(
-        thread_count, 1u, static_cast<unsigned>(std::min<std::size_t>(tile_count, 1024)));
-
-    std::atomic<std::size_t> next_tile{0};
-    std::atomic<std::size_t> tiles_done{0};
-    std::atomic<std::uint64_t> sample_total{0};
-    std::atomic<std::uint64_t> nonfinite_total{0};
-    std::atomic<bool> cancelled{false};
-    std::atomic<bool> aborted{false};
-    std::atomic<bool> failed{false};
-    std::exception_ptr failure;
-    std::mutex mutex;
-    std::condition_variable finished_cv;
-    unsigned workers_finished = 0;
-
-    const auto stop_requested = [&] {
-        if (failed.load(std::memory_order_relaxed) || aborted.load(std::memory_order_relaxed))
-            return true;
-        if (settings.cancel != nullptr && settings.cancel->load(std::memory_order_relaxed)) {
-            cancelled.store(true, std::memory_order_relaxed);
-            return true;
-        }
-        return false;
-    };
-
-    // Cancellation is checked before every pixel and every kCancelCheckSamples samples
-    // within one, so even a pixel of 2^20 samples cannot hold up a cancelled render. A
-    // pixel stopped part-way keeps the samples it took: its record stays consistent.
-    constexpr std::uint32_t kCancelCheckSamples = 64;
-    const bool with_aovs = film.has_aovs();
-    const bool with_splats = target.film != nullptr;
-    const std::uint32_t end = block.first + block.count;
-    // The AOV sums and splatting as compile-time choices: the plain render's per-sample
-    // loop then carries neither the branches nor the AOV code, and calls li() as it always
-    // did (the loop runs once per camera sample, ~21 M times in the report's synthesis).
-    const auto render_tile_with = [&](const Tile& t, std::uint64_t& samples,
-                                      std::uint64_t& nonfinite, auto aovs_wanted,
-                                      auto splats_wanted) {
-        constexpr bool kAovs = decltype(aovs_wanted)::value;
-        constexpr bool kSplats = decltype(splats_wanted)::value;
-        const SamplerKind sampler_kind = settings.sampler;
-        const std::uint64_t seed = settings.seed;
-        for (int y = t.y0; y < t.y1; ++y) {
-            for (int x = t.x0; x < t.x1; ++x) {
-                const std::size_t index = film.index(x - origin.x, y - origin.y);
-                // The running sums, continued in sample order (see film.h).
-                FilmPixel pixel = film.pixels[index];
-                AovPixel aov = kAovs ? film.aovs[index] : AovPixel{};
-                const auto px = static_cast<std::uint32_t>(x);
-                const auto py = static_cast<std::uint32_t>(y);
-                const std::uint32_t first = ends != nullptr ? pixel.samples : block.first;
-                const std::uint32_t last = ends != nullptr ? ends[index] : end;
-                bool stopped = false;
-                std::uint32_t taken = 0;
-                std::uint32_t until_check = 0;  // samples left before the next cancel check
-                for (std::uint32_t s = first; s < last; ++s) {
-                    if (until_check-- == 0) {
-                        if (stop_requested()) {
-                            stopped = true;
-                            break;
-                        }
-                        until_check = kCancelCheckSamples - 1;
-                    }
-                    Sampler sampler(sampler_kind, px, py, s, seed);
-                    const CameraRay camera_ray = camera.sample_ray(x, y, sampler);
-                    const Ray& ray = camera_ray.ray;
-                    if constexpr (kAovs) {
-                        const AovSample a = sample_aovs(scene, ray, px, py, s, seed);
-                        // The albedo is filtered like the beauty: with the weight's sign
-                        // (its size is one per filter; resolve_layers divides it out).
-                        if (camera_ray.weight < 0.0f) {
-                            aov.albedo -= glm::dvec3(a.albedo);
-                            ++aov.negative;
-                        } else {
-                            aov.albedo += glm::dvec3(a.albedo);
-                        }
-                        aov.normal += glm::dvec3(a.normal);
-                        if (a.hit) {
-                            aov.depth += static_cast<double>(a.depth);
-                            ++aov.hits;
-                        }
-                    }
-                    // The filter weight makes the plain mean the filter's estimate (Mitchell's
-                    // signed weights); x 1.0f is exact, so other filters are unchanged.
-                    glm::vec3 l;
-                    if constexpr (kSplats) {
-                        l = integrator.li_splatting(scene, ray, sampler, target) *
-                            camera_ray.weight;
-                    } else {
-                        l = integrator.li(scene, ray, sampler) * camera_ray.weight;
-                    }
-                    ++taken;
-                    if (finite(l)) [[likely]] {
-                        pixel.radiance += glm::dvec3(l);
-                        ++pixel.finite;
-                    }
-                }
-                // Counted per pixel, not per sample: the counters stay out of the sample loop.
-                pixel.samples += taken;
-                samples += taken;
-                nonfinite += taken - (pixel.finite - film.pixels[index].finite);
-                film.pixels[index] = pixel;
-                if constexpr (kAovs) film.aovs[index] = aov;
-                if (stopped) return false;
-            }
-        }
-        return true;
-    };
-    const auto render_tile = [&](const Tile& t, std::uint64_t& samples, std::uint64_t& nonfinite) {
-        if (with_splats) {
-            return with_aovs
-                       ? render_tile_with(t, samples, nonfinite, std::true_type{}, std::true_type{})
-                       : render_tile_with(t, samples, nonfinite, std::false_type{},
-                                          std::true_type{});
-        }
-        return with_aovs
-                   ? render_tile_with(t, samples, nonfinite, std::true_type{}, std::false_type{})
-                   : render_tile_with(t, samples, nonfinite, std::false_type{}, std::false_type{});
-    };
-
-    const auto worker = [&] {
-        std::uint64_t samples = 0;
-        std::uint64_t nonfinite = 0;
-        try {
-            for (;;) {
-                if (stop_requested()) break;
-                const std::size_t i = next_tile.fetch_add(1, std::memory_order_relaxed);
-                if (i >= tile_count) break;
-                if (!render_tile(tile_at(i), samples, nonfinite)) break;
-                tiles_done.fetch_add(1, std::memory_order_relaxed);
-            }
-        } catch (...) {
-            const std::lock_guard<std::mutex> lock(mutex);
-            if (!failure) failure = std::current_exception();
-            failed.store(true, std::memory_order_relaxed);
-        }
-        sample_total.fetch_add(samples, std::memory_order_relaxed);
-        nonfinite_total.fetch_add(nonfinite, std::memory_order_relaxed);
-        const std::lock_guard<std::mutex> lock(mutex);
-        ++workers_finished;
-        finished_cv.notify_one();
-    };
-
-    std::vector<std::thread> threads;
-    threads.reserve(thread_count);
-    try {
-        for (unsigned i = 0; i < thread_count; ++i) threads.emplace_back(worker);
-    } catch (const std::system_error& e) {
-        failed.store(true);
-        for (std::thread& t : threads) t.join();
-        throw Error(std::string("cannot start render threads: ") + e.what());
-    }
-
-    // The calling thread watches: ticks about ten times a second, and wakes as soon as all
-    // workers are done.
-    {
-        std::unique_lock<std::mutex> lock(mutex);
-        while (workers_finished < threads.size()) {
-            finished_cv.wait_for(lock, std::chrono::milliseconds(100));
-            if (workers_finished == threads.size() || !tick) continue;
-            lock.unlock();
-            const double fraction =
-                static_cast<double>(tiles_done.load(std::memory_order_relaxed)) /
-                static_cast<double>(tile_count);
-            try {
-                if (tick(fraction)) aborted.store(true, std::memory_order_relaxed);
-            } catch (...) {  // a throwing progress callback stops the render, then is rethrown
-                const std::lock_guard<std::mutex> guard(mutex);
-                if (!failure) failure = std::current_exception();
-                failed.store(true, std::memory_order_relaxed);
-            }
-            lock.lock();
-        }
-    }
-    for (std::thread& t : threads) t.join();
-
-    if (failure) std::rethrow_exception(failure);
-    outcome.samples = sample_total.load();
-    outcome.nonfinite = nonfinite_total.load();
-    outcome.complete = tiles_done.load() == tile_count;
-    outcome.cancelled = !outcome.complete && cancelled.load();
-    outcome.aborted = !outcome.complete && !outcome.cancelled && aborted.load();
-    return outcome;
 }
 
 void check_film_matches(const Film& film, const Camera& camera) {
@@ -425,17 +169,14 @@ Image render_onto(const Scene& scene, const Camera& camera, Integrator& integrat
     const Clock::time_point start = Clock::now();
     const double cpu_start = cpu_now();
     integrator.preprocess(scene);
-    const auto spp = static_cast<std::uint32_t>(settings.samples_per_pixel);
-    // Adaptive sampling's pilot (0: every pixel gets spp samples).
-    const std::uint32_t pilot =
-        settings.adaptive.enabled ? adaptive_pilot_samples(settings.adaptive, spp) : 0;
-    // The training passes kept in the image when the integrator allows it (guiding's
-    // keep_training_samples) and the image has the 2 samples per pixel its own variance
-    // estimate needs; not with adaptive sampling, whose pixels hold different counts.
+    RenderPlan plan = plan_of(settings);
+    plan.keep = may_keep && keeps_training_passes(plan, integrator);
     PassCombination kept;
-    const bool keep = may_keep && pilot == 0 && integrator.keeps_training_samples() && spp >= 2;
-    const RenderStats training = train(scene, camera, integrator, settings, keep ? &kept : nullptr);
-    const RenderBlock whole{0, 0, film.width, film.height, 0, spp};
+    const RenderStats training =
+        train(scene, camera, integrator, settings, plan.keep ? &kept : nullptr);
+    // Progress: the uniform stage is the pilot's share of the work (all of it without
+    // one), each of its halves half of that; the rest stage the remainder.
+    const double pilot_share = plan.pilot > 0 ? double(plan.pilot) / double(plan.spp) : 1.0;
     const auto tick_over = [&](double from, double to) {
         if (!settings.progress) return Tick();
         return Tick([&settings, &start, from, to](double fraction) {
@@ -445,30 +186,29 @@ Image render_onto(const Scene& scene, const Camera& camera, Integrator& integrat
     };
     Film half;
     BlockOutcome outcome;
-    std::vector<std::uint32_t> ends;  // adaptive sampling: each pixel's count
-    if (pilot > 0) {
-        // The pilot in two halves (their means' difference is the noise estimate), then
-        // every pixel up to its own count.
-        const double pilot_share = double(pilot) / double(spp);
-        outcome = run_block_in_halves(scene, camera, integrator, film,
-                                      {0, 0, film.width, film.height, 0, pilot}, settings,
-                                      tick_over(0.0, pilot_share), half);
-        if (outcome.complete) {
-            ends = adaptive_sample_counts(half, film, spp, settings.adaptive);
-            const BlockOutcome rest = run_block(scene, camera, integrator, film, {},
-                                                {0, 0, film.width, film.height, pilot, spp - pilot},
-                                                settings, tick_over(pilot_share, 1.0), ends.data());
-            outcome.samples += rest.samples;
-            outcome.nonfinite += rest.nonfinite;
-            outcome.complete = rest.complete;
-            outcome.cancelled = rest.cancelled;
+    PassRunner runner;
+    runner.pass = [&](std::uint32_t first, std::uint32_t count, const std::uint32_t* ends) {
+        Tick tick = ends != nullptr ? tick_over(pilot_share, 1.0) : tick_over(0.0, pilot_share);
+        if (tick && ends == nullptr && plan.in_halves()) {
+            tick = first == 0 ? Tick([tick](double f) { return tick(0.5 * f); })
+                              : Tick([tick](double f) { return tick(0.5 + 0.5 * f); });
         }
-    } else {
-        const Tick tick = tick_over(0.0, 1.0);
-        outcome =
-            keep ? run_block_in_halves(scene, camera, integrator, film, whole, settings, tick, half)
-                 : run_block(scene, camera, integrator, film, {}, whole, settings, tick);
-    }
+        const BlockOutcome pass =
+            run_block(scene, camera, integrator, film, {},
+                      {0, 0, film.width, film.height, first, count}, settings, tick, ends);
+        outcome.samples += pass.samples;
+        outcome.nonfinite += pass.nonfinite;
+        outcome.complete = pass.complete;
+        outcome.cancelled = pass.cancelled;
+        outcome.aborted = pass.aborted;
+        return pass.complete;
+    };
+    runner.reached_half = [&] { half = film; };
+    PassSequence sequence(plan, 0);
+    (void)sequence.run(runner, half, film);
+    const std::vector<std::uint32_t>& ends = sequence.counts();  // adaptive: each pixel's count
+    const bool keep = plan.keep;
+    const std::uint32_t spp = plan.spp;
     if (settings.progress && outcome.complete)
         settings.progress({1.0, seconds_since(start), 1, spp});
 
@@ -478,7 +218,7 @@ Image render_onto(const Scene& scene, const Camera& camera, Integrator& integrat
     if (!outcome.complete) {
         // As before films: a pixel the cancellation stopped part-way stays black.
         for (std::size_t i = 0; i < film.pixels.size(); ++i) {
-            const std::uint32_t wanted = ends.empty() ? (pilot > 0 ? pilot : spp) : ends[i];
+            const std::uint32_t wanted = ends.empty() ? plan.uniform_end() : ends[i];
             if (film.pixels[i].samples < wanted) image.pixels[i] = glm::vec3(0.0f);
         }
     }
@@ -586,6 +326,17 @@ void check_block(const Camera& camera, const Film& film, FilmOrigin origin,
     }
 }
 
+// render_block's refusal of adaptive sampling, which it cannot honour: the block (or each
+// pixel's end) says the samples, and the counts need the whole image's pilot.
+void check_not_adaptive(const RenderSettings& settings) {
+    if (settings.adaptive.enabled) {
+        throw Error(
+            "adaptive.enabled = true: render_block renders the samples its block says "
+            "(adaptive sampling is render()'s, render_progressive()'s and render_mpi()'s; "
+            "render_block_to_counts takes each pixel's count)");
+    }
+}
+
 RenderStats render_checked_block(const Scene& scene, const Camera& camera,
                                  const Integrator& integrator, Film& film, FilmOrigin origin,
                                  const RenderBlock& block, const std::uint32_t* ends,
@@ -622,6 +373,7 @@ RenderStats render_block(const Scene& scene, const Camera& camera, const Integra
                          Film& film, FilmOrigin origin, const RenderBlock& block,
                          const RenderSettings& settings) {
     validate_threads_and_tiles(settings);
+    check_not_adaptive(settings);
     check_block(camera, film, origin, block, nullptr);
     return render_checked_block(scene, camera, integrator, film, origin, block, nullptr, settings);
 }
@@ -631,6 +383,7 @@ RenderStats render_block_to_counts(const Scene& scene, const Camera& camera,
                                    const RenderBlock& block, std::span<const std::uint32_t> ends,
                                    const RenderSettings& settings) {
     validate_threads_and_tiles(settings);
+    check_not_adaptive(settings);
     check_block(camera, film, origin, block, &ends);
     RenderBlock marked = block;
     marked.count = 1;  // run_block skips a block of no samples; with ends it reads no count
@@ -658,23 +411,17 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
     const RenderSettings& rs = settings.render;
     const double limit = settings.time_limit;
     // Adaptive sampling: uniform passes up to the pilot (one ending at its half), then each
-    // pass moves every pixel the same fraction of the way to its own count, so a film
-    // stopped between passes holds each pixel's share: counts still chosen from the
-    // neighbours' pilots only, its means still unbiased.
-    const std::uint32_t pilot =
-        rs.adaptive.enabled ? adaptive_pilot_samples(rs.adaptive, target) : 0;
-    if (pilot > 0 && first != 0) {
+    // pass moves every pixel the same fraction of the way to its own count (PassSequence),
+    // so a film stopped between passes holds each pixel's share: counts still chosen from
+    // the neighbours' pilots only, its means still unbiased.
+    RenderPlan plan = plan_of(rs);
+    if (plan.pilot > 0 && first != 0) {
         throw Error("film holds " + std::to_string(first) +
                     " samples per pixel: an adaptive progressive render starts from an empty "
                     "film (its pilot decides every pixel's count)");
     }
-    Film pilot_half;                    // the film at pilot / 2 samples
-    std::vector<std::uint32_t> counts;  // each pixel's final count, once the pilot is done
-    std::vector<std::uint32_t> goals;   // each pixel's count at the end of the current pass
-
     RenderStats stats;
     stats.samples_per_pixel = first;
-    std::uint32_t n = first;  // samples every pixel of `film` holds
     // Fraction of the work done once every pixel holds `samples` (and, with a time limit,
     // of the time used, whichever is further).
     const auto fraction = [&](double samples, double seconds) {
@@ -685,50 +432,29 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
     // Kept training passes (as render() keeps them) need the film as it was at half the
     // target, which this call sees only when the film starts at or before it. Whether the
     // integrator keeps them is known after preprocess().
-    const std::uint32_t mid = target / 2;
-    bool keep = false;
     PassCombination kept;
-    Film half;  // the film at `mid` samples (radiance and splats)
-    const auto snapshot_half = [&] {
-        half.width = film.width;
-        half.height = film.height;
-        half.pixels = film.pixels;
-        half.splats = film.splats;
-    };
-    if (n < target) {
+    // The film at the plan's half level (radiance and splats): kept passes' or the pilot's.
+    Film half;
+    if (first < target) {
         integrator.preprocess(scene);
-        keep = pilot == 0 && image != nullptr && integrator.keeps_training_samples() &&
-               target >= 2 && first <= mid;
-        const RenderStats training = train(scene, camera, integrator, rs, keep ? &kept : nullptr);
+        plan.keep =
+            image != nullptr && first <= target / 2 && keeps_training_passes(plan, integrator);
+        const RenderStats training =
+            train(scene, camera, integrator, rs, plan.keep ? &kept : nullptr);
         stats.training_passes = training.training_passes;
         stats.cancelled = training.cancelled;
     }
-    if (keep && n == mid) snapshot_half();
     Film work;  // the pass in progress: a copy of `film` that replaces it once complete
-    while (n < target) {
+    PassRunner runner;
+    runner.pass = [&](std::uint32_t n, std::uint32_t count, const std::uint32_t* ends) {
         // A film holding no samples always gets its first pass, whatever the limit.
         if (limit > 0.0 && n > 0 && elapsed() >= limit) {
             stats.time_limit_reached = true;
-            break;
+            return false;
         }
         if (rs.cancel != nullptr && rs.cancel->load()) {
             stats.cancelled = true;
-            break;
-        }
-        std::uint32_t count = std::min(pass, target - n);
-        if (keep && n < mid) count = std::min(count, mid - n);  // a pass ends at the half
-        const std::uint32_t* ends = nullptr;
-        if (pilot > 0 && n < pilot) {  // the pilot: passes end at its half and at its end
-            count = std::min(count, (n < pilot / 2 ? pilot / 2 : pilot) - n);
-        } else if (pilot > 0) {
-            // Level n + count of the way from the pilot to the target: pixel p holds
-            // pilot + floor((N_p - pilot) (level - pilot) / (target - pilot)), N_p at the end.
-            const std::uint64_t step = n + count - pilot;
-            const std::uint64_t span = target - pilot;
-            goals.resize(counts.size());
-            for (std::size_t i = 0; i < counts.size(); ++i)
-                goals[i] = pilot + std::uint32_t((counts[i] - pilot) * step / span);
-            ends = goals.data();
+            return false;
         }
         work = film;
         const RenderBlock block{0, 0, film.width, film.height, n, count};
@@ -746,21 +472,29 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         if (!outcome.complete) {  // the unfinished pass is dropped with `work`
             stats.cancelled = outcome.cancelled;
             stats.time_limit_reached = outcome.aborted;
-            break;
+            return false;
         }
         std::swap(film, work);
-        n += count;
-        if (keep && n == mid) snapshot_half();
-        if (pilot > 0 && n == pilot / 2) pilot_half = film;
-        if (pilot > 0 && n == pilot)
-            counts = adaptive_sample_counts(pilot_half, film, target, rs.adaptive);
+        return true;
+    };
+    runner.reached_half = [&] {
+        half.width = film.width;
+        half.height = film.height;
+        half.pixels = film.pixels;
+        half.splats = film.splats;
+    };
+    runner.passed = [&](std::uint32_t n) {
         ++stats.passes;
         stats.samples_per_pixel = n;
         if (rs.progress) {
             const double seconds = elapsed();
             rs.progress({fraction(n, seconds), seconds, stats.passes, n});
         }
-    }
+    };
+    PassSequence sequence(plan, first, pass);
+    (void)sequence.run(runner, half, film);
+    const std::uint32_t n = sequence.level();
+    const bool keep = plan.keep;
     if (image != nullptr) {
         *image =
             keep && n == target && !half.pixels.empty() ? kept.combined(half, film) : resolve(film);

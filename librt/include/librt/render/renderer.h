@@ -44,7 +44,7 @@ struct RenderSettings {
     SamplerKind sampler = SamplerKind::Independent;
     /// Spread the samples over pixels by their noise, samples_per_pixel becoming the mean
     /// (adaptive_sampling.h): render(), render_progressive() and render_mpi(); render_block
-    /// ignores it (its block says the samples; render_block_to_counts takes the counts).
+    /// and render_block_to_counts refuse it (the block, or the counts, say the samples).
     AdaptiveSampling adaptive;
     int tile_size =
         16;  ///< side of the square tiles handed to threads (>= 1; capped at the image size)
@@ -151,7 +151,8 @@ struct RenderBlock {
 /// hold exactly block.first samples (the film header explains why this makes any split bit-
 /// identical to the one-shot render). `integrator` must have been preprocessed (and, for
 /// path guiding, trained by train(); train() says how kept training passes join a
-/// film rendered this way) for `scene`; settings.samples_per_pixel is not used.
+/// film rendered this way) for `scene`; settings.samples_per_pixel is not used, and
+/// settings.adaptive must be off (throws librt::Error naming it: the block says the samples).
 /// The film must have the camera's size; with AOVs, its AOV sums are rendered in the same
 /// pass. A splatting integrator's splats are added to film.splats (created at the camera's
 /// size when empty; another size throws), over the whole image whatever the block covers:
