@@ -286,7 +286,7 @@ PathTracerSettings path_tracer_settings(const Options& o, std::size_t light_coun
     PathTracerSettings pt;
     pt.max_depth = o.max_depth;
     const LightChoiceOption choice = o.light_choice_kind();
-    const bool many_lights = light_count > LightSampler::k_max_bounded;
+    const bool many_lights = light_count > LightSampler::kMaxBounded;
     pt.light_choice =
         choice == LightChoiceOption::Bounded || (choice == LightChoiceOption::Auto && many_lights)
             ? LightChoice::Bounded

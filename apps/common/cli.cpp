@@ -112,11 +112,11 @@ void ProgressBar::finish() {
 }
 
 void ProgressBar::draw(const RenderProgress& p) {
-    constexpr int k_width = 30;
+    constexpr int kWidth = 30;
     const double fraction = std::clamp(p.fraction, 0.0, 1.0);
-    const int filled = static_cast<int>(fraction * k_width);
+    const int filled = static_cast<int>(fraction * kWidth);
     std::string bar(static_cast<std::size_t>(filled), '#');
-    bar.resize(k_width, '.');
+    bar.resize(kWidth, '.');
     // Remaining time by linear extrapolation: elapsed * (1 - f) / f.
     const std::string remaining =
         fraction > 0.0 ? format_duration(p.seconds * (1.0 - fraction) / fraction) : "?";
@@ -295,29 +295,27 @@ void validate_sampling(const AppOptions& o) {
 
 std::uint64_t writer_bytes_per_pixel(const std::string& path, bool layers) {
     const std::string ext = lower_extension(path);
-    constexpr std::uint64_t k_linear = sizeof(glm::vec3);  // an Image's pixel
-    constexpr std::uint64_t k_rgb8 = 3;
+    constexpr std::uint64_t kLinear = sizeof(glm::vec3);  // an Image's pixel
+    constexpr std::uint64_t kRgb8 = 3;
     if (ext == ".exr") {
         // ImageLayers: beauty, albedo, normal, depth, sample count; then as many bytes in
         // float planes, in tinyexr's compressed blocks and in its file image.
-        const std::uint64_t planes =
-            layers ? 3 * k_linear + 2 * sizeof(float) : k_linear + k_linear;
+        const std::uint64_t planes = layers ? 3 * kLinear + 2 * sizeof(float) : kLinear + kLinear;
         return 4 * planes;
     }
     if (ext == ".png") {
         // The display copy, its 8-bit RGB, stb's filtered rows, its deflate output and
         // the encoded bytes.
-        return k_linear + 4 * k_rgb8;
+        return kLinear + 4 * kRgb8;
     }
-    return 2 * k_linear;  // .pfm, .hdr: the scaled copy and the encoded file (at most as large)
+    return 2 * kLinear;  // .pfm, .hdr: the scaled copy and the encoded file (at most as large)
 }
 
 void check_render_memory(const std::string& option, const std::string& value, long long width,
                          long long height, std::uint64_t bytes_per_pixel) {
     const auto w = static_cast<unsigned long long>(std::max(width, 0LL));
     const auto h = static_cast<unsigned long long>(std::max(height, 0LL));
-    const std::uint64_t max_pixels =
-        k_max_render_bytes / std::max<std::uint64_t>(bytes_per_pixel, 1);
+    const std::uint64_t max_pixels = kMaxRenderBytes / std::max<std::uint64_t>(bytes_per_pixel, 1);
     if (w == 0 || h <= max_pixels / w) return;  // by division: no product can wrap around
     std::uint64_t pixels = 0;
     std::uint64_t bytes = 0;
@@ -330,7 +328,7 @@ void check_render_memory(const std::string& option, const std::string& value, lo
                   "for the films, their copies and the output), more than the %llu GiB limit",
                   exact ? std::to_string(bytes).c_str() : "over 2^64", gib, w, h,
                   static_cast<unsigned long long>(bytes_per_pixel),
-                  static_cast<unsigned long long>(k_max_render_bytes >> 30u));
+                  static_cast<unsigned long long>(kMaxRenderBytes >> 30u));
     bad_option(option.c_str(), value, text);
 }
 

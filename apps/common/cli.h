@@ -139,7 +139,7 @@ void validate(const AppOptions& options);
 
 /// Most memory the pixels of an app's render may take: the films, their copies, the image
 /// and the output writer's buffers together (docs/robustness.md). The film's own limit.
-inline constexpr std::uint64_t k_max_render_bytes = Film::k_max_bytes;
+inline constexpr std::uint64_t kMaxRenderBytes = Film::kMaxBytes;
 
 /// Bytes per pixel the writer of `path` (by extension) allocates beside the linear image it
 /// is given: a tone-mapped or scaled copy and the encoder's buffers; for EXR with `layers`,
@@ -149,7 +149,7 @@ inline constexpr std::uint64_t k_max_render_bytes = Film::k_max_bytes;
 
 /// Throws librt::Error "option = value: the render would need N GiB (B bytes per pixel ...),
 /// more than the 16 GiB limit" when width x height pixels of `bytes_per_pixel` exceed
-/// k_max_render_bytes (compared by division: no overflow). Nothing is allocated.
+/// kMaxRenderBytes (compared by division: no overflow). Nothing is allocated.
 void check_render_memory(const std::string& option, const std::string& value, long long width,
                          long long height, std::uint64_t bytes_per_pixel);
 

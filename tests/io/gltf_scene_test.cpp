@@ -301,7 +301,7 @@ TEST(GltfToScene, CameraLooksWhereItsNodePoints) {
 TEST(GltfToScene, AspectAndYfovGiveThePredictedPixel) {
     ScratchDir dir;
     const fs::path p = dir.path() / "camera.glb";
-    const double yfov = 60.0 * k_pi / 180.0;
+    const double yfov = 60.0 * kPi / 180.0;
     lt::write_file(p, wall_and_camera(yfov, 2.0).glb());
     SceneFileOptions options;
     options.default_long_side = 200;  // the size follows aspectRatio 2: 200 x 100

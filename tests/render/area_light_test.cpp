@@ -46,7 +46,7 @@ TEST(AreaLights, EmissiveMeshTrianglesBecomeLightsWithPerTriangleMapping) {
     hit.primitive_id = 0;
     EXPECT_EQ(scene.light_of_hit(hit), kInvalidId);
     // Power of a two-sided triangle of area 1/2: L pi A 2.
-    EXPECT_NEAR(power(scene.lights()[0]).x, 3.0f * k_pi, 1e-4f);
+    EXPECT_NEAR(power(scene.lights()[0]).x, 3.0f * kPi, 1e-4f);
     // Adding a light after commit() keeps the added lights first and remakes the rest.
     scene.add_point_light(PointLight::from_power({0, 3, 0}, 1.0f));
     scene.commit();
@@ -81,7 +81,7 @@ TEST(AreaLights, EmissiveInstancesAreLightsPlacedByTheirMatrix) {
     panel.triangles = {{0, 1, 2}, {0, 2, 3}};
     const std::uint32_t proto = scene.add_mesh_prototype(panel);
     const auto lamp = scene.add_material(Material::emissive(glm::vec3(4.0f, 3.0f, 2.0f)));
-    const glm::mat4 down = glm::rotate(glm::mat4(1.0f), k_pi, glm::vec3(0, 0, 1));
+    const glm::mat4 down = glm::rotate(glm::mat4(1.0f), kPi, glm::vec3(0, 0, 1));
     const glm::mat4 m1 = glm::translate(glm::mat4(1.0f), {0.0f, 2.2f, 0.0f}) *
                          glm::scale(glm::mat4(1.0f), glm::vec3(1.2f)) * down;
     const glm::mat4 m2 = glm::translate(glm::mat4(1.0f), {-1.2f, 2.0f, 0.8f}) *
@@ -107,7 +107,7 @@ TEST(AreaLights, EmissiveInstancesAreLightsPlacedByTheirMatrix) {
     // Power of two-sided triangles: L pi A 2, area (1.2^2 + 0.5^2) / 2 per triangle.
     glm::vec3 total(0.0f);
     for (const Light& l : scene.lights()) total += power(l);
-    EXPECT_NEAR(total.x, 4.0f * k_pi * 2.0f * (1.44f + 0.25f), 1e-3f);
+    EXPECT_NEAR(total.x, 4.0f * kPi * 2.0f * (1.44f + 0.25f), 1e-3f);
     expect_mis_equals_brute(scene, testing::top_camera(), 32, 256, "emissive instances");
 }
 

@@ -44,7 +44,7 @@ std::vector<double> fine_expected_counts(const DirectionBins& bins,
                                          int n) {
     constexpr int sub = 16;
     const double dc = (bins.cos_hi - bins.cos_lo) / (bins.n_cos * sub);
-    const double dphi = testing::k_two_pi / (bins.n_phi * sub);
+    const double dphi = testing::kTwoPi / (bins.n_phi * sub);
     std::vector<double> expected(std::size_t(bins.size()), 0.0);
     for (int i = 0; i < bins.n_cos * sub; ++i)
         for (int j = 0; j < bins.n_phi * sub; ++j) {
@@ -140,13 +140,13 @@ TEST(Bsdf, DiffuseEvalIsLambert) {
     const glm::vec3 wo = glm::normalize(glm::vec3(0.1f, 0.2f, 1.0f));
     const glm::vec3 wi = glm::normalize(glm::vec3(-0.5f, 0.3f, 0.6f));
     const glm::vec3 f = eval(m, sp, wo, wi);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[c], m.albedo[c] / k_pi, 1e-7f);
-    EXPECT_NEAR(pdf(m, sp, wo, wi), wi.z / k_pi, 1e-7f);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[c], m.albedo[c] / kPi, 1e-7f);
+    EXPECT_NEAR(pdf(m, sp, wo, wi), wi.z / kPi, 1e-7f);
     EXPECT_EQ(eval(m, sp, wo, -wi), glm::vec3(0.0f));
     EXPECT_EQ(pdf(m, sp, wo, -wi), 0.0f);
     // From the back of the surface the frame turns over: still Lambert on that side.
     const ShadingPoint back = point_at(n, n, {0.3f, 0.1f, 1.0f}, m.albedo);
-    EXPECT_NEAR(eval(m, back, wo, wi).x, m.albedo.x / k_pi, 1e-7f);
+    EXPECT_NEAR(eval(m, back, wo, wi).x, m.albedo.x / kPi, 1e-7f);
     EXPECT_FALSE(back.frame.front);
     EXPECT_TRUE(sp.frame.front);
 }

@@ -447,11 +447,11 @@ void check_identity(const IdentityCase& c) {
     const PixelFilter filter(splat_filter_settings(camera));
     double integral = 0.0;
     const double r = film.radius();
-    constexpr int k_steps = 200000;
-    for (int k = 0; k < k_steps; ++k) {
-        integral += filter.evaluate_1d_precise(-r + (k + 0.5) * 2.0 * r / k_steps);
+    constexpr int kSteps = 200000;
+    for (int k = 0; k < kSteps; ++k) {
+        integral += filter.evaluate_1d_precise(-r + (k + 0.5) * 2.0 * r / kSteps);
     }
-    integral *= 2.0 * r / k_steps;
+    integral *= 2.0 * r / kSteps;
     const double h_max = 1.0 / (integral * integral);
     const double x_max = c_max * s.width * s.height * h_max;
     for (int ch = 0; ch < 3; ++ch) {

@@ -64,7 +64,7 @@ public:
         const float r2 = p.x * p.x + p.z * p.z;
         const float direct = 1.0f / std::pow(1.0f + r2, 1.5f);
         const float mirrored = kTint * 3.0f / std::pow(9.0f + r2, 1.5f);
-        return glm::vec3(kRho / k_pi * kIntensity * (direct + mirrored));
+        return glm::vec3(kRho / kPi * kIntensity * (direct + mirrored));
     }
 };
 

@@ -67,7 +67,7 @@ TEST(EmitterLights, OneSidedEmitterIsAOneSidedLightWithHalfThePower) {
         const glm::vec3 pa = power(*a[i]), pb = power(*b[i]);
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(pa[c] / pb[c], 0.5f, 1e-6f) << i << c;
         // One side: L pi A, A = 0.72 per triangle (pbrt 4th ed. 12.5).
-        EXPECT_NEAR(pa.x, 3.0f * k_pi * 0.72f, 1e-4f);
+        EXPECT_NEAR(pa.x, 3.0f * kPi * 0.72f, 1e-4f);
         // The bound's cone is the front hemisphere (axis down, cos 0); none when two-sided.
         const LightBounds lb = light_bounds(*a[i]);
         EXPECT_TRUE(lb.cone);
@@ -182,7 +182,7 @@ TEST(EmitterLights, TexturedLightSamplesCarryTheTextureOfTheSampledPoint) {
     EXPECT_GT(checked, 1000);
     // Power uses the mean texture estimate: between the texture's extremes times L pi A.
     for (const Light* l : lights) {
-        const glm::vec3 p = power(*l) / (k_pi * 0.72f * glm::vec3(6.0f, 5.0f, 4.0f));
+        const glm::vec3 p = power(*l) / (kPi * 0.72f * glm::vec3(6.0f, 5.0f, 4.0f));
         EXPECT_GE(p.x, 0.1f);  // the red channel's least and greatest texels
         EXPECT_LE(p.x, 1.0f);
     }

@@ -55,8 +55,8 @@ TEST(EnvironmentLight, SampledDirectionsFollowPdfChiSquare) {
             ++mismatches;
         const int c = std::min(nc - 1, int((s.wi.y + 1.0f) * 0.5f * float(nc)));
         float phi = std::atan2(s.wi.z, s.wi.x);
-        if (phi < 0.0f) phi += 2.0f * k_pi;
-        const int p = std::min(np - 1, int(phi / (2.0f * k_pi) * float(np)));
+        if (phi < 0.0f) phi += 2.0f * kPi;
+        const int p = std::min(np - 1, int(phi / (2.0f * kPi) * float(np)));
         observed[std::size_t(c * np + p)] += 1.0;
     }
     EXPECT_LE(mismatches, n / 10000) << "pdf_li disagrees with sample_li";
@@ -69,13 +69,13 @@ TEST(EnvironmentLight, SampledDirectionsFollowPdfChiSquare) {
             for (int i = 0; i < sub; ++i)
                 for (int j = 0; j < sub; ++j) {
                     const double z = -1.0 + 2.0 * (c + (i + 0.5) / sub) / nc;
-                    const double phi = 2.0 * k_pi * (p + (j + 0.5) / sub) / np;
+                    const double phi = 2.0 * kPi * (p + (j + 0.5) / sub) / np;
                     const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
                     const glm::vec3 w(float(r * std::cos(phi)), float(z), float(r * std::sin(phi)));
                     sum += pdf_li(light, glm::vec3(0.0f), w);
                 }
             // Each bin has solid angle 4 pi / (nc np).
-            expected[std::size_t(c * np + p)] = sum / (sub * sub) * 4.0 * k_pi / (nc * np);
+            expected[std::size_t(c * np + p)] = sum / (sub * sub) * 4.0 * kPi / (nc * np);
             total += expected[std::size_t(c * np + p)];
         }
     EXPECT_NEAR(total, 1.0, 0.02) << "pdf_li integrates to 1 over the sphere";
@@ -110,9 +110,9 @@ TEST(EnvironmentLight, DeltaLikePixelIsFound) {
     }
     // Irradiance on an upward normal equals the pixel's closed form: L dphi
     // int cos(theta) sin(theta) dtheta = L dphi (sin^2 t1 - sin^2 t0) / 2.
-    const double t0 = k_pi * py / 32.0, t1 = k_pi * (py + 1) / 32.0;
-    const double expected = 1000.0 * (2.0 * k_pi / 64.0) * 0.5 *
-                            (std::pow(std::sin(t1), 2) - std::pow(std::sin(t0), 2));
+    const double t0 = kPi * py / 32.0, t1 = kPi * (py + 1) / 32.0;
+    const double expected =
+        1000.0 * (2.0 * kPi / 64.0) * 0.5 * (std::pow(std::sin(t1), 2) - std::pow(std::sin(t0), 2));
     const auto e =
         testing::irradiance_by_sampling(light, glm::vec3(0.0f), glm::vec3(0, 1, 0), 100000, 8);
     EXPECT_NEAR(e.mean.x, expected, 5.0 * e.se.x + 1e-3 * expected);

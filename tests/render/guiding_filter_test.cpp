@@ -47,7 +47,7 @@ std::vector<Record> lobe_records(std::uint64_t seed, int count) {
             const float ct = std::pow(u.x, 1.0f / 51.0f);
             const float st = std::sqrt(std::max(0.0f, 1.0f - ct * ct));
             d = Frame::from_normal(axis).to_world(
-                {st * std::cos(2.0f * k_pi * u.y), st * std::sin(2.0f * k_pi * u.y), ct});
+                {st * std::cos(2.0f * kPi * u.y), st * std::sin(2.0f * kPi * u.y), ct});
         }
         out.push_back({p, d, 1.0f});
     }

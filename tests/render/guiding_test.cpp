@@ -44,7 +44,7 @@ glm::vec3 peaked_direction(Pcg32& rng, const glm::vec3& axis) {
     // cos theta = u^(1/(n+1)), n = 200: a narrow lobe.
     const float cos_t = std::pow(u.x, 1.0f / 201.0f);
     const float sin_t = std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t));
-    const float phi = 2.0f * k_pi * u.y;
+    const float phi = 2.0f * kPi * u.y;
     return Frame::from_normal(axis).to_world({sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t});
 }
 
@@ -148,7 +148,7 @@ TEST(GuidingQuadTree, SampleMatchesPdfChiSquare) {
     for (int i = 0; i < 1000; ++i) {
         const glm::vec2 u{rng.next_float(), rng.next_float()};
         const glm::vec3 d = tree.sample(u);
-        EXPECT_NEAR(tree.pdf(d) * 4.0f * k_pi, tree.pdf_square(guiding::direction_to_square(d)),
+        EXPECT_NEAR(tree.pdf(d) * 4.0f * kPi, tree.pdf_square(guiding::direction_to_square(d)),
                     1e-4f * tree.pdf_square(guiding::direction_to_square(d)));
     }
 }

@@ -59,9 +59,9 @@ public:
                 ShadingFrame::at(hit.shading_normal, hit.geometric_normal, ray.direction),
                 m.albedo};
             const std::uint32_t dim = SampleDimensions::bounce(static_cast<std::uint32_t>(depth));
-            sampler.set_dimension(dim + SampleDimensions::k_bounce_lobe);
+            sampler.set_dimension(dim + SampleDimensions::kBounceLobe);
             const float uc = sampler.next_1d();
-            sampler.set_dimension(dim + SampleDimensions::k_bounce_bsdf);
+            sampler.set_dimension(dim + SampleDimensions::kBounceBsdf);
             const glm::vec2 u = sampler.next_2d();
             const BsdfSample bs = sample(m, point, point.frame.to_local(-ray.direction), uc, u);
             if (!bs.valid()) break;

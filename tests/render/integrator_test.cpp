@@ -124,7 +124,7 @@ TEST(Integrators, DirectLightingMatchesClosedForms) {
         const float d2 = glm::dot(to, to);
         const float cos_t = to.y / std::sqrt(d2);
         for (int c = 0; c < 3; ++c) {
-            const float expected = albedo / k_pi * 100.0f * float(c + 1) * cos_t / d2;
+            const float expected = albedo / kPi * 100.0f * float(c + 1) * cos_t / d2;
             EXPECT_NEAR(l[c], expected, 1e-5f * expected);
         }
         // A shadowing sphere in between: exactly black (hard shadow).
@@ -146,7 +146,7 @@ TEST(Integrators, DirectLightingMatchesClosedForms) {
             Sampler sampler(0, 0, s, 9);
             stats.add(direct.li(scene, Ray{{0, 1, 0}, {0, -1, 0}}, sampler));
         }
-        const double expected = albedo / k_pi * radiance * k_pi * (r * r) / (h * h);
+        const double expected = albedo / kPi * radiance * kPi * (r * r) / (h * h);
         const double se = std::sqrt(stats.variance().x / stats.n);
         EXPECT_NEAR(stats.mean().x, expected, 5.0 * se + 1e-6 * expected);
         EXPECT_LT(se, 0.01 * expected);

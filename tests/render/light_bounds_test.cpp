@@ -119,7 +119,7 @@ double check_pmfs(const LightSampler& sampler, const std::vector<Light>& lights,
 TEST(BoundedLightChoice, PmfSumsToOneAndIsZeroOnlyForLightsThatBringNothing) {
     const std::vector<Light> lights = every_kind();
     const LightSampler sampler(lights);
-    ASSERT_LE(lights.size(), LightSampler::k_max_bounded);
+    ASSERT_LE(lights.size(), LightSampler::kMaxBounded);
     Pcg32 rng(2024, 3);
     int ruled_out = 0, pairs = 0;
     for (int trial = 0; trial < 3000; ++trial) {
@@ -246,7 +246,7 @@ TEST(BoundedLightChoice, MoreLightsThanTheBoundedLimitUseTheLightTreeAndStayUnbi
     }
     scene.add_mesh(ring, scene.add_material(Material::emissive(glm::vec3(6.0f, 5.0f, 4.0f))));
     scene.commit();
-    ASSERT_GT(scene.lights().size(), LightSampler::k_max_bounded);
+    ASSERT_GT(scene.lights().size(), LightSampler::kMaxBounded);
     // The tree is in use: under one triangle of the ring, that triangle gets more than its
     // power share (1/28), and the four under the floor nothing (the power table gives them
     // 4/28).
@@ -373,7 +373,7 @@ LightChoicePoint random_point(Pcg32& rng) {
 TEST(LightTree, PmfIsWhatSampleDrawsAndZeroOnlyForLightsThatBringNothing) {
     const std::vector<Light> lights = many_lights(300, 11);
     const LightSampler sampler(lights);
-    ASSERT_GT(lights.size(), LightSampler::k_max_bounded);
+    ASSERT_GT(lights.size(), LightSampler::kMaxBounded);
     Pcg32 rng(99, 4);
     int ruled_out = 0, pairs = 0;
     for (int trial = 0; trial < 150; ++trial) {

@@ -70,7 +70,7 @@ std::vector<Named> finite_lights() {
     const SphereLight sphere{{{1, 2, 3}, 0.8f}, {2.0f, 1.0f, 0.5f}};
     const PointLight point{{1, 2, 3}, {10, 20, 30}};
     const SpotLight spot{{0, 2, 0}, {0.2f, -1.0f, 0.1f}, {10, 8, 6}, 0.3f, 0.6f};
-    const SpotLight wide_spot{{0, 2, 0}, {1.0f, 1.0f, 0.0f}, {1, 2, 3}, 0.0f, 0.5f * k_pi};
+    const SpotLight wide_spot{{0, 2, 0}, {1.0f, 1.0f, 0.0f}, {1, 2, 3}, 0.0f, 0.5f * kPi};
     return {{"two-sided triangle", light_of(tri)},
             {"one-sided triangle", light_of(tri1)},
             {"one-sided quad", light_of(quad)},

@@ -32,7 +32,7 @@ TEST(LightSeam, PointLightIsADeltaLightWithInverseSquareRadiance) {
     EXPECT_FLOAT_EQ(s.distance, 2.0f);
     EXPECT_FLOAT_EQ(s.radiance.y, 20.0f / 4.0f);  // I / d^2
     EXPECT_EQ(pdf_li(light, ref, s.wi), 0.0f);    // no sampled direction hits a point
-    EXPECT_FLOAT_EQ(power(light).z, 4.0f * k_pi * 30.0f);
+    EXPECT_FLOAT_EQ(power(light).z, 4.0f * kPi * 30.0f);
     // At the light itself there is no direction.
     EXPECT_FALSE(sample_li(light, p.position, {0.5f, 0.5f}).valid());
 }
@@ -59,7 +59,7 @@ TEST(LightSeam, SphereLightSampleMatchesPdfAndSurface) {
     }
     // A direction away from the sphere, seen from outside, is never sampled.
     EXPECT_EQ(pdf_li(light, {0, 0, 0}, {0, -1, 0}), 0.0f);
-    const glm::vec3 expected_power = sl.radiance * (4.0f * k_pi * k_pi * 1.5f * 1.5f);
+    const glm::vec3 expected_power = sl.radiance * (4.0f * kPi * kPi * 1.5f * 1.5f);
     EXPECT_NEAR(power(light).x, expected_power.x, 1e-5f * expected_power.x);
     const glm::vec3 back = SphereLight::radiance_for_power(power(light), 1.5f);
     EXPECT_NEAR(back.z, sl.radiance.z, 1e-5f);
@@ -75,11 +75,11 @@ TEST(LightSampler, ChoosesByPowerWithTheReportedPmf) {
     const LightSampler sampler(lights);
     ASSERT_EQ(sampler.size(), 4u);
     ASSERT_TRUE(sampler.any());
-    const double total = 4.0 * k_pi + 4.0 * k_pi * k_pi + 4.0 * k_pi;
-    EXPECT_NEAR(sampler.pmf(0), 4.0 * k_pi / total, 1e-6);
+    const double total = 4.0 * kPi + 4.0 * kPi * kPi + 4.0 * kPi;
+    EXPECT_NEAR(sampler.pmf(0), 4.0 * kPi / total, 1e-6);
     EXPECT_EQ(sampler.pmf(1), 0.0f);
-    EXPECT_NEAR(sampler.pmf(2), 4.0 * k_pi * k_pi / total, 1e-6);
-    EXPECT_NEAR(sampler.pmf(3), 4.0 * k_pi / total, 1e-6);
+    EXPECT_NEAR(sampler.pmf(2), 4.0 * kPi * kPi / total, 1e-6);
+    EXPECT_NEAR(sampler.pmf(3), 4.0 * kPi / total, 1e-6);
     EXPECT_EQ(sampler.pmf(4), 0.0f);
     // Frequencies of 100k choices against the pmf (chi-square), and every choice reports
     // the pmf of the light it chose.

@@ -87,11 +87,11 @@ TEST(Light, PointLightFromPowerAndSphereLightOfTheSamePowerAgreeFarAway) {
     const float r = 0.5f;
     const glm::vec3 radiance = SphereLight::radiance_for_power(power, r);
     // Emitted power of a uniform sphere emitter: L * pi * 4 pi r^2.
-    EXPECT_NEAR(radiance.x * k_pi * 4.0f * k_pi * r * r / power, 1.0f, 1e-6f);
+    EXPECT_NEAR(radiance.x * kPi * 4.0f * kPi * r * r / power, 1.0f, 1e-6f);
     // Irradiance at distance d facing the centre: point I / d^2; sphere L pi sin^2(theta_max).
     const float d = 1000.0f;
     const float e_point = p.intensity.x / (d * d);
-    const float e_sphere = radiance.x * k_pi * (r * r) / (d * d);
+    const float e_sphere = radiance.x * kPi * (r * r) / (d * d);
     EXPECT_NEAR(e_sphere / e_point, 1.0f, 1e-5f);
 }
 

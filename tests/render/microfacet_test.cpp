@@ -79,7 +79,7 @@ std::vector<double> expected_in(const testing::DirectionBins& bins,
                                 const std::function<double(const glm::vec3&)>& pdf,
                                 const std::function<bool(const glm::vec3&)>& keep, int n, int sub) {
     const double dc = (bins.cos_hi - bins.cos_lo) / (bins.n_cos * sub);
-    const double dphi = testing::k_two_pi / (bins.n_phi * sub);
+    const double dphi = testing::kTwoPi / (bins.n_phi * sub);
     std::vector<double> e(std::size_t(bins.size()), 0.0);
     for (int i = 0; i < bins.n_cos * sub; ++i)
         for (int j = 0; j < bins.n_phi * sub; ++j) {

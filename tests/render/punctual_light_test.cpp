@@ -50,7 +50,7 @@ TEST(SpotLight, IrradianceMatchesGltfFalloffClosedForm) {
         const double t =
             std::clamp((cos_t - std::cos(0.6)) / (std::cos(0.3) - std::cos(0.6)), 0.0, 1.0);
         const double e = 10.0 * t * t * cos_t / d2;
-        EXPECT_NEAR(floor_radiance(scene, x, 0.0f).x, 0.5 / k_pi * e, 1e-5 + 1e-4 * e) << x;
+        EXPECT_NEAR(floor_radiance(scene, x, 0.0f).x, 0.5 / kPi * e, 1e-5 + 1e-4 * e) << x;
     }
     // Power: the falloff integrated over the sphere, by midpoint quadrature in cos(theta).
     double integral = 0.0;
@@ -59,7 +59,7 @@ TEST(SpotLight, IrradianceMatchesGltfFalloffClosedForm) {
         const float c = -1.0f + 2.0f * (float(i) + 0.5f) / float(n);
         integral += double(spot_falloff(spot, c)) * 2.0 / n;
     }
-    EXPECT_NEAR(power(spot).x, 2.0 * k_pi * 10.0 * integral, 1e-3 * power(spot).x);
+    EXPECT_NEAR(power(spot).x, 2.0 * kPi * 10.0 * integral, 1e-3 * power(spot).x);
 }
 
 TEST(SpotLight, RejectsBadAngles) {
@@ -76,7 +76,7 @@ TEST(DirectionalLight, DeltaSunIrradianceIsECosine) {
     scene.commit();
     // E = E_perp cos(theta) (Lambert's cosine law), whatever the point.
     for (const float x : {0.0f, 3.0f, -7.0f})
-        EXPECT_NEAR(floor_radiance(scene, x, 1.0f).x, 0.5 / k_pi * 3.0 * to_sun.y, 1e-5);
+        EXPECT_NEAR(floor_radiance(scene, x, 1.0f).x, 0.5 / kPi * 3.0 * to_sun.y, 1e-5);
 }
 
 TEST(DirectionalLight, SoftSunIrradianceIsECosineAndItsDiskIsSeen) {
@@ -88,7 +88,7 @@ TEST(DirectionalLight, SoftSunIrradianceIsECosineAndItsDiskIsSeen) {
                                           glm::vec3(0, 1, 0), 200000, 3);
     EXPECT_NEAR(e.mean.x, 2.0 * to_sun.y, 5.0 * e.se.x + 1e-6);
     // Rays escaping toward the sun's disk see L = E / (pi sin^2 r); elsewhere nothing.
-    EXPECT_NEAR(escaped_radiance(sun, to_sun).x, 2.0 / (k_pi * std::pow(std::sin(0.2), 2)), 1e-3);
+    EXPECT_NEAR(escaped_radiance(sun, to_sun).x, 2.0 / (kPi * std::pow(std::sin(0.2), 2)), 1e-3);
     EXPECT_EQ(escaped_radiance(sun, glm::vec3(0, 1, 0)).x, 0.0f);
     // And through the renderer: MIS equals brute force on the floor-and-ball scene.
     Scene scene;

@@ -202,7 +202,7 @@ TEST(SplatFilm, GaussianWeightsSumToOneUpToTheirRipple) {
             mean += sum / 64.0;
         }
     }
-    EXPECT_NEAR(mean, 1.0, 2.0 * SplatFilm::k_truncated_mass + max_terms * std::ldexp(0.5, -28));
+    EXPECT_NEAR(mean, 1.0, 2.0 * SplatFilm::kTruncatedMass + max_terms * std::ldexp(0.5, -28));
 }
 
 // A splat's part beyond the bound is clipped and counted; the sum stays at the bound

@@ -75,7 +75,7 @@ TEST(SplatRender, OwnPixelSplatsResolveToOne) {
     ASSERT_TRUE(film.splats.has_value());
     EXPECT_EQ(film.splats->width(), 13);
     EXPECT_EQ(film.splats->height(), 9);
-    const std::int64_t three = std::int64_t{3} << SplatFilm::k_default_fraction_bits;
+    const std::int64_t three = std::int64_t{3} << SplatFilm::kDefaultFractionBits;
     for (const std::int64_t sum : film.splats->sums()) EXPECT_EQ(sum, three);
     EXPECT_TRUE(same_pixels(resolve(film), image));
 }
@@ -122,7 +122,7 @@ TEST(SplatRender, SplatsAtRandomPositionsTotalTheirCount) {
     std::int64_t total[3] = {0, 0, 0};
     const std::vector<std::int64_t>& sums = film.splats->sums();
     for (std::size_t i = 0; i < sums.size(); ++i) total[i % 3] += sums[i];
-    const int k = SplatFilm::k_default_fraction_bits;
+    const int k = SplatFilm::kDefaultFractionBits;
     EXPECT_EQ(total[0], n << k);
     EXPECT_EQ(total[1], n << (k - 1));
     EXPECT_EQ(total[2], n << (k - 2));

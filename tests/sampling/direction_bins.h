@@ -17,7 +17,7 @@
 
 namespace librt::testing {
 
-inline constexpr double k_two_pi = 2.0 * std::numbers::pi;
+inline constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 /// Cells over a band of directions: cos(theta) in [cos_lo, cos_hi] around frame.n, split
 /// evenly in cos(theta) and phi, so every cell spans the same solid angle.
@@ -37,8 +37,8 @@ struct DirectionBins {
         const int i =
             std::clamp(static_cast<int>((c - cos_lo) / (cos_hi - cos_lo) * n_cos), 0, n_cos - 1);
         double phi = std::atan2(static_cast<double>(l.y), static_cast<double>(l.x));
-        if (phi < 0.0) phi += k_two_pi;
-        const int j = std::clamp(static_cast<int>(phi / k_two_pi * n_phi), 0, n_phi - 1);
+        if (phi < 0.0) phi += kTwoPi;
+        const int j = std::clamp(static_cast<int>(phi / kTwoPi * n_phi), 0, n_phi - 1);
         return i * n_phi + j;
     }
 
@@ -59,7 +59,7 @@ inline std::vector<double> expected_counts(const DirectionBins& bins,
     const std::array<double, 3> weight = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
     constexpr int sub = 2;
     const double dc = (bins.cos_hi - bins.cos_lo) / (bins.n_cos * sub);
-    const double dphi = k_two_pi / (bins.n_phi * sub);
+    const double dphi = kTwoPi / (bins.n_phi * sub);
     std::vector<double> expected(static_cast<std::size_t>(bins.size()), 0.0);
     for (int i = 0; i < bins.n_cos * sub; ++i) {
         for (int j = 0; j < bins.n_phi * sub; ++j) {

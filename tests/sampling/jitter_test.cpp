@@ -50,7 +50,7 @@ void expect_gaussian(const Moments& m, double sigma, int n) {
     EXPECT_NEAR(m.corr, 0.0, 5.0 / std::sqrt(n));
 }
 
-constexpr int k_n = 200'000;
+constexpr int kN = 200'000;
 
 }  // namespace
 
@@ -62,7 +62,7 @@ TEST(Jitter, BoxMullerIsTheReportFormula) {
 }
 
 TEST(Jitter, BoxMullerGivesStandardNormals) {
-    expect_gaussian(moments([](glm::vec2 u) { return box_muller(u); }, 1, k_n), 1.0, k_n);
+    expect_gaussian(moments([](glm::vec2 u) { return box_muller(u); }, 1, kN), 1.0, kN);
 }
 
 TEST(Jitter, BoxMullerMatchesNormalCdf) {
@@ -72,16 +72,16 @@ TEST(Jitter, BoxMullerMatchesNormalCdf) {
     const auto cdf = [](double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); };
     std::vector<double> observed(bins + 2, 0.0), expected(bins + 2, 0.0);
     Pcg32 rng(2u, 5u);
-    for (int i = 0; i < k_n; ++i) {
+    for (int i = 0; i < kN; ++i) {
         const double x = box_muller(rng.next_vec2()).x;
         const int cell = x < lo ? 0 : x >= hi ? bins + 1 : 1 + static_cast<int>((x - lo) / width);
         observed[static_cast<std::size_t>(std::min(cell, bins + 1))] += 1.0;
     }
-    expected[0] = k_n * cdf(lo);
-    expected[bins + 1] = k_n * (1.0 - cdf(hi));
+    expected[0] = kN * cdf(lo);
+    expected[bins + 1] = kN * (1.0 - cdf(hi));
     for (int b = 0; b < bins; ++b) {
         expected[static_cast<std::size_t>(b + 1)] =
-            k_n * (cdf(lo + (b + 1) * width) - cdf(lo + b * width));
+            kN * (cdf(lo + (b + 1) * width) - cdf(lo + b * width));
     }
     const auto r = librt::testing::chi_square_test(observed, expected);
     EXPECT_TRUE(r.error.empty()) << r.summary();
@@ -89,17 +89,16 @@ TEST(Jitter, BoxMullerMatchesNormalCdf) {
 }
 
 TEST(Jitter, PixelJitterHasSigmaOneHalfByDefault) {
-    expect_gaussian(moments([](glm::vec2 u) { return gaussian_pixel_jitter(u); }, 3, k_n), 0.5,
-                    k_n);
-    expect_gaussian(moments([](glm::vec2 u) { return gaussian_pixel_jitter(u, 0.25f); }, 4, k_n),
-                    0.25, k_n);
+    expect_gaussian(moments([](glm::vec2 u) { return gaussian_pixel_jitter(u); }, 3, kN), 0.5, kN);
+    expect_gaussian(moments([](glm::vec2 u) { return gaussian_pixel_jitter(u, 0.25f); }, 4, kN),
+                    0.25, kN);
 }
 
 TEST(Jitter, LensJitterHasTheGivenSigma) {
-    expect_gaussian(moments([](glm::vec2 u) { return gaussian_lens_jitter(u, 1.0f); }, 5, k_n), 1.0,
-                    k_n);
-    expect_gaussian(moments([](glm::vec2 u) { return gaussian_lens_jitter(u, 3.0f); }, 6, k_n), 3.0,
-                    k_n);
+    expect_gaussian(moments([](glm::vec2 u) { return gaussian_lens_jitter(u, 1.0f); }, 5, kN), 1.0,
+                    kN);
+    expect_gaussian(moments([](glm::vec2 u) { return gaussian_lens_jitter(u, 3.0f); }, 6, kN), 3.0,
+                    kN);
 }
 
 TEST(Jitter, ExtremeSamplesStayFinite) {
@@ -122,13 +121,13 @@ TEST(Jitter, DiskLensJitterIsUniformOnTheDisk) {
     const float radius = 0.75f;
     Pcg32 rng(7u, 5u);
     double sum = 0.0;
-    for (int i = 0; i < k_n; ++i) {
+    for (int i = 0; i < kN; ++i) {
         const float rho = glm::length(disk_lens_jitter(rng.next_vec2(), radius));
         ASSERT_LE(rho, radius * (1.0f + 1e-6f));
         sum += rho;
     }
-    const double tol = 5.0 * std::sqrt(radius * radius / 18.0 / k_n);
-    EXPECT_NEAR(sum / k_n, 2.0 * radius / 3.0, tol);
-    const auto m = moments([&](glm::vec2 u) { return disk_lens_jitter(u, radius); }, 8, k_n);
-    EXPECT_NEAR(m.mean_x, 0.0, 5.0 * std::sqrt(radius * radius / 4.0 / k_n));  // var R^2/4
+    const double tol = 5.0 * std::sqrt(radius * radius / 18.0 / kN);
+    EXPECT_NEAR(sum / kN, 2.0 * radius / 3.0, tol);
+    const auto m = moments([&](glm::vec2 u) { return disk_lens_jitter(u, radius); }, 8, kN);
+    EXPECT_NEAR(m.mean_x, 0.0, 5.0 * std::sqrt(radius * radius / 4.0 / kN));  // var R^2/4
 }

@@ -138,10 +138,10 @@ TEST(Sobol, ByteTablesAgreeWithTheDirectionNumbers) {
     Pcg32 rng(5, 6);
     for (int i = 0; i < 20000; ++i) {
         const std::uint32_t index = i < 1000 ? static_cast<std::uint32_t>(i) : rng.next_u32();
-        for (int d = 0; d < k_sobol_dimensions; ++d) {
+        for (int d = 0; d < kSobolDimensions; ++d) {
             std::uint32_t x = 0;  // the defining sum: XOR of V_k over the set bits k of index
             for (int k = 0; k < 32; ++k) {
-                if ((index >> k) & 1u) x ^= detail::k_sobol_matrices[d][k];
+                if ((index >> k) & 1u) x ^= detail::kSobolMatrices[d][k];
             }
             ASSERT_EQ(sobol_u32(index, d), x) << "index " << index << " dim " << d;
             // The reversed tables give the same bits in reverse order.
@@ -154,7 +154,7 @@ TEST(Sobol, ByteTablesAgreeWithTheDirectionNumbers) {
 }
 
 TEST(Sobol, EveryDimensionIsStratifiedAndTheFirstPairIsA02Sequence) {
-    for (int d = 0; d < k_sobol_dimensions; ++d) {
+    for (int d = 0; d < kSobolDimensions; ++d) {
         std::vector<float> values;
         for (std::uint32_t i = 0; i < 4096; ++i) values.push_back(to_unit(sobol_u32(i, d)));
         for (int k = 0; k <= 12; ++k) EXPECT_TRUE(is_stratified_1d(values, k)) << "dim " << d;
@@ -183,19 +183,19 @@ TEST(Sobol, OwenScrambleIsABijectionThatKeepsNets) {
 }
 
 TEST(SobolSampler, EveryPairAndSingleOfAPixelIsStratifiedForEveryPowerOfTwo) {
-    constexpr int k_max = 10;
+    constexpr int kMax = 10;
     constexpr int bounces = 3;
     for (const auto& [x, y, seed] :
          {std::tuple{0u, 0u, 0ull}, {17u, 3u, 42ull}, {511u, 400u, 7ull}}) {
         std::vector<PathDraws> samples;
-        for (std::uint32_t s = 0; s < (1u << k_max); ++s) {
+        for (std::uint32_t s = 0; s < (1u << kMax); ++s) {
             Sampler sampler(SamplerKind::Sobol, x, y, s, seed);
             samples.push_back(draw_path(sampler, bounces));
         }
         for (std::size_t p = 0; p < samples[0].pairs.size(); ++p) {
             std::vector<glm::vec2> points;
             for (const PathDraws& d : samples) points.push_back(d.pairs[p]);
-            for (int k = 0; k <= k_max; ++k) {
+            for (int k = 0; k <= kMax; ++k) {
                 if (p == 1) {
                     // The lens pair is Sobol' dimensions 2 and 3 (see the next test): a
                     // (t, 2)-sequence with t = (2 - 1) + (3 - 1) = 3, their polynomials'
@@ -211,7 +211,7 @@ TEST(SobolSampler, EveryPairAndSingleOfAPixelIsStratifiedForEveryPowerOfTwo) {
         for (std::size_t q = 0; q < samples[0].singles.size(); ++q) {
             std::vector<float> values;
             for (const PathDraws& d : samples) values.push_back(d.singles[q]);
-            for (int k = 0; k <= k_max; ++k) EXPECT_TRUE(is_stratified_1d(values, k)) << q;
+            for (int k = 0; k <= kMax; ++k) EXPECT_TRUE(is_stratified_1d(values, k)) << q;
         }
     }
 }
@@ -221,16 +221,16 @@ TEST(SobolSampler, PixelAndLensAreOneFourDimensionalNet) {
     // 2^k samples of a pixel form a (3, k, 4)-net: t = 0 + 0 + 1 + 2, the degrees of the
     // four dimensions' polynomials less one (Sobol' 1967). Padding the lens pair with its
     // own shuffle (pairs stratified, their pairing random) fails this from k = 5 on.
-    constexpr int k_max = 10;
+    constexpr int kMax = 10;
     for (const auto& [x, y, seed] : {std::tuple{0u, 0u, 0ull}, {17u, 3u, 42ull}, {9u, 80u, 5ull}}) {
         std::vector<std::array<float, 4>> points;
-        for (std::uint32_t s = 0; s < (1u << k_max); ++s) {
+        for (std::uint32_t s = 0; s < (1u << kMax); ++s) {
             Sampler sampler(SamplerKind::Sobol, x, y, s, seed);
             const glm::vec2 pixel = sampler.next_2d();
             const glm::vec2 lens = sampler.next_2d();
             points.push_back({pixel.x, pixel.y, lens.x, lens.y});
         }
-        for (int k = 0; k <= k_max; ++k) {
+        for (int k = 0; k <= kMax; ++k) {
             EXPECT_TRUE(is_net(points, k, 3)) << "pixel " << x << "," << y << " k = " << k;
         }
     }
@@ -284,23 +284,22 @@ namespace {
 
 // A smooth integrand with a closed form: int_[0,1]^2 e^u sin(pi v) = (e - 1) 2 / pi.
 double smooth(glm::vec2 u) { return std::exp(u.x) * std::sin(std::numbers::pi * u.y); }
-constexpr double k_smooth_integral = (std::numbers::e - 1.0) * 2.0 / std::numbers::pi;
+constexpr double kSmoothIntegral = (std::numbers::e - 1.0) * 2.0 / std::numbers::pi;
 
 // A discontinuous one, like an edge in a pixel: the quarter disk of radius^2 = 0.5.
 double disk(glm::vec2 u) { return u.x * u.x + u.y * u.y < 0.5f ? 1.0 : 0.0; }
-constexpr double k_disk_integral = std::numbers::pi * 0.5 / 4.0;
+constexpr double kDiskIntegral = std::numbers::pi * 0.5 / 4.0;
 
 // Direct lighting with a closed form: irradiance at the origin (normal +z) from a unit-
 // radiance sphere of radius 1 at distance 3, 30 degrees off the normal, sampled by the
 // cone it subtends (sample_sphere_direction). Wholly above the horizon, its projected
 // solid angle is pi sin^2(alpha) cos(beta) with sin(alpha) = r / d (Nusselt analogue).
-const glm::vec3 k_light_center = 3.0f * glm::vec3(0.5f, 0.0f, 0.8660254f);
+const glm::vec3 kLightCenter = 3.0f * glm::vec3(0.5f, 0.0f, 0.8660254f);
 double direct_light(glm::vec2 u) {
-    const SphereDirectionSample s =
-        sample_sphere_direction(k_light_center, 1.0f, glm::vec3(0.0f), u);
+    const SphereDirectionSample s = sample_sphere_direction(kLightCenter, 1.0f, glm::vec3(0.0f), u);
     return s.pdf > 0.0f ? std::max(0.0f, s.direction.z) / s.pdf : 0.0;
 }
-constexpr double k_direct_light_integral = std::numbers::pi / 9.0 * 0.8660254037844386;
+constexpr double kDirectLightIntegral = std::numbers::pi / 9.0 * 0.8660254037844386;
 
 // Per-pixel errors of an n-sample estimate of f drawn from a high sampler dimension (the
 // second bounce's BSDF pair), for `pixels` pixels along a row.
@@ -314,7 +313,7 @@ std::vector<double> pixel_errors(SamplerKind kind, F f, double exact, int n, int
             Sampler sampler(kind, static_cast<std::uint32_t>(p % 64),
                             static_cast<std::uint32_t>(p / 64), static_cast<std::uint32_t>(s),
                             seed);
-            sampler.set_dimension(SampleDimensions::bounce(1) + SampleDimensions::k_bounce_bsdf);
+            sampler.set_dimension(SampleDimensions::bounce(1) + SampleDimensions::kBounceBsdf);
             sum += f(sampler.next_2d());
         }
         errors.push_back(sum / n - exact);
@@ -344,9 +343,9 @@ ErrorStats stats(const std::vector<double>& e) {
 TEST(SobolSampler, PixelsAreUnbiasedUncorrelatedAndFarLessNoisyThanIndependent) {
     constexpr int pixels = 4096, n = 16;
     const ErrorStats sobol =
-        stats(pixel_errors(SamplerKind::Sobol, smooth, k_smooth_integral, n, pixels, 11));
+        stats(pixel_errors(SamplerKind::Sobol, smooth, kSmoothIntegral, n, pixels, 11));
     const ErrorStats indep =
-        stats(pixel_errors(SamplerKind::Independent, smooth, k_smooth_integral, n, pixels, 11));
+        stats(pixel_errors(SamplerKind::Independent, smooth, kSmoothIntegral, n, pixels, 11));
     const double k = 4.0;  // standard errors allowed
     for (const ErrorStats& s : {sobol, indep}) {
         // Unbiased: the mean over pixels is within k standard errors of 0, which also needs
@@ -373,14 +372,13 @@ TEST(SobolSampler, ConvergenceFigure) {
         double slope_lo, slope_hi;  // theory +- margin (slope noise is ~0.02 here)
     };
     const Case cases[] = {
-        {"smooth independent", smooth, k_smooth_integral, SamplerKind::Independent, -0.6, -0.4},
-        {"smooth sobol", smooth, k_smooth_integral, SamplerKind::Sobol, -1.7, -1.25},  // n^-1.5
-        {"disk independent", disk, k_disk_integral, SamplerKind::Independent, -0.6, -0.4},
-        {"disk sobol", disk, k_disk_integral, SamplerKind::Sobol, -0.95, -0.65},  // n^-0.75
-        {"sphere light independent", direct_light, k_direct_light_integral,
-         SamplerKind::Independent, -0.6, -0.4},
-        {"sphere light sobol", direct_light, k_direct_light_integral, SamplerKind::Sobol, -1.7,
-         -1.2},
+        {"smooth independent", smooth, kSmoothIntegral, SamplerKind::Independent, -0.6, -0.4},
+        {"smooth sobol", smooth, kSmoothIntegral, SamplerKind::Sobol, -1.7, -1.25},  // n^-1.5
+        {"disk independent", disk, kDiskIntegral, SamplerKind::Independent, -0.6, -0.4},
+        {"disk sobol", disk, kDiskIntegral, SamplerKind::Sobol, -0.95, -0.65},  // n^-0.75
+        {"sphere light independent", direct_light, kDirectLightIntegral, SamplerKind::Independent,
+         -0.6, -0.4},
+        {"sphere light sobol", direct_light, kDirectLightIntegral, SamplerKind::Sobol, -1.7, -1.2},
     };
     for (const Case& c : cases) {
         std::vector<double> log_n, log_rmse;

@@ -22,8 +22,8 @@ using librt::testing::expected_counts;
 
 namespace {
 
-constexpr double k_significance = 0.01;
-constexpr double k_two_pi = 2.0 * std::numbers::pi;
+constexpr double kSignificance = 0.01;
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 /// Runs the full test: n directions from sample(u), binned and compared with the pdf.
 void expect_directions_follow_pdf(const DirectionBins& bins,
@@ -50,7 +50,7 @@ void expect_directions_follow_pdf(const DirectionBins& bins,
     EXPECT_NEAR(total / n, 1.0, 1e-3);
     const ChiSquareResult r = chi_square_test(observed, expected);
     EXPECT_TRUE(r.error.empty()) << r.summary();
-    EXPECT_GE(r.p_value, k_significance) << r.summary();
+    EXPECT_GE(r.p_value, kSignificance) << r.summary();
 }
 
 /// The cone of half-angle theta_max a sphere subtends at ref, in double.
@@ -176,15 +176,15 @@ TEST(Warp, ConcentricDiskInsideAndAreaUniform) {
         const double r2 = double(p.x) * p.x + double(p.y) * p.y;
         ASSERT_LE(r2, 1.0 + 1e-6);
         double phi = std::atan2(double(p.y), double(p.x));
-        if (phi < 0.0) phi += k_two_pi;
+        if (phi < 0.0) phi += kTwoPi;
         const int i = std::min(static_cast<int>(r2 * rings), rings - 1);
-        const int j = std::min(static_cast<int>(phi / k_two_pi * sectors), sectors - 1);
+        const int j = std::min(static_cast<int>(phi / kTwoPi * sectors), sectors - 1);
         observed[static_cast<std::size_t>(i * sectors + j)] += 1.0;
     }
     const std::vector<double> expected(rings * sectors, double(n) / (rings * sectors));
     const ChiSquareResult r = chi_square_test(observed, expected);
     EXPECT_TRUE(r.error.empty()) << r.summary();
-    EXPECT_GE(r.p_value, k_significance) << r.summary();
+    EXPECT_GE(r.p_value, kSignificance) << r.summary();
     EXPECT_FLOAT_EQ(uniform_disk_pdf(), std::numbers::inv_pi_v<float>);
 }
 
@@ -222,7 +222,7 @@ TEST(Warp, TriangleBarycentricsUniform) {
     }
     const std::vector<double> expected(k * k, double(n) / (k * k));
     const ChiSquareResult r = chi_square_test(observed, expected);
-    EXPECT_GE(r.p_value, k_significance) << r.summary();
+    EXPECT_GE(r.p_value, kSignificance) << r.summary();
     // Each barycentric is Beta(1, 2): mean 1/3, variance 1/18.
     const double tol = 5.0 * std::sqrt(1.0 / 18.0 / n);
     EXPECT_NEAR(sum_u / n, 1.0 / 3.0, tol);
@@ -277,7 +277,7 @@ TEST(SphereLight, InsideDirectionsChiSquare) {
 TEST(SphereLight, VisiblePointsOnSphereFacingRefWithMatchingPdf) {
     const glm::vec3 c(2, -1, 3), ref(0.5f, 0.2f, -0.4f);
     const float r = 1.4f;
-    const double expected_pdf = 1.0 / (k_two_pi * (1.0 - cos_theta_max(c, r, ref)));
+    const double expected_pdf = 1.0 / (kTwoPi * (1.0 - cos_theta_max(c, r, ref)));
     Pcg32 rng(112u, 1u);
     for (int k = 0; k < 20'000; ++k) {
         const glm::vec2 u = rng.next_vec2();
@@ -397,7 +397,7 @@ TEST(SphereLight, TinyConesKeepTheirPdfAndShape) {
         const float r = 1.0f;
         const double sin2 = 1.0 / (double(d) * d);
         const double one_minus_cos = sin2 / (1.0 + std::sqrt(1.0 - sin2));
-        const double expected_pdf = 1.0 / (k_two_pi * one_minus_cos);
+        const double expected_pdf = 1.0 / (kTwoPi * one_minus_cos);
         EXPECT_NEAR(sphere_visible_pdf(c, r, ref, {0, 0, 1}), expected_pdf, 1e-5 * expected_pdf);
 
         // sin^2(theta) / sin^2(theta_max) is uniform on [0, 1] for a uniform cone (exactly

@@ -13,10 +13,10 @@ void check_image_size(long long width, long long height) {
     }
     // Compared by division, so no product can wrap around (2^32 x 2^30 pixels of 12
     // bytes would wrap a 64-bit product to exactly 0).
-    constexpr auto k_max_pixels = Image::k_max_bytes / sizeof(glm::vec3);
+    constexpr auto kMaxPixels = Image::kMaxBytes / sizeof(glm::vec3);
     const auto w = static_cast<unsigned long long>(width);
     const auto h = static_cast<unsigned long long>(height);
-    if (w > 0 && h > k_max_pixels / w) {
+    if (w > 0 && h > kMaxPixels / w) {
         // For the message only: in double, which cannot overflow here.
         const double gib = double(w) * double(h) * double(sizeof(glm::vec3)) / double(1ull << 30u);
         char needs[64];

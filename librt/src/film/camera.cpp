@@ -30,11 +30,11 @@ std::string to_text(const glm::vec3& v) {
 }
 
 void validate(const CameraSettings& s) {
-    constexpr int k_max_size = 65536;
-    if (s.width < 1 || s.width > k_max_size) {
+    constexpr int kMaxSize = 65536;
+    if (s.width < 1 || s.width > kMaxSize) {
         fail("width", std::to_string(s.width), "must be in [1, 65536]");
     }
-    if (s.height < 1 || s.height > k_max_size) {
+    if (s.height < 1 || s.height > kMaxSize) {
         fail("height", std::to_string(s.height), "must be in [1, 65536]");
     }
     const int projection = static_cast<int>(s.projection);

@@ -19,7 +19,7 @@ void check_film_size(long long width, long long height, bool with_aovs) {
         throw Error("film size " + size + ": width and height must be >= 0");
     }
     const std::uint64_t per_pixel = sizeof(FilmPixel) + (with_aovs ? sizeof(AovPixel) : 0);
-    const std::uint64_t max_pixels = Film::k_max_bytes / per_pixel;
+    const std::uint64_t max_pixels = Film::kMaxBytes / per_pixel;
     const auto w = static_cast<unsigned long long>(width);
     const auto h = static_cast<unsigned long long>(height);
     if (w > 0 && h > max_pixels / w) {  // by division: no product can wrap around

@@ -15,23 +15,23 @@ namespace librt {
 namespace {
 
 // The bounds a sum saturates at; symmetric, so -(2^63) is never used.
-constexpr std::int64_t k_bound = std::numeric_limits<std::int64_t>::max();
+constexpr std::int64_t kBound = std::numeric_limits<std::int64_t>::max();
 
 static_assert(std::atomic_ref<std::int64_t>::required_alignment <= alignof(std::int64_t));
 static_assert(std::atomic_ref<std::uint64_t>::required_alignment <= alignof(std::uint64_t));
 
 // Pixels a splat reaches on one axis at most: 2 radius + 1 for the half-open support.
-constexpr int k_max_span = 2 * static_cast<int>(SplatFilm::k_max_radius) + 2;
+constexpr int kMaxSpan = 2 * static_cast<int>(SplatFilm::kMaxRadius) + 2;
 
 // The support's half-width: the filter's radius, or for an infinite Gaussian the smallest
 // multiple of sigma / 100 whose lost 2D mass 1 - erf(r / (sigma sqrt 2))^2 is below
-// SplatFilm::k_truncated_mass.
+// SplatFilm::kTruncatedMass.
 double support_radius(const FilterSettings& f) {
     if (std::isfinite(f.radius)) return f.radius;
     int hundredths = 100;
     for (;; ++hundredths) {
         const double kept = std::erf(hundredths / 100.0 / std::numbers::sqrt2);
-        if (1.0 - kept * kept < SplatFilm::k_truncated_mass) break;
+        if (1.0 - kept * kept < SplatFilm::kTruncatedMass) break;
     }
     return hundredths / 100.0 * f.sigma;
 }
@@ -40,36 +40,36 @@ double support_radius(const FilterSettings& f) {
 // (exact for box, tent and Mitchell, whose knots 0 and +-r/2 are cell edges and whose
 // pieces are cubics; spectrally accurate for the Gaussian and Blackman-Harris).
 double integral_1d(const PixelFilter& filter, double r) {
-    static constexpr std::array<double, 5> k_nodes{0.0, -0.5384693101056831, 0.5384693101056831,
-                                                   -0.9061798459386640, 0.9061798459386640};
-    static constexpr std::array<double, 5> k_weights{0.5688888888888889, 0.4786286704993665,
-                                                     0.4786286704993665, 0.2369268850561891,
-                                                     0.2369268850561891};
-    constexpr int k_cells = 2048;
-    const double half = r / k_cells;  // half a cell's width
+    static constexpr std::array<double, 5> kNodes{0.0, -0.5384693101056831, 0.5384693101056831,
+                                                  -0.9061798459386640, 0.9061798459386640};
+    static constexpr std::array<double, 5> kWeights{0.5688888888888889, 0.4786286704993665,
+                                                    0.4786286704993665, 0.2369268850561891,
+                                                    0.2369268850561891};
+    constexpr int kCells = 2048;
+    const double half = r / kCells;  // half a cell's width
     double total = 0.0;
-    for (int i = 0; i < k_cells; ++i) {
+    for (int i = 0; i < kCells; ++i) {
         const double mid = -r + (2 * i + 1) * half;
         double cell = 0.0;
-        for (std::size_t k = 0; k < k_nodes.size(); ++k) {
-            cell += k_weights[k] * filter.evaluate_1d_precise(mid + half * k_nodes[k]);
+        for (std::size_t k = 0; k < kNodes.size(); ++k) {
+            cell += kWeights[k] * filter.evaluate_1d_precise(mid + half * kNodes[k]);
         }
         total += cell * half;
     }
     return total;
 }
 
-// Adds q to the sum, saturating at +-k_bound; a sum at a bound stays there. Returns true
+// Adds q to the sum, saturating at +-kBound; a sum at a bound stays there. Returns true
 // when anything of q was lost. Lock-free: a compare-and-swap loop on the one word.
 bool saturating_add(std::int64_t& slot, std::int64_t q) {
     if (q == 0) return false;
     std::atomic_ref<std::int64_t> sum(slot);
     std::int64_t old = sum.load(std::memory_order_relaxed);
     for (;;) {
-        if (old == k_bound || old == -k_bound) return true;
-        // Overflow tests that cannot overflow themselves: |q| <= k_bound.
-        const bool over = (q > 0 && old > k_bound - q) || (q < 0 && old < -k_bound - q);
-        const std::int64_t next = over ? (q > 0 ? k_bound : -k_bound) : old + q;
+        if (old == kBound || old == -kBound) return true;
+        // Overflow tests that cannot overflow themselves: |q| <= kBound.
+        const bool over = (q > 0 && old > kBound - q) || (q < 0 && old < -kBound - q);
+        const std::int64_t next = over ? (q > 0 ? kBound : -kBound) : old + q;
         if (sum.compare_exchange_weak(old, next, std::memory_order_relaxed)) return over;
     }
 }
@@ -82,15 +82,15 @@ void count(std::uint64_t& counter) {
 
 SplatFilm::SplatFilm(int width, int height, const FilterSettings& filter, int fraction_bits)
     : width_(width), height_(height), fraction_bits_(fraction_bits) {
-    // The same size rule as Film: 3 sums of 8 bytes per pixel, under Film::k_max_bytes.
+    // The same size rule as Film: 3 sums of 8 bytes per pixel, under Film::kMaxBytes.
     const std::string size = std::to_string(width) + " x " + std::to_string(height);
     if (width < 0 || height < 0) {
         throw Error("splat film size " + size + ": width and height must be >= 0");
     }
-    constexpr std::uint64_t k_per_pixel = 3 * sizeof(std::int64_t);
+    constexpr std::uint64_t kPerPixel = 3 * sizeof(std::int64_t);
     const auto w = static_cast<std::uint64_t>(width);
     const auto h = static_cast<std::uint64_t>(height);
-    if (w > 0 && h > Film::k_max_bytes / k_per_pixel / w) {
+    if (w > 0 && h > Film::kMaxBytes / kPerPixel / w) {
         throw Error("splat film size " + size + ": more than the 16 GiB limit");
     }
     if (fraction_bits < 0 || fraction_bits > 62) {
@@ -103,7 +103,7 @@ SplatFilm::SplatFilm(int width, int height, const FilterSettings& filter, int fr
         throw Error(std::string("splat film filter: ") + e.what());
     }
     radius_ = support_radius(filter);
-    if (!(radius_ <= k_max_radius)) {
+    if (!(radius_ <= kMaxRadius)) {
         throw Error("splat film filter radius = " + std::to_string(radius_) +
                     ": must be <= 32 pixels");
     }
@@ -131,8 +131,8 @@ void SplatFilm::add(glm::vec2 raster, const glm::vec3& value) {
     const int i0 = static_cast<int>(std::max(i_first, 0.0));
     const int i1 = static_cast<int>(std::min(i_last, height_ - 1.0));
     if (j0 > j1 || i0 > i1) return;  // entirely off the film (or an empty film)
-    // The 1D weights once per axis (spans are <= k_max_span by the radius limit).
-    std::array<double, k_max_span> wx{}, wy{};
+    // The 1D weights once per axis (spans are <= kMaxSpan by the radius limit).
+    std::array<double, kMaxSpan> wx{}, wy{};
     for (int j = j0; j <= j1; ++j) wx[j - j0] = filter_.evaluate_1d_precise(x - (j + 0.5));
     for (int i = i0; i <= i1; ++i) wy[i - i0] = filter_.evaluate_1d_precise(y - (i + 0.5));
     const std::array<double, 3> v{value.x, value.y, value.z};
@@ -151,7 +151,7 @@ void SplatFilm::add(glm::vec2 raster, const glm::vec3& value) {
                 if (std::abs(term) < 0x1p63) {
                     q = std::llround(term);
                 } else {
-                    q = term > 0.0 ? k_bound : -k_bound;
+                    q = term > 0.0 ? kBound : -kBound;
                     clipped = true;
                 }
                 clipped |= saturating_add(sums_[base + c], q);

@@ -36,17 +36,17 @@ namespace librt {
 namespace {
 
 /// Sampler dimensions of the light subpath: its light choice (1D), origin (2D) and
-/// direction (2D), whether this sample traces one (1D, k_light_path_choice), then per light
-/// vertex j >= 1 k_light_per_vertex dimensions from k_light_vertices + (j - 1)
-/// k_light_per_vertex: lobe (1D), direction (2D), lens point of its connection to the
+/// direction (2D), whether this sample traces one (1D, kLightPathChoice), then per light
+/// vertex j >= 1 kLightPerVertex dimensions from kLightVertices + (j - 1)
+/// kLightPerVertex: lobe (1D), direction (2D), lens point of its connection to the
 /// camera (2D), roulette (1D). Between the camera subpath's bounces (below 7 * 66)
-/// and the crossing decisions (SampleDimensions::k_pass_through), so no number is drawn
+/// and the crossing decisions (SampleDimensions::kPassThrough), so no number is drawn
 /// twice in one sample.
-constexpr std::uint32_t k_light_base = 1u << 15u;
-constexpr std::uint32_t k_light_path_choice = k_light_base + 5;
-constexpr std::uint32_t k_light_vertices = k_light_base + 6;
-constexpr std::uint32_t k_light_per_vertex = 6;
-constexpr std::uint32_t k_light_vertex_roulette = 5;
+constexpr std::uint32_t kLightBase = 1u << 15u;
+constexpr std::uint32_t kLightPathChoice = kLightBase + 5;
+constexpr std::uint32_t kLightVertices = kLightBase + 6;
+constexpr std::uint32_t kLightPerVertex = 6;
+constexpr std::uint32_t kLightVertexRoulette = 5;
 
 enum class VertexKind : std::uint8_t { Camera, Light, Surface };
 
@@ -317,7 +317,7 @@ struct Escape {
 /// throughput `beta` (its direction drawn at path[0] with solid-angle density pdf_dir; 0
 /// for a delta), up to max_vertices vertices; returns the count. The camera walk draws
 /// each bounce's numbers from SampleDimensions::bounce(i), the light walk from
-/// k_light_vertices. Surfaces with a Null lobe are crossed as PathTracer crosses them.
+/// kLightVertices. Surfaces with a Null lobe are crossed as PathTracer crosses them.
 int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transport mode,
                 Sampler& sampler, PathVertex* path, ShadedMaterial* scratch, int max_vertices,
                 std::uint32_t& decisions, Escape* escape) {
@@ -375,11 +375,11 @@ int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transp
         const auto j = static_cast<std::uint32_t>(n - 2);  // 0 for the first surface vertex
         const std::uint32_t dim = mode == Transport::Radiance
                                       ? SampleDimensions::bounce(j)
-                                      : k_light_vertices + j * k_light_per_vertex;
-        sampler.set_dimension(mode == Transport::Radiance ? dim + SampleDimensions::k_bounce_lobe
+                                      : kLightVertices + j * kLightPerVertex;
+        sampler.set_dimension(mode == Transport::Radiance ? dim + SampleDimensions::kBounceLobe
                                                           : dim);
         const float uc = sampler.next_1d();
-        sampler.set_dimension(mode == Transport::Radiance ? dim + SampleDimensions::k_bounce_bsdf
+        sampler.set_dimension(mode == Transport::Radiance ? dim + SampleDimensions::kBounceBsdf
                                                           : dim + 1);
         const glm::vec2 u = sampler.next_2d();
         const glm::vec3 wo_local = v.sp.frame.to_local(v.wo);
@@ -402,8 +402,8 @@ int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transp
             // Survive with probability q, reweighted by 1/q (PathTracer's rule).
             const float q = std::min(0.95f, max_component(beta) / start);
             sampler.set_dimension(mode == Transport::Radiance
-                                      ? dim + SampleDimensions::k_bounce_roulette
-                                      : dim + k_light_vertex_roulette);
+                                      ? dim + SampleDimensions::kBounceRoulette
+                                      : dim + kLightVertexRoulette);
             if (!(q > 0.0f) || sampler.next_1d() >= q) break;
             beta /= q;
         }
@@ -467,9 +467,9 @@ glm::vec3 connect_to_light(const Context& c, Subpaths& paths, int t, Sampler& sa
     const PathVertex& pt = paths.camera_path[t - 1];
     if (!connectible(pt)) return glm::vec3(0.0f);
     const std::uint32_t dim = SampleDimensions::bounce(static_cast<std::uint32_t>(t - 2));
-    sampler.set_dimension(dim + SampleDimensions::k_bounce_light_choice);
+    sampler.set_dimension(dim + SampleDimensions::kBounceLightChoice);
     const float u_light = lights.size() > 1 ? sampler.next_1d() : 0.0f;
-    sampler.set_dimension(dim + SampleDimensions::k_bounce_light);
+    sampler.set_dimension(dim + SampleDimensions::kBounceLight);
     const glm::vec2 u = sampler.next_2d();
     const SampledLight chosen = lights.sample(u_light);
     if (!chosen.valid()) return glm::vec3(0.0f);
@@ -504,7 +504,7 @@ void splat_to_camera(const Context& c, Subpaths& paths, int s, Sampler& sampler)
     const PathVertex& qs = paths.light_path[s - 1];
     if (!connectible(qs)) return;
     const auto j = static_cast<std::uint32_t>(s - 2);
-    sampler.set_dimension(k_light_vertices + j * k_light_per_vertex + 3);
+    sampler.set_dimension(kLightVertices + j * kLightPerVertex + 3);
     const glm::vec2 u_lens = sampler.next_2d();
     const CameraWi cw = sample_wi(*c.camera, qs.p, u_lens, c.margin);
     if (!cw.valid) return;
@@ -547,11 +547,11 @@ glm::vec3 connect_subpaths(const Context& c, Subpaths& paths, int s, int t) {
 int trace_light_path(const Context& c, Sampler& sampler, PathVertex* light_path,
                      ShadedMaterial* scratch, std::uint32_t& decisions) {
     if (c.light_paths < 1.0f) {
-        sampler.set_dimension(k_light_path_choice);
+        sampler.set_dimension(kLightPathChoice);
         if (!(sampler.next_1d() < c.light_paths)) return 0;
     }
     if (!c.scene.light_sampler().any() || c.max_depth < 1) return 0;
-    const LightPathStart start = start_light_path(c.scene, c.sphere, sampler, k_light_base);
+    const LightPathStart start = start_light_path(c.scene, c.sphere, sampler, kLightBase);
     if (!start.valid) return 0;
     const LightLeSample& le = start.le;
     const float pdf0 = start.chosen.pmf * le.pdf_pos;

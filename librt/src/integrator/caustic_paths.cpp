@@ -27,18 +27,18 @@ namespace librt {
 namespace {
 
 /// Sampler dimensions of the light path: light choice (1D), origin (2D), direction (2D),
-/// then per caster vertex j k_per_caster: lobe (1D), direction (2D), roulette (1D); the
+/// then per caster vertex j kPerCaster: lobe (1D), direction (2D), roulette (1D); the
 /// lens point of the join (2D) takes the slot of the vertex after the last caster. Far above the
 /// camera path's bounces (below 7 * 1001) and below its crossing decisions
-/// (SampleDimensions::k_pass_through).
-constexpr std::uint32_t k_base = 1u << 15u;
-constexpr std::uint32_t k_first_caster = k_base + 5;
-constexpr std::uint32_t k_per_caster = 4;
+/// (SampleDimensions::kPassThrough).
+constexpr std::uint32_t kBase = 1u << 15u;
+constexpr std::uint32_t kFirstCaster = kBase + 5;
+constexpr std::uint32_t kPerCaster = 4;
 /// Casters never rouletted: a chain of mirrors facing each other must still end soon.
-constexpr int k_roulette_after = 3;
+constexpr int kRouletteAfter = 3;
 /// The light path's crossing decisions follow the camera path's (kMaxCrossingDecisions
 /// bounds both): from here, so no number is drawn twice in one sample.
-constexpr std::uint32_t k_first_decision = kMaxCrossingDecisions / 2;
+constexpr std::uint32_t kFirstDecision = kMaxCrossingDecisions / 2;
 
 }  // namespace
 
@@ -49,14 +49,14 @@ void splat_caustic_path(const Scene& scene, const SceneSphere& sphere, const Cam
     const LightSampler& lights = scene.light_sampler();
     if (!lights.any()) return;
     // Lights at infinity start no path: their caustics stay with the camera path.
-    const LightPathStart start = start_light_path(scene, sphere, sampler, k_base);
+    const LightPathStart start = start_light_path(scene, sphere, sampler, kBase);
     if (!start.valid) return;
     const LightLeSample& le = start.le;
     // Throughput Le |cos| / (p_choice p_pos p_dir), as a light subpath of bdpt.cpp starts.
     glm::vec3 beta = le.radiance * (start.cosine() / (start.chosen.pmf * le.pdf_pos * le.pdf_dir));
     Ray ray = start.ray();
 
-    std::uint32_t decisions = k_first_decision;
+    std::uint32_t decisions = kFirstDecision;
     int casters = 0;             // caster vertices so far
     glm::vec3 throughput(1.0f);  // what the casters let through, for roulette
     Hit hit;
@@ -86,7 +86,7 @@ void splat_caustic_path(const Scene& scene, const SceneSphere& sphere, const Cam
             // The seen surface D: a caustic only after a caster (else it is direct light,
             // the camera path's).
             if (casters == 0) return;
-            sampler.set_dimension(k_first_caster + j * k_per_caster);
+            sampler.set_dimension(kFirstCaster + j * kPerCaster);
             const glm::vec2 u_lens = sampler.next_2d();
             const CameraWi cw = sample_wi(camera, hit.point, u_lens, film.margin());
             if (!cw.valid) return;
@@ -105,9 +105,9 @@ void splat_caustic_path(const Scene& scene, const SceneSphere& sphere, const Cam
         }
         // A caster: room for it and for the surface it lights (max_depth events in all).
         if (casters + 2 > max_depth) return;
-        sampler.set_dimension(k_first_caster + j * k_per_caster);
+        sampler.set_dimension(kFirstCaster + j * kPerCaster);
         const float uc = sampler.next_1d();
-        sampler.set_dimension(k_first_caster + j * k_per_caster + 1);
+        sampler.set_dimension(kFirstCaster + j * kPerCaster + 1);
         const glm::vec2 u = sampler.next_2d();
         const BsdfSample bs = bsdfs::sample_bsdf(m, sp, wo_local, uc, u);
         if (!bs.valid()) return;
@@ -118,10 +118,10 @@ void splat_caustic_path(const Scene& scene, const SceneSphere& sphere, const Cam
         throughput *= scatter;
         if (!(max_component(beta) > 0.0f)) return;
         ++casters;
-        if (casters > k_roulette_after) {
+        if (casters > kRouletteAfter) {
             // Survive with probability q, reweighted by 1 / q: unbiased, and bounded.
             const float q = std::min(0.95f, max_component(throughput));
-            sampler.set_dimension(k_first_caster + j * k_per_caster + 3);
+            sampler.set_dimension(kFirstCaster + j * kPerCaster + 3);
             if (!(q > 0.0f) || sampler.next_1d() >= q) return;
             beta /= q;
             throughput /= q;

@@ -143,7 +143,7 @@ struct Vertex {
         cos_i = std::fabs(cos_s);
         // Diffuse::eval_cos, from the albedo alone (no ShadingPoint built).
         return bsdfs::EvalPdf{
-            bsdfs::Diffuse::reaches_cos(cos_s, cos_g) ? v.albedo * k_inv_pi : glm::vec3(0.0f),
+            bsdfs::Diffuse::reaches_cos(cos_s, cos_g) ? v.albedo * kInvPi : glm::vec3(0.0f),
             bsdfs::Diffuse::pdf_cos(cos_s, cos_g)};
     }
     return bsdfs::dispatch(v.m.kind, [&](auto bsdf) {
@@ -223,7 +223,7 @@ template <bool Guided = false, bool SplitCaustics = false>
     // the light choice's dimension; the light's 2D keeps its own (SampleDimensions).
     const std::uint32_t first = sampler.dimension();
     const float u_light = lights.size() > 1 ? sampler.next_1d() : 0.0f;
-    sampler.set_dimension(first + SampleDimensions::k_bounce_light);
+    sampler.set_dimension(first + SampleDimensions::kBounceLight);
     const glm::vec2 u = sampler.next_2d();
     const SampledLight chosen =
         at != nullptr ? lights.sample(u_light, *at) : lights.sample(u_light);
@@ -313,9 +313,9 @@ struct GuidedSample {
 /// weight of 0 (no valid direction) ends the path, as an invalid BSDF sample does.
 GuidedSample sample_guided(Vertex& v, const guiding::DirLeaf& leaf, float alpha, Sampler& sampler,
                            std::uint32_t dim) {
-    sampler.set_dimension(dim + SampleDimensions::k_bounce_lobe);
+    sampler.set_dimension(dim + SampleDimensions::kBounceLobe);
     const float uc = sampler.next_1d();
-    sampler.set_dimension(dim + SampleDimensions::k_bounce_bsdf);
+    sampler.set_dimension(dim + SampleDimensions::kBounceBsdf);
     glm::vec2 u = sampler.next_2d();
     GuidedSample g;
     float guide_pdf = -1.0f;  // known from the guide's own descent when it drew wi
@@ -339,7 +339,7 @@ GuidedSample sample_guided(Vertex& v, const guiding::DirLeaf& leaf, float alpha,
         u.x = std::min((u.x - alpha) / (1.0f - alpha), 0x1.fffffep-1f);
         float square_pdf = 0.0f;
         g.wi = guiding::square_to_direction(leaf.sampling.sample_square(u, &square_pdf));
-        guide_pdf = square_pdf * (0.25f * k_inv_pi);  // the equal-area map: 4 pi
+        guide_pdf = square_pdf * (0.25f * kInvPi);  // the equal-area map: 4 pi
     }
     float cos_i = 0.0f;
     const bsdfs::EvalPdf e = light_eval(v, g.wi, cos_i);
@@ -388,7 +388,7 @@ struct SplitTraceSettings : TraceSettings {
     if (settings.russian_roulette && depth > settings.roulette_depth) {
         // Survive with probability q, reweighted by 1/q: unbiased, fewer long paths.
         const float q = std::min(0.95f, max_component(beta));
-        sampler.set_dimension(dim + SampleDimensions::k_bounce_roulette);
+        sampler.set_dimension(dim + SampleDimensions::kBounceRoulette);
         if (!(q > 0.0f) || sampler.next_1d() >= q) return false;
         beta /= q;
     }
@@ -488,12 +488,12 @@ template <bool Guided>
                                                   BsdfLobe material_lobes, Sampler& sampler,
                                                   std::uint32_t dim, BsdfSample& bs,
                                                   glm::vec3& wi_world) {
-    sampler.set_dimension(dim + SampleDimensions::k_bounce_lobe);
+    sampler.set_dimension(dim + SampleDimensions::kBounceLobe);
     // Lambert's one lobe needs no choice: its kind test first spares the lobe count.
     static_assert(!chooses_lobe(bsdfs::Diffuse::kLobes));
     const float uc =
         !bsdfs::is_lambertian(m) && chooses_lobe(material_lobes) ? sampler.next_1d() : 0.0f;
-    sampler.set_dimension(dim + SampleDimensions::k_bounce_bsdf);
+    sampler.set_dimension(dim + SampleDimensions::kBounceBsdf);
     const glm::vec2 u = sampler.next_2d();
     if (bsdfs::is_lambertian(m)) [[likely]] {
         glm::vec3 wl;

@@ -43,7 +43,7 @@ Crossing cross_null(const Scene& scene, const Material& m, const Hit& hit,
                              albedo};
     const glm::vec3 through = bsdfs::pass_through_of(m, point, point.frame.to_local(-direction));
     const float p = std::clamp((through.x + through.y + through.z) / 3.0f, 0.0f, 1.0f);
-    sampler.set_dimension(SampleDimensions::k_pass_through + decision);
+    sampler.set_dimension(SampleDimensions::kPassThrough + decision);
     if (sampler.next_1d() < p) return {true, through / p};
     return {false, glm::vec3(1.0f / (1.0f - p))};
 }

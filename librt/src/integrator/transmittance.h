@@ -52,7 +52,7 @@ struct Crossing {
 /// The decision at `hit` (material m, reached along unit `direction`) with a Null lobe:
 /// cross with probability p, the mean of its colour T, weighted T / p, else scatter off the
 /// rest of the BSDF, weighted 1 / (1 - p). The number comes from sampler dimension
-/// SampleDimensions::k_pass_through + `decision`: a crossing is no bounce, and must not
+/// SampleDimensions::kPassThrough + `decision`: a crossing is no bounce, and must not
 /// reuse a bounce's numbers. Out of line, and returning its weight: taking the throughput
 /// by reference made the path loop keep that in memory (callgrind on the synthesis: +13
 /// instructions per sample).

@@ -114,7 +114,7 @@ void add_rgb(std::vector<Channel>& channels, const Image& image, const std::stri
 
 // The largest finite half, (2 - 2^-10) x 2^15 (IEEE 754 binary16): tinyexr rounds anything
 // from 65520 up, and an infinity, to an infinite half.
-constexpr float k_max_half = 65504.0f;
+constexpr float kMaxHalf = 65504.0f;
 
 // Clamps the half channels named prefix + names[i] (the last three added) to +-65504; a
 // warning naming the layer when any value was larger.
@@ -124,10 +124,10 @@ void clamp_to_half(std::vector<Channel>& channels, const fs::path& path, const c
     float largest = 0.0f;
     for (std::size_t c = channels.size() - 3; c < channels.size(); ++c) {
         for (float& v : channels[c].values) {
-            if (std::fabs(v) > k_max_half) {  // false for NaN, refused later
+            if (std::fabs(v) > kMaxHalf) {  // false for NaN, refused later
                 ++clamped;
                 largest = std::max(largest, std::fabs(v));
-                v = std::copysign(k_max_half, v);
+                v = std::copysign(kMaxHalf, v);
             }
         }
     }

@@ -22,7 +22,7 @@ using emission::one_minus_cos;
 /// Radiance of the cone that gives irradiance E at normal incidence: E / (pi sin^2 theta).
 glm::vec3 cone_radiance(const DirectionalLight& light) {
     const float s = std::sin(light.angular_radius);
-    return light.irradiance / (k_pi * s * s);
+    return light.irradiance / (kPi * s * s);
 }
 
 }  // namespace
@@ -41,7 +41,7 @@ void validate(const DirectionalLight& light) {
             << light.irradiance.y << ", " << light.irradiance.z << "): must be finite and >= 0";
         throw Error(msg.str());
     }
-    if (!(light.angular_radius >= 0.0f) || !(light.angular_radius < 0.5f * k_pi)) {
+    if (!(light.angular_radius >= 0.0f) || !(light.angular_radius < 0.5f * kPi)) {
         std::ostringstream msg;
         msg << "directional light angular_radius = " << light.angular_radius
             << ": must be in [0, pi/2)";
@@ -57,18 +57,18 @@ LightLiSample sample_li(const DirectionalLight& light, const glm::vec3& /*ref*/,
     const float omc = one_minus_cos(light.angular_radius);
     const float cos_t = 1.0f - u.x * omc;
     const float sin_t = std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t));
-    const float phi = 2.0f * k_pi * u.y;
+    const float phi = 2.0f * kPi * u.y;
     const glm::vec3 a = std::fabs(axis.x) > 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
     const glm::vec3 t = glm::normalize(glm::cross(a, axis));
     const glm::vec3 b = glm::cross(axis, t);
     const glm::vec3 wi = sin_t * std::cos(phi) * t + sin_t * std::sin(phi) * b + cos_t * axis;
-    return {glm::normalize(wi), cone_radiance(light), 1.0f / (2.0f * k_pi * omc), inf, false};
+    return {glm::normalize(wi), cone_radiance(light), 1.0f / (2.0f * kPi * omc), inf, false};
 }
 
 float pdf_li(const DirectionalLight& light, const glm::vec3& /*ref*/, const glm::vec3& wi) {
     if (!(light.angular_radius > 0.0f)) return 0.0f;
     if (glm::dot(wi, glm::normalize(light.to_light)) < std::cos(light.angular_radius)) return 0.0f;
-    return 1.0f / (2.0f * k_pi * one_minus_cos(light.angular_radius));
+    return 1.0f / (2.0f * kPi * one_minus_cos(light.angular_radius));
 }
 
 glm::vec3 escaped_radiance(const DirectionalLight& light, const glm::vec3& dir) {
@@ -114,7 +114,7 @@ LightLePdf pdf_le(const DirectionalLight& light, const SceneSphere& scene,
 glm::vec3 power(const DirectionalLight& light) {
     // What crosses the disk of the scene's bounding sphere (pbrt 4th ed. 12.4).
     const float r = light.scene_radius > 0.0f ? light.scene_radius : 1.0f;
-    return light.irradiance * (k_pi * r * r);
+    return light.irradiance * (kPi * r * r);
 }
 
 LightBounds DirectionalLight::bounds() const {
@@ -122,7 +122,7 @@ LightBounds DirectionalLight::bounds() const {
     b.cone = true;
     b.axis = glm::normalize(to_light);
     // The cone of directions toward the sun's disk, widened by 1e-4 rad against rounding.
-    b.cos_cone = std::cos(std::min(angular_radius + 1e-4f, k_pi));
+    b.cos_cone = std::cos(std::min(angular_radius + 1e-4f, kPi));
     return b;
 }
 

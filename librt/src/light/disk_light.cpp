@@ -32,7 +32,7 @@ DiskFrame frame_of(const DiskLight& light) {
     return {t, glm::cross(n, t), n};
 }
 
-constexpr float kSector = 2.0f * k_pi / float(kDiskLightSides);
+constexpr float kSector = 2.0f * kPi / float(kDiskLightSides);
 
 /// Area of the regular N-gon of circumradius r: N/2 r^2 sin(2 pi / N).
 float polygon_area(float r) { return 0.5f * float(kDiskLightSides) * r * r * std::sin(kSector); }
@@ -86,7 +86,7 @@ float pdf_li(const DiskLight& light, const glm::vec3& ref, const glm::vec3& wi) 
     const float x = glm::dot(q, f.t), y = glm::dot(q, f.b);
     // Inside the polygon: the projection on the sector's bisector is within the apothem.
     float a = std::atan2(y, x);
-    if (a < 0.0f) a += 2.0f * k_pi;
+    if (a < 0.0f) a += 2.0f * kPi;
     const float k = std::floor(a / kSector);
     const float mid = (k + 0.5f) * kSector;
     const float apothem = light.radius * std::cos(0.5f * kSector);
@@ -114,7 +114,7 @@ LightLePdf pdf_le(const DiskLight& light, const glm::vec3& /*origin*/, const glm
 
 glm::vec3 power(const DiskLight& light) {
     // Lambertian emitter: L pi per unit area and emitting side.
-    return light.radiance * (k_pi * polygon_area(light.radius) * (light.two_sided ? 2.0f : 1.0f));
+    return light.radiance * (kPi * polygon_area(light.radius) * (light.two_sided ? 2.0f : 1.0f));
 }
 
 LightBounds DiskLight::bounds() const {

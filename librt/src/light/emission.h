@@ -83,7 +83,7 @@ namespace librt::emission {
 [[nodiscard]] inline glm::vec3 sample_cone(const glm::vec3& axis, float omc, glm::vec2 u) {
     const float w = u.x * omc;
     const float sin_t = std::sqrt(std::max(0.0f, w * (2.0f - w)));
-    const float phi = 2.0f * k_pi * u.y;
+    const float phi = 2.0f * kPi * u.y;
     const glm::vec3 local(sin_t * std::cos(phi), sin_t * std::sin(phi), 1.0f - w);
     return glm::normalize(Frame::from_normal(axis).to_world(local));
 }
@@ -98,7 +98,7 @@ namespace librt::emission {
 /// Density per solid angle of sample_cone: 1 / (2 pi omc), the cone's solid angle
 /// inverted; 0 when that is not finite.
 [[nodiscard]] inline float cone_pdf(float omc) {
-    const float pdf = 1.0f / (2.0f * k_pi * omc);
+    const float pdf = 1.0f / (2.0f * kPi * omc);
     return pdf > 0.0f && pdf < std::numeric_limits<float>::infinity() ? pdf : 0.0f;
 }
 

@@ -26,8 +26,8 @@ float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0
 glm::vec2 uv_of(const glm::vec3& d) {
     const float theta = std::acos(std::clamp(d.y, -1.0f, 1.0f));
     float phi = std::atan2(-d.z, d.x);
-    if (phi < 0.0f) phi += 2.0f * k_pi;
-    return {phi / (2.0f * k_pi), theta / k_pi};
+    if (phi < 0.0f) phi += 2.0f * kPi;
+    return {phi / (2.0f * kPi), theta / kPi};
 }
 
 glm::vec3 lookup(const EnvironmentData& data, glm::vec2 uv) {
@@ -68,7 +68,7 @@ EnvironmentLight EnvironmentLight::from_image(EnvironmentImage image, const glm:
     double solid = 0.0;
     for (std::size_t y = 0; y < h; ++y) {
         // sin(theta) at the row centre: the row's solid angle per unit of (u, v).
-        const float s = std::sin(k_pi * (float(y) + 0.5f) / float(h));
+        const float s = std::sin(kPi * (float(y) + 0.5f) / float(h));
         for (std::size_t x = 0; x < w; ++x) {
             const glm::vec3& c = image.pixels[y * w + x];
             if (!finite(c) || c.x < 0.0f || c.y < 0.0f || c.z < 0.0f) {
@@ -115,10 +115,10 @@ LightLiSample sample_li(const EnvironmentLight& light, const glm::vec3& ref, glm
     const EnvironmentData& data = *light.data;
     if (data.image.pixels.empty()) {
         const glm::vec3 d = sample_uniform_sphere(u);
-        return {d, data.constant * light.scale, 1.0f / (4.0f * k_pi), inf, false};
+        return {d, data.constant * light.scale, 1.0f / (4.0f * kPi), inf, false};
     }
     const Distribution2D::Sample s = data.density.sample(u);
-    const float theta = k_pi * s.uv.y, phi = 2.0f * k_pi * s.uv.x;
+    const float theta = kPi * s.uv.y, phi = 2.0f * kPi * s.uv.x;
     const float sin_t = std::sin(theta);
     if (!(sin_t > 0.0f) || !(s.pdf > 0.0f)) return {};
     const glm::vec3 local(sin_t * std::cos(phi), std::cos(theta), -sin_t * std::sin(phi));
@@ -131,13 +131,13 @@ LightLiSample sample_li(const EnvironmentLight& light, const glm::vec3& ref, glm
 float pdf_li(const EnvironmentLight& light, const glm::vec3& /*ref*/, const glm::vec3& wi) {
     if (!light.data) return 0.0f;
     const EnvironmentData& data = *light.data;
-    if (data.image.pixels.empty()) return 1.0f / (4.0f * k_pi);
+    if (data.image.pixels.empty()) return 1.0f / (4.0f * kPi);
     const glm::vec3 local = glm::transpose(light.rotation) * wi;
     const glm::vec2 uv = uv_of(local);
     const float sin_t = std::sqrt(local.x * local.x + local.z * local.z);
     if (!(sin_t > 0.0f)) return 0.0f;
     // (u, v) density to solid angle: d omega = 2 pi^2 sin(theta) du dv (pbrt 4th ed. 12.5.2).
-    const float pdf = data.density.pdf(uv) / (2.0f * k_pi * k_pi * sin_t);
+    const float pdf = data.density.pdf(uv) / (2.0f * kPi * kPi * sin_t);
     return std::isfinite(pdf) ? pdf : 0.0f;
 }
 
@@ -167,7 +167,7 @@ glm::vec3 power(const EnvironmentLight& light) {
     if (!light.data) return glm::vec3(0.0f);
     const float r = light.scene_radius > 0.0f ? light.scene_radius : 1.0f;
     // Mean radiance over the sphere times 4 pi sr times pi R^2 m^2.
-    return light.data->mean_radiance * (light.scale * 4.0f * k_pi * k_pi * r * r);
+    return light.data->mean_radiance * (light.scale * 4.0f * kPi * kPi * r * r);
 }
 
 LightBounds EnvironmentLight::bounds() const {

@@ -46,7 +46,7 @@ LightSampler::LightSampler(std::span<const Light> lights) {
     }
     // Rounding must not leave u just below 1 without a light: the last chosen light ends at 1.
     for (std::size_t i = last; i < cdf_.size(); ++i) cdf_[i] = 1.0f;
-    if (lights.size() > k_max_bounded) {
+    if (lights.size() > kMaxBounded) {
         std::vector<std::uint32_t> finite;
         for (std::uint32_t i = 0; i < lights.size(); ++i) {
             if (!(weight[i] > 0.0)) continue;  // never chosen
@@ -122,7 +122,7 @@ SampledLight LightSampler::sample(float u, const LightChoicePoint& at) const {
         if (chosen == kInvalidId) return {};
         return {chosen, float(double(pmf_[chosen]) / total)};
     }
-    double w[k_max_bounded];
+    double w[kMaxBounded];
     const double total = point_weights(at, w);
     if (!(total > 0.0)) return {};
     // The first light whose cumulative weight exceeds u * total; lights of weight 0 have an
@@ -151,7 +151,7 @@ float LightSampler::pmf(std::uint32_t light, const LightChoicePoint& at) const {
         if (!(finite > 0.0)) return 0.0f;
         return float(double(tree_->pmf(light, at)) * finite / total);
     }
-    double w[k_max_bounded];
+    double w[kMaxBounded];
     const double total = point_weights(at, w);
     if (!(total > 0.0)) return 0.0f;
     return float(w[light] / total);

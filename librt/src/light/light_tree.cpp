@@ -35,8 +35,8 @@ constexpr int kLookahead = 1;
 
 /// The cone's cosines and sine, computed once per node rather than per importance().
 void finish_cone(LightTreeBounds& b) {
-    b.cos_o = std::cos(std::min(b.theta_o, k_pi));
-    b.sin_o = std::sin(std::min(b.theta_o, k_pi));
+    b.cos_o = std::cos(std::min(b.theta_o, kPi));
+    b.sin_o = std::sin(std::min(b.theta_o, kPi));
     b.cos_e = std::cos(b.theta_e);
 }
 
@@ -50,11 +50,11 @@ LightTreeBounds tree_bounds(const LightBounds& b) {
     t.phi = b.phi;
     t.axis = b.axis;
     if (!b.cone) {
-        t.theta_o = k_pi;  // every direction (point, sphere, two-sided planar lights)
-        t.theta_e = k_pi / 2.0f;
+        t.theta_o = kPi;  // every direction (point, sphere, two-sided planar lights)
+        t.theta_e = kPi / 2.0f;
     } else if (b.emitter_cosine) {
         t.theta_o = 0.0f;  // a one-sided planar emitter: its normal, then a cosine lobe
-        t.theta_e = k_pi / 2.0f;
+        t.theta_e = kPi / 2.0f;
     } else {
         t.theta_o = std::acos(std::clamp(b.cos_cone, -1.0f, 1.0f));  // a spot's cone
         t.theta_e = kSpotEdge;
@@ -88,23 +88,23 @@ void merge_spheres(const LightTreeBounds& a, const LightTreeBounds& b, LightTree
 void merge_cones(const LightTreeBounds& a, const LightTreeBounds& b, LightTreeBounds& out) {
     out.theta_e = std::max(a.theta_e, b.theta_e);
     out.axis = a.axis;
-    out.theta_o = k_pi;
-    if (a.theta_o >= k_pi || b.theta_o >= k_pi) return;
+    out.theta_o = kPi;
+    if (a.theta_o >= kPi || b.theta_o >= kPi) return;
     const float theta_d = std::acos(std::clamp(glm::dot(a.axis, b.axis), -1.0f, 1.0f));
     // One cone holds the other. acos rounds an angle below ~3.5e-4 rad to 0, so axes that
     // differ at all widen the kept cone by kConePad.
     const float pad = a.axis == b.axis ? 0.0f : kConePad;
-    if (std::min(theta_d + b.theta_o, k_pi) <= a.theta_o) {
-        out.theta_o = std::min(a.theta_o + pad, k_pi);
+    if (std::min(theta_d + b.theta_o, kPi) <= a.theta_o) {
+        out.theta_o = std::min(a.theta_o + pad, kPi);
         return;
     }
-    if (std::min(theta_d + a.theta_o, k_pi) <= b.theta_o) {
+    if (std::min(theta_d + a.theta_o, kPi) <= b.theta_o) {
         out.axis = b.axis;
-        out.theta_o = std::min(b.theta_o + pad, k_pi);
+        out.theta_o = std::min(b.theta_o + pad, kPi);
         return;
     }
     const float theta_o = 0.5f * (a.theta_o + theta_d + b.theta_o) + kConePad;
-    if (theta_o >= k_pi) return;
+    if (theta_o >= kPi) return;
     // Turn a's axis toward b's by theta_o - theta_a, in the plane of both.
     const glm::vec3 side = b.axis - glm::dot(a.axis, b.axis) * a.axis;
     const float side_length = glm::length(side);
@@ -138,10 +138,10 @@ LightTreeBounds merge(const LightTreeBounds& a, const LightTreeBounds& b) {
 /// The solid-angle measure of a node's emission (pbrt-v4's M_Omega): 4 pi for every
 /// direction, 2 pi (1 - cos theta_o) plus the cosine lobe's rim otherwise.
 float orientation_measure(const LightTreeBounds& b) {
-    const float theta_o = std::min(b.theta_o, k_pi);
-    const float theta_w = std::min(theta_o + b.theta_e, k_pi);
-    return 2.0f * k_pi * (1.0f - std::cos(theta_o)) +
-           0.5f * k_pi *
+    const float theta_o = std::min(b.theta_o, kPi);
+    const float theta_w = std::min(theta_o + b.theta_e, kPi);
+    return 2.0f * kPi * (1.0f - std::cos(theta_o)) +
+           0.5f * kPi *
                (2.0f * theta_w * std::sin(theta_o) - std::cos(theta_o - 2.0f * theta_w) -
                 2.0f * theta_o * std::sin(theta_o) + std::cos(theta_o));
 }
@@ -179,7 +179,7 @@ static float inside_weight(const LightTreeBounds& b, float d2, float r2) {
 /// half angle; nothing beyond the emission spread theta_e.
 static bool emitter_bound(const LightTreeBounds& b, const glm::vec3& w, float cos_a, float sin_a,
                           float& weight) {
-    if (!(b.theta_o < k_pi)) return true;
+    if (!(b.theta_o < kPi)) return true;
     const float c = cos_minus(cos_minus(-glm::dot(b.axis, w), b.cos_o, b.sin_o), cos_a, sin_a);
     if (!(c > b.cos_e)) return false;
     weight *= std::max(c, 0.0f);

@@ -1,7 +1,7 @@
 #pragma once
 
 // Private: the light tree LightSampler chooses among many lights with (LightChoice::Bounded
-// above LightSampler::k_max_bounded lights). The node layout can change without touching
+// above LightSampler::kMaxBounded lights). The node layout can change without touching
 // the API.
 
 #include "light/light_bounds.h"
@@ -38,7 +38,7 @@ struct LightTreeBounds {
 /// give it, so a light is chosen in O(depth) with a probability that follows distance,
 /// orientation and power. Children that are single lights are weighed with the light's
 /// own bound (importance() of light_bounds.h), the one the per-point choice of up to
-/// LightSampler::k_max_bounded lights uses.
+/// LightSampler::kMaxBounded lights uses.
 class LightTree {
 public:
     /// A tree over `lights` (indices into `bounds`), each finite with phi > 0.

@@ -75,7 +75,7 @@ LightLePdf pdf_le(const QuadLight& light, const glm::vec3& /*origin*/, const glm
 glm::vec3 power(const QuadLight& light) {
     // Lambertian emitter: L pi per unit area and emitting side.
     const float area = glm::length(glm::cross(light.edge0, light.edge1));
-    return light.radiance * (k_pi * area * (light.two_sided ? 2.0f : 1.0f));
+    return light.radiance * (kPi * area * (light.two_sided ? 2.0f : 1.0f));
 }
 
 LightBounds QuadLight::bounds() const {

@@ -131,7 +131,7 @@ glm::vec3 power(const SphereLight& light) {
     // Uniform emitter: power = L * pi (cosine-weighted hemisphere) * 4 pi r^2 (area), in
     // double so that a tiny radius does not underflow before the product is formed.
     const double r = light.sphere.radius;
-    const double k = 4.0 * double(k_pi) * double(k_pi) * r * r;
+    const double k = 4.0 * double(kPi) * double(kPi) * r * r;
     return glm::vec3(glm::dvec3(light.radiance) * k);
 }
 

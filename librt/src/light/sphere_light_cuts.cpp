@@ -69,9 +69,9 @@ SphereLightCuts make_sphere_light_cuts(const SphereCut* cuts, int count) {
             const double between = std::acos(std::clamp(glm::dot(ci.axis, cj.axis), -1.0, 1.0));
             for (int si = 0; si < 2; ++si)
                 for (int sj = 0; sj < 2; ++sj) {
-                    const double ti = si == 1 ? ci.inside_angle : k_pi_double - ci.inside_angle;
-                    const double tj = sj == 1 ? cj.inside_angle : k_pi_double - cj.inside_angle;
-                    const double axes = si == sj ? between : k_pi_double - between;
+                    const double ti = si == 1 ? ci.inside_angle : kPiDouble - ci.inside_angle;
+                    const double tj = sj == 1 ? cj.inside_angle : kPiDouble - cj.inside_angle;
+                    const double axes = si == sj ? between : kPiDouble - between;
                     if (axes > ti + tj + kMargin)
                         out.disjoint[std::size_t(i)][std::size_t(si)] |=
                             std::uint16_t(1u << (2 * j + sj));

@@ -27,7 +27,7 @@ void validate(const SpotLight& light) {
         light.intensity.z < 0.0f)
         fail_light_parameter("spot light intensity", light.intensity, "must be finite and >= 0");
     if (!(light.inner_angle >= 0.0f) || !(light.inner_angle < light.outer_angle) ||
-        !(light.outer_angle <= 0.5f * k_pi)) {
+        !(light.outer_angle <= 0.5f * kPi)) {
         std::ostringstream msg;
         msg << "spot light angles inner = " << light.inner_angle
             << ", outer = " << light.outer_angle << ": need 0 <= inner < outer <= pi/2";
@@ -100,7 +100,7 @@ glm::vec3 power(const SpotLight& light) {
     // 2 pi I times the integral of the falloff over cos(theta): 1 - cos(inner) at full
     // strength, plus the quadratic ramp's (cos(inner) - cos(outer)) / 3.
     const float ci = std::cos(light.inner_angle), co = std::cos(light.outer_angle);
-    return light.intensity * (2.0f * k_pi * ((1.0f - ci) + (ci - co) / 3.0f));
+    return light.intensity * (2.0f * kPi * ((1.0f - ci) + (ci - co) / 3.0f));
 }
 
 LightBounds SpotLight::bounds() const {

@@ -53,11 +53,11 @@ namespace {
 // sample for the same variance. Above it, near the emitter, area sampling's weights
 // d^2 / (A cos) explode and spherical sampling's stay below 2 pi L. (pbrt-v4 switches at
 // a solid angle of 3e-4 sr; its threshold favours variance, this one time at equal error.)
-constexpr float k_min_spherical_size = 0.1f;
+constexpr float kMinSphericalSize = 0.1f;
 
 bool spherical_sampling(const TriangleLight& light, const glm::vec3& ref, float area) {
     const glm::vec3 d = (light.p0 + light.p1 + light.p2) * (1.0f / 3.0f) - ref;
-    return area >= k_min_spherical_size * glm::dot(d, d);
+    return area >= kMinSphericalSize * glm::dot(d, d);
 }
 
 // The unit directions from ref to the corners and the solid angle they span, or a solid
@@ -192,7 +192,7 @@ glm::vec3 power(const TriangleLight& light) {
     // its estimated mean.
     const float area = 0.5f * glm::length(glm::cross(light.p1 - light.p0, light.p2 - light.p0));
     const float sides = light.two_sided ? 2.0f : 1.0f;
-    return light.radiance * light.mean_texture * (sides * k_pi * area);
+    return light.radiance * light.mean_texture * (sides * kPi * area);
 }
 
 LightBounds TriangleLight::bounds() const {

@@ -34,7 +34,7 @@ struct Diffuse {
     static glm::vec3 eval(const Material& /*m*/, const ShadingPoint& p, const glm::vec3& /*wo*/,
                           const glm::vec3& wi) {
         // Lambert: f = albedo / pi.
-        return reaches(p, wi) ? p.albedo * k_inv_pi : glm::vec3(0.0f);
+        return reaches(p, wi) ? p.albedo * kInvPi : glm::vec3(0.0f);
     }
 
     static float pdf(const Material& /*m*/, const ShadingPoint& p, const glm::vec3& /*wo*/,
@@ -49,7 +49,7 @@ struct Diffuse {
     /// src/integrator/integrators.cpp takes eval_cos / pdf_cos from any kind that has them).
     static bool reaches_cos(float cos_s, float cos_g) { return cos_s > 0.0f && cos_g > 0.0f; }
     static glm::vec3 eval_cos(const ShadingPoint& p, float cos_s, float cos_g) {
-        return reaches_cos(cos_s, cos_g) ? p.albedo * k_inv_pi : glm::vec3(0.0f);
+        return reaches_cos(cos_s, cos_g) ? p.albedo * kInvPi : glm::vec3(0.0f);
     }
     static float pdf_cos(float cos_s, float cos_g) {
         return reaches_cos(cos_s, cos_g) ? cosine_hemisphere_pdf(cos_s) : 0.0f;

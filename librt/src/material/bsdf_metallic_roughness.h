@@ -187,7 +187,7 @@ struct MetallicRoughness {
             f = (1.0f - m.metallic) * (1.0f - fr) * m.transmission * c * dv;
         } else {
             const glm::vec3 dielectric =
-                (1.0f - fr) * (1.0f - m.transmission) * c * k_inv_pi + glm::vec3(fr * dv);
+                (1.0f - fr) * (1.0f - m.transmission) * c * kInvPi + glm::vec3(fr * dv);
             const glm::vec3 metal = microfacet::schlick(c, vh) * dv;
             f = (1.0f - m.metallic) * dielectric + m.metallic * metal;
         }

@@ -31,7 +31,7 @@ inline constexpr float kMinAlpha = 1e-3f;
     // 1 - m.z^2, it keeps float precision at the peak of a narrow lobe (alpha ~ 1e-3).
     const float a2 = alpha * alpha;
     const float t = a2 * m.z * m.z + (m.x * m.x + m.y * m.y);
-    return a2 / (k_pi * t * t);
+    return a2 / (kPi * t * t);
 }
 
 /// Smith's Lambda for GGX: (sqrt(1 + alpha^2 tan^2 theta) - 1) / 2 (Heitz 2014, eq. 72).
@@ -67,7 +67,7 @@ inline constexpr float kMinAlpha = 1e-3f;
     // A uniform point on the unit disk, its second coordinate squeezed onto the half of the
     // disk that the projected hemisphere covers as seen from vh.
     const float r = std::sqrt(u.x);
-    const float phi = 2.0f * k_pi * u.y;
+    const float phi = 2.0f * kPi * u.y;
     const float p1 = r * std::cos(phi);
     float p2 = r * std::sin(phi);
     const float s = 0.5f * (1.0f + vh.z);

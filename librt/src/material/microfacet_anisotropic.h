@@ -47,7 +47,7 @@ struct Alpha2 {
     if (m.z <= 0.0f) return 0.0f;
     const float axy = a.x * a.y;
     const float t = axy * m.z * m.z + (a.y / a.x * (m.x * m.x) + a.x / a.y * (m.y * m.y));
-    return axy / (k_pi * t * t);
+    return axy / (kPi * t * t);
 }
 
 /// Anisotropic Smith Lambda: (sqrt(1 + (ax^2 x^2 + ay^2 y^2) / z^2) - 1) / 2 (Heitz 2014,

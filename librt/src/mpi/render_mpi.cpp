@@ -63,8 +63,8 @@ double seconds_since(Clock::time_point start) {
 // the renderer. A wake-up with its MPI_Iprobe costs ~5 us of CPU (measured here), so a
 // 500 us nap costs ~1% of a core and delays an answer by 250 us on average, against tiles
 // that take tens of milliseconds to seconds. Alone (one rank) it only watches its thread.
-constexpr auto k_poll_interval = std::chrono::microseconds(500);
-constexpr auto k_poll_interval_alone = std::chrono::milliseconds(5);
+constexpr auto kPollInterval = std::chrono::microseconds(500);
+constexpr auto kPollIntervalAlone = std::chrono::milliseconds(5);
 
 // A worker waiting for rank 0's answer. Open MPI's blocking MPI_Probe spins a core for as
 // long as the answer takes: the round trip between tiles (under a millisecond), but with
@@ -232,7 +232,7 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
                     // The counts need every pilot, the workers' too: rank 0's main thread
                     // computes them. Polled, as the main thread polls its messages.
                     while (!counts_ready.load() && !local_cancel.load())
-                        std::this_thread::sleep_for(k_poll_interval_alone);
+                        std::this_thread::sleep_for(kPollIntervalAlone);
                     for (int t = next_rest.fetch_add(1); t < count && !local_cancel.load();
                          t = next_rest.fetch_add(1)) {
                         const RenderStats st = job_of.render(count + t, film, {}, half, counts, rs);
@@ -367,7 +367,7 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
             s.render.progress(
                 {count > 0 ? (pilots * share + rests * (1.0 - share)) / count : 1.0, now, 0, 0});
         }
-        std::this_thread::sleep_for(size > 1 ? k_poll_interval : k_poll_interval_alone);
+        std::this_thread::sleep_for(size > 1 ? kPollInterval : kPollIntervalAlone);
     }
     if (local.joinable()) local.join();
     if (local_error && failure.empty()) failure = "rank 0 failed: " + message_of(local_error);

@@ -25,10 +25,10 @@ namespace {
 using mpi_detail::check;
 
 // Over this, a broadcast's int count could overflow (and a mistake is likely anyway).
-constexpr std::size_t k_max_bytes = std::size_t{1} << 30;
+constexpr std::size_t kMaxBytes = std::size_t{1} << 30;
 
 void put(std::vector<char>& out, const std::string& text) {
-    const auto n = static_cast<std::uint32_t>(std::min(text.size(), k_max_bytes));
+    const auto n = static_cast<std::uint32_t>(std::min(text.size(), kMaxBytes));
     const std::size_t at = out.size();
     out.resize(at + sizeof n + n);
     std::memcpy(out.data() + at, &n, sizeof n);
@@ -58,8 +58,8 @@ std::optional<std::string> take(std::string_view& in) {
 
 // A value in a message: long ones cut (a user's path may be long; digests are short).
 std::string shown(const std::string& value) {
-    constexpr std::size_t k_max = 160;
-    return value.size() <= k_max ? value : value.substr(0, k_max) + "...";
+    constexpr std::size_t kMax = 160;
+    return value.size() <= kMax ? value : value.substr(0, kMax) + "...";
 }
 
 // What differs between this rank's items and rank 0's (`root`), empty when nothing does,
@@ -102,11 +102,11 @@ std::string differences(const std::vector<JobItem>& mine, const std::vector<char
     }
     if (!others.empty()) {
         first += "; also";
-        constexpr std::size_t k_listed = 8;
-        for (std::size_t i = 0; i < others.size() && i < k_listed; ++i)
+        constexpr std::size_t kListed = 8;
+        for (std::size_t i = 0; i < others.size() && i < kListed; ++i)
             first += (i == 0 ? " " : ", ") + others[i];
-        if (others.size() > k_listed)
-            first += " and " + std::to_string(others.size() - k_listed) + " more";
+        if (others.size() > kListed)
+            first += " and " + std::to_string(others.size() - kListed) + " more";
     }
     return first;
 }
@@ -124,7 +124,7 @@ void check_same_job(MPI_Comm comm, const std::vector<JobItem>& items) {
     int length = 0;
     if (rank == 0) {
         root = pack(items);
-        length = root.size() <= k_max_bytes ? static_cast<int>(root.size()) : -1;
+        length = root.size() <= kMaxBytes ? static_cast<int>(root.size()) : -1;
     }
     check(MPI_Bcast(&length, 1, MPI_INT, 0, comm), "MPI_Bcast");
     if (length < 0)

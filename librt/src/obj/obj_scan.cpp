@@ -35,9 +35,9 @@ private:
 
 /// A token for a message: at most 40 bytes, bytes outside printable ASCII as \xNN.
 std::string printable(std::string_view token) {
-    constexpr std::size_t k_max = 40;
+    constexpr std::size_t kMax = 40;
     std::string out;
-    for (std::size_t i = 0; i < token.size() && i < k_max; ++i) {
+    for (std::size_t i = 0; i < token.size() && i < kMax; ++i) {
         const auto c = static_cast<unsigned char>(token[i]);
         if (c >= 0x20 && c < 0x7f) {
             out += static_cast<char>(c);
@@ -48,7 +48,7 @@ std::string printable(std::string_view token) {
             out += hex[c & 15];
         }
     }
-    if (token.size() > k_max) out += "...";
+    if (token.size() > kMax) out += "...";
     return out;
 }
 

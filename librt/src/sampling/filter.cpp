@@ -151,14 +151,14 @@ void PixelFilter::build_table() {
     const double r = s.radius;
     // 512 cells: the uniform-within-a-cell approximation moves probability by O(cell^2 f')
     // inside a cell and none between cells, far below what any test or image can see.
-    constexpr int k_cells = 512;
+    constexpr int kCells = 512;
     edges_.clear();
-    for (int i = 0; i <= k_cells; ++i) edges_.push_back(-r + 2.0 * r * i / k_cells);
+    for (int i = 0; i <= kCells; ++i) edges_.push_back(-r + 2.0 * r * i / kCells);
     const auto f = [&](double x) { return filter_value(s, x); };
     // Extra edges where f changes sign (found by bisection) and, for Mitchell, at the
     // cubic's knots t = +-1, so every cell has one sign and a smooth |f|.
     std::vector<double> extra;
-    for (int i = 0; i < k_cells; ++i) {
+    for (int i = 0; i < kCells; ++i) {
         double a = edges_[i], b = edges_[i + 1];
         if (!(f(a) * f(b) < 0.0)) continue;
         for (int k = 0; k < 60; ++k) {
@@ -177,11 +177,11 @@ void PixelFilter::build_table() {
 
     // Each cell's exact mass of |f| by 5-point Gauss-Legendre (exact for polynomials up to
     // degree 9, so for Mitchell's cubic pieces; spectrally accurate for the cosines).
-    static constexpr std::array<double, 5> k_nodes{0.0, -0.5384693101056831, 0.5384693101056831,
-                                                   -0.9061798459386640, 0.9061798459386640};
-    static constexpr std::array<double, 5> k_weights{0.5688888888888889, 0.4786286704993665,
-                                                     0.4786286704993665, 0.2369268850561891,
-                                                     0.2369268850561891};
+    static constexpr std::array<double, 5> kNodes{0.0, -0.5384693101056831, 0.5384693101056831,
+                                                  -0.9061798459386640, 0.9061798459386640};
+    static constexpr std::array<double, 5> kWeights{0.5688888888888889, 0.4786286704993665,
+                                                    0.4786286704993665, 0.2369268850561891,
+                                                    0.2369268850561891};
     const std::size_t n = edges_.size() - 1;
     cdf_.assign(n + 1, 0.0);
     sign_.assign(n, 1);
@@ -190,8 +190,8 @@ void PixelFilter::build_table() {
         const double half = 0.5 * (edges_[i + 1] - edges_[i]);
         const double mid = 0.5 * (edges_[i + 1] + edges_[i]);
         double mass = 0.0;
-        for (std::size_t k = 0; k < k_nodes.size(); ++k) {
-            mass += k_weights[k] * std::abs(f(mid + half * k_nodes[k]));
+        for (std::size_t k = 0; k < kNodes.size(); ++k) {
+            mass += kWeights[k] * std::abs(f(mid + half * kNodes[k]));
         }
         mass *= half;
         sign_[i] = f(mid) < 0.0 ? -1 : 1;

@@ -4,7 +4,7 @@ namespace librt {
 
 namespace {
 
-constexpr std::uint64_t k_golden = 0x9e3779b97f4a7c15ULL;  // 2^64 / golden ratio
+constexpr std::uint64_t kGolden = 0x9e3779b97f4a7c15ULL;  // 2^64 / golden ratio
 
 }  // namespace
 
@@ -12,7 +12,7 @@ void Pcg32::advance(std::int64_t delta) {
     // Jump ahead (Brown 1994): compose the affine map x -> a x + c with itself by
     // repeated squaring, accumulating the powers selected by the bits of delta.
     auto steps = static_cast<std::uint64_t>(delta);  // mod 2^64: negative goes back
-    std::uint64_t cur_mult = k_multiplier, cur_plus = inc_;
+    std::uint64_t cur_mult = kMultiplier, cur_plus = inc_;
     std::uint64_t acc_mult = 1, acc_plus = 0;
     while (steps > 0) {
         if (steps & 1u) {
@@ -32,10 +32,10 @@ Pcg32 make_sample_rng(std::uint32_t pixel_x, std::uint32_t pixel_y, std::uint32_
     // and for a fixed pixel of the sample index, so distinct inputs collide only by
     // chance (~2^-64), never through structure.
     const std::uint64_t pixel = (std::uint64_t{pixel_x} << 32u) | pixel_y;
-    std::uint64_t h = mix64(seed + k_golden);
+    std::uint64_t h = mix64(seed + kGolden);
     h = mix64(h ^ pixel);
-    h = mix64(h ^ (std::uint64_t{sample_index} + k_golden));
-    return Pcg32(h, mix64(h + k_golden));
+    h = mix64(h ^ (std::uint64_t{sample_index} + kGolden));
+    return Pcg32(h, mix64(h + kGolden));
 }
 
 }  // namespace librt

@@ -35,12 +35,12 @@ float Sampler::sobol_1d() {
 glm::vec2 Sampler::sobol_2d() {
     const std::uint64_t h = dimension_hash(pixel_key_, dimension_);
     const std::uint64_t h2 = mix64(h);  // two more seeds for the two components
-    if (dimension_ == SampleDimensions::k_lens) {
+    if (dimension_ == SampleDimensions::kLens) {
         // The lens pair shares the pixel pair's shuffle and takes Sobol' dimensions 2 and
         // 3, so pixel and lens are one 4D Owen-scrambled net: jointly stratified where
         // depth of field makes the integrand depend on both (a blurred edge).
         dimension_ += 2;
-        const std::uint64_t h0 = dimension_hash(pixel_key_, SampleDimensions::k_pixel);
+        const std::uint64_t h0 = dimension_hash(pixel_key_, SampleDimensions::kPixel);
         const std::uint32_t index =
             reverse_bits(laine_karras_permutation(reversed_index_, low_seed(h0)));
         return {u32_to_unit_float(reverse_bits(

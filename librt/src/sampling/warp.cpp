@@ -10,7 +10,7 @@ glm::vec3 cone_direction(float one_minus_cos, float u_phi) {
     const float cos_theta = 1.0f - one_minus_cos;
     // sin^2 = (1 - cos)(1 + cos): no cancellation, unlike 1 - cos^2.
     const float sin_theta = std::sqrt(std::max(0.0f, one_minus_cos * (2.0f - one_minus_cos)));
-    const float phi = 2.0f * k_pi * u_phi;
+    const float phi = 2.0f * kPi * u_phi;
     return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
 }
 
@@ -29,7 +29,7 @@ SubtendedCone subtended_cone(float sin2_max) {
 
 // Uniform in the cone: 1 / solid angle = 1 / (2 pi (1 - cos(theta_max))); 0 if degenerate.
 float cone_pdf(float one_minus_cos_max) {
-    return one_minus_cos_max > 0.0f ? 1.0f / (2.0f * k_pi * one_minus_cos_max) : 0.0f;
+    return one_minus_cos_max > 0.0f ? 1.0f / (2.0f * kPi * one_minus_cos_max) : 0.0f;
 }
 
 }  // namespace
@@ -48,10 +48,10 @@ glm::vec2 sample_uniform_disk_concentric(glm::vec2 u) {
     float r, phi;
     if (std::abs(a) > std::abs(b)) {
         r = a;
-        phi = 0.25f * k_pi * (b / a);
+        phi = 0.25f * kPi * (b / a);
     } else {
         r = b;
-        phi = 0.5f * k_pi - 0.25f * k_pi * (a / b);
+        phi = 0.5f * kPi - 0.25f * kPi * (a / b);
     }
     return {r * std::cos(phi), r * std::sin(phi)};
 }
@@ -59,7 +59,7 @@ glm::vec2 sample_uniform_disk_concentric(glm::vec2 u) {
 SphereSample sample_sphere_area(const glm::vec3& center, float radius, glm::vec2 u) {
     const glm::vec3 n = sample_uniform_sphere(u);
     // Uniform on the surface: 1 / area = 1 / (4 pi r^2).
-    return {center + radius * n, n, 1.0f / (4.0f * k_pi * radius * radius)};
+    return {center + radius * n, n, 1.0f / (4.0f * kPi * radius * radius)};
 }
 
 SphereSample sample_sphere_visible(const glm::vec3& center, float radius, const glm::vec3& ref,
@@ -87,7 +87,7 @@ SphereSample sample_sphere_visible(const glm::vec3& center, float radius, const 
     const float cos_theta = 1.0f - one_minus_cos;
     const float sin2_theta = one_minus_cos * (2.0f - one_minus_cos);
     const float sin_theta = std::sqrt(sin2_theta);
-    const float phi = 2.0f * k_pi * u.y;
+    const float phi = 2.0f * kPi * u.y;
 
     // Where that ray first meets the sphere, as the angle alpha at the centre between
     // the axis back to ref and the normal. q = (d sin(theta) / r)^2 <= 1.
@@ -152,7 +152,7 @@ float sphere_visible_pdf(const glm::vec3& center, float radius, const glm::vec3&
         const float half_chord = std::sqrt(std::max(0.0f, r2 - miss2));
         const float t = along + half_chord;
         if (!(t > 0.0f) || !(half_chord > 0.0f)) return 0.0f;
-        return t * t / (4.0f * k_pi * radius * half_chord);
+        return t * t / (4.0f * kPi * radius * half_chord);
     }
     if (along <= 0.0f || miss2 > r2) return 0.0f;  // outside the cone
     return cone_pdf(subtended_cone(r2 / dist2).one_minus_cos_max);

@@ -20,11 +20,11 @@ struct LIBRT_API Image {
     /// An empty 0x0 image.
     Image() = default;
     /// A black width x height image. Throws librt::Error naming the size when a side
-    /// is negative or the film would exceed k_max_bytes, before allocating anything.
+    /// is negative or the film would exceed kMaxBytes, before allocating anything.
     Image(int width, int height);
 
     /// Largest film Image(w, h) allocates: 4 GiB of pixels.
-    static constexpr std::uint64_t k_max_bytes = std::uint64_t{4} << 30u;
+    static constexpr std::uint64_t kMaxBytes = std::uint64_t{4} << 30u;
 
     /// Pixel (x, y): column x, row y from the top. Unchecked.
     [[nodiscard]] glm::vec3& at(int x, int y) {
@@ -39,7 +39,7 @@ struct LIBRT_API Image {
 };
 
 /// Throws librt::Error naming the size when a width x height film is invalid (negative
-/// side) or larger than Image::k_max_bytes (for any sides, no overflow); does nothing
+/// side) or larger than Image::kMaxBytes (for any sides, no overflow); does nothing
 /// otherwise.
 LIBRT_API void check_image_size(long long width, long long height);
 

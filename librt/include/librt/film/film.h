@@ -87,11 +87,11 @@ struct LIBRT_API Film {
     Film() = default;
     /// An empty width x height film (every pixel holds 0 samples), with AOV records when
     /// `with_aovs`. Throws librt::Error naming the size when a side is negative or the
-    /// film would exceed k_max_bytes, before allocating anything.
+    /// film would exceed kMaxBytes, before allocating anything.
     Film(int width, int height, bool with_aovs = false);
 
     /// Largest film the constructor allocates: 16 GiB of records.
-    static constexpr std::uint64_t k_max_bytes = std::uint64_t{16} << 30u;
+    static constexpr std::uint64_t kMaxBytes = std::uint64_t{16} << 30u;
 
     /// True when the film keeps AOV sums.
     [[nodiscard]] bool has_aovs() const { return !aovs.empty(); }

@@ -64,20 +64,20 @@ namespace librt {
 class LIBRT_API SplatFilm {
 public:
     /// Fraction bits of the default scale, 2^-28 (see the top of this header).
-    static constexpr int k_default_fraction_bits = 28;
+    static constexpr int kDefaultFractionBits = 28;
     /// Largest filter radius, in pixels, the film splats over.
-    static constexpr float k_max_radius = 32.0f;
+    static constexpr float kMaxRadius = 32.0f;
     /// The lost 2D mass at which a Gaussian of infinite radius is truncated.
-    static constexpr double k_truncated_mass = 1e-6;
+    static constexpr double kTruncatedMass = 1e-6;
 
     /// An empty 0x0 film.
     SplatFilm() = default;
     /// A zero width x height film splatting with `filter`, sums in units of
     /// 2^-fraction_bits. Throws librt::Error naming the bad parameter: a negative side, a
-    /// film over Film::k_max_bytes, a filter PixelFilter rejects or wider than k_max_radius,
+    /// film over Film::kMaxBytes, a filter PixelFilter rejects or wider than kMaxRadius,
     /// fraction_bits outside [0, 62].
     SplatFilm(int width, int height, const FilterSettings& filter = {},
-              int fraction_bits = k_default_fraction_bits);
+              int fraction_bits = kDefaultFractionBits);
 
     /// Adds `value` at continuous raster position `raster` (pixel (j, i) covers [j, j + 1)
     /// x [i, i + 1)), spread by the filter; parts off the film are dropped. Thread-safe.
@@ -122,7 +122,7 @@ public:
 private:
     int width_ = 0;
     int height_ = 0;
-    int fraction_bits_ = k_default_fraction_bits;
+    int fraction_bits_ = kDefaultFractionBits;
     PixelFilter filter_;
     double radius_ = 0.5;             // the support's half-width, truncated for a Gaussian
     double inverse_area_ = 1.0;       // 1 / (integral of the 1D filter over the support)^2

@@ -56,7 +56,7 @@ struct SampledLight {
 /// contribution at that point instead (each light's bounds(), src/light/light_bounds.h): a
 /// light wholly below a reflecting
 /// surface, or one facing away, gets probability 0 and costs no sample and no shadow ray;
-/// near lights get more samples than far ones. With at most k_max_bounded lights the pmf
+/// near lights get more samples than far ones. With at most kMaxBounded lights the pmf
 /// is computed per point (one bound per light: cheap, and exact to renormalise). Above
 /// that the finite lights are chosen through a light tree (a binary tree over their
 /// bounds, as pbrt-v4's BVHLightSampler; private, src/light/light_tree.h): the walk from
@@ -101,7 +101,7 @@ public:
     /// src/light/light_bounds.h.
     [[nodiscard]] const LightBounds& bounds(std::uint32_t light) const;
     /// Up to this many lights the per-point choice renormalises over every light.
-    static constexpr std::size_t k_max_bounded = 16;
+    static constexpr std::size_t kMaxBounded = 16;
 
     /// Number of lights, chosen or not.
     [[nodiscard]] std::size_t size() const { return pmf_.size(); }
@@ -110,9 +110,9 @@ public:
 
 private:
     [[nodiscard]] SampledLight search(float u) const;
-    /// Per-point weights of every light into w (size() <= k_max_bounded); their sum.
+    /// Per-point weights of every light into w (size() <= kMaxBounded); their sum.
     double point_weights(const LightChoicePoint& at, double* w) const;
-    /// Above k_max_bounded lights: the weights of the two groups at `at`, the finite lights
+    /// Above kMaxBounded lights: the weights of the two groups at `at`, the finite lights
     /// (finite_share_ when the tree reaches the point, else 0) and those at infinity (their
     /// power-table pmfs, each where its bound allows); returns their sum.
     double group_weights(const LightChoicePoint& at, double& finite) const;
@@ -121,7 +121,7 @@ private:
     std::vector<float> cdf_;  ///< cdf_[i] = pmf_[0] + ... + pmf_[i]; the last positive is 1
     std::vector<LightBounds> bounds_;  ///< per light
     double finite_share_ = 0.0;        ///< sum of pmf_ over the lights not at infinity
-    /// Above k_max_bounded lights: the tree over the finite lights of positive power, and
+    /// Above kMaxBounded lights: the tree over the finite lights of positive power, and
     /// the lights at infinity. Shared by copies (immutable).
     std::shared_ptr<const detail::LightTree> tree_;
     std::vector<std::uint32_t> infinite_;

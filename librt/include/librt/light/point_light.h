@@ -25,7 +25,7 @@ struct PointLight {
     /// sphere of directions: I = power / (4 pi). The report's formula
     /// I / (4 pi d^2) uses its I = 2.14e8 as such a power.
     [[nodiscard]] static PointLight from_power(const glm::vec3& position, const glm::vec3& power) {
-        return {position, power / (4.0f * k_pi)};
+        return {position, power / (4.0f * kPi)};
     }
     /// Grey version of from_power: the same power in every channel.
     [[nodiscard]] static PointLight from_power(const glm::vec3& position, float power) {
@@ -69,7 +69,7 @@ LIBRT_API void validate(const PointLight& light);
                                           const glm::vec3& normal, const glm::vec3& direction);
 /// Total emitted power per channel: 4 pi I.
 [[nodiscard]] inline glm::vec3 power(const PointLight& light) {
-    return 4.0f * k_pi * light.intensity;
+    return 4.0f * kPi * light.intensity;
 }
 
 }  // namespace librt

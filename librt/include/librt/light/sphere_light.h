@@ -45,7 +45,7 @@ struct SphereLight {
     /// total: power = L * pi * (4 pi r^2), so L = power / (4 pi^2 r^2). Far away it then
     /// lights a surface like PointLight::from_power(center, power).
     [[nodiscard]] static glm::vec3 radiance_for_power(const glm::vec3& power, float radius) {
-        return power / (4.0f * k_pi * k_pi * radius * radius);
+        return power / (4.0f * kPi * kPi * radius * radius);
     }
     /// Grey version of radiance_for_power: the same power in every channel.
     [[nodiscard]] static glm::vec3 radiance_for_power(float power, float radius) {

@@ -20,7 +20,7 @@ namespace librt {
 [[nodiscard]] inline glm::vec2 box_muller(glm::vec2 u) {
     const float r2 = std::max(u.y, std::numeric_limits<float>::min());
     const float radius = std::sqrt(std::max(0.0f, -2.0f * std::log(r2)));
-    const float phi = 2.0f * k_pi * u.x;
+    const float phi = 2.0f * kPi * u.x;
     return {std::cos(phi) * radius, std::sin(phi) * radius};
 }
 

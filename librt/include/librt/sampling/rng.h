@@ -65,10 +65,10 @@ public:
     [[nodiscard]] bool operator==(const Pcg32&) const = default;
 
 private:
-    static constexpr std::uint64_t k_multiplier = 6364136223846793005ULL;
+    static constexpr std::uint64_t kMultiplier = 6364136223846793005ULL;
 
     // One LCG step: state = state * a + c (mod 2^64).
-    void step() { state_ = state_ * k_multiplier + inc_; }
+    void step() { state_ = state_ * kMultiplier + inc_; }
 
     std::uint64_t state_ = 0;
     std::uint64_t inc_;  ///< always odd, so the LCG has full period

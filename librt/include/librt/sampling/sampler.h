@@ -16,31 +16,31 @@ enum class SamplerKind : std::uint8_t {
 };
 
 /// The dimensions a camera path draws, in order. The camera takes the first four; each
-/// bounce b then owns k_per_bounce dimensions from k_first_bounce + b * k_per_bounce, so a
+/// bounce b then owns kPerBounce dimensions from kFirstBounce + b * kPerBounce, so a
 /// decision draws from the same dimension in every sample of a pixel (and stays
 /// stratified) even when an earlier bounce drew fewer numbers; Sampler::start_bounce
-/// jumps there. Offsets inside a bounce are the k_bounce_* constants.
+/// jumps there. Offsets inside a bounce are the kBounce* constants.
 struct SampleDimensions {
-    static constexpr std::uint32_t k_pixel = 0;                ///< 2D: position in the pixel filter
-    static constexpr std::uint32_t k_lens = 2;                 ///< 2D: point on the lens
-    static constexpr std::uint32_t k_first_bounce = 4;         ///< first dimension of bounce 0
-    static constexpr std::uint32_t k_per_bounce = 7;           ///< dimensions each bounce owns
-    static constexpr std::uint32_t k_bounce_light_choice = 0;  ///< 1D: which light
-    static constexpr std::uint32_t k_bounce_light = 1;         ///< 2D: point on the light
-    static constexpr std::uint32_t k_bounce_bsdf = 3;          ///< 2D: BSDF direction
-    static constexpr std::uint32_t k_bounce_roulette = 5;      ///< 1D: Russian roulette
+    static constexpr std::uint32_t kPixel = 0;              ///< 2D: position in the pixel filter
+    static constexpr std::uint32_t kLens = 2;               ///< 2D: point on the lens
+    static constexpr std::uint32_t kFirstBounce = 4;        ///< first dimension of bounce 0
+    static constexpr std::uint32_t kPerBounce = 7;          ///< dimensions each bounce owns
+    static constexpr std::uint32_t kBounceLightChoice = 0;  ///< 1D: which light
+    static constexpr std::uint32_t kBounceLight = 1;        ///< 2D: point on the light
+    static constexpr std::uint32_t kBounceBsdf = 3;         ///< 2D: BSDF direction
+    static constexpr std::uint32_t kBounceRoulette = 5;     ///< 1D: Russian roulette
     /// 1D: which BSDF lobe (materials with several); last, so the 2D direction keeps its
     /// dimension whether or not the material hit in this sample chooses a lobe.
-    static constexpr std::uint32_t k_bounce_lobe = 6;
+    static constexpr std::uint32_t kBounceLobe = 6;
     /// 1D each: whether a path crosses a Null lobe (bsdf.h) or scatters there; the c-th
-    /// crossing decision of a path takes k_pass_through + c. Far above every bounce's
+    /// crossing decision of a path takes kPassThrough + c. Far above every bounce's
     /// dimensions (bounce 1000 ends near 7000): a crossing is no bounce, and must not reuse
     /// a number a bounce draws.
-    static constexpr std::uint32_t k_pass_through = 1u << 16u;
+    static constexpr std::uint32_t kPassThrough = 1u << 16u;
 
     /// First dimension of bounce `bounce` (0 = the camera ray's first hit).
     [[nodiscard]] static constexpr std::uint32_t bounce(std::uint32_t bounce) {
-        return k_first_bounce + k_per_bounce * bounce;
+        return kFirstBounce + kPerBounce * bounce;
     }
 };
 
@@ -89,7 +89,7 @@ public:
         } else {
             // A pixel key distinct from make_sample_rng's chain (another salt), so the two
             // kinds never share structure.
-            pixel_key_ = mix64(mix64(seed ^ k_sobol_salt) ^ ((std::uint64_t{x} << 32u) | y));
+            pixel_key_ = mix64(mix64(seed ^ kSobolSalt) ^ ((std::uint64_t{x} << 32u) | y));
             reversed_index_ = reversed(sample_index);
         }
     }
@@ -137,7 +137,7 @@ private:
     /// reverse_bits(index) (sobol.h), out of line: sampler.h stays free of the tables.
     [[nodiscard]] static std::uint32_t reversed(std::uint32_t index);
 
-    static constexpr std::uint64_t k_sobol_salt = 0x5b0b01a5eedc0ffeULL;
+    static constexpr std::uint64_t kSobolSalt = 0x5b0b01a5eedc0ffeULL;
 
     Pcg32 rng_;
     std::uint64_t pixel_key_ = 0;

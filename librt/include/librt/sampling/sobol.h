@@ -19,7 +19,7 @@ namespace librt {
 }
 
 /// How many Sobol' dimensions sobol_u32 has a generator matrix for.
-inline constexpr int k_sobol_dimensions = 4;
+inline constexpr int kSobolDimensions = 4;
 
 /// Implementation details of sobol_u32; not part of the API.
 namespace detail {
@@ -35,22 +35,22 @@ struct SobolPolynomial {
 /// two-dimensional projections", SIAM J. Sci. Comput. 30 (2008), file new-joe-kuo-6.21201
 /// (rows "d s a m_i": "2 1 0 1", "3 2 1 1 3", "4 3 1 1 3 1"). Dimension 1 is the van der
 /// Corput sequence (the identity matrix after bit reversal) and needs no polynomial.
-inline constexpr std::array<SobolPolynomial, k_sobol_dimensions - 1> k_joe_kuo{{
+inline constexpr std::array<SobolPolynomial, kSobolDimensions - 1> kJoeKuo{{
     {1, 0u, {1, 0, 0}},
     {2, 1u, {1, 3, 0}},
     {3, 1u, {1, 3, 1}},
 }};
 
 /// The 32 direction numbers of each dimension.
-using SobolMatrices = std::array<std::array<std::uint32_t, 32>, k_sobol_dimensions>;
+using SobolMatrices = std::array<std::array<std::uint32_t, 32>, kSobolDimensions>;
 
 /// The direction numbers V_k = m_k 2^(32-k) of every dimension; for k > s Bratley and Fox's
 /// recurrence V_k = V_{k-s} ^ (V_{k-s} >> s) ^ XOR_{j=1}^{s-1} a_j V_{k-j}.
 constexpr SobolMatrices make_sobol_matrices() {
     SobolMatrices v{};
     for (int k = 0; k < 32; ++k) v[0][k] = 1u << (31 - k);  // van der Corput
-    for (int d = 1; d < k_sobol_dimensions; ++d) {
-        const SobolPolynomial& p = k_joe_kuo[d - 1];
+    for (int d = 1; d < kSobolDimensions; ++d) {
+        const SobolPolynomial& p = kJoeKuo[d - 1];
         const int s = p.degree;
         for (int k = 0; k < 32; ++k) {
             if (k < s) {
@@ -68,23 +68,22 @@ constexpr SobolMatrices make_sobol_matrices() {
 }
 
 /// The generator matrices, built at compile time.
-inline constexpr SobolMatrices k_sobol_matrices = make_sobol_matrices();
+inline constexpr SobolMatrices kSobolMatrices = make_sobol_matrices();
 
 /// For each dimension and each byte of the index, the XOR of the direction numbers that
 /// byte's 256 values select: 4 table lookups per point instead of a loop over 32 bits
 /// whose branches on random index bits the CPU cannot predict (4 KiB per dimension).
-using SobolByteTables =
-    std::array<std::array<std::array<std::uint32_t, 256>, 4>, k_sobol_dimensions>;
+using SobolByteTables = std::array<std::array<std::array<std::uint32_t, 256>, 4>, kSobolDimensions>;
 
-/// Builds SobolByteTables from k_sobol_matrices.
+/// Builds SobolByteTables from kSobolMatrices.
 constexpr SobolByteTables make_sobol_byte_tables() {
     SobolByteTables t{};
-    for (int d = 0; d < k_sobol_dimensions; ++d) {
+    for (int d = 0; d < kSobolDimensions; ++d) {
         for (int b = 0; b < 4; ++b) {
             for (std::uint32_t v = 0; v < 256; ++v) {
                 std::uint32_t x = 0;
                 for (int k = 0; k < 8; ++k) {
-                    if ((v >> k) & 1u) x ^= k_sobol_matrices[d][8 * b + k];
+                    if ((v >> k) & 1u) x ^= kSobolMatrices[d][8 * b + k];
                 }
                 t[d][b][v] = x;
             }
@@ -94,7 +93,7 @@ constexpr SobolByteTables make_sobol_byte_tables() {
 }
 
 /// The byte tables, built at compile time.
-inline constexpr SobolByteTables k_sobol_byte_tables = make_sobol_byte_tables();
+inline constexpr SobolByteTables kSobolByteTables = make_sobol_byte_tables();
 
 /// The byte tables with every entry bit-reversed: bit reversal is linear over XOR, so
 /// their XOR is reverse_bits(sobol_u32(index, d)), the form Owen scrambling works on.
@@ -107,16 +106,16 @@ constexpr SobolByteTables make_sobol_reversed_byte_tables() {
 }
 
 /// The bit-reversed byte tables, built at compile time.
-inline constexpr SobolByteTables k_sobol_reversed_byte_tables = make_sobol_reversed_byte_tables();
+inline constexpr SobolByteTables kSobolReversedByteTables = make_sobol_reversed_byte_tables();
 
 }  // namespace detail
 
-/// Component `dimension` (in [0, k_sobol_dimensions)) of Sobol' point `index`, unscrambled,
+/// Component `dimension` (in [0, kSobolDimensions)) of Sobol' point `index`, unscrambled,
 /// as a 32-bit fraction: the XOR of the direction numbers selected by the index's bits.
-/// The Sobol' tests check it against the bit loop over detail::k_sobol_matrices.
+/// The Sobol' tests check it against the bit loop over detail::kSobolMatrices.
 [[nodiscard]] constexpr std::uint32_t sobol_u32(std::uint32_t index, int dimension) {
     if (dimension == 0) return reverse_bits(index);  // van der Corput, without tables
-    const auto& t = detail::k_sobol_byte_tables[static_cast<unsigned>(dimension)];
+    const auto& t = detail::kSobolByteTables[static_cast<unsigned>(dimension)];
     return t[0][index & 0xffu] ^ t[1][(index >> 8u) & 0xffu] ^ t[2][(index >> 16u) & 0xffu] ^
            t[3][index >> 24u];
 }
@@ -125,7 +124,7 @@ inline constexpr SobolByteTables k_sobol_reversed_byte_tables = make_sobol_rever
 /// owen_scramble reverses first, so a scrambled Sobol' value costs one reversal, not two.
 [[nodiscard]] constexpr std::uint32_t sobol_reversed_u32(std::uint32_t index, int dimension) {
     if (dimension == 0) return index;  // van der Corput reversed is the index itself
-    const auto& t = detail::k_sobol_reversed_byte_tables[static_cast<unsigned>(dimension)];
+    const auto& t = detail::kSobolReversedByteTables[static_cast<unsigned>(dimension)];
     return t[0][index & 0xffu] ^ t[1][(index >> 8u) & 0xffu] ^ t[2][(index >> 16u) & 0xffu] ^
            t[3][index >> 24u];
 }

@@ -15,10 +15,10 @@
 
 namespace librt {
 
-inline constexpr float k_pi = std::numbers::pi_v<float>;
+inline constexpr float kPi = std::numbers::pi_v<float>;
 /// pi for arithmetic in double (the sphere-light cuts, whose walls are radius 1e5).
-inline constexpr double k_pi_double = std::numbers::pi;
-inline constexpr float k_inv_pi = std::numbers::inv_pi_v<float>;
+inline constexpr double kPiDouble = std::numbers::pi;
+inline constexpr float kInvPi = std::numbers::inv_pi_v<float>;
 
 /// An orthonormal, right-handed frame (t, b, n) with t x b = n.
 struct Frame {
@@ -52,14 +52,14 @@ struct Frame {
 /// Cosine-weighted hemisphere around +z, the report's formula: with (r1, r2) = u,
 /// (cos(2 pi r1) sqrt(1 - r2), sin(2 pi r1) sqrt(1 - r2), sqrt(r2)). pdf: cosine_hemisphere_pdf.
 [[nodiscard]] inline glm::vec3 sample_cosine_hemisphere(glm::vec2 u) {
-    const float phi = 2.0f * k_pi * u.x;
+    const float phi = 2.0f * kPi * u.x;
     const float r = std::sqrt(1.0f - u.y);  // sin(theta), as cos^2(theta) = r2
     return {std::cos(phi) * r, std::sin(phi) * r, std::sqrt(u.y)};
 }
 
 /// Density per solid angle of sample_cosine_hemisphere: cos(theta) / pi, 0 below the horizon.
 [[nodiscard]] inline float cosine_hemisphere_pdf(float cos_theta) {
-    return cos_theta > 0.0f ? cos_theta * k_inv_pi : 0.0f;
+    return cos_theta > 0.0f ? cos_theta * kInvPi : 0.0f;
 }
 
 /// Cosine-weighted world direction around a unit normal; pdf: cosine_hemisphere_pdf(dot(n, w)).
@@ -71,23 +71,23 @@ struct Frame {
 [[nodiscard]] inline glm::vec3 sample_uniform_sphere(glm::vec2 u) {
     const float z = 1.0f - 2.0f * u.x;
     const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));  // sin(theta)
-    const float phi = 2.0f * k_pi * u.y;
+    const float phi = 2.0f * kPi * u.y;
     return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
 /// Density per solid angle of sample_uniform_sphere: 1 / (4 pi).
-[[nodiscard]] constexpr float uniform_sphere_pdf() { return 0.25f * k_inv_pi; }
+[[nodiscard]] constexpr float uniform_sphere_pdf() { return 0.25f * kInvPi; }
 
 /// Uniform direction on the hemisphere z >= 0.
 [[nodiscard]] inline glm::vec3 sample_uniform_hemisphere(glm::vec2 u) {
     const float z = u.x;
     const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));  // sin(theta)
-    const float phi = 2.0f * k_pi * u.y;
+    const float phi = 2.0f * kPi * u.y;
     return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
 /// Density per solid angle of sample_uniform_hemisphere: 1 / (2 pi).
-[[nodiscard]] constexpr float uniform_hemisphere_pdf() { return 0.5f * k_inv_pi; }
+[[nodiscard]] constexpr float uniform_hemisphere_pdf() { return 0.5f * kInvPi; }
 
 /// Uniform direction in the cone of half-angle theta_max around +z (cos theta uniform in
 /// [cos_theta_max, 1]). For a cone known by its sin^2, sample_sphere_visible keeps more
@@ -97,7 +97,7 @@ struct Frame {
 /// Density per solid angle of sample_uniform_cone: 1 / (2 pi (1 - cos_theta_max)), the
 /// inverse of the cone's solid angle.
 [[nodiscard]] inline float uniform_cone_pdf(float cos_theta_max) {
-    return 1.0f / (2.0f * k_pi * (1.0f - cos_theta_max));
+    return 1.0f / (2.0f * kPi * (1.0f - cos_theta_max));
 }
 
 /// Uniform point on the unit disk by Shirley and Chiu's concentric map: squares of
@@ -105,7 +105,7 @@ struct Frame {
 [[nodiscard]] LIBRT_API glm::vec2 sample_uniform_disk_concentric(glm::vec2 u);
 
 /// Density per unit area of sample_uniform_disk_concentric: 1 / pi.
-[[nodiscard]] constexpr float uniform_disk_pdf() { return k_inv_pi; }
+[[nodiscard]] constexpr float uniform_disk_pdf() { return kInvPi; }
 
 /// Uniform barycentrics (u, v) on a triangle, in Triangle's convention
 /// point = (1 - u - v) p0 + u p1 + v p2; pdf 1 / area.

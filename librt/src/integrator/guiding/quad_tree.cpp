@@ -70,8 +70,8 @@ glm::vec2 direction_to_square(const glm::vec3& d) {
     // x = (cos theta + 1) / 2, y = phi / (2 pi) with phi in [0, 2 pi).
     const float cos_theta = std::clamp(d.z, -1.0f, 1.0f);
     float phi = std::atan2(d.y, d.x);
-    if (phi < 0.0f) phi += 2.0f * k_pi;
-    const glm::vec2 p((cos_theta + 1.0f) * 0.5f, phi * (0.5f * k_inv_pi));
+    if (phi < 0.0f) phi += 2.0f * kPi;
+    const glm::vec2 p((cos_theta + 1.0f) * 0.5f, phi * (0.5f * kInvPi));
     return glm::clamp(p, glm::vec2(0.0f), glm::vec2(kBelowOne));
 }
 
@@ -79,7 +79,7 @@ glm::vec3 square_to_direction(glm::vec2 p) {
     // cos theta = 2 x - 1, phi = 2 pi y (the inverse of direction_to_square).
     const float cos_theta = 2.0f * p.x - 1.0f;
     const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
-    const float phi = 2.0f * k_pi * p.y;
+    const float phi = 2.0f * kPi * p.y;
     return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
 }
 
@@ -98,7 +98,7 @@ float QuadTree::pdf_square(glm::vec2 p) const {
 }
 
 float QuadTree::pdf(const glm::vec3& d) const {
-    return pdf_square(direction_to_square(d)) * (0.25f * k_inv_pi);
+    return pdf_square(direction_to_square(d)) * (0.25f * kInvPi);
 }
 
 glm::vec2 QuadTree::sample_square(glm::vec2 u, float* pdf) const {
