@@ -116,8 +116,8 @@ public:
     /// (not 1 only for a Mitchell pixel filter, whose negative lobes give negative weights).
     [[nodiscard]] CameraRay sample_ray(int px, int py, Sampler& sampler) const {
         // Two functions rather than a branch inside one: mixed into the perspective code,
-        // the orthographic case cost the report's scenes about 35 instructions per camera
-        // ray (callgrind; register allocation), though never taken there.
+        // the orthographic case slowed every perspective ray (docs/benchmarks.md, "Code
+        // shaped by measurement").
         return settings_.projection == Projection::Orthographic ? orthographic_ray(px, py, sampler)
                                                                 : perspective_ray(px, py, sampler);
     }

@@ -32,8 +32,8 @@ inline constexpr float kRayOffsetAbsolute = 0x1p-20f;
 /// The origin of a ray leaving surface point `point` in `direction`: the point moved by
 /// ray_offset_scale(point) along the unit geometric `normal`, to the side `direction`
 /// goes (so a reflected ray starts above the surface and a refracted one below it).
-/// Forced inline: g++ kept it out of line, a call with its arguments on the stack in the
-/// path loop (callgrind on the synthesis: 22.8 M instructions in the call).
+/// Forced inline: g++ kept it out of line in the path loop (docs/benchmarks.md, "Code
+/// shaped by measurement").
 [[nodiscard, gnu::always_inline]] inline glm::vec3 offset_ray_origin(const glm::vec3& point,
                                                                      const glm::vec3& normal,
                                                                      const glm::vec3& direction) {

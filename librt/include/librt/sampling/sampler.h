@@ -96,7 +96,7 @@ public:
 
     /// Uniform in [0, 1); takes one dimension.
     // Forced inline (both draws): g++ kept them out of line in the path loop, a call per
-    // draw around a PCG32 step of a few instructions (cachegrind on the synthesis).
+    // draw around a PCG32 step of a few instructions.
     [[nodiscard, gnu::always_inline]] float next_1d() {
         if (kind_ == SamplerKind::Independent) [[likely]] {
             return rng_.next_float();
@@ -130,8 +130,8 @@ public:
 
 private:
     // The Sobol' draws, out of line: inlined, their hashing would sit at every call site
-    // of the integrators and cost the independent sampler ~2.5% in registers and
-    // instruction cache (measured on rt_indirect).
+    // of the integrators and slow the independent sampler (docs/benchmarks.md, "Code
+    // shaped by measurement").
     [[nodiscard]] float sobol_1d();
     [[nodiscard]] glm::vec2 sobol_2d();
     /// reverse_bits(index) (sobol.h), out of line: sampler.h stays free of the tables.

@@ -173,8 +173,8 @@ public:
     /// True when anything lies in (ray.t_min, ray.t_max): for shadow rays. The object
     /// `ignored_object` (e.g. the sphere light being sampled) is skipped. Throws
     /// librt::Error before commit().
-    // Forced inline: the path loop's shadow ray; g++ kept it out of line there once the
-    // loop grew (callgrind on the synthesis: +12 M instructions of calls).
+    // Forced inline: the path loop's shadow ray, which g++ kept out of line there
+    // (docs/benchmarks.md, "Code shaped by measurement").
     [[nodiscard, gnu::always_inline]] bool occluded(
         const Ray& ray, std::uint32_t ignored_object = kInvalidId) const {
         require_committed();
