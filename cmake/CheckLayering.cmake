@@ -114,104 +114,41 @@ if(_self MATCHES "good\\.cpp" OR NOT _bad_count EQUAL 9)
   message(FATAL_ERROR "self-check: expected the 9 bad lines and no good one, found:${_self}")
 endif()
 
-# ---- BEGIN rule: MaterialKind:: only in material/ and io/ (issue 43) -------------------
-# The renderer asks a material what it does through the BSDF kinds' answers
-# (src/material/bsdf_dispatch.h: lobes_of, transmits, near_specular, casts_caustics,
-# is_lambertian, multiply_color), never by naming its kind, so a new kind cannot be
-# forgotten by a switch outside material/. `MaterialKind::` (or `using enum MaterialKind`)
-# may appear only in librt/{include/librt,src}/material/ (the kinds and their dispatch)
-# and the loaders (io/, obj/, gltf/, loader/: they build materials). Self-contained: its
-# own scratch self-check and scan.
-set(_material_kind_areas material io obj gltf loader)
-set(_material_kind_patterns
-  "(^|[^A-Za-z0-9_])MaterialKind[ \t]*::"
-  "using[ \t]+enum[ \t]+(librt[ \t]*::[ \t]*)?MaterialKind([^A-Za-z0-9_]|$)")
-
-# Sets out_var to one "\n  file:line: problem" per line outside material/ and io/ that
-# names a MaterialKind enumerator.
-function(librt_check_material_kind root files out_var)
-  set(found "")
-  foreach(rel IN LISTS files)
-    if(NOT rel MATCHES "^librt/(include/librt|src)/([a-z_]+)/")
-      continue()
-    endif()
-    if(CMAKE_MATCH_2 IN_LIST _material_kind_areas)
-      continue()
-    endif()
-    file(STRINGS "${root}/${rel}" lines)
-    set(number 0)
-    foreach(line IN LISTS lines)
-      math(EXPR number "${number} + 1")
-      librt_code_of_line("${line}" code)
-      foreach(pattern IN LISTS _material_kind_patterns)
-        if(code MATCHES "${pattern}")
-          string(STRIP "${line}" shown)
-          string(APPEND found "\n  ${rel}:${number}: only material/ and the loaders name a "
-                              "MaterialKind (ask the BSDF, material/bsdf_dispatch.h): ${shown}")
-          break()
-        endif()
-      endforeach()
-    endforeach()
-  endforeach()
-  set(${out_var} "${found}" PARENT_SCOPE)
-endfunction()
-
-librt_scratch_folder(librt_material_kind_selftest _kind_scratch)
-file(MAKE_DIRECTORY "${_kind_scratch}/librt/src/integrator" "${_kind_scratch}/librt/src/material"
-     "${_kind_scratch}/librt/include/librt/io" "${_kind_scratch}/librt/include/librt/scene")
-file(WRITE "${_kind_scratch}/librt/src/integrator/bad.cpp"
-  "if (m.kind == MaterialKind::Diffuse) {\ncase librt::MaterialKind ::Mirror:\n"
-  "using enum MaterialKind;\n")
-file(WRITE "${_kind_scratch}/librt/include/librt/scene/bad.h"
-  "return m.kind != MaterialKind::Emissive;\n")
-file(WRITE "${_kind_scratch}/librt/src/integrator/good.cpp"
-  "// MaterialKind::Diffuse in a comment\nif (bsdfs::is_lambertian(m)) {\n"
-  "MyMaterialKind::Value v;\nMaterialKind kind = m.kind;\n")
-file(WRITE "${_kind_scratch}/librt/src/material/good.h"
-  "case MaterialKind::Mirror:\nstatic constexpr MaterialKind kKind = MaterialKind::Mirror;\n")
-file(WRITE "${_kind_scratch}/librt/include/librt/io/good.h"
-  "m.kind = MaterialKind::MetallicRoughness;\n")
-librt_check_material_kind("${_kind_scratch}"
-  "librt/src/integrator/bad.cpp;librt/include/librt/scene/bad.h;librt/src/integrator/good.cpp;librt/src/material/good.h;librt/include/librt/io/good.h"
-  _kind_self)
-file(REMOVE_RECURSE "${_kind_scratch}")
-string(REGEX MATCHALL "/bad\\.(cpp|h):" _kind_bad_hits "${_kind_self}")
-list(LENGTH _kind_bad_hits _kind_bad_count)
-if(_kind_self MATCHES "good\\.(cpp|h)" OR NOT _kind_bad_count EQUAL 4)
-  message(FATAL_ERROR
-    "MaterialKind self-check: expected the 4 bad lines and no good one, found:${_kind_self}")
-endif()
-
-librt_library_files("${ROOT}" _kind_files _kind_file_count)
-librt_check_material_kind("${ROOT}" "${_kind_files}" _kind_found)
-if(_kind_found)
-  message(FATAL_ERROR "a MaterialKind named outside material/ and the loaders "
-                      "(docs/architecture.md, "
-                      "\"a material kind\"):${_kind_found}")
-endif()
-# ---- END rule: MaterialKind:: only in material/ and io/ -----------------------------------
-
-# ---- Light-variant access (issue 43): begin -----------------------------------------------
-# 3. Only light/ looks inside a Light's variant (LightSource): std::get_if / get /
+# ---- Confinement rules (issue 43) ---------------------------------------------------------
+# 3. The renderer asks a material what it does through the BSDF kinds' answers
+#    (src/material/bsdf_dispatch.h: lobes_of, transmits, near_specular, casts_caustics,
+#    is_lambertian, multiply_color), never by naming its kind, so a new kind cannot be
+#    forgotten by a switch outside material/. `MaterialKind::` (or `using enum
+#    MaterialKind`) may appear only in material/ (the kinds and their dispatch) and the
+#    loaders (io/, obj/, gltf/, loader/: they build materials).
+# 4. Only light/ looks inside a Light's variant (LightSource): std::get_if / get /
 #    holds_alternative of a ...Light kind, or a light's `.source` (what std::visit takes).
 #    Everywhere else asks the Light functions of light/light.h (light_type, is_infinite,
 #    surface_normal, preprocess, sample_li ...), so adding a light kind touches light/ and
 #    the LightSource registration only. io/ builds lights through Scene's add_*_light and
 #    needs no exception.
+set(_material_kind_areas material io obj gltf loader)
+set(_material_kind_patterns
+  "(^|[^A-Za-z0-9_])MaterialKind[ \t]*::"
+  "using[ \t]+enum[ \t]+(librt[ \t]*::[ \t]*)?MaterialKind([^A-Za-z0-9_]|$)")
+set(_material_kind_problem
+    "only material/ and the loaders name a MaterialKind (ask the BSDF, material/bsdf_dispatch.h)")
 set(_light_variant_areas light)
 set(_light_variant_patterns
   "(get_if|holds_alternative|get)[ \t]*<[ \t]*(librt::)?[A-Za-z0-9_]*Light[ \t]*>"
   "[Ll]ight[A-Za-z0-9_]*(\\([^)]*\\))?\\.source([^A-Za-z0-9_]|$)")
+set(_light_variant_problem "light-variant access belongs in light/")
 
-# Sets out_var to one "\n  file:line: problem" per line of `files` (paths relative to
-# `root`) outside light/ that opens a Light's variant.
-function(librt_check_light_variant root files out_var)
+# Sets out_var to one "\n  file:line: problem: line" per line of `files` (paths relative to
+# `root`) outside the areas `allowed` whose code (comments dropped) matches one of
+# `patterns`.
+function(librt_check_confined root files allowed patterns problem out_var)
   set(found "")
   foreach(rel IN LISTS files)
     if(NOT rel MATCHES "^librt/(include/librt|src)/([a-z_]+)/")
       continue()
     endif()
-    if("${CMAKE_MATCH_2}" IN_LIST _light_variant_areas)
+    if("${CMAKE_MATCH_2}" IN_LIST allowed)
       continue()
     endif()
     # One list element per line: ; and [ ] would split or join CMake list elements.
@@ -224,10 +161,10 @@ function(librt_check_light_variant root files out_var)
     foreach(line IN LISTS lines)
       math(EXPR number "${number} + 1")
       librt_code_of_line("${line}" code)
-      foreach(pattern IN LISTS _light_variant_patterns)
+      foreach(pattern IN LISTS patterns)
         if(code MATCHES "${pattern}")
           string(STRIP "${line}" shown)
-          string(APPEND found "\n  ${rel}:${number}: light-variant access belongs in light/: ${shown}")
+          string(APPEND found "\n  ${rel}:${number}: ${problem}: ${shown}")
           break()
         endif()
       endforeach()
@@ -236,36 +173,64 @@ function(librt_check_light_variant root files out_var)
   set(${out_var} "${found}" PARENT_SCOPE)
 endfunction()
 
-# Its self-check: each bad line reported once, at its line number; no good line.
-librt_scratch_folder(librt_light_variant_selftest _light_scratch)
-file(MAKE_DIRECTORY "${_light_scratch}/librt/src/scene" "${_light_scratch}/librt/src/light")
-file(WRITE "${_light_scratch}/librt/src/scene/bad.cpp"
+# Self-checks on scratch trees: each bad line reported once, at its line number; no good
+# line.
+librt_scratch_folder(librt_confined_selftest _confined_scratch)
+file(MAKE_DIRECTORY "${_confined_scratch}/librt/src/integrator"
+     "${_confined_scratch}/librt/src/material" "${_confined_scratch}/librt/src/light"
+     "${_confined_scratch}/librt/src/scene" "${_confined_scratch}/librt/include/librt/io"
+     "${_confined_scratch}/librt/include/librt/scene")
+file(WRITE "${_confined_scratch}/librt/src/integrator/bad.cpp"
+  "if (m.kind == MaterialKind::Diffuse) {\ncase librt::MaterialKind ::Mirror:\n"
+  "using enum MaterialKind;\n")
+file(WRITE "${_confined_scratch}/librt/include/librt/scene/bad.h"
+  "return m.kind != MaterialKind::Emissive;\n")
+file(WRITE "${_confined_scratch}/librt/src/integrator/good.cpp"
+  "// MaterialKind::Diffuse in a comment\nif (bsdfs::is_lambertian(m)) {\n"
+  "MyMaterialKind::Value v;\nMaterialKind kind = m.kind;\n")
+file(WRITE "${_confined_scratch}/librt/src/material/good.h"
+  "case MaterialKind::Mirror:\nstatic constexpr MaterialKind kKind = MaterialKind::Mirror;\n")
+file(WRITE "${_confined_scratch}/librt/include/librt/io/good.h"
+  "m.kind = MaterialKind::MetallicRoughness;\n")
+librt_check_confined("${_confined_scratch}"
+  "librt/src/integrator/bad.cpp;librt/include/librt/scene/bad.h;librt/src/integrator/good.cpp;librt/src/material/good.h;librt/include/librt/io/good.h"
+  "${_material_kind_areas}" "${_material_kind_patterns}" "MaterialKind" _kind_self)
+string(REGEX MATCHALL "/bad\\.(cpp|h):[0-9]+:" _kind_bad_hits "${_kind_self}")
+if(_kind_self MATCHES "good\\.(cpp|h)" OR NOT _kind_bad_hits STREQUAL
+   "/bad.cpp:1:;/bad.cpp:2:;/bad.cpp:3:;/bad.h:1:")
+  message(FATAL_ERROR "MaterialKind self-check: expected bad.cpp lines 1, 2 and 3, bad.h line "
+                      "1 and no good line, found:${_kind_self}")
+endif()
+file(WRITE "${_confined_scratch}/librt/src/scene/bad.cpp"
   "int a = 0;\n"
   "if (auto* e = std::get_if<EnvironmentLight>(&lights_[i].source)) e->r = 1;\n"
   "bool p = std::holds_alternative<PointLight>(l.light.source);\n"
   "const auto& s = std::get<librt::SphereLight>(light.source);\n"
   "    return std::visit([&](const auto& s) { return s.type(); },\n"
   "                      light.source);\n")
-file(WRITE "${_light_scratch}/librt/src/scene/good.cpp"
+file(WRITE "${_confined_scratch}/librt/src/scene/good.cpp"
   "const std::uint32_t image = texture.source;  // std::get_if<PointLight>(&light.source)\n"
   "LightType t = light_type(light);\nauto v = std::get_if<int>(&x);\n")
-file(WRITE "${_light_scratch}/librt/src/light/good.cpp"
+file(WRITE "${_confined_scratch}/librt/src/light/good.cpp"
   "auto* s = std::get_if<SphereLight>(&light.source);\n")
-librt_check_light_variant("${_light_scratch}"
-  "librt/src/scene/bad.cpp;librt/src/scene/good.cpp;librt/src/light/good.cpp" _light_self)
-file(REMOVE_RECURSE "${_light_scratch}")
+librt_check_confined("${_confined_scratch}"
+  "librt/src/scene/bad.cpp;librt/src/scene/good.cpp;librt/src/light/good.cpp"
+  "${_light_variant_areas}" "${_light_variant_patterns}" "light variant" _light_self)
+file(REMOVE_RECURSE "${_confined_scratch}")
 string(REGEX MATCHALL "/bad\\.cpp:[0-9]+:" _light_bad_hits "${_light_self}")
 if(_light_self MATCHES "good\\.cpp" OR NOT _light_bad_hits STREQUAL
    "/bad.cpp:2:;/bad.cpp:3:;/bad.cpp:4:;/bad.cpp:6:")
   message(FATAL_ERROR "light-variant self-check: expected bad.cpp lines 2, 3, 4 and 6 and no "
                       "good line, found:${_light_self}")
 endif()
-# ---- Light-variant access: end -------------------------------------------------------------
 
 librt_library_files("${ROOT}" _files _file_count)
 librt_check_layering("${ROOT}" "${_files}" _found)
-librt_check_light_variant("${ROOT}" "${_files}" _light_found)  # light-variant access
-string(APPEND _found "${_light_found}")
+librt_check_confined("${ROOT}" "${_files}" "${_material_kind_areas}" "${_material_kind_patterns}"
+                     "${_material_kind_problem}" _kind_found)
+librt_check_confined("${ROOT}" "${_files}" "${_light_variant_areas}" "${_light_variant_patterns}"
+                     "${_light_variant_problem}" _light_found)
+string(APPEND _found "${_kind_found}${_light_found}")
 if(_found)
   message(FATAL_ERROR "layering broken (see docs/architecture.md):${_found}")
 endif()
