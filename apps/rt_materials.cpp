@@ -9,6 +9,7 @@
 #include "common/cli.h"
 #include "common/scene_app.h"
 
+#include <librt/core/constants.h>
 #include <librt/core/error.h>
 #include <librt/core/image.h>
 #include <librt/geometry/mesh.h>
@@ -29,7 +30,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -98,10 +98,9 @@ EnvironmentImage built_in_sky_image() {
     image.height = 512;
     image.pixels.resize(std::size_t(image.width) * std::size_t(image.height));
     for (int y = 0; y < image.height; ++y) {
-        const float theta = std::numbers::pi_v<float> * (float(y) + 0.5f) / float(image.height);
+        const float theta = kPi * (float(y) + 0.5f) / float(image.height);
         for (int x = 0; x < image.width; ++x) {
-            const float phi =
-                2.0f * std::numbers::pi_v<float> * (float(x) + 0.5f) / float(image.width);
+            const float phi = 2.0f * kPi * (float(x) + 0.5f) / float(image.width);
             const glm::vec3 d(std::sin(theta) * std::cos(phi), std::cos(theta),
                               -std::sin(theta) * std::sin(phi));
             image.pixels[std::size_t(y) * std::size_t(image.width) + std::size_t(x)] =
@@ -178,7 +177,7 @@ void build_gallery(Scene& scene) {
     for (int i = 0; i < 3; ++i) {
         Material brushed = Material::conductor(Metal::Aluminium, kMetalRoughness);
         brushed.anisotropy = kBrushedAnisotropy;
-        brushed.anisotropy_rotation = float(i) * 0.25f * std::numbers::pi_v<float>;
+        brushed.anisotropy_rotation = float(i) * 0.25f * kPi;
         scene.add_sphere(Sphere{sphere_centre(4, float(2 * i + 1)), kRadius},
                          scene.add_material(brushed));
     }

@@ -15,6 +15,7 @@
 //   librt_smallpt rmse A.pfm REFERENCE.pfm
 //       Prints the RMSE over all pixels and channels.
 
+#include <librt/core/constants.h>
 #include <librt/core/error.h>
 #include <librt/film/camera.h>
 #include <librt/integrator/integrators.h>
@@ -64,7 +65,7 @@ CameraSettings smallpt_camera(int width, int height) {
     s.position = {50.0f, 52.0f, 295.6f};
     s.look_at = s.position + glm::normalize(glm::vec3(0.0f, -0.042612f, -1.0f));
     // smallpt spans 0.5135 vertically at unit depth: fov = 2 atan(0.5135 / 2).
-    s.vertical_fov_degrees = float(2.0 * std::atan(0.5135 / 2.0) * 180.0 / 3.14159265358979);
+    s.vertical_fov_degrees = float(2.0 * std::atan(0.5135 / 2.0) * 180.0 / kPiDouble);
     s.width = width;
     s.height = height;
     s.near_clip = 140.0f;

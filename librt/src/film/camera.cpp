@@ -1,3 +1,4 @@
+#include <librt/core/constants.h>
 #include <librt/core/error.h>
 #include <librt/core/finite.h>
 #include <librt/film/camera.h>
@@ -137,7 +138,7 @@ Camera::Camera(const CameraSettings& settings) : settings_(settings) {
     right_ = glm::normalize(glm::cross(forward_, settings_.up));
     up_ = glm::cross(right_, forward_);
     const double half_fov =
-        0.5 * static_cast<double>(settings_.vertical_fov_degrees) * 3.14159265358979323846 / 180.0;
+        0.5 * static_cast<double>(settings_.vertical_fov_degrees) * kPiDouble / 180.0;
     // The report's image-plane distance: H / (2 tan(fov/2)) pixels.
     image_plane_distance_ =
         static_cast<float>(static_cast<double>(settings_.height) / (2.0 * std::tan(half_fov)));

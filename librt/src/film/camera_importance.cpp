@@ -1,5 +1,6 @@
 #include "film/camera_importance.h"
 
+#include <librt/core/constants.h>
 #include <librt/sampling/jitter.h>
 
 #include <glm/ext/vector_double2.hpp>
@@ -8,7 +9,6 @@
 
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 namespace librt {
 
@@ -100,7 +100,7 @@ double lens_pdf(const Camera& camera, const glm::dvec3& origin) {
     if (lens_is_delta(camera)) return 1.0;
     if (s.lens == LensModel::Disk) {
         // Uniform over the disk (disk_lens_jitter).
-        return 1.0 / (std::numbers::pi * double(s.lens_radius) * double(s.lens_radius));
+        return 1.0 / (kPiDouble * double(s.lens_radius) * double(s.lens_radius));
     }
     // The 2D normal density of gaussian_lens_jitter's offset: exp(-|l|^2 / (2 s^2)) /
     // (2 pi s^2) (Box-Muller's cap at 13.2 sigma is below anything a float can resolve).
@@ -108,7 +108,7 @@ double lens_pdf(const Camera& camera, const glm::dvec3& origin) {
     const double lx = glm::dot(o, to_double(camera.right()));
     const double ly = glm::dot(o, to_double(camera.true_up()));
     const double var = double(s.lens_sigma) * double(s.lens_sigma);
-    return std::exp(-(lx * lx + ly * ly) / (2.0 * var)) / (2.0 * std::numbers::pi * var);
+    return std::exp(-(lx * lx + ly * ly) / (2.0 * var)) / (2.0 * kPiDouble * var);
 }
 
 std::optional<LensRay> trace_ray(const Camera& camera, const Ray& ray, float margin) {

@@ -1,5 +1,6 @@
 #include "geometry/teapot_data.h"
 
+#include <librt/core/constants.h>
 #include <librt/core/error.h>
 #include <librt/core/finite.h>
 #include <librt/geometry/procedural.h>
@@ -118,10 +119,10 @@ TriangleMesh make_uv_sphere(const glm::vec3& center, float radius, int segments,
     m.uvs.reserve(nv);
     for (std::uint32_t i = 0; i <= R; ++i) {
         const double v = double(i) / R;
-        const double theta = glm::pi<double>() * v;  // polar angle from +y
+        const double theta = kPiDouble * v;  // polar angle from +y
         for (std::uint32_t j = 0; j <= S; ++j) {
             const double u = double(j) / S;
-            const double phi = glm::two_pi<double>() * u - glm::pi<double>();  // as sphere_uv
+            const double phi = (2.0 * kPiDouble) * u - kPiDouble;  // as sphere_uv
             // Spherical to Cartesian about +y; the poles exactly on the axis.
             glm::dvec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
                          std::sin(theta) * std::sin(phi));

@@ -1,3 +1,4 @@
+#include <librt/core/constants.h>
 #include <librt/geometry/sphere.h>
 
 #include <glm/geometric.hpp>
@@ -23,7 +24,7 @@ glm::vec2 sphere_uv(const Sphere& sphere, const glm::vec3& point) {
     const glm::vec3 n = glm::normalize(point - sphere.center);
     const float phi = std::atan2(n.z, n.x);  // azimuth around +y
     const float theta = std::acos(glm::clamp(n.y, -1.0f, 1.0f));
-    return {(phi + glm::pi<float>()) / glm::two_pi<float>(), theta / glm::pi<float>()};
+    return {(phi + kPi) / (2.0f * kPi), theta / kPi};
 }
 
 }  // namespace librt

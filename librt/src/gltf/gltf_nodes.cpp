@@ -4,6 +4,7 @@
 
 #include "gltf/gltf_internal.h"
 
+#include <librt/core/constants.h>
 #include <librt/core/untrusted_text.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -13,7 +14,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <string>
 #include <utility>
 
@@ -146,7 +146,7 @@ GltfCamera read_camera(const tinygltf::Camera& cam, const std::string& path, con
         const auto& p = cam.perspective;
         c.type = GltfCamera::Type::Perspective;
         c.yfov = positive(p.yfov, path + ".perspective.yfov");
-        if (p.yfov >= std::numbers::pi)
+        if (p.yfov >= kPiDouble)
             ctx.fail(path + ".perspective.yfov", number_text(p.yfov) + ": must be < pi");
         c.znear = positive(p.znear, path + ".perspective.znear");
         if (p.aspectRatio != 0.0)
@@ -210,7 +210,7 @@ GltfLight read_light(const tinygltf::Light& light, const std::string& path, cons
     l.range = float(std::min(light.range, double(std::numeric_limits<float>::max())));
     if (l.type == GltfLight::Type::Spot) {
         const double inner = light.spot.innerConeAngle, outer = light.spot.outerConeAngle;
-        if (!(inner >= 0.0) || !(inner < outer) || !(outer <= std::numbers::pi / 2 + 1e-6))
+        if (!(inner >= 0.0) || !(inner < outer) || !(outer <= kPiDouble / 2 + 1e-6))
             ctx.fail(path + ".spot", "needs 0 <= innerConeAngle < outerConeAngle <= pi/2");
         l.inner_cone_angle = float(inner);
         l.outer_cone_angle = float(outer);

@@ -3,13 +3,13 @@
 #include "light/light_validation.h"
 #include "light/sphere_light_cuts.h"
 
+#include <librt/core/constants.h>
 #include <librt/core/error.h>
 #include <librt/light/sphere_light.h>
 
 #include <glm/geometric.hpp>
 
 #include <cmath>
-#include <numbers>
 #include <sstream>
 
 namespace librt {
@@ -28,7 +28,7 @@ namespace {
 /// 2 pi r^2 (z1 - z0): the area of the zone z0 <= n . a <= z1 of a sphere of radius r
 /// (Archimedes' hat-box theorem).
 double cap_area(double radius, const VisibleCap& cap) {
-    return 2.0 * std::numbers::pi * radius * radius * (cap.z1 - cap.z0);
+    return 2.0 * kPiDouble * radius * radius * (cap.z1 - cap.z0);
 }
 
 /// The solid-angle density of a point uniform in area on the cap, seen from ref at
@@ -49,7 +49,7 @@ LightLiSample sample_li_cut(const SphereLight& light, const glm::vec3& ref, glm:
     // Uniform in area on the zone: z = n . a uniform in [z0, z1], phi uniform (Archimedes).
     const double z = std::min(cap.z1, cap.z0 + double(u.x) * (cap.z1 - cap.z0));
     const double s = std::sqrt(std::max(0.0, 1.0 - z * z));
-    const double phi = 2.0 * std::numbers::pi * double(u.y);
+    const double phi = 2.0 * kPiDouble * double(u.y);
     const glm::dvec3 n = z * c.axis + s * (std::cos(phi) * c.tangent + std::sin(phi) * c.bitangent);
     const double r = double(light.sphere.radius);
     const glm::dvec3 q = glm::dvec3(light.sphere.center) + r * n;
@@ -105,7 +105,7 @@ namespace {
 /// > 0 or when the result is not a finite float.
 float sphere_area_pdf(float radius) {
     if (!(radius > 0.0f)) return 0.0f;
-    const double pdf = 1.0 / (4.0 * std::numbers::pi * double(radius) * double(radius));
+    const double pdf = 1.0 / (4.0 * kPiDouble * double(radius) * double(radius));
     return pdf > 0.0 && pdf < double(std::numeric_limits<float>::max()) ? float(pdf) : 0.0f;
 }
 

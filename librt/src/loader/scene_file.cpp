@@ -1,3 +1,4 @@
+#include <librt/core/constants.h>
 #include <librt/core/error.h>
 #include <librt/gltf/gltf.h>
 #include <librt/gltf/gltf_scene.h>
@@ -56,7 +57,7 @@ PointLight default_light(const BBox& bounds) {
     PointLight light;
     light.position = bounds.center() + distance * glm::normalize(glm::vec3(-0.5f, 1.0f, 0.8f));
     // Irradiance at normal incidence E = I / d^2 (inverse square law); I = pi d^2 gives pi.
-    light.intensity = glm::vec3(3.14159265f * distance * distance);
+    light.intensity = glm::vec3(kPi * distance * distance);
     return light;
 }
 
@@ -89,29 +90,61 @@ LoadedScene scene_from_obj(const std::filesystem::path& path, const SceneFileOpt
     return out;
 }
 
+namespace {
+
+/// A .gltf or .glb file as a scene: load_gltf, then scene_from_gltf with the file named in
+/// each of its messages.
+LoadedScene scene_from_gltf_file(const std::filesystem::path& path,
+                                 const SceneFileOptions& options) {
+    GltfLoadOptions load_options;
+    load_options.allow_outside_files = options.allow_outside_files;
+    // Its errors and warnings name the file already.
+    GltfScene gltf = load_gltf(path, load_options);
+    const std::size_t named = gltf.warnings.size();
+    // scene_from_gltf's messages give the JSON path (it does not know the file): the
+    // file is prefixed here, so that every message says "file: JSON path: what".
+    const std::string file = path.string() + ": ";
+    try {
+        LoadedScene out = scene_from_gltf(std::move(gltf), options);
+        for (std::size_t i = named; i < out.warnings.size(); ++i) out.warnings[i].insert(0, file);
+        return out;
+    } catch (const Error& e) {
+        throw Error(file + e.what());
+    }
+}
+
+/// "a, b or c" of the known extensions, for the unknown-format error.
+std::string known_extensions() {
+    std::vector<std::string> all;
+    for (const SceneFileFormat& f : scene_file_formats())
+        all.insert(all.end(), f.extensions.begin(), f.extensions.end());
+    std::string out;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        if (i > 0) out += i + 1 == all.size() ? " or " : ", ";
+        out += all[i];
+    }
+    return out;
+}
+
+}  // namespace
+
+const std::vector<SceneFileFormat>& scene_file_formats() {
+    // The registrations: a new format is one row here (and its loader).
+    static const std::vector<SceneFileFormat> formats{
+        {"glTF 2.0", {".gltf", ".glb"}, &scene_from_gltf_file},
+        {"Wavefront OBJ with MTL materials", {".obj"}, &scene_from_obj},
+    };
+    return formats;
+}
+
 LoadedScene load_scene_file(const std::filesystem::path& path, const SceneFileOptions& options) {
     const std::string ext = lower_extension(path);
-    if (ext == ".obj") return scene_from_obj(path, options);
-    if (ext == ".gltf" || ext == ".glb") {
-        GltfLoadOptions load_options;
-        load_options.allow_outside_files = options.allow_outside_files;
-        // Its errors and warnings name the file already.
-        GltfScene gltf = load_gltf(path, load_options);
-        const std::size_t named = gltf.warnings.size();
-        // scene_from_gltf's messages give the JSON path (it does not know the file): the
-        // file is prefixed here, so that every message says "file: JSON path: what".
-        const std::string file = path.string() + ": ";
-        try {
-            LoadedScene out = scene_from_gltf(std::move(gltf), options);
-            for (std::size_t i = named; i < out.warnings.size(); ++i)
-                out.warnings[i].insert(0, file);
-            return out;
-        } catch (const Error& e) {
-            throw Error(file + e.what());
-        }
-    }
-    throw Error(path.string() + ": unknown scene format '" + ext +
-                "' (expected .gltf, .glb or .obj)");
+    for (const SceneFileFormat& format : scene_file_formats())
+        if (std::find(format.extensions.begin(), format.extensions.end(), ext) !=
+            format.extensions.end())
+            return format.load(path, options);
+    throw Error(path.string() + ": unknown scene format '" + ext + "' (expected " +
+                known_extensions() + ")");
 }
 
 }  // namespace librt

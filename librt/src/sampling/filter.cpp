@@ -1,3 +1,4 @@
+#include <librt/core/constants.h>
 #include <librt/core/error.h>
 #include <librt/sampling/filter.h>
 #include <librt/sampling/jitter.h>
@@ -52,7 +53,7 @@ double filter_value(const FilterSettings& s, double x) {
             // The 4-term Blackman-Harris window (Harris 1978, "On the use of windows for
             // harmonic analysis with the DFT", table 1: -92 dB), over t in [0, 1].
             const double t = (x + r) / (2.0 * r);
-            const double w = 2.0 * std::numbers::pi * t;
+            const double w = 2.0 * kPiDouble * t;
             return 0.35875 - 0.48829 * std::cos(w) + 0.14128 * std::cos(2.0 * w) -
                    0.01168 * std::cos(3.0 * w);
         }

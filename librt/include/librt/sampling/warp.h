@@ -1,5 +1,6 @@
 #pragma once
 
+#include <librt/core/constants.h>
 #include <librt/export.h>
 
 #include <glm/geometric.hpp>
@@ -8,17 +9,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 // Stateless warps from a uniform sample u in [0,1)^2 to a distribution, each with its
 // pdf. Local directions are in a frame whose +z is the normal (or the cone axis).
 
 namespace librt {
-
-inline constexpr float kPi = std::numbers::pi_v<float>;
-/// pi for arithmetic in double (the sphere-light cuts, whose walls are radius 1e5).
-inline constexpr double kPiDouble = std::numbers::pi;
-inline constexpr float kInvPi = std::numbers::inv_pi_v<float>;
 
 /// An orthonormal, right-handed frame (t, b, n) with t x b = n.
 struct Frame {
