@@ -6,6 +6,7 @@
 // members disagree with its sampling fails below.
 
 #include "light/light_bounds.h"
+#include "light/light_kind.h"
 
 #include <librt/light/light.h>
 #include <librt/sampling/rng.h>
@@ -25,6 +26,56 @@
 
 namespace librt {
 namespace {
+
+// The checklist's step 1 for a dummy kind: the members and functions LightKind asks for
+// (light_kind.h, asserted of every LightSource alternative in light.cpp). Each variant
+// below lacks one answer and is not a light kind, so forgetting a step fails to compile.
+struct DummyLight {
+    [[nodiscard]] LightType type() const { return LightType::DeltaPosition; }
+    [[nodiscard]] glm::vec3 surface_normal(const glm::vec3& /*p*/) const { return {}; }
+    [[nodiscard]] LightBounds bounds() const { return {}; }
+    void preprocess(const SceneSummary& /*scene*/) {}
+};
+LightLiSample sample_li(const DummyLight& /*l*/, const glm::vec3& /*ref*/, glm::vec2 /*u*/) {
+    return {};
+}
+float pdf_li(const DummyLight& /*l*/, const glm::vec3& /*ref*/, const glm::vec3& /*p*/) {
+    return 0.0f;
+}
+glm::vec3 power(const DummyLight& /*l*/) { return {}; }
+static_assert(LightKind<DummyLight>);
+
+struct NoType {
+    [[nodiscard]] glm::vec3 surface_normal(const glm::vec3& /*p*/) const { return {}; }
+    [[nodiscard]] LightBounds bounds() const { return {}; }
+    void preprocess(const SceneSummary& /*scene*/) {}
+};
+struct NoPreprocess {
+    [[nodiscard]] LightType type() const { return LightType::Area; }
+    [[nodiscard]] glm::vec3 surface_normal(const glm::vec3& /*p*/) const { return {}; }
+    [[nodiscard]] LightBounds bounds() const { return {}; }
+};
+struct NoSampling {  // the members, but no sample_li / pdf_li / power
+    [[nodiscard]] LightType type() const { return LightType::Area; }
+    [[nodiscard]] glm::vec3 surface_normal(const glm::vec3& /*p*/) const { return {}; }
+    [[nodiscard]] LightBounds bounds() const { return {}; }
+    void preprocess(const SceneSummary& /*scene*/) {}
+};
+struct WrongNormal {  // surface_normal answering the wrong type
+    [[nodiscard]] LightType type() const { return LightType::Area; }
+    [[nodiscard]] float surface_normal(const glm::vec3& /*p*/) const { return 0.0f; }
+    [[nodiscard]] LightBounds bounds() const { return {}; }
+    void preprocess(const SceneSummary& /*scene*/) {}
+};
+LightLiSample sample_li(const WrongNormal& /*l*/, const glm::vec3& /*ref*/, glm::vec2 /*u*/) {
+    return {};
+}
+float pdf_li(const WrongNormal& /*l*/, const glm::vec3& /*ref*/, const glm::vec3& /*p*/) {
+    return 0.0f;
+}
+glm::vec3 power(const WrongNormal& /*l*/) { return {}; }
+static_assert(!LightKind<NoType> && !LightKind<NoPreprocess> && !LightKind<NoSampling> &&
+              !LightKind<WrongNormal>);
 
 // One or more examples of each kind, as Scene adds them; no fallback, so a new
 // LightSource alternative needs its own overload here before this file compiles.

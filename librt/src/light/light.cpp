@@ -1,4 +1,5 @@
 #include "light/light_bounds.h"
+#include "light/light_kind.h"
 
 #include <librt/light/light.h>
 
@@ -9,25 +10,11 @@
 namespace librt {
 namespace {
 
-/// What every light kind answers for itself (light.h): the members the dispatch below
-/// and the light sampler call, with the types they must return.
-template <class Kind>
-concept LightKind = requires(const Kind& light, Kind& mutable_light, const glm::vec3& p,
-                             const SceneSummary& scene, const glm::vec3& ref, glm::vec2 u) {
-    { light.type() } -> std::same_as<LightType>;
-    { light.surface_normal(p) } -> std::same_as<glm::vec3>;
-    { light.bounds() } -> std::same_as<LightBounds>;
-    mutable_light.preprocess(scene);
-    { sample_li(light, ref, u) } -> std::same_as<LightLiSample>;
-    { pdf_li(light, ref, p) } -> std::same_as<float>;
-    { power(light) } -> std::same_as<glm::vec3>;
-};
-
 /// True, or a compile error naming the kind that does not answer.
 template <class Kind>
 constexpr bool answers_for_itself() {
     static_assert(LightKind<Kind>,
-                  "a LightSource alternative must be a LightKind (light.cpp): type(), "
+                  "a LightSource alternative must be a LightKind (light_kind.h): type(), "
                   "surface_normal(p), bounds(), preprocess(scene), sample_li, pdf_li, power");
     return true;
 }
