@@ -17,11 +17,9 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <condition_variable>
 #include <mutex>
 #include <string>
-#include <thread>
 
 using namespace librt;
 using librt::testing::film_test_camera;
@@ -224,56 +222,39 @@ TEST(RenderMpi, RanksGivenDifferentJobsFailOnEveryRank) {
 
 namespace {
 
-// The path tracer, each sample delayed by `delay` (on rank 0 only, or on every rank). The
-// delay only makes an ordering likely (rank 0 finishing after the others); what the tests
-// assert holds for a correct render_mpi whatever the timing.
-class SlowPathTracer final : public Integrator {
+// The path tracer whose samples on rank 0 wait until release() (called by rank 0's
+// progress callback when the render has reached a point the test chooses): rank 0's own
+// rendering thread cannot get past its first sample before then, however the machine
+// schedules the ranks. The hold is per call: hold() before each.
+class HeldOnRankZero final : public Integrator {
 public:
-    SlowPathTracer(std::chrono::microseconds delay, bool rank_zero_only,
-                   const PathTracerSettings& settings = {})
-        : delay_(delay), rank_zero_only_(rank_zero_only), inner_(settings) {}
-    void preprocess(const Scene& scene) override { inner_.preprocess(scene); }
-    [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray,
-                               Sampler& sampler) const override {
-        if (!rank_zero_only_ || world_rank() == 0) std::this_thread::sleep_for(delay_);
-        return inner_.li(scene, ray, sampler);
-    }
-
-private:
-    std::chrono::microseconds delay_;
-    bool rank_zero_only_;
-    PathTracer inner_;
-};
-
-// The path tracer whose samples on rank 0 wait until cancel() (called by rank 0's progress
-// callback) has set the render's cancel flag: rank 0's rendering thread cannot finish its
-// first tile before the cancellation, however the machine schedules the ranks.
-class HeldUntilCancelled final : public Integrator {
-public:
-    HeldUntilCancelled(std::atomic<bool>& flag, const PathTracerSettings& settings)
-        : flag_(flag), inner_(settings) {}
+    explicit HeldOnRankZero(const PathTracerSettings& settings = {}) : inner_(settings) {}
     void preprocess(const Scene& scene) override { inner_.preprocess(scene); }
     [[nodiscard]] glm::vec3 li(const Scene& scene, const Ray& ray,
                                Sampler& sampler) const override {
         if (world_rank() == 0) {
             std::unique_lock<std::mutex> lock(mutex_);
-            cancelled_cv_.wait(lock, [this] { return flag_.load(); });
+            released_cv_.wait(lock, [this] { return released_; });
         }
         return inner_.li(scene, ray, sampler);
     }
-    void cancel() {
+    void hold() {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        released_ = false;
+    }
+    void release() {
         {
             const std::lock_guard<std::mutex> lock(mutex_);
-            flag_ = true;
+            released_ = true;
         }
-        cancelled_cv_.notify_all();
+        released_cv_.notify_all();
     }
 
 private:
-    std::atomic<bool>& flag_;
     PathTracer inner_;
     mutable std::mutex mutex_;
-    mutable std::condition_variable cancelled_cv_;
+    mutable std::condition_variable released_cv_;
+    bool released_ = false;
 };
 
 }  // namespace
@@ -284,24 +265,35 @@ private:
 TEST(RenderMpi, CallsInARowKeepTheirMessagesApart) {
     const Scene scene = film_test_scene();
     const Camera camera = film_test_camera(8, 8);
-    // Rank 0's own rendering thread finishes its tile long after the other ranks have
-    // finished theirs and gone on to the next call.
-    SlowPathTracer integrator(std::chrono::milliseconds(3), true);
+    // Rank 0's own rendering thread holds its tile until rank 0's progress shows every
+    // other tile back: the other ranks finish each call, and go on to the next, before
+    // rank 0 has finished it, in every run (a sleep here only made that order likely).
+    HeldOnRankZero integrator;
+    int ranks = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     MpiRenderSettings s;
     s.render.threads = 1;
-    s.tile_size = 4;  // 4 tiles: with 3 ranks, rank 0 renders one slowly
+    s.tile_size = 4;  // 4 tiles: rank 0's thread holds at most one, the others do the rest
+    if (world_rank() == 0) {
+        s.render.progress = [&integrator, ranks](const RenderProgress& p) {
+            if (ranks == 1 || p.fraction >= 3.0 / 4.0 - 1e-9) integrator.release();
+        };
+    }
+    const auto call = [&](std::uint64_t seed) {
+        integrator.hold();
+        s.render.seed = seed;
+        return render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s);
+    };
     Film first;
-    for (int call = 0; call < 3; ++call) {
-        s.render.seed = static_cast<std::uint64_t>(call);
-        const Film film = render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s);
+    for (int c = 0; c < 3; ++c) {
+        const Film film = call(static_cast<std::uint64_t>(c));
         if (world_rank() == 0) {
-            EXPECT_EQ(uniform_sample_count(film), 1u) << "call " << call;
-            if (call == 0) first = film;
+            EXPECT_EQ(uniform_sample_count(film), 1u) << "call " << c;
+            if (c == 0) first = film;
         }
     }
     // The same settings again give the same film.
-    s.render.seed = 0;
-    const Film again = render_mpi(MPI_COMM_WORLD, scene, camera, integrator, s);
+    const Film again = call(0);
     if (world_rank() == 0) {
         EXPECT_TRUE(same_records(again, first));
     }
@@ -493,41 +485,62 @@ TEST(RenderMpi, AdaptiveSamplingWithSplatsGivesRendersImage) {
     }
 }
 
-// Cancelled on rank 0 after the pilots (its progress passes the pilot's share): every rank
-// returns, cancelled, and no rank waits for a message that never comes. Each sample takes
-// ~100 us on every rank, slow enough for rank 0's progress reports (every 0.1 s) to see
-// the render part-way.
+// Cancelled on rank 0 just after the pilots, with the rest out on the other ranks: every
+// rank returns, cancelled, and no rank waits for a message that never comes (else ctest's
+// TIMEOUT fails the test). Decided by events, not by speed: rank 0's own thread holds its
+// first sample until its progress shows every other pilot back, so the other ranks have
+// sent their last pilots and wait for the counts; once the last pilot is in, rank 0 sets
+// the counts, hands out rest tiles to the waiting ranks, and reports the pilot's end, on
+// which its callback cancels. Alone, rank 0's thread is released at the first report.
 TEST(RenderMpi, AdaptiveSamplingCancelledAfterThePilotStopsEveryRank) {
     const Scene scene = film_test_scene();
     const Camera camera = film_test_camera(16, 12);
-    SlowPathTracer tracer(std::chrono::microseconds(100), false, PathTracerSettings{4, false});
+    HeldOnRankZero tracer(PathTracerSettings{4, false});
     std::atomic<bool> cancel{false};
     MpiRenderSettings s;
-    s.render.samples_per_pixel = 64;  // pilot 16: a quarter of the work
+    s.render.samples_per_pixel = 64;  // pilot 16
     s.render.seed = 2;
+    s.render.threads = 1;
     s.render.adaptive.enabled = true;
     s.render.cancel = &cancel;
-    s.tile_size = 4;
-    double highest = 0.0;
+    s.tile_size = 4;  // 12 tiles
+    constexpr int kTiles = 12;
+    int ranks = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    int pilot_reports = 0;
+    bool completed = false;
     if (world_rank() == 0) {
-        s.render.progress = [&](const RenderProgress& p) {
-            highest = std::max(highest, p.fraction);
-            if (p.fraction > 0.3) cancel = true;
+        // Progress weighs a pilot tile 16 / 64 of a tile: 11 of the 12 pilots are back.
+        const double all_but_one_pilot = 11.0 / 12.0 * 16.0 / 64.0;
+        s.render.progress = [&, ranks, all_but_one_pilot](const RenderProgress& p) {
+            if (ranks == 1 || p.fraction >= all_but_one_pilot - 1e-9) tracer.release();
+            if (p.samples_per_pixel == 16 && p.passes == 0) {
+                ++pilot_reports;
+                cancel = true;
+            }
+            if (p.passes > 0) completed = true;
         };
     }
     MpiRenderStats stats;
     const Film film = render_mpi(MPI_COMM_WORLD, scene, camera, tracer, s, &stats);
     EXPECT_TRUE(stats.cancelled);
     if (world_rank() == 0) {
-        EXPECT_GT(highest, 0.3);
-        EXPECT_LT(highest, 1.0);
-        // Past 0.3 of the work some tile's rest was back, so the counts had been computed,
-        // so every pilot was in: every pixel holds at least its pilot, none past 8 x 64.
-        // (Not "some pixel past its pilot": the first tiles' rests may add nothing, as the
-        // sky above the scene has no noise and keeps the pilot's count.)
+        EXPECT_EQ(pilot_reports, 1);
+        EXPECT_FALSE(completed);
+        // The counts were set, so every pilot was in: every pixel holds at least its pilot,
+        // none past 8 x 64.
         for (const FilmPixel& p : film.pixels) {
             EXPECT_GE(p.samples, 16u);
             EXPECT_LE(p.samples, 8u * 64u);
+        }
+        if (ranks > 1) {
+            // Rank 0's thread rendered at most one pilot tile, so the others rendered at
+            // least 11, and the rank that sent the last of them was handed a rest tile
+            // before the cancel: the cancel reached a rank with the rest out.
+            int others = 0;
+            for (std::size_t r = 1; r < stats.tiles_per_rank.size(); ++r)
+                others += stats.tiles_per_rank[r];
+            EXPECT_GE(others, kTiles);
         }
     }
 }
@@ -543,7 +556,7 @@ TEST(RenderMpi, AdaptiveSamplingCancelledBeforeTheCountsStopsEveryRank) {
     const Scene scene = film_test_scene();
     const Camera camera = film_test_camera(16, 12);
     std::atomic<bool> cancel{false};
-    HeldUntilCancelled tracer(cancel, PathTracerSettings{4, false});
+    HeldOnRankZero tracer(PathTracerSettings{4, false});
     MpiRenderSettings s;
     s.render.samples_per_pixel = 64;  // pilot 16
     s.render.seed = 4;
@@ -557,8 +570,11 @@ TEST(RenderMpi, AdaptiveSamplingCancelledBeforeTheCountsStopsEveryRank) {
         // Progress weighs a pilot tile 16 / 64 of a tile: 11 of the 12 pilots are back.
         const double all_but_one_pilot = 11.0 / 12.0 * 16.0 / 64.0;
         // By value: the constant's scope ends before the render calls this.
-        s.render.progress = [&tracer, ranks, all_but_one_pilot](const RenderProgress& p) {
-            if (ranks == 1 || p.fraction >= all_but_one_pilot - 1e-9) tracer.cancel();
+        s.render.progress = [&tracer, &cancel, ranks, all_but_one_pilot](const RenderProgress& p) {
+            if (ranks == 1 || p.fraction >= all_but_one_pilot - 1e-9) {
+                cancel = true;  // before the release: the released sample's render sees it
+                tracer.release();
+            }
         };
     }
     MpiRenderStats stats;

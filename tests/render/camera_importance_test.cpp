@@ -1,5 +1,7 @@
 #include "film/camera_importance.h"
 
+#include "sampling/sanitizer_scale.h"
+
 #include <librt/film/camera.h>
 #include <librt/film/splat_film.h>
 #include <librt/sampling/filter.h>
@@ -219,7 +221,7 @@ TEST(CameraImportance, DirectionPdfIntegratesToOneOverTheImage) {
         // atan(0.67 / 5) = 7.7 degrees: a cone of 60 degrees holds it all.
         const double cos_max = 0.5;
         const double cone_pdf = 1.0 / (2.0 * std::numbers::pi * (1.0 - cos_max));
-        constexpr int n = 1 << 20;
+        const int n = librt::testing::scaled_samples(1 << 20);  // a tenth under a sanitizer
         Pcg32 rng(21, 22);
         double sum = 0.0, sum_sq = 0.0, sum_we = 0.0, sum_we_sq = 0.0;
         int edge_hits = 0;  // directions on the cone's boundary must miss the image
@@ -424,7 +426,7 @@ void check_identity(const IdentityCase& c) {
     const double area = (a_hi - a_lo) * (b_hi - b_lo);
 
     const glm::vec3 radiance(0.5f, 1.0f, 2.0f);
-    constexpr int n_paths = 1 << 22;
+    const int n_paths = librt::testing::scaled_samples(1 << 22);  // a tenth under a sanitizer
     Pcg32 rng(51, 52);
     double c_max = 0.0;  // the largest C of the green channel (radiance 1)
     for (int k = 0; k < n_paths; ++k) {

@@ -6,6 +6,7 @@
 
 #include "render/integrator_test_util.h"
 #include "render/microfacet_test_util.h"
+#include "sampling/sanitizer_scale.h"
 
 #include <librt/integrator/integrators.h>
 #include <librt/material/bsdf.h>
@@ -87,7 +88,7 @@ TEST(GltfBrdf, EqualsSpecFormulas) {
 // Jacobians (reflection 4 |wo.h|, refraction (wi.h + wo.h / eta)^2 / |wi.h|), from both
 // sides of the surface, and is <= 1.
 TEST(GltfBrdf, RoughDielectricAlbedoMatchesQuadrature) {
-    constexpr int n = 200'000;
+    const int n = librt::testing::scaled_samples(200'000);  // 8 cases: 1.6e6 in all
     for (const float r : {0.3f, 0.8f})
         for (const bool front : {true, false})
             for (const double co : {0.9, 0.4}) {
@@ -174,7 +175,7 @@ double gltf_albedo(const glm::dvec3& wo, const glm::dvec3& c, double metallic, d
 // fresnel_mix gives the diffuse base 1 - F(V.H) of each direction, not 1 - the specular
 // albedo): the library's sampled albedo follows the spec's formula there, excess included.
 TEST(GltfBrdf, GrazingAlbedoIsTheSpecs) {
-    constexpr int n = 400'000;
+    const int n = librt::testing::scaled_samples(400'000);  // 4 cases: 1.6e6 in all
     const glm::dvec3 c(0.8);
     for (const float r : {0.05f, 0.3f})
         for (const double co : {0.05, 0.2}) {

@@ -8,6 +8,7 @@
 #include "integrator/guiding/sd_tree.h"
 #include "integrator_test_util.h"
 #include "sampling/chi_square.h"
+#include "sampling/sanitizer_scale.h"
 
 #include <librt/core/error.h>
 #include <librt/film/camera.h>
@@ -121,12 +122,13 @@ TEST(GuidingQuadTree, PdfIntegratesToOne) {
 
 // sample() follows pdf(): 64 x 64 cells of the square; each cell's expected count is the
 // integral of pdf_square over it, exact from the midpoints of a 2^11 grid (cells of the
-// tree are coarser), against 10^6 samples. Pearson's chi-square, p >= 0.001.
+// tree are coarser), against 10^6 samples (a tenth under a sanitizer). Pearson's
+// chi-square, p >= 0.001.
 TEST(GuidingQuadTree, SampleMatchesPdfChiSquare) {
     const QuadTree tree = trained_quadtree();
     const int cells = 64, fine = 1 << 11, per = fine / cells;
     std::vector<double> expected(std::size_t(cells * cells), 0.0);
-    const double samples = 1e6;
+    const double samples = librt::testing::scaled_samples(1'000'000);
     for (int y = 0; y < fine; ++y)
         for (int x = 0; x < fine; ++x) {
             const float p =

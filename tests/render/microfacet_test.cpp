@@ -8,6 +8,7 @@
 #include "render/microfacet_test_util.h"
 #include "sampling/chi_square.h"
 #include "sampling/direction_bins.h"
+#include "sampling/sanitizer_scale.h"
 
 #include <librt/core/error.h>
 #include <librt/material/bsdf.h>
@@ -99,7 +100,10 @@ std::vector<double> expected_in(const testing::DirectionBins& bins,
 // lobe there is the conductor's sampling, checked through its energy by
 // WhiteConductorMatchesGgxSingleScatteringEnergy.
 TEST(Microfacet, SampledDirectionsFollowPdf) {
-    constexpr int n = 100'000;
+    // 56 cases: 5.6e6 samples, a tenth under a sanitizer (sampling/sanitizer_scale.h). The
+    // quadrature of pdf() over each cell does not depend on the count: against a smaller
+    // count's larger standard errors it is only relatively more accurate.
+    const int n = testing::scaled_samples(100'000);
     for (const float r : {0.3f, 0.8f})
         for (const Case& c : rough_cases(r))
             for (const double co : {0.9, 0.5, 0.2, 0.1}) {
@@ -161,7 +165,13 @@ TEST(Microfacet, SampledDirectionsFollowPdf) {
 // (dense where GGX is) carries pdf(wo, wi(h)) times the Jacobian d omega_i / d omega_h
 // into the cell of wi(h), for the reflected and the refracted wi of each h.
 TEST(Microfacet, NarrowLobesFollowPdf) {
-    constexpr int n = 100'000;
+    // Under a sanitizer a tenth of the samples and a coarser grid of normals to match, as
+    // in AnisotropicGgx.SampledDirectionsFollowPdf: a normal's mass lands wholly in one
+    // cell, an error first order in the node spacing, which stays the same fraction of a
+    // count's standard error with nodes per axis in proportion to sqrt(n).
+    const int n = testing::scaled_samples(100'000);
+    const double grid = std::sqrt(n / 100'000.0);
+    const int n_psi = static_cast<int>(2400 * grid), n_phi = static_cast<int>(960 * grid);
     for (const float r : {0.05f, 0.3f})
         for (const Case& c : rough_cases(r)) {
             if (c.material.kind == MaterialKind::MetallicRoughness) continue;  // diffuse lobe
@@ -206,7 +216,7 @@ TEST(Microfacet, NarrowLobesFollowPdf) {
                             }
                         }
                     },
-                    2400, 960);
+                    n_psi, n_phi);
                 expected.back() = std::max(0.0, n - n * integral);
                 // (pdf() > 0 at every sample: SampleWeightIsEvalCosOverPdf.)
                 testing::expect_chi_square_passes(observed, expected,
@@ -218,7 +228,7 @@ TEST(Microfacet, NarrowLobesFollowPdf) {
 // Directional albedo (Monte Carlo mean of the sampled weight f cos / pdf) <= 1 per channel
 // at every angle, within 4 standard errors.
 TEST(Microfacet, DirectionalAlbedoAtMostOne) {
-    constexpr int n = 50'000;
+    const int n = testing::scaled_samples(50'000);  // 87 cases: 4.4e6 samples in all
     for (const float r : kRoughness)
         for (const Case& c : rough_cases(r))
             for (const double co : {1.0, 0.7, 0.3, 0.05, 0.01}) {
@@ -239,7 +249,7 @@ TEST(Microfacet, DirectionalAlbedoAtMostOne) {
 // single-scattering energy E(mu_o) = integral of D G2 / (4 mu_o) over the hemisphere;
 // the library's sampled mean weight against the test's own quadrature over normals.
 TEST(Microfacet, WhiteConductorMatchesGgxSingleScatteringEnergy) {
-    constexpr int n = 200'000;
+    const int n = testing::scaled_samples(200'000);  // 9 cases: 1.8e6 samples in all
     for (const float r : kRoughness) {
         const Material m = Material::conductor(glm::vec3(1.0f), glm::vec3(1000.0f), r);
         const double alpha = double(r) * r;

@@ -289,7 +289,16 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
     int gathered = 0;
     int gathered_pilots = 0;
     double last_report = -1.0;
+    // Checked at the top of every round, not only when no message waits: a stream of
+    // messages must not delay a cancel, nor let the render finish past one.
+    const auto check_cancel = [&] {
+        if (s.render.cancel != nullptr && s.render.cancel->load() && !stopping) {
+            stats.cancelled = true;
+            stop("cancelled on rank 0");
+        }
+    };
     while (active > 0 || !local_done.load()) {
+        check_cancel();
         // Every pilot back (the local thread's too): the counts, from the whole image.
         if (pilot > 0 && !stopping && !counts_ready.load() &&
             gathered_pilots + local_pilots.load() == count) {
@@ -297,6 +306,13 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
                 counts = plan.counts(half, film);  // the sequence's step between its stages
                 counts_ready = true;
                 for (const int w : std::exchange(waiting, {})) answer(w);
+                // The pilot is a stage's end: reported as it happens (the rest already out
+                // to the waiting ranks), so a caller may act on it, as on a pass's end.
+                if (s.render.progress) {
+                    s.render.progress(
+                        {double(pilot) / double(spp), seconds_since(start), 0, pilot});
+                    check_cancel();
+                }
             } catch (...) {
                 stop("rank 0 failed: " + message_of(std::current_exception()));
             }
@@ -349,10 +365,6 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
                      " from rank " + std::to_string(source));
             }
             continue;  // drain every waiting message before napping
-        }
-        if (s.render.cancel != nullptr && s.render.cancel->load() && !stopping) {
-            stats.cancelled = true;
-            stop("cancelled on rank 0");
         }
         if (local_done.load() && local_error && !stopping) {
             stop("rank 0 failed: " + message_of(local_error));

@@ -40,8 +40,10 @@ class Scene;
 /// How render_mpi spreads the image over the ranks.
 struct MpiRenderSettings {
     /// samples_per_pixel, seed, threads (per rank), tile_size (threads' tiles within an MPI
-    /// tile), progress (called on rank 0 only, the fraction being tiles gathered), cancel
-    /// (on any rank: the whole job stops).
+    /// tile), progress (called on rank 0 only, the fraction being tiles gathered; with
+    /// adaptive sampling also once as the pilot completes, every pilot in and the counts
+    /// set: {pilot / samples_per_pixel, seconds, 0, pilot}, the one report whose
+    /// samples_per_pixel is the pilot), cancel (on any rank: the whole job stops).
     RenderSettings render;
     int tile_size = 32;  ///< side of the square tiles rank 0 hands out, in [1, 1024]
     bool aovs = false;   ///< the film keeps AOV sums (albedo, normal, depth)
