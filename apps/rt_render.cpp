@@ -11,6 +11,7 @@
 #include "common/scene_app.h"
 
 #include <librt/core/error.h>
+#include <librt/core/untrusted_text.h>
 #include <librt/integrator/bdpt.h>
 #include <librt/integrator/integrators.h>
 #include <librt/io/file_digest.h>
@@ -28,6 +29,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -141,10 +143,11 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// What every rank of an MPI job must agree on (MpiJob::check_same_job): every option that
-// shapes the image or its file, the scene file's and the sky's bytes as digests (the files
-// a glTF or OBJ refers to, .bin, .mtl, textures, are not read here). Not --threads nor
-// --quiet, which may differ between ranks. A new option that shapes the image goes here.
+// What every rank of an MPI job must agree on before loading (MpiJob::check_same_job): every
+// option that shapes the image or its file, the scene file's and the sky's bytes as digests
+// (the files a glTF or OBJ refers to, .bin, .mtl, textures, are compared once loaded:
+// file_items). Not --threads nor --quiet, which may differ between ranks. A new option that
+// shapes the image goes here.
 std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
     const auto exact = [](double v) {  // round-trips a float or double exactly
         char text[32];
@@ -181,6 +184,34 @@ std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
         {"--allow-outside-files", on(o.allow_outside_files)},
         {"--exr-half", on(o.exr_half)},
     };
+}
+
+// What every rank must agree on once the scene is loaded: the digest of every file it was
+// made from (LoadedScene::files_read, from the bytes in memory). The scene file is "scene
+// file", as before loading (its bytes may have changed since); each other file is named by
+// its path relative to the scene file's directory, so that ranks whose scenes lie in
+// different directories compare "textures/wood.png" with "textures/wood.png". A file
+// outside that tree (--allow-outside-files) keeps its canonical path.
+std::vector<std::pair<std::string, std::string>> file_items(const std::filesystem::path& scene,
+                                                            const std::vector<FileRead>& files) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path dir = fs::weakly_canonical(fs::absolute(scene).parent_path(), ec);
+    std::vector<std::pair<std::string, std::string>> items;
+    for (const FileRead& f : files) {
+        if (f.path == scene) {
+            items.emplace_back("scene file", to_string(f.digest));
+            continue;
+        }
+        fs::path shown = fs::weakly_canonical(f.path, ec);
+        if (ec) shown = f.path;
+        const fs::path relative = shown.lexically_relative(dir);
+        if (!relative.empty() && *relative.begin() != "..") shown = relative;
+        // The name comes from the scene file: escaped, whole (names must stay unique; a
+        // path the system opened is at most PATH_MAX long).
+        items.emplace_back("file '" + printable(shown.string()) + "'", to_string(f.digest));
+    }
+    return items;
 }
 
 // The rules, in the order a command line meets them (the first broken one is the error,
@@ -338,6 +369,9 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     const auto t0 = std::chrono::steady_clock::now();
     LoadedScene loaded = load_scene_file(o.scene, file_options);
     const double load_seconds = seconds_since(t0);
+    // Under mpirun: and every file the scene names (a .bin, an image) is the same on every
+    // rank, before the BVH is built.
+    if (job.distributed()) job.check_same_job(file_items(o.scene, loaded.files_read));
     if (root) {
         for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << '\n';
     }

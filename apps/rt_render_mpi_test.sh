@@ -15,8 +15,11 @@
 #   mismatch   ranks given different jobs (MPMD: `mpirun -np 1 app args : -np 1 app other`):
 #              another scene file, --integrator bdpt (whose splats once left the ranks
 #              waiting for each other forever), --spp, --guiding or the output's format on
-#              one rank; every rank must exit non-zero, quickly (under `timeout`, so a hang
-#              fails), nothing written, with the message naming that rank and the item.
+#              one rank; the same scene file text on every rank, each side in its own
+#              directory, naming a .bin (a glTF) or an .mtl (an OBJ) whose bytes differ
+#              there. Every rank must exit non-zero, quickly (under `timeout`, so a hang
+#              fails), nothing written, with the message naming that rank and the item (a
+#              named file by its path relative to the scene file's directory).
 # Usage: rt_render_mpi_test.sh identical|gltf|failures|mismatch <rt_render> <mpirun>
 #        <scratch dir> <data dir>
 set -euo pipefail
@@ -146,6 +149,44 @@ if [ "$mode" = mismatch ]; then
   mismatch "another output format on rank 1" 2 \
     "rank 1: --output differs from rank 0 \(.*frame\.exr vs .*frame\.png\)" \
     "$scene" --spp 4 -o "$out" -- "$scene" --spp 4 -o "$dir/out/frame.exr"
+
+  # The files a scene names. The first ranks read a/, the last b/: the same scene file
+  # text (so the check before loading passes), but the bytes it names differ between the
+  # two directories, as between two machines' disks.
+  mkdir -p "$dir/a/maps" "$dir/b/maps"
+  # One triangle whose positions lie in maps/geometry.bin, 36 bytes of little-endian
+  # floats: (0 0 0) (1 0 0) (0 1 0) in a/, (0 0 0) (0.5 0 0) (0 1 0) in b/.
+  cat >"$dir/a/scene.gltf" <<'GLTF'
+{"asset": {"version": "2.0"},
+ "buffers": [{"uri": "maps/geometry.bin", "byteLength": 36}],
+ "bufferViews": [{"buffer": 0, "byteLength": 36}],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                "min": [0, 0, 0], "max": [1, 1, 0]}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+ "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}
+GLTF
+  cp "$dir/a/scene.gltf" "$dir/b/scene.gltf"
+  zero='\x00\x00\x00\x00' one='\x00\x00\x80\x3f' half='\x00\x00\x00\x3f'
+  printf "$zero$zero$zero$one$zero$zero$zero$one$zero" >"$dir/a/maps/geometry.bin"
+  printf "$zero$zero$zero$half$zero$zero$zero$one$zero" >"$dir/b/maps/geometry.bin"
+  cmp -s "$dir/a/maps/geometry.bin" "$dir/b/maps/geometry.bin" && fail "the two .bin are equal"
+  # Alone, each renders: only their disagreement fails.
+  for side in a b; do
+    "$app" "$dir/$side/scene.gltf" --size 16x16 --spp 1 --quiet -o "$dir/$side/alone.png" \
+      >"$dir/log" 2>&1 || fail "$side/scene.gltf does not render alone: $(cat "$dir/log")"
+  done
+  mismatch "another .bin beside the same .gltf on rank 1" 2 \
+    "rank 1: file 'maps/geometry\.bin' differs from rank 0 \(fnv1a64 [0-9a-f]{16}, 36 bytes vs fnv1a64 [0-9a-f]{16}, 36 bytes\)" \
+    "$dir/a/scene.gltf" --spp 4 -o "$out" -- "$dir/b/scene.gltf" --spp 4 -o "$out"
+  # An OBJ: the same text naming looks.mtl, whose Kd differs in b/.
+  for side in a b; do
+    { echo "mtllib looks.mtl"; echo "usemtl grey"; cat "$scene"; } >"$dir/$side/tetra.obj"
+  done
+  printf 'newmtl grey\nKd 0.5 0.5 0.5\n' >"$dir/a/looks.mtl"
+  printf 'newmtl grey\nKd 0.4 0.5 0.5\n' >"$dir/b/looks.mtl"
+  mismatch "another .mtl beside the same .obj on rank 2 of 3" 3 \
+    "rank 2: file 'looks\.mtl' differs from rank 0 \(fnv1a64 [0-9a-f]{16}, 27 bytes vs fnv1a64 [0-9a-f]{16}, 27 bytes\)" \
+    "$dir/a/tetra.obj" --spp 4 -o "$out" -- "$dir/b/tetra.obj" --spp 4 -o "$out"
   rm -rf "$dir"
   exit 0
 fi

@@ -43,6 +43,18 @@ TEST(FileDigest, IsTheDigestOfEveryByteOverSeveralBlocks) {
     EXPECT_EQ(to_string(empty), "fnv1a64 cbf29ce484222325, 0 bytes");
 }
 
+TEST(FileDigest, OfBytesInMemoryIsTheDigestOfAFileHoldingThem) {
+    // What the loaders take from the bytes they read must equal what a separate read gives.
+    const ScratchDir dir;
+    std::string bytes(3000, '\0');
+    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 131);
+    const FileDigest in_memory = digest_of(bytes);
+    const FileDigest from_file = file_digest(dir.write("bytes.bin", bytes));
+    EXPECT_EQ(in_memory.fnv1a64, from_file.fnv1a64);
+    EXPECT_EQ(in_memory.bytes, 3000u);
+    EXPECT_EQ(to_string(digest_of("")), "fnv1a64 cbf29ce484222325, 0 bytes");
+}
+
 TEST(FileDigest, NamesTheFileItCannotRead) {
     const ScratchDir dir;
     const auto message = [](const std::filesystem::path& p) {

@@ -105,6 +105,8 @@ std::uint64_t memory_bound(const GltfLoadOptions& options, std::uint64_t read) {
 void load(const std::filesystem::path& path, const GltfLoadOptions& options, Context& ctx,
           GltfScene& scene) {
     const std::string bytes = read_regular_file(path, options.max_file_bytes);
+    // Each file's digest is taken from the bytes in memory, never by a second read.
+    scene.files_read.push_back({path, digest_of(bytes)});
     const AllocationReserve reserve(reserve_bytes(bytes.size()));
     const Container container = split_container(bytes, ctx);
     LoadLimits limits;
@@ -145,10 +147,12 @@ void load(const std::filesystem::path& path, const GltfLoadOptions& options, Con
                 break;
             case BufferSource::Kind::File: {
                 auto it = file_bytes.find(b.file);
-                if (it == file_bytes.end())
+                if (it == file_bytes.end()) {
                     it = file_bytes
                              .emplace(b.file, read_regular_file(b.file, options.max_file_bytes))
                              .first;
+                    scene.files_read.push_back({b.file, digest_of(it->second)});
+                }
                 // The pre-pass checked the size; a file that shrank since is caught here.
                 if (it->second.size() < b.byte_length)
                     ctx.fail("buffers", quote_untrusted(b.file) + " shrank while being read");

@@ -368,6 +368,11 @@ void decode_images(const tinygltf::Model& model, const std::vector<ImageSource>&
                              scene.images[i], ctx, path);
         if (problem.empty()) {
             ok[i] = 1;
+            // A file the image came from, listed once even when a buffer names it too.
+            const auto listed = [&](const FileRead& f) { return f.path == source.file; };
+            if (!file_bytes.empty() &&
+                std::none_of(scene.files_read.begin(), scene.files_read.end(), listed))
+                scene.files_read.push_back({source.file, digest_of(file_bytes)});
         } else {
             ctx.warn(path, problem + "; textures using it are ignored (factors alone)");
         }

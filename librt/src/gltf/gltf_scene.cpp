@@ -136,6 +136,7 @@ BBox transformed(const BBox& b, const glm::mat4& m) {
 LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
     LoadedScene out;
     out.warnings = gltf.warnings;
+    out.files_read = std::move(gltf.files_read);
     Scene& scene = out.scene;
 
     // Materials and their textures, added on first use (gltf_scene_materials.cpp).

@@ -30,6 +30,8 @@ FileDigest file_digest(const std::filesystem::path& path) {
     return d;
 }
 
+FileDigest digest_of(std::string_view bytes) { return {fnv1a64(bytes), bytes.size()}; }
+
 std::string to_string(const FileDigest& digest) {
     char text[64];
     std::snprintf(text, sizeof text, "fnv1a64 %016" PRIx64 ", %" PRIu64 " bytes", digest.fnv1a64,

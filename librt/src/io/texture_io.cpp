@@ -24,7 +24,7 @@ constexpr std::uint64_t kMaxTextureFileBytes = std::uint64_t{512} << 20;
 
 }  // namespace
 
-ImageTexture load_texture(const std::filesystem::path& path) {
+ImageTexture load_texture(const std::filesystem::path& path, FileDigest* digest) {
     int w = 0, h = 0, channels = 0;
     const std::string name = path.string();
     // Through the library's one reader (io/file_io.h): a regular file only (a FIFO would
@@ -38,6 +38,7 @@ ImageTexture load_texture(const std::filesystem::path& path) {
     } catch (const Error& e) {
         throw Error(std::string("cannot load texture ") + e.what());
     }
+    if (digest != nullptr) *digest = digest_of(bytes);
     const auto* encoded = reinterpret_cast<const stbi_uc*>(bytes.data());
     const int encoded_size = static_cast<int>(bytes.size());  // <= kMaxTextureFileBytes
     // The header first: refuse a huge image before stb allocates its pixels.

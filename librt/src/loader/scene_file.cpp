@@ -65,6 +65,7 @@ LoadedScene scene_from_obj(const std::filesystem::path& path, const SceneFileOpt
     LoadedScene out;
     ObjLoadOptions obj;
     obj.warnings = &out.warnings;
+    obj.files_read = &out.files_read;
     obj.allow_outside_files = options.allow_outside_files;
     TriangleMesh mesh = load_obj(path, obj);
     if (mesh.triangle_count() == 0) throw Error(path.string() + ": no triangles to render");
@@ -77,6 +78,7 @@ LoadedScene scene_from_obj(const std::filesystem::path& path, const SceneFileOpt
     const std::uint32_t fallback = out.scene.add_material(Material::diffuse(glm::vec3(0.8f)));
     MtlMeshResult added = add_mesh_with_mtl(out.scene, std::move(mesh), fallback);
     for (std::string& w : added.warnings) out.warnings.push_back(std::move(w));
+    for (FileRead& f : added.files_read) out.files_read.push_back(std::move(f));
     if (!emits) out.scene.add_point_light(default_light(out.bounds));
     if (!options.camera.empty()) {
         out.warnings.push_back("camera = " + options.camera +

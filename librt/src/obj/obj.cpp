@@ -125,7 +125,7 @@ void report(const fs::path& path, const std::vector<std::string>& lines,
 /// and their faces get the default material); anything else wrong is an Error.
 void load_mtllibs(const detail::ObjScanResult& scan, const fs::path& obj_path, bool allow_outside,
                   std::vector<MeshMaterial>& materials, std::vector<std::string>& warnings,
-                  std::vector<std::string>& file_warnings) {
+                  std::vector<std::string>& file_warnings, std::vector<FileRead>* files_read) {
     const fs::path dir = obj_path.parent_path();
     const std::string lift =
         " (an OBJ reads only files in its own directory tree; "
@@ -168,6 +168,7 @@ void load_mtllibs(const detail::ObjScanResult& scan, const fs::path& obj_path, b
             request.what = "an MTL file";
             request.max_bytes = kMaxMtlBytes;
             const std::string text = detail::read_regular_file(mtl_path, request);
+            if (files_read != nullptr) files_read->push_back({mtl_path, digest_of(text)});
             const std::size_t first = materials.size();
             detail::parse_mtl(text, mtl_path.string(), materials, file_warnings);
             // map_Kd is relative to the MTL's directory, which is the OBJ's.
@@ -278,9 +279,10 @@ struct ObjMaterials {
 /// definition of a name wins. A name no MTL file defines gets the default material, warned
 /// about once (at its first use) in `warnings`.
 ObjMaterials load_materials(const detail::ObjScanResult& scan, const fs::path& path,
-                            bool allow_outside, std::vector<std::string>& warnings) {
+                            const ObjLoadOptions& options, std::vector<std::string>& warnings) {
     ObjMaterials m;
-    load_mtllibs(scan, path, allow_outside, m.materials, warnings, m.mtl_warnings);
+    load_mtllibs(scan, path, options.allow_outside_files, m.materials, warnings, m.mtl_warnings,
+                 options.files_read);
     std::unordered_map<std::string, std::uint32_t> material_index;
     for (std::size_t i = 0; i < m.materials.size(); ++i) {
         material_index.try_emplace(m.materials[i].name, static_cast<std::uint32_t>(i));
@@ -440,11 +442,13 @@ void add_vertex_attributes(const tinyobj::attrib_t& attrib, const VertexUnifier&
 
 TriangleMesh load_obj(const fs::path& path, const ObjLoadOptions& options) {
     std::string text = read_obj_text(path, options);
+    // The digest before the scan blanks comments in `text`: of the bytes as in the file.
+    if (options.files_read != nullptr) options.files_read->push_back({path, digest_of(text)});
     detail::ObjScanResult scan = scan_and_blank_comments(text, path, options);
     const TinyObjRead read = read_with_tinyobj(text, scan, path);
     std::vector<std::string> warnings = std::move(scan.warnings);
     warnings.insert(warnings.end(), read.messages.begin(), read.messages.end());
-    ObjMaterials materials = load_materials(scan, path, options.allow_outside_files, warnings);
+    ObjMaterials materials = load_materials(scan, path, options, warnings);
 
     const std::size_t nv = read.attrib.vertices.size() / 3;
     if (nv >= std::numeric_limits<std::uint32_t>::max()) {

@@ -58,7 +58,9 @@ MtlMeshResult add_mesh_with_mtl(Scene& scene, TriangleMesh mesh, std::uint32_t f
                 const auto [it, added] = loaded.try_emplace(mtl.diffuse_texture, -1);
                 if (added) {
                     try {
-                        it->second = scene.add_texture(load_texture(mtl.diffuse_texture));
+                        FileDigest digest;
+                        it->second = scene.add_texture(load_texture(mtl.diffuse_texture, &digest));
+                        result.files_read.push_back({mtl.diffuse_texture, digest});
                     } catch (const Error& e) {
                         result.warnings.push_back("MTL material '" + mtl.name + "': " + e.what() +
                                                   "; using its Kd instead");

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <librt/export.h>
+#include <librt/io/file_digest.h>
 
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
@@ -195,6 +196,11 @@ struct GltfScene {
     std::vector<GltfTexture> textures;    ///< every texture, in file order
     std::vector<GltfImage> images;        ///< every image (decoded when a texture uses it)
     std::vector<std::string> warnings;    ///< what was skipped or repaired, "file: path: what"
+    /// Every file the scene was made from, each once, with the digest of its bytes: the glTF
+    /// file (its path as given), then each external buffer, then each image file a texture
+    /// uses (canonical paths). An image that could not be read or decoded (a warning; its
+    /// textures are ignored) is not listed.
+    std::vector<FileRead> files_read;
     /// Triangles stored: over all meshes, each counted once.
     [[nodiscard]] LIBRT_API std::size_t triangles_stored() const;
     /// Triangles placed: over all instances, each mesh counted per instance.

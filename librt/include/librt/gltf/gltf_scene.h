@@ -60,7 +60,8 @@ struct GltfMaterialTextures {
 /// (warned) and is refused for the camera. Throws librt::Error for a camera option naming
 /// no camera ("camera = NAME: ..."), a camera Camera refuses, or a value Scene refuses,
 /// each prefixed with the JSON path of the object concerned ("nodes[4] 'lamp': ..."); the
-/// messages do not name the file (load_scene_file prefixes it).
+/// messages do not name the file (load_scene_file prefixes it). The result's files_read
+/// is gltf.files_read.
 [[nodiscard]] LIBRT_API LoadedScene scene_from_gltf(GltfScene gltf,
                                                     const SceneFileOptions& options = {});
 

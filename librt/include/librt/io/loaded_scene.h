@@ -3,6 +3,7 @@
 #include <librt/export.h>
 #include <librt/film/camera.h>
 #include <librt/geometry/bbox.h>
+#include <librt/io/file_digest.h>
 #include <librt/light/point_light.h>
 #include <librt/scene/scene.h>
 
@@ -39,6 +40,14 @@ struct LoadedScene {
     std::size_t triangles_stored = 0;   ///< triangles held once per prototype / mesh
     std::size_t triangles_placed = 0;   ///< triangles over all instances
     BBox bounds;                        ///< world bounds of the geometry
+    /// Every file the scene was made from, each distinct file once, in the order read: the
+    /// scene file first (its path as given), then the files it names (glTF buffers and the
+    /// images textures use; an OBJ's MTL files and map_Kd images) by the path they were
+    /// opened at. An image that could not be read or decoded (a warning) is not listed.
+    /// Each digest is of the bytes the loader used, taken from memory (no file is read
+    /// twice): what the ranks of an MPI job compare, so that none renders a different .bin
+    /// or texture unnoticed.
+    std::vector<FileRead> files_read;
 };
 
 /// A camera framing `bounds` (its bounding sphere fills the vertical field of view of

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <librt/export.h>
+#include <librt/io/file_digest.h>
 #include <librt/material/texture.h>
 
 #include <cstdint>
@@ -19,6 +20,9 @@ inline constexpr std::uint64_t kMaxTextureTexels = std::uint64_t{1} << 26u;
 /// such format compresses that well: corrupt or truncated), or is a binary PPM/PGM shorter
 /// than its raster (stb would return uninitialised memory as texels). A PNG whose data
 /// ends short fails to decode (its zlib stream ends before the scanlines do).
-[[nodiscard]] LIBRT_API ImageTexture load_texture(const std::filesystem::path& path);
+/// When `digest` is given it receives the digest of the file's bytes (io/file_digest.h),
+/// taken from the bytes read for decoding: the file is read once.
+[[nodiscard]] LIBRT_API ImageTexture load_texture(const std::filesystem::path& path,
+                                                  FileDigest* digest = nullptr);
 
 }  // namespace librt

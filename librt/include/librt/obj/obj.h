@@ -2,6 +2,7 @@
 
 #include <librt/export.h>
 #include <librt/geometry/mesh.h>
+#include <librt/io/file_digest.h>
 
 #include <glm/mat4x4.hpp>
 
@@ -22,6 +23,10 @@ struct ObjLoadOptions {
     /// given; when null the caller does not want them and they are dropped. librt never
     /// prints: an application prints the list itself (the apps do).
     std::vector<std::string>* warnings = nullptr;
+    /// Where the files read go, with the digest of their bytes (taken from memory, not read
+    /// again): the OBJ (its path as given), then each MTL file found (the OBJ's directory /
+    /// its name), appended when given. map_Kd images are read later, by add_mesh_with_mtl.
+    std::vector<FileRead>* files_read = nullptr;
     /// Files larger than this are refused (librt::Error naming the size and this option)
     /// before a byte is read; 2 GiB by default. The mesh built from an OBJ takes about as
     /// much memory again as the file, so raise it only with memory to match.

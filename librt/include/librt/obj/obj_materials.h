@@ -3,6 +3,7 @@
 #include <librt/export.h>
 #include <librt/geometry/hit.h>
 #include <librt/geometry/mesh.h>
+#include <librt/io/file_digest.h>
 #include <librt/material/material.h>
 #include <librt/scene/scene.h>
 
@@ -31,6 +32,10 @@ struct MtlMeshResult {
     /// file with the reason; such a material keeps its Kd. The library prints nothing:
     /// the caller shows these as it sees fit.
     std::vector<std::string> warnings;
+    /// The texture files this call loaded, each once, with the digest of their bytes (by
+    /// the map_Kd path the mesh gives); one that failed (a warning above) is not listed, nor
+    /// is one already in `textures` (not read again).
+    std::vector<FileRead> files_read;
 };
 
 /// Adds `mesh` to `scene` with its MTL materials: each of mesh.materials becomes a new
