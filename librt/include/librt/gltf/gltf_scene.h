@@ -60,7 +60,9 @@ struct GltfMaterialTextures {
 /// (warned) and is refused for the camera. Throws librt::Error for a camera option naming
 /// no camera ("camera = NAME: ..."), a camera Camera refuses, or a value Scene refuses,
 /// each prefixed with the JSON path of the object concerned ("nodes[4] 'lamp': ..."); the
-/// messages do not name the file (load_scene_file prefixes it).
+/// messages do not name the file (load_scene_file prefixes it). A name from the file is
+/// quoted in messages by quote_untrusted (core/untrusted_text.h: escaped, capped) and every
+/// warning is one printable line; LoadedScene::camera_name keeps the name as it is.
 [[nodiscard]] LIBRT_API LoadedScene scene_from_gltf(GltfScene gltf,
                                                     const SceneFileOptions& options = {});
 
