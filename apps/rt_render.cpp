@@ -386,11 +386,12 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     if (!o.quiet && root) {
         std::printf(
             "%s: %zu triangles stored, %zu placed, %zu instances, %zu lights, BVH %.1f MiB; "
-            "load %.2f s, build %.2f s; camera '%s' (%s) %dx%d\n",
-            o.scene.c_str(), loaded.triangles_stored, loaded.triangles_placed,
+            "load %.2f s, build %.2f s; camera %s (%s) %dx%d\n",
+            printable(o.scene).c_str(), loaded.triangles_stored, loaded.triangles_placed,
             loaded.scene.instance_count(), loaded.scene.lights().size(),
             double(loaded.scene.top_level().memory_bytes()) / (1024.0 * 1024.0), load_seconds,
-            build_seconds, loaded.camera_name.c_str(),
+            // The name is the file's, as it is: quoted as untrusted text (escaped, capped).
+            build_seconds, quote_untrusted(loaded.camera_name).c_str(),
             camera_settings.projection == Projection::Orthographic ? "orthographic" : "perspective",
             camera.width(), camera.height());
         std::fflush(stdout);

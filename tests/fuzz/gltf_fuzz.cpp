@@ -1,9 +1,9 @@
 // libFuzzer target: arbitrary bytes as a glTF file (.glb or .gltf, told apart by content)
 // -> load_gltf -> consistency of what it returns -> the Scene built from it, committed, and
 // a few pixels rendered, so what the loader passes on is fuzzed too. Any outcome but a
-// consistent GltfScene and finite pixels, or a librt::Error, is a bug (crash, hang,
-// sanitizer report, huge allocation).
-// Run: ./build/fuzz/tests/fuzz/gltf_fuzz -max_total_time=60 tests/fuzz/corpus/gltf
+// consistent GltfScene, printable warnings and finite pixels, or a librt::Error, is a bug (crash,
+// hang, sanitizer report, huge allocation). Run: ./build/fuzz/tests/fuzz/gltf_fuzz
+// -max_total_time=60 tests/fuzz/corpus/gltf
 
 #include <librt/core/error.h>
 #include <librt/gltf/gltf.h>
@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -35,6 +36,13 @@ std::filesystem::path scratch_file() {
 
 void check(bool ok) {
     if (!ok) __builtin_trap();
+}
+
+/// Every warning is one printable line (docs/robustness.md, "Its strings reach messages
+/// escaped and short"): no control character a file could put there survives.
+void check_printable(const std::vector<std::string>& warnings) {
+    for (const std::string& w : warnings)
+        for (const char c : w) check(static_cast<unsigned char>(c) >= 0x20 && c != 0x7f);
 }
 
 }  // namespace
@@ -68,10 +76,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             check(img.rgba.size() == std::size_t(img.width) * std::size_t(img.height) * 4);
         }
         (void)scene.triangles_placed();
+        check_printable(scene.warnings);
         // What the loader passed on, built, committed and rendered (4 x 4, 1 sample).
         librt::SceneFileOptions file_options;
         file_options.width = file_options.height = 4;
         librt::LoadedScene loaded = librt::scene_from_gltf(scene, file_options);
+        check_printable(loaded.warnings);
         loaded.scene.commit();
         librt::PathTracer path_tracer;
         librt::RenderSettings settings;

@@ -170,4 +170,26 @@ inline std::string tiny_png() {
     return out;
 }
 
+/// A w x h baseline JPEG of a colour gradient (quality 90): texture data that a truncated
+/// copy of spoils.
+inline std::string small_jpeg(int w, int h) {
+    std::vector<unsigned char> px(std::size_t(w) * std::size_t(h) * 3);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            unsigned char* p = &px[(std::size_t(y) * std::size_t(w) + std::size_t(x)) * 3];
+            p[0] = static_cast<unsigned char>(x * 255 / w);
+            p[1] = static_cast<unsigned char>(y * 255 / h);
+            p[2] = static_cast<unsigned char>((x ^ y) & 0xff);
+        }
+    }
+    std::string out;
+    stbi_write_jpg_to_func(
+        [](void* ctx, void* data, int size) {
+            static_cast<std::string*>(ctx)->append(static_cast<const char*>(data),
+                                                   std::size_t(size));
+        },
+        &out, w, h, 3, px.data(), 90);
+    return out;
+}
+
 }  // namespace librt::testing

@@ -7,11 +7,16 @@
 
 #include <librt/core/untrusted_text.h>
 #include <librt/gltf/gltf.h>
+#include <librt/gltf/gltf_scene.h>
+#include <librt/io/texture_io.h>
+#include <librt/loader/scene_file.h>
 #include <librt/obj/obj.h>
+#include <librt/obj/obj_materials.h>
 
 #include <gtest/gtest.h>
 
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -159,6 +164,78 @@ TEST(UntrustedGltf, ImageOutsideTheSceneTreeIsRefused) {
     EXPECT_EQ(t.images[0].width, 2);
 }
 
+TEST(UntrustedGltf, ImageThatIsADirectoryFifoOrDeviceIsNamedForWhatItIs) {
+    // Such an image was once reported as "no such file". Each is a warning (the model
+    // renders without that texture), naming the image, its uri and what the path is; a
+    // FIFO is never opened (the load would block).
+    ScratchDir dir;
+    fs::create_directories(dir.path() / "scene" / "sub");
+    std::string bin;
+    (void)triangle_with_buffer_uri("x", &bin);
+    dir.write("scene/tri.bin", bin);
+    ASSERT_EQ(::mkfifo((dir.path() / "scene" / "pipe").c_str(), 0600), 0);
+    const auto warning_for = [&](const std::string& name, const std::string& uri,
+                                 const GltfLoadOptions& options) {
+        const fs::path p = dir.write("scene/" + name, textured_with_image_uri(uri));
+        const GltfScene s = load_gltf(p, options);
+        EXPECT_EQ(s.textures.at(0).image, -1) << uri;
+        return lt::joined(s.warnings);
+    };
+    const GltfLoadOptions plain;
+    std::string all = warning_for("d.gltf", "sub", plain);
+    EXPECT_TRUE(has(all,
+                    "d.gltf: images[0]: 'sub': a directory, not a file; textures using it "
+                    "are ignored"))
+        << all;
+    all = warning_for("f.gltf", "pipe", plain);
+    EXPECT_TRUE(has(all, "f.gltf: images[0]: 'pipe': a FIFO, not a file; textures")) << all;
+    // A device: a symlink to /dev/zero leads out of the tree and is refused as such...
+    fs::create_symlink("/dev/zero", dir.path() / "scene" / "zero");
+    const fs::path z = dir.write("scene/z.gltf", textured_with_image_uri("zero"));
+    expect_outside_refused(z, "images[0].uri");
+    // ...and with files outside allowed, the device itself is named.
+    GltfLoadOptions trusted;
+    trusted.allow_outside_files = true;
+    all = warning_for("z2.gltf", "/dev/zero", trusted);
+    EXPECT_TRUE(has(all, "z2.gltf: images[0]: '/dev/zero': a character device, not a file")) << all;
+    all = warning_for("z3.gltf", "zero", trusted);
+    EXPECT_TRUE(has(all, "a character device, not a file")) << all;
+}
+
+TEST(UntrustedGltf, TruncatedJpegImageIsCalledATruncatedJpeg) {
+    // stb keeps the last format's complaint: a truncated JPEG was reported as "bad png sig"
+    // (the PNG test runs before the JPEG decoder) or "unknown image type".
+    ScratchDir dir;
+    std::string bin;
+    (void)triangle_with_buffer_uri("x", &bin);
+    dir.write("tri.bin", bin);
+    const std::string jpeg = lt::small_jpeg(64, 64);
+    ASSERT_GT(jpeg.size(), 400u);
+    // Cut after its frame header (the size reads, the decoding fails) and inside it.
+    for (const std::size_t cut : {std::size_t(200), std::size_t(100), jpeg.size() / 2}) {
+        const std::string n = std::to_string(cut);
+        dir.write("t" + n + ".jpg", jpeg.substr(0, cut));
+        const GltfScene s =
+            load_gltf(dir.write("t" + n + ".gltf", textured_with_image_uri("t" + n + ".jpg")));
+        const std::string all = lt::joined(s.warnings);
+        EXPECT_TRUE(has(all, "images[0]: cannot decode: a corrupt or truncated JPEG")) << all;
+        EXPECT_FALSE(has(all, "png")) << all;
+        EXPECT_FALSE(has(all, "unknown image type")) << all;
+        EXPECT_EQ(s.textures.at(0).image, -1);
+        // The same file as an OBJ's map_Kd (load_texture).
+        const std::string msg =
+            error_of([&] { (void)load_texture(dir.path() / ("t" + n + ".jpg")); });
+        EXPECT_TRUE(has(msg, "t" + n + ".jpg: a corrupt or truncated JPEG")) << msg;
+        EXPECT_FALSE(has(msg, "png")) << msg;
+    }
+    // The whole file decodes: the JPEG itself is sound.
+    dir.write("whole.jpg", jpeg);
+    const GltfScene whole =
+        load_gltf(dir.write("whole.gltf", textured_with_image_uri("whole.jpg")));
+    ASSERT_EQ(whole.textures.at(0).image, 0) << lt::joined(whole.warnings);
+    EXPECT_EQ(whole.images[0].width, 64);
+}
+
 TEST(UntrustedGltf, SceneGivenWithoutADirectoryCannotReadAbsolutePaths) {
     // A scene path with no directory part once let an absolute uri through as it was.
     ScratchDir dir;
@@ -250,6 +327,144 @@ TEST(UntrustedGltf, ControlCharactersInNamesAreEscapedAndLongValuesCapped) {
     EXPECT_TRUE(has(all, "extensionsUsed[0]: extension 'EXT_x\\r\\nwarning: forged'")) << all;
     for (const std::string& w : s.warnings)
         for (const char c : w) EXPECT_GE(static_cast<unsigned char>(c), 0x20) << w;
+}
+
+namespace {
+
+/// A name carrying what a hostile file would put in one: a colour escape, BEL, CR/LF and a
+/// forged line.
+const std::string kHostileName = "x\x1b[31m\a\r\nwarning: forged";
+/// kHostileName as messages must show it: escaped, on one line.
+const std::string kHostileShown = "'x\\x1b[31m\\x07\\r\\nwarning: forged'";
+
+/// Fails for every control character (C0 or DEL) in `text`: a message must be one line
+/// that cannot restyle the terminal.
+void expect_printable(const std::string& text) {
+    for (const char c : text) {
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+            ADD_FAILURE() << "control character " << int(c) << " in: " << printable(text);
+            return;
+        }
+    }
+}
+
+/// Checks each warning: printable, and short although names of 10,000 bytes went in.
+void expect_safe_warnings(const std::vector<std::string>& warnings) {
+    for (const std::string& w : warnings) {
+        expect_printable(w);
+        EXPECT_LT(w.size(), 600u) << "a 10,000-byte name is quoted whole: " << w.substr(0, 300);
+    }
+}
+
+}  // namespace
+
+TEST(UntrustedGltf, NamesInSceneWarningsAndErrorsAreEscapedAndCapped) {
+    // scene_from_gltf's own warnings (nodes and lights scaled to zero, a light's range, a
+    // material's ior, an orthographic camera's aspect) once quoted names raw.
+    const std::string long_name(10000, 'n');
+    GltfBuilder b = lt::one_triangle();
+    b.doc["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_ior"};
+    b.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
+        {{"type", "spot"}, {"name", kHostileName}, {"spot", json::object()}},
+        {{"type", "point"}, {"name", long_name}, {"range", 5}}};
+    b.doc["materials"] = {
+        {{"name", kHostileName}, {"extensions", {{"KHR_materials_ior", {{"ior", 0}}}}}}};
+    b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    b.doc["cameras"] = {
+        {{"type", "orthographic"},
+         {"name", kHostileName},
+         {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 100}}}},
+        {{"type", "perspective"},
+         {"name", long_name},
+         {"perspective", {{"yfov", 0.7}, {"znear", 0.1}}}}};
+    const json light0 = {{"KHR_lights_punctual", {{"light", 0}}}};
+    const json light1 = {{"KHR_lights_punctual", {{"light", 1}}}};
+    b.doc["nodes"].push_back({{"mesh", 0}, {"scale", {0, 0, 0}}, {"name", kHostileName}});
+    b.doc["nodes"].push_back({{"mesh", 0}, {"scale", {0, 0, 0}}, {"name", long_name}});
+    b.doc["nodes"].push_back({{"scale", {0, 0, 0}}, {"extensions", light0}});
+    b.doc["nodes"].push_back({{"translation", {0, 2, 0}}, {"extensions", light1}});
+    b.doc["nodes"].push_back({{"camera", 0}, {"translation", {0, 0, 3}}});
+    b.doc["nodes"].push_back({{"camera", 1}, {"translation", {0, 0, 4}}});
+    b.doc["scenes"][0]["nodes"] = {0, 1, 2, 3, 4, 5, 6};
+    ScratchDir dir;
+    const fs::path p = dir.write("names.gltf", b.gltf());
+    SceneFileOptions options;
+    options.width = 40;  // 2:1 against the orthographic camera's 1:1: a warning
+    options.height = 20;
+
+    const LoadedScene loaded = load_scene_file(p, options);
+    const std::string all = lt::joined(loaded.warnings);
+    EXPECT_TRUE(has(all, "nodes[1] " + kHostileShown + ": its world transform is singular")) << all;
+    EXPECT_TRUE(has(all, "nodes[2] 'nnnnn")) << all;
+    EXPECT_TRUE(has(all, "extensions.KHR_lights_punctual.lights[0] " + kHostileShown +
+                             " placed by nodes[3]: its world transform is singular"))
+        << all;
+    EXPECT_TRUE(has(all, "extensions.KHR_lights_punctual.lights[1] 'nnnnn")) << all;
+    EXPECT_TRUE(has(all, "materials[0] " + kHostileShown + ": KHR_materials_ior 0")) << all;
+    EXPECT_TRUE(has(all, "orthographic camera " + kHostileShown + ": xmag / ymag")) << all;
+    expect_safe_warnings(loaded.warnings);
+    // The name itself is kept as the file gives it (the app quotes it when it prints it).
+    EXPECT_EQ(loaded.camera_name, kHostileName);
+
+    // scene_from_gltf called directly: the same, and the GltfScene keeps the real names.
+    GltfScene gltf = load_gltf(p);
+    ASSERT_GE(gltf.instances.size(), 3u);
+    EXPECT_EQ(gltf.instances[1].node_name, kHostileName);
+    EXPECT_EQ(gltf.instances[2].node_name, long_name);
+    expect_safe_warnings(scene_from_gltf(std::move(gltf), options).warnings);
+
+    // An error that lists the cameras, and one naming the camera it refuses.
+    options.camera = "no such";
+    std::string msg = error_of([&] { (void)load_scene_file(p, options); });
+    EXPECT_TRUE(has(msg, "(cameras: 0 " + kHostileShown + ", 1 'nnnn")) << msg;
+    EXPECT_LT(msg.size(), 600u) << msg.substr(0, 300);
+    b.doc["nodes"][5]["scale"] = {0, 0, 0};
+    options.camera.clear();
+    msg = error_of([&] { (void)load_scene_file(dir.write("flat.gltf", b.gltf()), options); });
+    EXPECT_TRUE(has(msg, "cameras[0] " + kHostileShown + " placed by nodes[5]: its world")) << msg;
+}
+
+TEST(UntrustedObj, MtlMaterialNamesAreEscapedAndTheirMessagesNameTheFile) {
+    // add_mesh_with_mtl's warning for a texture that does not load once quoted the MTL
+    // name raw and did not say which file defined it.
+    ScratchDir dir;
+    const std::string long_name(10000, 'm');
+    // ESC and BEL stay in an MTL name (CR and LF end its line).
+    const std::string name = "red\x1b[31m\aX";
+    dir.write("m.mtl", "newmtl " + name + "\nKd 1 0 0\nmap_Kd missing.png\n\nnewmtl " + long_name +
+                           "\nKd 0 1 0\nmap_Kd gone.png\n");
+    const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    const fs::path obj = dir.write("m.obj", "mtllib m.mtl\n" + tri + "usemtl " + name +
+                                                "\nf 1 2 3\nusemtl " + long_name + "\nf 1 3 2\n");
+    const std::string mtl = (dir.path() / "m.mtl").string();
+    const std::string shown = "'red\\x1b[31m\\x07X'";
+
+    const LoadedScene loaded = load_scene_file(obj);
+    const std::string all = lt::joined(loaded.warnings);
+    EXPECT_TRUE(has(all, mtl + ":1: MTL material " + shown + ": cannot load texture")) << all;
+    EXPECT_TRUE(has(all, mtl + ":5: MTL material 'mmmm")) << all;
+    EXPECT_TRUE(has(all, "using its Kd instead")) << all;
+    expect_safe_warnings(loaded.warnings);
+
+    // Through the library call itself, and the mesh keeps the names as they are.
+    const TriangleMesh mesh = load_obj(obj);
+    ASSERT_GE(mesh.materials.size(), 2u);
+    EXPECT_EQ(mesh.materials[0].name, name);
+    EXPECT_EQ(mesh.materials[0].defined_at, mtl + ":1");
+    Scene scene;
+    const std::uint32_t fallback = scene.add_material(Material::diffuse(glm::vec3(0.5f)));
+    const MtlMeshResult added = add_mesh_with_mtl(scene, mesh, fallback);
+    ASSERT_EQ(added.warnings.size(), 2u);
+    EXPECT_TRUE(has(added.warnings[0], mtl + ":1: MTL material " + shown)) << added.warnings[0];
+    expect_safe_warnings(added.warnings);
+
+    // A value no Material accepts: the error names the file and line too.
+    dir.write("bad.mtl", "# lamp\nnewmtl " + name + "\nKd 1.5 0 0\n");
+    const fs::path bad =
+        dir.write("bad.obj", "mtllib bad.mtl\n" + tri + "usemtl " + name + "\nf 1 2 3\n");
+    const std::string msg = error_of([&] { (void)load_scene_file(bad); });
+    EXPECT_TRUE(has(msg, (dir.path() / "bad.mtl").string() + ":2: MTL material " + shown + ": "))
+        << msg;
 }
 
 TEST(UntrustedText, PrintableEscapesAndCuts) {

@@ -2,6 +2,7 @@
 // librt reads), textures, samplers and image decoding (stb_image, PNG and JPEG only).
 
 #include "gltf/gltf_internal.h"
+#include "io/image_decode_failure.h"
 #include "io/png_check.h"
 
 #include <librt/core/error.h>
@@ -240,9 +241,9 @@ std::string decode(const unsigned char* bytes, std::size_t size, GltfImage& imag
     if (!png && !jpeg) return "not a PNG or JPEG image";
     if (size > std::size_t(std::numeric_limits<int>::max())) return "larger than 2 GiB";
     int w = 0, h = 0, channels = 0;
+    const std::string_view encoded(reinterpret_cast<const char*>(bytes), size);
     if (stbi_info_from_memory(bytes, int(size), &w, &h, &channels) == 0 || w <= 0 || h <= 0)
-        return std::string("cannot decode: ") +
-               (stbi_failure_reason() ? stbi_failure_reason() : "?");
+        return "cannot decode: " + detail::image_decode_failure(encoded);
     const std::uint64_t texels = std::uint64_t(w) * std::uint64_t(h);
     if (texels > kMaxTexels)
         return std::to_string(w) + " x " + std::to_string(h) + " texels, more than the limit";
@@ -261,16 +262,13 @@ std::string decode(const unsigned char* bytes, std::size_t size, GltfImage& imag
     // refuse a valid 8192^2 image of a few kilobytes, whose output alone fills the
     // 256 MiB every file is allowed (docs/robustness.md).
     if (png) {
-        const detail::PngDataCheck check =
-            detail::check_png_data(std::string_view(reinterpret_cast<const char*>(bytes), size));
+        const detail::PngDataCheck check = detail::check_png_data(encoded);
         if (!check.problem.empty()) return check.problem;
     }
     ctx.spend(texels * 4, path);
     std::unique_ptr<stbi_uc, void (*)(void*)> data(
         stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4), stbi_image_free);
-    if (!data)
-        return std::string("cannot decode: ") +
-               (stbi_failure_reason() ? stbi_failure_reason() : "?");
+    if (!data) return "cannot decode: " + detail::image_decode_failure(encoded);
     image.width = w;
     image.height = h;
     image.rgba.assign(data.get(), data.get() + texels * 4);

@@ -1,6 +1,7 @@
 #include "gltf/gltf_scene_materials.h"
 
 #include <librt/core/error.h>
+#include <librt/core/untrusted_text.h>
 #include <librt/film/camera.h>
 #include <librt/gltf/gltf_scene.h>
 #include <librt/material/texture.h>
@@ -35,7 +36,8 @@ const GltfCamera* choose_camera(const GltfScene& gltf, const std::string& wanted
     auto list = [&gltf]() {
         std::string names;
         for (std::size_t i = 0; i < gltf.cameras.size(); ++i) {
-            names += (i == 0 ? "" : ", ") + std::to_string(i) + " '" + gltf.cameras[i].name + "'";
+            names += (i == 0 ? "" : ", ") + std::to_string(i) + " " +
+                     quote_untrusted(gltf.cameras[i].name);
         }
         return names.empty() ? std::string("none") : names;
     };
@@ -109,7 +111,7 @@ bool places_something(const GltfInstance& inst, std::size_t mesh_count) {
 
 /// "nodes[4] 'name'": a node's JSON path and name, as messages give it.
 std::string node_text(int node, const std::string& name) {
-    return "nodes[" + std::to_string(node) + "] '" + name + "'";
+    return gltf_detail::named("nodes[" + std::to_string(node) + "]", name);
 }
 
 /// Bounds of a primitive's positions.
@@ -235,9 +237,10 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
     // docs/render-your-own-scene.md). Spot and sun shine down the node's local -z.
     std::size_t lights = 0;
     for (const GltfLight& l : gltf.lights) {
-        const std::string who = "extensions.KHR_lights_punctual.lights[" + std::to_string(l.light) +
-                                "] '" + l.name + "' placed by nodes[" + std::to_string(l.node) +
-                                "]";
+        const std::string who =
+            gltf_detail::named(
+                "extensions.KHR_lights_punctual.lights[" + std::to_string(l.light) + "]", l.name) +
+            " placed by nodes[" + std::to_string(l.node) + "]";
         if (l.range > 0.0f && l.type != GltfLight::Type::Directional)
             out.warnings.push_back(who + ": range ignored (infinite)");
         const glm::vec3 position = glm::vec3(l.world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
@@ -281,8 +284,9 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
     // Camera: the file's (placed by its node), else one framing the bounds.
     const GltfCamera* camera = choose_camera(gltf, options.camera);
     if (camera != nullptr) {
-        const std::string who = "cameras[" + std::to_string(camera->camera) + "] '" + camera->name +
-                                "' placed by nodes[" + std::to_string(camera->node) + "]";
+        const std::string who =
+            gltf_detail::named("cameras[" + std::to_string(camera->camera) + "]", camera->name) +
+            " placed by nodes[" + std::to_string(camera->node) + "]";
         // A view direction needs an invertible transform (a node scaled to zero has none).
         if (const std::string why = singular_reason(camera->world); !why.empty())
             throw Error(who + ": " + why + ": no view direction");
@@ -303,8 +307,8 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
             const float image_aspect = float(c.width) / float(c.height);
             if (std::abs(image_aspect * camera->ymag / camera->xmag - 1.0f) > 0.01f) {
                 out.warnings.push_back(
-                    "orthographic camera '" + out.camera_name +
-                    "': xmag / ymag = " + std::to_string(camera->xmag / camera->ymag) +
+                    "orthographic camera " + quote_untrusted(out.camera_name) +
+                    ": xmag / ymag = " + std::to_string(camera->xmag / camera->ymag) +
                     " differs from the image's " + std::to_string(image_aspect) +
                     ": the image is stretched, as glTF's projection does");
             }
@@ -329,6 +333,10 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
         out.camera = default_camera(out.bounds, size.width, size.height);
         out.camera_name = "default";
     }
+    // Every name is quoted by named() above; this keeps any other text from the file (and
+    // messages of the functions called) to one printable line each.
+    for (std::size_t i = gltf.warnings.size(); i < out.warnings.size(); ++i)
+        out.warnings[i] = printable(out.warnings[i], kMaxErrorBytes);
     return out;
 }
 

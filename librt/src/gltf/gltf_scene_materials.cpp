@@ -4,6 +4,7 @@
 #include "gltf/gltf_scene_materials.h"
 
 #include <librt/core/error.h>
+#include <librt/core/untrusted_text.h>
 #include <librt/geometry/tangents.h>
 #include <librt/gltf/gltf_scene.h>
 
@@ -64,6 +65,13 @@ Material material_from_gltf(const GltfMaterial& m, const GltfMaterialTextures& t
 
 namespace gltf_detail {
 
+std::string named(std::string_view json_path, std::string_view name) {
+    std::string out(json_path);
+    out += ' ';
+    out += quote_untrusted(name);
+    return out;
+}
+
 MaterialBuilder::MaterialBuilder(const GltfScene& gltf, Scene& scene,
                                  std::vector<std::string>& warnings)
     : gltf_(gltf),
@@ -110,7 +118,7 @@ const SceneMaterial& MaterialBuilder::material(int index) {
     if (done_[std::size_t(index)]) return out;
     done_[std::size_t(index)] = true;
     const GltfMaterial& m = gltf_.materials[std::size_t(index)];
-    const std::string who = "materials[" + std::to_string(index) + "] '" + m.name + "': ";
+    const std::string who = named("materials[" + std::to_string(index) + "]", m.name) + ": ";
     // One uv set per material (a mesh stores one): the first texture's; a texture on
     // another set is dropped with a warning.
     const std::pair<const GltfTextureRef*, const char*> refs[] = {

@@ -2,7 +2,8 @@
 
 // scene_from_gltf's materials and textures: glTF materials to librt MetallicRoughness
 // materials, their textures to scene textures (once per image, sampler and colour space),
-// and the uv set and tangents a primitive's mesh needs for them. Private to io/.
+// and the uv set and tangents a primitive's mesh needs for them; and named(), how
+// scene_from_gltf's messages give a name from the file. Private to io/.
 
 #include <librt/gltf/gltf.h>
 #include <librt/scene/scene.h>
@@ -10,10 +11,17 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <vector>
 
 namespace librt::gltf_detail {
+
+/// "nodes[4] 'name'": a JSON path and the name the file gives that object, quoted by
+/// quote_untrusted (escaped and capped: a name may hold escape sequences, CR/LF or
+/// megabytes). The one way scene_from_gltf's messages show a name; the data structures
+/// keep the names as they are.
+[[nodiscard]] std::string named(std::string_view json_path, std::string_view name);
 
 /// What a scene material needs from the meshes that use it.
 struct SceneMaterial {

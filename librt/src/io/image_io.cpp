@@ -1,6 +1,7 @@
 #include "io/file_io.h"
 
 #include <librt/core/error.h>
+#include <librt/core/untrusted_text.h>
 #include <librt/io/check_writable.h>
 #include <librt/io/exr.h>
 #include <librt/io/file_extension.h>
@@ -163,7 +164,7 @@ Image read_pfm(const fs::path& path) {
         const std::string_view token = next_token(data, pos);
         const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
         if (ec != std::errc() || end != token.data() + token.size() || v < 1) {
-            throw malformed("bad size '" + std::string(token) + "'");
+            throw malformed("bad size " + quote_untrusted(token));
         }
     }
     const std::string_view scale_token = next_token(data, pos);
@@ -173,7 +174,7 @@ Image read_pfm(const fs::path& path) {
             std::from_chars(scale_token.data(), scale_token.data() + scale_token.size(), scale);
         if (ec != std::errc() || end != scale_token.data() + scale_token.size() || scale == 0.0 ||
             !std::isfinite(scale)) {
-            throw malformed("bad scale '" + std::string(scale_token) + "'");
+            throw malformed("bad scale " + quote_untrusted(scale_token));
         }
     }
     // Exactly one whitespace character separates the header from the raster.

@@ -1,4 +1,5 @@
 #include "io/file_io.h"
+#include "io/image_decode_failure.h"
 #include "io/png_check.h"
 
 #include <librt/core/error.h>
@@ -87,10 +88,8 @@ ImageTexture load_texture(const std::filesystem::path& path, FileDigest* digest)
     }
     std::unique_ptr<stbi_uc, void (*)(void*)> data(
         stbi_load_from_memory(encoded, encoded_size, &w, &h, &channels, 3), stbi_image_free);
-    if (!data) {
-        const char* reason = stbi_failure_reason();
-        throw Error("cannot load texture " + name + ": " + (reason ? reason : "unknown error"));
-    }
+    if (!data)
+        throw Error("cannot load texture " + name + ": " + detail::image_decode_failure(bytes));
     std::array<float, 256> to_linear{};
     for (int i = 0; i < 256; ++i) to_linear[std::size_t(i)] = srgb_to_linear(float(i) / 255.0f);
     std::vector<glm::vec3> texels(std::size_t(w) * std::size_t(h));

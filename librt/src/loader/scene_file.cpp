@@ -108,7 +108,8 @@ LoadedScene scene_from_gltf_file(const std::filesystem::path& path,
     const std::string file = path.string() + ": ";
     try {
         LoadedScene out = scene_from_gltf(std::move(gltf), options);
-        for (std::size_t i = named; i < out.warnings.size(); ++i) out.warnings[i].insert(0, file);
+        for (std::size_t i = named; i < out.warnings.size(); ++i)
+            out.warnings[i] = printable(file + out.warnings[i], kMaxErrorBytes);
         return out;
     } catch (const Error& e) {
         throw Error(file + e.what());

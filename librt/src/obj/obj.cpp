@@ -159,9 +159,9 @@ void load_mtllibs(const detail::ObjScanResult& scan, const fs::path& obj_path, b
                 throw Error(obj_path.string() + ":" + std::to_string(line) + ": mtllib " +
                             quote_untrusted(name) + " leads outside the OBJ's directory" + lift);
             if (!fs::exists(fs::symlink_status(mtl_path, ec)) || !fs::exists(mtl_path, ec)) {
-                warnings.push_back("line " + std::to_string(line) + ": MTL file '" +
-                                   mtl_path.string() +
-                                   "' not found: its materials' faces get the default material");
+                warnings.push_back("line " + std::to_string(line) + ": MTL file " +
+                                   quote_untrusted(mtl_path.string()) +
+                                   " not found: its materials' faces get the default material");
                 continue;
             }
             detail::ReadRequest request;
@@ -295,8 +295,9 @@ ObjMaterials load_materials(const detail::ObjScanResult& scan, const fs::path& p
         if (it != material_index.end()) {
             m.by_name[i] = it->second;
         } else {
-            warnings.push_back("line " + std::to_string(line) + ": usemtl '" + name +
-                               "': no such material in the MTL file(s); its faces get the "
+            warnings.push_back("line " + std::to_string(line) + ": usemtl " +
+                               quote_untrusted(name) +
+                               ": no such material in the MTL file(s); its faces get the "
                                "default material");
         }
     }
@@ -315,8 +316,8 @@ std::size_t count_triangles(const std::vector<tinyobj::shape_t>& shapes, const f
             triangles += n >= 3 ? n - 2u : 0u;
         }
         if (corner_count != shape.mesh.indices.size()) {
-            throw Error(path.string() + ": a face in '" + shape.name +
-                        "' has more than 255 corners (not supported)");
+            throw Error(path.string() + ": a face in " + quote_untrusted(shape.name) +
+                        " has more than 255 corners (not supported)");
         }
     }
     return triangles;

@@ -1,4 +1,5 @@
 #include <librt/core/error.h>
+#include <librt/core/untrusted_text.h>
 #include <librt/io/texture_io.h>
 #include <librt/obj/obj_materials.h>
 
@@ -10,6 +11,15 @@ namespace librt {
 namespace {
 
 bool any_positive(const glm::vec3& v) { return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f; }
+
+/// "scene.mtl:3: MTL material 'red'": where the material was defined, as the OBJ loader's
+/// messages start, and its name quoted as text from a file (escaped and capped).
+std::string material_text(const MeshMaterial& mtl) {
+    std::string out = mtl.defined_at.empty() ? std::string() : mtl.defined_at + ": ";
+    out += "MTL material ";
+    out += quote_untrusted(mtl.name);
+    return out;
+}
 
 }  // namespace
 
@@ -34,7 +44,7 @@ Material material_from_mtl(const MeshMaterial& mtl) {
         }
         return Material::diffuse(mtl.diffuse);
     } catch (const Error& e) {
-        throw Error("MTL material '" + mtl.name + "': " + e.what());
+        throw Error(material_text(mtl) + ": " + e.what());
     }
 }
 
@@ -62,7 +72,8 @@ MtlMeshResult add_mesh_with_mtl(Scene& scene, TriangleMesh mesh, std::uint32_t f
                         it->second = scene.add_texture(load_texture(mtl.diffuse_texture, &digest));
                         result.files_read.push_back({mtl.diffuse_texture, digest});
                     } catch (const Error& e) {
-                        result.warnings.push_back("MTL material '" + mtl.name + "': " + e.what() +
+                        // e.what() names the image file and is printable already.
+                        result.warnings.push_back(material_text(mtl) + ": " + e.what() +
                                                   "; using its Kd instead");
                     }
                 }

@@ -3,6 +3,7 @@
 #include "obj/obj_scan.h"
 
 #include <librt/core/error.h>
+#include <librt/core/untrusted_text.h>
 
 #include <algorithm>
 #include <charconv>
@@ -60,8 +61,8 @@ private:
         throw Error(name_ + ":" + std::to_string(line_) + ": " + what);
     }
     void warn(const std::string& what) {
-        warnings_.push_back(name_ + ":" + std::to_string(line_) + ": material '" + current_.name +
-                            "': " + what);
+        warnings_.push_back(name_ + ":" + std::to_string(line_) + ": material " +
+                            quote_untrusted(current_.name) + ": " + what);
     }
     /// Between lo and hi numbers (no trailing comment counted), each strictly parsed.
     std::vector<float> numbers(std::string_view keyword, std::string_view rest, std::size_t lo,
@@ -155,6 +156,7 @@ void MtlParser::line(std::string_view text, std::size_t number) {
         current_.diffuse = glm::vec3(0.0f);
         current_.illum = 0;
         current_.name = std::string(trim(rest));
+        current_.defined_at = name_ + ":" + std::to_string(number);
         current_line_ = number;
         has_kd_ = has_d_ = false;
         open_ = true;

@@ -26,6 +26,9 @@ struct MeshMaterial {
     int illum = 2;                ///< MTL illumination model
     std::string diffuse_texture;  ///< map_Kd, resolved to a path relative to the working directory;
                                   ///< empty if none
+    /// Where it was defined, "file.mtl:line" of its newmtl, for messages about it (the name
+    /// alone does not say which file); empty for a material not read from a file.
+    std::string defined_at;
 };
 
 /// An indexed triangle mesh. Per-vertex attributes share the positions' indexing;

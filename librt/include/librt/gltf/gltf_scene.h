@@ -60,8 +60,10 @@ struct GltfMaterialTextures {
 /// (warned) and is refused for the camera. Throws librt::Error for a camera option naming
 /// no camera ("camera = NAME: ..."), a camera Camera refuses, or a value Scene refuses,
 /// each prefixed with the JSON path of the object concerned ("nodes[4] 'lamp': ..."); the
-/// messages do not name the file (load_scene_file prefixes it). The result's files_read
-/// is gltf.files_read.
+/// messages do not name the file (load_scene_file prefixes it). A name from the file is
+/// quoted in messages by quote_untrusted (core/untrusted_text.h: escaped, capped) and every
+/// warning is one printable line; LoadedScene::camera_name keeps the name as it is. The
+/// result's files_read is gltf.files_read.
 [[nodiscard]] LIBRT_API LoadedScene scene_from_gltf(GltfScene gltf,
                                                     const SceneFileOptions& options = {});
 

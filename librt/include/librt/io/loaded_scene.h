@@ -33,9 +33,11 @@ struct SceneFileOptions {
 
 /// A scene file as librt renders it.
 struct LoadedScene {
-    Scene scene;                        ///< geometry, materials, lights; not yet committed
-    CameraSettings camera;              ///< pinhole, no pixel jitter (the app chooses that)
-    std::string camera_name;            ///< which camera: the file's name for it, or "default"
+    Scene scene;            ///< geometry, materials, lights; not yet committed
+    CameraSettings camera;  ///< pinhole, no pixel jitter (the app chooses that)
+    /// Which camera: the file's name for it, as the file gives it (show it with
+    /// quote_untrusted: it may hold control characters), or "default".
+    std::string camera_name;
     std::vector<std::string> warnings;  ///< what was skipped or replaced, one line each
     std::size_t triangles_stored = 0;   ///< triangles held once per prototype / mesh
     std::size_t triangles_placed = 0;   ///< triangles over all instances
