@@ -377,7 +377,12 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     }
     if (environment) loaded.scene.add_environment_light(*environment);
     const auto t1 = std::chrono::steady_clock::now();
-    loaded.scene.commit();
+    try {
+        loaded.scene.commit();
+    } catch (const Error& e) {
+        // Out of memory building a loaded scene: say which file it was.
+        throw Error(o.scene + ": " + e.what());
+    }
     const double build_seconds = seconds_since(t1);
     CameraSettings camera_settings = loaded.camera;
     camera_settings.pixel_jitter = PixelJitter::Gaussian;  // anti-aliasing

@@ -175,3 +175,50 @@ TEST(BadHdr, TruncatedOrMisencodedDataIsRefused) {
     msg = error_of([&] { (void)load_hdr_image(dir.write("flat.hdr", flat)); });
     EXPECT_TRUE(has(msg, "flat.hdr: the header claims 4 x 2 texels in a file of")) << msg;
 }
+
+namespace {
+
+// A w x h image of one colour, run-length coded at its shortest: 4 + 8 ceil(w / 127)
+// bytes a scanline, so a few megabytes decode to hundreds of millions of texels.
+std::string constant_hdr(int w, int h, Rgbe colour) {
+    std::string bytes = hdr_header(w, h);
+    const std::string line = rle_scanline(std::vector<Rgbe>(std::size_t(w), colour));
+    bytes.reserve(bytes.size() + line.size() * std::size_t(h));
+    for (int y = 0; y < h; ++y) bytes += line;
+    return bytes;
+}
+
+}  // namespace
+
+// Issue 37, defect 2: loading may take 16 x the bytes read + 256 MiB. A valid 2 MB
+// run-length file of 8192 x 4096 texels decoded to 805 MB of floats and as much again for
+// the image (1.6 GB for 8192^2, measured in docs/robustness.md); it is refused from its
+// header before stb allocates, the message giving the size, the cost and the bound.
+TEST(BadHdr, ValidFileDecodingPastTheMemoryBoundIsRefused) {
+    ScratchDir dir;
+    const std::string bytes = constant_hdr(8192, 4096, Rgbe{128, 128, 128, 129});
+    ASSERT_LT(bytes.size(), std::size_t{3} << 20u);
+    const auto p = dir.write("big_sky.hdr", bytes);
+    const std::uint64_t bound = 16 * std::uint64_t(bytes.size()) + (std::uint64_t{256} << 20u);
+    const std::string msg = error_of([&] { (void)load_hdr_image(p); });
+    EXPECT_TRUE(has(msg, "cannot load HDR image " + p.string() + ": 8192 x 4096 texels")) << msg;
+    // 24 bytes a texel: stb's float RGB and the image made from it.
+    EXPECT_TRUE(has(msg, "would take 805306368 bytes to decode, more than the " +
+                             std::to_string(bound) + " a file of " + std::to_string(bytes.size()) +
+                             " bytes may use"))
+        << msg;
+}
+
+// The bound refuses only what exceeds it: a 2048 x 1024 sky (50 MB decoded) from a file of
+// 140 KB, far more texels per byte than a photograph, still loads with its values.
+TEST(BadHdr, ModerateRunLengthFileWithinTheBoundLoads) {
+    ScratchDir dir;
+    const std::string bytes = constant_hdr(2048, 1024, Rgbe{128, 64, 32, 131});
+    ASSERT_LT(16 * bytes.size(), std::size_t{4} << 20u);
+    const EnvironmentImage image = load_hdr_image(dir.write("sky.hdr", bytes));
+    ASSERT_EQ(image.width, 2048);
+    ASSERT_EQ(image.height, 1024);
+    const glm::vec3 want(rgbe_value(128, 131), rgbe_value(64, 131), rgbe_value(32, 131));
+    EXPECT_EQ(image.pixels.front(), want);
+    EXPECT_EQ(image.pixels.back(), want);
+}

@@ -3,11 +3,13 @@
 // escaped and capped. Every file here is written by the test.
 
 #include "io/gltf_test_util.h"
+#include "robustness/child_process.h"
 #include "robustness/robustness_util.h"
 
 #include <librt/core/untrusted_text.h>
 #include <librt/gltf/gltf.h>
 #include <librt/gltf/gltf_scene.h>
+#include <librt/io/hdr_image.h>
 #include <librt/io/texture_io.h>
 #include <librt/loader/scene_file.h>
 #include <librt/obj/obj.h>
@@ -26,21 +28,15 @@
 #include <string>
 
 using namespace librt;
+using librt::testing::ChildResult;
 using librt::testing::error_of;
 using librt::testing::GltfBuilder;
 using librt::testing::has;
+using librt::testing::in_child;
 using librt::testing::ScratchDir;
 using nlohmann::json;
 namespace fs = std::filesystem;
 namespace lt = librt::testing;
-
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define LIBRT_TEST_SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-#define LIBRT_TEST_SANITIZED 1
-#endif
-#endif
 
 namespace {
 
@@ -486,53 +482,6 @@ TEST(UntrustedText, PrintableEscapesAndCuts) {
 
 namespace {
 
-/// Resident bytes of this process now (/proc/self/statm, field 2, in pages).
-std::uint64_t resident_bytes() {
-    std::ifstream statm("/proc/self/statm");
-    std::uint64_t size = 0, resident = 0;
-    statm >> size >> resident;
-    return resident * std::uint64_t(::sysconf(_SC_PAGESIZE));
-}
-
-struct ChildResult {
-    int exit_code = -1;            ///< 0: loaded, 1: librt::Error, other: crashed
-    std::uint64_t peak_added = 0;  ///< the child's peak resident bytes above the parent's
-    std::string message;           ///< the error's message
-};
-
-/// Runs f in a child process (so its peak memory is its own), under an address-space
-/// limit when `address_limit` is not 0.
-ChildResult in_child(const std::function<void()>& f, std::uint64_t address_limit = 0) {
-    ScratchDir dir;
-    const fs::path message_file = dir.path() / "message";
-    const std::uint64_t base = resident_bytes();
-    std::fflush(nullptr);
-    const pid_t pid = ::fork();
-    if (pid == 0) {
-        if (address_limit != 0) {
-            const rlimit lim{address_limit, address_limit};
-            ::setrlimit(RLIMIT_AS, &lim);
-        }
-        int code = 0;
-        try {
-            f();
-        } catch (const Error& e) {
-            std::ofstream(message_file) << e.what();
-            code = 1;
-        }
-        std::_Exit(code);
-    }
-    int status = 0;
-    rusage usage{};
-    ::wait4(pid, &status, 0, &usage);
-    ChildResult r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    const std::uint64_t peak = std::uint64_t(usage.ru_maxrss) * 1024;
-    r.peak_added = peak > base ? peak - base : 0;
-    r.message = lt::read_file(message_file);
-    return r;
-}
-
 /// Loads `path` in a child: it must load or fail with a librt::Error, and its peak memory
 /// must stay within the bound for `files_read` bytes of files.
 ChildResult expect_bounded_load(const fs::path& path, std::uint64_t files_read) {
@@ -636,14 +585,9 @@ TEST(UntrustedGltfMemory, AllocationFailureIsAnErrorNotAnAbort) {
     const fs::path p = dir.write("nodes.gltf", text);
     GltfLoadOptions unbounded;
     unbounded.max_memory_bytes = std::uint64_t{1} << 40u;
-    std::ifstream statm("/proc/self/statm");
-    std::uint64_t pages = 0;
-    statm >> pages;
-    const std::uint64_t now = pages * std::uint64_t(::sysconf(_SC_PAGESIZE));
     // Failing at different stages: JSON tree, tinygltf's tree, its Model.
     for (const std::uint64_t headroom_mib : {40u, 150u, 400u}) {
-        const ChildResult r =
-            in_child([&] { (void)load_gltf(p, unbounded); }, now + (headroom_mib << 20u));
+        const ChildResult r = in_child([&] { (void)load_gltf(p, unbounded); }, headroom_mib << 20u);
         EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1)
             << headroom_mib << " MiB: crashed with exit " << r.exit_code;
         if (headroom_mib == 40) {
@@ -651,6 +595,116 @@ TEST(UntrustedGltfMemory, AllocationFailureIsAnErrorNotAnAbort) {
         }
         if (r.exit_code == 1) {
             EXPECT_TRUE(has(r.message, "nodes.gltf: out of memory while loading")) << r.message;
+        }
+    }
+}
+
+// ---- out of memory in the other loaders: an Error naming the file, never bad_alloc ----
+// Once, an OBJ scene, an --env sky or the build of a loaded scene under a memory limit
+// let std::bad_alloc out: the apps said "internal error: std::bad_alloc".
+
+namespace {
+
+/// An OBJ of a flat n x n grid of quads (2 n^2 triangles): about 45 bytes a triangle.
+std::string grid_obj(int n) {
+    std::string text;
+    for (int y = 0; y <= n; ++y)
+        for (int x = 0; x <= n; ++x)
+            text += "v " + std::to_string(x) + " " + std::to_string(y) + " 0\n";
+    const auto at = [n](int x, int y) { return std::to_string(y * (n + 1) + x + 1); };
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+            text += "f " + at(x, y) + " " + at(x + 1, y) + " " + at(x + 1, y + 1) + "\nf " +
+                    at(x, y) + " " + at(x + 1, y + 1) + " " + at(x, y + 1) + "\n";
+    return text;
+}
+
+/// Runs `load` in children under address-space limits of the parent's size plus each of
+/// `headroom_mib`: every child must load or fail with a librt::Error (never crash), the
+/// smallest headroom must fail, and every failure must read `expected`. ctest runs each
+/// test in a fresh process, as this needs: after many other tests in one process, the
+/// arenas their threads left (free memory already mapped) can serve a loader's threads
+/// under any limit.
+void expect_out_of_memory_errors(const std::function<void()>& load,
+                                 std::initializer_list<std::uint64_t> headroom_mib,
+                                 const std::string& expected) {
+    bool first = true;
+    for (const std::uint64_t mib : headroom_mib) {
+        const ChildResult r = in_child(load, mib << 20u);
+        EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1)
+            << mib << " MiB: crashed with exit " << r.exit_code;
+        if (first) {
+            EXPECT_EQ(r.exit_code, 1) << mib << " MiB: expected a librt::Error";
+        }
+        if (r.exit_code == 1) {
+            EXPECT_TRUE(has(r.message, expected)) << mib << " MiB: " << r.message;
+        }
+        first = false;
+    }
+}
+
+}  // namespace
+
+TEST(OutOfMemory, ObjSceneIsAnErrorNamingTheFile) {
+#ifdef LIBRT_TEST_SANITIZED
+    GTEST_SKIP() << "a sanitizer reserves terabytes of address space: RLIMIT_AS cannot "
+                    "limit it; checked in the release stage";
+#endif
+    ScratchDir dir;
+    const std::string text = grid_obj(300);  // 180 000 triangles, about 8 MB
+    const fs::path p = dir.write("grid.obj", text);
+    // Failing at different stages: reading the file, tinyobjloader's arrays, the mesh.
+    expect_out_of_memory_errors([&] { (void)load_scene_file(p); }, {4, 24, 48, 96},
+                                p.string() + ": out of memory while loading (allocation failed)");
+}
+
+TEST(OutOfMemory, EnvironmentMapIsAnErrorNamingTheFile) {
+#ifdef LIBRT_TEST_SANITIZED
+    GTEST_SKIP() << "a sanitizer reserves terabytes of address space: RLIMIT_AS cannot "
+                    "limit it; checked in the release stage";
+#endif
+    // 4096 x 2048 texels of one colour run-length coded: 550 KB decoding to 100 MB of
+    // stb's floats, then 100 MB of image (within the loading bound).
+    std::string bytes = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2048 +X 4096\n";
+    std::string line = {2, 2, char(4096 >> 8), char(4096 & 0xFF)};
+    for (const char value : {char(128), char(128), char(128), char(129)}) {
+        for (int x = 0; x < 4096; x += 127) {
+            line += char(128 + std::min(127, 4096 - x));
+            line += value;
+        }
+    }
+    for (int y = 0; y < 2048; ++y) bytes += line;
+    ScratchDir dir;
+    const fs::path p = dir.write("sky.hdr", bytes);
+    // Failing in stb's malloc (its "outofmem"), then in the image's vector; with room for
+    // both it loads (the file is valid).
+    expect_out_of_memory_errors([&] { (void)load_hdr_image(p); }, {4, 140},
+                                "cannot load HDR image " + p.string() +
+                                    ": out of memory while loading (allocation failed)");
+    EXPECT_EQ(in_child([&] { (void)load_hdr_image(p); }, 400u << 20u).exit_code, 0);
+}
+
+TEST(OutOfMemory, CommittingALoadedSceneIsAnError) {
+#ifdef LIBRT_TEST_SANITIZED
+    GTEST_SKIP() << "a sanitizer reserves terabytes of address space: RLIMIT_AS cannot "
+                    "limit it; checked in the release stage";
+#endif
+    ScratchDir dir;
+    const fs::path p = dir.write("grid.obj", grid_obj(300));
+    // Loaded in full, then the limit: the BVH build (threads, scratch arrays) runs out.
+    for (const std::uint64_t mib : {2u, 16u, 32u}) {
+        const ChildResult r = in_child([&] {
+            LoadedScene loaded = load_scene_file(p);
+            lt::limit_address_space(mib << 20u);
+            loaded.scene.commit();
+        });
+        EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1)
+            << mib << " MiB: crashed with exit " << r.exit_code;
+        if (mib == 2) {
+            EXPECT_EQ(r.exit_code, 1) << "expected a librt::Error";
+        }
+        if (r.exit_code == 1) {
+            EXPECT_TRUE(has(r.message, "Scene::commit: out of memory while building")) << r.message;
         }
     }
 }

@@ -12,6 +12,7 @@
 #include <atomic>
 #include <cmath>
 #include <condition_variable>
+#include <exception>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -143,9 +144,18 @@ public:
 
         const unsigned threads = n >= 2 * kGrain ? threads_ : 1u;
         std::vector<std::thread> helpers;
-        for (unsigned t = 1; t < threads; ++t) helpers.emplace_back([this] { worker(); });
+        // Under a memory limit a helper may not start (its stack) or a worker may fail to
+        // allocate: the build then ends with that exception here, never std::terminate.
+        try {
+            helpers.reserve(threads - 1);
+            for (unsigned t = 1; t < threads; ++t) helpers.emplace_back([this] { worker(); });
+        } catch (const std::exception&) {
+            // Fewer helpers (none if the reserve failed: a reallocation must not destroy a
+            // running thread); the workers that run take every task.
+        }
         worker();
         for (std::thread& t : helpers) t.join();
+        if (error_) std::rethrow_exception(error_);
         return finish(n);
     }
 
@@ -160,7 +170,19 @@ private:
         std::vector<SahTask> stack;
     };
 
-    void worker() {
+    /// Takes tasks until none are left; the first exception of any worker is kept in
+    /// error_ and stops them all.
+    void worker() noexcept {
+        try {
+            take_tasks();
+        } catch (...) {
+            const std::lock_guard lock(mutex_);
+            if (!error_) error_ = std::current_exception();
+            ready_.notify_all();
+        }
+    }
+
+    void take_tasks() {
         Scratch s;
         s.bins.resize(3 * std::size_t{bin_count_});
         s.counts.resize(3 * std::size_t{bin_count_});
@@ -169,8 +191,8 @@ private:
             SahTask task;
             {
                 std::unique_lock lock(mutex_);
-                ready_.wait(lock, [&] { return !queue_.empty() || pending_ == 0; });
-                if (queue_.empty()) return;
+                ready_.wait(lock, [&] { return error_ || !queue_.empty() || pending_ == 0; });
+                if (error_ || queue_.empty()) return;
                 task = queue_.back();
                 queue_.pop_back();
             }
@@ -396,7 +418,8 @@ private:
     std::mutex mutex_;  // guards queue_ and pending_
     std::condition_variable ready_;
     std::vector<SahTask> queue_;
-    std::size_t pending_ = 0;  // tasks queued or running
+    std::size_t pending_ = 0;   // tasks queued or running
+    std::exception_ptr error_;  // the first exception a worker threw, guarded by mutex_
 };
 
 }  // namespace

@@ -6,7 +6,10 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <exception>
 #include <memory>
+#include <new>
+#include <system_error>
 #include <thread>
 #include <type_traits>
 #include <vector>
@@ -15,16 +18,40 @@ namespace librt::detail {
 
 /// Runs body(part, begin, end) over [0, n) cut into `parts` contiguous pieces, one thread
 /// each (the calling thread takes part 0); inline when parts is 1. Part p covers
-/// [n p / parts, n (p + 1) / parts), so the split depends only on n and parts.
+/// [n p / parts, n (p + 1) / parts), so the split depends only on n and parts. Parts whose
+/// thread cannot be started (no memory for its stack) run on the calling thread, and an
+/// exception from any part is rethrown here after every thread has joined: under a memory
+/// limit a build fails with bad_alloc, never std::terminate.
 template <class Body>
 void parallel_parts(std::size_t n, unsigned parts, Body&& body) {
     parts = std::max(1u, parts);
+    std::vector<std::exception_ptr> errors(parts);
+    const auto run = [&](unsigned p) noexcept {
+        try {
+            body(p, n * p / parts, n * (p + 1) / parts);
+        } catch (...) {
+            errors[p] = std::current_exception();
+        }
+    };
     std::vector<std::thread> helpers;
-    helpers.reserve(parts - 1);
-    for (unsigned p = 1; p < parts; ++p)
-        helpers.emplace_back([&, p] { body(p, n * p / parts, n * (p + 1) / parts); });
-    body(0u, std::size_t{0}, n / parts);
+    try {
+        helpers.reserve(parts - 1);
+    } catch (const std::bad_alloc&) {
+        // No room for the handles: every part runs here.
+    }
+    unsigned started = 1;
+    // Never past the capacity: a reallocation that failed would destroy a running thread.
+    try {
+        for (; started < parts && helpers.size() < helpers.capacity(); ++started)
+            helpers.emplace_back(run, started);
+    } catch (const std::system_error&) {
+        // The thread did not start; it and the rest run here.
+    }
+    run(0);
+    for (unsigned p = started; p < parts; ++p) run(p);
     for (std::thread& h : helpers) h.join();
+    for (const std::exception_ptr& e : errors)
+        if (e) std::rethrow_exception(e);
 }
 
 /// How many threads a loop over n items gets: one below `grain` items (thread start-up

@@ -10,6 +10,8 @@
 //   gltf.cpp            load_gltf: the stages in order
 // tinygltf types never leave librt/src.
 
+#include "io/file_io.h"
+
 #include <librt/gltf/gltf.h>
 
 #include <tiny_gltf.h>
@@ -111,10 +113,10 @@ struct LoadLimits {
 };
 
 /// The default memory bound of a load: kMemoryPerByteRead times the bytes of the files it
-/// reads, plus kMemoryBaseline.
-inline constexpr std::uint64_t kMemoryPerByteRead = 16;
+/// reads, plus kMemoryBaseline (the library's one bound, io/file_io.h).
+inline constexpr std::uint64_t kMemoryPerByteRead = detail::kLoadMemoryPerByteRead;
 /// See kMemoryPerByteRead.
-inline constexpr std::uint64_t kMemoryBaseline = std::uint64_t{256} << 20u;
+inline constexpr std::uint64_t kMemoryBaseline = detail::kLoadMemoryBaseline;
 
 /// What the JSON pre-pass learned, and the JSON that tinygltf parses.
 struct JsonFacts {

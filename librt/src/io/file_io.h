@@ -23,6 +23,18 @@
 
 namespace librt::detail {
 
+/// The memory a load may take (issue 37): kLoadMemoryPerByteRead times the bytes of the
+/// files it reads, plus kLoadMemoryBaseline; more is refused before it is taken. glTF
+/// charges a whole load against it, the image loaders (HDR, textures) each image.
+inline constexpr std::uint64_t kLoadMemoryPerByteRead = 16;
+/// See kLoadMemoryPerByteRead.
+inline constexpr std::uint64_t kLoadMemoryBaseline = std::uint64_t{256} << 20u;
+
+/// The memory bound of a load that reads `file_bytes` bytes of files.
+[[nodiscard]] constexpr std::uint64_t load_memory_bound(std::uint64_t file_bytes) {
+    return kLoadMemoryPerByteRead * file_bytes + kLoadMemoryBaseline;
+}
+
 /// What read_regular_file is reading, for its messages and its limit.
 struct ReadRequest {
     std::string_view what;        ///< "an OBJ file", "an MTL file", "an image file"...

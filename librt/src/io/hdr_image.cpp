@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <new>
 #include <string>
 #include <string_view>
 
@@ -98,9 +99,11 @@ std::string check_data(std::string_view data, int w, int h) {
     return {};
 }
 
-}  // namespace
+// What the loader holds per texel at its peak: stb's float RGB and the EnvironmentImage
+// made from it, both whole at once.
+constexpr std::uint64_t kDecodedBytesPerTexel = 2 * 3 * sizeof(float);
 
-EnvironmentImage load_hdr_image(const std::filesystem::path& path) {
+EnvironmentImage load(const std::filesystem::path& path) {
     const std::string name = path.string();
     detail::ReadRequest request;
     request.what = "an HDR image file";
@@ -130,11 +133,24 @@ EnvironmentImage load_hdr_image(const std::filesystem::path& path) {
                     std::to_string(bytes.size()) + " bytes (corrupt or truncated)");
     if (const std::string reason = check_data(texels, w, h); !reason.empty())
         throw Error("cannot load HDR image " + name + ": " + reason);
+    // The loading memory bound (io/file_io.h): run-length coding lets a valid 4 MB file
+    // decode to 8192^2 texels, 1.6 GB here; refused before anything is decoded.
+    const std::uint64_t decoded = std::uint64_t(w) * std::uint64_t(h) * kDecodedBytesPerTexel;
+    const std::uint64_t bound = detail::load_memory_bound(bytes.size());
+    if (decoded > bound)
+        throw Error("cannot load HDR image " + name + ": " + std::to_string(w) + " x " +
+                    std::to_string(h) + " texels would take " + std::to_string(decoded) +
+                    " bytes to decode, more than the " + std::to_string(bound) + " a file of " +
+                    std::to_string(bytes.size()) +
+                    " bytes may use (16 times its bytes plus 256 MiB)");
     std::unique_ptr<float, void (*)(void*)> data(
         stbi_loadf_from_memory(encoded, size, &w, &h, &channels, 3), stbi_image_free);
-    if (!data)
-        throw Error("cannot load HDR image " + name + ": " +
-                    (stbi_failure_reason() ? stbi_failure_reason() : "decoding failed"));
+    if (!data) {
+        const char* reason = stbi_failure_reason();
+        // stb's malloc failed: the same message as any other allocation failure.
+        if (reason != nullptr && std::string_view(reason) == "outofmem") throw std::bad_alloc();
+        throw Error("cannot load HDR image " + name + ": " + (reason ? reason : "decoding failed"));
+    }
     EnvironmentImage image;
     image.width = w;
     image.height = h;
@@ -147,6 +163,19 @@ EnvironmentImage load_hdr_image(const std::filesystem::path& path) {
         image.pixels[i] = {p[0], p[1], p[2]};
     }
     return image;
+}
+
+}  // namespace
+
+EnvironmentImage load_hdr_image(const std::filesystem::path& path) {
+    try {
+        return load(path);
+    } catch (const std::bad_alloc&) {
+        // The bound above leaves the rest to the machine: a process under a memory limit
+        // gets an Error naming the file, never std::bad_alloc.
+        throw Error("cannot load HDR image " + path.string() +
+                    ": out of memory while loading (allocation failed)");
+    }
 }
 
 }  // namespace librt

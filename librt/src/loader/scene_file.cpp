@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <new>
 #include <string>
 #include <utility>
 
@@ -142,10 +143,18 @@ const std::vector<SceneFileFormat>& scene_file_formats() {
 
 LoadedScene load_scene_file(const std::filesystem::path& path, const SceneFileOptions& options) {
     const std::string ext = lower_extension(path);
-    for (const SceneFileFormat& format : scene_file_formats())
-        if (std::find(format.extensions.begin(), format.extensions.end(), ext) !=
+    for (const SceneFileFormat& format : scene_file_formats()) {
+        if (std::find(format.extensions.begin(), format.extensions.end(), ext) ==
             format.extensions.end())
+            continue;
+        try {
             return format.load(path, options);
+        } catch (const std::bad_alloc&) {
+            // The one place for every format: a load under a memory limit (the size limits
+            // passed, the machine had less) is an Error naming the file, never bad_alloc.
+            throw Error(path.string() + ": out of memory while loading (allocation failed)");
+        }
+    }
     throw Error(path.string() + ": unknown scene format '" + ext + "' (expected " +
                 known_extensions() + ")");
 }

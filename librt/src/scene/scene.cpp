@@ -348,10 +348,18 @@ void Scene::preprocess_lights() {
 
 void Scene::commit() {
     if (committed_) return;
-    top_.build();
-    make_triangle_lights();
-    preprocess_lights();
-    light_sampler_ = LightSampler(lights_);
+    try {
+        top_.build();
+        make_triangle_lights();
+        preprocess_lights();
+        light_sampler_ = LightSampler(lights_);
+    } catch (const std::bad_alloc&) {
+        // A scene that loaded within its bounds may still not fit the machine: an Error
+        // the apps report, never bad_alloc. The scene stays uncommitted.
+        throw Error(
+            "Scene::commit: out of memory while building the acceleration structures "
+            "and lights (allocation failed)");
+    }
     pass_through_surfaces_ = std::any_of(materials_.begin(), materials_.end(),
                                          [](const Material& m) { return may_pass_through(m); });
     careful_queries_ = cut_outs_ || pass_through_surfaces_;

@@ -10,8 +10,9 @@ namespace librt {
 /// Loads a Radiance .hdr (RGBE) file as linear radiance, rows top to bottom, for
 /// EnvironmentLight::from_image. Throws librt::Error naming the file for a missing,
 /// unreadable, oversized (more than 2^26 pixels) or undecodable file, one whose header
-/// claims more pixels than its data can hold or whose data ends early (both checked before
-/// decoding), or for a pixel that is not finite.
+/// claims more pixels than its data can hold or whose data ends early, one whose decoding
+/// would take more than 16 times its bytes plus 256 MiB (24 bytes a pixel; all checked
+/// before decoding), for a pixel that is not finite, or when memory runs out.
 [[nodiscard]] LIBRT_API EnvironmentImage load_hdr_image(const std::filesystem::path& path);
 
 }  // namespace librt

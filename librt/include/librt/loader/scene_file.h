@@ -36,8 +36,9 @@ struct SceneFileFormat {
 /// Loads a scene file chosen by extension (case-insensitive) from scene_file_formats():
 /// .obj through scene_from_obj, .gltf and .glb through load_gltf and scene_from_gltf.
 /// Throws librt::Error naming the path and every known extension for any other extension,
-/// and the loaders' errors. Every glTF error and warning reads
-/// "path: JSON path: what": scene_from_gltf's (which knows the JSON path, not the file) get
+/// and the loaders' errors; running out of memory in any loader is the Error "path: out of
+/// memory while loading (allocation failed)", never std::bad_alloc. Every glTF error and warning
+/// reads "path: JSON path: what": scene_from_gltf's (which knows the JSON path, not the file) get
 /// the path prefixed here.
 [[nodiscard]] LIBRT_API LoadedScene load_scene_file(const std::filesystem::path& path,
                                                     const SceneFileOptions& options = {});

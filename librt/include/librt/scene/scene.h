@@ -144,8 +144,8 @@ public:
     /// for every id, and the path loop skips that lookup at each camera hit.
     [[nodiscard]] bool may_hide_objects() const { return hidden_objects_; }
 
-    /// Builds the acceleration structures. Must be called after the last add_* and before
-    /// any query; calling it again without changes does nothing.
+    /// Builds the acceleration structures: after the last add_*, before any query; again
+    /// without changes, nothing. Out of memory: librt::Error, the scene left uncommitted.
     void commit();
     /// True when the scene is committed and queries may run.
     [[nodiscard]] bool committed() const { return committed_; }
