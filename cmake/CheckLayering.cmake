@@ -174,7 +174,15 @@ function(librt_check_confined root files allowed patterns problem out_var)
 endfunction()
 
 # Self-checks on scratch trees: each bad line reported once, at its line number; no good
-# line.
+# line. librt_expect_bad_lines fails unless `found` reports exactly the `expected`
+# "/bad.ext:line:" list, in order, and no good.* file.
+function(librt_expect_bad_lines rule found expected)
+  string(REGEX MATCHALL "/bad\\.(cpp|h):[0-9]+:" hits "${found}")
+  if(found MATCHES "good\\.(cpp|h)" OR NOT hits STREQUAL "${expected}")
+    message(FATAL_ERROR "${rule} self-check: expected exactly ${expected} and no good line, "
+                        "found:${found}")
+  endif()
+endfunction()
 librt_scratch_folder(librt_confined_selftest _confined_scratch)
 file(MAKE_DIRECTORY "${_confined_scratch}/librt/src/integrator"
      "${_confined_scratch}/librt/src/material" "${_confined_scratch}/librt/src/light"
@@ -195,12 +203,8 @@ file(WRITE "${_confined_scratch}/librt/include/librt/io/good.h"
 librt_check_confined("${_confined_scratch}"
   "librt/src/integrator/bad.cpp;librt/include/librt/scene/bad.h;librt/src/integrator/good.cpp;librt/src/material/good.h;librt/include/librt/io/good.h"
   "${_material_kind_areas}" "${_material_kind_patterns}" "MaterialKind" _kind_self)
-string(REGEX MATCHALL "/bad\\.(cpp|h):[0-9]+:" _kind_bad_hits "${_kind_self}")
-if(_kind_self MATCHES "good\\.(cpp|h)" OR NOT _kind_bad_hits STREQUAL
-   "/bad.cpp:1:;/bad.cpp:2:;/bad.cpp:3:;/bad.h:1:")
-  message(FATAL_ERROR "MaterialKind self-check: expected bad.cpp lines 1, 2 and 3, bad.h line "
-                      "1 and no good line, found:${_kind_self}")
-endif()
+librt_expect_bad_lines("MaterialKind" "${_kind_self}"
+                       "/bad.cpp:1:;/bad.cpp:2:;/bad.cpp:3:;/bad.h:1:")
 file(WRITE "${_confined_scratch}/librt/src/scene/bad.cpp"
   "int a = 0;\n"
   "if (auto* e = std::get_if<EnvironmentLight>(&lights_[i].source)) e->r = 1;\n"
@@ -217,12 +221,8 @@ librt_check_confined("${_confined_scratch}"
   "librt/src/scene/bad.cpp;librt/src/scene/good.cpp;librt/src/light/good.cpp"
   "${_light_variant_areas}" "${_light_variant_patterns}" "light variant" _light_self)
 file(REMOVE_RECURSE "${_confined_scratch}")
-string(REGEX MATCHALL "/bad\\.cpp:[0-9]+:" _light_bad_hits "${_light_self}")
-if(_light_self MATCHES "good\\.cpp" OR NOT _light_bad_hits STREQUAL
-   "/bad.cpp:2:;/bad.cpp:3:;/bad.cpp:4:;/bad.cpp:6:")
-  message(FATAL_ERROR "light-variant self-check: expected bad.cpp lines 2, 3, 4 and 6 and no "
-                      "good line, found:${_light_self}")
-endif()
+librt_expect_bad_lines("light-variant" "${_light_self}"
+                       "/bad.cpp:2:;/bad.cpp:3:;/bad.cpp:4:;/bad.cpp:6:")
 
 librt_library_files("${ROOT}" _files _file_count)
 librt_check_layering("${ROOT}" "${_files}" _found)
