@@ -1,11 +1,12 @@
 // Self-intersection (issue 41): a ray spawned from a hit point with spawn_ray, in a random
-// direction, must not find its own surface again closer than that surface really is. Each
+// direction, must not start on the wrong side of its own surface and hit it again. Each
 // configuration shoots camera rays at one object through the public Scene API
 // (Scene::intersect), spawns a ray from every hit and counts the self-hits: hits of the same
-// object at t below half the distance at which the exact surface is met again along the
-// spawned direction (infinite off the outside of a sphere and off a plane, 2 r cos(theta)
-// through a sphere's inside), a bound no rounding of a correct origin comes near. A
-// self-hit is a ray that started on the wrong side of its surface: light lost or leaked.
+// object by a spawned ray whose origin lies on the wrong side of the exact surface (judged in
+// double against the sphere given in double), or any hit of its own plane by a ray leaving a
+// planar quad (a plane is never met again). Such a ray meets its surface at once (t near 0):
+// light lost or leaked. A ray from the right side that meets a sphere's inside again
+// legitimately is not counted.
 
 #include "sampling/sanitizer_scale.h"
 
@@ -21,7 +22,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <functional>
-#include <limits>
 #include <random>
 #include <string>
 #include <utility>
@@ -31,8 +31,6 @@ using namespace librt;
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
 /// Which way the spawned rays leave: back to the side the camera ray came from (a
 /// reflection) or through the surface (a refraction).
 enum class Side { Reflect, Transmit };
@@ -40,7 +38,7 @@ enum class Side { Reflect, Transmit };
 struct Counts {
     int spawned = 0;     ///< camera rays that hit the object, each spawning one ray
     int self_hits = 0;   ///< spawned rays that hit their own surface too soon
-    double worst_t = 0;  ///< the largest t among the self-hits (how far off the surface)
+    double worst_t = 0;  ///< the largest t among the self-hits
 };
 
 /// A unit direction uniform on the hemisphere around unit n (grazing directions included:
@@ -60,11 +58,11 @@ struct Aim {
 };
 
 /// Shoots `samples` camera rays made by `aim`, spawns one ray per hit of `object` to `side`
-/// and counts the self-hits. `legit(hit point, spawned direction, outward normal)` is the
-/// distance at which the exact surface is met again (kInf when never).
+/// and counts the self-hits. `wrong_side(origin, n)` says whether a spawned ray's origin is
+/// on the wrong side of the exact surface, n (unit) pointing to the side it should be on.
 Counts count_self_hits(const Scene& scene, std::uint32_t object, Side side, int samples,
                        std::uint64_t seed, const std::function<Aim(std::mt19937_64&)>& aim,
-                       const std::function<double(const glm::dvec3&, const glm::dvec3&)>& legit) {
+                       const std::function<bool(const glm::dvec3&, const glm::dvec3&)>& wrong_side) {
     std::mt19937_64 rng(seed);
     Counts c;
     for (int i = 0; i < samples; ++i) {
@@ -83,7 +81,7 @@ Counts count_self_hits(const Scene& scene, std::uint32_t object, Side side, int 
         ++c.spawned;
         Hit again;
         if (!scene.intersect(spawned, again) || again.object_id != object) continue;
-        if (double(again.t) < 0.5 * legit(glm::dvec3(hit.point), d)) {
+        if (wrong_side(glm::dvec3(spawned.origin), n)) {
             ++c.self_hits;
             c.worst_t = std::max(c.worst_t, double(again.t));
         }
@@ -99,11 +97,13 @@ struct SphereCase {
     bool inside;  ///< camera inside the sphere (its inner surface hit), else outside
 };
 
-/// The distance along unit d from a point on the sphere (centre c, radius r) to the sphere's
-/// other intersection: 2 r cos(theta) into the sphere, never out of it.
-double sphere_chord(const glm::dvec3& c, double r, const glm::dvec3& p, const glm::dvec3& d) {
-    const double cos_in = glm::dot(d, glm::normalize(c - p));
-    return cos_in > 0.0 ? 2.0 * r * cos_in : kInf;
+/// Whether origin o is on the wrong side of the sphere (centre c, radius r): outside when n
+/// points into the sphere (toward c), else inside. The distance to the centre is exact to
+/// ~1e-16 of |o - c|, far below any offset.
+bool sphere_wrong_side(const glm::dvec3& c, double r, const glm::dvec3& o, const glm::dvec3& n) {
+    const bool should_be_inside = glm::dot(n, c - o) > 0.0;
+    const bool inside = glm::length(o - c) < r;
+    return inside != should_be_inside;
 }
 
 Counts run_sphere(const SphereCase& sc, Side side, int samples, std::uint64_t seed) {
@@ -127,8 +127,8 @@ Counts run_sphere(const SphereCase& sc, Side side, int samples, std::uint64_t se
         return a;
     };
     return count_self_hits(scene, id, side, samples, seed, aim,
-                           [&](const glm::dvec3& p, const glm::dvec3& d) {
-                               return sphere_chord(sc.center, sc.radius, p, d);
+                           [&](const glm::dvec3& o, const glm::dvec3& n) {
+                               return sphere_wrong_side(sc.center, sc.radius, o, n);
                            });
 }
 
@@ -208,8 +208,8 @@ TEST(SelfIntersection, HugeSpherePassingNearTheOriginHitFromAfar) {
             return Aim{c.from, {1.0, 1.0 + c.spread * u(rng), 1.0 + c.spread * u(rng)}};
         };
         return count_self_hits(scene, id, side, samples, seed, aim,
-                               [&](const glm::dvec3& p, const glm::dvec3& d) {
-                                   return sphere_chord(center, radius, p, d);
+                               [&](const glm::dvec3& o, const glm::dvec3& n) {
+                                   return sphere_wrong_side(center, radius, o, n);
                                });
     });
 }
@@ -258,6 +258,6 @@ TEST(SelfIntersection, TrianglesNearAndFarFromTheOrigin) {
             return Aim{from, target};
         };
         return count_self_hits(scene, id, side, samples, seed, aim,
-                               [](const glm::dvec3&, const glm::dvec3&) { return kInf; });
+                               [](const glm::dvec3&, const glm::dvec3&) { return true; });
     });
 }
