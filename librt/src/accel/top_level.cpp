@@ -353,8 +353,24 @@ void TopLevel::finish(const Ray& ray, const ObjectHit& object_hit, bool every_sp
     if (o.kind == ObjectKind::Sphere) {
         const SphereData& data = spheres_[o.index];
         const Sphere& s = data.sphere;
-        hit.point = ray.at(prim.t);
-        hit.geometric_normal = unit_or(hit.point - s.center, back);
+        // o + t d in float is off the surface by the rounding of t and of the sum, which
+        // grows with the ray's length and its origin, not with the point: a wall of radius
+        // 1e5 hit near the world origin from 100 away lands up to ~1e-5 off it, beyond the
+        // offset ray_offset_scale gives a point there (issue 41). Projected onto the sphere
+        // in double, then rounded, it is off by at most about half a float ulp of its own
+        // coordinates (plus ~1e-15 of the centre's and radius' size), which the offset
+        // covers. The normal comes from the same double vector, so the square root and
+        // division replace those of normalising in float.
+        const glm::dvec3 oc = glm::dvec3(ray.at(prim.t)) - data.prepared.center;
+        const double len2 = glm::dot(oc, oc);
+        if (len2 > 0.0 && std::isfinite(len2)) {
+            const double inv = 1.0 / std::sqrt(len2);
+            hit.geometric_normal = glm::vec3(oc * inv);
+            hit.point = glm::vec3(data.prepared.center + oc * (data.radius * inv));
+        } else {
+            hit.point = ray.at(prim.t);
+            hit.geometric_normal = back;
+        }
         hit.shading_normal = hit.geometric_normal;
         if (every_sphere_uv || data.uv) {
             // v flipped so that it grows toward +y like OBJ coordinates: images map upright.

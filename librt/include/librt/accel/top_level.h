@@ -211,7 +211,8 @@ private:
     struct SphereData {
         Sphere sphere;
         DoubleSphere prepared;
-        bool uv;   ///< see add_sphere
+        double radius;  ///< the radius `prepared` describes; finish() projects hits onto it
+        bool uv;        ///< see add_sphere
         BBox box;  ///< holds the sphere `prepared` describes
     };
     struct Prototype {
