@@ -60,9 +60,10 @@ struct Aim {
 /// Shoots `samples` camera rays made by `aim`, spawns one ray per hit of `object` to `side`
 /// and counts the self-hits. `wrong_side(origin, n)` says whether a spawned ray's origin is
 /// on the wrong side of the exact surface, n (unit) pointing to the side it should be on.
-Counts count_self_hits(const Scene& scene, std::uint32_t object, Side side, int samples,
-                       std::uint64_t seed, const std::function<Aim(std::mt19937_64&)>& aim,
-                       const std::function<bool(const glm::dvec3&, const glm::dvec3&)>& wrong_side) {
+Counts count_self_hits(
+    const Scene& scene, std::uint32_t object, Side side, int samples, std::uint64_t seed,
+    const std::function<Aim(std::mt19937_64&)>& aim,
+    const std::function<bool(const glm::dvec3&, const glm::dvec3&)>& wrong_side) {
     std::mt19937_64 rng(seed);
     Counts c;
     for (int i = 0; i < samples; ++i) {

@@ -213,7 +213,7 @@ private:
         DoubleSphere prepared;
         double radius;  ///< the radius `prepared` describes; finish() projects hits onto it
         bool uv;        ///< see add_sphere
-        BBox box;  ///< holds the sphere `prepared` describes
+        BBox box;       ///< holds the sphere `prepared` describes
     };
     struct Prototype {
         TriangleMesh mesh;
