@@ -9,7 +9,6 @@
 #include <exception>
 #include <memory>
 #include <new>
-#include <system_error>
 #include <thread>
 #include <type_traits>
 #include <vector>
@@ -44,8 +43,9 @@ void parallel_parts(std::size_t n, unsigned parts, Body&& body) {
     try {
         for (; started < parts && helpers.size() < helpers.capacity(); ++started)
             helpers.emplace_back(run, started);
-    } catch (const std::system_error&) {
-        // The thread did not start; it and the rest run here.
+    } catch (const std::exception&) {
+        // The thread did not start (system_error, or bad_alloc for its state); it and the
+        // rest run here, and the threads already running are joined below.
     }
     run(0);
     for (unsigned p = started; p < parts; ++p) run(p);
