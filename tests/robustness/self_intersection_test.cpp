@@ -78,7 +78,7 @@ Counts count_self_hits(
         glm::dvec3 n = glm::dot(ng, glm::dvec3(ray.direction)) < 0.0 ? ng : -ng;
         if (side == Side::Transmit) n = -n;
         const glm::dvec3 d = hemisphere(n, rng);
-        const Ray spawned = spawn_ray(hit.point, hit.geometric_normal, glm::vec3(d));
+        const Ray spawned = spawn_ray(hit, glm::vec3(d));
         ++c.spawned;
         Hit again;
         if (!scene.intersect(spawned, again) || again.object_id != object) continue;

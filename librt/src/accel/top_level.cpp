@@ -12,6 +12,7 @@
 #include <librt/accel/bvh_traversal.h>
 #include <librt/accel/top_level.h>
 #include <librt/core/error.h>
+#include <librt/geometry/ray_offset.h>
 
 #include <glm/geometric.hpp>
 
@@ -371,6 +372,7 @@ void TopLevel::finish(const Ray& ray, const ObjectHit& object_hit, bool every_sp
             hit.point = ray.at(prim.t);
             hit.geometric_normal = back;
         }
+        hit.offset = ray_offset_scale(hit.point);
         hit.shading_normal = hit.geometric_normal;
         if (every_sphere_uv || data.uv) {
             // v flipped so that it grows toward +y like OBJ coordinates: images map upright.
@@ -390,6 +392,7 @@ void TopLevel::finish(const Ray& ray, const ObjectHit& object_hit, bool every_sp
     const TriangleAt tri = triangle_at(prototypes_[o.index].mesh, prim);
     // Barycentric interpolation lands closer to the plane than o + t d does.
     hit.point = tri.b0 * tri.p0 + tri.b1 * tri.p1 + tri.b2 * tri.p2;
+    hit.offset = barycentric_offset(tri.b0, tri.p0, tri.b1, tri.p1, tri.b2, tri.p2);
     hit.geometric_normal = unit_or(glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0), back);
     complete_mesh_hit(
         tri, prim.primitive_id, [](const glm::vec3& n) -> const glm::vec3& { return n; }, hit);
@@ -404,6 +407,15 @@ void TopLevel::finish(const Ray& ray, const ObjectHit& object_hit, bool every_sp
     // mirroring matrix that is what transform() gives a baked copy, which swaps two corners.
     hit.point =
         inst.to_world * (tri.b0 * tri.p0 + tri.b1 * tri.p1 + tri.b2 * tri.p2) + inst.to_world_shift;
+    // The object-space bound (barycentric_offset's sum) carried through |M| and the shift,
+    // conservatively: it then also covers the rounding of the next ray's transform into
+    // object space, which is about 2^-23 (|M| |p| + |shift|) for a matrix that is not
+    // nearly singular.
+    const glm::vec3 object_sum =
+        glm::abs(tri.b0 * tri.p0) + glm::abs(tri.b1 * tri.p1) + glm::abs(tri.b2 * tri.p2);
+    const glm::mat3& m = inst.to_world;
+    hit.offset = ray_offset_scale(glm::abs(m[0]) * object_sum.x + glm::abs(m[1]) * object_sum.y +
+                                  glm::abs(m[2]) * object_sum.z + glm::abs(inst.to_world_shift));
     hit.geometric_normal =
         unit_or(inst.normal_matrix * glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0), -ray.direction);
     // Each vertex normal mapped and renormalised before interpolation, as transform() does to
