@@ -187,7 +187,8 @@ TEST(NearEmitter, ShadowRaysFromBesideThePanelDoNotEndOnIt) {
                 sample_li(light, hit.point, {rng.next_float(), rng.next_float()});
             if (!s.valid()) continue;
             ++valid;
-            if (scene.occluded(spawn_ray_to(hit.point, hit.geometric_normal, hit.offset, s),
+            if (scene.occluded(spawn_ray_to(hit.point, hit.geometric_normal, hit.offset, s.wi,
+                                            s.distance, s.end_slope),
                                light.object))
                 ++blocked;
         }

@@ -2,7 +2,6 @@
 
 #include <librt/geometry/ray.h>
 #include <librt/geometry/ray_offset.h>
-#include <librt/light/light_sample.h>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -20,22 +19,23 @@ namespace librt {
 /// Fraction of a shadow ray's length left out at its far end (pbrt's ShadowEpsilon).
 inline constexpr float kShadowEpsilon = 1e-4f;
 
-/// The shadow ray of light sample `s` from surface point p (unit geometric normal n,
-/// either orientation, offset `offset`: Hit::offset): origin offset_ray_origin(p, n,
-/// offset, s.wi), t_max the sample's distance, unshortened but for s.end_slope times the
-/// offset. A light whose surface the shadow ray skips (spheres, quads, disks) gives the
-/// emitting point itself: a relative margin there would let the light shine through any
-/// wall within it (a sphere light buried in smallpt's ceiling lit the room 0.5 % too
-/// brightly). Triangle lights end short themselves, and through end_slope short of where
+/// The shadow ray of a light sample (LightLiSample's wi, distance and end_slope) from
+/// surface point p (unit geometric normal n, either orientation, offset `offset`:
+/// Hit::offset): origin offset_ray_origin(p, n, offset, wi), t_max the sample's distance,
+/// unshortened but for end_slope times the offset. A light whose surface the shadow ray skips
+/// (spheres, quads, disks) gives the emitting point itself: a relative margin there would let the
+/// light shine through any wall within it (a sphere light buried in smallpt's ceiling lit the room
+/// 0.5 % too brightly). Triangle lights end short themselves, and through end_slope short of where
 /// the origin's offset shifts the end. No square root. Forced inline: with
 /// offset_ray_origin inline in it, g++ kept it out of line in the path loop (callgrind on
 /// the synthesis: +34 M instructions).
 [[nodiscard, gnu::always_inline]] inline Ray spawn_ray_to(const glm::vec3& p, const glm::vec3& n,
-                                                          float offset, const LightLiSample& s) {
+                                                          float offset, const glm::vec3& wi,
+                                                          float distance, float end_slope) {
     Ray r;
-    r.origin = offset_ray_origin(p, n, offset, s.wi);
-    r.direction = s.wi;
-    r.t_max = std::max(s.distance - offset * s.end_slope, 0.0f);
+    r.origin = offset_ray_origin(p, n, offset, wi);
+    r.direction = wi;
+    r.t_max = std::max(distance - offset * end_slope, 0.0f);
     return r;
 }
 

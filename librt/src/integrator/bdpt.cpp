@@ -488,7 +488,9 @@ glm::vec3 connect_to_light(const Context& c, Subpaths& paths, int t, Sampler& sa
     const glm::vec3 f = bsdf_f(pt, ls.wi) * std::fabs(glm::dot(pt.ns, ls.wi));
     glm::vec3 contrib = pt.beta * f * ls.radiance / (chosen.pmf * ls.pdf);
     if (!(max_component(contrib) > 0.0f)) return glm::vec3(0.0f);
-    contrib *= shadow_transmittance(scene, spawn_ray_to(pt.p, pt.ng, pt.offset, ls), light.object);
+    contrib *= shadow_transmittance(
+        scene, spawn_ray_to(pt.p, pt.ng, pt.offset, ls.wi, ls.distance, ls.end_slope),
+        light.object);
     if (!(max_component(contrib) > 0.0f)) return glm::vec3(0.0f);
     float w;
     if (is_infinite(light)) {

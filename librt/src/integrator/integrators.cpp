@@ -249,10 +249,14 @@ template <bool Guided = false, bool SplitCaustics = false>
         // crossing them finds, so MIS below weighs the two alike). transmittance() alone:
         // its first closest hit answers what unoccluded() would, so asking that first
         // only repeated the query for every blocked ray.
-        fl *= transmittance(scene, spawn_ray_to(hit.point, hit.geometric_normal, hit.offset, s),
+        fl *= transmittance(scene,
+                            spawn_ray_to(hit.point, hit.geometric_normal, hit.offset, s.wi,
+                                         s.distance, s.end_slope),
                             light.object);
         if (!(max_component(beta * fl) > 0.0f)) return glm::vec3(0.0f);
-    } else if (!unoccluded(scene, spawn_ray_to(hit.point, hit.geometric_normal, hit.offset, s),
+    } else if (!unoccluded(scene,
+                           spawn_ray_to(hit.point, hit.geometric_normal, hit.offset, s.wi,
+                                        s.distance, s.end_slope),
                            light.object)) {
         return glm::vec3(0.0f);
     }

@@ -22,7 +22,7 @@ struct LightLiSample {
     /// How much shorter the shadow ray must be per unit of its origin's offset off the
     /// receiving surface, so that the shifted segment still ends short of the light's own
     /// surface: 1 / |cos| at the emitter for lights whose surface the ray cannot skip
-    /// (triangles), 0 for the others. spawn_ray_to applies it.
+    /// (triangles), 0 for the others. spawn_ray_to (src/geometry/spawn_ray.h) applies it.
     float end_slope = 0.0f;
 
     /// True when there is a direction to use (pdf > 0).
