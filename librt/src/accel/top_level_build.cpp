@@ -56,8 +56,7 @@ std::uint32_t TopLevel::add_sphere(const Sphere& sphere, bool uv) {
         msg << "sphere radius = " << sphere.radius << ": must be finite and > 0";
         throw Error(msg.str());
     }
-    spheres_.push_back(
-        {sphere, DoubleSphere(sphere), double(sphere.radius), uv, librt::bounds(sphere)});
+    spheres_.push_back({sphere, DoubleSphere(sphere), uv, librt::bounds(sphere)});
     return add_object(ObjectKind::Sphere, std::uint32_t(spheres_.size() - 1));
 }
 
@@ -78,8 +77,7 @@ std::uint32_t TopLevel::add_sphere(const glm::dvec3& center, double radius, bool
         msg << "sphere radius = " << radius << ": must be finite and > 0 (in float too)";
         throw Error(msg.str());
     }
-    spheres_.push_back(
-        {rounded, DoubleSphere(center, radius), radius, uv, librt::bounds(center, radius)});
+    spheres_.push_back({rounded, DoubleSphere(center, radius), uv, librt::bounds(center, radius)});
     return add_object(ObjectKind::Sphere, std::uint32_t(spheres_.size() - 1));
 }
 

@@ -211,9 +211,8 @@ private:
     struct SphereData {
         Sphere sphere;
         DoubleSphere prepared;
-        double radius;  ///< the radius `prepared` describes; finish() projects hits onto it
-        bool uv;        ///< see add_sphere
-        BBox box;       ///< holds the sphere `prepared` describes
+        bool uv;   ///< see add_sphere
+        BBox box;  ///< holds the sphere `prepared` describes
     };
     struct Prototype {
         TriangleMesh mesh;
