@@ -66,7 +66,7 @@ public:
             const BsdfSample bs = sample(m, point, point.frame.to_local(-ray.direction), uc, u);
             if (!bs.valid()) break;
             beta *= bs.weight;
-            ray = spawn_ray(hit.point, hit.geometric_normal, point.frame.to_world(bs.wi));
+            ray = spawn_ray(hit, point.frame.to_world(bs.wi));
         }
         return guard(radiance);
     }

@@ -125,9 +125,9 @@ TEST(LightSeam, SceneKeepsALightListAndSampler) {
 }
 
 // spawn_ray_to: starts off the surface on the target's side; toward a point it ends
-// kShadowEpsilon short of the target, toward a light sample (direction and distance) at
-// the distance itself; unoccluded sees a blocker in between and ignores the object it is
-// told to.
+// kShadowEpsilon short of the target, toward a light sample at the distance itself, less
+// end_slope times the origin's offset; unoccluded sees a blocker in between and ignores the
+// object it is told to.
 TEST(ShadowRay, SpawnRayToAndUnoccluded) {
     const glm::vec3 p(1, 0, 0), n(0, 1, 0), target(1, 10, 0);
     const Ray r = spawn_ray_to(p, n, target);
@@ -136,9 +136,14 @@ TEST(ShadowRay, SpawnRayToAndUnoccluded) {
     const glm::vec3 end = r.at(r.t_max);
     EXPECT_LT(end.y, target.y);
     EXPECT_NEAR(end.y, target.y - kShadowEpsilon * (target.y - r.origin.y), 1e-5f);
-    const Ray r2 = spawn_ray_to(p, n, glm::vec3(0, 1, 0), 10.0f);
+    const Ray r2 = spawn_ray_to(p, n, ray_offset_scale(p), glm::vec3(0, 1, 0), 10.0f, 0.0f);
     EXPECT_EQ(r2.origin, r.origin);
     EXPECT_EQ(r2.t_max, 10.0f);
+    const Ray r3 = spawn_ray_to(p, n, 0.25f, glm::vec3(0, 1, 0), 10.0f, 4.0f);
+    EXPECT_EQ(r3.origin, p + 0.25f * n);
+    EXPECT_EQ(r3.t_max, 9.0f);
+    // Shorter than the slope's share: an empty segment.
+    EXPECT_EQ(spawn_ray_to(p, n, 0.25f, glm::vec3(0, 1, 0), 0.5f, 4.0f).t_max, 0.0f);
     // A target at the point itself: a segment no longer than the offset, never negative.
     EXPECT_LE(spawn_ray_to(p, n, p).t_max, 2.0f * ray_offset_scale(p));
     EXPECT_GE(spawn_ray_to(p, n, p).t_max, 0.0f);
@@ -168,13 +173,17 @@ TEST(ShadowRay, LightSampleBeyondAWallByLessThanTheMarginIsHidden) {
     scene.commit();
     const glm::vec3 p(0, 0, 0), n(0, 1, 0);
     // Straight up, the light's lowest point (y = 79.999) is below the ceiling: lit.
-    EXPECT_TRUE(unoccluded(scene, spawn_ray_to(p, n, glm::vec3(0, 1, 0), 79.999f), light_object));
+    EXPECT_TRUE(unoccluded(
+        scene, spawn_ray_to(p, n, ray_offset_scale(p), glm::vec3(0, 1, 0), 79.999f, 0.0f),
+        light_object));
     // The point of the light's surface at y = 80.004 (x^2 = 20.001^2 - 19.996^2), on the
     // side facing p, lies inside the ceiling's ball; the ray crosses the ceiling 0.004
     // before reaching it, within the old margin (1e-4 x 80 = 0.008): hidden.
     const glm::vec3 q(std::sqrt(20.001f * 20.001f - 19.996f * 19.996f), 80.004f, 0.0f);
     const glm::vec3 wi = glm::normalize(q - p);
-    EXPECT_FALSE(unoccluded(scene, spawn_ray_to(p, n, wi, glm::length(q - p)), light_object));
+    EXPECT_FALSE(unoccluded(scene,
+                            spawn_ray_to(p, n, ray_offset_scale(p), wi, glm::length(q - p), 0.0f),
+                            light_object));
 }
 
 }  // namespace

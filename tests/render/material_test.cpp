@@ -234,6 +234,7 @@ TEST(Scatter, GlassSlabLeavesDirectionUnchanged) {
         int interfaces = 0;
         Hit hit;
         glm::vec3 entry(0.0f), exit(0.0f);
+        float entry_offset = 0.0f;
         while (scene.intersect(ray, hit) && interfaces < 10) {
             const Material& m = scene.material(hit);
             ASSERT_EQ(m.kind, MaterialKind::Dielectric);
@@ -241,21 +242,22 @@ TEST(Scatter, GlassSlabLeavesDirectionUnchanged) {
             ASSERT_TRUE(sc.transmitted) << "theta_i " << theta_i;
             if (interfaces == 0) {
                 entry = hit.point;
+                entry_offset = hit.offset;
                 // Inside: Snell's angle.
                 EXPECT_NEAR(sc.direction.x, std::sin(theta_i) / 1.5f, 1e-6f);
             } else {
                 exit = hit.point;
             }
-            ray = spawn_ray(hit.point, hit.geometric_normal, sc.direction);
+            ray = spawn_ray(hit, sc.direction);
             ++interfaces;
         }
         ASSERT_EQ(interfaces, 2) << "theta_i " << theta_i;
         EXPECT_NEAR(glm::length(ray.direction - d0), 0.0f, 2e-6f) << "theta_i " << theta_i;
         // Inside the slab the ray went down by 1 at the refracted angle.
         const float theta_t = std::asin(std::sin(theta_i) / 1.5f);
-        // The exit ray starts ray_offset_scale below the top face, hence a shorter shift.
+        // The exit ray starts the hit's offset below the top face, hence a shorter shift.
         EXPECT_NEAR(exit.x - entry.x, std::tan(theta_t),
-                    1e-4f + 2.0f * ray_offset_scale(entry) * std::tan(theta_t));
+                    1e-4f + 2.0f * entry_offset * std::tan(theta_t));
     }
 }
 

@@ -92,13 +92,16 @@ TEST(NearEmitter, SamplesLieOnTheTriangleAtTheirDistanceWithPdfLiDensity) {
                 if (!s.valid()) continue;
                 ++valid;
                 // The direction meets the triangle; the shadow ray's distance ends short of
-                // its plane by the ray offsets' margin (ray_offset_scale of both ends over
-                // |cos| at the emitter), then by the relative kShadowEpsilon, never beyond.
+                // its plane by the rounding of a test against it (ray_offset_scale of its
+                // largest vertex coordinates over |cos| at the emitter), then by the
+                // relative kShadowEpsilon, never beyond; end_slope is 1 / |cos|.
                 const float dn = glm::dot(s.wi, n);
                 const float t = glm::dot(tri.p0 - k.p, n) / dn;
                 const glm::vec3 q = k.p + t * s.wi - tri.p0;
-                const float margin =
-                    (ray_offset_scale(k.p) + ray_offset_scale(k.p + t * s.wi)) / std::fabs(dn);
+                const glm::vec3 largest =
+                    glm::max(glm::max(glm::abs(tri.p0), glm::abs(tri.p1)), glm::abs(tri.p2));
+                const float margin = ray_offset_scale(largest) / std::fabs(dn);
+                EXPECT_NEAR(s.end_slope, 1.0f / std::fabs(dn), 1e-5f / std::fabs(dn)) << k.what;
                 EXPECT_LE(s.distance, t) << k.what;
                 EXPECT_NEAR(s.distance, std::max(0.0f, (t - margin) * (1.0f - kShadowEpsilon)),
                             1e-5f * t)
@@ -184,7 +187,8 @@ TEST(NearEmitter, ShadowRaysFromBesideThePanelDoNotEndOnIt) {
                 sample_li(light, hit.point, {rng.next_float(), rng.next_float()});
             if (!s.valid()) continue;
             ++valid;
-            if (scene.occluded(spawn_ray_to(hit.point, hit.geometric_normal, s.wi, s.distance),
+            if (scene.occluded(spawn_ray_to(hit.point, hit.geometric_normal, hit.offset, s.wi,
+                                            s.distance, s.end_slope),
                                light.object))
                 ++blocked;
         }

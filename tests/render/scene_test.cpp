@@ -399,7 +399,7 @@ TEST(Scene, SpawnedRaysDoNotSelfIntersect) {
         // Rounding can tip a near-tangent w below the surface: that is a ray going in, which
         // the integrators never spawn from a reflection.
         if (!(glm::dot(w, ng) > 0.0f)) continue;
-        const Ray out = spawn_ray(hit.point, hit.geometric_normal, w);
+        const Ray out = spawn_ray(hit, w);
         Hit next;
         if (scene.intersect(out, next)) {
             // Spheres seen from outside and a plane cannot be re-hit by a leaving ray.

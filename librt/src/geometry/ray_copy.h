@@ -44,13 +44,15 @@ namespace librt::detail {
     return r;
 }
 
-/// Makes `ray` spawn_ray(point, normal, direction) with an unbounded extent, written in
+/// Makes `ray` the ray leaving `point` (offset `offset`, Hit::offset) in `direction`, with
+/// an unbounded extent, written in
 /// place: assigned from a temporary, g++ stored the temporary field by field and copied it
 /// by 16-byte loads that no store forwards to (a stall per bounce of the path loop).
 /// `direction` may be `ray.direction` itself (a ray continuing through a surface).
 [[gnu::always_inline]] inline void respawn(Ray& ray, const glm::vec3& point,
-                                           const glm::vec3& normal, const glm::vec3& direction) {
-    ray.origin = offset_ray_origin(point, normal, direction);
+                                           const glm::vec3& normal, float offset,
+                                           const glm::vec3& direction) {
+    ray.origin = offset_ray_origin(point, normal, offset, direction);
     ray.direction = direction;
     ray.t_min = 0.0f;
     ray.t_max = std::numeric_limits<float>::infinity();

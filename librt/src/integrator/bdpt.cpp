@@ -58,6 +58,7 @@ struct PathVertex {
     bool delta_position;  ///< a light endpoint that is a point (point, spot light)
     glm::vec3 p;          ///< position
     glm::vec3 ng;         ///< geometric normal as the primitive faces (0: none, a point)
+    float offset;         ///< how far rays leave p off its surface (Hit::offset)
     glm::vec3 ns;         ///< shading normal, on ng's side (surfaces)
     glm::vec3 beta;       ///< throughput of the subpath up to this vertex, divided by its density
     float pdf_fwd;        ///< area density of this vertex as its own subpath sampled it
@@ -77,6 +78,7 @@ PathVertex endpoint(VertexKind kind, const glm::vec3& p, const glm::vec3& n, con
     v.delta_position = delta_position;
     v.p = p;
     v.ng = n;
+    v.offset = ray_offset_scale(p);
     v.ns = n;
     v.beta = beta;
     v.pdf_fwd = pdf_fwd;
@@ -112,10 +114,16 @@ struct Subpaths {
     float per_light_path;  ///< 1 / light_path_fraction, the factor of s >= 2 and t = 1
 };
 
-/// A shadow segment from a (normal na) to b (normal nb; either may be 0, a point): the
-/// fraction of light it lets through (transmittance, or 1 / 0 without Null lobes).
-glm::vec3 segment(const Scene& scene, const glm::vec3& a, const glm::vec3& na, const glm::vec3& b) {
-    return shadow_transmittance(scene, spawn_ray_to(a, na, b));
+/// The shadow segment between vertices a and b (either may have a zero normal, a point):
+/// the fraction of light it lets through (transmittance, or 1 / 0 without Null lobes).
+glm::vec3 segment(const Scene& scene, const PathVertex& a, const PathVertex& b) {
+    return shadow_transmittance(scene, spawn_ray_between(a.p, a.ng, a.offset, b.p, b.ng, b.offset));
+}
+
+/// The shadow segment from vertex a to a point on no surface (the lens).
+glm::vec3 segment(const Scene& scene, const PathVertex& a, const glm::vec3& lens) {
+    return shadow_transmittance(
+        scene, spawn_ray_between(a.p, a.ng, a.offset, lens, glm::vec3(0.0f), 0.0f));
 }
 
 /// The density of direction `to` at a surface vertex reached from direction `from` (both
@@ -336,7 +344,7 @@ int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transp
         if (mode == Transport::Radiance && n == 1 && c.scene.may_hide_objects() &&
             !c.scene.camera_visible(hit.object_id)) {
             if (++hidden_skips > 64) break;
-            detail::respawn(ray, hit.point, hit.geometric_normal, ray.direction);
+            detail::respawn(ray, hit.point, hit.geometric_normal, hit.offset, ray.direction);
             continue;
         }
         const Material& m = c.scene.shade(hit, ray.direction, scratch[n]);
@@ -348,7 +356,7 @@ int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transp
             beta *= x.weight;
             if (x.crossed) {
                 if (decisions > kMaxCrossingDecisions) break;
-                detail::respawn(ray, hit.point, hit.geometric_normal, ray.direction);
+                detail::respawn(ray, hit.point, hit.geometric_normal, hit.offset, ray.direction);
                 continue;
             }
         }
@@ -359,6 +367,7 @@ int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transp
         v.delta_position = false;
         v.p = hit.point;
         v.ng = hit.geometric_normal;
+        v.offset = hit.offset;
         v.ns = hit.shading_normal;
         v.beta = beta;
         v.pdf_fwd = to_area(pdf_dir, prev, v);
@@ -407,7 +416,7 @@ int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transp
             if (!(q > 0.0f) || sampler.next_1d() >= q) break;
             beta /= q;
         }
-        detail::respawn(ray, hit.point, hit.geometric_normal, wi);
+        detail::respawn(ray, hit.point, hit.geometric_normal, hit.offset, wi);
     }
     return n;
 }
@@ -479,8 +488,9 @@ glm::vec3 connect_to_light(const Context& c, Subpaths& paths, int t, Sampler& sa
     const glm::vec3 f = bsdf_f(pt, ls.wi) * std::fabs(glm::dot(pt.ns, ls.wi));
     glm::vec3 contrib = pt.beta * f * ls.radiance / (chosen.pmf * ls.pdf);
     if (!(max_component(contrib) > 0.0f)) return glm::vec3(0.0f);
-    contrib *=
-        shadow_transmittance(scene, spawn_ray_to(pt.p, pt.ng, ls.wi, ls.distance), light.object);
+    contrib *= shadow_transmittance(
+        scene, spawn_ray_to(pt.p, pt.ng, pt.offset, ls.wi, ls.distance, ls.end_slope),
+        light.object);
     if (!(max_component(contrib) > 0.0f)) return glm::vec3(0.0f);
     float w;
     if (is_infinite(light)) {
@@ -511,7 +521,7 @@ void splat_to_camera(const Context& c, Subpaths& paths, int s, Sampler& sampler)
     const glm::vec3 f = bsdf_f(qs, cw.wi) * shading_correction(qs.ns, qs.ng, qs.wo, cw.wi);
     glm::vec3 contrib = qs.beta * f * (std::fabs(glm::dot(qs.ns, cw.wi)) * cw.weight);
     if (!(max_component(contrib) > 0.0f)) return;
-    contrib *= segment(c.scene, qs.p, qs.ng, cw.view_start);
+    contrib *= segment(c.scene, qs, cw.view_start);
     if (!(max_component(contrib) > 0.0f)) return;
     // The camera endpoint z0 this strategy drew, as the weight sees it.
     const PathVertex sampled = endpoint(VertexKind::Camera, cw.lens_point, glm::vec3(0.0f),
@@ -535,7 +545,7 @@ glm::vec3 connect_subpaths(const Context& c, Subpaths& paths, int s, int t) {
     const float g = std::fabs(glm::dot(qs.ns, d)) * std::fabs(glm::dot(pt.ns, d)) / d2;
     glm::vec3 contrib = qs.beta * fq * fp * pt.beta * g;
     if (!(max_component(contrib) > 0.0f)) return glm::vec3(0.0f);
-    contrib *= segment(c.scene, qs.p, qs.ng, pt.p);
+    contrib *= segment(c.scene, qs, pt);
     if (!(max_component(contrib) > 0.0f)) return glm::vec3(0.0f);
     return contrib * (mis_weight(c, paths, nullptr, s, t) * paths.per_light_path);
 }

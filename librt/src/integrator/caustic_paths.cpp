@@ -71,7 +71,7 @@ void splat_caustic_path(const Scene& scene, const SceneSphere& sphere, const Cam
             beta *= x.weight;
             if (x.crossed) {
                 if (decisions > kMaxCrossingDecisions) return;
-                detail::respawn(ray, hit.point, hit.geometric_normal, ray.direction);
+                detail::respawn(ray, hit.point, hit.geometric_normal, hit.offset, ray.direction);
                 continue;
             }
         }
@@ -98,7 +98,8 @@ void splat_caustic_path(const Scene& scene, const SceneSphere& sphere, const Cam
                 beta * f * (std::fabs(glm::dot(hit.shading_normal, cw.wi)) * cw.weight);
             if (!(max_component(contrib) > 0.0f)) return;
             contrib *= shadow_transmittance(
-                scene, spawn_ray_to(hit.point, hit.geometric_normal, cw.view_start));
+                scene, spawn_ray_between(hit.point, hit.geometric_normal, hit.offset, cw.view_start,
+                                         glm::vec3(0.0f), 0.0f));
             if (!(max_component(contrib) > 0.0f)) return;
             film.add(cw.raster, contrib);
             return;
@@ -126,7 +127,7 @@ void splat_caustic_path(const Scene& scene, const SceneSphere& sphere, const Cam
             beta /= q;
             throughput /= q;
         }
-        detail::respawn(ray, hit.point, hit.geometric_normal, wi);
+        detail::respawn(ray, hit.point, hit.geometric_normal, hit.offset, wi);
     }
 }
 

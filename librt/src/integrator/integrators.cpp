@@ -249,10 +249,14 @@ template <bool Guided = false, bool SplitCaustics = false>
         // crossing them finds, so MIS below weighs the two alike). transmittance() alone:
         // its first closest hit answers what unoccluded() would, so asking that first
         // only repeated the query for every blocked ray.
-        fl *= transmittance(scene, spawn_ray_to(hit.point, hit.geometric_normal, s.wi, s.distance),
+        fl *= transmittance(scene,
+                            spawn_ray_to(hit.point, hit.geometric_normal, hit.offset, s.wi,
+                                         s.distance, s.end_slope),
                             light.object);
         if (!(max_component(beta * fl) > 0.0f)) return glm::vec3(0.0f);
-    } else if (!unoccluded(scene, spawn_ray_to(hit.point, hit.geometric_normal, s.wi, s.distance),
+    } else if (!unoccluded(scene,
+                           spawn_ray_to(hit.point, hit.geometric_normal, hit.offset, s.wi,
+                                        s.distance, s.end_slope),
                            light.object)) {
         return glm::vec3(0.0f);
     }
@@ -557,7 +561,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             // Camera rays go on through hidden objects (bounded: a ray grazing a hidden
             // surface many times must still end).
             if (++hidden > 64) break;
-            detail::respawn(ray, hit.point, hit.geometric_normal, ray.direction);
+            detail::respawn(ray, hit.point, hit.geometric_normal, hit.offset, ray.direction);
             continue;
         }
         // Textures looked up and the normal map applied here, so the BSDFs get plain values.
@@ -577,7 +581,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             beta *= c.weight;
             if (c.crossed) {
                 if (decisions > kMaxCrossingDecisions) break;
-                detail::respawn(ray, hit.point, hit.geometric_normal, ray.direction);
+                detail::respawn(ray, hit.point, hit.geometric_normal, hit.offset, ray.direction);
                 continue;
             }
         }
@@ -635,7 +639,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                 if (guide.recorder != nullptr)
                     guide.recorder->push(*guided.leaf, hit.point, g.wi, g.pdf, beta);
                 if (!survives_roulette(settings, depth, dim, beta, sampler)) break;
-                detail::respawn(ray, hit.point, hit.geometric_normal, g.wi);
+                detail::respawn(ray, hit.point, hit.geometric_normal, hit.offset, g.wi);
                 continue;
             }
         }
@@ -648,7 +652,7 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         else
             bounce = {light_only ? EmitterWeight::Zero : EmitterWeight::Mis, bs.pdf, hit.point};
         if (!survives_roulette(settings, depth, dim, beta, sampler)) break;
-        detail::respawn(ray, hit.point, hit.geometric_normal, wi_world);
+        detail::respawn(ray, hit.point, hit.geometric_normal, hit.offset, wi_world);
     }
     return out.sum;
 }

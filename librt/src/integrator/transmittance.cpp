@@ -29,7 +29,7 @@ glm::vec3 transmittance(const Scene& scene, Ray ray, std::uint32_t ignored_objec
         // On along the rest of the segment, from just past the surface.
         const float rest = ray.t_max - hit.t;
         if (!(rest > 0.0f)) return through;
-        ray.origin = offset_ray_origin(hit.point, hit.geometric_normal, ray.direction);
+        ray.origin = offset_ray_origin(hit.point, hit.geometric_normal, hit.offset, ray.direction);
         ray.t_min = 0.0f;
         ray.t_max = rest;
     }

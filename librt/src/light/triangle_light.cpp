@@ -89,18 +89,27 @@ glm::vec2 barycentrics(const TriangleLight& light, const glm::vec3& q, const glm
 
 // How far the shadow ray toward the emitting point q (ray parameter t along wi from ref,
 // dn = wi . n) may go without meeting the emitter's own plane. A triangle light's shadow
-// ray cannot skip its object (the mesh may hold other triangles that do shade), and the
-// ray's origin is offset_ray_origin'd off the receiving surface: by up to
-// ray_offset_scale(ref) toward the plane, which along wi is that over |dn|. Beside an
-// emitter (a ceiling 1 cm above a panel) that exceeds kShadowEpsilon's relative margin and
-// every shadow ray hit the panel itself. So end the segment short of the plane by the
-// origin's offset plus q's own rounding (ray_offset_scale(q)), both over |dn| (pbrt-v4
-// likewise offsets both ends of a shadow ray, SpawnRayTo), then by the relative
-// kShadowEpsilon, as every shadow ray did before spawn_ray_to left the margin to the light.
+// ray cannot skip its object (the mesh may hold other triangles that do shade), so the
+// segment ends short of the plane by the rounding of the test that would find the light:
+// the light's barycentric_offset bound, which the largest vertex coordinates bound (q
+// itself is found within that of the plane), over |dn|; then by the relative
+// kShadowEpsilon, as every shadow ray did before spawn_ray_to left the margin to the
+// light. The ray's origin offset, known only to the caller, is taken off by spawn_ray_to
+// through end_slope (pbrt-v4 likewise offsets both ends of a shadow ray, SpawnRayTo).
 // 0 (nothing can be in between) when the point is that close to the plane.
-float shadow_distance(float t, float dn, const glm::vec3& ref, const glm::vec3& q) {
-    const float margin = (ray_offset_scale(ref) + ray_offset_scale(q)) / std::fabs(dn);
-    return t > margin ? (t - margin) * (1.0f - kShadowEpsilon) : 0.0f;
+LightLiSample shadow_sample(const TriangleLight& light, glm::vec3 wi, glm::vec3 radiance, float pdf,
+                            float t, float dn) {
+    const float slope = 1.0f / std::fabs(dn);
+    const glm::vec3 largest =
+        glm::max(glm::max(glm::abs(light.p0), glm::abs(light.p1)), glm::abs(light.p2));
+    const float margin = ray_offset_scale(largest) * slope;
+    LightLiSample s;
+    s.wi = wi;
+    s.radiance = radiance;
+    s.pdf = pdf;
+    s.distance = t > margin ? (t - margin) * (1.0f - kShadowEpsilon) : 0.0f;
+    s.end_slope = slope;
+    return s;
 }
 
 // True when ref lies in the triangle's plane up to the rounding of a surface point (the
@@ -133,8 +142,7 @@ LightLiSample sample_li(const TriangleLight& light, const glm::vec3& ref, glm::v
         const float t = glm::dot(light.p0 - ref, n) / dn;
         if (!(st.solid_angle > 0.0f) || !(t > 0.0f) || !std::isfinite(t)) return {};
         const glm::vec3 q = ref + t * st.direction;
-        LightLiSample s{st.direction, light.radiance, 1.0f / omega, shadow_distance(t, dn, ref, q),
-                        false};
+        LightLiSample s = shadow_sample(light, st.direction, light.radiance, 1.0f / omega, t, dn);
         if (light.texture) {
             const glm::vec2 b = glm::clamp(barycentrics(light, q, n, len), 0.0f, 1.0f);
             s.radiance = radiance_at(light, b);
@@ -145,7 +153,7 @@ LightLiSample sample_li(const TriangleLight& light, const glm::vec3& ref, glm::v
     const glm::vec3 p = light.p0 + b.x * e1 + b.y * e2;
     LightLiSample s = planar::toward(ref, p, n, 0.5f * len, light.radiance, light.two_sided);
     if (!s.valid()) return s;
-    s.distance = shadow_distance(s.distance, glm::dot(s.wi, n), ref, p);
+    s = shadow_sample(light, s.wi, s.radiance, s.pdf, s.distance, glm::dot(s.wi, n));
     if (light.texture) s.radiance = radiance_at(light, b);
     return s;
 }

@@ -55,7 +55,7 @@ AovSample sample_aovs(const Scene& scene, const Ray& camera_ray, std::uint32_t x
         if (!bs.valid()) return out;
         // A specular lobe chosen with probability pdf has weight tint * pdf / pdf = tint.
         tint *= bs.weight;
-        ray = spawn_ray(hit.point, hit.geometric_normal, sp.frame.to_world(bs.wi));
+        ray = spawn_ray(hit, sp.frame.to_world(bs.wi));
     }
     return out;  // too many specular bounces: albedo 0
 }

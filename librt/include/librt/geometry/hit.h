@@ -26,8 +26,12 @@ struct Hit {
     float t = std::numeric_limits<float>::infinity();  ///< ray parameter of the hit; inf if none
     glm::vec3 point{0.0f};                             ///< the surface point hit, in world space
     glm::vec3 geometric_normal{0.0f};                  ///< unit, from the primitive's shape
-    glm::vec3 shading_normal{0.0f};           ///< unit, interpolated when the mesh has normals
-    glm::vec2 uv{0.0f};                       ///< surface parameterisation or texture coordinates
+    glm::vec3 shading_normal{0.0f};  ///< unit, interpolated when the mesh has normals
+    glm::vec2 uv{0.0f};              ///< surface parameterisation or texture coordinates
+    /// How far a ray leaving `point` starts off the surface, along geometric_normal
+    /// (offset_ray_origin): a bound on the point's rounding and on that of the next ray's
+    /// test against the same primitive (ray_offset.h). At least ray_offset_scale(point).
+    float offset = 0.0f;
     std::uint32_t primitive_id = kInvalidId;  ///< triangle index within its mesh (an
                                               ///< instance's: its prototype's), or 0
     std::uint32_t object_id = kInvalidId;     ///< index of the object in its scene

@@ -1,7 +1,9 @@
 #pragma once
 
+#include <librt/geometry/hit.h>
 #include <librt/geometry/ray.h>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
@@ -29,19 +31,54 @@ inline constexpr float kRayOffsetAbsolute = 0x1p-20f;
     return kRayOffsetAbsolute + kRayOffsetRelative * m;
 }
 
+/// The offset a barycentric point b0 p0 + b1 p1 + b2 p2 computed in float needs:
+/// ray_offset_scale of |b0 p0| + |b1 p1| + |b2 p2| (componentwise). The sum bounds the
+/// point's rounding (pbrt-v4 bounds it by gamma(7) times the same sum, Physically Based
+/// Rendering 4th ed., section 6.8), and, more to the point, the rounding of the next ray's
+/// intersection test with the triangle, which translates the vertices by the ray's origin: a
+/// triangle 1e5 across whose plane passes near the world origin is found again ~1e-2 off it by a
+/// ray leaving it there, far beyond ray_offset_scale of the point itself (issue 41). For a triangle
+/// small next to its distance from the origin the sum is about |p| and this is
+/// ray_offset_scale(p).
+[[nodiscard]] inline float barycentric_offset(float b0, const glm::vec3& p0, float b1,
+                                              const glm::vec3& p1, float b2, const glm::vec3& p2) {
+    return ray_offset_scale(glm::abs(b0 * p0) + glm::abs(b1 * p1) + glm::abs(b2 * p2));
+}
+
 /// The origin of a ray leaving surface point `point` in `direction`: the point moved by
-/// ray_offset_scale(point) along the unit geometric `normal`, to the side `direction`
-/// goes (so a reflected ray starts above the surface and a refracted one below it).
-/// Forced inline: g++ kept it out of line in the path loop (docs/benchmarks.md, "Code
-/// shaped by measurement").
+/// `offset` along the unit geometric `normal`, to the side `direction` goes (so a
+/// reflected ray starts above the surface and a refracted one below it). The one function
+/// every ray leaving a surface goes through; `offset` is the hit's Hit::offset, or
+/// ray_offset_scale(point) for a point no intersection made. Forced inline: g++ kept it
+/// out of line in the path loop (docs/benchmarks.md, "Code shaped by measurement").
 [[nodiscard, gnu::always_inline]] inline glm::vec3 offset_ray_origin(const glm::vec3& point,
                                                                      const glm::vec3& normal,
+                                                                     float offset,
                                                                      const glm::vec3& direction) {
-    const float offset = ray_offset_scale(point);
     return glm::dot(normal, direction) >= 0.0f ? point + offset * normal : point - offset * normal;
 }
 
-/// A ray leaving a surface point in a unit direction, its origin offset off the surface.
+/// offset_ray_origin with the offset ray_offset_scale(point): for a surface point no
+/// intersection made (a point on a sphere, a light's sample). A triangle's hit needs its
+/// own Hit::offset.
+[[nodiscard, gnu::always_inline]] inline glm::vec3 offset_ray_origin(const glm::vec3& point,
+                                                                     const glm::vec3& normal,
+                                                                     const glm::vec3& direction) {
+    return offset_ray_origin(point, normal, ray_offset_scale(point), direction);
+}
+
+/// A ray leaving a hit in a unit direction, its origin offset off the surface by the hit's
+/// own error bound (Hit::offset).
+[[nodiscard]] inline Ray spawn_ray(const Hit& hit, const glm::vec3& direction) {
+    Ray r;
+    r.origin = offset_ray_origin(hit.point, hit.geometric_normal, hit.offset, direction);
+    r.direction = direction;
+    return r;
+}
+
+/// A ray leaving a surface point in a unit direction, its origin offset off the surface by
+/// ray_offset_scale(point): for points no intersection made; a hit's ray is
+/// spawn_ray(hit, direction).
 [[nodiscard]] inline Ray spawn_ray(const glm::vec3& point, const glm::vec3& normal,
                                    const glm::vec3& direction) {
     Ray r;

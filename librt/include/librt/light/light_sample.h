@@ -12,12 +12,18 @@ struct LightLiSample {
     /// factor that times cos(theta) gives the irradiance: I / d^2.
     glm::vec3 radiance{0.0f};
     float pdf = 0.0f;  ///< per unit solid angle at the reference point; 1 for a delta light
-    /// Where a shadow ray toward the sample ends (spawn_ray_to uses it as it is): the
+    /// Where a shadow ray toward the sample ends (spawn_ray_to takes end_slope times the
+    /// origin's offset off it): the
     /// distance from the reference point to the emitting point along wi. Lights whose own
     /// surface the shadow ray skips give it exactly; triangle lights, which cannot skip
-    /// theirs, shorten it by the ray offsets of both ends (see triangle_light.cpp).
+    /// theirs, shorten it by the rounding of their own test (see triangle_light.cpp).
     float distance = 0.0f;
     bool is_delta = false;  ///< a delta light: no BSDF-sampled direction can find it
+    /// How much shorter the shadow ray must be per unit of its origin's offset off the
+    /// receiving surface, so that the shifted segment still ends short of the light's own
+    /// surface: 1 / |cos| at the emitter for lights whose surface the ray cannot skip
+    /// (triangles), 0 for the others. spawn_ray_to (src/geometry/spawn_ray.h) applies it.
+    float end_slope = 0.0f;
 
     /// True when there is a direction to use (pdf > 0).
     [[nodiscard]] bool valid() const { return pdf > 0.0f; }

@@ -58,9 +58,10 @@ struct TriangleLight {
 /// A point on the triangle (uniform in solid angle, or in area when it looks small), as a direction
 /// from ref with its solid-angle density and the radiance emitted there; invalid when ref lies in
 /// the triangle's plane, behind a one-sided triangle, or the triangle is degenerate. Its distance
-/// is where the shadow ray must end: the emitting point less the ray offsets' worst case along wi
-/// (ray_offset_scale of ref and of the point, over |cos| at the emitter), so a shadow ray from a
-/// surface just beside the triangle does not end on it.
+/// is where the shadow ray must end: the emitting point less the rounding of a test against the
+/// triangle along wi (ray_offset_scale of its largest vertex coordinates, over |cos| at the
+/// emitter), and its end_slope 1 / |cos| makes spawn_ray_to take the origin's offset off too, so
+/// a shadow ray from a surface just beside the triangle does not end on it.
 [[nodiscard]] LIBRT_API LightLiSample sample_li(const TriangleLight& light, const glm::vec3& ref,
                                                 glm::vec2 u);
 /// The solid-angle density of sample_li at ref for unit direction wi; 0 if wi misses (or
