@@ -249,7 +249,7 @@ float PixelFilter::sample_1d(float u, float& sign) const {
         }
         case FilterKind::Smallpt: {
             // Inverse CDF of the trapezoid in units of 4 r / 3 (where it is smallpt's, of
-            // radius 0.75): F(x) = (x + 0.75)^2 on the left slope (mass 1/4), u - 0.5 on
+            // radius 0.75): F(x) = (x + 0.75)^2 on the left slope (mass 1/4), x + 0.5 on
             // the flat top (mass 1/2), 1 - (0.75 - x)^2 on the right slope. Monotone,
             // unlike smallpt's own draw (sub-pixel first, then tent), so that a stratified
             // u gives stratified offsets.
