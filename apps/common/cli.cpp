@@ -165,8 +165,8 @@ void add_sampling_options(CLI::App& app, AppOptions& o) {
                    "Random numbers: independent (PCG32 streams) or sobol (Owen-scrambled Sobol')")
         ->capture_default_str();
     app.add_option("--filter", o.filter,
-                   "Pixel filter by importance sampling: box, tent, gaussian, mitchell or "
-                   "blackman-harris (default: the app's own sub-pixel jitter)");
+                   "Pixel filter by importance sampling: box, tent, gaussian, mitchell, "
+                   "blackman-harris or smallpt (default: the app's own sub-pixel jitter)");
     app.add_flag("--guiding", o.guiding,
                  "Path guiding: learn the incident light in training passes, then sample "
                  "directions from it (path-traced apps)");
@@ -178,7 +178,7 @@ void add_sampling_options(CLI::App& app, AppOptions& o) {
                  "where the noise is (--spp becomes the mean; pixels' means stay unbiased)");
     app.add_option("--filter-radius", o.filter_radius,
                    "The filter's radius in pixels (default: box 0.5, tent 1, gaussian 1.5, "
-                   "mitchell 2, blackman-harris 1.5)");
+                   "mitchell 2, blackman-harris 1.5, smallpt 0.75)");
 }
 
 namespace {
@@ -190,7 +190,8 @@ bool filter_kind_of(const std::string& name, FilterKind& kind) {
         {"tent", FilterKind::Tent},
         {"gaussian", FilterKind::Gaussian},
         {"mitchell", FilterKind::Mitchell},
-        {"blackman-harris", FilterKind::BlackmanHarris}};
+        {"blackman-harris", FilterKind::BlackmanHarris},
+        {"smallpt", FilterKind::Smallpt}};
     for (const auto& [n, k] : kNames) {
         if (name == n) {
             kind = k;
@@ -282,7 +283,7 @@ void validate_sampling(const AppOptions& o) {
     FilterKind kind{};
     if (!o.filter.empty() && !filter_kind_of(o.filter, kind)) {
         bad_option("--filter", o.filter,
-                   "must be box, tent, gaussian, mitchell or blackman-harris");
+                   "must be box, tent, gaussian, mitchell, blackman-harris or smallpt");
     }
     if (o.filter_radius) {
         if (o.filter.empty())

@@ -49,8 +49,8 @@ struct AppOptions {
     bool check = false;                   ///< --check: exit 2 if the image is black or has NaN/Inf
     bool quiet = false;                   ///< --quiet: no progress bar, no summary
     std::string sampler = "independent";  ///< --sampler: independent | sobol
-    /// --filter: box | tent | gaussian | mitchell | blackman-harris; empty = the app's own
-    /// sub-pixel jitter (unchanged images).
+    /// --filter: box | tent | gaussian | mitchell | blackman-harris | smallpt; empty = the app's
+    /// own sub-pixel jitter (unchanged images).
     std::string filter;
     std::optional<float> filter_radius;  ///< --filter-radius in pixels; default: the filter's
     bool guiding = false;                ///< --guiding: path guiding (PathTracer apps)

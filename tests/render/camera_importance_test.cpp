@@ -296,6 +296,57 @@ TEST(CameraImportance, SampleWiAgreesWithTheReversedRay) {
     }
 }
 
+// sample_wi sees a point exactly when the camera ray through it does: along camera rays
+// of every kind of lens, a point just past t_min (and before t_max) connects, one just
+// before t_min (or past t_max) does not, in both near clip modes; the join ends at the
+// camera ray's own t_min.
+TEST(CameraImportance, SampleWiAppliesTheCameraRaysClipForEveryNearClipMode) {
+    for (const LensModel lens : {LensModel::Pinhole, LensModel::Disk, LensModel::Gaussian}) {
+        for (const NearClipMode mode : {NearClipMode::Plane, NearClipMode::Distance}) {
+            CameraSettings s = base_settings(lens);
+            s.near_clip = 2.0f;
+            s.near_clip_mode = mode;
+            s.far_clip = 20.0f;
+            const Camera camera(s);
+            int checked = 0;
+            for (int k = 0; k < 300; ++k) {
+                const int x = (k * 7) % 64, y = (k * 5) % 48;
+                Sampler sampler(std::uint32_t(x), std::uint32_t(y), std::uint32_t(k), 9);
+                const Ray ray = camera.sample_ray(x, y, sampler).ray;
+                // The lens sample the camera drew: its second 2D sample.
+                Sampler again(std::uint32_t(x), std::uint32_t(y), std::uint32_t(k), 9);
+                (void)again.next_2d();
+                const glm::vec2 u_lens = again.next_2d();
+                const std::string what = std::string(lens_name(lens)) +
+                                         (mode == NearClipMode::Distance ? " distance" : " plane");
+                const CameraWi inside = sample_wi(camera, ray.at(ray.t_min * 1.01f), u_lens);
+                ASSERT_TRUE(inside.valid) << what << " k " << k;
+                EXPECT_NEAR(glm::distance(inside.view_start, ray.at(ray.t_min)), 0.0f, 2e-4f)
+                    << what;
+                if (mode == NearClipMode::Distance) {
+                    EXPECT_NEAR(glm::distance(inside.view_start, inside.lens_point), 2.0f, 1e-5f);
+                }
+                EXPECT_FALSE(sample_wi(camera, ray.at(ray.t_min * 0.99f), u_lens).valid) << what;
+                EXPECT_TRUE(sample_wi(camera, ray.at(ray.t_max * 0.99f), u_lens).valid) << what;
+                EXPECT_FALSE(sample_wi(camera, ray.at(ray.t_max * 1.01f), u_lens).valid) << what;
+                ++checked;
+            }
+            EXPECT_EQ(checked, 300);
+        }
+    }
+    // Off the axis the two modes disagree about the same point, as the camera rays do: a
+    // point at distance 2.1 and 30 degrees off the view axis (depth 1.82) is seen only by
+    // a distance clip of 2.
+    CameraSettings s = base_settings(LensModel::Pinhole);
+    s.near_clip = 2.0f;
+    const glm::dvec3 dir =
+        cone_direction(Camera(s), std::cos(std::numbers::pi / 6.0), {1.0f, 0.1f});
+    const glm::vec3 point = s.position + 2.1f * glm::vec3(dir);
+    EXPECT_FALSE(sample_wi(Camera(s), point, {0.5f, 0.5f}).valid);
+    s.near_clip_mode = NearClipMode::Distance;
+    EXPECT_TRUE(sample_wi(Camera(s), point, {0.5f, 0.5f}).valid);
+}
+
 // A point on the in-focus sphere is sharp: every lens point sees it at one raster position,
 // the one whose pinhole ray reaches it. Points behind the lens plane or outside the clip
 // planes connect to nothing.

@@ -1,5 +1,6 @@
 #include <librt/core/error.h>
 #include <librt/film/camera.h>
+#include <librt/geometry/sphere.h>
 
 #include <gtest/gtest.h>
 
@@ -240,6 +241,83 @@ TEST(Camera, NearAndFarClipAreDepthPlanesInFrontOfTheLens) {
     EXPECT_NEAR(ray.t_max * glm::dot(ray.direction, glm::vec3(0, 0, -1)), 10.0f, 1e-5f);
 }
 
+TEST(Camera, NearClipDistanceIsTMinOfEveryRay) {
+    // Off-axis pixels (corners) and the centre, pinhole and both thin lenses: in Distance
+    // mode t_min is near_clip itself, in Plane mode near_clip / cos, larger off the axis.
+    for (const LensModel lens : {LensModel::Pinhole, LensModel::Disk, LensModel::Gaussian}) {
+        for (const NearClipMode mode : {NearClipMode::Plane, NearClipMode::Distance}) {
+            CameraSettings s;
+            s.width = 96;
+            s.height = 64;
+            s.vertical_fov_degrees = 70.0f;
+            s.pixel_jitter = PixelJitter::Gaussian;
+            s.lens = lens;
+            s.lens_radius = 0.5f;
+            s.lens_sigma = 0.3f;
+            s.near_clip = 2.0f;
+            s.near_clip_mode = mode;
+            s.far_clip = 50.0f;
+            const Camera camera(s);
+            for (const auto& [x, y] : {std::pair{0, 0}, {95, 63}, {48, 32}, {0, 63}, {95, 0}}) {
+                for (std::uint32_t k = 0; k < 8; ++k) {
+                    Sampler sampler(std::uint32_t(x), std::uint32_t(y), k, 3);
+                    const Ray ray = camera.generate_ray(x, y, sampler);
+                    const float cos_axis = glm::dot(ray.direction, camera.forward());
+                    if (mode == NearClipMode::Distance) {
+                        EXPECT_EQ(ray.t_min, 2.0f) << x << ' ' << y;
+                    } else {
+                        EXPECT_NEAR(ray.t_min, 2.0f / cos_axis, 1e-5f) << x << ' ' << y;
+                    }
+                    // The far clip is a plane in both modes.
+                    EXPECT_NEAR(ray.t_max, 50.0f / cos_axis, 1e-4f) << x << ' ' << y;
+                    if (x != 48 && mode == NearClipMode::Plane) {
+                        EXPECT_GT(ray.t_min, 2.2f) << x << ' ' << y;  // corners: cos < 0.9
+                    }
+                }
+            }
+        }
+    }
+}
+
+TEST(Camera, NearClipDistanceSeesASphereAroundTheCameraEverywhere) {
+    // A sphere centred on the camera, of radius a little beyond near_clip: every ray of a
+    // distance clip starts inside it and sees it; a near clip plane at the same depth cuts
+    // the sphere off where near_clip / cos exceeds the radius, at the image's corners.
+    const Sphere sphere{CameraSettings{}.position, 10.2f};
+    for (const LensModel lens : {LensModel::Pinhole, LensModel::Disk}) {
+        for (const NearClipMode mode : {NearClipMode::Plane, NearClipMode::Distance}) {
+            CameraSettings s;  // 60 degrees vertical, square: the corners are 39 degrees off
+            s.width = 32;
+            s.height = 32;
+            s.lens = lens;
+            s.lens_radius = 0.1f;
+            s.near_clip = 10.0f;
+            s.near_clip_mode = mode;
+            const Camera camera(s);
+            int seen = 0, corners_seen = 0;
+            for (int y = 0; y < 32; ++y) {
+                for (int x = 0; x < 32; ++x) {
+                    Sampler sampler(std::uint32_t(x), std::uint32_t(y), 0, 1);
+                    const bool hit =
+                        intersect(sphere, camera.generate_ray(x, y, sampler)).has_value();
+                    seen += hit;
+                    const bool corner = (x == 0 || x == 31) && (y == 0 || y == 31);
+                    corners_seen += corner && hit;
+                    if (x == 16 && y == 16) {
+                        EXPECT_TRUE(hit);  // on the axis, both modes
+                    }
+                }
+            }
+            if (mode == NearClipMode::Distance) {
+                EXPECT_EQ(seen, 32 * 32);
+            } else {
+                EXPECT_EQ(corners_seen, 0);
+                EXPECT_LT(seen, 32 * 32 / 2);  // only within acos(10 / 10.2) = 11 degrees
+            }
+        }
+    }
+}
+
 TEST(Camera, ClipAndFilterSettingsAreValidated) {
     const auto with = [](auto change) {
         CameraSettings s;
@@ -249,6 +327,8 @@ TEST(Camera, ClipAndFilterSettingsAreValidated) {
     expect_rejects(with([](CameraSettings& s) { s.near_clip = -1.0f; }), "near_clip = -1");
     expect_rejects(with([](CameraSettings& s) { s.near_clip = NAN; }), "near_clip");
     expect_rejects(with([](CameraSettings& s) { s.near_clip = INFINITY; }), "near_clip");
+    expect_rejects(with([](CameraSettings& s) { s.near_clip_mode = static_cast<NearClipMode>(2); }),
+                   "near_clip_mode = 2");
     expect_rejects(with([](CameraSettings& s) { s.far_clip = 0.0f; }), "far_clip = 0");
     expect_rejects(with([](CameraSettings& s) { s.far_clip = NAN; }), "far_clip");
     expect_rejects(with([](CameraSettings& s) {

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -38,11 +39,14 @@ std::vector<FilterSettings> all_filters() {
             make(FilterKind::Mitchell, 2.0f),
             make(FilterKind::Mitchell, 1.5f, 0.5f, 0.0f, 0.5f),  // Catmull-Rom: deep lobes
             make(FilterKind::BlackmanHarris, 1.5f),
-            make(FilterKind::BlackmanHarris, 3.0f)};
+            make(FilterKind::BlackmanHarris, 3.0f),
+            make(FilterKind::Smallpt, 0.75f),
+            make(FilterKind::Smallpt, 1.5f)};
 }
 
 std::string name(const FilterSettings& s) {
-    static const char* names[] = {"box", "tent", "gaussian", "mitchell", "blackman-harris"};
+    static const char* names[] = {"box",    "tent", "gaussian", "mitchell", "blackman-harris",
+                                  "smallpt"};
     return std::string(names[static_cast<int>(s.kind)]) + " r=" + std::to_string(s.radius);
 }
 
@@ -182,6 +186,106 @@ TEST(PixelFilter, DefaultsAndShapes) {
     EXPECT_NEAR(bh.evaluate_1d(1.5f), 0.35875 - 0.48829 + 0.14128 - 0.01168, 1e-6);
 }
 
+namespace {
+
+// smallpt's sub-pixel offset from the pixel centre, written from its radiance loop: a
+// sub-pixel s in {0, 1} with probability 1/2 each, then a tent d on [-1, 1], at
+// (s + 0.5 + d) / 2 - 0.5. Two steps, as smallpt draws it (not the filter's inversion).
+float smallpt_offset(float u_subpixel, float u_tent) {
+    const float s = u_subpixel < 0.5f ? 0.0f : 1.0f;
+    const float r = 2.0f * u_tent;
+    const float d = r < 1.0f ? std::sqrt(r) - 1.0f : 1.0f - std::sqrt(2.0f - r);
+    return (s + 0.5f + d) / 2.0f - 0.5f;
+}
+
+// The trapezoid's CDF in closed form: the mean of the CDFs of two tents of half-width
+// 0.5 centred at -+0.25, each (1 + t / 0.5)^2 / 2 left of its centre and 1 minus that
+// mirrored right of it.
+double smallpt_cdf(double x) {
+    const auto tent_cdf = [](double t) {
+        if (t <= -0.5) return 0.0;
+        if (t >= 0.5) return 1.0;
+        const double a = 1.0 - std::abs(t) / 0.5;  // 1 at the centre, 0 at the ends
+        return t < 0.0 ? 0.5 * a * a : 1.0 - 0.5 * a * a;
+    };
+    return 0.5 * (tent_cdf(x + 0.25) + tent_cdf(x - 0.25));
+}
+
+}  // namespace
+
+TEST(PixelFilter, SmallptOffsetsFollowSmallptsSubPixelTents) {
+    // 1D chi-square over 60 bins of [-0.75, 0.75] against the closed-form CDF, for the
+    // filter's offsets (both axes) and, checking the derivation in filter.cpp, for smallpt's
+    // own two-step draw; p >= 0.01 at 200000 samples fails for a shape wrong by ~1 %.
+    constexpr int n = 200000, bins = 60;
+    std::vector<double> expected(bins);
+    for (int i = 0; i < bins; ++i) {
+        const double a = -0.75 + 1.5 * i / bins, b = a + 1.5 / bins;
+        expected[i] = n * (smallpt_cdf(b) - smallpt_cdf(a));
+    }
+    const auto bin_of = [](float v) {
+        return std::clamp(static_cast<int>((v + 0.75f) / 1.5f * bins), 0, bins - 1);
+    };
+    const PixelFilter filter(default_filter_settings(FilterKind::Smallpt));
+    EXPECT_EQ(filter.settings().radius, 0.75f);
+    std::vector<double> x_counts(bins, 0.0), y_counts(bins, 0.0), smallpt_counts(bins, 0.0);
+    Pcg32 rng(41, 7);
+    for (int k = 0; k < n; ++k) {
+        const FilterSample s = filter.sample(rng.next_vec2());
+        ASSERT_LE(std::abs(s.offset.x), 0.75f);
+        ASSERT_LE(std::abs(s.offset.y), 0.75f);
+        EXPECT_EQ(s.weight, 1.0f);
+        x_counts[bin_of(s.offset.x)] += 1.0;
+        y_counts[bin_of(s.offset.y)] += 1.0;
+        const glm::vec2 u = rng.next_vec2();
+        smallpt_counts[bin_of(smallpt_offset(u.x, u.y))] += 1.0;
+    }
+    for (const auto* counts : {&x_counts, &y_counts, &smallpt_counts}) {
+        const auto result = librt::testing::chi_square_test(*counts, expected);
+        EXPECT_TRUE(result.error.empty()) << result.summary();
+        EXPECT_GE(result.p_value, 0.01) << result.summary();
+    }
+    // A plain tent of radius 0.75 (the nearest of the other shapes) fails the same test:
+    // the test can tell the shapes apart.
+    const PixelFilter tent(make(FilterKind::Tent, 0.75f));
+    std::vector<double> tent_counts(bins, 0.0);
+    for (int k = 0; k < n; ++k) tent_counts[bin_of(tent.sample(rng.next_vec2()).offset.x)] += 1.0;
+    EXPECT_LT(librt::testing::chi_square_test(tent_counts, expected).p_value, 1e-6);
+}
+
+TEST(PixelFilter, SmallptDensityIsFlatThenLinearAndIntegratesToOne) {
+    const PixelFilter filter(default_filter_settings(FilterKind::Smallpt));
+    // At smallpt's radius 0.75, f is the normalised density: 1 on |x| <= 0.25, then
+    // 1.5 - 2 |x| down to 0 at 0.75, 0 beyond.
+    for (const float x : {0.0f, 0.1f, -0.2f, 0.25f, -0.25f}) {
+        EXPECT_EQ(filter.evaluate_1d(x), 1.0f) << x;
+    }
+    for (const float x : {0.3f, -0.5f, 0.6f, 0.7f}) {
+        EXPECT_NEAR(filter.evaluate_1d(x), 1.5f - 2.0f * std::abs(x), 1e-6f) << x;
+    }
+    for (const float x : {0.75f, -0.75f, 0.8f, -2.0f, 100.0f}) {
+        EXPECT_EQ(filter.evaluate_1d(x), 0.0f) << x;
+    }
+    // The density integrates to 1 (Simpson on the three linear pieces is exact).
+    const auto f = [&](double x) { return filter.evaluate_1d_precise(x); };
+    const double total =
+        simpson(f, -0.75, -0.25) + simpson(f, -0.25, 0.25) + simpson(f, 0.25, 0.75);
+    EXPECT_NEAR(total, 1.0, 1e-12);
+    // Its CDF is the closed form's at every quarter of the support.
+    for (double x = -0.75; x <= 0.75; x += 0.125) {
+        EXPECT_NEAR(simpson(f, -0.75, std::min(x, -0.25)) +
+                        (x > -0.25 ? simpson(f, -0.25, std::min(x, 0.25)) : 0.0) +
+                        (x > 0.25 ? simpson(f, 0.25, x) : 0.0),
+                    smallpt_cdf(x), 1e-12)
+            << x;
+    }
+    // Stretched to radius 1.5: flat to 0.5, twice as wide, the same shape.
+    const PixelFilter wide(make(FilterKind::Smallpt, 1.5f));
+    EXPECT_EQ(wide.evaluate_1d(0.5f), 1.0f);
+    EXPECT_NEAR(wide.evaluate_1d(1.0f), filter.evaluate_1d(0.5f), 1e-6f);
+    EXPECT_EQ(wide.evaluate_1d(1.5f), 0.0f);
+}
+
 TEST(PixelFilter, BadSettingsNameTheParameter) {
     const auto expect_rejects = [](const FilterSettings& s, const std::string& what) {
         try {
@@ -199,6 +303,7 @@ TEST(PixelFilter, BadSettingsNameTheParameter) {
     expect_rejects(make(FilterKind::Gaussian, 1.0f, NAN), "sigma");
     expect_rejects(make(FilterKind::Mitchell, 2.0f, 0.5f, NAN), "mitchell_b");
     expect_rejects(make(FilterKind::Mitchell, 2.0f, 0.5f, 0.3f, INFINITY), "mitchell_c");
+    expect_rejects(make(FilterKind::Smallpt, 0.0f), "radius = 0");
     FilterSettings bad_kind;
     bad_kind.kind = static_cast<FilterKind>(17);
     expect_rejects(bad_kind, "kind = 17");

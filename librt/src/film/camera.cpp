@@ -99,6 +99,12 @@ void validate(const CameraSettings& s) {
     if (!(s.near_clip >= 0.0f) || !std::isfinite(s.near_clip)) {
         fail("near_clip", to_text(s.near_clip), "must be finite and >= 0");
     }
+    const int near_mode = static_cast<int>(s.near_clip_mode);
+    if (near_mode < static_cast<int>(NearClipMode::Plane) ||
+        near_mode > static_cast<int>(NearClipMode::Distance)) {
+        fail("near_clip_mode", std::to_string(near_mode), "is not a NearClipMode");
+    }
+    // In Distance mode too: t_max = far_clip / cos >= far_clip > near_clip = t_min.
     if (!(s.far_clip > s.near_clip)) {
         fail("far_clip", to_text(s.far_clip), "must be > near_clip (+inf for no far clip)");
     }
@@ -182,11 +188,13 @@ CameraRay Camera::perspective_ray(int px, int py, Sampler& sampler) const {
         ray.direction = glm::normalize(focal_point - ray.origin);
     }
     // Clip planes at depth near/far from the lens plane: along the unit direction that is
-    // t = depth / cos(angle to the view axis). Skipped without clips so that t_min = 0 and
-    // t_max = inf stay exact.
+    // t = depth / cos(angle to the view axis); a near clip distance is t itself. Skipped
+    // without clips so that t_min = 0 and t_max = inf stay exact.
     if (clipped_) {
         const float cos_axis = glm::dot(ray.direction, forward_);
-        ray.t_min = settings_.near_clip / cos_axis;
+        ray.t_min = settings_.near_clip_mode == NearClipMode::Distance
+                        ? settings_.near_clip
+                        : settings_.near_clip / cos_axis;
         ray.t_max = settings_.far_clip / cos_axis;
     }
     return out;
@@ -207,7 +215,8 @@ CameraRay Camera::orthographic_ray(int px, int py, Sampler& sampler) const {
     ray.origin =
         settings_.position + (cx * ortho_pixel_size_.x) * right_ + (cy * ortho_pixel_size_.y) * up_;
     ray.direction = forward_;
-    // The direction is the optical axis: depths are distances.
+    // The direction is the optical axis: depths are distances (so near_clip_mode does not
+    // matter here).
     ray.t_min = settings_.near_clip;
     ray.t_max = settings_.far_clip;
     return out;

@@ -165,19 +165,25 @@ CameraWi sample_wi(const Camera& camera, const glm::vec3& ref, glm::vec2 u_lens,
     const double distance = glm::length(to_ref);
     if (!(distance > 0.0) || !std::isfinite(distance)) return out;
     const glm::dvec3 dir = to_ref / distance;
-    // A camera ray sees only hits at depths in (near_clip, far_clip) before the lens plane.
+    // A camera ray sees only hits at depths in (near_clip, far_clip) before the lens plane,
+    // or with a near clip distance, at distances beyond near_clip and depths before far_clip.
     const double depth = glm::dot(to_ref, to_double(camera.forward()));
-    if (!(depth > double(s.near_clip) && depth < double(s.far_clip))) return out;
+    const bool near_distance = s.near_clip_mode == NearClipMode::Distance;
+    if (!(depth > 0.0 && (near_distance ? distance : depth) > double(s.near_clip) &&
+          depth < double(s.far_clip))) {
+        return out;
+    }
     const auto traced = trace(camera, to_double(lens_point), dir, double(margin));
     if (!traced) return out;
     const double pdf_pos = lens_pdf(camera, to_double(lens_point));
     out.valid = true;
     out.lens_point = lens_point;
-    // The near plane at t = near / cos_axis along the unit direction, cos_axis = depth / d.
+    // The near plane at t = near / cos_axis along the unit direction, cos_axis = depth / d;
+    // a near clip distance at t = near.
+    const double view_t =
+        near_distance ? double(s.near_clip) : double(s.near_clip) * distance / depth;
     out.view_start =
-        s.near_clip > 0.0f
-            ? glm::vec3(to_double(lens_point) + dir * (double(s.near_clip) * distance / depth))
-            : lens_point;
+        s.near_clip > 0.0f ? glm::vec3(to_double(lens_point) + dir * view_t) : lens_point;
     out.wi = glm::vec3(-dir);
     out.distance = static_cast<float>(distance);
     out.raster = glm::vec2(traced->raster);

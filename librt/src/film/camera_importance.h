@@ -54,7 +54,8 @@ struct CameraWi {
     bool valid = false;          ///< false: behind the camera, clipped, or off the image
     glm::vec3 lens_point{0.0f};  ///< the point on the lens (the position for a pinhole)
     /// Where the camera ray from lens_point toward the reference point starts to see: its
-    /// point on the near clip plane, or lens_point without one. A join's shadow ray ends
+    /// point on the near clip plane (or at distance near_clip for NearClipMode::Distance),
+    /// or lens_point without a near clip. A join's shadow ray ends
     /// here, since the camera ray passes whatever lies before it.
     glm::vec3 view_start{0.0f};
     glm::vec3 wi{0.0f};       ///< unit direction from the reference point to lens_point
@@ -104,8 +105,10 @@ struct CameraWi {
 /// Connects the scene point `ref` to the lens: draws a lens point from u_lens (the disk or
 /// Gaussian lens offset sample_ray draws from its lens sample; ignored for a pinhole) and
 /// returns it with the reversed ray's raster position, importance and densities. Invalid
-/// when `ref` is behind the lens plane, outside the clip planes (its depth in front of the
-/// lens plane is not in (near_clip, far_clip), as a camera ray's hits must be), or when
+/// when `ref` is behind the lens plane, outside the clips (its depth in front of the lens
+/// plane is not in (near_clip, far_clip), or for NearClipMode::Distance its distance from
+/// the lens point is not beyond near_clip or its depth not before far_clip: the test camera
+/// rays' hits pass), or when
 /// the raster is off the image grown by `margin`.
 [[nodiscard]] LIBRT_API CameraWi sample_wi(const Camera& camera, const glm::vec3& ref,
                                            glm::vec2 u_lens, float margin = 0.0f);

@@ -57,6 +57,16 @@ double filter_value(const FilterSettings& s, double x) {
             return 0.35875 - 0.48829 * std::cos(w) + 0.14128 * std::cos(2.0 * w) -
                    0.01168 * std::cos(3.0 * w);
         }
+        case FilterKind::Smallpt:
+            // smallpt's radiance loop (Kevin Beason's smallpt.cpp) puts a sample of pixel x
+            // at x + (s + 0.5 + d) / 2, s in {0, 1} the sub-pixel column and d a tent on
+            // [-1, 1]: from the pixel centre x + 0.5 that is -+0.25 + d / 2, an equal
+            // mixture of two tents of half-width 0.5 centred at -+0.25. Their mean density
+            // is 1 on |x| <= 0.25 (the two slopes cancel) and 1.5 - 2 |x| on
+            // 0.25 <= |x| <= 0.75: a trapezoid, also a box of half-width 0.25 convolved
+            // with one of half-width 0.5. Here stretched to the radius (0.75 is smallpt's);
+            // at radius 0.75 this f is the normalised density itself.
+            return ax <= r / 3.0 ? 1.0 : 1.5 * (1.0 - ax / r);
     }
     return 0.0;
 }
@@ -115,6 +125,9 @@ FilterSettings default_filter_settings(FilterKind kind) {
         case FilterKind::BlackmanHarris:
             s.radius = 1.5f;
             break;
+        case FilterKind::Smallpt:
+            s.radius = 0.75f;
+            break;
     }
     return s;
 }
@@ -122,8 +135,7 @@ FilterSettings default_filter_settings(FilterKind kind) {
 PixelFilter::PixelFilter(const FilterSettings& settings) : settings_(settings) {
     const FilterSettings& s = settings_;
     const int kind = static_cast<int>(s.kind);
-    if (kind < static_cast<int>(FilterKind::Box) ||
-        kind > static_cast<int>(FilterKind::BlackmanHarris)) {
+    if (kind < static_cast<int>(FilterKind::Box) || kind > static_cast<int>(FilterKind::Smallpt)) {
         fail("kind", static_cast<float>(kind), "is not a FilterKind");
     }
     const bool infinite_ok =
@@ -234,6 +246,22 @@ float PixelFilter::sample_1d(float u, float& sign) const {
             const float x = s.sigma * std::numbers::sqrt2_v<float> *
                             erfinv((2.0f * u - 1.0f) * gaussian_erf_radius_);
             return std::clamp(x, -r, r);
+        }
+        case FilterKind::Smallpt: {
+            // Inverse CDF of the trapezoid in units of 4 r / 3 (where it is smallpt's, of
+            // radius 0.75): F(x) = (x + 0.75)^2 on the left slope (mass 1/4), x + 0.5 on
+            // the flat top (mass 1/2), 1 - (0.75 - x)^2 on the right slope. Monotone,
+            // unlike smallpt's own draw (sub-pixel first, then tent), so that a stratified
+            // u gives stratified offsets.
+            float x;
+            if (u < 0.25f) {
+                x = std::sqrt(u) - 0.75f;
+            } else if (u <= 0.75f) {
+                x = u - 0.5f;
+            } else {
+                x = 0.75f - std::sqrt(1.0f - u);
+            }
+            return std::clamp(x * (r / 0.75f), -r, r);
         }
         case FilterKind::Mitchell:
         case FilterKind::BlackmanHarris:

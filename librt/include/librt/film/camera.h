@@ -40,6 +40,17 @@ enum class Projection {
     Orthographic,
 };
 
+/// How CameraSettings::near_clip is measured.
+enum class NearClipMode {
+    /// A plane perpendicular to the view at depth near_clip in front of the lens plane:
+    /// a ray at angle a to the view axis starts seeing at distance near_clip / cos(a).
+    Plane,
+    /// A distance along each ray from its origin (the lens point): every ray starts seeing
+    /// at t = near_clip, as smallpt's published code starts its camera rays 140 along the
+    /// unit direction. A sphere around a pinhole.
+    Distance,
+};
+
 /// Everything that defines a camera. Defaults are the report's camera: at (0, 0, 55)
 /// looking down -z, 60 degree vertical field of view, 512x512, no jitter, pinhole, no clip.
 struct CameraSettings {
@@ -69,12 +80,16 @@ struct CameraSettings {
     float focal_distance = 55.0f;  ///< distance along each ray that stays sharp (> 0)
     /// The filter PixelJitter::Filter samples offsets from (validated only when used).
     FilterSettings pixel_filter{};
-    /// Near clip plane: hits closer than this depth in front of the lens plane are
-    /// ignored (finite, >= 0). A plane perpendicular to the view, as smallpt's "start 140
-    /// units in front of the camera" is. Named near_clip, not near: windows.h defines
-    /// `near` and `far` as macros.
+    /// Near clip: hits closer than this are ignored (finite, >= 0), measured as
+    /// near_clip_mode says: by default a depth in front of the lens plane, as smallpt's
+    /// comment "start 140 units in front of the camera" describes. Named near_clip, not
+    /// near: windows.h defines `near` and `far` as macros.
     float near_clip = 0.0f;
-    /// Far clip plane: hits beyond this depth are ignored (> near_clip; +inf: none).
+    /// Whether near_clip is a plane (the default) or a distance along each ray. It does
+    /// not change far_clip, which is a plane in either mode (glTF's zfar is one).
+    NearClipMode near_clip_mode = NearClipMode::Plane;
+    /// Far clip plane: hits beyond this depth in front of the lens plane are ignored
+    /// (> near_clip; +inf: none).
     float far_clip = std::numeric_limits<float>::infinity();
 };
 
@@ -104,7 +119,8 @@ public:
     /// (measured along the optical axis from the lens plane, which holds every ray
     /// origin) become, for a unit direction d, the distances t_min = near_clip /
     /// dot(d, forward) and t_max = far_clip / dot(d, forward) from the ray's origin (the
-    /// lens point); dot(d, forward) > 0 for every camera ray. Without clips t_min = 0 and
+    /// lens point); dot(d, forward) > 0 for every camera ray. With NearClipMode::Distance
+    /// t_min = near_clip for every ray instead. Without clips t_min = 0 and
     /// t_max = +inf, exactly as before. An orthographic ray's origin is on the camera's
     /// x-y plane and its direction is forward(), so its t is the depth itself. The filter
     /// weight is dropped: see sample_ray.

@@ -22,6 +22,9 @@ enum class FilterKind {
     Gaussian,  ///< exp(-x^2 / (2 sigma^2)), cut off at the radius (or not, radius = inf)
     Mitchell,  ///< Mitchell-Netravali cubic (B, C) stretched to the radius; has negative lobes
     BlackmanHarris,  ///< the 4-term Blackman-Harris window over [-radius, radius]
+    /// smallpt's sub-pixel filter, a trapezoid: flat on |x| <= radius / 3, falling linearly
+    /// to 0 at the radius (default 0.75: flat over +-0.25 pixels, 0 at +-0.75).
+    Smallpt,
 };
 
 /// Everything that defines a pixel filter; offsets and radii are in pixels.
@@ -36,7 +39,8 @@ struct FilterSettings {
 };
 
 /// Customary settings of each kind: box radius 0.5 (the pixel), tent radius 1, Gaussian
-/// sigma 0.5 radius 1.5, Mitchell B = C = 1/3 radius 2, Blackman-Harris radius 1.5.
+/// sigma 0.5 radius 1.5, Mitchell B = C = 1/3 radius 2, Blackman-Harris radius 1.5, smallpt
+/// radius 0.75 (smallpt's own).
 [[nodiscard]] LIBRT_API FilterSettings default_filter_settings(FilterKind kind);
 
 /// One sampled sub-pixel offset.
@@ -56,7 +60,7 @@ public:
     explicit PixelFilter(const FilterSettings& settings = {});
 
     /// An offset with density |f(offset)| / integral |f| from a uniform u in [0, 1)^2:
-    /// x from u.x and y from u.y. Box, tent and Gaussian are inverted analytically;
+    /// x from u.x and y from u.y. Box, tent, Gaussian and smallpt are inverted analytically;
     /// Mitchell and Blackman-Harris through a piecewise-constant table of |f| whose cells
     /// hold |f|'s exact integral (so every cell has the right probability; inside a cell
     /// the offset is uniform) and never straddle a zero of f (so a cell has one sign).
