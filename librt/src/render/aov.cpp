@@ -17,8 +17,8 @@ constexpr std::uint64_t kAovStream = 0x41f0'5eed'a0c5'1a7eULL;
 
 }  // namespace
 
-AovSample sample_aovs(const Scene& scene, const Ray& camera_ray, std::uint32_t x, std::uint32_t y,
-                      std::uint32_t sample, std::uint64_t seed) {
+AovSample sample_aovs(const Scene& scene, const Ray& camera_ray, const glm::vec3& forward,
+                      std::uint32_t x, std::uint32_t y, std::uint32_t sample, std::uint64_t seed) {
     AovSample out;
     Ray ray = camera_ray;
     // Unit direction, so hit.t is a distance (t's range rescaled to match).
@@ -35,7 +35,9 @@ AovSample sample_aovs(const Scene& scene, const Ray& camera_ray, std::uint32_t x
         if (!scene.intersect_for_shading(ray, hit)) return out;  // escaped: albedo 0
         if (bounce == 0) {
             out.hit = true;
-            out.depth = hit.t;
+            // Planar depth: every camera ray starts on the lens plane (camera.h), so the
+            // hit's depth along the optical axis from that plane is t cos(ray, axis).
+            out.depth = hit.t * glm::dot(ray.direction, forward);
         }
         // Textures, vertex colours and the normal map applied, as the integrators see them.
         const Material& m = scene.shade(hit, ray.direction, shaded);
