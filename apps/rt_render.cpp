@@ -2,9 +2,9 @@
 // MTL), through loader/scene_file.h, progressively (render_progressive): Ctrl-C or the time
 // limit ends the render and the finished passes are written, flagged as partial. PNG is
 // sRGB-encoded after clamping (exposure 2^EV first); .hdr, .pfm and .exr stay linear
-// (times 2^EV), .exr with AOV layers (albedo, normal, depth, sample count). Under mpirun
-// (a build with MPI) every rank loads the scene and the frame is shared by the ranks, byte
-// for byte the one-process image (common/mpi_job.h, docs/distributed.md).
+// (times 2^EV), .exr with AOV layers (albedo, world normal, planar depth Z, sample count).
+// Under mpirun (a build with MPI) every rank loads the scene and the frame is shared by the
+// ranks, byte for byte the one-process image (common/mpi_job.h, docs/distributed.md).
 #include "common/cli.h"
 #include "common/mpi_job.h"
 #include "common/output_image.h"

@@ -1,10 +1,12 @@
 // The AOV layers against geometry whose answers are known in closed form: depth is the
-// distance along the camera ray to a plane, the normal that plane's, and the albedo the
-// first non-specular surface's, tinted by the mirrors and glass on the way.
+// planar depth of a plane (its distance from the lens plane along the view axis, what
+// compositors read as Z), the normal that plane's, and the albedo the first non-specular
+// surface's, tinted by the mirrors and glass on the way (aov_albedo_test.cpp: every kind).
 
 #include <librt/film/camera.h>
 #include <librt/film/film.h>
 #include <librt/geometry/procedural.h>
+#include <librt/geometry/ray.h>
 #include <librt/integrator/integrators.h>
 #include <librt/render/renderer.h>
 #include <librt/scene/scene.h>
@@ -51,21 +53,18 @@ float distance_to_plane(const Camera& camera, int x, int y, float plane) {
 
 }  // namespace
 
-TEST(Aov, DiffuseWallGivesItsAlbedoNormalAndDistance) {
+TEST(Aov, DiffuseWallGivesItsAlbedoNormalAndPlanarDepth) {
     Scene scene;
     const glm::vec3 albedo(0.25f, 0.5f, 0.75f);
     (void)scene.add_mesh(slab(-6.0f, -5.0f), scene.add_material(Material::diffuse(albedo)));
     scene.commit();
     const CameraSettings cs = axis_camera();
     const ImageLayers layers = render_layers(scene, cs);
-    const Camera camera(cs);
     for (int y = 0; y < cs.height; ++y) {
         for (int x = 0; x < cs.width; ++x) {
             EXPECT_EQ(layers.albedo.at(x, y), albedo);
             EXPECT_EQ(layers.normal.at(x, y), glm::vec3(0.0f, 0.0f, 1.0f));
-            const float expected = distance_to_plane(camera, x, y, -5.0f);
-            EXPECT_NEAR(layers.depth[static_cast<std::size_t>(y * cs.width + x)], expected,
-                        1e-5f * expected);
+            EXPECT_NEAR(layers.depth[static_cast<std::size_t>(y * cs.width + x)], 5.0f, 1e-5f);
             EXPECT_EQ(layers.sample_count[static_cast<std::size_t>(y * cs.width + x)], 3.0f);
         }
     }
@@ -81,7 +80,6 @@ TEST(Aov, MirrorsAreFollowedToTheFirstDiffuseHit) {
     scene.commit();
     const CameraSettings cs = axis_camera();
     const ImageLayers layers = render_layers(scene, cs);
-    const Camera camera(cs);
     for (int y = 0; y < cs.height; ++y) {
         for (int x = 0; x < cs.width; ++x) {
             const glm::vec3 a = layers.albedo.at(x, y);
@@ -89,9 +87,7 @@ TEST(Aov, MirrorsAreFollowedToTheFirstDiffuseHit) {
             EXPECT_NEAR(a.y, 0.3f, 1e-6f);
             EXPECT_NEAR(a.z, 0.2f, 1e-6f);
             EXPECT_EQ(layers.normal.at(x, y), glm::vec3(0.0f, 0.0f, -1.0f));
-            const float expected = distance_to_plane(camera, x, y, -5.0f);
-            EXPECT_NEAR(layers.depth[static_cast<std::size_t>(y * cs.width + x)], expected,
-                        1e-5f * expected);
+            EXPECT_NEAR(layers.depth[static_cast<std::size_t>(y * cs.width + x)], 5.0f, 1e-5f);
         }
     }
 }
@@ -107,16 +103,13 @@ TEST(Aov, GlassIsFollowedThroughToTheWallBehind) {
     scene.commit();
     const CameraSettings cs = axis_camera();
     const ImageLayers layers = render_layers(scene, cs);
-    const Camera camera(cs);
     const glm::vec3 expected_albedo = 0.81f * albedo;
     for (int y = 0; y < cs.height; ++y) {
         for (int x = 0; x < cs.width; ++x) {
             for (int c = 0; c < 3; ++c)
                 EXPECT_NEAR(layers.albedo.at(x, y)[c], expected_albedo[c], 1e-6f);
             EXPECT_NEAR(layers.normal.at(x, y).z, 1.0f, 1e-6f);
-            const float expected = distance_to_plane(camera, x, y, -2.0f);
-            EXPECT_NEAR(layers.depth[static_cast<std::size_t>(y * cs.width + x)], expected,
-                        1e-5f * expected);
+            EXPECT_NEAR(layers.depth[static_cast<std::size_t>(y * cs.width + x)], 2.0f, 1e-5f);
         }
     }
 }
@@ -177,4 +170,56 @@ TEST(Aov, MissesAndEmittersAndEndlessMirrors) {
     EXPECT_EQ(endless.albedo.at(0, 0), glm::vec3(0.0f));
     EXPECT_EQ(endless.normal.at(0, 0), glm::vec3(0.0f));
     EXPECT_NEAR(endless.depth[0], 5.0f, 1e-5f);
+}
+
+// Z is planar depth, as Blender and Nuke read it: a wall facing the camera at depth 5 gives
+// 5 in every pixel, corners included, while the distance along the ray (what Z held before
+// issue 38) grows toward the corners.
+TEST(Aov, DepthIsPlanarNotTheRayLength) {
+    Scene scene;
+    (void)scene.add_mesh(slab(-6.0f, -5.0f),
+                         scene.add_material(Material::diffuse({0.5f, 0.5f, 0.5f})));
+    scene.commit();
+    const CameraSettings cs = axis_camera(9, 7);
+    const ImageLayers layers = render_layers(scene, cs);
+    const Camera camera(cs);
+    for (int y = 0; y < cs.height; ++y)
+        for (int x = 0; x < cs.width; ++x)
+            EXPECT_NEAR(layers.depth[static_cast<std::size_t>(y * cs.width + x)], 5.0f, 1e-5f)
+                << "pixel " << x << ", " << y;
+    // The test tells the two apart: the corner ray is over 10 % longer than 5, the centre
+    // one is 5.
+    EXPECT_GT(distance_to_plane(camera, 0, 0, -5.0f), 5.5f);
+    EXPECT_GT(distance_to_plane(camera, cs.width - 1, cs.height - 1, -5.0f), 5.5f);
+    EXPECT_NEAR(distance_to_plane(camera, 4, 3, -5.0f), 5.0f, 1e-5f);
+}
+
+// With a thin lens every ray starts on the lens plane, off the camera's position, and a
+// tilted camera's view axis is no world axis: a plane perpendicular to that axis at depth
+// 7 from the lens still gives Z = 7 everywhere (pixel jitter and lens samples included).
+TEST(Aov, DepthIsPlanarForATiltedThinLensCamera) {
+    CameraSettings cs;
+    cs.position = {1.0f, 2.0f, 3.0f};
+    cs.look_at = {-2.0f, 0.5f, -4.0f};
+    cs.width = 7;
+    cs.height = 5;
+    cs.vertical_fov_degrees = 70.0f;
+    cs.pixel_jitter = PixelJitter::Gaussian;
+    cs.lens = LensModel::Disk;
+    cs.lens_radius = 0.5f;
+    cs.focal_distance = 4.0f;
+    const Camera camera(cs);
+    constexpr float kDepth = 7.0f;
+    // A 200 x 200 quad centred on the axis at depth 7, spanned by the camera's own axes.
+    const glm::vec3 centre = cs.position + kDepth * camera.forward();
+    TriangleMesh wall = make_quad(centre - 100.0f * camera.right() - 100.0f * camera.true_up(),
+                                  200.0f * camera.right(), 200.0f * camera.true_up());
+    Scene scene;
+    (void)scene.add_mesh(std::move(wall), scene.add_material(Material::diffuse(glm::vec3(0.5f))));
+    scene.commit();
+    const ImageLayers layers = render_layers(scene, cs);
+    for (int y = 0; y < cs.height; ++y)
+        for (int x = 0; x < cs.width; ++x)
+            EXPECT_NEAR(layers.depth[static_cast<std::size_t>(y * cs.width + x)], kDepth, 1e-4f)
+                << "pixel " << x << ", " << y;
 }

@@ -49,6 +49,9 @@ struct DummyKind {
     static bool near_specular(const Material&, float) { return false; }
     static bool casts_caustics(const Material&, float) { return false; }
     static void multiply_color(Material&, const glm::vec3&) {}
+    static glm::vec3 denoising_albedo(const Material&, const ShadingPoint&) {
+        return glm::vec3(0.0f);
+    }
 };
 static_assert(bsdfs::BsdfKind<DummyKind>);
 
@@ -73,11 +76,15 @@ struct NoCaustics : DummyKind {
 struct NoColor : DummyKind {
     static void multiply_color() {}
 };
+struct NoDenoisingAlbedo : DummyKind {
+    static void denoising_albedo() {}
+};
 static_assert(!bsdfs::BsdfKind<NoKind>);
 static_assert(!bsdfs::BsdfKind<NoLobes>);
 static_assert(!bsdfs::BsdfKind<NoTransmits>);
 static_assert(!bsdfs::BsdfKind<NoNearSpecular>);
 static_assert(!bsdfs::BsdfKind<NoCaustics>);
+static_assert(!bsdfs::BsdfKind<NoDenoisingAlbedo>);
 static_assert(!bsdfs::BsdfKind<NoColor>);
 
 // Every registered type is a BsdfKind, and the dispatch knows where the enumerators end.

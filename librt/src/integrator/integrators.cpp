@@ -784,9 +784,13 @@ glm::vec3 AlbedoNormalIntegrator::li(const Scene& scene, const Ray& ray,
     ShadedMaterial shaded;
     const Material& m = scene.shade(hit, ray.direction, shaded);  // normal map applied
     if (view_ == DebugView::Normal) return guard(0.5f * hit.shading_normal + 0.5f);
-    // A surface that scatters nothing shows what it emits; the others their albedo, as the
-    // BSDF sees it (texture applied).
-    return guard(bsdfs::lobes_of(m) == BsdfLobe::None ? m.emission : scene.albedo(hit));
+    // A surface that scatters nothing shows what it emits; the others what their BSDF
+    // reflects or transmits (textures applied), as the renderer's albedo AOV holds it.
+    if (bsdfs::lobes_of(m) == BsdfLobe::None) return guard(m.emission);
+    const glm::vec3 albedo = m.albedo_texture < 0 ? m.albedo : scene.albedo(hit);
+    const ShadingPoint sp{ShadingFrame::at(hit.shading_normal, hit.geometric_normal, ray.direction),
+                          albedo};
+    return guard(bsdfs::denoising_albedo_of(m, sp));
 }
 
 }  // namespace librt

@@ -12,6 +12,10 @@ glm::vec3 pass_through(const Material& material, const ShadingPoint& point, cons
 
 bool may_pass_through(const Material& material) { return bsdfs::may_pass_through_of(material); }
 
+glm::vec3 denoising_albedo(const Material& material, const ShadingPoint& point) {
+    return bsdfs::denoising_albedo_of(material, point);
+}
+
 BsdfSample sample(const Material& material, const ShadingPoint& point, const glm::vec3& wo,
                   float uc, glm::vec2 u) {
     return bsdfs::sample_bsdf(material, point, wo, uc, u);

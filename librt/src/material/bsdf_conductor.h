@@ -27,6 +27,10 @@ struct Conductor {
         return m.roughness <= max_roughness;
     }
     static void multiply_color(Material& m, const glm::vec3& c) { m.albedo *= c; }
+    /// Its reflectance at normal incidence, the exact Fresnel of eta + i k at cos = 1, tinted.
+    static glm::vec3 denoising_albedo(const Material& m, const ShadingPoint& p) {
+        return p.albedo * microfacet::fresnel_conductor(1.0f, m.eta, m.k);
+    }
 
     /// Roughness 0 without anisotropy: a smooth mirror (anisotropy makes alpha_t > 0).
     static bool smooth(const Material& m) { return m.roughness <= 0.0f && m.anisotropy <= 0.0f; }

@@ -22,6 +22,10 @@ struct Dielectric {
     static bool near_specular(const Material& /*m*/, float /*limit*/) { return true; }
     static bool casts_caustics(const Material& /*m*/, float /*max_roughness*/) { return true; }
     static void multiply_color(Material& m, const glm::vec3& c) { m.albedo *= c; }
+    /// Its tint: reflection and refraction together lose nothing (the AOV follows it).
+    static glm::vec3 denoising_albedo(const Material& /*m*/, const ShadingPoint& p) {
+        return p.albedo;
+    }
 
     struct Scattered {
         glm::vec3 wi;

@@ -15,6 +15,10 @@ struct Diffuse {
     static bool near_specular(const Material& /*m*/, float /*limit*/) { return false; }
     static bool casts_caustics(const Material& /*m*/, float /*max_roughness*/) { return false; }
     static void multiply_color(Material& m, const glm::vec3& c) { m.albedo *= c; }
+    /// Lambert's directional albedo: its reflectance.
+    static glm::vec3 denoising_albedo(const Material& /*m*/, const ShadingPoint& p) {
+        return p.albedo;
+    }
 
     /// Reflects only where both the shading and the geometric normal say "above": a
     /// direction under the real surface would leak light through it.

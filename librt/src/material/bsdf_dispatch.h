@@ -96,6 +96,11 @@ inline void multiply_color(Material& m, const glm::vec3& c) {
     dispatch(m.kind, [&](auto bsdf) { decltype(bsdf)::multiply_color(m, c); });
 }
 
+/// denoising_albedo() of bsdf.h (BsdfKind::denoising_albedo).
+[[nodiscard]] inline glm::vec3 denoising_albedo_of(const Material& m, const ShadingPoint& p) {
+    return dispatch(m.kind, [&](auto bsdf) { return decltype(bsdf)::denoising_albedo(m, p); });
+}
+
 /// lobes() of bsdf.h, inline: a type whose lobes depend on its parameters (a rough kind
 /// at roughness 0 is specular) provides static lobes(m), a subset of its kLobes; the
 /// others have their kLobes.

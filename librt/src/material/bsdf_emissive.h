@@ -17,6 +17,10 @@ struct Emissive {
     static bool near_specular(const Material& /*m*/, float /*limit*/) { return false; }
     static bool casts_caustics(const Material& /*m*/, float /*max_roughness*/) { return false; }
     static void multiply_color(Material& m, const glm::vec3& c) { m.albedo *= c; }
+    /// Reflects nothing.
+    static glm::vec3 denoising_albedo(const Material& /*m*/, const ShadingPoint& /*p*/) {
+        return glm::vec3(0.0f);
+    }
 
     static BsdfSample sample(const Material& /*m*/, const ShadingPoint& /*p*/,
                              const glm::vec3& /*wo*/, float /*uc*/, glm::vec2 /*u*/) {

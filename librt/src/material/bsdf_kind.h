@@ -41,6 +41,10 @@ concept BsdfKind = requires(const Material& m, Material& shaded, const ShadingPo
     /// Multiplies the material's colour by a per-vertex colour (glTF COLOR_0): albedo, or
     /// the kind's own colour where albedo is not its colour.
     { T::multiply_color(shaded, w) } -> std::same_as<void>;
+    /// The colour the surface reflects or transmits at p (per-hit inputs applied), for the
+    /// albedo AOV a denoiser divides by (bsdf.h, denoising_albedo): each lobe's colour
+    /// weighted by its Fresnel share at normal incidence.
+    { T::denoising_albedo(m, p) } -> std::same_as<glm::vec3>;
 };
 
 }  // namespace librt::bsdfs

@@ -62,6 +62,19 @@ struct MetallicRoughness {
     /// glTF: COLOR_0 multiplies the base colour (albedo scales every lobe, the dielectric
     /// specular too, which the vertex colour does not tint).
     static void multiply_color(Material& m, const glm::vec3& c) { m.base_color *= c; }
+    /// The lobes' colours at normal incidence (Fresnel at cos = 1: f0 for the dielectric,
+    /// c for the metal): (1 - metallic) [(1 - f0) c ((1 - transmission) + transmission) +
+    /// f0] + metallic c, tinted by albedo. The diffuse and the transmitted light share the
+    /// colour c; a pane of transmission 1 keeps its colour rather than 0.04, which a
+    /// denoiser dividing by the albedo could not use.
+    static glm::vec3 denoising_albedo(const Material& m, const ShadingPoint& p) {
+        const float f0 = f0_dielectric(m.ior);
+        const glm::vec3& c = m.base_color;
+        const glm::vec3 diffuse = (1.0f - m.metallic) * (1.0f - m.transmission) * (1.0f - f0) * c;
+        const glm::vec3 transmitted = (1.0f - m.metallic) * m.transmission * (1.0f - f0) * c;
+        const glm::vec3 specular = glm::vec3((1.0f - m.metallic) * f0) + m.metallic * c;
+        return p.albedo * (diffuse + transmitted + specular);
+    }
 
     static BsdfLobe lobes(const Material& m) {
         const BsdfLobe refl = BsdfLobe::Diffuse | BsdfLobe::Glossy | BsdfLobe::Reflection;

@@ -16,6 +16,10 @@ struct Mirror {
     static bool near_specular(const Material& /*m*/, float /*limit*/) { return true; }
     static bool casts_caustics(const Material& /*m*/, float /*max_roughness*/) { return true; }
     static void multiply_color(Material& m, const glm::vec3& c) { m.albedo *= c; }
+    /// Its tint, what it reflects at every angle (the AOV follows it to the next surface).
+    static glm::vec3 denoising_albedo(const Material& /*m*/, const ShadingPoint& p) {
+        return p.albedo;
+    }
 
     static BsdfSample sample(const Material& /*m*/, const ShadingPoint& p, const glm::vec3& wo,
                              float /*uc*/, glm::vec2 /*u*/) {

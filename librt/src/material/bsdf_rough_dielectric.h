@@ -33,6 +33,11 @@ struct RoughDielectric {
         return m.roughness <= max_roughness;
     }
     static void multiply_color(Material& m, const glm::vec3& c) { m.albedo *= c; }
+    /// Its tint, as the smooth Dielectric's: reflection and refraction lose nothing but the
+    /// microfacets' shadowing, which this colour ignores.
+    static glm::vec3 denoising_albedo(const Material& /*m*/, const ShadingPoint& p) {
+        return p.albedo;
+    }
 
     /// Roughness 0 without anisotropy: the smooth Dielectric.
     static bool smooth(const Material& m) { return m.roughness <= 0.0f && m.anisotropy <= 0.0f; }

@@ -17,8 +17,8 @@ constexpr std::uint64_t kAovStream = 0x41f0'5eed'a0c5'1a7eULL;
 
 }  // namespace
 
-AovSample sample_aovs(const Scene& scene, const Ray& camera_ray, std::uint32_t x, std::uint32_t y,
-                      std::uint32_t sample, std::uint64_t seed) {
+AovSample sample_aovs(const Scene& scene, const Ray& camera_ray, const glm::vec3& forward,
+                      std::uint32_t x, std::uint32_t y, std::uint32_t sample, std::uint64_t seed) {
     AovSample out;
     Ray ray = camera_ray;
     // Unit direction, so hit.t is a distance (t's range rescaled to match).
@@ -29,26 +29,31 @@ AovSample sample_aovs(const Scene& scene, const Ray& camera_ray, std::uint32_t x
     ray.t_max *= len;
     Pcg32 rng = make_sample_rng(x, y, sample, seed ^ kAovStream);
     glm::vec3 tint(1.0f);
+    ShadedMaterial shaded;
     for (int bounce = 0; bounce <= kAovMaxSpecularBounces; ++bounce) {
         Hit hit;
         if (!scene.intersect_for_shading(ray, hit)) return out;  // escaped: albedo 0
         if (bounce == 0) {
             out.hit = true;
-            out.depth = hit.t;
+            // Planar depth: every camera ray starts on the lens plane (camera.h), so the
+            // hit's depth along the optical axis from that plane is t cos(ray, axis).
+            out.depth = hit.t * glm::dot(ray.direction, forward);
         }
-        const Material& m = scene.material(hit);
+        // Textures, vertex colours and the normal map applied, as the integrators see them.
+        const Material& m = scene.shade(hit, ray.direction, shaded);
         const BsdfLobe lobe_flags = lobes(m);
-        const glm::vec3 albedo = lobe_flags == BsdfLobe::None ? glm::vec3(0.0f) : scene.albedo(hit);
+        // The per-hit albedo every lobe is scaled by (bsdf.h), as the path loop takes it.
+        const glm::vec3 albedo = m.albedo_texture < 0 ? m.albedo : scene.albedo(hit);
+        const ShadingPoint sp{
+            ShadingFrame::at(hit.shading_normal, hit.geometric_normal, ray.direction), albedo};
         if (!has(lobe_flags, BsdfLobe::Specular) || has_non_specular(lobe_flags)) {
-            // The first surface that is not purely specular: emitters (no lobes) reflect
-            // nothing; every other surface its (textured) albedo, tinted by the way here.
-            out.albedo = tint * albedo;
+            // The first surface that is not purely specular: what its BSDF reflects or
+            // transmits (emitters, no lobes: 0), tinted by the way here.
+            out.albedo = tint * denoising_albedo(m, sp);
             out.normal = hit.shading_normal;
             return out;
         }
         // Through a mirror or glass, as the path tracer goes: by the BSDF seam's sample.
-        const ShadingPoint sp{
-            ShadingFrame::at(hit.shading_normal, hit.geometric_normal, ray.direction), albedo};
         const float uc = chooses_lobe(lobe_flags) ? rng.next_float() : 0.0f;
         const BsdfSample bs =
             librt::sample(m, sp, sp.frame.to_local(-ray.direction), uc, glm::vec2(0.5f));

@@ -16,22 +16,30 @@ class Scene;
 
 /// What one camera sample contributes to the AOV layers.
 struct AovSample {
-    glm::vec3 albedo{0.0f};  ///< reflectance of the first non-specular hit, tinted by the mirrors
-                             ///< and glass before it
-    glm::vec3 normal{0.0f};  ///< unit shading normal at that hit (0 when there is none)
-    float depth = 0.0f;      ///< camera distance of the first hit (valid when `hit`)
-    bool hit = false;        ///< the camera ray hit something
+    /// What the first non-specular hit's BSDF reflects or transmits (bsdf.h,
+    /// denoising_albedo: textures applied), tinted by the mirrors and glass before it.
+    glm::vec3 albedo{0.0f};
+    glm::vec3 normal{0.0f};  ///< unit world-space shading normal at that hit (normal map
+                             ///< applied; 0 when there is none)
+    /// Planar depth of the first hit: its distance from the camera's lens plane along the
+    /// optical axis (not the distance along the ray; valid when `hit`).
+    float depth = 0.0f;
+    bool hit = false;  ///< the camera ray hit something
 };
 
 /// Most mirror and glass surfaces followed before the albedo gives up (and is 0).
 inline constexpr int kAovMaxSpecularBounces = 16;
 
-/// The AOVs of the camera ray `ray` of sample `sample` of pixel (x, y). Follows the ray
-/// through mirrors (reflection) and dielectrics (Fresnel-chosen reflection or refraction,
-/// as the integrators choose) to the first non-specular hit. Its random numbers come from
-/// their own stream (seeded from the same pixel, sample and seed, but never from the
-/// integrator's sampler), so computing AOVs leaves the beauty image unchanged.
-[[nodiscard]] AovSample sample_aovs(const Scene& scene, const Ray& ray, std::uint32_t x,
-                                    std::uint32_t y, std::uint32_t sample, std::uint64_t seed);
+/// The AOVs of the camera ray `ray` of sample `sample` of pixel (x, y), for a camera
+/// whose unit optical axis is `forward` (Camera::forward; the ray starts on its lens
+/// plane). Follows the ray through mirrors (reflection) and dielectrics (Fresnel-chosen
+/// reflection or refraction, as the integrators choose) to the first non-specular hit,
+/// whose material is shaded as the integrators shade it (Scene::shade: textures, vertex
+/// colours, normal map, one-sided backs). Its random numbers come from their own stream
+/// (seeded from the same pixel, sample and seed, but never from the integrator's sampler),
+/// so computing AOVs leaves the beauty image unchanged.
+[[nodiscard]] AovSample sample_aovs(const Scene& scene, const Ray& ray, const glm::vec3& forward,
+                                    std::uint32_t x, std::uint32_t y, std::uint32_t sample,
+                                    std::uint64_t seed);
 
 }  // namespace librt

@@ -187,7 +187,8 @@ private:
                     const CameraRay camera_ray = camera.sample_ray(x, y, sampler);
                     const Ray& ray = camera_ray.ray;
                     if constexpr (kAovs) {
-                        const AovSample a = sample_aovs(scene, ray, px, py, s, seed);
+                        const AovSample a =
+                            sample_aovs(scene, ray, camera.forward(), px, py, s, seed);
                         // The albedo is filtered like the beauty: with the weight's sign
                         // (its size is one per filter; resolve_layers divides it out).
                         if (camera_ray.weight < 0.0f) {

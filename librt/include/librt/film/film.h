@@ -62,11 +62,11 @@ struct FilmPixel {
 /// on a constant albedo. Normal and depth stay |f|-weighted means: a signed mean of
 /// geometry can leave the range the pixel sees (a negative depth, a normal longer than 1).
 struct AovPixel {
-    /// Sum of the albedos of the first non-specular hits (0 for a miss), each with the
-    /// sign of its sample's filter weight.
+    /// Sum of the albedos (bsdf.h, denoising_albedo) of the first non-specular hits (0 for
+    /// a miss), each with the sign of its sample's filter weight.
     glm::dvec3 albedo{0.0};
-    glm::dvec3 normal{0.0};      ///< sum of their unit shading normals (0 for a miss)
-    double depth = 0.0;          ///< sum of the camera distances of the first hits
+    glm::dvec3 normal{0.0};      ///< sum of their unit world-space shading normals (0: miss)
+    double depth = 0.0;          ///< sum of the planar camera depths of the first hits
     std::uint32_t hits = 0;      ///< samples whose camera ray hit something (the terms of `depth`)
     std::uint32_t negative = 0;  ///< samples whose filter weight was negative (Mitchell's lobes)
 };
@@ -132,8 +132,9 @@ LIBRT_API void merge(Film& into, const Film& from);
 /// Every layer of the film: beauty (resolve()), the per-pixel sample count, and when the
 /// film has AOVs, albedo (the filter-weighted mean over all samples of the pixel, a miss
 /// counting as 0: the albedo sum divided by samples - 2 negative, the sum of the weights'
-/// signs; 0 when that is 0), normal (mean over all samples, a miss counting as 0) and
-/// depth (mean camera distance over the samples that hit; +infinity when none did).
+/// signs; 0 when that is 0), normal (world space, mean over all samples, a miss counting as
+/// 0) and depth (mean planar depth, the distance from the camera's lens plane along its
+/// optical axis, over the samples that hit; +infinity when none did).
 [[nodiscard]] LIBRT_API ImageLayers resolve_layers(const Film& film);
 
 /// The number of samples every pixel of the film holds; throws librt::Error naming a

@@ -201,7 +201,7 @@ private:
 
 /// What AlbedoNormalIntegrator shows.
 enum class DebugView : std::uint8_t {
-    Albedo,  ///< albedo (texture applied) of scattering surfaces, emission of pure emitters
+    Albedo,  ///< denoising_albedo (bsdf.h) of scattering surfaces, emission of pure emitters
     Normal,  ///< shading normal mapped from [-1, 1] to [0, 1] per axis
 };
 

@@ -39,8 +39,9 @@ struct ExrWriteResult {
 };
 
 /// Writes `layers` as a single-part scan-line OpenEXR file (tinyexr, ZIP compression).
-/// Channel names: beauty R, G, B; albedo.R/G/B; normal.X/Y/Z; depth Z (the OpenEXR name
-/// for depth); sample_count. Depth is +infinity where no sample hit anything (as
+/// Channel names: beauty R, G, B; albedo.R/G/B; normal.X/Y/Z (world space); depth Z (the
+/// OpenEXR name for depth: planar camera depth, as Blender and Nuke read it, not the ray's
+/// length); sample_count. Depth is +infinity where no sample hit anything (as
 /// resolve_layers gives it); every other channel of a rendered film is finite.
 /// Throws librt::Error naming the file and the layer when a layer's size does not match
 /// the beauty's, a value is NaN, or the file cannot be written; the target is then left

@@ -145,6 +145,22 @@ struct BsdfSample {
 /// textures give there): what tells a Scene its shadow rays must look for such surfaces.
 [[nodiscard]] LIBRT_API bool may_pass_through(const Material& material);
 
+/// The colour the surface reflects or transmits at `point` (the material's per-hit inputs
+/// already applied, as Scene::shade gives them): the albedo AOV, the guide a denoiser
+/// divides the image by. Each lobe contributes its colour weighted by its Fresnel share at
+/// normal incidence, ignoring the microfacets' shadowing: Lambert its reflectance; a mirror,
+/// glass (smooth or rough) their tint; a conductor its exact Fresnel reflectance at normal
+/// incidence times its tint; the glTF metallic-roughness material
+/// (1 - metallic) [(1 - f0) base_color + f0] + metallic base_color with f0 from its ior
+/// (0.04 at 1.5), its diffuse and transmitted parts sharing base_color; an emitter 0. This
+/// is what Open Image Denoise's documentation asks of its albedo input (the ratio of
+/// reflected or transmitted to incident light; for metals the reflectivity at normal
+/// incidence; for glass 1 or the tint), as Cycles' Denoising Albedo pass also sums its
+/// closures' colours.
+/// Independent of the view direction, so a flat material gives a flat AOV.
+[[nodiscard]] LIBRT_API glm::vec3 denoising_albedo(const Material& material,
+                                                   const ShadingPoint& point);
+
 /// Draws wi for the outgoing wo (local) from uc (to choose a lobe) and u (the direction),
 /// both uniform in [0, 1). An invalid sample means the path ends there.
 [[nodiscard]] LIBRT_API BsdfSample sample(const Material& material, const ShadingPoint& point,
