@@ -8,9 +8,11 @@
 // light lost or leaked. A ray from the right side that meets a sphere's inside again
 // legitimately is not counted.
 
+#include "integrator/light_path_start.h"
 #include "sampling/sanitizer_scale.h"
 
 #include <librt/geometry/ray_offset.h>
+#include <librt/light/quad_light.h>
 #include <librt/scene/scene.h>
 
 #include <gtest/gtest.h>
@@ -261,4 +263,59 @@ TEST(SelfIntersection, TrianglesNearAndFarFromTheOrigin) {
         return count_self_hits(scene, id, side, samples, seed, aim,
                                [](const glm::dvec3&, const glm::dvec3&) { return true; });
     });
+}
+
+// Light paths leave their emitter by LightPathStart::ray, offset by the light's own bound
+// (LightLeSample::offset): a quad light 2e5 across whose plane passes next to the origin,
+// its rays drawn from points within ~20 of the origin, in every direction it emits. Its
+// plane is never met again by a ray leaving it, so any hit of the light's own object is a
+// self-hit. (With ray_offset_scale of the emitting point alone, ~1e-6 there, the triangles'
+// test rounding at the corners' 1e5 found the plane again.)
+TEST(SelfIntersection, LightPathsLeavingAHugeEmitterNextToTheOrigin) {
+    for (const bool two_sided : {false, true}) {
+        Scene scene;
+        // Tilted off every axis (an axis-aligned plane's test does not round across it),
+        // centred at (0.3, -0.2, 0.1).
+        const glm::dvec3 n = glm::normalize(glm::dvec3(0.3, -0.5, 0.8));
+        const glm::dvec3 a = glm::normalize(glm::cross(glm::dvec3(0, 0, 1), n));
+        const glm::dvec3 b = glm::cross(n, a);
+        const glm::dvec3 centre(0.3, -0.2, 0.1);
+        QuadLight quad;
+        quad.corner = glm::vec3(centre - 1e5 * a - 1e5 * b);
+        quad.edge0 = glm::vec3(2e5 * a);
+        quad.edge1 = glm::vec3(2e5 * b);
+        quad.radiance = glm::vec3(1.0f);
+        quad.two_sided = two_sided;
+        const std::uint32_t object = scene.add_quad_light(quad);
+        scene.commit();
+        const int samples = librt::testing::scaled_samples(100000);
+        std::mt19937_64 rng(41);
+        std::uniform_real_distribution<float> u(0.0f, 1.0f);
+        int self_hits = 0, started = 0, point_offset_self_hits = 0;
+        for (int i = 0; i < samples; ++i) {
+            // u_pos within 1e-4 of the centre: points within 20 of it.
+            const glm::vec2 u_pos(0.5f + 2e-4f * (u(rng) - 0.5f), 0.5f + 2e-4f * (u(rng) - 0.5f));
+            LightPathStart start;
+            start.le = sample_le(quad, u_pos, {u(rng), u(rng)});
+            if (!start.le.valid()) continue;
+            start.valid = true;
+            ++started;
+            Hit hit;
+            if (scene.intersect(start.ray(), hit) && hit.object_id == object) ++self_hits;
+            // The same ray offset by ray_offset_scale of the point alone, as before: the
+            // configuration must be one that needs the light's bound.
+            Ray point_offset = start.ray();
+            point_offset.origin =
+                offset_ray_origin(start.le.origin, start.le.normal, start.le.direction);
+            if (scene.intersect(point_offset, hit) && hit.object_id == object)
+                ++point_offset_self_hits;
+        }
+        EXPECT_GT(started, samples / 2);
+        EXPECT_EQ(self_hits, 0) << (two_sided ? "two-sided" : "one-sided") << ", of " << started;
+        EXPECT_GT(point_offset_self_hits, started / 100);
+        std::printf(
+            "[ self-hits ] huge quad light, %s: %d of %d light rays (%d offset by the "
+            "point alone)\n",
+            two_sided ? "two-sided" : "one-sided", self_hits, started, point_offset_self_hits);
+    }
 }

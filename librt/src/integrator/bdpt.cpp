@@ -567,6 +567,7 @@ int trace_light_path(const Context& c, Sampler& sampler, PathVertex* light_path,
     const float pdf0 = start.chosen.pmf * le.pdf_pos;
     light_path[0] = endpoint(VertexKind::Light, le.origin, le.normal, le.radiance / pdf0, pdf0,
                              start.chosen.light, le.delta_position);
+    light_path[0].offset = start.offset();
     const glm::vec3 beta = light_path[0].beta * (start.cosine() / le.pdf_dir);
     return random_walk(c, start.ray(), beta, le.pdf_dir, Transport::Importance, sampler, light_path,
                        scratch, c.max_depth + 1, decisions, nullptr);

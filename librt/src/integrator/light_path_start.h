@@ -8,6 +8,7 @@
 #include "integrator/mis.h"
 #include "scene/shadow_ray.h"
 
+#include <librt/geometry/ray_offset.h>
 #include <librt/light/light.h>
 #include <librt/light/light_sample.h>
 #include <librt/sampling/sampler.h>
@@ -15,6 +16,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -31,11 +33,13 @@ struct LightPathStart {
         return glm::dot(le.normal, le.normal) > 0.0f ? std::fabs(glm::dot(le.normal, le.direction))
                                                      : 1.0f;
     }
+    /// How far rays leave the origin off the emitting surface (as Hit::offset for a hit).
+    [[nodiscard]] float offset() const { return std::max(le.offset, ray_offset_scale(le.origin)); }
     /// The ray, its origin lifted off the emitting surface.
     [[nodiscard]] Ray ray() const {
         Ray r;
         r.origin = glm::dot(le.normal, le.normal) > 0.0f
-                       ? offset_ray_origin(le.origin, le.normal, le.direction)
+                       ? offset_ray_origin(le.origin, le.normal, offset(), le.direction)
                        : le.origin;
         r.direction = le.direction;
         return r;

@@ -5,9 +5,11 @@
 
 #include <librt/core/error.h>
 #include <librt/core/finite.h>
+#include <librt/geometry/ray_offset.h>
 #include <librt/light/disk_light.h>
 #include <librt/sampling/warp.h>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -98,8 +100,11 @@ LightLeSample sample_le(const DiskLight& light, glm::vec2 u_pos, glm::vec2 u_dir
     const float area = polygon_area(light.radius);
     if (!(area > 0.0f) || !std::isfinite(area) || !finite(light.normal)) return {};
     const DiskFrame f = frame_of(light);  // a zero normal gives NaNs: leave_surface's check
-    return emission::leave_surface(polygon_point(light, f, u_pos), f.n, 1.0f / area, light.radiance,
-                                   light.two_sided, u_dir);
+    LightLeSample s = emission::leave_surface(polygon_point(light, f, u_pos), f.n, 1.0f / area,
+                                              light.radiance, light.two_sided, u_dir);
+    // Its fan's test rounds at the corners' magnitude (LightLeSample::offset).
+    s.offset = ray_offset_scale(glm::abs(light.center) + glm::vec3(light.radius));
+    return s;
 }
 
 LightLePdf pdf_le(const DiskLight& light, const glm::vec3& /*origin*/, const glm::vec3& /*normal*/,

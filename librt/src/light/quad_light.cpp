@@ -5,9 +5,11 @@
 
 #include <librt/core/error.h>
 #include <librt/core/finite.h>
+#include <librt/geometry/ray_offset.h>
 #include <librt/light/quad_light.h>
 #include <librt/sampling/warp.h>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -60,8 +62,14 @@ LightLeSample sample_le(const QuadLight& light, glm::vec2 u_pos, glm::vec2 u_dir
     const float area = glm::length(c);
     if (!(area > 0.0f) || !std::isfinite(area)) return {};
     const glm::vec3 p = light.corner + u_pos.x * light.edge0 + u_pos.y * light.edge1;
-    return emission::leave_surface(p, c / area, 1.0f / area, light.radiance, light.two_sided,
-                                   u_dir);
+    LightLeSample s =
+        emission::leave_surface(p, c / area, 1.0f / area, light.radiance, light.two_sided, u_dir);
+    // Its two triangles' test rounds at the corners' magnitude (LightLeSample::offset).
+    const glm::vec3 far = light.corner + light.edge0 + light.edge1;
+    s.offset = ray_offset_scale(glm::max(
+        glm::max(glm::abs(light.corner), glm::abs(far)),
+        glm::max(glm::abs(light.corner + light.edge0), glm::abs(light.corner + light.edge1))));
+    return s;
 }
 
 LightLePdf pdf_le(const QuadLight& light, const glm::vec3& /*origin*/, const glm::vec3& /*normal*/,

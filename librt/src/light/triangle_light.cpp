@@ -87,6 +87,13 @@ glm::vec2 barycentrics(const TriangleLight& light, const glm::vec3& q, const glm
     return {glm::dot(glm::cross(d, e2), n) / len, glm::dot(glm::cross(e1, d), n) / len};
 }
 
+// The rounding of a ray's test against the triangle near its plane: ray_offset_scale of its
+// largest corner coordinates, which bound barycentric_offset at any of its points.
+float corner_offset(const TriangleLight& light) {
+    return ray_offset_scale(
+        glm::max(glm::max(glm::abs(light.p0), glm::abs(light.p1)), glm::abs(light.p2)));
+}
+
 // How far the shadow ray toward the emitting point q (ray parameter t along wi from ref,
 // dn = wi . n) may go without meeting the emitter's own plane. A triangle light's shadow
 // ray cannot skip its object (the mesh may hold other triangles that do shade), so the
@@ -100,9 +107,7 @@ glm::vec2 barycentrics(const TriangleLight& light, const glm::vec3& q, const glm
 LightLiSample shadow_sample(const TriangleLight& light, glm::vec3 wi, glm::vec3 radiance, float pdf,
                             float t, float dn) {
     const float slope = 1.0f / std::fabs(dn);
-    const glm::vec3 largest =
-        glm::max(glm::max(glm::abs(light.p0), glm::abs(light.p1)), glm::abs(light.p2));
-    const float margin = ray_offset_scale(largest) * slope;
+    const float margin = corner_offset(light) * slope;
     LightLiSample s;
     s.wi = wi;
     s.radiance = radiance;
@@ -183,8 +188,10 @@ LightLeSample sample_le(const TriangleLight& light, glm::vec2 u_pos, glm::vec2 u
     if (!(len > 0.0f) || !std::isfinite(len)) return {};
     const glm::vec2 b = sample_uniform_triangle(u_pos);
     const glm::vec3 p = light.p0 + b.x * e1 + b.y * e2;
-    return emission::leave_surface(p, c / len, 2.0f / len, radiance_at(light, b), light.two_sided,
-                                   u_dir);
+    LightLeSample s = emission::leave_surface(p, c / len, 2.0f / len, radiance_at(light, b),
+                                              light.two_sided, u_dir);
+    s.offset = corner_offset(light);
+    return s;
 }
 
 LightLePdf pdf_le(const TriangleLight& light, const glm::vec3& /*origin*/,

@@ -51,6 +51,11 @@ struct LightLeSample {
     /// Density of direction per unit solid angle; 1 for a delta direction (a sun without
     /// angular radius).
     float pdf_dir = 0.0f;
+    /// How far the ray must start off the surface (along normal) where that is more than
+    /// ray_offset_scale(origin): a planar light is found again by a triangle test, which
+    /// rounds at its corners' magnitude (ray_offset.h, barycentric_offset), so a light 1e5
+    /// across next to the world origin gives ray_offset_scale of its corners. 0: none.
+    float offset = 0.0f;
     bool delta_position = false;   ///< a point or spot light: no ray can hit the origin
     bool delta_direction = false;  ///< a sun without angular radius: one direction only
 
