@@ -146,6 +146,21 @@ inline void multiply_color(Material& m, const glm::vec3& c) {
                                          const glm::vec3& wo, const glm::vec3& wi) {
     return dispatch(m.kind, [&](auto bsdf) { return decltype(bsdf)::eval(m, p, wo, wi); });
 }
+/// eval() toward a delta light (point, spot, delta sun): a kind with glossy microfacet
+/// lobes provides static eval_delta_light(m, p, wo, wi), the lobe widened to
+/// microfacet::kDeltaLightAlpha (path-space regularisation, docs/materials-and-lights.md);
+/// the others evaluate as eval(). No MIS weight needs its pdf: no BSDF sample hits a
+/// delta light.
+[[nodiscard]] inline glm::vec3 eval_delta_light_bsdf(const Material& m, const ShadingPoint& p,
+                                                     const glm::vec3& wo, const glm::vec3& wi) {
+    return dispatch(m.kind, [&](auto bsdf) {
+        using T = decltype(bsdf);
+        if constexpr (requires { T::eval_delta_light(m, p, wo, wi); })
+            return T::eval_delta_light(m, p, wo, wi);
+        else
+            return T::eval(m, p, wo, wi);
+    });
+}
 /// eval() and pdf() of bsdf.h at once (one dispatch; what next-event estimation with MIS
 /// needs), as f and the density.
 struct EvalPdf {
