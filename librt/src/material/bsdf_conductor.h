@@ -67,11 +67,15 @@ struct Conductor {
         return eval_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
     }
 
+    /// A rough lobe narrower than kDeltaLightAlpha (smooth: a delta lobe, never widened).
+    static bool widens_for_delta_light(const Material& m) {
+        return !smooth(m) && m.roughness < microfacet::kDeltaLightRoughness;
+    }
     /// eval() for light from a delta light: the lobe widened to kDeltaLightAlpha
     /// (microfacet.h). The smooth mirror stays a delta lobe (no light sample reaches it).
     static glm::vec3 eval_delta_light(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
                                       const glm::vec3& wi) {
-        if (smooth(m)) return glm::vec3(0.0f);
+        if (!widens_for_delta_light(m)) return eval(m, p, wo, wi);
         Material r = m;
         r.roughness = microfacet::delta_light_roughness(m.roughness);
         return eval(r, p, wo, wi);

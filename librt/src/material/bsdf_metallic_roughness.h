@@ -146,6 +146,11 @@ struct MetallicRoughness {
         return eval_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
     }
 
+    /// GGX lobes narrower than kDeltaLightAlpha, without a Null lobe (a widened roughness
+    /// would turn it into a glossy transmission: eval_delta_light widens only the reflection).
+    static bool widens_for_delta_light(const Material& m) {
+        return !smooth_transmission(m) && m.roughness < microfacet::kDeltaLightRoughness;
+    }
     /// eval() for light from a delta light: the GGX lobes widened to kDeltaLightAlpha
     /// (microfacet.h). A smooth transmission stays the Null lobe: its light arrives
     /// through pass_through, and a widened lobe there would count it twice.
