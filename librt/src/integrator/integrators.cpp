@@ -162,23 +162,17 @@ struct Vertex {
     });
 }
 
-/// light_eval() toward a delta light (point, spot, delta sun): a kind with glossy
-/// microfacet lobes evaluates them widened to microfacet::kDeltaLightAlpha (path-space
-/// regularisation, bsdf_dispatch.h's eval_delta_light_bsdf), the others as light_eval().
-/// Its pdf is 0: unused, a delta light's sample gets no MIS weight (no BSDF sample hits it).
+/// light_eval() toward a delta light (point, spot, delta sun): a material whose kind widens
+/// narrow lobes for it (bsdfs::delta_light_material) is evaluated widened, the others as
+/// light_eval(). Its pdf is 0: unused, a delta light's sample gets no MIS weight.
 // Out of line: delta lights are the rare case next to the report scenes' sphere lights.
 [[gnu::noinline]] bsdfs::EvalPdf delta_light_eval(Vertex& v, const glm::vec3& wi, float& cos_i) {
-    return bsdfs::dispatch(v.m.kind, [&](auto bsdf) {
-        using T = decltype(bsdf);
-        const ShadingPoint& p = v.point();
-        if constexpr (requires { T::eval_delta_light(v.m, p, wi, wi); }) {
-            const glm::vec3 wo = v.wo(), wl = p.frame.to_local(wi);
-            cos_i = std::fabs(wl.z);
-            return bsdfs::EvalPdf{T::eval_delta_light(v.m, p, wo, wl), 0.0f};
-        } else {
-            return light_eval(v, wi, cos_i);
-        }
-    });
+    Material widened;
+    if (!bsdfs::delta_light_material(v.m, widened)) return light_eval(v, wi, cos_i);
+    const ShadingPoint& p = v.point();
+    const glm::vec3 wo = v.wo(), wl = p.frame.to_local(wi);
+    cos_i = std::fabs(wl.z);
+    return bsdfs::EvalPdf{bsdfs::eval_bsdf(widened, p, wo, wl), 0.0f};
 }
 
 /// The weight of the emission of the object hit along unit direction `dir` after `bounce`:

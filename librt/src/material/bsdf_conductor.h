@@ -67,20 +67,11 @@ struct Conductor {
         return eval_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
     }
 
-    /// A rough lobe narrower than kDeltaLightAlpha (smooth: a delta lobe, never widened).
+    /// A rough lobe narrower than kDeltaLightAlpha (delta_light_material); the smooth one is
+    /// a delta lobe that no light sample reaches, and stays so.
     static bool widens_for_delta_light(const Material& m) {
         return !smooth(m) && m.roughness < microfacet::kDeltaLightRoughness;
     }
-    /// eval() for light from a delta light: the lobe widened to kDeltaLightAlpha
-    /// (microfacet.h). The smooth mirror stays a delta lobe (no light sample reaches it).
-    static glm::vec3 eval_delta_light(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
-                                      const glm::vec3& wi) {
-        if (!widens_for_delta_light(m)) return eval(m, p, wo, wi);
-        Material r = m;
-        r.roughness = microfacet::delta_light_roughness(m.roughness);
-        return eval(r, p, wo, wi);
-    }
-
     [[gnu::noinline]] static float pdf(const Material& m, const ShadingPoint& p,
                                        const glm::vec3& wo, const glm::vec3& wi) {
         if (m.anisotropy > 0.0f) [[unlikely]]

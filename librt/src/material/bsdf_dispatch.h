@@ -146,25 +146,12 @@ inline void multiply_color(Material& m, const glm::vec3& c) {
                                          const glm::vec3& wo, const glm::vec3& wi) {
     return dispatch(m.kind, [&](auto bsdf) { return decltype(bsdf)::eval(m, p, wo, wi); });
 }
-/// eval() toward a delta light (point, spot, delta sun): a kind with glossy microfacet
-/// lobes provides static eval_delta_light(m, p, wo, wi), the lobe widened to
-/// microfacet::kDeltaLightAlpha (path-space regularisation, docs/materials-and-lights.md);
-/// the others evaluate as eval(). No MIS weight needs its pdf: no BSDF sample hits a
-/// delta light.
-[[nodiscard]] inline glm::vec3 eval_delta_light_bsdf(const Material& m, const ShadingPoint& p,
-                                                     const glm::vec3& wo, const glm::vec3& wi) {
-    return dispatch(m.kind, [&](auto bsdf) {
-        using T = decltype(bsdf);
-        if constexpr (requires { T::eval_delta_light(m, p, wo, wi); })
-            return T::eval_delta_light(m, p, wo, wi);
-        else
-            return T::eval(m, p, wo, wi);
-    });
-}
-/// The material a vertex next to a delta light scatters with when every use of it must see
-/// the widened lobe (bidirectional paths: sampling and densities too): m with its
-/// roughness raised to microfacet::kDeltaLightRoughness, in `out`, when the kind provides
-/// static widens_for_delta_light(m) and it is true; false, `out` untouched, otherwise.
+/// The material a vertex next to a delta light (point, spot, delta sun) scatters with:
+/// path-space regularisation (docs/materials-and-lights.md). m with its roughness raised
+/// to microfacet::kDeltaLightRoughness, in `out`, when the kind provides static
+/// widens_for_delta_light(m) and it is true; false, `out` untouched, otherwise (the
+/// material is used as it is). PathTracer's light sample evaluates it; BDPT also samples
+/// it and takes its densities, so that every strategy sees the same integrand.
 [[nodiscard]] inline bool delta_light_material(const Material& m, Material& out) {
     return dispatch(m.kind, [&](auto bsdf) {
         using T = decltype(bsdf);

@@ -146,22 +146,12 @@ struct MetallicRoughness {
         return eval_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
     }
 
-    /// GGX lobes narrower than kDeltaLightAlpha, without a Null lobe (a widened roughness
-    /// would turn it into a glossy transmission: eval_delta_light widens only the reflection).
+    /// GGX lobes narrower than kDeltaLightAlpha (delta_light_material), unless the
+    /// transmission is the Null lobe: a raised roughness would turn it into a glossy
+    /// transmission that counts the light pass_through already lets across.
     static bool widens_for_delta_light(const Material& m) {
         return !smooth_transmission(m) && m.roughness < microfacet::kDeltaLightRoughness;
     }
-    /// eval() for light from a delta light: the GGX lobes widened to kDeltaLightAlpha
-    /// (microfacet.h). A smooth transmission stays the Null lobe: its light arrives
-    /// through pass_through, and a widened lobe there would count it twice.
-    static glm::vec3 eval_delta_light(const Material& m, const ShadingPoint& p, const glm::vec3& wo,
-                                      const glm::vec3& wi) {
-        if (wi.z < 0.0f && smooth_transmission(m)) return glm::vec3(0.0f);
-        Material r = m;
-        r.roughness = microfacet::delta_light_roughness(m.roughness);
-        return eval(r, p, wo, wi);
-    }
-
     [[gnu::noinline]] static float pdf(const Material& m, const ShadingPoint& p,
                                        const glm::vec3& wo, const glm::vec3& wi) {
         if (m.anisotropy > 0.0f) [[unlikely]]
