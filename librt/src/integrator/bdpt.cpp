@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -325,10 +326,12 @@ struct Escape {
 /// throughput `beta` (its direction drawn at path[0] with solid-angle density pdf_dir; 0
 /// for a delta), up to max_vertices vertices; returns the count. The camera walk draws
 /// each bounce's numbers from SampleDimensions::bounce(i), the light walk from
-/// kLightVertices. Surfaces with a Null lobe are crossed as PathTracer crosses them.
+/// kLightVertices. Surfaces with a Null lobe are crossed as PathTracer crosses them. With
+/// `widened` (the light walk), a first vertex after a delta light scatters with its lobe
+/// widened there (bsdfs::delta_light_material), as PathTracer's light sample sees it.
 int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transport mode,
                 Sampler& sampler, PathVertex* path, ShadedMaterial* scratch, int max_vertices,
-                std::uint32_t& decisions, Escape* escape) {
+                std::uint32_t& decisions, Escape* escape, Material* widened = nullptr) {
     int n = 1;
     int hidden_skips = 0;
     // Roulette survives with the throughput relative to the walk's start (a light
@@ -347,7 +350,13 @@ int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transp
             detail::respawn(ray, hit.point, hit.geometric_normal, hit.offset, ray.direction);
             continue;
         }
-        const Material& m = c.scene.shade(hit, ray.direction, scratch[n]);
+        const Material& shaded = c.scene.shade(hit, ray.direction, scratch[n]);
+        // Regularised next to a delta light, in sampling and densities too: every strategy
+        // that makes a path then sees the same integrand (docs/materials-and-lights.md).
+        const Material& m = widened != nullptr && n == 1 && path[0].delta_position &&
+                                    bsdfs::delta_light_material(shaded, *widened)
+                                ? *widened
+                                : shaded;
         const BsdfLobe lobes = bsdfs::lobes_of(m);
         const glm::vec3 albedo = m.albedo_texture < 0 ? m.albedo : c.scene.albedo(hit);
         if (has(lobes, BsdfLobe::Null)) {
@@ -485,6 +494,16 @@ glm::vec3 connect_to_light(const Context& c, Subpaths& paths, int t, Sampler& sa
     const Light& light = scene.lights()[chosen.light];
     const LightLiSample ls = sample_li(light, pt.p, u);
     if (!ls.valid()) return glm::vec3(0.0f);
+    // Next to a delta light the vertex scatters with its lobe widened (PathTracer's rule,
+    // and the light walk's at y1): for f and for the weight's densities, restored after.
+    std::optional<Material> widened;  // constructed for delta lights only
+    struct Restore {
+        PathVertex& v;
+        const Material* own;
+        ~Restore() { v.material = own; }
+    } restore{paths.camera_path[t - 1], pt.material};
+    if (ls.is_delta && bsdfs::delta_light_material(*pt.material, widened.emplace()))
+        paths.camera_path[t - 1].material = &*widened;
     const glm::vec3 f = bsdf_f(pt, ls.wi) * std::fabs(glm::dot(pt.ns, ls.wi));
     glm::vec3 contrib = pt.beta * f * ls.radiance / (chosen.pmf * ls.pdf);
     if (!(max_component(contrib) > 0.0f)) return glm::vec3(0.0f);
@@ -555,7 +574,7 @@ glm::vec3 connect_subpaths(const Context& c, Subpaths& paths, int s, int t) {
 /// light of finite extent chosen by power (start_light_path), its walk up to max_depth + 1
 /// vertices.
 int trace_light_path(const Context& c, Sampler& sampler, PathVertex* light_path,
-                     ShadedMaterial* scratch, std::uint32_t& decisions) {
+                     ShadedMaterial* scratch, std::uint32_t& decisions, Material* widened) {
     if (c.light_paths < 1.0f) {
         sampler.set_dimension(kLightPathChoice);
         if (!(sampler.next_1d() < c.light_paths)) return 0;
@@ -570,7 +589,7 @@ int trace_light_path(const Context& c, Sampler& sampler, PathVertex* light_path,
     light_path[0].offset = start.offset();
     const glm::vec3 beta = light_path[0].beta * (start.cosine() / le.pdf_dir);
     return random_walk(c, start.ray(), beta, le.pdf_dir, Transport::Importance, sampler, light_path,
-                       scratch, c.max_depth + 1, decisions, nullptr);
+                       scratch, c.max_depth + 1, decisions, nullptr, widened);
 }
 
 }  // namespace
@@ -637,7 +656,9 @@ glm::vec3 BidirectionalPathTracer::li_splatting(const Scene& scene, const Ray& c
     const int camera_length =
         random_walk(c, ray, glm::vec3(1.0f), camera_pdf, Transport::Radiance, sampler, camera_path,
                     camera_scratch, settings_.max_depth + 2, decisions, &escape);
-    const int light_length = trace_light_path(c, sampler, light_path, light_scratch, decisions);
+    Material widened_y1;  // y1's material when a delta light widens its lobe
+    const int light_length =
+        trace_light_path(c, sampler, light_path, light_scratch, decisions, &widened_y1);
     Subpaths paths{
         camera_path, camera_length, light_path, light_length,
         // What mis_weight's s' = 1 correction needs for every s >= 2 (see there).

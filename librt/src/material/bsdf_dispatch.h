@@ -146,6 +146,25 @@ inline void multiply_color(Material& m, const glm::vec3& c) {
                                          const glm::vec3& wo, const glm::vec3& wi) {
     return dispatch(m.kind, [&](auto bsdf) { return decltype(bsdf)::eval(m, p, wo, wi); });
 }
+/// The material a vertex next to a delta light (point, spot, delta sun) scatters with:
+/// path-space regularisation (docs/materials-and-lights.md). m with its roughness raised
+/// to microfacet::kDeltaLightRoughness, in `out`, when the kind provides static
+/// widens_for_delta_light(m) and it is true; false, `out` untouched, otherwise (the
+/// material is used as it is). PathTracer's light sample evaluates it; BDPT also samples
+/// it and takes its densities, so that every strategy sees the same integrand.
+[[nodiscard]] inline bool delta_light_material(const Material& m, Material& out) {
+    return dispatch(m.kind, [&](auto bsdf) {
+        using T = decltype(bsdf);
+        if constexpr (requires { T::widens_for_delta_light(m); }) {
+            if (!T::widens_for_delta_light(m)) return false;
+            out = m;
+            out.roughness = microfacet::delta_light_roughness(m.roughness);
+            return true;
+        } else {
+            return false;
+        }
+    });
+}
 /// eval() and pdf() of bsdf.h at once (one dispatch; what next-event estimation with MIS
 /// needs), as f and the density.
 struct EvalPdf {

@@ -146,6 +146,12 @@ struct MetallicRoughness {
         return eval_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
     }
 
+    /// GGX lobes narrower than kDeltaLightAlpha (delta_light_material), unless the
+    /// transmission is the Null lobe: a raised roughness would turn it into a glossy
+    /// transmission that counts the light pass_through already lets across.
+    static bool widens_for_delta_light(const Material& m) {
+        return !smooth_transmission(m) && m.roughness < microfacet::kDeltaLightRoughness;
+    }
     [[gnu::noinline]] static float pdf(const Material& m, const ShadingPoint& p,
                                        const glm::vec3& wo, const glm::vec3& wi) {
         if (m.anisotropy > 0.0f) [[unlikely]]

@@ -121,6 +121,11 @@ struct RoughDielectric {
         return eval_with(microfacet::IsotropicGgx{microfacet::alpha_of(m.roughness)}, m, p, wo, wi);
     }
 
+    /// A rough lobe narrower than kDeltaLightAlpha (delta_light_material); the smooth one is
+    /// a delta lobe that no light sample reaches, and stays so.
+    static bool widens_for_delta_light(const Material& m) {
+        return !smooth(m) && m.roughness < microfacet::kDeltaLightRoughness;
+    }
     [[gnu::noinline]] static float pdf(const Material& m, const ShadingPoint& p,
                                        const glm::vec3& wo, const glm::vec3& wi) {
         if (m.anisotropy > 0.0f) [[unlikely]]

@@ -23,6 +23,23 @@ inline constexpr float kMinAlpha = 1e-3f;
     return std::max(roughness * roughness, kMinAlpha);
 }
 
+/// Smallest alpha a glossy lobe has toward a delta light (point, spot, delta sun) in
+/// next-event estimation: path-space regularisation with a fixed radius (Kaplanyan &
+/// Dachsbacher 2013). f cos_i <= D(h) / (4 cos_o) <= 1 / (4 pi alpha^2 cos_o), so one light
+/// sample of irradiance E adds at most 32 E / cos_o instead of 8e4 E / cos_o at kMinAlpha
+/// (docs/materials-and-lights.md, "Delta lights on smooth surfaces").
+inline constexpr float kDeltaLightAlpha = 0.05f;
+
+/// The perceptual roughness whose alpha is kDeltaLightAlpha: sqrt(0.05) (alpha = roughness^2).
+inline constexpr float kDeltaLightRoughness = 0.22360680f;
+
+/// `roughness` raised so that alpha_of() is at least kDeltaLightAlpha (isotropic and both
+/// anisotropic alphas: anisotropic_alphas() only widens alpha along the anisotropy);
+/// unchanged, to the bit, at or above it.
+[[nodiscard]] inline float delta_light_roughness(float roughness) {
+    return std::max(roughness, kDeltaLightRoughness);
+}
+
 /// GGX normal distribution D(m) = alpha^2 / (pi (m.z^2 (alpha^2 - 1) + 1)^2) for m.z > 0
 /// (Trowbridge & Reitz 1975; Walter et al. 2007, eq. 33, in cosine form).
 [[nodiscard]] inline float ggx_d(const glm::vec3& m, float alpha) {
