@@ -4,6 +4,8 @@
 // with one ray per pixel, so every pixel's AOV is one shading point's value. Issue 38 found
 // the AOV at 1 for every glTF material: Material::albedo, not what its BSDF reflects.
 
+#include "axis_camera.h"
+
 #include <librt/film/camera.h>
 #include <librt/film/film.h>
 #include <librt/geometry/procedural.h>
@@ -23,14 +25,7 @@ namespace {
 
 constexpr int kWidth = 8, kHeight = 6;
 
-CameraSettings axis_camera() {
-    CameraSettings cs;
-    cs.position = {0.0f, 0.0f, 0.0f};
-    cs.look_at = {0.0f, 0.0f, -1.0f};
-    cs.width = kWidth;
-    cs.height = kHeight;
-    return cs;  // pinhole, no pixel jitter: every sample of a pixel is the same ray
-}
+using librt::testing::axis_camera;
 
 // An 8 x 6 quad at z = -5 facing the camera, uvs (0, 0) to (1, 1): wider than the 60 degree
 // view at that distance, so every pixel hits it, at uvs spread over most of [0, 1]^2.
@@ -50,7 +45,7 @@ ImageTexture checker() {
 }
 
 ImageLayers render_layers(const Scene& scene) {
-    const CameraSettings cs = axis_camera();
+    const CameraSettings cs = axis_camera(kWidth, kHeight);
     const Camera camera(cs);
     PathTracer integrator(PathTracerSettings{1, false});
     integrator.preprocess(scene);
@@ -62,7 +57,7 @@ ImageLayers render_layers(const Scene& scene) {
 
 // The hit of pixel (x, y)'s camera ray, found independently of the renderer.
 Hit pixel_hit(const Scene& scene, int x, int y) {
-    const Camera camera(axis_camera());
+    const Camera camera(axis_camera(kWidth, kHeight));
     Sampler sampler(0, 0, 0, 0);
     Hit hit;
     EXPECT_TRUE(scene.intersect(camera.generate_ray(x, y, sampler), hit));
@@ -257,7 +252,7 @@ TEST(AovAlbedo, AlbedoDebugViewMatchesTheAov) {
     (void)scene.add_mesh(view_quad(), scene.add_material(m));
     scene.commit();
     const ImageLayers layers = render_layers(scene);
-    const Camera camera(axis_camera());
+    const Camera camera(axis_camera(kWidth, kHeight));
     const AlbedoNormalIntegrator view(DebugView::Albedo);
     for (int y = 0; y < kHeight; ++y) {
         for (int x = 0; x < kWidth; ++x) {

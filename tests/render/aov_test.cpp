@@ -3,6 +3,8 @@
 // compositors read as Z), the normal that plane's, and the albedo the first non-specular
 // surface's, tinted by the mirrors and glass on the way (aov_albedo_test.cpp: every kind).
 
+#include "axis_camera.h"
+
 #include <librt/film/camera.h>
 #include <librt/film/film.h>
 #include <librt/geometry/procedural.h>
@@ -21,14 +23,7 @@ namespace {
 
 constexpr std::uint32_t kSpp = 3;
 
-CameraSettings axis_camera(int width = 8, int height = 6) {
-    CameraSettings cs;
-    cs.position = {0.0f, 0.0f, 0.0f};
-    cs.look_at = {0.0f, 0.0f, -1.0f};
-    cs.width = width;
-    cs.height = height;
-    return cs;  // pinhole, no pixel jitter: every sample of a pixel is the same ray
-}
+using librt::testing::axis_camera;
 
 // A 100 x 100 slab between z0 and z1 (z0 < z1), facing the z axis with both big faces.
 TriangleMesh slab(float z0, float z1) { return make_box({-50.0f, -50.0f, z0}, {50.0f, 50.0f, z1}); }
