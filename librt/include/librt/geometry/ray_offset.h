@@ -18,14 +18,15 @@ inline constexpr float kRayOffsetRelative = 0x1p-18f;
 /// Absolute floor of the self-intersection offset, for points near the origin.
 inline constexpr float kRayOffsetAbsolute = 0x1p-20f;
 
-/// Distance by which offset_ray_origin moves a point off its surface: an absolute floor
-/// plus max(|p.x|, |p.y|, |p.z|) * 2^-18. A hit point computed in float lies within a few
-/// ulps of its largest coordinate from the true surface (the ray parameter is rounded to
-/// float, then o + t d rounds again), so 32+ ulps clears that error with a wide margin
-/// while staying far below any feature of a sane scene: in the report's room (|p| ~ 100)
-/// it is 4e-4, against the report's fixed 0.01; scaled by 1000 the scene gets 1000 times
-/// the offset, which a fixed epsilon would not do. Geometry thinner than the offset (a
-/// glass sheet of thickness ~1e-5 at that scale) can be stepped over.
+/// The self-intersection offset of a point whose only error is its own rounding: an
+/// absolute floor plus max(|p.x|, |p.y|, |p.z|) * 2^-18, 32+ ulps of its largest
+/// coordinate, clearing that rounding with a wide margin while staying far below any
+/// feature of a sane scene: in the report's room (|p| ~ 100) it is 4e-4, against the
+/// report's fixed 0.01; scaled by 1000 the scene gets 1000 times the offset, which a fixed
+/// epsilon would not do. A hit's error can be larger (a long ray's rounding of t, a large
+/// triangle's vertices): Hit::offset adds it (docs/robustness.md, "Rays leaving
+/// surfaces"). Geometry thinner than the offset (a glass sheet of thickness ~1e-5 at that
+/// scale) can be stepped over.
 [[nodiscard]] inline float ray_offset_scale(const glm::vec3& p) {
     const float m = std::max(std::max(std::fabs(p.x), std::fabs(p.y)), std::fabs(p.z));
     return kRayOffsetAbsolute + kRayOffsetRelative * m;
