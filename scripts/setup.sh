@@ -10,6 +10,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libembree-dev
   libopenmpi-dev openmpi-bin
+  libdraco-dev libmeshoptimizer-dev libwebp-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest
   clang libclang-rt-14-dev clang-format
   doxygen
 )
