@@ -108,10 +108,13 @@ CLI::Option* add_choice(CLI::App& app, const std::string& name, Choice<Kind>& ch
 struct Options {
     std::string scene;
     std::string output = "render.png";
+    // The defaults are the best settings measured (docs/render-your-own-scene.md, "The
+    // defaults"): Sobol' samples, adaptive sampling (Options() sets them in `sampling`),
+    // paths ended by Russian roulette rather than a low cap.
     int spp = 16;
     std::string size;  // "WxH"; empty = the camera's aspect, long side 640
     std::string camera;
-    int max_depth = 5;
+    int max_depth = -1;  // -1: the most the integrator allows (1000; bdpt 64)
     Choice<LightChoiceOption> light_choice = choice_of(kLightChoices, LightChoiceOption::Auto);
     Choice<IntegratorKind> integrator = choice_of(kIntegrators, IntegratorKind::Path);
     bool caustic_paths = false;  // the path tracer's caustics traced from the lights
@@ -120,6 +123,7 @@ struct Options {
     int threads = 0;
     std::uint64_t seed = 0;
     double time_limit = 0.0;
+    double noise_target = 0.0;  // stop at this estimated relative error; 0 = none
     float exposure_ev = 0.0f;
     bool exr_half = false;      // EXR colour channels as half floats (clamped to 65504)
     std::string env;            // equirectangular .hdr lighting the scene; empty = none
@@ -128,6 +132,11 @@ struct Options {
     bool allow_outside_files = false;  // the scene may read files outside its directory
     apps::AppOptions sampling;         // --sampler, --filter, --filter-radius, --guiding(-passes)
     int mpi_tile = 32;                 // under mpirun: side of the tiles rank 0 hands out
+
+    Options() {
+        sampling.sampler = "sobol";
+        sampling.adaptive = true;
+    }
 
     /// --integrator, once check_choices has passed.
     [[nodiscard]] IntegratorKind integrator_kind() const { return *integrator.kind; }
@@ -172,6 +181,7 @@ std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
         {"--roulette-depth", std::to_string(o.roulette_depth)},
         {"--seed", std::to_string(o.seed)},
         {"--time-limit", exact(o.time_limit)},
+        {"--noise-target", exact(o.noise_target)},
         {"--exposure", exact(o.exposure_ev)},
         {"--env-strength", exact(o.env_strength)},
         {"--sampler", s.sampler},
@@ -219,8 +229,8 @@ std::vector<std::pair<std::string, std::string>> file_items(const std::filesyste
 
 /// --max-depth's range, then the names of --light-choice and --integrator.
 void check_choices(const Options& o) {
-    if (o.max_depth < 0 || o.max_depth > 1000)
-        bad("--max-depth", std::to_string(o.max_depth), "must be in [0, 1000]");
+    if (o.max_depth < -1 || o.max_depth > 1000)
+        bad("--max-depth", std::to_string(o.max_depth), "must be in [0, 1000] (-1: the most)");
     if (!o.light_choice.kind)
         bad("--light-choice", o.light_choice.typed, "must be auto, power or bounded");
     if (!o.integrator.kind) bad("--integrator", o.integrator.typed, "must be path, bdpt or brute");
@@ -259,6 +269,11 @@ void check_time_limit(const Options& o, bool distributed) {
         bad("--time-limit", std::to_string(o.time_limit), "must be finite and >= 0 (0 = none)");
     if (distributed && o.time_limit > 0.0)
         bad("--time-limit", std::to_string(o.time_limit),
+            "is not available under mpirun (use --spp)");
+    if (!(o.noise_target >= 0.0 && o.noise_target <= 1.0))
+        bad("--noise-target", std::to_string(o.noise_target), "must be in [0, 1] (0 = none)");
+    if (distributed && o.noise_target > 0.0)
+        bad("--noise-target", std::to_string(o.noise_target),
             "is not available under mpirun (use --spp)");
 }
 
@@ -309,13 +324,21 @@ SceneFileOptions check_command_line(const Options& o, const apps::MpiJob& job) {
     return file_options;
 }
 
+/// --max-depth, -1 standing for the most the integrator allows: the path tracer's own
+/// default (1000: paths end by roulette long before) or the bidirectional tracer's cap.
+int max_depth_of(const Options& o) {
+    if (o.max_depth >= 0) return o.max_depth;
+    return o.integrator_kind() == IntegratorKind::Bidirectional ? BidirectionalSettings::kMaxDepth
+                                                                : PathTracerSettings{}.max_depth;
+}
+
 /// The path tracer's settings. --light-choice auto: by bound
 /// (through the light tree) when there are more lights than the bounded choice weighs one by
 /// one, where power alone sends most shadow rays to far lights; by power otherwise, as before
 /// the tree.
 PathTracerSettings path_tracer_settings(const Options& o, std::size_t light_count) {
     PathTracerSettings pt;
-    pt.max_depth = o.max_depth;
+    pt.max_depth = max_depth_of(o);
     const LightChoiceOption choice = o.light_choice_kind();
     const bool many_lights = light_count > LightSampler::kMaxBounded;
     pt.light_choice =
@@ -338,7 +361,7 @@ std::unique_ptr<GuardedIntegrator> make_integrator(const Options& o, std::size_t
             return std::make_unique<PathTracer>(path_tracer_settings(o, light_count));
         case IntegratorKind::Bidirectional: {
             BidirectionalSettings bd;
-            bd.max_depth = std::min(o.max_depth, BidirectionalSettings::kMaxDepth);
+            bd.max_depth = max_depth_of(o);
             bd.light_path_fraction = o.light_paths;
             if (o.roulette_depth >= 0) bd.russian_roulette_depth = o.roulette_depth;
             return std::make_unique<BidirectionalPathTracer>(bd);
@@ -346,7 +369,7 @@ std::unique_ptr<GuardedIntegrator> make_integrator(const Options& o, std::size_t
         case IntegratorKind::BruteForce: {
             // Only the settings it reads: it refuses the path tracer's own.
             PathTracerSettings brute;
-            brute.max_depth = o.max_depth;
+            brute.max_depth = max_depth_of(o);
             if (o.roulette_depth >= 0) brute.russian_roulette_depth = o.roulette_depth;
             return std::make_unique<BruteForcePathTracer>(brute);
         }
@@ -426,6 +449,7 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     out.seed = o.seed;
     out.sampler = apps::sampler_kind(o.sampling);
     out.time_limit = o.time_limit;
+    out.noise_target = o.noise_target;
     out.adaptive = o.sampling.adaptive;
     out.scale = scale;
     out.exr_half = o.exr_half;
@@ -447,12 +471,18 @@ int main(int argc, char** argv) {
                    "Output image: .png (exposure, clamp, sRGB), .hdr, .pfm (linear) or .exr "
                    "(linear, with albedo, normal, depth and sample-count layers)")
         ->capture_default_str();
-    app.add_option("--spp", o.spp, "Samples per pixel")->capture_default_str();
+    app.add_option("--spp", o.spp,
+                   "Samples per pixel: with adaptive sampling (the default) their mean over the "
+                   "image; with --noise-target, the most a render takes")
+        ->capture_default_str();
     app.add_option("--size", o.size,
                    "Image size WIDTHxHEIGHT (default: the camera's aspect ratio, long side 640)");
     app.add_option("--camera", o.camera,
                    "The file's camera: index (in node order) or name; default: the first");
-    app.add_option("--max-depth", o.max_depth, "Scattering events per path")->capture_default_str();
+    app.add_option("--max-depth", o.max_depth,
+                   "Most scattering events per path; -1: the most the integrator allows (1000, "
+                   "bdpt 64), paths then ending by Russian roulette (--roulette-depth)")
+        ->capture_default_str();
     add_choice(app, "--integrator", o.integrator, kIntegrators,
                "path (unidirectional, MIS), bdpt (bidirectional: paths from the camera and "
                "from the lights joined, for light that reaches the camera through small "
@@ -478,6 +508,10 @@ int main(int argc, char** argv) {
     app.add_option("--seed", o.seed, "Random seed")->capture_default_str();
     app.add_option("--time-limit", o.time_limit,
                    "Stop after this many seconds and write the finished passes (0 = none)")
+        ->capture_default_str();
+    app.add_option("--noise-target", o.noise_target,
+                   "Stop once the image's estimated relative error (the square root of its "
+                   "relMSE) is at most this, e.g. 0.02; --spp stays the most taken (0 = none)")
         ->capture_default_str();
     app.add_option("--exposure", o.exposure_ev, "Exposure in stops: the image is scaled by 2^EV")
         ->capture_default_str();

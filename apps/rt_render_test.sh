@@ -217,5 +217,23 @@ status=0
 grep -qF -- "--exr-half = on: needs an .exr output" "$dir/err.txt" ||
     fail "--exr-half with a PNG: $(cat "$dir/err.txt")"
 
+# 5. (issue 38) The defaults are the documented best-measured ones (render-your-own-scene.md,
+# "The defaults"): Sobol', adaptive sampling, depth to the integrator's most; --noise-target
+# stops a render before its --spp ceiling and says so; out of range it is refused.
+"$app" --help >"$dir/help.txt"
+grep -q -- "--sampler TEXT=sobol " "$dir/help.txt" || fail "--sampler default: $(grep -- --sampler "$dir/help.txt")"
+tr -s ' \n' ' ' <"$dir/help.txt" | grep -q "means stay unbiased); default on" ||
+    fail "--adaptive default: $(grep -A1 -- --adaptive "$dir/help.txt")"
+grep -q -- "--max-depth INT=-1 " "$dir/help.txt" || fail "--max-depth default: $(grep -- --max-depth "$dir/help.txt")"
+"$app" "$scene" --size 32x24 --spp 4096 --noise-target 0.2 --threads 2 -o "$dir/noise.png" \
+    >"$dir/out.txt" 2>"$dir/err.txt" || fail "--noise-target: $(cat "$dir/err.txt")"
+grep -Eq "^32x24, [0-9]+ of 4096 spp .*\(the --noise-target\)" "$dir/out.txt" ||
+    fail "--noise-target: $(cat "$dir/out.txt")"
+! grep -q "partial" "$dir/err.txt" || fail "--noise-target flagged as partial: $(cat "$dir/err.txt")"
+status=0
+"$app" "$scene" --noise-target 2 -o "$dir/noise.png" 2>"$dir/err.txt" >/dev/null || status=$?
+[ "$status" -eq 1 ] && grep -qF -- "--noise-target = 2.000000: must be in [0, 1] (0 = none)" "$dir/err.txt" ||
+    fail "--noise-target 2: $status $(cat "$dir/err.txt")"
+
 rm -rf "$dir"
-echo "bad extension rejected first; SIGINT and the time limit wrote complete partial images"
+echo "bad extension rejected first; SIGINT and the time limit wrote complete partial images; defaults and --noise-target"

@@ -173,9 +173,12 @@ void add_sampling_options(CLI::App& app, AppOptions& o) {
     app.add_option("--guiding-passes", o.guiding_passes,
                    "Training passes of --guiding; pass k renders 2^k spp (5: 31 spp)")
         ->capture_default_str();
-    app.add_flag("--adaptive", o.adaptive,
-                 "Adaptive sampling: a pilot of --spp / 4 samples per pixel, then the rest "
-                 "where the noise is (--spp becomes the mean; pixels' means stay unbiased)");
+    // The app's default (rt_render's is on, the report apps' off) as the help shows it.
+    app.add_flag("--adaptive,!--no-adaptive", o.adaptive,
+                 std::string("Adaptive sampling: a pilot of --spp / 4 samples per pixel, then "
+                             "the rest where the noise is (--spp becomes the mean; pixels' "
+                             "means stay unbiased); default ") +
+                     (o.adaptive ? "on" : "off"));
     app.add_option("--filter-radius", o.filter_radius,
                    "The filter's radius in pixels (default: box 0.5, tent 1, gaussian 1.5, "
                    "mitchell 2, blackman-harris 1.5, smallpt 0.75)");

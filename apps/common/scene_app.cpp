@@ -62,6 +62,7 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
     // work; each pass costs one copy of the film, small next to rendering it.
     ps.pass_samples = 1;
     ps.time_limit = o.time_limit;
+    ps.noise_target = o.noise_target;
     ps.aovs = lower_extension(o.output) == ".exr";
     Film film;
     Image image;  // the film, joined to guiding's kept training passes when it completes
@@ -74,15 +75,18 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
         return 130;
     }
     write_output(o.output, image, display_look(o.scale, o.exr_half), &film);
-    const bool partial = stats.samples_per_pixel < std::uint32_t(o.spp);
+    const bool partial =
+        stats.samples_per_pixel < std::uint32_t(o.spp) && !stats.noise_target_reached;
     if (!o.quiet || partial) {
         const double rate = stats.seconds > 0.0 ? double(stats.samples) / stats.seconds : 0.0;
         std::printf(
             "%dx%d, %u of %d spp in %d passes, %u threads: render %.2f s (%.2f M "
-            "samples/s), total %.2f s, peak memory %.0f MiB\n",
+            "samples/s), estimated relative error %.3g%s, total %.2f s, peak memory %.0f "
+            "MiB\n",
             camera.width(), camera.height(), stats.samples_per_pixel, o.spp, stats.passes,
             o.threads > 0 ? unsigned(o.threads) : std::max(1u, std::thread::hardware_concurrency()),
-            stats.seconds, rate * 1e-6,
+            stats.seconds, rate * 1e-6, stats.noise,
+            stats.noise_target_reached ? " (the --noise-target)" : "",
             std::chrono::duration<double>(std::chrono::steady_clock::now() - o.started).count(),
             peak_rss_mib());
     }

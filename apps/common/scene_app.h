@@ -27,10 +27,11 @@ struct ProgressiveOutput {
     std::uint64_t seed = 0;                          ///< random seed
     SamplerKind sampler = SamplerKind::Independent;  ///< --sampler
     double time_limit = 0.0;                         ///< seconds, 0 = none
-    bool adaptive = false;  ///< --adaptive: spp is the mean; passes spread by noise
-    float scale = 1.0f;     ///< exposure: the linear image is multiplied by this
-    bool exr_half = false;  ///< --exr-half: EXR colour channels as half (clamped to 65504)
-    bool quiet = false;     ///< no progress bar and no summary
+    double noise_target = 0.0;  ///< --noise-target: stop at this relative error, 0 = none
+    bool adaptive = false;      ///< --adaptive: spp is the mean; passes spread by noise
+    float scale = 1.0f;         ///< exposure: the linear image is multiplied by this
+    bool exr_half = false;      ///< --exr-half: EXR colour channels as half (clamped to 65504)
+    bool quiet = false;         ///< no progress bar and no summary
     /// When the app started its work (the summary's "total" counts from here).
     std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 };

@@ -6,6 +6,7 @@
 #include "render/pass_sequence.h"
 
 #include <librt/core/error.h>
+#include <librt/render/noise_estimate.h>
 #include <librt/render/pass_combination.h>
 #include <librt/render/renderer.h>
 
@@ -75,6 +76,10 @@ void validate(const ProgressiveSettings& s) {
     if (!std::isfinite(s.time_limit) || s.time_limit < 0.0) {
         throw Error("time_limit = " + std::to_string(s.time_limit) +
                     ": must be finite and >= 0 seconds");
+    }
+    if (!(s.noise_target >= 0.0 && s.noise_target <= 1.0)) {
+        throw Error("noise_target = " + std::to_string(s.noise_target) +
+                    ": must be in [0, 1] (0 = none)");
     }
 }
 
@@ -331,9 +336,10 @@ void check_block(const Camera& camera, const Film& film, FilmOrigin origin,
 void check_not_adaptive(const RenderSettings& settings) {
     if (settings.adaptive.enabled) {
         throw Error(
-            "adaptive.enabled = true: render_block renders the samples its block says "
-            "(adaptive sampling is render()'s, render_progressive()'s and render_mpi()'s; "
-            "render_block_to_counts takes each pixel's count)");
+            "adaptive.enabled = true (the default): render_block renders the samples its "
+            "block says; set adaptive.enabled = false (adaptive sampling is render()'s, "
+            "render_progressive()'s and render_mpi()'s; render_block_to_counts takes each "
+            "pixel's count)");
     }
 }
 
@@ -445,11 +451,20 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         stats.cancelled = training.cancelled;
     }
     Film work;  // the pass in progress: a copy of `film` that replaces it once complete
+    // The film's noise, for the target and the progress reports (nothing to copy otherwise).
+    NoiseEstimate noise;
+    const bool estimate_noise = settings.noise_target > 0.0 || static_cast<bool>(rs.progress);
+    const auto noise_now = [&] { return noise.relative_error().value_or(0.0); };
     PassRunner runner;
     runner.pass = [&](std::uint32_t n, std::uint32_t count, const std::uint32_t* ends) {
         // A film holding no samples always gets its first pass, whatever the limit.
         if (limit > 0.0 && n > 0 && elapsed() >= limit) {
             stats.time_limit_reached = true;
+            return false;
+        }
+        if (settings.noise_target > 0.0 && noise.relative_error() &&
+            *noise.relative_error() <= settings.noise_target) {
+            stats.noise_target_reached = true;
             return false;
         }
         if (rs.cancel != nullptr && rs.cancel->load()) {
@@ -461,7 +476,8 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         const Tick tick = [&](double done) {
             if (rs.progress) {
                 const double seconds = elapsed();
-                rs.progress({fraction(n + done * count, seconds), seconds, stats.passes, n});
+                rs.progress(
+                    {fraction(n + done * count, seconds), seconds, stats.passes, n, noise_now()});
             }
             return limit > 0.0 && n > 0 && elapsed() >= limit;
         };
@@ -486,9 +502,10 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
     runner.passed = [&](std::uint32_t n) {
         ++stats.passes;
         stats.samples_per_pixel = n;
+        if (estimate_noise) noise.observe(film, n);
         if (rs.progress) {
             const double seconds = elapsed();
-            rs.progress({fraction(n, seconds), seconds, stats.passes, n});
+            rs.progress({fraction(n, seconds), seconds, stats.passes, n, noise_now()});
         }
     };
     PassSequence sequence(plan, first, pass);
@@ -499,6 +516,7 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         *image =
             keep && n == target && !half.pixels.empty() ? kept.combined(half, film) : resolve(film);
     }
+    stats.noise = noise_now();
     stats.seconds = elapsed();
     stats.cpu_seconds = cpu_now() - cpu_start;
     return stats;

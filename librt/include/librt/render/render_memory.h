@@ -28,7 +28,8 @@ struct RenderMemoryOptions {
 
 /// The same for render_progressive with an `image`: the film and the copy each pass renders
 /// onto (memory for two films, AOVs and splats included), the image, and the extras of
-/// adaptive sampling (a third film and the tables) or of kept training passes.
+/// adaptive sampling (a third film and the tables) or of kept training passes, and the
+/// noise estimate's snapshot of the pixels (NoiseEstimate).
 [[nodiscard]] LIBRT_API std::uint64_t progressive_bytes_per_pixel(
     const RenderMemoryOptions& options);
 

@@ -1,0 +1,28 @@
+// The library's defaults are the documented best-measured settings (docs/sampling.md,
+// docs/render-your-own-scene.md "The defaults"): a RenderSettings{} renders with Sobol'
+// samples and adaptive sampling, and a PathTracerSettings{} ends paths by roulette from
+// bounce 3 under a cap of 1000, not at the report's 5 bounces.
+
+#include <librt/integrator/integrators.h>
+#include <librt/render/renderer.h>
+
+#include <gtest/gtest.h>
+
+using namespace librt;
+
+TEST(Defaults, RenderSettingsAreTheBestMeasured) {
+    const RenderSettings s;
+    EXPECT_EQ(s.sampler, SamplerKind::Sobol);
+    EXPECT_TRUE(s.adaptive.enabled);
+    EXPECT_EQ(s.adaptive.radius, 8);
+    EXPECT_EQ(s.adaptive.max_factor, 8.0);
+    const ProgressiveSettings p;
+    EXPECT_EQ(p.noise_target, 0.0);
+    EXPECT_EQ(p.time_limit, 0.0);
+}
+
+TEST(Defaults, PathsEndByRouletteNotByALowCap) {
+    const PathTracerSettings pt;
+    EXPECT_EQ(pt.max_depth, 1000);
+    EXPECT_EQ(pt.russian_roulette_depth, 3);
+}
