@@ -284,6 +284,7 @@ void check_memory(const Options& o, const SceneFileOptions& file_options) {
     RenderMemoryOptions memory;
     memory.splats = o.integrator_kind() == IntegratorKind::Bidirectional || o.caustic_paths;
     memory.adaptive = o.sampling.adaptive;
+    memory.noise_target = o.noise_target > 0.0;
     memory.keeps_training = o.sampling.guiding;
     apps::check_render_memory("--size", o.size, file_options.width, file_options.height,
                               apps::progressive_output_bytes_per_pixel(o.output, memory));

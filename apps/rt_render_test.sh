@@ -169,14 +169,14 @@ if grep -qaE '__(asan|tsan)_init' "$app" || ldd "$app" 2>/dev/null | grep -qE 'l
     echo "note: $app is sanitized: the --size checks run without an address-space limit"
 fi
 status=0
-(ulimit -v "$address_limit"; "$app" "$dir/missing.glb" --size 15035x15035 -o "$dir/checks/big.png") \
+(ulimit -v "$address_limit"; "$app" "$dir/missing.glb" --no-adaptive --size 15035x15035 -o "$dir/checks/big.png") \
     >/dev/null 2>"$dir/err.txt" || status=$?
 [ "$status" -eq 1 ] || fail "--size 15035x15035: exit status $status: $(cat "$dir/err.txt")"
 grep -qF -- "--size = 15035x15035: the render would need 17179893100 bytes (16 GiB: 15035 x 15035 pixels of 76 bytes" \
     "$dir/err.txt" || fail "--size 15035x15035: message: $(cat "$dir/err.txt")"
 grep -qF -- "more than the 16 GiB limit" "$dir/err.txt" || fail "--size: $(cat "$dir/err.txt")"
 status=0
-(ulimit -v "$address_limit"; "$app" "$dir/missing.glb" --size 15034x15034 -o "$dir/checks/big.png") \
+(ulimit -v "$address_limit"; "$app" "$dir/missing.glb" --no-adaptive --size 15034x15034 -o "$dir/checks/big.png") \
     >/dev/null 2>"$dir/err.txt" || status=$?
 [ "$status" -eq 1 ] || fail "--size 15034x15034: exit status $status: $(cat "$dir/err.txt")"
 grep -q "missing.glb" "$dir/err.txt" || fail "--size 15034x15034: $(cat "$dir/err.txt")"

@@ -33,6 +33,9 @@ TEST(RenderMemory, ProgressiveCountsTheFilmItsCopyAndTheImage) {
     o = {};
     o.keeps_training = true;  // the half film and the weighted sums (and their copy)
     EXPECT_EQ(progressive_bytes_per_pixel(o), 3 * film + 2 * sizeof(glm::dvec3) + image);
+    o = {};
+    o.noise_target = true;  // NoiseEstimate's snapshot of the pixels and their variances
+    EXPECT_EQ(progressive_bytes_per_pixel(o), 3 * film + sizeof(float) + image);  // 112
 }
 
 TEST(RenderMemory, RenderCountsOneFilmAndTheImage) {

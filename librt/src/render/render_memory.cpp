@@ -48,8 +48,8 @@ std::uint64_t progressive_bytes_per_pixel(const RenderMemoryOptions& o) {
     std::uint64_t extra = 0;
     if (o.adaptive) extra = film + kAdaptive;  // the film at half the pilot
     if (o.keeps_training) extra = extra > kept_bytes(o) ? extra : kept_bytes(o);
-    // The film and the pass's copy of it, and NoiseEstimate's snapshot and per-pixel variance.
-    return 2 * film + extra + image_bytes(o) + sizeof(FilmPixel) + sizeof(float);
+    const std::uint64_t noise = o.noise_target ? kFilm + sizeof(float) : 0;  // NoiseEstimate
+    return 2 * film + extra + image_bytes(o) + noise;  // the film and the pass's copy of it
 }
 
 }  // namespace librt

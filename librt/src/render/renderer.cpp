@@ -336,10 +336,9 @@ void check_block(const Camera& camera, const Film& film, FilmOrigin origin,
 void check_not_adaptive(const RenderSettings& settings) {
     if (settings.adaptive.enabled) {
         throw Error(
-            "adaptive.enabled = true (the default): render_block renders the samples its "
-            "block says; set adaptive.enabled = false (adaptive sampling is render()'s, "
-            "render_progressive()'s and render_mpi()'s; render_block_to_counts takes each "
-            "pixel's count)");
+            "adaptive.enabled = true: render_block renders the samples its block says "
+            "(adaptive sampling is render()'s, render_progressive()'s and render_mpi()'s; "
+            "render_block_to_counts takes each pixel's count)");
     }
 }
 
@@ -451,9 +450,10 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         stats.cancelled = training.cancelled;
     }
     Film work;  // the pass in progress: a copy of `film` that replaces it once complete
-    // The film's noise, for the target and the progress reports (nothing to copy otherwise).
+    // The film's noise, for the target (and then the progress reports too): a snapshot of
+    // the pixels, 36 bytes each (render_memory.h), only when a target asks for it.
     NoiseEstimate noise;
-    const bool estimate_noise = settings.noise_target > 0.0 || static_cast<bool>(rs.progress);
+    const bool estimate_noise = settings.noise_target > 0.0;
     const auto noise_now = [&] { return noise.relative_error().value_or(0.0); };
     PassRunner runner;
     runner.pass = [&](std::uint32_t n, std::uint32_t count, const std::uint32_t* ends) {

@@ -27,8 +27,9 @@ struct RenderProgress {
     double seconds = 0.0;   ///< since the render began
     int passes = 0;         ///< passes finished so far (a one-shot render is one pass)
     std::uint32_t samples_per_pixel = 0;  ///< samples per pixel of the finished passes
-    /// render_progressive: the image's estimated relative error (NoiseEstimate), once
-    /// known (after the pass level has doubled once); 0 before, and for other renders.
+    /// render_progressive with a noise target: the image's estimated relative error
+    /// (NoiseEstimate), once known (after the pass level has doubled once); 0 before, and
+    /// for other renders.
     double noise = 0.0;
 };
 
@@ -42,14 +43,13 @@ struct RenderSettings {
     int samples_per_pixel = 1;  ///< samples averaged per pixel, in [1, 2^20]
     int threads = 0;            ///< worker threads in [0, 1024]; 0 = hardware_concurrency()
     std::uint64_t seed = 0;     ///< varies every random number of the render
-    /// Where each camera path's random numbers come from. Sobol (the default: the lowest
-    /// error at equal time on every scene measured, docs/sampling.md) or Independent, the
-    /// PCG32 streams librt drew before and the report's apps still draw.
-    SamplerKind sampler = SamplerKind::Sobol;
+    /// Where each camera path's random numbers come from. Independent (the default) draws
+    /// exactly what librt always drew; Sobol lowers the noise per sample (docs/sampling.md)
+    /// and, with adaptive sampling, is rt_render's default (the best measured).
+    SamplerKind sampler = SamplerKind::Independent;
     /// Spread the samples over pixels by their noise, samples_per_pixel becoming the mean
-    /// (adaptive_sampling.h; on by default): render(), render_progressive() and
-    /// render_mpi(). render_block and render_block_to_counts refuse it, as they cannot
-    /// honour it (the block, or the counts, say the samples): set adaptive.enabled = false.
+    /// (adaptive_sampling.h): render(), render_progressive() and render_mpi(); render_block
+    /// and render_block_to_counts refuse it (the block, or the counts, say the samples).
     AdaptiveSampling adaptive;
     int tile_size =
         16;  ///< side of the square tiles handed to threads (>= 1; capped at the image size)
@@ -70,10 +70,10 @@ struct RenderStats {
     bool cancelled = false;               ///< true when `cancel` stopped the render before the end
     bool time_limit_reached = false;      ///< render_progressive: stopped by its time limit
     bool noise_target_reached = false;    ///< render_progressive: stopped by its noise target
-    /// render_progressive: the film's estimated relative error at the end (NoiseEstimate;
-    /// 0 when the render was too short to estimate it).
+    /// render_progressive with a noise target: the film's estimated relative error at the
+    /// end (NoiseEstimate; 0 when the render was too short to estimate it).
     double noise = 0.0;
-    int passes = 0;                       ///< passes finished and kept in the film
+    int passes = 0;  ///< passes finished and kept in the film
     /// samples every pixel holds after a complete pass (adaptive sampling: the level the
     /// passes reached, of which the pixels' mean is at most)
     std::uint32_t samples_per_pixel = 0;
@@ -223,7 +223,7 @@ struct ProgressiveSettings {
     /// is at most this, in [0, 1]; 0 = none. Checked between passes from the doubling of
     /// the level on; render.samples_per_pixel stays the most a render takes.
     double noise_target = 0.0;
-    bool aovs = false;        ///< a newly created film keeps AOV sums
+    bool aovs = false;  ///< a newly created film keeps AOV sums
     /// Seconds on a monotonic clock, for the time limit and progress reports; empty =
     /// std::chrono::steady_clock. Tests pass a fake one.
     std::function<double()> clock;
