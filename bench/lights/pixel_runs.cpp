@@ -100,7 +100,6 @@ int main(int argc, char** argv) try {
             librt::Film film(width, height);
             librt::RenderSettings settings;
             settings.threads = 1;
-            settings.adaptive.enabled = false;  // one pixel's samples, as the block says
             settings.seed = seed + static_cast<std::uint64_t>(r);
             settings.sampler =
                 sampler == "sobol" ? librt::SamplerKind::Sobol : librt::SamplerKind::Independent;
