@@ -486,6 +486,7 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
     runner.passed = [&](std::uint32_t n) {
         ++stats.passes;
         stats.samples_per_pixel = n;
+        if (settings.pass_done) settings.pass_done(film, n);
         if (rs.progress) {
             const double seconds = elapsed();
             rs.progress({fraction(n, seconds), seconds, stats.passes, n});
