@@ -342,6 +342,41 @@ TEST_F(DenoisedBox, ErrorLowerAt16Samples) {
     EXPECT_GT(noisy, 2.0 * denoised) << "relMSE noisy " << noisy << ", denoised " << denoised;
 }
 
+TEST(DenoiserFilms, PassDoneSeesEveryLevelAndTheHalfFilmDenoises) {
+    // rt_render's way to the half buffers: render_progressive's pass_done gets the film
+    // after every pass, holding that pass's level in every pixel; the copy at half the
+    // samples and the final film make the denoiser's input.
+    Scene scene;
+    testing::build_box(scene, false, false, false);
+    CameraSettings cs = testing::box_camera_settings(16);
+    const Camera camera(cs);
+    PathTracer pt;
+    ProgressiveSettings ps;
+    ps.render.samples_per_pixel = 4;
+    ps.aovs = true;
+    std::vector<std::uint32_t> levels;
+    Film half;
+    ps.pass_done = [&](const Film& f, std::uint32_t level) {
+        levels.push_back(level);
+        EXPECT_EQ(uniform_sample_count(f), level);
+        if (level == 2) half = f;
+    };
+    Film film;
+    (void)render_progressive(scene, camera, pt, film, ps);
+    EXPECT_EQ(levels, (std::vector<std::uint32_t>{1, 2, 3, 4}));
+    const DenoiserInput in = denoiser_input(half, film);
+    ASSERT_EQ(in.share_a.size(), 256u);
+    EXPECT_EQ(in.share_a[0], 0.5f);
+    // The halves put together are the film's mean: b from the difference of the sums.
+    for (std::size_t i = 0; i < in.beauty.pixels.size(); ++i) {
+        const glm::vec3 mean = 0.5f * (in.half_a.pixels[i] + in.half_b.pixels[i]);
+        for (int k = 0; k < 3; ++k)
+            EXPECT_NEAR(mean[k], in.beauty.pixels[i][k], 1e-5f * (1.0f + in.beauty.pixels[i][k]));
+    }
+    const Image out = denoise(in);
+    for (const glm::vec3& p : out.pixels) EXPECT_TRUE(std::isfinite(p.x + p.y + p.z));
+}
+
 TEST(DenoisedCornellBox, ErrorAtLeastFourTimesLowerAt16Samples) {
     // The tests' open box (testing::build_box) with its glossy metal slab, seen through
     // the same camera; the reference is 2048 samples per pixel with another seed.
