@@ -26,6 +26,11 @@
 //    identical patches count: a noise-free image comes back unchanged.
 //  - Features: a neighbour whose albedo or normal differs from p's (another object, the
 //    other side of an edge) gets a small weight, so geometric and texture edges are kept.
+//    The features are noisy too where an edge crosses a pixel (the share of its samples
+//    on each side): their own noise, from their halves, and their local gradient widen
+//    the tolerance there (Rousselle, Manzi & Zwicker 2013), and the albedo is prefiltered
+//    by this same filter before the radiance is multiplied back by it, else that
+//    coverage noise would come back with it.
 //  - Cross-filtering: each half is filtered with weights computed from the other half, so
 //    a pixel's weights are independent of the noise they average (no "filtering towards
 //    the noise" bias; NFOR's argument), and the two filtered halves are averaged.
