@@ -3,6 +3,7 @@
 // limit ends the render and the finished passes are written, flagged as partial. PNG is
 // sRGB-encoded after clamping (exposure 2^EV first); .hdr, .pfm and .exr stay linear
 // (times 2^EV), .exr with AOV layers (albedo, world normal, planar depth Z, sample count).
+// PNG output is denoised by default (render/denoiser.h); EXR gets a denoised layer.
 // Under mpirun (a build with MPI) every rank loads the scene and the frame is shared by the
 // ranks, byte for byte the one-process image (common/mpi_job.h, docs/distributed.md).
 #include "common/cli.h"
@@ -132,12 +133,23 @@ struct Options {
     bool allow_outside_files = false;  // the scene may read files outside its directory
     apps::AppOptions sampling;         // --sampler, --filter, --filter-radius, --guiding(-passes)
     int mpi_tile = 32;                 // under mpirun: side of the tiles rank 0 hands out
+    // --denoise / --no-denoise; unset = the output's default (denoise_wanted).
+    std::optional<bool> denoise;
 
     Options() {
         sampling.sampler = "sobol";
         sampling.adaptive = true;
     }
 
+    /// Whether to denoise: as asked, else for PNG (the image a user looks at: the denoised
+    /// one) and EXR (a denoised layer; the beauty stays the unbiased estimate), not for the
+    /// linear .hdr and .pfm (measurements), and not under mpirun, where the ranks keep no
+    /// film part way for the denoiser's noise estimate.
+    [[nodiscard]] bool denoise_wanted(bool distributed) const {
+        if (denoise) return *denoise;
+        const std::string ext = lower_extension(output);
+        return !distributed && (ext == ".png" || ext == ".exr");
+    }
     /// --integrator, once check_choices has passed.
     [[nodiscard]] IntegratorKind integrator_kind() const { return *integrator.kind; }
     /// --light-choice, once check_choices has passed.
@@ -193,6 +205,7 @@ std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
         {"--mpi-tile", std::to_string(o.mpi_tile)},
         {"--allow-outside-files", on(o.allow_outside_files)},
         {"--exr-half", on(o.exr_half)},
+        {"--denoise", on(o.denoise_wanted(true))},
     };
 }
 
@@ -279,15 +292,16 @@ void check_time_limit(const Options& o, bool distributed) {
 
 /// With --size: the render's films, copies and output buffers must fit, before any is
 /// allocated.
-void check_memory(const Options& o, const SceneFileOptions& file_options) {
+void check_memory(const Options& o, const SceneFileOptions& file_options, bool distributed) {
     if (o.size.empty()) return;
     RenderMemoryOptions memory;
     memory.splats = o.integrator_kind() == IntegratorKind::Bidirectional || o.caustic_paths;
     memory.adaptive = o.sampling.adaptive;
     memory.noise_target = o.noise_target > 0.0;
     memory.keeps_training = o.sampling.guiding;
-    apps::check_render_memory("--size", o.size, file_options.width, file_options.height,
-                              apps::progressive_output_bytes_per_pixel(o.output, memory));
+    apps::check_render_memory(
+        "--size", o.size, file_options.width, file_options.height,
+        apps::progressive_output_bytes_per_pixel(o.output, memory, o.denoise_wanted(distributed)));
 }
 
 /// --mpi-tile, and the options of the image file and of the sky.
@@ -302,6 +316,13 @@ void check_output_options(const Options& o) {
         bad("--env-strength", std::to_string(o.env_strength), "must be finite and >= 0");
     if (o.env.empty() && o.env_strength != 1.0f)
         bad("--env-strength", std::to_string(o.env_strength), "needs --env");
+}
+
+/// --denoise needs two parts of every pixel's samples, which a frame shared by MPI ranks
+/// does not keep.
+void check_denoise(const Options& o, bool distributed) {
+    if (distributed && o.denoise.value_or(false))
+        bad("--denoise", "on", "is not available under mpirun (use --no-denoise)");
 }
 
 /// Checks everything the user typed, before the scene is loaded; returns what the scene
@@ -320,8 +341,9 @@ SceneFileOptions check_command_line(const Options& o, const apps::MpiJob& job) {
     check_integrator_options(o);
     check_time_limit(o, job.distributed());
     apps::validate_sampling(o.sampling);
-    check_memory(o, file_options);
+    check_memory(o, file_options, job.distributed());
     check_output_options(o);
+    check_denoise(o, job.distributed());
     return file_options;
 }
 
@@ -455,6 +477,7 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     out.scale = scale;
     out.exr_half = o.exr_half;
     out.quiet = o.quiet;
+    out.denoise = o.denoise_wanted(false);
     out.started = t0;
     return apps::render_progressively_and_write(loaded.scene, camera, *integrator, out);
 }
@@ -519,6 +542,14 @@ int main(int argc, char** argv) {
     app.add_flag("--exr-half", o.exr_half,
                  "EXR beauty, albedo and normal as 16-bit half floats (smaller file; values "
                  "above 65504 are clamped to it, with a warning); default 32-bit float");
+    app.add_flag_callback(
+           "--denoise", [&o] { o.denoise = true; },
+           "Denoise (the default for .png and .exr): PNG, .hdr and .pfm get the denoised image, "
+           "EXR a 'denoised' layer beside its unbiased beauty. An AOV-guided filter of our "
+           "own; needs --spp 2 or more")
+        ->excludes(app.add_flag_callback(
+            "--no-denoise", [&o] { o.denoise = false; },
+            "Write the noisy, unbiased estimate only (the default for .hdr and .pfm)"));
     app.add_option("--env", o.env,
                    "Equirectangular Radiance .hdr lighting the scene from every direction "
                    "(importance-sampled; seen by rays that leave the scene)");

@@ -78,6 +78,30 @@ complete_png "$dir/bdpt.png" || fail "--light-paths: not a complete PNG"
 complete_png "$dir/adaptive.png" || fail "--adaptive: not a complete PNG"
 grep -q "16 of 16 spp in 16 passes" "$dir/out.txt" || fail "--adaptive: summary: $(cat "$dir/out.txt")"
 
+# 1c'. Denoising: on by default for PNG (the summary says so), a 'denoised' layer in an EXR
+# by default and none with --no-denoise; at 1 spp there are no two halves to compare: a
+# warning and the noisy image. --denoise and --no-denoise exclude each other.
+"$app" "$scene" --size 32x20 --spp 4 --threads 2 -o "$dir/denoised.png" >"$dir/out.txt" \
+    2>"$dir/err.txt" || fail "denoised PNG: $(cat "$dir/err.txt")"
+complete_png "$dir/denoised.png" || fail "denoised PNG: not a complete PNG"
+grep -q "^denoised in" "$dir/out.txt" || fail "denoised PNG: summary: $(cat "$dir/out.txt")"
+"$app" "$scene" --size 32x20 --spp 4 --threads 2 -q -o "$dir/denoised.exr" 2>"$dir/err.txt" ||
+    fail "denoised EXR: $(cat "$dir/err.txt")"
+grep -qa "denoised\.R" "$dir/denoised.exr" || fail "EXR: no denoised layer"
+"$app" "$scene" --size 32x20 --spp 4 --threads 2 -q --no-denoise -o "$dir/plain.exr" \
+    2>"$dir/err.txt" || fail "--no-denoise EXR: $(cat "$dir/err.txt")"
+! grep -qa "denoised\.R" "$dir/plain.exr" || fail "--no-denoise EXR: has a denoised layer"
+"$app" "$scene" --size 32x20 --spp 1 --threads 2 -q -o "$dir/one.png" 2>"$dir/err.txt" ||
+    fail "1 spp PNG: $(cat "$dir/err.txt")"
+complete_png "$dir/one.png" || fail "1 spp PNG: not a complete PNG"
+grep -q "not denoised: the denoiser needs at least 2 samples per pixel" "$dir/err.txt" ||
+    fail "1 spp PNG: warning: $(cat "$dir/err.txt")"
+status=0
+"$app" "$scene" --denoise --no-denoise -o "$dir/out/both.png" >/dev/null 2>"$dir/err.txt" ||
+    status=$?
+[ "$status" -ne 0 ] && grep -q "excludes" "$dir/err.txt" ||
+    fail "--denoise --no-denoise: exit status $status: $(cat "$dir/err.txt")"
+
 # 1d. A truncated --env sky (issue 37, defect 6): its header claims 16 x 4 texels, its
 # data holds 2 run-length scanlines. Refused with a message naming it before the scene is
 # read (stb_image would have lit the scene with a zero-filled sky and exited 0).
@@ -155,7 +179,7 @@ fi
 [ -z "$(ls -A "$dir/checks")" ] || fail "the output checks wrote $(ls -A "$dir/checks")"
 
 # 4b. A --size whose render (films, the pass's copy, image, writer buffers: 76 bytes per
-# pixel for a PNG) would take more than 16 GiB is refused before anything is allocated or
+# pixel for a PNG --no-denoise) would take more than 16 GiB is refused before anything is allocated or
 # the scene read: under a 1 GiB address-space limit, where allocating it would fail.
 # One pixel less per side fits, so there the (missing) scene is what fails. A sanitized
 # build reserves terabytes of address space for its shadow memory and cannot start under
@@ -169,17 +193,28 @@ if grep -qaE '__(asan|tsan)_init' "$app" || ldd "$app" 2>/dev/null | grep -qE 'l
     echo "note: $app is sanitized: the --size checks run without an address-space limit"
 fi
 status=0
-(ulimit -v "$address_limit"; "$app" "$dir/missing.glb" --no-adaptive --size 15035x15035 -o "$dir/checks/big.png") \
+(ulimit -v "$address_limit"; "$app" "$dir/missing.glb" --no-adaptive --size 15035x15035 --no-denoise -o "$dir/checks/big.png") \
     >/dev/null 2>"$dir/err.txt" || status=$?
 [ "$status" -eq 1 ] || fail "--size 15035x15035: exit status $status: $(cat "$dir/err.txt")"
 grep -qF -- "--size = 15035x15035: the render would need 17179893100 bytes (16 GiB: 15035 x 15035 pixels of 76 bytes" \
     "$dir/err.txt" || fail "--size 15035x15035: message: $(cat "$dir/err.txt")"
 grep -qF -- "more than the 16 GiB limit" "$dir/err.txt" || fail "--size: $(cat "$dir/err.txt")"
 status=0
-(ulimit -v "$address_limit"; "$app" "$dir/missing.glb" --no-adaptive --size 15034x15034 -o "$dir/checks/big.png") \
+(ulimit -v "$address_limit"; "$app" "$dir/missing.glb" --no-adaptive --size 15034x15034 --no-denoise -o "$dir/checks/big.png") \
     >/dev/null 2>"$dir/err.txt" || status=$?
 [ "$status" -eq 1 ] || fail "--size 15034x15034: exit status $status: $(cat "$dir/err.txt")"
 grep -q "missing.glb" "$dir/err.txt" || fail "--size 15034x15034: $(cat "$dir/err.txt")"
+# Denoised (the PNG default): AOV films, the film at the half and the denoiser's planes,
+# 612 bytes per pixel.
+status=0
+"$app" "$dir/missing.glb" --no-adaptive --size 5299x5299 -o "$dir/checks/big.png" >/dev/null 2>"$dir/err.txt" ||
+    status=$?
+grep -qF -- "--size = 5299x5299: the render would need 17184593412 bytes (16 GiB: 5299 x 5299 pixels of 612 bytes" \
+    "$dir/err.txt" || fail "--size 5299x5299 (denoised PNG): $(cat "$dir/err.txt")"
+status=0
+"$app" "$dir/missing.glb" --no-adaptive --size 5298x5298 -o "$dir/checks/big.png" >/dev/null 2>"$dir/err.txt" ||
+    status=$?
+grep -q "missing.glb" "$dir/err.txt" || fail "--size 5298x5298 (denoised PNG): $(cat "$dir/err.txt")"
 # An EXR render (AOV films, layers and tinyexr's buffers) takes more per pixel.
 status=0
 "$app" "$dir/missing.glb" --size 10000x7000 -o "$dir/checks/big.exr" >/dev/null 2>"$dir/err.txt" ||

@@ -50,13 +50,15 @@ Image display_image(const Image& linear, float scale) {
 }
 
 void write_output(const std::string& path, const Image& beauty, const OutputLook& look,
-                  const Film* film) {
+                  const Film* film, const Image* denoised) {
     const std::string ext = lower_extension(path);
     if (ext == ".exr" && film != nullptr) {
         ImageLayers layers = resolve_layers(*film);
         layers.beauty = beauty;
+        if (denoised != nullptr) layers.denoised = *denoised;
         if (look.scale_exr) {
             for (glm::vec3& p : layers.beauty.pixels) p *= look.scale;
+            for (glm::vec3& p : layers.denoised.pixels) p *= look.scale;
         }
         ExrWriteOptions options;
         options.colour = look.exr_half ? ExrPixelType::Half : ExrPixelType::Float;

@@ -39,9 +39,9 @@ struct OutputLook {
 
 /// Writes `beauty` to `path` by its extension (case-insensitive), in `look`: .exr with the
 /// other layers of `film` when one is given (albedo, normal, depth, sample count; else the
-/// beauty alone, scaled), .png tone-mapped, .pfm and .hdr linear. Throws librt::Error naming
-/// the path.
+/// beauty alone, scaled) and `denoised` as its denoised layer when given (scaled like the
+/// beauty), .png tone-mapped, .pfm and .hdr linear. Throws librt::Error naming the path.
 void write_output(const std::string& path, const Image& beauty, const OutputLook& look,
-                  const Film* film = nullptr);
+                  const Film* film = nullptr, const Image* denoised = nullptr);
 
 }  // namespace librt::apps

@@ -7,9 +7,11 @@
 #include <librt/io/exr.h>
 #include <librt/io/file_extension.h>
 #include <librt/io/image_io.h>
+#include <librt/render/denoiser.h>
 #include <librt/render/renderer.h>
 
 #include <algorithm>
+#include <bit>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -39,13 +41,22 @@ void parse_size(const std::string& text, float aspect, int& width, int& height) 
 }
 
 std::uint64_t progressive_output_bytes_per_pixel(const std::string& output,
-                                                 RenderMemoryOptions memory) {
-    memory.aovs = lower_extension(output) == ".exr";
+                                                 RenderMemoryOptions memory, bool denoise) {
+    memory.aovs = lower_extension(output) == ".exr" || denoise;
     const std::uint64_t film = sizeof(FilmPixel) + (memory.aovs ? sizeof(AovPixel) : 0) +
                                (memory.splats ? 3 * sizeof(std::int64_t) : 0);
+    // The denoiser: the film part way (kept from the half on), then at its peak (the main
+    // filter, after the albedo's prefilter) its input (9 images and the shares: 112), the
+    // prefiltered albedo (12), the demodulated halves, spreads, variances and feature
+    // tolerances (14 RGB: 168), the modulation and shares (16), its padded planes (22
+    // floats and a scratch plane: 100, more at the image's edges for a small image) and its
+    // output (12): 33 RGB pixels' worth.
+    const std::uint64_t kept = denoise ? film : 0;
+    const std::uint64_t denoising = denoise ? 33 * sizeof(glm::vec3) : 0;
     const std::uint64_t writing =
-        film + sizeof(glm::vec3) + writer_bytes_per_pixel(output, memory.aovs);
-    return std::max(progressive_bytes_per_pixel(memory), writing);
+        film + kept + sizeof(glm::vec3) +
+        std::max(writer_bytes_per_pixel(output, memory.aovs), denoising + sizeof(glm::vec3));
+    return std::max(progressive_bytes_per_pixel(memory) + kept, writing);
 }
 
 int render_progressively_and_write(const Scene& scene, const Camera& camera,
@@ -63,10 +74,28 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
     ps.pass_samples = 1;
     ps.time_limit = o.time_limit;
     ps.noise_target = o.noise_target;
-    ps.aovs = lower_extension(o.output) == ".exr";
+    const bool exr = lower_extension(o.output) == ".exr";
+    ps.aovs = exr || o.denoise;
+    ps.render.adaptive.enabled = o.adaptive;
+    // The denoiser's first half: the film at spp / 2, or (for a render the time limit may
+    // stop) at the last power of two below it, so that a stopped render still has a part
+    // holding at least a quarter of its samples. Adaptive sampling: at half the pilot, the
+    // last level every pixel is sure to exceed (a quiet pixel may get no more than it).
+    Film half;
+    std::uint32_t half_at = 0;  // the level `half` holds; 0 = none
+    const std::uint32_t pilot =
+        o.adaptive ? adaptive_pilot_samples(ps.render.adaptive, std::uint32_t(o.spp)) : 0;
+    const std::uint32_t half_level = pilot > 0 ? pilot / 2 : std::uint32_t(o.spp / 2);
+    if (o.denoise) {
+        ps.pass_done = [&half, &half_at, half_level](const Film& f, std::uint32_t level) {
+            if (level == half_level || (level < half_level && std::has_single_bit(level))) {
+                half = f;
+                half_at = level;
+            }
+        };
+    }
     Film film;
     Image image;  // the film, joined to guiding's kept training passes when it completes
-    ps.render.adaptive.enabled = o.adaptive;
     const RenderStats stats = render_progressive(scene, camera, integrator, film, ps, &image);
     progress.finish();
     const bool interrupted = stats.cancelled || interrupt_flag()->load();
@@ -74,7 +103,27 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
         std::cerr << "interrupted before the first pass finished: nothing written\n";
         return 130;
     }
-    write_output(o.output, image, display_look(o.scale, o.exr_half), &film);
+    Image denoised;
+    if (o.denoise) {
+        if (half_at == 0 || half_at >= stats.samples_per_pixel) {
+            std::cerr << "warning: not denoised: the denoiser needs at least 2 samples per "
+                         "pixel (it compares two halves of them)\n";
+        } else {
+            const auto t = std::chrono::steady_clock::now();
+            DenoiserSettings ds;
+            ds.threads = o.threads;
+            denoised = denoise(denoiser_input(half, film), ds);
+            if (!o.quiet) {
+                std::printf(
+                    "denoised in %.2f s\n",
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count());
+            }
+        }
+    }
+    const bool have_denoised = !denoised.pixels.empty();
+    const Image& shown = have_denoised && !exr ? denoised : image;
+    write_output(o.output, shown, display_look(o.scale, o.exr_half), &film,
+                 have_denoised && exr ? &denoised : nullptr);
     const bool partial =
         stats.samples_per_pixel < std::uint32_t(o.spp) && !stats.noise_target_reached;
     if (!o.quiet || partial) {

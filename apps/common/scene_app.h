@@ -32,6 +32,9 @@ struct ProgressiveOutput {
     float scale = 1.0f;         ///< exposure: the linear image is multiplied by this
     bool exr_half = false;      ///< --exr-half: EXR colour channels as half (clamped to 65504)
     bool quiet = false;         ///< no progress bar and no summary
+    /// --denoise: PNG, .hdr and .pfm get the denoised image, EXR a denoised layer beside its
+    /// unbiased beauty (render/denoiser.h). Needs 2 samples per pixel.
+    bool denoise = false;
     /// When the app started its work (the summary's "total" counts from here).
     std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 };
@@ -42,9 +45,12 @@ void parse_size(const std::string& text, float aspect, int& width, int& height);
 
 /// The most bytes per pixel render_progressively_and_write holds at once for `output`
 /// (AOVs for .exr) and `memory`'s other choices: render_progressive's films, copies and
-/// image, or afterwards the film, the image and the writer's buffers, whichever is more.
+/// image, or afterwards the film, the image and the writer's buffers, whichever is more;
+/// with `denoise`, the films keep AOVs and the film part way and the denoiser's planes are
+/// added.
 [[nodiscard]] std::uint64_t progressive_output_bytes_per_pixel(const std::string& output,
-                                                               RenderMemoryOptions memory);
+                                                               RenderMemoryOptions memory,
+                                                               bool denoise = false);
 
 /// Renders `scene` through `camera` one sample per pixel per pass (render_progressive),
 /// with a progress bar, until o.spp samples, Ctrl-C or the time limit; writes the finished

@@ -176,6 +176,11 @@ ExrWriteResult write_exr(const fs::path& path, const ImageLayers& layers,
         add_rgb(channels, layers.normal, "normal.", "XYZ", colour);
         if (half) clamp_to_half(channels, path, "normal", result.warnings);
     }
+    if (!layers.denoised.pixels.empty() || layers.denoised.width != 0) {
+        check_layer_size(path, "denoised", layers.denoised.pixels.size(), pixel_count);
+        add_rgb(channels, layers.denoised, "denoised.", "RGB", colour);
+        if (half) clamp_to_half(channels, path, "denoised", result.warnings);
+    }
     // Depth and the sample count stay 32-bit whatever options.colour says (exr.h).
     if (!layers.depth.empty()) {
         check_layer_size(path, "depth", layers.depth.size(), pixel_count);
@@ -301,6 +306,7 @@ ImageLayers read_exr(const fs::path& path) {
     }
     layers.albedo = rgb("albedo.", "RGB");
     layers.normal = rgb("normal.", "XYZ");
+    layers.denoised = rgb("denoised.", "RGB");
     layers.depth = plane("Z");
     layers.sample_count = plane("sample_count");
     return layers;

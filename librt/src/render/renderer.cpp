@@ -503,6 +503,7 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         ++stats.passes;
         stats.samples_per_pixel = n;
         if (estimate_noise) noise.observe(film, n);
+        if (settings.pass_done) settings.pass_done(film, n);
         if (rs.progress) {
             const double seconds = elapsed();
             rs.progress({fraction(n, seconds), seconds, stats.passes, n, noise_now()});

@@ -22,6 +22,9 @@ struct ImageLayers {
     /// along its optical axis, what compositors read as Z; not the ray's length), or empty.
     std::vector<float> depth;
     std::vector<float> sample_count;  ///< width * height samples per pixel, or empty
+    /// The beauty denoised (render/denoiser.h), or 0x0. The beauty itself stays the
+    /// unbiased estimate.
+    Image denoised;
 };
 
 }  // namespace librt

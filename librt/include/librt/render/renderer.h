@@ -227,6 +227,11 @@ struct ProgressiveSettings {
     /// Seconds on a monotonic clock, for the time limit and progress reports; empty =
     /// std::chrono::steady_clock. Tests pass a fake one.
     std::function<double()> clock;
+    /// Called on the calling thread after every complete pass with the film and the level
+    /// the passes reached (every pixel holding that many samples; adaptive sampling: its
+    /// share of them), e.g. to copy the film part way for the denoiser's half buffers
+    /// (render/denoiser.h). Empty = not called.
+    std::function<void(const Film& film, std::uint32_t level)> pass_done;
 };
 
 /// Throws librt::Error naming the first bad parameter of `settings` and its value.

@@ -1,0 +1,223 @@
+// The denoiser's figures (issue 38, docs/benchmarks.md): on a scene file or the report's
+// synthesis scene, at each sample count, the relMSE of the noisy and of the denoised image
+// against a long reference, the largest 16 x 16 block-mean deviation, and the cost of
+// denoising next to the render's. A plain program, not Google Benchmark: it measures error.
+//
+//   librt_denoise_figures SCENE|synthesis [--size WxH] [--spp 16,64] [--ref-spp N]
+//       [--threads N]
+//
+// Each image is rendered as rt_render renders it (the path tracer, 5 bounces, Gaussian
+// pixel jitter; the synthesis scene with its lens), in two halves of its samples
+// (render_block), then denoised (denoiser_input of the two films). The reference has a
+// seed of its own; its own noise, estimated per pixel from its halves, (a - b)^2 / 4, is
+// subtracted from each squared error, so a finite reference does not inflate the figures.
+
+#include "common/cli.h"
+#include "common/report_scene.h"
+
+#include <librt/film/camera.h>
+#include <librt/integrator/integrators.h>
+#include <librt/io/image_io.h>
+#include <librt/loader/scene_file.h>
+#include <librt/render/denoiser.h>
+#include <librt/render/renderer.h>
+#include <librt/scene/scene.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace librt;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+struct Halves {
+    Film half;
+    Film full;
+    double seconds = 0.0;
+};
+
+/// Samples [0, spp / 2) onto a film with AOVs, a copy, then [spp / 2, spp).
+Halves render_halves(const Scene& scene, const Camera& camera, Integrator& integrator, int spp,
+                     std::uint64_t seed, int threads) {
+    RenderSettings rs;
+    rs.seed = seed;
+    rs.threads = threads;
+    Halves h;
+    const auto t0 = Clock::now();
+    h.full = Film(camera.width(), camera.height(), true);
+    const auto first = std::uint32_t(spp / 2);
+    (void)render_block(scene, camera, integrator, h.full,
+                       {0, 0, camera.width(), camera.height(), 0, first}, rs);
+    h.half = h.full;
+    (void)render_block(scene, camera, integrator, h.full,
+                       {0, 0, camera.width(), camera.height(), first, std::uint32_t(spp) - first},
+                       rs);
+    h.seconds = seconds_since(t0);
+    return h;
+}
+
+/// relMSE, mean over pixels and channels of ((x - r)^2 - Var r) / (r^2 + 0.01).
+double rel_mse(const Image& x, const Image& ref, const std::vector<glm::vec3>& ref_var) {
+    double s = 0.0;
+    for (std::size_t i = 0; i < x.pixels.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            const double r = ref.pixels[i][c];
+            const double d = double(x.pixels[i][c]) - r;
+            s += (d * d - double(ref_var[i][c])) / (r * r + 0.01);
+        }
+    }
+    return s / double(3 * x.pixels.size());
+}
+
+double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+/// The largest |block mean / reference block mean - 1| over 16 x 16 blocks (luminance;
+/// blocks of the image's edge may be smaller; blocks darker than 1e-3 skipped).
+double worst_block(const Image& x, const Image& ref, int* where = nullptr) {
+    double worst = 0.0;
+    for (int by = 0; by < x.height; by += 16) {
+        for (int bx = 0; bx < x.width; bx += 16) {
+            double a = 0.0, b = 0.0;
+            for (int y = by; y < std::min(by + 16, x.height); ++y)
+                for (int xx = bx; xx < std::min(bx + 16, x.width); ++xx) {
+                    a += luminance(x.at(xx, y));
+                    b += luminance(ref.at(xx, y));
+                }
+            if (b > 1e-3 * 256.0 && std::abs(a / b - 1.0) > worst) {
+                worst = std::abs(a / b - 1.0);
+                if (where != nullptr) {
+                    where[0] = bx;
+                    where[1] = by;
+                }
+            }
+        }
+    }
+    return worst;
+}
+
+std::vector<int> parse_list(const std::string& text) {
+    std::vector<int> v;
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ',')) v.push_back(std::atoi(item.c_str()));
+    return v;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::fprintf(stderr,
+                     "usage: librt_denoise_figures SCENE|synthesis [--size WxH] [--spp 16,64] "
+                     "[--ref-spp N] [--threads N]\n");
+        return 1;
+    }
+    const std::string what = argv[1];
+    int width = 320, height = 240, ref_spp = 1024, threads = 0;
+    std::vector<int> spps{16, 64};
+    for (int i = 2; i + 1 < argc; i += 2) {
+        const std::string a = argv[i];
+        if (a == "--size") {
+            (void)std::sscanf(argv[i + 1], "%dx%d", &width, &height);
+        } else if (a == "--spp") {
+            spps = parse_list(argv[i + 1]);
+        } else if (a == "--ref-spp") {
+            ref_spp = std::atoi(argv[i + 1]);
+        } else if (a == "--threads") {
+            threads = std::atoi(argv[i + 1]);
+        } else {
+            std::fprintf(stderr, "unknown option %s\n", a.c_str());
+            return 1;
+        }
+    }
+    try {
+        Scene scene;
+        CameraSettings cs;
+        std::unique_ptr<PathTracer> integrator;
+        if (what == "synthesis") {
+            // rt_synthesis's scene and camera (its lens too), at this size.
+            apps::AppOptions options;
+            options.width = width;
+            options.height = height;
+            cs = apps::camera_of(options);
+            cs.pixel_jitter = PixelJitter::Gaussian;
+            cs.lens = LensModel::Gaussian;
+            cs.lens_sigma = 1.0f;
+            cs.focal_distance = 55.0f;
+            apps::add_room(scene);
+            apps::add_report_spheres(scene);
+            apps::add_report_mesh(
+                scene, apps::load_report_mesh("", apps::placement_of(apps::MeshOptions{})),
+                Material::diffuse({0.9f, 0.6f, 0.3f}));
+            apps::add_report_light(scene, apps::LightKind::Sphere, options.power);
+            scene.commit();
+            integrator = std::make_unique<PathTracer>(apps::path_tracer_settings(options));
+        } else {
+            SceneFileOptions fo;
+            fo.width = width;
+            fo.height = height;
+            LoadedScene loaded = load_scene_file(what, fo);
+            scene = std::move(loaded.scene);
+            scene.commit();
+            cs = loaded.camera;
+            cs.pixel_jitter = PixelJitter::Gaussian;  // as rt_render
+            PathTracerSettings pt;
+            pt.max_depth = 5;  // rt_render's default
+            integrator = std::make_unique<PathTracer>(pt);
+        }
+        const Camera camera(cs);
+        integrator->preprocess(scene);
+        const Halves ref = render_halves(scene, camera, *integrator, ref_spp, 1000003, threads);
+        const DenoiserInput ref_in = denoiser_input(ref.half, ref.full);
+        std::vector<glm::vec3> ref_var(ref_in.beauty.pixels.size());
+        for (std::size_t i = 0; i < ref_var.size(); ++i) {
+            const glm::vec3 d = ref_in.half_a.pixels[i] - ref_in.half_b.pixels[i];
+            ref_var[i] = d * d * 0.25f;
+        }
+        std::printf("# %s %dx%d, reference %d spp (%.1f s)\n", what.c_str(), camera.width(),
+                    camera.height(), ref_spp, ref.seconds);
+        for (const int spp : spps) {
+            const Halves h = render_halves(scene, camera, *integrator, spp, 1, threads);
+            const DenoiserInput in = denoiser_input(h.half, h.full);
+            DenoiserSettings ds;
+            ds.threads = threads;
+            const auto t0 = Clock::now();
+            const Image out = denoise(in, ds);
+            const double denoise_seconds = seconds_since(t0);
+            const double noisy = rel_mse(in.beauty, ref_in.beauty, ref_var);
+            const double den = rel_mse(out, ref_in.beauty, ref_var);
+            int at[2] = {0, 0};
+            (void)worst_block(out, ref_in.beauty, at);
+            if (std::getenv("DENOISE_DUMP") != nullptr) {
+                const std::string prefix = std::getenv("DENOISE_DUMP") + std::to_string(spp);
+                write_image(prefix + "_noisy.pfm", in.beauty, ToneMap{1.0f, 1.0f});
+                write_image(prefix + "_denoised.pfm", out, ToneMap{1.0f, 1.0f});
+                write_image(prefix + "_ref.pfm", ref_in.beauty, ToneMap{1.0f, 1.0f});
+                std::printf("worst denoised block at (%d, %d)\n", at[0], at[1]);
+            }
+            std::printf("| %s | %d | %.4g | %.4g | %.1fx | %.2f %% | %.2f %% | %.2f s | %.2f s |\n",
+                        what.c_str(), spp, noisy, den, noisy / den,
+                        100.0 * worst_block(in.beauty, ref_in.beauty),
+                        100.0 * worst_block(out, ref_in.beauty), h.seconds, denoise_seconds);
+            std::fflush(stdout);
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: %s\n", what.c_str(), e.what());
+        return 1;
+    }
+    return 0;
+}

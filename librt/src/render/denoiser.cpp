@@ -1,0 +1,630 @@
+// The AOV-guided denoiser (denoiser.h): cross-filtered half buffers, demodulated by the
+// albedo, averaged by non-local means with feature weights.
+
+#include <librt/core/error.h>
+#include <librt/render/denoiser.h>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <mutex>
+#include <string>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+namespace librt {
+
+namespace {
+
+/// Demodulation divides by max(albedo, this), per channel: a miss (albedo 0: the sky, an
+/// emitter seen directly) or a black surface is filtered in units of this instead of
+/// being divided by 0. Such pixels are kept apart from lit surfaces by the features.
+constexpr float kMinAlbedo = 0.02f;
+
+/// Rousselle et al.'s epsilon: the patch distance's denominator where the noise is 0, so
+/// that a noise-free image keeps every difference (any difference above ~1e-5 in
+/// demodulated radiance gives a weight of exp(-1)).
+constexpr float kDistanceEpsilon = 1e-10f;
+
+/// The noise estimate (a - b)^2 of one pixel has one degree of freedom: averaged over a
+/// (2 x 2 + 1)^2 box it is usable. Larger boxes blur the estimate across edges.
+constexpr int kVarianceRadius = 2;
+
+/// Rows of the strips threads take: the rows of a strip share the patch-distance buffers
+/// of each neighbour offset (and their apron of 2 x patch radius rows).
+constexpr int kStrip = 16;
+
+/// The albedo's prefilter: a smaller neighbourhood (the albedo's noise is only at edges,
+/// where neighbours along the edge are near) and Rousselle et al. 2013's k = 1 for their
+/// feature prefilter.
+constexpr int kPrefilterRadius = 5;
+constexpr float kPrefilterStrength = 1.0f;
+
+/// exp(-x) for x >= 0, branch-free so the loops over a row vectorise: 2^(-x log2 e) split
+/// into an integer power (built in the exponent bits) and a fraction (a degree-6
+/// polynomial, relative error below 1e-6, far below what the weights need). 0 beyond
+/// x = 80. The same bits on every machine: plain float arithmetic, no libm.
+inline float exp_neg(float x) {
+    x = x > 0.0f ? (x < 80.0f ? x : 80.0f) : 0.0f;
+    const float t = x * 1.44269504f;  // -log2 of the result
+    // t >= 0: truncation is floor, and SSE2 converts by truncation (std::floor would be a
+    // library call without SSE4.1, which stops the loop's vectorisation).
+    const float whole = static_cast<float>(static_cast<std::int32_t>(t));
+    const float f = whole - t;  // in (-1, 0]: the result is 2^f x 2^-whole
+    // 2^f on [-1, 0] (Taylor series of e^(f ln 2) to degree 6).
+    const float l = 0.69314718f * f;
+    const float p =
+        1.0f +
+        l * (1.0f +
+             l * (0.5f + l * (1.0f / 6.0f +
+                              l * (1.0f / 24.0f + l * (1.0f / 120.0f + l * (1.0f / 720.0f))))));
+    const auto exponent = static_cast<std::int32_t>(127.0f - whole);  // >= 11: a normal float
+    return p * std::bit_cast<float>(exponent << 23);
+}
+
+void check_layer(const Image& layer, const Image& beauty, const char* name) {
+    if (layer.width != beauty.width || layer.height != beauty.height) {
+        throw Error(std::string("denoise: layer ") + name + " is " + std::to_string(layer.width) +
+                    " x " + std::to_string(layer.height) + ", the beauty " +
+                    std::to_string(beauty.width) + " x " + std::to_string(beauty.height));
+    }
+    for (std::size_t i = 0; i < layer.pixels.size(); ++i) {
+        const glm::vec3& v = layer.pixels[i];
+        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
+            const auto w = static_cast<std::size_t>(layer.width);
+            throw Error(std::string("denoise: layer ") + name + " pixel (" + std::to_string(i % w) +
+                        ", " + std::to_string(i / w) + ") is not finite");
+        }
+    }
+}
+
+void check_input(const DenoiserInput& in) {
+    check_layer(in.beauty, in.beauty, "beauty");
+    check_layer(in.albedo, in.beauty, "albedo");
+    check_layer(in.normal, in.beauty, "normal");
+    check_layer(in.half_a, in.beauty, "half_a");
+    check_layer(in.half_b, in.beauty, "half_b");
+    const auto optional_pair = [&](const Image& x, const Image& y, const char* nx, const char* ny) {
+        if (x.pixels.empty() && y.pixels.empty() && x.width == 0 && y.width == 0) return;
+        check_layer(x, in.beauty, nx);
+        check_layer(y, in.beauty, ny);
+    };
+    optional_pair(in.albedo_a, in.albedo_b, "albedo_a", "albedo_b");
+    optional_pair(in.normal_a, in.normal_b, "normal_a", "normal_b");
+    if (!in.share_a.empty()) {
+        if (in.share_a.size() != in.beauty.pixels.size()) {
+            throw Error("denoise: share_a has " + std::to_string(in.share_a.size()) +
+                        " values, the beauty " + std::to_string(in.beauty.pixels.size()) +
+                        " pixels");
+        }
+        for (std::size_t i = 0; i < in.share_a.size(); ++i) {
+            if (!(in.share_a[i] > 0.0f && in.share_a[i] < 1.0f)) {
+                throw Error("denoise: share_a[" + std::to_string(i) +
+                            "] = " + std::to_string(in.share_a[i]) + ": must be in (0, 1)");
+            }
+        }
+    }
+}
+
+/// Mean of `v` over the (2r + 1)^2 box around each pixel, clipped to the image.
+std::vector<glm::vec3> box_mean(const std::vector<glm::vec3>& v, int width, int height, int r) {
+    std::vector<glm::vec3> rows(v.size()), out(v.size());
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            glm::vec3 s(0.0f);
+            const int x0 = std::max(0, x - r), x1 = std::min(width - 1, x + r);
+            for (int i = x0; i <= x1; ++i) s += v[std::size_t(y) * std::size_t(width) + i];
+            rows[std::size_t(y) * std::size_t(width) + x] = s / float(x1 - x0 + 1);
+        }
+    }
+    for (int y = 0; y < height; ++y) {
+        const int y0 = std::max(0, y - r), y1 = std::min(height - 1, y + r);
+        for (int x = 0; x < width; ++x) {
+            glm::vec3 s(0.0f);
+            for (int j = y0; j <= y1; ++j) s += rows[std::size_t(j) * std::size_t(width) + x];
+            out[std::size_t(y) * std::size_t(width) + x] = s / float(y1 - y0 + 1);
+        }
+    }
+    return out;
+}
+
+/// The planes the filter reads, one float per pixel and channel (structure of arrays, so
+/// that the loops over a row vectorise), padded by `pad` pixels on every side with copies
+/// of the nearest edge pixel: a neighbour's patch may reach past the image.
+struct Planes {
+    int width = 0;                  ///< the image's
+    int height = 0;                 ///< the image's
+    int pad = 0;                    ///< radius + patch radius
+    int stride = 0;                 ///< width + 2 pad
+    std::vector<float> a[3];        ///< half_a demodulated
+    std::vector<float> b[3];        ///< half_b demodulated
+    std::vector<float> var_a[3];    ///< noise variance of a (smoothed)
+    std::vector<float> var_b[3];    ///< noise variance of b (smoothed)
+    std::vector<float> albedo[3];   ///< the albedo AOV
+    std::vector<float> normal[3];   ///< the normal AOV
+    std::vector<float> albedo_var;  ///< noise variance of the albedo, summed over channels
+    std::vector<float> normal_var;  ///< noise variance of the normal, summed over components
+    /// sigma^2 plus the albedo's largest squared difference to its 4 neighbours: at an edge
+    /// of the albedo (a texture, an object's outline) the feature is not trusted to tell
+    /// neighbours apart, and the radiance's patch distance decides (Rousselle, Manzi &
+    /// Zwicker 2013 bound the feature distance by the feature's gradient the same way).
+    std::vector<float> albedo_tol;
+    std::vector<float> normal_tol;  ///< the same for the normal
+
+    /// Index of image pixel (x, y), which may lie in the padding.
+    [[nodiscard]] std::size_t at(int x, int y) const {
+        return std::size_t(y + pad) * std::size_t(stride) + std::size_t(x + pad);
+    }
+};
+
+/// What the output needs per image pixel: the modulation and the shares.
+struct PixelTerms {
+    std::vector<glm::vec3> modulation;  ///< what the filtered radiance is multiplied back by
+    std::vector<float> share;           ///< share_a per pixel
+};
+
+/// The planes of `in`, with `albedo` in place of in.albedo (the prefiltered albedo) as the
+/// feature and what the result is multiplied back by.
+Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserSettings& settings,
+                   PixelTerms& terms) {
+    const int w = in.beauty.width, h = in.beauty.height;
+    const std::size_t n = in.beauty.pixels.size();
+    terms.modulation.resize(n);
+    terms.share = in.share_a.empty() ? std::vector<float>(n, 0.5f) : in.share_a;
+    const bool albedo_halves = !in.albedo_a.pixels.empty();
+    const Image& albedo_a = albedo_halves ? in.albedo_a : albedo;
+    const Image& albedo_b = albedo_halves ? in.albedo_b : albedo;
+    const bool normal_halves = !in.normal_a.pixels.empty();
+    std::vector<glm::vec3> da(n), db(n), spread(n), feature_spread(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        terms.modulation[i] = glm::max(albedo.pixels[i], glm::vec3(kMinAlbedo));
+        // Each half by its own albedo (DenoiserInput::albedo_a); the result is multiplied
+        // back by the albedo of all the samples.
+        da[i] = in.half_a.pixels[i] / glm::max(albedo_a.pixels[i], glm::vec3(kMinAlbedo));
+        db[i] = in.half_b.pixels[i] / glm::max(albedo_b.pixels[i], glm::vec3(kMinAlbedo));
+        const glm::vec3 d = da[i] - db[i];
+        spread[i] = d * d;
+        // The AOVs' own noise (a texture or a silhouette inside the pixel, partly hit): as
+        // for the radiance below, Var(all samples' mean) = s (1 - s) E[(a - b)^2].
+        const glm::vec3 fa = albedo_a.pixels[i] - albedo_b.pixels[i];
+        const glm::vec3 fn =
+            normal_halves ? in.normal_a.pixels[i] - in.normal_b.pixels[i] : glm::vec3(0.0f);
+        const float s = terms.share[i];
+        feature_spread[i] = glm::vec3(glm::dot(fa, fa), glm::dot(fn, fn), 0.0f) * (s * (1.0f - s));
+    }
+    // With a share s of the samples in a: Var(a) = sigma^2 / (s n), Var(b) = sigma^2 /
+    // ((1 - s) n), and E[(a - b)^2] = Var(a) + Var(b); so Var(a) = (1 - s) E[(a - b)^2].
+    const std::vector<glm::vec3> smooth = box_mean(spread, w, h, kVarianceRadius);
+    const std::vector<glm::vec3> feature_var = box_mean(feature_spread, w, h, kVarianceRadius);
+    std::vector<glm::vec3> va(n), vb(n), fv_albedo(n), fv_normal(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        va[i] = smooth[i] * (1.0f - terms.share[i]);
+        vb[i] = smooth[i] * terms.share[i];
+        fv_albedo[i] = glm::vec3(feature_var[i].x);
+        fv_normal[i] = glm::vec3(feature_var[i].y);
+    }
+    std::vector<glm::vec3> tol_albedo(n), tol_normal(n);
+    const float sa2 = settings.albedo_sigma * settings.albedo_sigma;
+    const float sn2 = settings.normal_sigma * settings.normal_sigma;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
+            float ga = 0.0f, gn = 0.0f;
+            const int nx[4] = {x - 1, x + 1, x, x};
+            const int ny[4] = {y, y, y - 1, y + 1};
+            for (int k = 0; k < 4; ++k) {
+                if (nx[k] < 0 || nx[k] >= w || ny[k] < 0 || ny[k] >= h) continue;
+                const std::size_t j = std::size_t(ny[k]) * std::size_t(w) + std::size_t(nx[k]);
+                const glm::vec3 ea = albedo.pixels[i] - albedo.pixels[j];
+                const glm::vec3 en = in.normal.pixels[i] - in.normal.pixels[j];
+                ga = std::max(ga, glm::dot(ea, ea));
+                gn = std::max(gn, glm::dot(en, en));
+            }
+            tol_albedo[i] = glm::vec3(sa2 + ga);
+            tol_normal[i] = glm::vec3(sn2 + gn);
+        }
+    }
+    Planes p;
+    p.width = w;
+    p.height = h;
+    p.pad = settings.radius + settings.patch_radius;
+    p.stride = w + 2 * p.pad;
+    const std::size_t padded = std::size_t(p.stride) * std::size_t(h + 2 * p.pad);
+    const auto fill = [&](std::vector<float>* plane, const std::vector<glm::vec3>& from) {
+        for (int c = 0; c < 3; ++c) {
+            plane[c].resize(padded);
+            for (int y = -p.pad; y < h + p.pad; ++y) {
+                const int cy = std::min(std::max(y, 0), h - 1);
+                for (int x = -p.pad; x < w + p.pad; ++x) {
+                    const int cx = std::min(std::max(x, 0), w - 1);
+                    plane[c][p.at(x, y)] = from[std::size_t(cy) * std::size_t(w) + cx][c];
+                }
+            }
+        }
+    };
+    fill(p.a, da);
+    fill(p.b, db);
+    fill(p.var_a, va);
+    fill(p.var_b, vb);
+    fill(p.albedo, albedo.pixels);
+    fill(p.normal, in.normal.pixels);
+    std::vector<float> one[3];
+    fill(one, fv_albedo);
+    p.albedo_var = std::move(one[0]);
+    fill(one, fv_normal);
+    p.normal_var = std::move(one[0]);
+    fill(one, tol_albedo);
+    p.albedo_tol = std::move(one[0]);
+    fill(one, tol_normal);
+    p.normal_tol = std::move(one[0]);
+    return p;
+}
+
+/// Filters strips of whole rows [y0, y1); each thread has one.
+class StripFilter {
+public:
+    StripFilter(const Planes& planes, const DenoiserSettings& s) : p_(planes), s_(s) {
+        const int f = s.patch_radius;
+        const std::size_t rows = std::size_t(kStrip + 2 * f);
+        dist_a_.resize(rows * std::size_t(p_.width + 2 * f));
+        dist_b_.resize(dist_a_.size());
+        rows_a_.resize(rows * std::size_t(p_.width));
+        rows_b_.resize(rows_a_.size());
+        const std::size_t strip = std::size_t(kStrip) * std::size_t(p_.width);
+        for (int c = 0; c < 3; ++c) {
+            sum_a_[c].resize(strip);
+            sum_b_[c].resize(strip);
+        }
+        weight_a_.resize(strip);
+        weight_b_.resize(strip);
+        patch_a_.resize(std::size_t(p_.width));
+        patch_b_.resize(std::size_t(p_.width));
+        feature_.resize(std::size_t(p_.width));
+        feature_albedo_.resize(std::size_t(p_.width));
+        feature_normal_.resize(std::size_t(p_.width));
+    }
+
+    void run(int y0, int y1, const PixelTerms& terms, Image& out) {
+        const int f = s_.patch_radius, r = s_.radius, w = p_.width;
+        const int dw = w + 2 * f;  // a distance row: x in [-f, w + f)
+        for (int c = 0; c < 3; ++c) {
+            std::fill(sum_a_[c].begin(), sum_a_[c].end(), 0.0f);
+            std::fill(sum_b_[c].begin(), sum_b_[c].end(), 0.0f);
+        }
+        std::fill(weight_a_.begin(), weight_a_.end(), 0.0f);
+        std::fill(weight_b_.begin(), weight_b_.end(), 0.0f);
+        const float k2 = s_.strength * s_.strength;
+        const float patch_norm = 1.0f / (3.0f * float((2 * f + 1) * (2 * f + 1)));
+        // Neighbour offsets in a fixed order: each output pixel sums its neighbours in this
+        // order whatever thread computes it.
+        for (int oy = -r; oy <= r; ++oy) {
+            for (int ox = -r; ox <= r; ++ox) {
+                // 1. Per-pixel distances d(p, p + o) over the strip and its apron, for the
+                //    guide of each half: the other half (cross-filtering).
+                for (int y = y0 - f; y < y1 + f; ++y) {
+                    const std::size_t p0 = p_.at(-f, y), q0 = p_.at(-f + ox, y + oy);
+                    float* da = &dist_a_[std::size_t(y - (y0 - f)) * std::size_t(dw)];
+                    float* db = &dist_b_[std::size_t(y - (y0 - f)) * std::size_t(dw)];
+                    distances(p_.b, p_.var_b, p0, q0, dw, k2, da);  // filters a
+                    distances(p_.a, p_.var_a, p0, q0, dw, k2, db);  // filters b
+                }
+                // 2. Box over x of the patch: direct sums (every pixel the same additions
+                //    wherever its strip lies).
+                for (int j = 0; j < y1 - y0 + 2 * f; ++j) {
+                    box_row(&dist_a_[std::size_t(j) * std::size_t(dw)], w, f,
+                            &rows_a_[std::size_t(j) * std::size_t(w)]);
+                    box_row(&dist_b_[std::size_t(j) * std::size_t(dw)], w, f,
+                            &rows_b_[std::size_t(j) * std::size_t(w)]);
+                }
+                // 3. Box over y, weights and accumulation, for neighbours in the image.
+                const int x0 = std::max(0, -ox), x1 = std::min(w, w - ox);
+                for (int y = y0; y < y1; ++y) {
+                    if (y + oy < 0 || y + oy >= p_.height) continue;
+                    const std::size_t row = std::size_t(y - y0) * std::size_t(w);
+                    const std::size_t pp = p_.at(0, y), qq = p_.at(ox, y + oy);
+                    accumulate(std::size_t(y - y0), row, pp, qq, x0, x1, f, patch_norm);
+                }
+            }
+        }
+        for (int y = y0; y < y1; ++y) {
+            for (int x = 0; x < w; ++x) {
+                const std::size_t t = std::size_t(y - y0) * std::size_t(w) + std::size_t(x);
+                const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
+                // The pixel itself always weighs 1 (its distance to itself is <= 0 and its
+                // features are its own): the weights never sum to 0.
+                const glm::vec3 fa =
+                    glm::vec3(sum_a_[0][t], sum_a_[1][t], sum_a_[2][t]) / weight_a_[t];
+                const glm::vec3 fb =
+                    glm::vec3(sum_b_[0][t], sum_b_[1][t], sum_b_[2][t]) / weight_b_[t];
+                const float sh = terms.share[i];
+                out.pixels[i] = terms.modulation[i] * (sh * fa + (1.0f - sh) * fb);
+            }
+        }
+    }
+
+private:
+    /// Rousselle et al.'s per-pixel distance, summed over the channels, for n pixels from
+    /// p0 and q0 = p0 + offset: the squared difference minus what the noise alone would give
+    /// on average (Var p + min(Var p, Var q): a noisier neighbour is not favoured), in units
+    /// of k^2 (Var p + Var q).
+    static void distances(const std::vector<float>* u, const std::vector<float>* v, std::size_t p0,
+                          std::size_t q0, int n, float k2, float* out) {
+        for (int i = 0; i < n; ++i) out[i] = 0.0f;
+        for (int c = 0; c < 3; ++c) {
+            const float* up = &u[c][p0];
+            const float* uq = &u[c][q0];
+            const float* vp = &v[c][p0];
+            const float* vq = &v[c][q0];
+            for (int i = 0; i < n; ++i) {
+                const float diff = up[i] - uq[i];
+                const float lower = vq[i] < vp[i] ? vq[i] : vp[i];
+                out[i] +=
+                    (diff * diff - (vp[i] + lower)) / (kDistanceEpsilon + k2 * (vp[i] + vq[i]));
+            }
+        }
+    }
+
+    /// out[x] = sum of in[x .. x + 2f] for x in [0, n): the patch box over a row whose first
+    /// value is pixel -f.
+    static void box_row(const float* in, int n, int f, float* out) {
+        for (int x = 0; x < n; ++x) out[x] = in[x];
+        for (int t = 1; t <= 2 * f; ++t) {
+            for (int x = 0; x < n; ++x) out[x] += in[x + t];
+        }
+    }
+
+    /// Adds the neighbours at this offset to the sums of strip row j (pixels x0 .. x1 of
+    /// image row pp, neighbours from qq on). Loops of one operation each over the row, so
+    /// that each vectorises.
+    void accumulate(std::size_t j, std::size_t row, std::size_t pp, std::size_t qq, int x0, int x1,
+                    int f, float patch_norm) {
+        const std::size_t w = std::size_t(p_.width);
+        const int n = x1 - x0;
+        float* ca = patch_a_.data();
+        float* cb = patch_b_.data();
+        float* feature = feature_.data();
+        const float* ra = &rows_a_[j * w + std::size_t(x0)];
+        const float* rb = &rows_b_[j * w + std::size_t(x0)];
+        for (int x = 0; x < n; ++x) {
+            ca[x] = ra[x];
+            cb[x] = rb[x];
+        }
+        for (int t = 1; t <= 2 * f; ++t) {
+            const float* ta = ra + std::size_t(t) * w;
+            const float* tb = rb + std::size_t(t) * w;
+            for (int x = 0; x < n; ++x) {
+                ca[x] += ta[x];
+                cb[x] += tb[x];
+            }
+        }
+        // Feature distances: the squared difference, less what the features' own noise
+        // explains, over sigma^2 widened by that noise (where a pixel's albedo or normal
+        // is itself a noisy mix, an edge inside it, the features cannot tell it apart and
+        // the radiance's patch distance decides).
+        float* fa = feature_albedo_.data();
+        float* fn = feature_normal_.data();
+        for (int x = 0; x < n; ++x) {
+            fa[x] = 0.0f;
+            fn[x] = 0.0f;
+        }
+        const std::size_t p0 = pp + std::size_t(x0), q0 = qq + std::size_t(x0);
+        for (int c = 0; c < 3; ++c) {
+            const float* ap = &p_.albedo[c][p0];
+            const float* aq = &p_.albedo[c][q0];
+            const float* np = &p_.normal[c][p0];
+            const float* nq = &p_.normal[c][q0];
+            for (int x = 0; x < n; ++x) {
+                const float da = ap[x] - aq[x];
+                const float dn = np[x] - nq[x];
+                fa[x] += da * da;
+                fn[x] += dn * dn;
+            }
+        }
+        const float* vap = &p_.albedo_var[p0];
+        const float* vaq = &p_.albedo_var[q0];
+        const float* vnp = &p_.normal_var[p0];
+        const float* vnq = &p_.normal_var[q0];
+        const float* tap = &p_.albedo_tol[p0];
+        const float* tnp = &p_.normal_tol[p0];
+        for (int x = 0; x < n; ++x) {
+            const float la = vaq[x] < vap[x] ? vaq[x] : vap[x];
+            const float ln = vnq[x] < vnp[x] ? vnq[x] : vnp[x];
+            const float ea = fa[x] - (vap[x] + la);
+            const float en = fn[x] - (vnp[x] + ln);
+            feature[x] = (ea > 0.0f ? ea : 0.0f) / (tap[x] + vap[x] + vaq[x]) +
+                         (en > 0.0f ? en : 0.0f) / (tnp[x] + vnp[x] + vnq[x]);
+        }
+        for (int x = 0; x < n; ++x) {
+            const float da = ca[x] * patch_norm, db = cb[x] * patch_norm;
+            ca[x] = exp_neg((da > 0.0f ? da : 0.0f) + feature[x]);
+            cb[x] = exp_neg((db > 0.0f ? db : 0.0f) + feature[x]);
+        }
+        float* wa = &weight_a_[row + std::size_t(x0)];
+        float* wb = &weight_b_[row + std::size_t(x0)];
+        for (int x = 0; x < n; ++x) {
+            wa[x] += ca[x];
+            wb[x] += cb[x];
+        }
+        for (int c = 0; c < 3; ++c) {
+            float* sa = &sum_a_[c][row + std::size_t(x0)];
+            float* sb = &sum_b_[c][row + std::size_t(x0)];
+            const float* qa = &p_.a[c][q0];
+            const float* qb = &p_.b[c][q0];
+            for (int x = 0; x < n; ++x) {
+                sa[x] += ca[x] * qa[x];
+                sb[x] += cb[x] * qb[x];
+            }
+        }
+    }
+
+    const Planes& p_;
+    const DenoiserSettings& s_;
+    std::vector<float> dist_a_, dist_b_, rows_a_, rows_b_;
+    std::vector<float> sum_a_[3], sum_b_[3];
+    std::vector<float> weight_a_, weight_b_;
+    // One row each: accumulate's scratch.
+    std::vector<float> patch_a_, patch_b_, feature_, feature_albedo_, feature_normal_;
+};
+
+/// The filter: `in`'s halves demodulated by their albedos, filtered with each other's
+/// weights, multiplied back by `albedo`.
+Image filter_halves(const DenoiserInput& input, const Image& albedo,
+                    const DenoiserSettings& settings) {
+    PixelTerms terms;
+    const Planes planes = make_planes(input, albedo, settings, terms);
+    Image out(planes.width, planes.height);
+    const int tiles = (planes.height + kStrip - 1) / kStrip;
+    if (tiles == 0 || planes.width == 0) return out;
+    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned threads =
+        std::min(settings.threads > 0 ? unsigned(settings.threads) : hardware, unsigned(tiles));
+    std::atomic<int> next{0};
+    std::exception_ptr failure;
+    std::mutex failure_mutex;
+    const auto work = [&] {
+        try {
+            StripFilter filter(planes, settings);
+            for (int t = next.fetch_add(1); t < tiles; t = next.fetch_add(1)) {
+                const int y0 = t * kStrip;
+                filter.run(y0, std::min(y0 + kStrip, planes.height), terms, out);
+            }
+        } catch (...) {  // bad_alloc: rethrown on the caller's thread
+            const std::lock_guard<std::mutex> lock(failure_mutex);
+            if (!failure) failure = std::current_exception();
+            next.store(tiles);
+        }
+    };
+    std::vector<std::thread> pool;
+    try {
+        for (unsigned i = 1; i < threads; ++i) pool.emplace_back(work);
+    } catch (const std::system_error& e) {
+        next.store(tiles);
+        for (std::thread& t : pool) t.join();
+        throw Error(std::string("denoise: cannot start threads: ") + e.what());
+    }
+    work();  // the calling thread works too
+    for (std::thread& t : pool) t.join();
+    if (failure) std::rethrow_exception(failure);
+    return out;
+}
+
+}  // namespace
+
+void validate(const DenoiserSettings& s) {
+    const auto bad = [](const std::string& field, const std::string& value, const char* rule) {
+        throw Error("DenoiserSettings." + field + " = " + value + ": " + rule);
+    };
+    if (s.radius < 1 || s.radius > 32)
+        bad("radius", std::to_string(s.radius), "must be in [1, 32]");
+    if (s.patch_radius < 0 || s.patch_radius > 8)
+        bad("patch_radius", std::to_string(s.patch_radius), "must be in [0, 8]");
+    if (!(s.strength > 0.0f && s.strength <= 10.0f))
+        bad("strength", std::to_string(s.strength), "must be in (0, 10]");
+    if (!(s.albedo_sigma > 0.0f && std::isfinite(s.albedo_sigma)))
+        bad("albedo_sigma", std::to_string(s.albedo_sigma), "must be finite and > 0");
+    if (!(s.normal_sigma > 0.0f && std::isfinite(s.normal_sigma)))
+        bad("normal_sigma", std::to_string(s.normal_sigma), "must be finite and > 0");
+    if (s.threads < 0 || s.threads > 1024)
+        bad("threads", std::to_string(s.threads), "must be in [0, 1024]");
+}
+
+DenoiserInput denoiser_input(const Film& first, const Film& full) {
+    if (first.width != full.width || first.height != full.height) {
+        throw Error("denoiser_input: the first film is " + std::to_string(first.width) + " x " +
+                    std::to_string(first.height) + ", the full one " + std::to_string(full.width) +
+                    " x " + std::to_string(full.height));
+    }
+    if (!full.has_aovs()) throw Error("denoiser_input: the full film has no AOVs");
+    if (!first.has_aovs()) throw Error("denoiser_input: the first film has no AOVs");
+    const ImageLayers layers = resolve_layers(full);
+    const ImageLayers first_layers = resolve_layers(first);
+    DenoiserInput in;
+    in.beauty = layers.beauty;
+    in.albedo = layers.albedo;
+    in.normal = layers.normal;
+    in.half_a = resolve(first);
+    in.half_b = Image(full.width, full.height);
+    in.albedo_a = first_layers.albedo;
+    in.normal_a = first_layers.normal;
+    in.albedo_b = Image(full.width, full.height);
+    in.normal_b = Image(full.width, full.height);
+    in.share_a.resize(full.pixels.size());
+    // The splats' part of each half: resolve() divides them by the mean sample count, so
+    // the second part's splats are (full's x N - first's x N1) / (N - N1).
+    Image splat_full, splat_first;
+    double n_full = 0.0, n_first = 0.0;
+    if (full.splats && first.splats) {
+        n_full = splat_samples_per_pixel(full);
+        n_first = splat_samples_per_pixel(first);
+        splat_full = full.splats->resolve(n_full);
+        splat_first = first.splats->resolve(n_first);
+    }
+    for (std::size_t i = 0; i < full.pixels.size(); ++i) {
+        const FilmPixel& a = first.pixels[i];
+        const FilmPixel& f = full.pixels[i];
+        if (a.samples == 0 || f.samples <= a.samples) {
+            const auto w = static_cast<std::size_t>(full.width);
+            throw Error("denoiser_input: pixel (" + std::to_string(i % w) + ", " +
+                        std::to_string(i / w) + ") holds " + std::to_string(a.samples) +
+                        " samples in the first film and " + std::to_string(f.samples) +
+                        " in the full one: needs at least 1 and more than that");
+        }
+        in.share_a[i] = float(double(a.samples) / double(f.samples));
+        const std::uint32_t rest = f.finite - std::min(f.finite, a.finite);
+        glm::dvec3 b = rest > 0 ? (f.radiance - a.radiance) / double(rest) : glm::dvec3(0.0);
+        if (!splat_full.pixels.empty() && n_full > n_first) {
+            b += (glm::dvec3(splat_full.pixels[i]) * n_full -
+                  glm::dvec3(splat_first.pixels[i]) * n_first) /
+                 (n_full - n_first);
+        }
+        in.half_b.pixels[i] = glm::vec3(b);
+        // The second part's AOV means, as resolve_layers takes them: the albedo over the
+        // sum of the filter weights' signs, the normal over the samples.
+        const AovPixel& aa = first.aovs[i];
+        const AovPixel& af = full.aovs[i];
+        const double signs = (double(f.samples) - 2.0 * double(af.negative)) -
+                             (double(a.samples) - 2.0 * double(aa.negative));
+        in.albedo_b.pixels[i] =
+            signs != 0.0 ? glm::vec3((af.albedo - aa.albedo) / signs) : glm::vec3(0.0f);
+        in.normal_b.pixels[i] = glm::vec3((af.normal - aa.normal) / double(f.samples - a.samples));
+    }
+    return in;
+}
+
+Image denoise(const DenoiserInput& input, const DenoiserSettings& settings) {
+    validate(settings);
+    check_input(input);
+    if (input.albedo_a.pixels.empty()) return filter_halves(input, input.albedo, settings);
+    // The albedo is prefiltered first, by the same filter on its own two halves (no
+    // features, nothing to demodulate), as Rousselle et al. 2013 and NFOR prefilter their
+    // features: where a texture or an outline crosses a pixel, its albedo is the share of
+    // its samples that saw each side, as noisy as the radiance, and multiplying the
+    // filtered radiance back by it would bring that noise back. A noise-free albedo (equal
+    // halves) comes back unchanged.
+    DenoiserInput albedo_input;
+    albedo_input.beauty = input.albedo;
+    albedo_input.half_a = input.albedo_a;
+    albedo_input.half_b = input.albedo_b;
+    albedo_input.share_a = input.share_a;
+    Image ones(input.albedo.width, input.albedo.height);
+    for (glm::vec3& p : ones.pixels) p = glm::vec3(1.0f);
+    albedo_input.albedo = ones;
+    albedo_input.normal = Image(input.albedo.width, input.albedo.height);
+    DenoiserSettings prefilter = settings;
+    prefilter.radius = std::min(settings.radius, kPrefilterRadius);
+    prefilter.strength = kPrefilterStrength;
+    const Image albedo = filter_halves(albedo_input, ones, prefilter);
+    albedo_input = {};
+    return filter_halves(input, albedo, settings);
+}
+
+}  // namespace librt
