@@ -27,6 +27,10 @@ struct RenderProgress {
     double seconds = 0.0;   ///< since the render began
     int passes = 0;         ///< passes finished so far (a one-shot render is one pass)
     std::uint32_t samples_per_pixel = 0;  ///< samples per pixel of the finished passes
+    /// render_progressive: the image's estimated relative error after the last finished pass
+    /// (relative_noise of the film before and after it), e.g. 0.02 for 2 %; -1 until two
+    /// passes have finished, and from the other render functions.
+    double noise = -1.0;
 };
 
 /// Receives progress reports on the thread that called the render function: about ten
@@ -214,10 +218,26 @@ struct ProgressiveSettings {
     /// Seconds on a monotonic clock, for the time limit and progress reports; empty =
     /// std::chrono::steady_clock. Tests pass a fake one.
     std::function<double()> clock;
+    /// Called on the calling thread after each complete pass with the film as it stands
+    /// (every pixel whole passes; resolve() shows it), e.g. to write a preview image. An
+    /// exception it throws stops the render and is rethrown. Empty = none.
+    std::function<void(const Film& film)> pass_done;
 };
 
 /// Throws librt::Error naming the first bad parameter of `settings` and its value.
 LIBRT_API void validate(const ProgressiveSettings& settings);
+
+/// The image's relative error estimated from one pass: `before` and `after` are the same
+/// film before and after a pass added m_p >= 1 samples to pixel p (n_p samples after). For
+/// a pixel's mean luminance Y, the difference d = Y_after - Y_before has variance
+/// sigma^2 m / (n (n - m)), so (n - m) d^2 / m estimates the variance of the pixel's mean
+/// sigma^2 / n without keeping squares. Returns sqrt(the mean of those over the pixels the
+/// pass touched) / (the mean luminance of `after` over them): the RMS standard error of the
+/// pixel means relative to the image's brightness. One pass's difference is a noisy
+/// estimate per pixel, but the mean over many pixels is steady. Splats (bidirectional
+/// light paths) are left out. -1 when no pixel had samples before and gained some, or the
+/// image is black; O(pixels), deterministic (a fixed summation order).
+[[nodiscard]] LIBRT_API double relative_noise(const Film& before, const Film& after);
 
 /// Renders passes of settings.pass_samples samples per pixel over the whole image onto
 /// `film` until every pixel holds settings.render.samples_per_pixel samples, the time
