@@ -66,6 +66,23 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
     Film film;
     Image image;  // the film, joined to guiding's kept training passes when it completes
     ps.render.adaptive.enabled = o.adaptive;
+    // The preview: written through write_output's atomic PNG writer, so an image viewer
+    // never reads half a file. At most once a second (after the first pass): encoding a PNG
+    // can cost as much as a one-sample pass of a small image.
+    std::chrono::steady_clock::time_point last_preview{};
+    bool previewed = false;
+    const auto write_preview = [&](const Film& f) {
+        write_output(o.preview, resolve(f), display_look(o.scale));
+        last_preview = std::chrono::steady_clock::now();
+        previewed = true;
+    };
+    if (!o.preview.empty()) {
+        ps.pass_done = [&](const Film& f) {
+            if (!previewed ||
+                std::chrono::steady_clock::now() - last_preview >= std::chrono::seconds(1))
+                write_preview(f);
+        };
+    }
     const RenderStats stats = render_progressive(scene, camera, integrator, film, ps, &image);
     progress.finish();
     const bool interrupted = stats.cancelled || interrupt_flag()->load();
@@ -74,6 +91,8 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
         return 130;
     }
     write_output(o.output, image, display_look(o.scale, o.exr_half), &film);
+    // The last preview is the image written (whatever its format), tone-mapped.
+    if (!o.preview.empty()) write_output(o.preview, image, display_look(o.scale));
     const bool partial = stats.samples_per_pixel < std::uint32_t(o.spp);
     if (!o.quiet || partial) {
         const double rate = stats.seconds > 0.0 ? double(stats.samples) / stats.seconds : 0.0;

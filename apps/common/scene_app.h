@@ -31,6 +31,10 @@ struct ProgressiveOutput {
     float scale = 1.0f;     ///< exposure: the linear image is multiplied by this
     bool exr_half = false;  ///< --exr-half: EXR colour channels as half (clamped to 65504)
     bool quiet = false;     ///< no progress bar and no summary
+    /// --preview: a PNG rewritten (atomically, as every image writer) with the image so far
+    /// after the first pass, then after a pass at most once a second, and at the end; empty =
+    /// none.
+    std::string preview;
     /// When the app started its work (the summary's "total" counts from here).
     std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 };
