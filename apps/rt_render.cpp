@@ -126,10 +126,13 @@ struct Options {
     double time_limit = 0.0;
     double noise_target = 0.0;  // stop at this estimated relative error; 0 = none
     float exposure_ev = 0.0f;
-    bool exr_half = false;      // EXR colour channels as half floats (clamped to 65504)
-    std::string env;            // equirectangular .hdr lighting the scene; empty = none
-    float env_strength = 1.0f;  // scale of the environment's radiance
+    bool exr_half = false;          // EXR colour channels as half floats (clamped to 65504)
+    std::string env;                // equirectangular .hdr or .exr lighting the scene; empty = none
+    float env_strength = 1.0f;      // scale of the environment's radiance
+    float env_rotate = 0.0f;        // degrees about the up axis (+y)
+    bool no_default_light = false;  // a file without lights stays unlit (its emitters alone)
     bool quiet = false;
+    std::string preview;               // a PNG rewritten with the image so far as the passes finish
     bool allow_outside_files = false;  // the scene may read files outside its directory
     apps::AppOptions sampling;         // --sampler, --filter, --filter-radius, --guiding(-passes)
     int mpi_tile = 32;                 // under mpirun: side of the tiles rank 0 hands out
@@ -196,6 +199,8 @@ std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
         {"--noise-target", exact(o.noise_target)},
         {"--exposure", exact(o.exposure_ev)},
         {"--env-strength", exact(o.env_strength)},
+        {"--env-rotate", exact(o.env_rotate)},
+        {"--no-default-light", on(o.no_default_light)},
         {"--sampler", s.sampler},
         {"--filter", given(s.filter)},
         {"--filter-radius", s.filter_radius ? exact(*s.filter_radius) : "(the filter's)"},
@@ -290,6 +295,20 @@ void check_time_limit(const Options& o, bool distributed) {
             "is not available under mpirun (use --spp)");
 }
 
+/// --preview: a PNG, not the output itself (it would be overwritten by each pass and then by
+/// the final image in another look), and not under mpirun, where ranks render whole tiles
+/// rather than passes over the image.
+void check_preview(const Options& o, bool distributed, bool root) {
+    if (o.preview.empty()) return;
+    if (lower_extension(o.preview) != ".png") bad("--preview", o.preview, "must be a .png file");
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::weakly_canonical(o.preview, ec) == fs::weakly_canonical(o.output, ec))
+        bad("--preview", o.preview, "must differ from --output");
+    if (distributed) bad("--preview", o.preview, "is not available under mpirun");
+    if (root) check_image_path(o.preview);
+}
+
 /// With --size: the render's films, copies and output buffers must fit, before any is
 /// allocated.
 void check_memory(const Options& o, const SceneFileOptions& file_options, bool distributed) {
@@ -316,6 +335,11 @@ void check_output_options(const Options& o) {
         bad("--env-strength", std::to_string(o.env_strength), "must be finite and >= 0");
     if (o.env.empty() && o.env_strength != 1.0f)
         bad("--env-strength", std::to_string(o.env_strength), "needs --env");
+    if (!std::isfinite(o.env_rotate) || std::abs(o.env_rotate) > 360.0f)
+        bad("--env-rotate", std::to_string(o.env_rotate), "must be in [-360, 360] (degrees)");
+    // The built-in sky is the same all around the up axis: turning it would do nothing.
+    if (o.env.empty() && o.env_rotate != 0.0f)
+        bad("--env-rotate", std::to_string(o.env_rotate), "needs --env");
 }
 
 /// --denoise needs two parts of every pixel's samples, which a frame shared by MPI ranks
@@ -332,6 +356,8 @@ SceneFileOptions check_command_line(const Options& o, const apps::MpiJob& job) {
     SceneFileOptions file_options;
     file_options.camera = o.camera;
     file_options.allow_outside_files = o.allow_outside_files;
+    // --env replaces the default lighting rather than adding to it.
+    file_options.default_lighting = !o.no_default_light && o.env.empty();
     if (!o.size.empty()) apps::parse_size(o.size, 0.0f, file_options.width, file_options.height);
     RenderSettings check;
     check.samples_per_pixel = o.spp;
@@ -340,6 +366,7 @@ SceneFileOptions check_command_line(const Options& o, const apps::MpiJob& job) {
     check_choices(o);
     check_integrator_options(o);
     check_time_limit(o, job.distributed());
+    check_preview(o, job.distributed(), job.rank() == 0);
     apps::validate_sampling(o.sampling);
     check_memory(o, file_options, job.distributed());
     check_output_options(o);
@@ -409,8 +436,8 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     // The sky is read before the scene, so a bad file fails before the long load.
     std::optional<EnvironmentLight> environment;
     if (!o.env.empty())
-        environment =
-            EnvironmentLight::from_image(load_hdr_image(o.env), glm::mat3(1.0f), o.env_strength);
+        environment = EnvironmentLight::from_image(load_environment_image(o.env),
+                                                   rotation_about_up(o.env_rotate), o.env_strength);
 
     const auto t0 = std::chrono::steady_clock::now();
     LoadedScene loaded = load_scene_file(o.scene, file_options);
@@ -420,6 +447,11 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     if (job.distributed()) job.check_same_job(file_items(o.scene, loaded.files_read));
     if (root) {
         for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << '\n';
+        // Said once, on stderr with the warnings: the image is not lit as the file alone
+        // would light it.
+        if (!loaded.lighting_note.empty())
+            std::cerr << "note: " << loaded.lighting_note
+                      << " (--no-default-light: none; --env FILE: your own)\n";
     }
     if (environment) loaded.scene.add_environment_light(*environment);
     const auto t1 = std::chrono::steady_clock::now();
@@ -478,6 +510,7 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     out.exr_half = o.exr_half;
     out.quiet = o.quiet;
     out.denoise = o.denoise_wanted(false);
+    out.preview = o.preview;
     out.started = t0;
     return apps::render_progressively_and_write(loaded.scene, camera, *integrator, out);
 }
@@ -502,7 +535,9 @@ int main(int argc, char** argv) {
     app.add_option("--size", o.size,
                    "Image size WIDTHxHEIGHT (default: the camera's aspect ratio, long side 640)");
     app.add_option("--camera", o.camera,
-                   "The file's camera: index (in node order) or name; default: the first");
+                   "The file's camera: index (in node order) or name; default: the first; "
+                   "auto: frame the model from the front, above (as a file without cameras "
+                   "is)");
     app.add_option("--max-depth", o.max_depth,
                    "Most scattering events per path; -1: the most the integrator allows (1000, "
                    "bdpt 64), paths then ending by Russian roulette (--roulette-depth)")
@@ -551,11 +586,24 @@ int main(int argc, char** argv) {
             "--no-denoise", [&o] { o.denoise = false; },
             "Write the noisy, unbiased estimate only (the default for .hdr and .pfm)"));
     app.add_option("--env", o.env,
-                   "Equirectangular Radiance .hdr lighting the scene from every direction "
-                   "(importance-sampled; seen by rays that leave the scene)");
+                   "Equirectangular environment, Radiance .hdr or OpenEXR .exr, lighting the "
+                   "scene from every direction (importance-sampled; seen by rays that leave "
+                   "the scene); replaces the default lighting");
     app.add_option("--env-strength", o.env_strength, "Scale of the --env radiance")
         ->capture_default_str();
+    app.add_option("--env-rotate", o.env_rotate,
+                   "Turn the --env environment by this many degrees about the up axis (+y), "
+                   "counter-clockwise seen from above")
+        ->capture_default_str();
+    app.add_flag("--no-default-light", o.no_default_light,
+                 "A file without lights of its own (glTF: no punctual light) stays unlit but "
+                 "for its emissive surfaces, instead of getting the default studio lighting "
+                 "(a grey sky and a key light)");
     app.add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
+    app.add_option("--preview", o.preview,
+                   "A PNG rewritten with the image so far (tone-mapped as the PNG output) after "
+                   "the first pass, then at most once a second, and at the end: watch a long "
+                   "render in an image viewer (each write is atomic)");
     app.add_flag("--allow-outside-files", o.allow_outside_files,
                  "Let the scene read buffers, images and MTL files outside its own directory "
                  "tree (absolute paths, '..', symlinks leading out): only for a file you trust");

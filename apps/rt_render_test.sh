@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# rt_render end to end on a scene written here (an OBJ quad, lit by the default light):
+# rt_render end to end on a scene written here (an OBJ quad, lit by the default lighting):
 # 1. a bad output extension fails with a clear message before the scene is looked at,
 #    writing nothing;
 # 2. SIGINT mid-render writes a complete image of the finished passes (exit 130, flagged);
@@ -7,6 +7,8 @@
 # --adaptive renders its budget; a truncated --env .hdr is refused with a message naming it;
 # 4. (issue 37) an unwritable output and a --size whose render would not fit in memory fail
 #    before the scene is loaded; an emitter of strength 1e5 comes out of the EXR finite.
+# 5. the default studio lighting, --no-default-light, --env (.exr) and --env-rotate;
+# 6. --preview writes a complete PNG of the render's size.
 # Usage: rt_render_test.sh <rt_render> <scratch directory> <exr_values>
 set -euo pipefail
 set -m  # job control: a background job of a non-interactive shell would ignore SIGINT
@@ -252,7 +254,57 @@ status=0
 grep -qF -- "--exr-half = on: needs an .exr output" "$dir/err.txt" ||
     fail "--exr-half with a PNG: $(cat "$dir/err.txt")"
 
-# 5. (issue 38) The defaults are the documented best-measured ones (render-your-own-scene.md,
+# 5. Default lighting (issue 38 item 5, issue 42 item 1). The quad has no light of its own:
+# the studio lighting lights it, announced once on stderr; --no-default-light leaves it black
+# (no light at all: the beauty's largest value is 0); --env replaces it (no note), an .exr
+# one too (the lit render's own EXR), turned by --env-rotate; --env-rotate needs --env.
+"$app" "$scene" --size 32x24 --spp 2 --threads 2 -q -o "$dir/lit.exr" 2>"$dir/err.txt" ||
+    fail "default lighting: $(cat "$dir/err.txt")"
+[ "$(grep -c "^note: no light in the file: lit by the default studio lighting" "$dir/err.txt")" -eq 1 ] ||
+    fail "default lighting: note: $(cat "$dir/err.txt")"
+"$exr_values" "$dir/lit.exr" >"$dir/values.txt" || fail "default lighting: unreadable EXR"
+grep -q "^beauty: [0-9]* values, 0 not finite, max 0$" "$dir/values.txt" &&
+    fail "default lighting: black: $(cat "$dir/values.txt")"
+"$app" "$scene" --size 32x24 --spp 2 --threads 2 -q --no-default-light -o "$dir/unlit.exr" \
+    2>"$dir/err.txt" || fail "--no-default-light: $(cat "$dir/err.txt")"
+[ ! -s "$dir/err.txt" ] || fail "--no-default-light: said $(cat "$dir/err.txt")"
+"$exr_values" "$dir/unlit.exr" >"$dir/values.txt" || fail "--no-default-light: unreadable EXR"
+grep -q "^beauty: [0-9]* values, 0 not finite, max 0$" "$dir/values.txt" ||
+    fail "--no-default-light: not black: $(cat "$dir/values.txt")"
+"$app" "$scene" --size 32x24 --spp 2 --threads 2 -q --env "$dir/lit.exr" --env-rotate 90 \
+    -o "$dir/env.exr" 2>"$dir/err.txt" || fail "--env .exr: $(cat "$dir/err.txt")"
+[ ! -s "$dir/err.txt" ] || fail "--env .exr: said $(cat "$dir/err.txt")"
+"$exr_values" "$dir/env.exr" >"$dir/values.txt" || fail "--env .exr: unreadable EXR"
+grep -q "^beauty: [0-9]* values, 0 not finite, max 0$" "$dir/values.txt" &&
+    fail "--env .exr: black: $(cat "$dir/values.txt")"
+mkdir -p "$dir/out5"
+for args in "--env-rotate 30|--env-rotate = 30.000000: needs --env" \
+            "--env $dir/lit.exr --env-rotate 400|--env-rotate = 400.000000: must be in [-360, 360]" \
+            "--env $dir/no_sky.exr|$dir/no_sky.exr" \
+            "--preview $dir/out5/p.jpg|--preview = $dir/out5/p.jpg: must be a .png file" \
+            "--preview $dir/out5/image.png|--preview = $dir/out5/image.png: must differ from --output"; do
+    status=0
+    # shellcheck disable=SC2086 # the options are split on purpose
+    "$app" "$scene" ${args%%|*} --size 8x8 --spp 1 -q -o "$dir/out5/image.png" 2>"$dir/err.txt" \
+        >/dev/null || status=$?
+    [ "$status" -eq 1 ] || fail "${args%%|*}: exit status $status, expected 1"
+    grep -qF -- "${args#*|}" "$dir/err.txt" || fail "${args%%|*}: message: $(cat "$dir/err.txt")"
+done
+[ -z "$(ls -A "$dir/out5")" ] || fail "bad lighting or preview options wrote $(ls -A "$dir/out5")"
+
+# 6. --preview (issue 38 item 6): after a render of a few passes the preview is a complete
+# PNG of the render's size (its IHDR: width and height, big-endian, at bytes 16 and 20), and
+# nothing else is left beside it (the writer's temporaries are renamed into place).
+mkdir -p "$dir/preview"
+"$app" "$scene" --size 40x30 --spp 4 --threads 2 -q --preview "$dir/preview/watch.png" \
+    -o "$dir/preview/final.exr" 2>"$dir/err.txt" || fail "--preview: $(cat "$dir/err.txt")"
+complete_png "$dir/preview/watch.png" || fail "--preview: not a complete PNG"
+[ "$(od -An -tx1 -j16 -N8 "$dir/preview/watch.png" | tr -d ' \n')" = "000000280000001e" ] ||
+    fail "--preview: not 40x30: $(od -An -tx1 -j16 -N8 "$dir/preview/watch.png")"
+[ "$(ls -A "$dir/preview" | sort | tr '\n' ' ')" = "final.exr watch.png " ] ||
+    fail "--preview left $(ls -A "$dir/preview")"
+
+# 7. (issue 38) The defaults are the documented best-measured ones (render-your-own-scene.md,
 # "The defaults"): Sobol', adaptive sampling, depth to the integrator's most; --noise-target
 # stops a render before its --spp ceiling and says so; out of range it is refused.
 "$app" --help >"$dir/help.txt"

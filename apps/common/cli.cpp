@@ -120,9 +120,12 @@ void ProgressBar::draw(const RenderProgress& p) {
     // Remaining time by linear extrapolation: elapsed * (1 - f) / f.
     const std::string remaining =
         fraction > 0.0 ? format_duration(p.seconds * (1.0 - fraction) / fraction) : "?";
-    std::fprintf(stderr, "\r[%s] %3d%%  elapsed %s  remaining %s ", bar.c_str(),
+    // The noise estimate (RenderProgress::noise) once two passes have given one.
+    char noise[32] = "";
+    if (p.noise >= 0.0) std::snprintf(noise, sizeof noise, "  noise %.2g %%", 100.0 * p.noise);
+    std::fprintf(stderr, "\r[%s] %3d%%  elapsed %s  remaining %s%s ", bar.c_str(),
                  static_cast<int>(fraction * 100.0), format_duration(p.seconds).c_str(),
-                 remaining.c_str());
+                 remaining.c_str(), noise);
     std::fflush(stderr);
     last_draw_ = p.seconds;
     drawn_ = true;

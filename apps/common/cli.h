@@ -65,7 +65,8 @@ struct MeshOptions {
     std::vector<float> offset{0.0f, -10.0f, 0.0f};  ///< --mesh-offset x y z
 };
 
-/// A one-line progress bar on stderr fed by the renderer's progress callback, shown only
+/// A one-line progress bar on stderr fed by the renderer's progress callback (fraction done,
+/// elapsed and remaining time, and the noise estimate when the render gives one), shown only
 /// on a terminal once the render has run for more than a second, redrawn at most ten times
 /// a second; finish() (or the destructor) ends its line.
 class ProgressBar {

@@ -86,16 +86,33 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
     const std::uint32_t pilot =
         o.adaptive ? adaptive_pilot_samples(ps.render.adaptive, std::uint32_t(o.spp)) : 0;
     const std::uint32_t half_level = pilot > 0 ? pilot / 2 : std::uint32_t(o.spp / 2);
-    if (o.denoise) {
-        ps.pass_done = [&half, &half_at, half_level](const Film& f, std::uint32_t level) {
-            if (level == half_level || (level < half_level && std::has_single_bit(level))) {
-                half = f;
-                half_at = level;
-            }
-        };
-    }
+    const auto keep_half = [&half, &half_at, half_level](const Film& f, std::uint32_t level) {
+        if (level == half_level || (level < half_level && std::has_single_bit(level))) {
+            half = f;
+            half_at = level;
+        }
+    };
     Film film;
     Image image;  // the film, joined to guiding's kept training passes when it completes
+    // The preview: written through write_output's atomic PNG writer, so an image viewer
+    // never reads half a file. At most once a second (after the first pass): encoding a PNG
+    // can cost as much as a one-sample pass of a small image.
+    std::chrono::steady_clock::time_point last_preview{};
+    bool previewed = false;
+    const auto write_preview = [&](const Film& f) {
+        write_output(o.preview, resolve(f), display_look(o.scale));
+        last_preview = std::chrono::steady_clock::now();
+        previewed = true;
+    };
+    if (!o.preview.empty() || o.denoise) {
+        ps.pass_done = [&](const Film& f, std::uint32_t level) {
+            if (o.denoise) keep_half(f, level);
+            if (!o.preview.empty() &&
+                (!previewed ||
+                 std::chrono::steady_clock::now() - last_preview >= std::chrono::seconds(1)))
+                write_preview(f);
+        };
+    }
     const RenderStats stats = render_progressive(scene, camera, integrator, film, ps, &image);
     progress.finish();
     const bool interrupted = stats.cancelled || interrupt_flag()->load();
@@ -124,6 +141,8 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
     const Image& shown = have_denoised && !exr ? denoised : image;
     write_output(o.output, shown, display_look(o.scale, o.exr_half), &film,
                  have_denoised && exr ? &denoised : nullptr);
+    // The last preview is the image shown (whatever the output's format), tone-mapped.
+    if (!o.preview.empty()) write_output(o.preview, shown, display_look(o.scale));
     const bool partial =
         stats.samples_per_pixel < std::uint32_t(o.spp) && !stats.noise_target_reached;
     if (!o.quiet || partial) {

@@ -35,6 +35,10 @@ struct ProgressiveOutput {
     /// --denoise: PNG, .hdr and .pfm get the denoised image, EXR a denoised layer beside its
     /// unbiased beauty (render/denoiser.h). Needs 2 samples per pixel.
     bool denoise = false;
+    /// --preview: a PNG rewritten (atomically, as every image writer) with the image so far
+    /// after the first pass, then after a pass at most once a second, and at the end; empty =
+    /// none.
+    std::string preview;
     /// When the app started its work (the summary's "total" counts from here).
     std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 };

@@ -80,6 +80,8 @@ int main(int argc, char** argv) try {
     librt::SceneFileOptions options;
     options.width = width;
     options.height = height;
+    // The file's own lights alone, as docs/light-targets.md measured cornell_pbr.glb.
+    options.default_lighting = false;
     librt::LoadedScene loaded = librt::load_scene_file(scene_path, options);
     loaded.scene.commit();
     librt::CameraSettings view = loaded.camera;

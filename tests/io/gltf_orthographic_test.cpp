@@ -86,6 +86,8 @@ TEST(GltfOrthographic, RendersThroughTheFilesOrthographicCamera) {
     lt::write_file(p, rectangles_and_camera(2.0, 1.0).glb());
     SceneFileOptions options;
     options.default_long_side = 64;  // the size follows xmag / ymag = 2: 64 x 32
+    // The emissive rectangles alone, on black: no studio sky behind them.
+    options.default_lighting = false;
     LoadedScene loaded = load_scene_file(p, options);
     EXPECT_EQ(loaded.camera_name, "top");  // the first camera, although orthographic
     ASSERT_EQ(loaded.camera.projection, Projection::Orthographic);

@@ -143,8 +143,10 @@ void check_data_file(const fs::path& p) {
     EXPECT_EQ(loaded.scene.top_level().prototype_count(), want.stored_meshes);
     // Every object is an instance or a baked mesh (the loader adds no other geometry).
     EXPECT_EQ(loaded.scene.object_count(), want.instances + want.baked);
-    const bool default_light = want.lights == 0 && !want.emissive;
-    EXPECT_EQ(loaded.scene.lights().size(), want.lights + (default_light ? 1 : 0));
+    // No punctual light, emissive surfaces or not: the studio lighting's sky and key light.
+    const bool default_light = want.lights == 0;
+    EXPECT_EQ(loaded.scene.lights().size(), want.lights + (default_light ? 2 : 0));
+    EXPECT_EQ(loaded.lighting_note.empty(), !default_light);
     for (const std::string& w : loaded.warnings)
         EXPECT_EQ(w.find("not yet supported"), std::string::npos) << w;
     EXPECT_EQ(loaded.camera.width, 64);
@@ -499,17 +501,22 @@ TEST(SceneFile, ObjBecomesASceneFramedAndLit) {
     lt::write_file(p, "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
     LoadedScene loaded = load_scene_file(p);
     EXPECT_EQ(loaded.triangles_stored, 2u);
-    EXPECT_EQ(loaded.scene.lights().size(), 1u);  // the default light
+    EXPECT_EQ(loaded.scene.lights().size(), 2u);  // the studio lighting's sky and key light
+    EXPECT_FALSE(loaded.lighting_note.empty());
     EXPECT_EQ(loaded.camera_name, "default");
     loaded.scene.commit();
-    // The default camera looks at the bounds' centre: the image centre sees the quad's.
+    // The default camera centres the quad's projection (frame_bounds): seen from straight in
+    // front (x = 0) and 15 degrees above, the image centre sees the quad on its vertical
+    // centre line, near its centre (perspective moves the projection's centre off the
+    // quad's by a little: 0.09 here, of a half size of 1).
     CameraSettings s = loaded.camera;
     s.width = s.height = 11;
     const Camera camera(s);
     Sampler sampler(5, 5, 0, 1);
     Hit hit;
     ASSERT_TRUE(loaded.scene.intersect(camera.generate_ray(5, 5, sampler), hit));
-    EXPECT_NEAR(glm::length(hit.point), 0.0f, 1e-4f);
+    EXPECT_NEAR(hit.point.x, 0.0f, 1e-4f);
+    EXPECT_LT(std::abs(hit.point.y), 0.15f);
 }
 
 // A mesh placed by one node is baked into world space; placed by two, it stays a prototype

@@ -5,6 +5,7 @@
 #include <librt/film/camera.h>
 #include <librt/gltf/gltf_scene.h>
 #include <librt/material/texture.h>
+#include <librt/scene/default_lighting.h>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -191,7 +192,6 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
             prim = GltfPrimitive{};  // free the attributes librt does not use
         }
     }
-    const bool emissive = materials.emissive();
     std::vector<bool> placed(gltf.instances.size(), false);
     for (std::size_t ii = 0; ii < gltf.instances.size(); ++ii) {
         const GltfInstance& inst = gltf.instances[ii];
@@ -275,14 +275,11 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
         }
         ++lights;
     }
-    if (lights == 0 && !emissive && !out.bounds.empty()) {
-        scene.add_point_light(default_light(out.bounds));
-        out.warnings.emplace_back(
-            "no supported light or emissive surface in the file: added a default point light");
-    }
 
     // Camera: the file's (placed by its node), else one framing the bounds.
-    const GltfCamera* camera = choose_camera(gltf, options.camera);
+    // "auto": the framing camera even when the file has cameras.
+    const GltfCamera* camera =
+        options.camera == "auto" ? nullptr : choose_camera(gltf, options.camera);
     if (camera != nullptr) {
         const std::string who =
             gltf_detail::named("cameras[" + std::to_string(camera->camera) + "]", camera->name) +
@@ -333,6 +330,10 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
         out.camera = default_camera(out.bounds, size.width, size.height);
         out.camera_name = "default";
     }
+    // Decided by punctual lights alone: an emissive label or lamp does not light a model,
+    // and emissive-only files came out black under the old rule (issue 42).
+    if (lights == 0 && options.default_lighting)
+        out.lighting_note = add_studio_lighting(scene, out.camera);
     // Every name is quoted by named() above; this keeps any other text from the file (and
     // messages of the functions called) to one printable line each.
     for (std::size_t i = gltf.warnings.size(); i < out.warnings.size(); ++i)

@@ -94,6 +94,14 @@ EnvironmentLight EnvironmentLight::from_image(EnvironmentImage image, const glm:
     return light;
 }
 
+glm::mat3 rotation_about_up(float degrees) {
+    // In double, then rounded: orthonormal to float precision for any angle.
+    const double a = double(degrees) * (3.14159265358979323846 / 180.0);
+    const float c = float(std::cos(a)), s = float(std::sin(a));
+    // Columns: the images of +x, +y and +z.
+    return glm::mat3(glm::vec3(c, 0.0f, -s), glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(s, 0.0f, c));
+}
+
 void validate(const EnvironmentLight& light) {
     if (!light.data) throw Error("environment light: no data (use constant or from_image)");
     if (!std::isfinite(light.scale) || light.scale < 0.0f) {

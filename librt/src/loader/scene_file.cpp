@@ -1,11 +1,12 @@
-#include <librt/core/constants.h>
 #include <librt/core/error.h>
+#include <librt/film/framing.h>
 #include <librt/gltf/gltf.h>
 #include <librt/gltf/gltf_scene.h>
 #include <librt/io/file_extension.h>
 #include <librt/loader/scene_file.h>
 #include <librt/obj/obj.h>
 #include <librt/obj/obj_materials.h>
+#include <librt/scene/default_lighting.h>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -19,47 +20,12 @@
 
 namespace librt {
 
-namespace {
-
-/// Vertical field of view of the default camera, degrees.
-constexpr float kDefaultFov = 40.0f;
-
-void check_bounds(const BBox& b, const char* what) {
-    const bool finite = std::isfinite(b.lo.x) && std::isfinite(b.lo.y) && std::isfinite(b.lo.z) &&
-                        std::isfinite(b.hi.x) && std::isfinite(b.hi.y) && std::isfinite(b.hi.z);
-    if (b.empty() || !finite) throw Error(std::string(what) + ": bounds empty or not finite");
-}
-
-/// Radius of the sphere around the box (half its diagonal), at least a tiny positive size
-/// so a single point or flat box still gives a usable camera.
-float radius_of(const BBox& b) { return std::max(0.5f * glm::length(b.diagonal()), 1e-6f); }
-
-}  // namespace
-
 CameraSettings default_camera(const BBox& bounds, int width, int height) {
-    check_bounds(bounds, "default_camera");
-    CameraSettings c;
-    c.width = width;
-    c.height = height;
-    c.vertical_fov_degrees = kDefaultFov;
-    const float r = radius_of(bounds);
-    // The bounding sphere touches the vertical field of view: d = r / sin(fov / 2).
-    const float d = r / std::sin(glm::radians(0.5f * kDefaultFov));
-    c.look_at = bounds.center();
-    c.position = c.look_at + d * glm::normalize(glm::vec3(0.35f, 0.35f, 1.0f));
-    c.up = {0.0f, 1.0f, 0.0f};
-    c.focal_distance = d;
-    return c;
-}
-
-PointLight default_light(const BBox& bounds) {
-    check_bounds(bounds, "default_light");
-    const float distance = 3.0f * radius_of(bounds);
-    PointLight light;
-    light.position = bounds.center() + distance * glm::normalize(glm::vec3(-0.5f, 1.0f, 0.8f));
-    // Irradiance at normal incidence E = I / d^2 (inverse square law); I = pi d^2 gives pi.
-    light.intensity = glm::vec3(kPi * distance * distance);
-    return light;
+    try {
+        return frame_bounds(bounds, width, height);
+    } catch (const Error& e) {
+        throw Error(std::string("default_camera: ") + e.what());
+    }
 }
 
 LoadedScene scene_from_obj(const std::filesystem::path& path, const SceneFileOptions& options) {
@@ -80,8 +46,7 @@ LoadedScene scene_from_obj(const std::filesystem::path& path, const SceneFileOpt
     MtlMeshResult added = add_mesh_with_mtl(out.scene, std::move(mesh), fallback);
     for (std::string& w : added.warnings) out.warnings.push_back(std::move(w));
     for (FileRead& f : added.files_read) out.files_read.push_back(std::move(f));
-    if (!emits) out.scene.add_point_light(default_light(out.bounds));
-    if (!options.camera.empty()) {
+    if (!options.camera.empty() && options.camera != "auto") {
         out.warnings.push_back("camera = " + options.camera +
                                ": an OBJ has no cameras, using the default");
     }
@@ -90,6 +55,8 @@ LoadedScene scene_from_obj(const std::filesystem::path& path, const SceneFileOpt
     out.camera = default_camera(out.bounds, sized ? options.width : side,
                                 sized ? options.height : std::max(1, side * 3 / 4));
     out.camera_name = "default";
+    if (!emits && options.default_lighting)
+        out.lighting_note = add_studio_lighting(out.scene, out.camera);
     return out;
 }
 

@@ -396,6 +396,30 @@ RenderStats render_block_to_counts(const Scene& scene, const Camera& camera,
                                 settings);
 }
 
+double relative_noise(const Film& before, const Film& after) {
+    if (before.pixels.size() != after.pixels.size()) return -1.0;
+    const auto luminance = [](const FilmPixel& p) {
+        if (p.finite == 0) return 0.0;
+        const glm::dvec3 mean = p.radiance / double(p.finite);
+        return 0.2126 * mean.x + 0.7152 * mean.y + 0.0722 * mean.z;
+    };
+    double variance = 0.0, brightness = 0.0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < after.pixels.size(); ++i) {
+        const FilmPixel& a = after.pixels[i];
+        const FilmPixel& b = before.pixels[i];
+        if (b.finite == 0 || a.finite <= b.finite) continue;
+        const double n = double(a.finite), m = n - double(b.finite);
+        const double d = luminance(a) - luminance(b);
+        variance += (n - m) * d * d / m;
+        brightness += luminance(a);
+        ++count;
+    }
+    if (count == 0 || !(brightness > 0.0)) return -1.0;
+    const double c = double(count);
+    return std::sqrt(variance / c) / (brightness / c);
+}
+
 RenderStats render_progressive(const Scene& scene, const Camera& camera, Integrator& integrator,
                                Film& film, const ProgressiveSettings& settings, Image* image) {
     validate(settings);
@@ -450,11 +474,11 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         stats.cancelled = training.cancelled;
     }
     Film work;  // the pass in progress: a copy of `film` that replaces it once complete
-    // The film's noise, for the target (and then the progress reports too): a snapshot of
-    // the pixels, 36 bytes each (render_memory.h), only when a target asks for it.
-    NoiseEstimate noise;
+    // The noise target's estimate: a snapshot of the pixels, 36 bytes each
+    // (render_memory.h), only when a target asks for it.
+    NoiseEstimate target_noise;
     const bool estimate_noise = settings.noise_target > 0.0;
-    const auto noise_now = [&] { return noise.relative_error().value_or(0.0); };
+    double noise = -1.0;  // relative_noise of the last complete pass, for progress reports
     PassRunner runner;
     runner.pass = [&](std::uint32_t n, std::uint32_t count, const std::uint32_t* ends) {
         // A film holding no samples always gets its first pass, whatever the limit.
@@ -462,8 +486,8 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
             stats.time_limit_reached = true;
             return false;
         }
-        if (settings.noise_target > 0.0 && noise.relative_error() &&
-            *noise.relative_error() <= settings.noise_target) {
+        if (settings.noise_target > 0.0 && target_noise.relative_error() &&
+            *target_noise.relative_error() <= settings.noise_target) {
             stats.noise_target_reached = true;
             return false;
         }
@@ -476,8 +500,7 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         const Tick tick = [&](double done) {
             if (rs.progress) {
                 const double seconds = elapsed();
-                rs.progress(
-                    {fraction(n + done * count, seconds), seconds, stats.passes, n, noise_now()});
+                rs.progress({fraction(n + done * count, seconds), seconds, stats.passes, n, noise});
             }
             return limit > 0.0 && n > 0 && elapsed() >= limit;
         };
@@ -491,6 +514,9 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
             return false;
         }
         std::swap(film, work);
+        // `work` now holds the film before the pass: one O(pixels) sweep, small next to
+        // the pass itself, and only when someone shows it.
+        if (rs.progress) noise = relative_noise(work, film);
         return true;
     };
     runner.reached_half = [&] {
@@ -502,11 +528,11 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
     runner.passed = [&](std::uint32_t n) {
         ++stats.passes;
         stats.samples_per_pixel = n;
-        if (estimate_noise) noise.observe(film, n);
+        if (estimate_noise) target_noise.observe(film, n);
         if (settings.pass_done) settings.pass_done(film, n);
         if (rs.progress) {
             const double seconds = elapsed();
-            rs.progress({fraction(n, seconds), seconds, stats.passes, n, noise_now()});
+            rs.progress({fraction(n, seconds), seconds, stats.passes, n, noise});
         }
     };
     PassSequence sequence(plan, first, pass);
@@ -517,7 +543,7 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         *image =
             keep && n == target && !half.pixels.empty() ? kept.combined(half, film) : resolve(film);
     }
-    stats.noise = noise_now();
+    stats.noise = target_noise.relative_error().value_or(0.0);
     stats.seconds = elapsed();
     stats.cpu_seconds = cpu_now() - cpu_start;
     return stats;

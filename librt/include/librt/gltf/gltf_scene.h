@@ -54,12 +54,13 @@ struct GltfMaterialTextures {
 /// candela / 683 W/sr (Blender's convention, see docs/render-your-own-scene.md); spot and
 /// directional lights likewise; COLOR_0 (unless all white) is kept as the mesh's vertex
 /// colours (Scene::shade multiplies them in); orthographic cameras, occlusion and
-/// transmission textures are warned about or ignored. A scene with no supported light and no
-/// emissive surface gets default_light() (warned). A node whose world transform cannot be
-/// inverted in float (determinant 0, beyond float or below 1e-30) places no mesh or light
-/// (warned) and is refused for the camera. Throws librt::Error for a camera option naming
-/// no camera ("camera = NAME: ..."), a camera Camera refuses, or a value Scene refuses,
-/// each prefixed with the JSON path of the object concerned ("nodes[4] 'lamp': ..."); the
+/// transmission textures are warned about or ignored. A scene none of whose punctual lights
+/// loads (emissive surfaces or not) gets add_studio_lighting (scene/default_lighting.h) for
+/// the chosen camera when options.default_lighting, noted in LoadedScene::lighting_note. A
+/// node whose world transform cannot be inverted in float (determinant 0, beyond float or below
+/// 1e-30) places no mesh or light (warned) and is refused for the camera. Throws librt::Error for a
+/// camera option naming no camera ("camera = NAME: ..."), a camera Camera refuses, or a value Scene
+/// refuses, each prefixed with the JSON path of the object concerned ("nodes[4] 'lamp': ..."); the
 /// messages do not name the file (load_scene_file prefixes it). A name from the file is
 /// quoted in messages by quote_untrusted (core/untrusted_text.h: escaped, capped) and every
 /// warning is one printable line; LoadedScene::camera_name keeps the name as it is. The

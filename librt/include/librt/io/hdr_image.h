@@ -15,4 +15,10 @@ namespace librt {
 /// before decoding), for a pixel that is not finite, or when memory runs out.
 [[nodiscard]] LIBRT_API EnvironmentImage load_hdr_image(const std::filesystem::path& path);
 
+/// Loads an equirectangular environment by its extension (case-insensitive): .hdr through
+/// load_hdr_image, .exr through read_exr (io/exr.h: its R, G, B channels, half or float, of a
+/// single-part scan-line file). Throws librt::Error naming the file for any other extension,
+/// the readers' errors, or a pixel that is not finite or is negative (its position named).
+[[nodiscard]] LIBRT_API EnvironmentImage load_environment_image(const std::filesystem::path& path);
+
 }  // namespace librt

@@ -4,7 +4,6 @@
 #include <librt/film/camera.h>
 #include <librt/geometry/bbox.h>
 #include <librt/io/file_digest.h>
-#include <librt/light/point_light.h>
 #include <librt/scene/scene.h>
 
 #include <cstddef>
@@ -19,8 +18,9 @@ namespace librt {
 /// How a scene file is turned into a Scene and a camera.
 struct SceneFileOptions {
     /// The file's camera to use (perspective or orthographic): empty = the first; all digits = the
-    /// index among the cameras the scene places (node order); else a camera (or its
-    /// node's) name. A file without cameras gets default_camera().
+    /// index among the cameras the scene places (node order); "auto" = default_camera()
+    /// even when the file has cameras (a camera named "auto" is reached by its index);
+    /// else a camera (or its node's) name. A file without cameras gets default_camera().
     std::string camera;
     int width = 0;   ///< image width; 0 (with height 0) = from the camera's aspect ratio
     int height = 0;  ///< image height; 0 (with width 0) = from the camera's aspect ratio
@@ -29,6 +29,12 @@ struct SceneFileOptions {
     /// Let the scene read files outside its own directory tree (GltfLoadOptions and
     /// ObjLoadOptions::allow_outside_files): only for a file you trust.
     bool allow_outside_files = false;
+    /// A file without lights of its own gets add_studio_lighting (scene/default_lighting.h)
+    /// for the chosen camera, noted in LoadedScene::lighting_note. "Without lights": a glTF
+    /// with no punctual light (KHR_lights_punctual) that loads, emissive surfaces or not; an
+    /// OBJ with no emissive MTL material (MTL has no other light: an emitter is the
+    /// author's lighting). false: the file's own lights alone.
+    bool default_lighting = true;
 };
 
 /// A scene file as librt renders it.
@@ -39,9 +45,12 @@ struct LoadedScene {
     /// quote_untrusted: it may hold control characters), or "default".
     std::string camera_name;
     std::vector<std::string> warnings;  ///< what was skipped or replaced, one line each
-    std::size_t triangles_stored = 0;   ///< triangles held once per prototype / mesh
-    std::size_t triangles_placed = 0;   ///< triangles over all instances
-    BBox bounds;                        ///< world bounds of the geometry
+    /// When default lighting was added, what it is, one line (for the app to show once);
+    /// else empty.
+    std::string lighting_note;
+    std::size_t triangles_stored = 0;  ///< triangles held once per prototype / mesh
+    std::size_t triangles_placed = 0;  ///< triangles over all instances
+    BBox bounds;                       ///< world bounds of the geometry
     /// Every file the scene was made from, each distinct file once, in the order read: the
     /// scene file first (its path as given), then the files it names (glTF buffers and the
     /// images textures use; an OBJ's MTL files and map_Kd images) by the path they were
@@ -52,15 +61,10 @@ struct LoadedScene {
     std::vector<FileRead> files_read;
 };
 
-/// A camera framing `bounds` (its bounding sphere fills the vertical field of view of
-/// 40 degrees) from the front (+z), a little above and to the right, y up, at the given
-/// image size. Throws librt::Error for an empty or non-finite box.
+/// A camera framing `bounds` (film/framing.h, frame_bounds with its defaults: a vertical
+/// field of view of 40 degrees, the box filling the frame but for a 5 % margin, seen from the
+/// front, +z, 15 degrees above the horizon), y up, at the given image size. Throws
+/// librt::Error for an empty or non-finite box.
 [[nodiscard]] LIBRT_API CameraSettings default_camera(const BBox& bounds, int width, int height);
-
-/// The light a file without light gets: a point light above, left of and in front of the
-/// bounds' centre, at three bounding-sphere radii, whose irradiance at the centre is pi
-/// W/m^2 (a white Lambertian surface facing it has radiance 1). Throws librt::Error for an
-/// empty or non-finite box.
-[[nodiscard]] LIBRT_API PointLight default_light(const BBox& bounds);
 
 }  // namespace librt

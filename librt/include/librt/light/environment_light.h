@@ -67,6 +67,11 @@ struct EnvironmentLight {
         EnvironmentImage image, const glm::mat3& rotation = glm::mat3(1.0f), float scale = 1.0f);
 };
 
+/// The rotation (light frame to world) that turns an environment by `degrees` about +y (world
+/// up), counter-clockwise seen from above (right-handed): what the unturned environment shows
+/// along +x is then seen along (cos a, 0, -sin a). rt_render's --env-rotate.
+[[nodiscard]] LIBRT_API glm::mat3 rotation_about_up(float degrees);
+
 /// Throws librt::Error for a missing data, a non-finite or negative scale, or a rotation
 /// that is not orthonormal.
 LIBRT_API void validate(const EnvironmentLight& light);

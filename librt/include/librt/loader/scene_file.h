@@ -14,7 +14,8 @@ namespace librt {
 
 /// An OBJ (and its MTL) as a scene: one mesh with its MTL materials (obj/obj_materials.h
 /// add_mesh_with_mtl; faces without a material are diffuse 0.8), default_camera() framing
-/// it and, unless some MTL material emits, default_light(). Throws librt::Error from
+/// it and, unless some MTL material emits or options.default_lighting is false,
+/// add_studio_lighting (scene/default_lighting.h). Throws librt::Error from
 /// load_obj, or for a mesh with no triangles.
 [[nodiscard]] LIBRT_API LoadedScene scene_from_obj(const std::filesystem::path& path,
                                                    const SceneFileOptions& options = {});

@@ -27,10 +27,11 @@ struct RenderProgress {
     double seconds = 0.0;   ///< since the render began
     int passes = 0;         ///< passes finished so far (a one-shot render is one pass)
     std::uint32_t samples_per_pixel = 0;  ///< samples per pixel of the finished passes
-    /// render_progressive with a noise target: the image's estimated relative error
-    /// (NoiseEstimate), once known (after the pass level has doubled once); 0 before, and
-    /// for other renders.
-    double noise = 0.0;
+    /// render_progressive: the image's estimated relative error after the last finished pass
+    /// (relative_noise of the film before and after it), e.g. 0.02 for 2 %; -1 until two
+    /// passes have finished, and from the other render functions. (A noise target stops on
+    /// NoiseEstimate's relMSE-based estimate instead: RenderStats::noise.)
+    double noise = -1.0;
 };
 
 /// Receives progress reports on the thread that called the render function: about ten
@@ -230,12 +231,25 @@ struct ProgressiveSettings {
     /// Called on the calling thread after every complete pass with the film and the level
     /// the passes reached (every pixel holding that many samples; adaptive sampling: its
     /// share of them), e.g. to copy the film part way for the denoiser's half buffers
-    /// (render/denoiser.h). Empty = not called.
+    /// (render/denoiser.h) or to write a preview image. An exception it throws stops the
+    /// render and is rethrown. Empty = not called.
     std::function<void(const Film& film, std::uint32_t level)> pass_done;
 };
 
 /// Throws librt::Error naming the first bad parameter of `settings` and its value.
 LIBRT_API void validate(const ProgressiveSettings& settings);
+
+/// The image's relative error estimated from one pass: `before` and `after` are the same
+/// film before and after a pass added m_p >= 1 samples to pixel p (n_p samples after). For
+/// a pixel's mean luminance Y, the difference d = Y_after - Y_before has variance
+/// sigma^2 m / (n (n - m)), so (n - m) d^2 / m estimates the variance of the pixel's mean
+/// sigma^2 / n without keeping squares. Returns sqrt(the mean of those over the pixels the
+/// pass touched) / (the mean luminance of `after` over them): the RMS standard error of the
+/// pixel means relative to the image's brightness. One pass's difference is a noisy
+/// estimate per pixel, but the mean over many pixels is steady. Splats (bidirectional
+/// light paths) are left out. -1 when no pixel had samples before and gained some, or the
+/// image is black; O(pixels), deterministic (a fixed summation order).
+[[nodiscard]] LIBRT_API double relative_noise(const Film& before, const Film& after);
 
 /// Renders passes of settings.pass_samples samples per pixel over the whole image onto
 /// `film` until every pixel holds settings.render.samples_per_pixel samples, the time
