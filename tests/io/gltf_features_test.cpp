@@ -322,4 +322,15 @@ TEST(GltfFuzzSeeds, EverySeedLoads) {
     EXPECT_FLOAT_EQ(s.materials[0].anisotropy_rotation, 0.4f);
     EXPECT_EQ(s.materials[0].anisotropy_texture.texture, 0);
     EXPECT_TRUE(s.warnings.empty()) << lt::joined(s.warnings);
+    // Compressed glTF (written by the reference encoders): a Draco quad, and a meshopt quad
+    // with a WebP texture over a fallback buffer.
+    s = load_gltf(dir / "draco_quad.glb");
+    EXPECT_EQ(s.triangles_placed(), 2u);
+    EXPECT_TRUE(s.warnings.empty()) << lt::joined(s.warnings);
+    s = load_gltf(dir / "meshopt_webp_quad.glb");
+    EXPECT_EQ(s.triangles_placed(), 2u);
+    EXPECT_EQ(s.meshes[0].primitives[0].positions[3], glm::vec3(1, 1, 0));
+    ASSERT_EQ(s.textures.size(), 1u);
+    EXPECT_EQ(s.images.at(0).width, 2);
+    EXPECT_TRUE(s.warnings.empty()) << lt::joined(s.warnings);
 }

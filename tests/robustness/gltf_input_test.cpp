@@ -193,10 +193,10 @@ TEST(BadGltf, NodeGraphCyclesAndSharedChildren) {
 TEST(BadGltf, ExtensionsAndNesting) {
     ScratchDir dir;
     GltfBuilder b = lt::one_triangle();
-    b.doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
-    b.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+    b.doc["extensionsUsed"] = {"EXT_lights_image_based"};
+    b.doc["extensionsRequired"] = {"EXT_lights_image_based"};
     load_error(dir, "req.gltf", b.gltf(),
-               "extensionsRequired[0]: extension 'KHR_draco_mesh_compression' is required but not "
+               "extensionsRequired[0]: extension 'EXT_lights_image_based' is required but not "
                "supported");
     // Deep nesting where librt reads (tinygltf converts JSON recursively): refused up front,
     // naming where.

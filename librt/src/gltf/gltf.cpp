@@ -193,6 +193,7 @@ void load(const std::filesystem::path& path, const GltfLoadOptions& options, Con
     const std::uint64_t held = files + facts.model_bytes;
     ctx.set_budget(bound > held ? bound - held : 0);
 
+    decode_meshopt_views(model, ctx);
     read_materials(model, facts.images, ctx, scene);
     read_nodes(model, options.scene, ctx, scene);
     read_meshes(model, ctx, scene);

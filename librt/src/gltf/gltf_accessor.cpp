@@ -61,13 +61,20 @@ const unsigned char* view_range(const tinygltf::Model& model, int view, std::siz
                                 const std::string& path, const Context& ctx) {
     check_index(ctx, path + ".bufferView", view, model.bufferViews.size(), "buffer view");
     const tinygltf::BufferView& bv = model.bufferViews[static_cast<std::size_t>(view)];
-    check_index(ctx, indexed("bufferViews", std::size_t(view)) + ".buffer", bv.buffer,
-                ctx.buffer_count(), "buffer");
-    const std::string_view buffer = ctx.buffer(static_cast<std::size_t>(bv.buffer));
-    // The view lies in the buffer (checked in the pre-pass against byteLength; checked
-    // again here against the bytes really read).
-    if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset)
-        ctx.fail(indexed("bufferViews", std::size_t(view)), "lies outside its buffer's data");
+    const unsigned char* bytes = nullptr;
+    if (const auto* decoded = ctx.view_bytes(std::size_t(view))) {
+        // EXT_meshopt_compression: decoded to at least byteLength bytes.
+        bytes = decoded->data();
+    } else {
+        check_index(ctx, indexed("bufferViews", std::size_t(view)) + ".buffer", bv.buffer,
+                    ctx.buffer_count(), "buffer");
+        const std::string_view buffer = ctx.buffer(static_cast<std::size_t>(bv.buffer));
+        // The view lies in the buffer (checked in the pre-pass against byteLength; checked
+        // again here against the bytes really read; a meshopt fallback buffer has none).
+        if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset)
+            ctx.fail(indexed("bufferViews", std::size_t(view)), "lies outside its buffer's data");
+        bytes = reinterpret_cast<const unsigned char*>(buffer.data()) + bv.byteOffset;
+    }
     // Last byte needed: offset + (count - 1) * stride + element, computed without overflow.
     const std::size_t length = bv.byteLength;
     const bool fits = offset <= length && element <= length - offset &&
@@ -78,7 +85,7 @@ const unsigned char* view_range(const tinygltf::Model& model, int view, std::siz
                            std::to_string(offset) + " do not fit in bufferViews[" +
                            std::to_string(view) + "] (byteLength " + std::to_string(length) + ")");
     }
-    return reinterpret_cast<const unsigned char*>(buffer.data()) + bv.byteOffset + offset;
+    return bytes + offset;
 }
 
 /// Value j of element i as float: normalised integers to [0, 1] or [-1, 1] (glTF 2.0

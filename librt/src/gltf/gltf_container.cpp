@@ -39,9 +39,12 @@ std::uint32_t le32(const std::string& bytes, std::size_t at) {
 /// The extensions whose absence would change the picture that librt reads.
 const std::set<std::string, std::less<>>& supported_extensions() {
     static const std::set<std::string, std::less<>> names = {
-        "KHR_lights_punctual",     "KHR_materials_emissive_strength", "KHR_materials_transmission",
-        "KHR_materials_ior",       "KHR_texture_transform",           "KHR_mesh_quantization",
-        "KHR_materials_anisotropy"};
+        "KHR_lights_punctual",        "KHR_materials_emissive_strength",
+        "KHR_materials_transmission", "KHR_materials_ior",
+        "KHR_texture_transform",      "KHR_mesh_quantization",
+        "KHR_materials_anisotropy",   "KHR_draco_mesh_compression",
+        "EXT_meshopt_compression",    "EXT_texture_webp",
+        "KHR_texture_basisu"};
     return names;
 }
 
@@ -150,6 +153,47 @@ void check_structure(const Json& root, const Context& ctx) {
     }
 }
 
+/// Integers of the extensions whose members tinygltf stores as int (a larger value would
+/// wrap silently there): EXT_meshopt_compression's and KHR_draco_mesh_compression's.
+void check_extension_ints(const Json& doc, const Context& ctx) {
+    const auto beyond_int = [](const Json& v) {
+        if (!v.is_number_integer()) return false;
+        return v.is_number_unsigned()
+                   ? v.get<std::uint64_t>() > std::uint64_t(std::numeric_limits<int>::max())
+                   : v.get<std::int64_t>() < std::numeric_limits<int>::min();
+    };
+    // Members, and members of member objects (KHR_draco_mesh_compression.attributes).
+    const auto check = [&](const Json& object, const std::string& path) {
+        for (auto it = object.begin(); it != object.end(); ++it) {
+            const std::string at = path + "." + it.key();
+            if (beyond_int(*it)) ctx.fail(at, it->dump() + " is too large");
+            if (!it->is_object()) continue;
+            for (auto a = it->begin(); a != it->end(); ++a)
+                if (beyond_int(*a)) ctx.fail(at + "." + a.key(), a->dump() + " is too large");
+        }
+    };
+    const auto extension = [&](const Json& owner, const char* name, const std::string& path) {
+        if (!owner.is_object()) return;
+        const auto ext = owner.find("extensions");
+        if (ext == owner.end() || !ext->is_object()) return;
+        const auto e = ext->find(name);
+        if (e != ext->end() && e->is_object()) check(*e, path + ".extensions." + name);
+    };
+    if (const auto views = doc.find("bufferViews"); views != doc.end() && views->is_array())
+        for (std::size_t i = 0; i < views->size(); ++i)
+            extension((*views)[i], "EXT_meshopt_compression", indexed("bufferViews", i));
+    if (const auto meshes = doc.find("meshes"); meshes != doc.end() && meshes->is_array()) {
+        for (std::size_t m = 0; m < meshes->size(); ++m) {
+            const Json& mesh = (*meshes)[m];
+            const auto prims = mesh.is_object() ? mesh.find("primitives") : mesh.end();
+            if (!mesh.is_object() || prims == mesh.end() || !prims->is_array()) continue;
+            for (std::size_t p = 0; p < prims->size(); ++p)
+                extension((*prims)[p], "KHR_draco_mesh_compression",
+                          indexed(indexed("meshes", m) + ".primitives", p));
+        }
+    }
+}
+
 void check_asset_and_extensions(const Json& doc, const Context& ctx) {
     const auto asset = doc.find("asset");
     if (asset == doc.end() || !asset->is_object())
@@ -196,6 +240,16 @@ std::uint64_t base64_size(std::string_view payload) {
     return n / 4 * 3 + (n % 4 == 0 ? 0 : (n % 4) * 3 / 4) - pad;
 }
 
+/// Whether a buffer is EXT_meshopt_compression's fallback: `"fallback": true`, no data.
+bool meshopt_fallback(const Json& buffer) {
+    const auto ext = buffer.find("extensions");
+    if (ext == buffer.end() || !ext->is_object()) return false;
+    const auto m = ext->find("EXT_meshopt_compression");
+    if (m == ext->end() || !m->is_object()) return false;
+    const auto f = m->find("fallback");
+    return f != m->end() && f->is_boolean() && f->get<bool>();
+}
+
 /// byteLength of every buffer, checked against its source, whose place is recorded in
 /// facts.buffers (each distinct external file counted once in facts.external_bytes).
 std::vector<std::uint64_t> check_buffers(const Json& doc, const Container& container,
@@ -218,6 +272,13 @@ std::vector<std::uint64_t> check_buffers(const Json& doc, const Container& conta
         BufferSource source;
         source.byte_length = byte_length;
         const auto uri = b.find("uri");
+        if (uri == b.end() && meshopt_fallback(b)) {
+            // EXT_meshopt_compression: a buffer that only stands for the decoded views'
+            // bytes and holds none (its views are decoded from another buffer).
+            source.kind = BufferSource::Kind::Data;
+            facts.buffers.push_back(std::move(source));
+            continue;
+        }
         if (uri == b.end()) {
             if (!container.binary || i != 0)
                 ctx.fail(path, "has no uri (only a .glb's first buffer may omit it)");
@@ -593,8 +654,28 @@ std::uint64_t model_bytes(const Json& doc, std::uint64_t tree_bytes) {
 }
 
 /// The tree as tinygltf is given it: buffers and images replaced by stand-ins that make
-/// it read nothing (their bytes are in JsonFacts).
+/// it read nothing (their bytes are in JsonFacts). A Draco primitive's indices accessor
+/// has no buffer view, which tinygltf 2.7 refuses: it is moved into the extension object
+/// as "librtIndices" (where decode_draco reads it; any such member there is replaced).
 std::string tinygltf_text(Json& doc) {
+    if (const auto meshes = doc.find("meshes"); meshes != doc.end() && meshes->is_array()) {
+        for (Json& mesh : *meshes) {
+            const auto prims = mesh.find("primitives");
+            if (!mesh.is_object() || prims == mesh.end() || !prims->is_array()) continue;
+            for (Json& prim : *prims) {
+                if (!prim.is_object()) continue;
+                const auto ext = prim.find("extensions");
+                if (ext == prim.end() || !ext->is_object()) continue;
+                const auto draco = ext->find("KHR_draco_mesh_compression");
+                if (draco == ext->end() || !draco->is_object()) continue;
+                draco->erase("librtIndices");
+                if (const auto indices = prim.find("indices"); indices != prim.end()) {
+                    (*draco)["librtIndices"] = *indices;
+                    prim.erase(indices);
+                }
+            }
+        }
+    }
     if (const auto buffers = doc.find("buffers"); buffers != doc.end()) {
         for (Json& b : *buffers)
             b = Json{{"byteLength", 1}, {"uri", "data:application/octet-stream;base64,AA=="}};
@@ -625,6 +706,7 @@ JsonFacts check_json(const Container& container, const std::string& base_dir,
     try {
         check_structure(doc, ctx);
         check_asset_and_extensions(doc, ctx);
+        check_extension_ints(doc, ctx);
         const auto lengths = check_buffers(doc, container, base_dir, limits, ctx, facts);
         check_buffer_views(doc, lengths, ctx);
         check_images(doc, base_dir, limits, ctx, facts);

@@ -59,12 +59,23 @@ public:
     [[nodiscard]] std::string_view buffer(std::size_t index) const { return buffers_[index]; }
     /// How many buffers there are.
     [[nodiscard]] std::size_t buffer_count() const { return buffers_.size(); }
+    /// Sets the decoded bytes of bufferViews[view] (EXT_meshopt_compression), read instead
+    /// of its buffer's bytes.
+    void set_view_bytes(std::size_t view, std::vector<unsigned char> bytes) {
+        decoded_views_[view] = std::move(bytes);
+    }
+    /// The decoded bytes of bufferViews[view], or null when it is read from its buffer.
+    [[nodiscard]] const std::vector<unsigned char>* view_bytes(std::size_t view) const {
+        const auto it = decoded_views_.find(view);
+        return it == decoded_views_.end() ? nullptr : &it->second;
+    }
 
 private:
     std::string file_;
     std::vector<std::string>* warnings_;
     std::uint64_t budget_ = 0;
     std::vector<std::string_view> buffers_;
+    std::map<std::size_t, std::vector<unsigned char>> decoded_views_;
 };
 
 /// The file's bytes seen as glTF: the JSON text and, for a .glb, its BIN chunk.
@@ -86,7 +97,8 @@ struct BufferSource {
     enum class Kind {
         Bin,   ///< the .glb's BIN chunk
         File,  ///< an external file, `file`
-        Data,  ///< a data: URI, decoded into `data`
+        Data,  ///< a data: URI, decoded into `data`; or no bytes at all for the
+               ///< EXT_meshopt_compression fallback buffer (`data` empty)
     };
     Kind kind = Kind::Bin;            ///< where the bytes are
     std::string file;                 ///< Kind::File: canonical path, inside the scene's tree
@@ -203,6 +215,30 @@ void check_index(const Context& ctx, std::string_view json_path, int index, std:
 
 /// Element count of accessor `index` (validated by check_index first).
 [[nodiscard]] std::size_t accessor_count(const tinygltf::Model& model, int index);
+
+/// Decodes every buffer view carrying EXT_meshopt_compression into the Context
+/// (Context::view_bytes), checking mode, count, byteStride and filter and charging the
+/// decoded bytes before allocating them. Errors name bufferViews[i].extensions.
+/// EXT_meshopt_compression.
+void decode_meshopt_views(const tinygltf::Model& model, Context& ctx);
+
+/// What a KHR_draco_mesh_compression primitive decodes to: each attribute the extension
+/// names, as count x components floats (the accessor's type), and the triangle indices.
+struct DracoPrimitive {
+    std::map<std::string, std::vector<float>, std::less<>> attributes;  ///< by glTF name
+    std::vector<std::uint32_t> indices;                                 ///< 3 per triangle
+};
+
+/// Whether the primitive carries KHR_draco_mesh_compression.
+[[nodiscard]] bool has_draco(const tinygltf::Primitive& prim);
+
+/// Decodes the primitive's Draco stream. Its claimed counts must match the primitive's
+/// accessors (POSITION's count, the indices' count) before anything is decoded, and the
+/// output is charged to the allowance; errors name `prim_path`.extensions.
+/// KHR_draco_mesh_compression.
+[[nodiscard]] DracoPrimitive decode_draco(const tinygltf::Model& model,
+                                          const tinygltf::Primitive& prim,
+                                          const std::string& prim_path, Context& ctx);
 
 /// Reads every mesh into scene.meshes.
 void read_meshes(const tinygltf::Model& model, Context& ctx, GltfScene& scene);

@@ -1,5 +1,6 @@
 // Materials (metallic-roughness and the KHR_materials_* / KHR_texture_transform extensions
-// librt reads), textures, samplers and image decoding (stb_image, PNG and JPEG only).
+// librt reads), textures, samplers and image decoding (stb_image for PNG and JPEG, libwebp
+// for WebP).
 
 #include "gltf/gltf_internal.h"
 #include "io/image_decode_failure.h"
@@ -9,6 +10,7 @@
 #include <librt/core/untrusted_text.h>
 
 #include <stb/stb_image.h>
+#include <webp/decode.h>
 
 #include <algorithm>
 #include <cmath>
@@ -230,15 +232,70 @@ GltfFilter filter_mode(int mode, const std::string& path, const Context& ctx) {
     }
 }
 
+/// The image texture `t` shows: EXT_texture_webp's source when present (librt decodes
+/// WebP), else `source`. KHR_texture_basisu's KTX2 images have no decoder in Debian: its
+/// fallback `source` is used with a warning, and without one the file cannot be rendered
+/// as meant, which is an error naming the texture.
+int texture_source(const tinygltf::Texture& t, const std::string& path, std::size_t images,
+                   const Context& ctx) {
+    const auto ext_source = [&](const char* name) {
+        const auto it = t.extensions.find(name);
+        if (it == t.extensions.end()) return -2;  // absent
+        const std::string at = path + ".extensions." + name + ".source";
+        const Value& e = it->second;
+        if (!e.IsObject() || !e.Has("source") || !e.Get("source").IsInt())
+            ctx.fail(at, "missing or not an integer");
+        const int index = e.Get("source").Get<int>();
+        check_index(ctx, at, index, images, "image");
+        return index;
+    };
+    if (t.source != -1) check_index(ctx, path + ".source", t.source, images, "image");
+    if (const int webp = ext_source("EXT_texture_webp"); webp >= 0) return webp;
+    if (ext_source("KHR_texture_basisu") >= 0) {
+        if (t.source == -1)
+            ctx.fail(path + ".extensions.KHR_texture_basisu",
+                     "KHR_texture_basisu (a KTX2 / Basis Universal image) cannot be decoded by "
+                     "librt, and the texture has no fallback PNG or JPEG source");
+        ctx.warn(path, "KHR_texture_basisu (KTX2) is not decoded; its fallback source images[" +
+                           std::to_string(t.source) + "] is used");
+    }
+    return t.source;
+}
+
 /// Most texels an image may decode to: 2^26 (ImageTexture's limit: 8192 x 8192).
 constexpr std::uint64_t kMaxTexels = std::uint64_t{1} << 26u;
 
-/// Decodes PNG or JPEG bytes into RGBA8, or returns the reason it cannot.
+/// Decodes a WebP image into RGBA8, or returns the reason it cannot. WebPGetInfo reads
+/// only the header: the size is bounded and charged before any texel is decoded.
+std::string decode_webp(const unsigned char* bytes, std::size_t size, GltfImage& image,
+                        Context& ctx, const std::string& path) {
+    int w = 0, h = 0;
+    if (WebPGetInfo(bytes, size, &w, &h) == 0 || w <= 0 || h <= 0)
+        return "not a valid WebP image (its header does not parse)";
+    const std::uint64_t texels = std::uint64_t(w) * std::uint64_t(h);
+    if (texels > kMaxTexels)
+        return std::to_string(w) + " x " + std::to_string(h) + " texels, more than the limit";
+    ctx.spend(texels * 4, path);
+    image.rgba.assign(texels * 4, 0);
+    // Decoded into our own buffer: libwebp allocates nothing beyond its working state.
+    if (WebPDecodeRGBAInto(bytes, size, image.rgba.data(), image.rgba.size(), w * 4) == nullptr) {
+        std::vector<unsigned char>().swap(image.rgba);
+        return "cannot decode: corrupt or truncated WebP data";
+    }
+    image.width = w;
+    image.height = h;
+    return {};
+}
+
+/// Decodes PNG, JPEG or WebP bytes into RGBA8, or returns the reason it cannot.
 std::string decode(const unsigned char* bytes, std::size_t size, GltfImage& image, Context& ctx,
                    const std::string& path) {
     const bool png = size >= 8 && std::memcmp(bytes, "\x89PNG\r\n\x1a\n", 8) == 0;
     const bool jpeg = size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
-    if (!png && !jpeg) return "not a PNG or JPEG image";
+    // WebP (EXT_texture_webp, or an image whose mimeType is image/webp): "RIFF" size "WEBP".
+    if (size >= 12 && std::memcmp(bytes, "RIFF", 4) == 0 && std::memcmp(bytes + 8, "WEBP", 4) == 0)
+        return decode_webp(bytes, size, image, ctx, path);
+    if (!png && !jpeg) return "not a PNG, JPEG or WebP image";
     if (size > std::size_t(std::numeric_limits<int>::max())) return "larger than 2 GiB";
     int w = 0, h = 0, channels = 0;
     const std::string_view encoded(reinterpret_cast<const char*>(bytes), size);
@@ -290,11 +347,11 @@ void read_materials(const tinygltf::Model& model, const std::vector<ImageSource>
         const std::string path = indexed("textures", i);
         GltfTexture g;
         g.name = t.name;
-        if (t.source == -1) {
+        const int source = texture_source(t, path, model.images.size(), ctx);
+        if (source == -1) {
             ctx.warn(path, "no source image (or only an unsupported extension's); texture ignored");
         } else {
-            check_index(ctx, path + ".source", t.source, model.images.size(), "image");
-            g.image = t.source;
+            g.image = source;
         }
         if (t.sampler != -1) {
             check_index(ctx, path + ".sampler", t.sampler, model.samplers.size(), "sampler");
@@ -343,7 +400,10 @@ void decode_images(const tinygltf::Model& model, const std::vector<ImageSource>&
             // Its buffer exists and the view lies in it (the pre-pass checked both).
             const tinygltf::BufferView& bv = model.bufferViews[std::size_t(source.buffer_view)];
             const std::string_view buffer = ctx.buffer(std::size_t(bv.buffer));
-            if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset)
+            if (const auto* decoded = ctx.view_bytes(std::size_t(source.buffer_view)))
+                encoded = std::string_view(reinterpret_cast<const char*>(decoded->data()),
+                                           bv.byteLength);  // meshopt: >= byteLength bytes
+            else if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset)
                 problem = "its buffer view lies outside the buffer";
             else
                 encoded = buffer.substr(bv.byteOffset, bv.byteLength);

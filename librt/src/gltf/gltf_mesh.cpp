@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -57,12 +58,31 @@ void check_attribute_format(const tinygltf::Model& model, int index, std::string
     ctx.fail(path + ": " + indexed("accessors", std::size_t(index)) + ".componentType", what);
 }
 
+/// The floats of attribute `name`, from the primitive's Draco stream when it holds that
+/// attribute, else from its accessor.
+std::vector<float> read_values(const tinygltf::Model& model, int accessor, std::string_view name,
+                               const std::vector<int>& types, const std::string& path, Context& ctx,
+                               const DracoPrimitive* draco, int* components) {
+    if (draco != nullptr) {
+        if (const auto it = draco->attributes.find(name); it != draco->attributes.end()) {
+            const tinygltf::Accessor& a = model.accessors[std::size_t(accessor)];
+            if (std::find(types.begin(), types.end(), a.type) == types.end())
+                ctx.fail(path + ": " + indexed("accessors", std::size_t(accessor)) + ".type",
+                         "not a type this attribute can have");
+            *components = int(it->second.size() / std::max<std::size_t>(a.count, 1));
+            return it->second;
+        }
+    }
+    return read_float_accessor(model, accessor, types, path, ctx, components);
+}
+
 /// Reads attribute `name` when present, checking its count; empty when absent.
 template <int N>
 std::vector<glm::vec<N, float>> attribute(const tinygltf::Model& model,
                                           const tinygltf::Primitive& prim, const char* name,
                                           const std::vector<int>& types, std::size_t count,
-                                          const std::string& path, Context& ctx) {
+                                          const std::string& path, Context& ctx,
+                                          const DracoPrimitive* draco) {
     const auto it = prim.attributes.find(name);
     if (it == prim.attributes.end()) return {};
     const std::string at = path + ".attributes." + name;
@@ -74,7 +94,7 @@ std::vector<glm::vec<N, float>> attribute(const tinygltf::Model& model,
     }
     int components = 0;
     const std::vector<float> flat =
-        read_float_accessor(model, it->second, types, at, ctx, &components);
+        read_values(model, it->second, name, types, at, ctx, draco, &components);
     if (N == 4 && components == 3) {  // COLOR_0 as RGB: alpha 1
         std::vector<glm::vec<N, float>> out(count);
         for (std::size_t i = 0; i < count; ++i)
@@ -155,8 +175,12 @@ void read_meshes(const tinygltf::Model& model, Context& ctx, GltfScene& scene) {
             const std::string pos_path = path + ".attributes.POSITION";
             check_index(ctx, pos_path, pos->second, model.accessors.size(), "accessor");
             check_attribute_format(model, pos->second, "POSITION", pos_path, ctx);
-            g.positions = to_vectors<3>(
-                read_float_accessor(model, pos->second, kVec3, pos_path, ctx, &components));
+            // KHR_draco_mesh_compression: attributes and indices come from its stream.
+            std::unique_ptr<DracoPrimitive> draco;
+            if (has_draco(prim))
+                draco = std::make_unique<DracoPrimitive>(decode_draco(model, prim, path, ctx));
+            g.positions = to_vectors<3>(read_values(model, pos->second, "POSITION", kVec3, pos_path,
+                                                    ctx, draco.get(), &components));
             const std::size_t count = g.positions.size();
             // Refused here, where the accessor's path is known (TriangleMesh's own check
             // would come later, naming neither file nor accessor).
@@ -171,13 +195,15 @@ void read_meshes(const tinygltf::Model& model, Context& ctx, GltfScene& scene) {
                                            "(ray distances to it would overflow float)");
                 }
             }
-            g.normals = attribute<3>(model, prim, "NORMAL", kVec3, count, path, ctx);
-            g.tangents = attribute<4>(model, prim, "TANGENT", kVec4, count, path, ctx);
-            g.uv0 = attribute<2>(model, prim, "TEXCOORD_0", kVec2, count, path, ctx);
-            g.uv1 = attribute<2>(model, prim, "TEXCOORD_1", kVec2, count, path, ctx);
-            g.colors = attribute<4>(model, prim, "COLOR_0", kVec34, count, path, ctx);
+            g.normals = attribute<3>(model, prim, "NORMAL", kVec3, count, path, ctx, draco.get());
+            g.tangents = attribute<4>(model, prim, "TANGENT", kVec4, count, path, ctx, draco.get());
+            g.uv0 = attribute<2>(model, prim, "TEXCOORD_0", kVec2, count, path, ctx, draco.get());
+            g.uv1 = attribute<2>(model, prim, "TEXCOORD_1", kVec2, count, path, ctx, draco.get());
+            g.colors = attribute<4>(model, prim, "COLOR_0", kVec34, count, path, ctx, draco.get());
             std::vector<std::uint32_t> order;
-            if (prim.indices != -1) {
+            if (draco != nullptr) {
+                order = std::move(draco->indices);  // checked against the point count
+            } else if (prim.indices != -1) {
                 const std::string ip = path + ".indices";
                 order = read_index_accessor(model, prim.indices, ip, ctx);
                 for (std::size_t i = 0; i < order.size(); ++i) {

@@ -232,7 +232,11 @@ struct GltfLoadOptions {
 ///   triangles (strips keep a consistent winding); POINTS and LINES* are skipped with a
 ///   warning. Indices u8/u16/u32 or none; POSITION, NORMAL, TANGENT, TEXCOORD_0/1 and
 ///   COLOR_0 in any type the spec (and KHR_mesh_quantization) allows, normalised
-///   integers converted, sparse accessors applied.
+///   integers converted, sparse accessors applied. Compressed geometry is decoded:
+///   KHR_draco_mesh_compression (Draco bitstream 2.2) and EXT_meshopt_compression.
+/// - Images: PNG, JPEG and WebP (EXT_texture_webp, or an image/webp image); a
+///   KHR_texture_basisu (KTX2) texture uses its fallback source with a warning, and is
+///   an error without one.
 /// - Nodes: TRS or matrix, composed from the scene's roots down; every node naming a mesh,
 ///   camera or KHR_lights_punctual light adds an instance, camera or light.
 /// - Errors, thrown as librt::Error before anything is returned, name the file and the
@@ -244,7 +248,8 @@ struct GltfLoadOptions {
 ///   a float cannot hold (yfov 1e-300 rounds to 0, znear 1e300 to infinity), a POSITION
 ///   coordinate beyond kMaxMeshCoordinate, a node matrix that is not affine, a cycle in
 ///   the node graph or a node with two parents, an extension in extensionsRequired that
-///   librt does not support. Memory is bounded by a multiple of the bytes read.
+///   librt does not support, a corrupt Draco or meshopt stream. Memory is bounded by a
+///   multiple of the bytes read.
 /// - Warnings (GltfScene::warnings): an unknown extension only in extensionsUsed, a
 ///   missing or undecodable image (the material keeps its factor alone), skipped
 ///   primitives, ignored skins and morph targets.
