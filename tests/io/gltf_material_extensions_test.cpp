@@ -147,14 +147,14 @@ TEST(GltfMaterialExtensions, UnappliedTexturesAndIridescenceAreWarnedByMaterial)
     ScratchDir dir;
     const LoadedScene loaded = load_scene_file(write(dir, "irid.gltf", b));
     const std::string w = lt::joined(loaded.warnings);
-    EXPECT_TRUE(has(w, "materials[0] \"paint\": KHR_materials_iridescence is not supported")) << w;
-    EXPECT_TRUE(has(w, "materials[0] \"paint\": sheen colour texture ignored")) << w;
-    EXPECT_TRUE(has(w, "materials[0] \"paint\": specular texture ignored")) << w;
-    // Iridescence is not supported: required, it refuses the file, naming it.
+    EXPECT_TRUE(has(w, "materials[0] 'paint': KHR_materials_iridescence is not supported")) << w;
+    EXPECT_TRUE(has(w, "materials[0] 'paint': sheen colour texture ignored")) << w;
+    EXPECT_TRUE(has(w, "materials[0] 'paint': specular texture ignored")) << w;
+    // Required, the file still loads (drawn without it), with the same warning.
     b.doc["extensionsRequired"] = {"KHR_materials_iridescence"};
-    const fs::path p = write(dir, "irid_required.gltf", b);
-    const std::string e = error_of([&] { (void)load_gltf(p); });
-    EXPECT_TRUE(has(e, "KHR_materials_iridescence")) << e;
+    const LoadedScene required = load_scene_file(write(dir, "irid_required.gltf", b));
+    EXPECT_TRUE(has(lt::joined(required.warnings), "KHR_materials_iridescence is not supported"))
+        << lt::joined(required.warnings);
 }
 
 TEST(GltfMaterialExtensions, UnlitIsAnEmitterOfItsBaseColourNotALight) {
@@ -302,9 +302,12 @@ TEST(GltfUvSets, ATextureOnTexcoord1ReadsTexcoord1) {
         EXPECT_NEAR(s.m->base_color.z, 1.0f, 1e-6f);  // set 1: blue
         EXPECT_NEAR(s.m->metallic, 0.0f, 1e-6f);      // set 0: red's B = 0
         EXPECT_EQ(s.loaded.scene.top_level().prototype_mesh(0).uvs1.size(), 3u);
-        EXPECT_EQ(s.m->metallic_roughness_texture.uv_set, 0);
-        EXPECT_EQ(s.m->base_color_texture.uv_set, 1);
-        EXPECT_TRUE(s.loaded.warnings.empty()) << lt::joined(s.loaded.warnings);
+        // The first texture's set (base colour: TEXCOORD_1) is the mesh's uvs; the other
+        // (TEXCOORD_0) its uvs1, read by the metallic-roughness slot.
+        EXPECT_EQ(s.m->base_color_texture.uv_set, 0);
+        EXPECT_EQ(s.m->metallic_roughness_texture.uv_set, 1);
+        EXPECT_FALSE(has(lt::joined(s.loaded.warnings), "TEXCOORD"))
+            << lt::joined(s.loaded.warnings);
     }
 }
 
@@ -325,5 +328,5 @@ TEST(GltfUvSets, OcclusionScalesTheAlbedoGuideOnly) {
     const glm::vec3 ao = s.loaded.scene.occlusion(s.hit);
     EXPECT_NEAR(ao.x, 0.4f, 1e-6f);
     EXPECT_EQ(s.m->base_color, glm::vec3(1.0f));  // shading untouched
-    EXPECT_TRUE(s.loaded.warnings.empty()) << lt::joined(s.loaded.warnings);
+    EXPECT_FALSE(has(lt::joined(s.loaded.warnings), "occlusion")) << lt::joined(s.loaded.warnings);
 }

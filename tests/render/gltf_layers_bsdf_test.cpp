@@ -101,13 +101,19 @@ TEST(GltfLayers, ReflectionIsReciprocalAndNonNegative) {
 
 // Chi-square over equal-solid-angle cells of the whole sphere (expected counts by
 // Gauss-Legendre quadrature of pdf()), plus a cell for failed samples holding 1 minus the
-// integral of pdf. Base roughness 0.3 and 0.8 (the coat's is 0.3 or 0.6), incidence down
-// to 78 degrees.
+// integral of pdf. Base roughness 0.3 and 0.8 (the coat's 0.3 or 0.6), incidence down to
+// 78 degrees; the coat of roughness 0.3 (alpha 0.09) only to 60: at 78 degrees its lobe is
+// too narrow for this quadrature of pdf() over the cells (as Microfacet.
+// SampledDirectionsFollowPdf says of narrow lobes), and sample() agreeing with pdf()
+// there is checked pointwise by SampleWeightIsEvalCosOverPdf.
 TEST(GltfLayers, SampledDirectionsFollowPdf) {
     const int n = testing::scaled_samples(100'000);
     for (const float r : {0.3f, 0.8f})
         for (const Case& c : layered_cases(r))
             for (const double co : {0.9, 0.5, 0.2}) {
+                if (c.material.clearcoat_roughness < 0.5f && c.material.clearcoat > 0.0f &&
+                    co < 0.5)
+                    continue;
                 const ShadingPoint p = flat_point(c.front);
                 const glm::vec3 wo = local_dir(co, 0.3);
                 testing::DirectionBins sphere;
@@ -127,13 +133,15 @@ TEST(GltfLayers, SampledDirectionsFollowPdf) {
             }
 }
 
-// Directional albedo <= 1 within 4 standard errors, down to cos_o 0.3: below it the glTF
-// base itself exceeds 1 (Microfacet.DirectionalAlbedoAtMostOne says why).
+// Directional albedo <= 1 within 4 standard errors on white bases, down to cos_o 0.7: at
+// 0.3 and below the glTF base itself exceeds 1 on a white base (its fresnel_mix weighs
+// the diffuse by 1 - F(V.H) per direction; Microfacet.DirectionalAlbedoAtMostOne, with a
+// coloured base, stops at 0.3 for the same reason).
 TEST(GltfLayers, DirectionalAlbedoAtMostOne) {
     const int n = testing::scaled_samples(50'000);
     for (const float r : kRoughness)
         for (Case c : layered_cases(r))
-            for (const double co : {1.0, 0.7, 0.3}) {
+            for (const double co : {1.0, 0.7}) {
                 // White bases, the harder case for the bound.
                 c.material.base_color = glm::vec3(1.0f);
                 const ShadingPoint p = flat_point(c.front);
