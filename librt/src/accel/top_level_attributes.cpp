@@ -69,6 +69,18 @@ void TopLevel::generate_prototype_tangents(std::uint32_t prototype, bool v_down)
         mesh.tangents = generate_tangents(mesh, v_down);  // shading data: the BVH stays
 }
 
+glm::vec2 TopLevel::uv1(const Hit& hit) const {
+    const Object& o = objects_.at(hit.object_id);
+    if (o.kind == ObjectKind::Sphere) return glm::vec2(0.0f);
+    const std::uint32_t p =
+        o.kind == ObjectKind::Instance ? instances_[o.index].prototype : o.index;
+    const TriangleMesh& mesh = prototypes_[p].mesh;
+    if (mesh.uvs1.empty()) return glm::vec2(0.0f);
+    const glm::vec2 b = barycentrics(hit);
+    const glm::uvec3& idx = mesh.triangles.at(hit.primitive_id);
+    return (1.0f - b.x - b.y) * mesh.uvs1[idx.x] + b.x * mesh.uvs1[idx.y] + b.y * mesh.uvs1[idx.z];
+}
+
 bool TopLevel::has_colors(std::uint32_t id) const {
     const Object& o = objects_.at(id);
     if (o.kind == ObjectKind::Sphere) return false;

@@ -272,12 +272,12 @@ std::size_t TopLevel::memory_bytes() const {
     std::size_t bytes = sizeof(*this);
     for (const Prototype& p : prototypes_) {
         const TriangleMesh& m = p.mesh;
-        bytes += sizeof(Prototype) + p.bvh.memory_bytes() +
-                 m.positions.capacity() * sizeof(glm::vec3) +
-                 m.triangles.capacity() * sizeof(glm::uvec3) +
-                 m.normals.capacity() * sizeof(glm::vec3) + m.uvs.capacity() * sizeof(glm::vec2) +
-                 m.material_ids.capacity() * sizeof(std::uint32_t) +
-                 m.materials.capacity() * sizeof(MeshMaterial);
+        bytes +=
+            sizeof(Prototype) + p.bvh.memory_bytes() + m.positions.capacity() * sizeof(glm::vec3) +
+            m.triangles.capacity() * sizeof(glm::uvec3) + m.normals.capacity() * sizeof(glm::vec3) +
+            m.uvs.capacity() * sizeof(glm::vec2) + m.uvs1.capacity() * sizeof(glm::vec2) +
+            m.material_ids.capacity() * sizeof(std::uint32_t) +
+            m.materials.capacity() * sizeof(MeshMaterial);
     }
     bytes += spheres_.capacity() * sizeof(SphereData) + instances_.capacity() * sizeof(Instance) +
              objects_.capacity() * sizeof(Object) + top_.nodes.capacity() * sizeof(BvhNode) +

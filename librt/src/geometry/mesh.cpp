@@ -107,6 +107,10 @@ void validate(const TriangleMesh& mesh) {
         throw Error("mesh: " + std::to_string(mesh.uvs.size()) + " uvs for " + std::to_string(n) +
                     " positions (must be 0 or equal)");
     }
+    if (!mesh.uvs1.empty() && mesh.uvs1.size() != n) {
+        throw Error("mesh: " + std::to_string(mesh.uvs1.size()) + " second-set uvs for " +
+                    std::to_string(n) + " positions (must be 0 or equal)");
+    }
     if (!mesh.colors.empty() && mesh.colors.size() != n) {
         throw Error("mesh: " + std::to_string(mesh.colors.size()) + " colors for " +
                     std::to_string(n) + " positions (must be 0 or equal)");
@@ -141,6 +145,11 @@ void validate(const TriangleMesh& mesh) {
     for (std::size_t i = 0; i < mesh.uvs.size(); ++i) {
         if (!finite(mesh.uvs[i])) {
             throw Error("mesh: uv " + std::to_string(i) + " is not finite");
+        }
+    }
+    for (std::size_t i = 0; i < mesh.uvs1.size(); ++i) {
+        if (!finite(mesh.uvs1[i])) {
+            throw Error("mesh: second-set uv " + std::to_string(i) + " is not finite");
         }
     }
     for (std::size_t i = 0; i < mesh.colors.size(); ++i) {

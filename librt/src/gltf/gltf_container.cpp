@@ -39,12 +39,17 @@ std::uint32_t le32(const std::string& bytes, std::size_t at) {
 /// The extensions whose absence would change the picture that librt reads.
 const std::set<std::string, std::less<>>& supported_extensions() {
     static const std::set<std::string, std::less<>> names = {
-        "KHR_lights_punctual",        "KHR_materials_emissive_strength",
-        "KHR_materials_transmission", "KHR_materials_ior",
-        "KHR_texture_transform",      "KHR_mesh_quantization",
-        "KHR_materials_anisotropy",   "KHR_draco_mesh_compression",
-        "EXT_meshopt_compression",    "EXT_texture_webp",
-        "KHR_texture_basisu"};
+        "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_transmission",
+        "KHR_materials_ior", "KHR_texture_transform", "KHR_mesh_quantization",
+        "KHR_materials_anisotropy",
+        // Compressed geometry and textures (gltf_compression.cpp, texture loading).
+        "KHR_draco_mesh_compression", "EXT_meshopt_compression", "EXT_texture_webp",
+        "KHR_texture_basisu",
+        // Layers on the metallic-roughness model, and unlit (gltf_material.cpp).
+        "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_specular",
+        "KHR_materials_unlit",
+        // Not rendered: kept through parsing so the warning can name each material.
+        "KHR_materials_iridescence"};
     return names;
 }
 

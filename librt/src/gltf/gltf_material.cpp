@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -111,6 +112,79 @@ GltfTextureRef ext_texture(const Value& ext, const char* key, const std::string&
     return texture_ref(t.Get("index").Get<int>(), tc, 1.0, nested, at, textures, ctx);
 }
 
+/// An optional number member `key` of the extension object at `at`: false when absent,
+/// an error naming the path when not a finite number.
+bool ext_member(const Value& ext, const std::string& at, const char* key, double* out,
+                const Context& ctx) {
+    if (!ext.Has(key)) return false;
+    const Value& v = ext.Get(key);
+    if (!v.IsNumber()) ctx.fail(at + "." + key, "must be a number");
+    *out = v.GetNumberAsDouble();
+    if (!std::isfinite(*out)) ctx.fail(at + "." + key, "is not finite");
+    return true;
+}
+
+/// An optional array of 3 numbers `key` of the extension object at `at`, each in [lo, hi]
+/// (clamped with a warning); an error naming the path when malformed.
+void ext_color(const Value& ext, const std::string& at, const char* key, float lo, float hi,
+               glm::vec3& out, const Context& ctx) {
+    if (!ext.Has(key)) return;
+    const Value& v = ext.Get(key);
+    if (!v.IsArray() || v.ArrayLen() != 3) ctx.fail(at + "." + key, "must be 3 numbers");
+    for (int i = 0; i < 3; ++i) {
+        const Value& c = v.Get(i);
+        const std::string ci = indexed(at + "." + key, std::size_t(i));
+        if (!c.IsNumber()) ctx.fail(ci, "must be a number");
+        out[i] = unit_factor(c.GetNumberAsDouble(), lo, hi, ci, ctx);
+    }
+}
+
+/// The PBR extensions layered on the metallic-roughness model (KHR_materials_clearcoat,
+/// _sheen, _specular, _unlit, _iridescence) read into g; `ep` is the material's
+/// "materials[i].extensions." path.
+void read_layer_extensions(const ExtensionMap& extensions, const std::string& ep,
+                           std::size_t textures, const Context& ctx, GltfMaterial& g) {
+    const auto object = [&](const char* name) -> const Value* {
+        const auto it = extensions.find(name);
+        if (it == extensions.end()) return nullptr;
+        if (!it->second.IsObject()) ctx.fail(ep + name, "must be an object");
+        return &it->second;
+    };
+    double v = 0.0;
+    if (object("KHR_materials_unlit") != nullptr) g.unlit = true;
+    if (object("KHR_materials_iridescence") != nullptr) g.iridescence = true;
+    if (const Value* e = object("KHR_materials_clearcoat")) {
+        const std::string at = ep + "KHR_materials_clearcoat";
+        if (ext_member(*e, at, "clearcoatFactor", &v, ctx))
+            g.clearcoat_factor = unit_factor(v, 0, 1, at + ".clearcoatFactor", ctx);
+        if (ext_member(*e, at, "clearcoatRoughnessFactor", &v, ctx))
+            g.clearcoat_roughness_factor =
+                unit_factor(v, 0, 1, at + ".clearcoatRoughnessFactor", ctx);
+        g.clearcoat_texture = ext_texture(*e, "clearcoatTexture", at, textures, ctx);
+        g.clearcoat_roughness_texture =
+            ext_texture(*e, "clearcoatRoughnessTexture", at, textures, ctx);
+        g.clearcoat_normal_texture = ext_texture(*e, "clearcoatNormalTexture", at, textures, ctx);
+    }
+    if (const Value* e = object("KHR_materials_sheen")) {
+        const std::string at = ep + "KHR_materials_sheen";
+        ext_color(*e, at, "sheenColorFactor", 0, 1, g.sheen_color_factor, ctx);
+        if (ext_member(*e, at, "sheenRoughnessFactor", &v, ctx))
+            g.sheen_roughness_factor = unit_factor(v, 0, 1, at + ".sheenRoughnessFactor", ctx);
+        g.sheen_color_texture = ext_texture(*e, "sheenColorTexture", at, textures, ctx);
+        g.sheen_roughness_texture = ext_texture(*e, "sheenRoughnessTexture", at, textures, ctx);
+    }
+    if (const Value* e = object("KHR_materials_specular")) {
+        const std::string at = ep + "KHR_materials_specular";
+        if (ext_member(*e, at, "specularFactor", &v, ctx))
+            g.specular_factor = unit_factor(v, 0, 1, at + ".specularFactor", ctx);
+        // The extension allows any colour >= 0 (F0 is clamped to 1 where it is used).
+        ext_color(*e, at, "specularColorFactor", 0, std::numeric_limits<float>::max(),
+                  g.specular_color_factor, ctx);
+        g.specular_texture = ext_texture(*e, "specularTexture", at, textures, ctx);
+        g.specular_color_texture = ext_texture(*e, "specularColorTexture", at, textures, ctx);
+    }
+}
+
 GltfMaterial read_material(const tinygltf::Material& m, const std::string& path,
                            std::size_t textures, const Context& ctx) {
     GltfMaterial g;
@@ -188,6 +262,7 @@ GltfMaterial read_material(const tinygltf::Material& m, const std::string& path,
             g.anisotropy_rotation = finite_float(v, ap + ".anisotropyRotation", ctx);
         g.anisotropy_texture = ext_texture(a, "anisotropyTexture", ap, textures, ctx);
     }
+    read_layer_extensions(m.extensions, ep, textures, ctx, g);
     if (const auto it = m.extensions.find("KHR_materials_ior");
         it != m.extensions.end() && ext_number(it->second, "ior", &v)) {
         // The extension allows 0 (a reflection-only limit) or >= 1.

@@ -51,6 +51,26 @@ Material material_from_gltf(const GltfMaterial& m, const GltfMaterialTextures& t
     out.anisotropy = std::clamp(m.anisotropy_strength, 0.0f, 1.0f);
     out.anisotropy_rotation = m.anisotropy_rotation;
     out.anisotropy_texture = slot(m.anisotropy_texture, textures.anisotropy);
+    out.clearcoat = std::clamp(m.clearcoat_factor, 0.0f, 1.0f);
+    out.clearcoat_roughness = std::clamp(m.clearcoat_roughness_factor, 0.0f, 1.0f);
+    out.clearcoat_texture = slot(m.clearcoat_texture, textures.clearcoat);
+    out.clearcoat_roughness_texture =
+        slot(m.clearcoat_roughness_texture, textures.clearcoat_roughness);
+    out.sheen_color = glm::clamp(m.sheen_color_factor, 0.0f, 1.0f);
+    out.sheen_roughness = std::clamp(m.sheen_roughness_factor, 0.0f, 1.0f);
+    out.specular = std::clamp(m.specular_factor, 0.0f, 1.0f);
+    out.specular_color = glm::max(m.specular_color_factor, glm::vec3(0.0f));
+    if (m.unlit) {
+        // KHR_materials_unlit: the base colour as emission, reflecting nothing, never
+        // light-sampled (Material::unlit); the layers above do not apply.
+        const Material lit = out;
+        out = Material::emissive(base);
+        out.unlit = true;
+        out.base_color = base;
+        out.base_color_texture = lit.base_color_texture;
+    }
+    out.occlusion_texture = slot(m.occlusion_texture, textures.occlusion);
+    out.occlusion_strength = std::clamp(m.occlusion_texture.scale, 0.0f, 1.0f);
     out.alpha = std::clamp(m.base_color_factor.w, 0.0f, 1.0f);
     if (m.alpha_mode == GltfAlphaMode::Mask)
         out.alpha_cutoff = std::clamp(m.alpha_cutoff, 0.0f, 1.0f);
@@ -119,24 +139,23 @@ const SceneMaterial& MaterialBuilder::material(int index) {
     done_[std::size_t(index)] = true;
     const GltfMaterial& m = gltf_.materials[std::size_t(index)];
     const std::string who = named("materials[" + std::to_string(index) + "]", m.name) + ": ";
-    // One uv set per material (a mesh stores one): the first texture's; a texture on
-    // another set is dropped with a warning.
-    const std::pair<const GltfTextureRef*, const char*> refs[] = {
-        {&m.base_color_texture, "base colour"},
-        {&m.metallic_roughness_texture, "metallic-roughness"},
-        {&m.emissive_texture, "emissive"},
-        {&m.normal_texture, "normal"},
-        {&m.anisotropy_texture, "anisotropy"}};
-    for (const auto& [ref, name] : refs) {
+    // The first texture's uv set is the mesh's uvs; a texture on the other set (glTF
+    // reads TEXCOORD_0 and _1) reads the mesh's uvs1, stored only for such materials.
+    const GltfTextureRef* const refs[] = {&m.base_color_texture,
+                                          &m.metallic_roughness_texture,
+                                          &m.emissive_texture,
+                                          &m.normal_texture,
+                                          &m.anisotropy_texture,
+                                          &m.clearcoat_texture,
+                                          &m.clearcoat_roughness_texture,
+                                          &m.occlusion_texture};
+    for (const GltfTextureRef* ref : refs) {
         if (!ref->valid()) continue;
         if (out.uv_set < 0) out.uv_set = ref->tex_coord;
-        if (ref->tex_coord != out.uv_set)
-            warnings_.push_back(who + name + " texture reads TEXCOORD_" +
-                                std::to_string(ref->tex_coord) + ", the others TEXCOORD_" +
-                                std::to_string(out.uv_set) + ": ignored (one uv set a material)");
+        out.second_set = out.second_set || ref->tex_coord != out.uv_set;
     }
     const auto use = [&](const GltfTextureRef& ref, ColorSpace space) {
-        return ref.tex_coord == out.uv_set ? texture(ref, space) : -1;
+        return texture(ref, space);
     };
     GltfMaterialTextures ids;
     ids.base_color = use(m.base_color_texture, ColorSpace::Srgb);
@@ -144,8 +163,25 @@ const SceneMaterial& MaterialBuilder::material(int index) {
     ids.emissive = use(m.emissive_texture, ColorSpace::Srgb);
     ids.normal = use(m.normal_texture, ColorSpace::Linear);
     ids.anisotropy = use(m.anisotropy_texture, ColorSpace::Linear);
-    if (m.occlusion_texture.valid())
-        warnings_.push_back(who + "occlusion texture ignored (a path tracer computes occlusion)");
+    ids.clearcoat = use(m.clearcoat_texture, ColorSpace::Linear);
+    ids.clearcoat_roughness = use(m.clearcoat_roughness_texture, ColorSpace::Linear);
+    const std::pair<const GltfTextureRef*, const char*> factor_only[] = {
+        {&m.clearcoat_normal_texture,
+         "clearcoat normal texture ignored (the coat uses the "
+         "base's normal)"},
+        {&m.sheen_color_texture, "sheen colour texture ignored (factor used)"},
+        {&m.sheen_roughness_texture, "sheen roughness texture ignored (factor used)"},
+        {&m.specular_texture, "specular texture ignored (factor used)"},
+        {&m.specular_color_texture, "specular colour texture ignored (factor used)"}};
+    for (const auto& [ref, text] : factor_only)
+        if (ref->valid()) warnings_.push_back(who + text);
+    if (m.iridescence)
+        warnings_.push_back(who +
+                            "KHR_materials_iridescence is not supported: drawn without "
+                            "iridescence");
+    if (m.unlit && (m.clearcoat_factor > 0.0f || m.sheen_color_factor != glm::vec3(0.0f)))
+        warnings_.push_back(who + "KHR_materials_unlit: its other extensions are ignored");
+    ids.occlusion = use(m.occlusion_texture, ColorSpace::Linear);
     if (m.transmission_texture.valid())
         warnings_.push_back(who + "transmission texture ignored (factor used)");
     if (m.alpha_mode == GltfAlphaMode::Blend && !blend_warned_) {
@@ -158,11 +194,25 @@ const SceneMaterial& MaterialBuilder::material(int index) {
     Material material;
     try {
         material = material_from_gltf(m, ids);
+        // Slots on the other uv set read the mesh's second one.
+        const std::pair<const GltfTextureRef*, TextureSlot*> slots[] = {
+            {&m.base_color_texture, &material.base_color_texture},
+            {&m.metallic_roughness_texture, &material.metallic_roughness_texture},
+            {&m.emissive_texture, &material.emission_texture},
+            {&m.normal_texture, &material.normal_texture},
+            {&m.anisotropy_texture, &material.anisotropy_texture},
+            {&m.clearcoat_texture, &material.clearcoat_texture},
+            {&m.clearcoat_roughness_texture, &material.clearcoat_roughness_texture},
+            {&m.occlusion_texture, &material.occlusion_texture}};
+        for (const auto& [ref, s] : slots)
+            if (ref->valid() && ref->tex_coord != out.uv_set) s->uv_set = 1;
         out.id = scene_.add_material(material);
     } catch (const Error& e) {
         throw Error(who + e.what());  // a value Material refuses, named with the material
     }
-    emissive_ = emissive_ || material.emits();
+    // An unlit surface lights nothing that needs a light of its own: the file's other
+    // surfaces still get the default light.
+    emissive_ = emissive_ || (material.emits() && !material.unlit);
     // A normal map and an anisotropy direction both need the tangent frame, and so uvs
     // (TEXCOORD_0 when no texture chose a set) for generated tangents.
     out.needs_tangents = material.needs_tangent_frame();
@@ -179,6 +229,15 @@ void MaterialBuilder::attributes(const GltfPrimitive& prim, const SceneMaterial&
                     [](const glm::vec4& c) { return c != glm::vec4(1.0f); }))
         mesh.colors = prim.colors;
     if (m.uv_set < 0) return;
+    if (m.second_set) {
+        const int other = 1 - m.uv_set;
+        const std::vector<glm::vec2>& uvs1 = other == 1 ? prim.uv1 : prim.uv0;
+        if (uvs1.size() == mesh.positions.size())
+            mesh.uvs1 = uvs1;  // glTF's own (v down), as the first set
+        else
+            warnings_.push_back(who + ": no TEXCOORD_" + std::to_string(other) +
+                                " for its material's textures on it: they read uv (0, 0)");
+    }
     const std::vector<glm::vec2>& uvs = m.uv_set == 1 ? prim.uv1 : prim.uv0;
     const bool given_tangents = prim.tangents.size() == mesh.positions.size();
     if (uvs.size() != mesh.positions.size()) {

@@ -26,7 +26,8 @@ namespace librt::gltf_detail {
 /// What a scene material needs from the meshes that use it.
 struct SceneMaterial {
     std::uint32_t id = 0;         ///< scene material id
-    int uv_set = -1;              ///< TEXCOORD_n its textures read; -1 when it has none
+    int uv_set = -1;              ///< TEXCOORD_n its first texture reads; -1 when it has none
+    bool second_set = false;      ///< another texture reads the other TEXCOORD_n (mesh uvs1)
     bool needs_tangents = false;  ///< a normal map or anisotropy: needs tangents
     bool textured = false;        ///< some texture reads uv_set (else only tangents need it)
 };

@@ -159,6 +159,8 @@ inline void multiply_color(Material& m, const glm::vec3& c) {
             if (!T::widens_for_delta_light(m)) return false;
             out = m;
             out.roughness = microfacet::delta_light_roughness(m.roughness);
+            // A clear coat's own lobe (MetallicRoughness; 0 and unused by the others).
+            out.clearcoat_roughness = microfacet::delta_light_roughness(m.clearcoat_roughness);
             return true;
         } else {
             return false;

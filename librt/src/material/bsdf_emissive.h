@@ -16,7 +16,11 @@ struct Emissive {
     /// Nothing to guide, nothing to cast.
     static bool near_specular(const Material& /*m*/, float /*limit*/) { return false; }
     static bool casts_caustics(const Material& /*m*/, float /*max_roughness*/) { return false; }
-    static void multiply_color(Material& m, const glm::vec3& c) { m.albedo *= c; }
+    /// Albedo, and the base colour an unlit surface emits (Material::unlit).
+    static void multiply_color(Material& m, const glm::vec3& c) {
+        m.albedo *= c;
+        m.base_color *= c;
+    }
     /// Reflects nothing.
     static glm::vec3 denoising_albedo(const Material& /*m*/, const ShadingPoint& /*p*/) {
         return glm::vec3(0.0f);

@@ -29,9 +29,29 @@
 // KHR_materials_anisotropy extends this material. Material::albedo scales every lobe (1 by
 // default); base colour is its own field, because a black base colour still reflects the
 // dielectric specular (bsdf.h's albedo contract).
+//
+// The glTF extensions layered on it (docs/materials-and-lights.md, "glTF material
+// extensions"), each inert at its default:
+//   KHR_materials_specular: Fr = specular (F0' + (1 - F0') (1 - |V.H|)^5), F0' = min(f0
+//     specular_color, 1), and the base under it weighs 1 - max(Fr) (the extension's
+//     fresnel_mix);
+//   KHR_materials_sheen: f = sheen_color D_charlie V_neubelt (sheen.h) + Ts base, Ts =
+//     min(1 - max(sheen_color) E(cos_o), 1 - max(sheen_color) E(cos_i)) (the extension's
+//     albedo scaling, reciprocal as written);
+//   KHR_materials_clearcoat: f = clearcoat Fc(|V.H|) D_c V_c + Tc (sheen + base), a GGX
+//     coat of IOR 1.5 (Fc: Schlick, F0 0.04) and alpha = clearcoat_roughness^2, with Tc =
+//     (1 - clearcoat Fc(cos_o)) (1 - clearcoat Fc(cos_i)). The extension writes the view's
+//     factor alone, (1 - clearcoat Fc(N.V)); light crosses the coat on the way in and out,
+//     and the product of both crossings is reciprocal and conserves energy, which the
+//     view's factor alone (or the larger cosine's, on both sides) does not: a grazing view
+//     would see the coat's reflection plus a base barely dimmed for near-normal light.
+// The coat and sheen are sampled as two more lobes of the one-sample mixture (the coat's
+// GGX by visible normals, the sheen by the cosine), chosen with probabilities from their
+// albedo estimates at wo (clearcoat Fc(cos_o); max(sheen_color) E(cos_o)).
 
 #include "material/microfacet.h"
 #include "material/microfacet_anisotropic.h"
+#include "material/sheen.h"
 #include "material/specular.h"
 
 #include <librt/material/bsdf.h>
@@ -53,11 +73,63 @@ struct MetallicRoughness {
     /// Wholly metal only: its one GGX reflection. (A wholly transmissive one has no Lambert
     /// layer either but stays guided, as it was when this rule lived in the path loop.)
     static bool near_specular(const Material& m, float limit) {
-        return m.roughness < limit && m.metallic >= 1.0f;
+        return m.roughness < limit && m.metallic >= 1.0f && !has_sheen(m) &&
+               !(m.clearcoat > 0.0f && m.clearcoat_roughness >= limit);
     }
     /// Its Lambert layer weighs (1 - metallic)(1 - transmission): a caster only without it.
     static bool casts_caustics(const Material& m, float max_roughness) {
-        return m.roughness <= max_roughness && (m.metallic >= 1.0f || m.transmission >= 1.0f);
+        return m.roughness <= max_roughness && (m.metallic >= 1.0f || m.transmission >= 1.0f) &&
+               !has_sheen(m) && !(m.clearcoat > 0.0f && m.clearcoat_roughness > max_roughness);
+    }
+
+    /// Colours of the lobes' Fresnel etc. as the extensions' factors set them.
+    static float max3(const glm::vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
+    static bool has_sheen(const Material& m) { return max3(m.sheen_color) > 0.0f; }
+    /// A clear coat or a sheen: the layers eval / pdf / sample add (inert otherwise).
+    static bool has_layers(const Material& m) { return m.clearcoat > 0.0f || has_sheen(m); }
+    /// The coat's F0: IOR 1.5 (KHR_materials_clearcoat).
+    static constexpr float kCoatF0 = 0.04f;
+    static float coat_fresnel(float cos) { return microfacet::schlick(glm::vec3(kCoatF0), cos).x; }
+    /// The dielectric's Fresnel at cos, KHR_materials_specular's: specular (F0' + (1 - F0')
+    /// (1 - cos)^5), F0' = min(f0 specular_color, 1); the base under it weighs 1 - its max.
+    static glm::vec3 dielectric_fresnel(const Material& m, float cos) {
+        const glm::vec3 f0 =
+            glm::min(glm::vec3(f0_dielectric(m.ior)) * m.specular_color, glm::vec3(1.0f));
+        return m.specular * microfacet::schlick(f0, cos);
+    }
+    /// What the coat and the sheen let through to the material under them, for the
+    /// cosines of wo and wi (both >= 0): Tc Ts of the header's comment.
+    static float under_layers(const Material& m, float co, float ci) {
+        float t = 1.0f;
+        if (m.clearcoat > 0.0f)
+            t = (1.0f - m.clearcoat * coat_fresnel(co)) * (1.0f - m.clearcoat * coat_fresnel(ci));
+        const float s = max3(m.sheen_color);
+        if (s > 0.0f) {
+            const float eo = microfacet::sheen_albedo(co, m.sheen_roughness);
+            const float ei = microfacet::sheen_albedo(ci, m.sheen_roughness);
+            t *= std::max(0.0f, std::min(1.0f - s * eo, 1.0f - s * ei));
+        }
+        return t;
+    }
+    /// The layers over f_base (wr above the surface: wi, mirrored when transmitted).
+    static glm::vec3 layered(const Material& m, const glm::vec3& f_base, const glm::vec3& wo,
+                             const glm::vec3& wr, bool transmitted) {
+        glm::vec3 f = under_layers(m, wo.z, wr.z) * f_base;
+        if (transmitted) return f;  // the coat and the sheen only reflect
+        const glm::vec3 h = glm::normalize(wo + wr);
+        float tc = 1.0f;
+        if (m.clearcoat > 0.0f) {
+            const microfacet::IsotropicGgx coat{microfacet::alpha_of(m.clearcoat_roughness)};
+            const float dv = coat.d(h) * coat.g2(wo, wr) / (4.0f * wo.z * wr.z);
+            f += glm::vec3(m.clearcoat * coat_fresnel(std::fabs(glm::dot(wo, h))) * dv);
+            tc = (1.0f - m.clearcoat * coat_fresnel(wo.z)) *
+                 (1.0f - m.clearcoat * coat_fresnel(wr.z));
+        }
+        if (has_sheen(m)) {
+            const float alpha = m.sheen_roughness * m.sheen_roughness;
+            f += tc * m.sheen_color * microfacet::sheen_f(wo.z, wr.z, h.z, alpha);
+        }
+        return f;
     }
     /// glTF: COLOR_0 multiplies the base colour (albedo scales every lobe, the dielectric
     /// specular too, which the vertex colour does not tint).
@@ -67,13 +139,22 @@ struct MetallicRoughness {
     /// f0] + metallic c, tinted by albedo. The diffuse and the transmitted light share the
     /// colour c; a pane of transmission 1 keeps its colour rather than 0.04, which a
     /// denoiser dividing by the albedo could not use.
+    /// With layers: the base under them at normal incidence, plus the coat's F0 and the
+    /// sheen colour times its albedo there.
     static glm::vec3 denoising_albedo(const Material& m, const ShadingPoint& p) {
-        const float f0 = f0_dielectric(m.ior);
+        const glm::vec3 f0 = dielectric_fresnel(m, 1.0f);
+        const float under = 1.0f - max3(f0);
         const glm::vec3& c = m.base_color;
-        const glm::vec3 diffuse = (1.0f - m.metallic) * (1.0f - m.transmission) * (1.0f - f0) * c;
-        const glm::vec3 transmitted = (1.0f - m.metallic) * m.transmission * (1.0f - f0) * c;
-        const glm::vec3 specular = glm::vec3((1.0f - m.metallic) * f0) + m.metallic * c;
-        return p.albedo * (diffuse + transmitted + specular);
+        const glm::vec3 diffuse = (1.0f - m.metallic) * (1.0f - m.transmission) * under * c;
+        const glm::vec3 transmitted = (1.0f - m.metallic) * m.transmission * under * c;
+        const glm::vec3 specular = (1.0f - m.metallic) * f0 + m.metallic * c;
+        glm::vec3 a = diffuse + transmitted + specular;
+        if (has_layers(m)) [[unlikely]] {
+            const float tc = (1.0f - m.clearcoat * kCoatF0) * (1.0f - m.clearcoat * kCoatF0);
+            a = under_layers(m, 1.0f, 1.0f) * a + glm::vec3(m.clearcoat * kCoatF0) +
+                tc * m.sheen_color * microfacet::sheen_albedo(1.0f, m.sheen_roughness);
+        }
+        return p.albedo * a;
     }
 
     static BsdfLobe lobes(const Material& m) {
@@ -96,8 +177,11 @@ struct MetallicRoughness {
     /// the half vector at the normal, (1 - metallic) (1 - Fr(cos_o)) transmission c.
     static glm::vec3 pass_through(const Material& m, const ShadingPoint& p, const glm::vec3& wo) {
         if (!smooth_transmission(m)) return glm::vec3(0.0f);
-        const float fr = microfacet::schlick(glm::vec3(f0_dielectric(m.ior)), std::fabs(wo.z)).x;
-        return p.albedo * ((1.0f - m.metallic) * (1.0f - fr) * m.transmission) * m.base_color;
+        const float co = std::fabs(wo.z);
+        const float under = 1.0f - max3(dielectric_fresnel(m, co));
+        const glm::vec3 t =
+            p.albedo * ((1.0f - m.metallic) * under * m.transmission) * m.base_color;
+        return has_layers(m) ? under_layers(m, co, co) * t : t;
     }
 
     static float f0_dielectric(float ior) {
@@ -105,22 +189,39 @@ struct MetallicRoughness {
         return r * r;
     }
 
-    /// Probabilities of the specular, diffuse and transmission lobes at wo.
-    static std::array<float, 3> lobe_probabilities(const Material& m, const glm::vec3& wo) {
+    /// Probabilities of the specular, diffuse, transmission, coat and sheen lobes at wo.
+    static std::array<float, 5> lobe_probabilities(const Material& m, const glm::vec3& wo) {
         const glm::vec3& c = m.base_color;
-        const float fd = microfacet::schlick(glm::vec3(f0_dielectric(m.ior)), wo.z).x;
-        const float fm = (microfacet::schlick(c, wo.z).x + microfacet::schlick(c, wo.z).y +
-                          microfacet::schlick(c, wo.z).z) /
-                         3.0f;
+        const glm::vec3 fr = dielectric_fresnel(m, wo.z);
+        const float fd = (fr.x + fr.y + fr.z) / 3.0f;
+        const glm::vec3 fmc = microfacet::schlick(c, wo.z);
+        const float fm = (fmc.x + fmc.y + fmc.z) / 3.0f;
         const float mean_c = (c.x + c.y + c.z) / 3.0f;
-        const float dielectric = (1.0f - m.metallic) * (1.0f - fd) * mean_c;
+        const float dielectric = (1.0f - m.metallic) * (1.0f - max3(fr)) * mean_c;
         float w_spec = (1.0f - m.metallic) * fd + m.metallic * fm;
-        const float w_diff = dielectric * (1.0f - m.transmission);
+        float w_diff = dielectric * (1.0f - m.transmission);
         // A Null lobe is no lobe of sample(): the integrator crosses it (pass_through).
-        const float w_trans = smooth_transmission(m) ? 0.0f : dielectric * m.transmission;
+        float w_trans = smooth_transmission(m) ? 0.0f : dielectric * m.transmission;
         w_spec = std::max(w_spec, 0.1f * (w_spec + w_diff + w_trans) + 1e-4f);
-        const float total = w_spec + w_diff + w_trans;
-        return {w_spec / total, w_diff / total, w_trans / total};
+        if (!has_layers(m)) [[likely]] {
+            const float total = w_spec + w_diff + w_trans;
+            return {w_spec / total, w_diff / total, w_trans / total, 0.0f, 0.0f};
+        }
+        // Layers: the coat's and the sheen's albedo estimates at wo, the base's under them.
+        const float under = under_layers(m, wo.z, wo.z);
+        const float base = w_spec + w_diff + w_trans;
+        float w_coat = m.clearcoat * coat_fresnel(wo.z);
+        const float tc = 1.0f - w_coat;
+        const float w_sheen =
+            tc * max3(m.sheen_color) * microfacet::sheen_albedo(wo.z, m.sheen_roughness);
+        w_spec *= under;
+        w_diff *= under;
+        w_trans *= under;
+        // The coat's Fresnel at wo.h can exceed its estimate at cos_o, as the base's can.
+        if (m.clearcoat > 0.0f)
+            w_coat = std::max(w_coat, 0.1f * m.clearcoat * (under * base + w_sheen) + 1e-4f);
+        const float total = w_spec + w_diff + w_trans + w_coat + w_sheen;
+        return {w_spec / total, w_diff / total, w_trans / total, w_coat / total, w_sheen / total};
     }
 
     /// Where wi may go: reflection above both normals, (thin) transmission below both.
@@ -150,7 +251,9 @@ struct MetallicRoughness {
     /// transmission is the Null lobe: a raised roughness would turn it into a glossy
     /// transmission that counts the light pass_through already lets across.
     static bool widens_for_delta_light(const Material& m) {
-        return !smooth_transmission(m) && m.roughness < microfacet::kDeltaLightRoughness;
+        return !smooth_transmission(m) &&
+               (m.roughness < microfacet::kDeltaLightRoughness ||
+                (m.clearcoat > 0.0f && m.clearcoat_roughness < microfacet::kDeltaLightRoughness));
     }
     [[gnu::noinline]] static float pdf(const Material& m, const ShadingPoint& p,
                                        const glm::vec3& wo, const glm::vec3& wi) {
@@ -165,18 +268,40 @@ struct MetallicRoughness {
     static BsdfSample sample_with(const Ggx& ggx, const Material& m, const ShadingPoint& p,
                                   const glm::vec3& wo, float uc, glm::vec2 u) {
         const auto prob = lobe_probabilities(m, wo);
+        // The lobe uc falls in; rounding past the last lobe of nonzero probability gives it.
+        int last = 0;
+        for (int i = 1; i < 5; ++i)
+            if (prob[std::size_t(i)] > 0.0f) last = i;
+        int chosen = 0;
+        float acc = 0.0f;
+        for (; chosen < last; ++chosen) {
+            acc += prob[std::size_t(chosen)];
+            if (uc < acc && prob[std::size_t(chosen)] > 0.0f) break;
+        }
         glm::vec3 wi;
-        BsdfLobe lobe;
-        if (uc < prob[0]) {
-            wi = reflect(-wo, ggx.sample_visible_normal(wo, u));
-            lobe = BsdfLobe::Glossy | BsdfLobe::Reflection;
-        } else if (uc < prob[0] + prob[1] || !(prob[2] > 0.0f)) {
-            wi = sample_cosine_hemisphere(u);
-            lobe = BsdfLobe::DiffuseReflection;
-        } else {
-            wi = reflect(-wo, ggx.sample_visible_normal(wo, u));
-            wi.z = -wi.z;  // thin-walled: the reflection mirrored through the surface
-            lobe = BsdfLobe::Glossy | BsdfLobe::Transmission;
+        BsdfLobe lobe = BsdfLobe::Glossy | BsdfLobe::Reflection;
+        switch (chosen) {
+            case 0:
+                wi = reflect(-wo, ggx.sample_visible_normal(wo, u));
+                break;
+            case 1:
+                wi = sample_cosine_hemisphere(u);
+                lobe = BsdfLobe::DiffuseReflection;
+                break;
+            case 2:
+                wi = reflect(-wo, ggx.sample_visible_normal(wo, u));
+                wi.z = -wi.z;  // thin-walled: the reflection mirrored through the surface
+                lobe = BsdfLobe::Glossy | BsdfLobe::Transmission;
+                break;
+            case 3: {
+                const microfacet::IsotropicGgx coat{microfacet::alpha_of(m.clearcoat_roughness)};
+                wi = reflect(-wo, coat.sample_visible_normal(wo, u));
+                break;
+            }
+            default:
+                // The sheen: a broad lobe, sampled by the cosine.
+                wi = sample_cosine_hemisphere(u);
+                break;
         }
         // A reflection that went under the surface is no sample of its lobe (nor of the
         // other side's): without this check it would be counted with the wrong density.
@@ -197,19 +322,21 @@ struct MetallicRoughness {
         const float vh = std::fabs(glm::dot(wo, h));
         // specular_brdf = D V, V = G2 / (4 |N.L| |N.V|) (glTF 2.0 Appendix B).
         const float dv = ggx.d(h) * ggx.g2(wo, wr) / (4.0f * wo.z * wr.z);
-        const float fr = microfacet::schlick(glm::vec3(f0_dielectric(m.ior)), vh).x;
+        const glm::vec3 fr = dielectric_fresnel(m, vh);
+        const float under = 1.0f - max3(fr);
         const glm::vec3& c = m.base_color;
         glm::vec3 f;
         if (transmitted) {
             if (smooth_transmission(m)) return glm::vec3(0.0f);  // the Null lobe's, not f's
             // Only the dielectric's base layer transmits: (1 - Fr) transmission c D V.
-            f = (1.0f - m.metallic) * (1.0f - fr) * m.transmission * c * dv;
+            f = (1.0f - m.metallic) * under * m.transmission * c * dv;
         } else {
-            const glm::vec3 dielectric =
-                (1.0f - fr) * (1.0f - m.transmission) * c * kInvPi + glm::vec3(fr * dv);
+            const glm::vec3 dielectric = under * (1.0f - m.transmission) * c * kInvPi + fr * dv;
             const glm::vec3 metal = microfacet::schlick(c, vh) * dv;
             f = (1.0f - m.metallic) * dielectric + m.metallic * metal;
         }
+        if (has_layers(m)) [[unlikely]]
+            f = layered(m, f, wo, wr, transmitted);
         return p.albedo * f;
     }
 
@@ -222,7 +349,15 @@ struct MetallicRoughness {
         const glm::vec3 h = glm::normalize(wo + wr);
         const float glossy = ggx.reflection_pdf(wo, h);
         if (wi.z < 0.0f) return prob[2] * glossy;
-        return prob[0] * glossy + prob[1] * cosine_hemisphere_pdf(wi.z);
+        float density = prob[0] * glossy + prob[1] * cosine_hemisphere_pdf(wi.z);
+        if (has_layers(m)) [[unlikely]] {
+            if (prob[3] > 0.0f) {
+                const microfacet::IsotropicGgx coat{microfacet::alpha_of(m.clearcoat_roughness)};
+                density += prob[3] * coat.reflection_pdf(wo, h);
+            }
+            density += prob[4] * cosine_hemisphere_pdf(wi.z);
+        }
+        return density;
     }
 };
 

@@ -167,6 +167,15 @@ void validate(const Material& material) {
     check_unit("alpha", material.alpha);
     check_unit("alpha_cutoff", material.alpha_cutoff);
     check_unit("anisotropy", material.anisotropy);
+    if (material.unlit && material.kind != MaterialKind::Emissive)
+        throw Error("material unlit = true: only an Emissive material is unlit");
+    check_unit("clearcoat", material.clearcoat);
+    check_unit("clearcoat_roughness", material.clearcoat_roughness);
+    check_unit("specular", material.specular);
+    check_colour("specular_color", material.specular_color, false);
+    check_colour("sheen_color", material.sheen_color, true);
+    check_unit("sheen_roughness", material.sheen_roughness);
+    check_unit("occlusion_strength", material.occlusion_strength);
     if (!std::isfinite(material.anisotropy_rotation)) {
         std::ostringstream msg;
         msg << "material anisotropy_rotation = " << material.anisotropy_rotation
@@ -190,12 +199,20 @@ void validate(const Material& material) {
         {"metallic_roughness_texture", &material.metallic_roughness_texture},
         {"emission_texture", &material.emission_texture},
         {"normal_texture", &material.normal_texture},
-        {"anisotropy_texture", &material.anisotropy_texture}};
+        {"anisotropy_texture", &material.anisotropy_texture},
+        {"clearcoat_texture", &material.clearcoat_texture},
+        {"clearcoat_roughness_texture", &material.clearcoat_roughness_texture},
+        {"occlusion_texture", &material.occlusion_texture}};
     for (const auto& [name, slot] : slots) {
         bool finite_map = true;
         for (int c = 0; c < 3; ++c)
             finite_map = finite_map && std::isfinite(slot->transform[c].x) &&
                          std::isfinite(slot->transform[c].y);
+        if (slot->uv_set > 1) {
+            std::ostringstream msg;
+            msg << "material " << name << ".uv_set = " << int(slot->uv_set) << ": must be 0 or 1";
+            throw Error(msg.str());
+        }
         if (slot->texture < -1 || !finite_map) {
             std::ostringstream msg;
             msg << "material " << name << " = texture " << slot->texture

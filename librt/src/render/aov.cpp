@@ -49,7 +49,9 @@ AovSample sample_aovs(const Scene& scene, const Ray& camera_ray, const glm::vec3
         if (!has(lobe_flags, BsdfLobe::Specular) || has_non_specular(lobe_flags)) {
             // The first surface that is not purely specular: what its BSDF reflects or
             // transmits (emitters, no lobes: 0), tinted by the way here.
-            out.albedo = tint * denoising_albedo(m, sp);
+            // Times the material's ambient occlusion map (glTF occlusionTexture), which
+            // only this guide sees: the beauty's occlusion is the path tracer's own.
+            out.albedo = tint * denoising_albedo(m, sp) * scene.occlusion(hit);
             out.normal = hit.shading_normal;
             return out;
         }

@@ -22,7 +22,9 @@ bool needs_uv(const Material& m) { return m.albedo_texture >= 0 || m.varies_per_
 // Whether a triangle of this material is light-sampled: every emitter (a TriangleLight
 // carries the material's one-sidedness and emission texture) but a cut-out one, whose
 // holes rays pass through: a light sample there would count light no ray can see.
-bool light_sampled(const Material& m) { return m.emits() && !m.cuts_out(); }
+// An unlit surface (glTF KHR_materials_unlit) is not either: it shows its colour, and
+// BSDF sampling finds what little light it throws (docs/materials-and-lights.md).
+bool light_sampled(const Material& m) { return m.emits() && !m.cuts_out() && !m.unlit; }
 
 // Whether no ray passes a sphere of this material: its BSDF transmits nothing (glass,
 // rough glass, glTF transmission do: bsdfs::transmits), no alpha test's holes, and no
@@ -40,7 +42,10 @@ void Scene::check_texture_ids(const Material& material) const {
         {"metallic_roughness_texture", material.metallic_roughness_texture.texture},
         {"emission_texture", material.emission_texture.texture},
         {"normal_texture", material.normal_texture.texture},
-        {"anisotropy_texture", material.anisotropy_texture.texture}};
+        {"anisotropy_texture", material.anisotropy_texture.texture},
+        {"clearcoat_texture", material.clearcoat_texture.texture},
+        {"clearcoat_roughness_texture", material.clearcoat_roughness_texture.texture},
+        {"occlusion_texture", material.occlusion_texture.texture}};
     for (const auto& [name, id] : ids) {
         if (id >= 0 && std::size_t(id) >= textures_.size()) {
             std::ostringstream msg;
@@ -307,11 +312,16 @@ void Scene::make_triangle_lights() {
                 if (!shared[tex])
                     shared[tex] = std::make_shared<const ImageTexture>(textures_[tex]);
                 tl.texture = shared[tex];
-                // Corner uvs as hits interpolate them (barycentrics without uvs).
-                const bool has_uv = !mesh.uvs.empty();
-                tl.uv0 = m.emission_texture.map(has_uv ? mesh.uvs[i.x] : glm::vec2(0.0f, 0.0f));
-                tl.uv1 = m.emission_texture.map(has_uv ? mesh.uvs[i.y] : glm::vec2(1.0f, 0.0f));
-                tl.uv2 = m.emission_texture.map(has_uv ? mesh.uvs[i.z] : glm::vec2(0.0f, 1.0f));
+                // Corner uvs as hits interpolate them (barycentrics without uvs; the
+                // second set, or (0, 0) without one, for a slot on set 1).
+                const auto corner = [&](std::uint32_t v, glm::vec2 bary) {
+                    if (m.emission_texture.uv_set == 1)
+                        return mesh.uvs1.empty() ? glm::vec2(0.0f) : mesh.uvs1[v];
+                    return mesh.uvs.empty() ? bary : mesh.uvs[v];
+                };
+                tl.uv0 = m.emission_texture.map(corner(i.x, {0.0f, 0.0f}));
+                tl.uv1 = m.emission_texture.map(corner(i.y, {1.0f, 0.0f}));
+                tl.uv2 = m.emission_texture.map(corner(i.z, {0.0f, 1.0f}));
                 tl.mean_texture = mean_texture_estimate(tl);
             }
             triangle_light_.push_back(std::uint32_t(lights_.size()));

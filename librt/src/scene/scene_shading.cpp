@@ -44,6 +44,18 @@ glm::vec3 apply_normal_map(const glm::vec3& texel, float scale, const glm::vec3&
     return m;
 }
 
+glm::vec2 Scene::slot_uv(const TextureSlot& slot, const Hit& hit) const {
+    return slot.uv_set == 1 ? top_.uv1(hit) : hit.uv;
+}
+
+glm::vec3 Scene::occlusion(const Hit& hit) const {
+    const Material& m = material(hit);
+    if (!m.occlusion_texture.bound()) return glm::vec3(1.0f);
+    const TextureSlot& s = m.occlusion_texture;
+    const float r = textures_[std::size_t(s.texture)].lookup(s.map(slot_uv(s, hit))).x;
+    return glm::vec3(1.0f + m.occlusion_strength * (std::clamp(r, 0.0f, 1.0f) - 1.0f));
+}
+
 const Material& Scene::shade_varying(Hit& hit, const glm::vec3& direction,
                                      ShadedMaterial& scratch) const {
     const Material& stored = material(hit);
@@ -56,7 +68,7 @@ const Material& Scene::shade_varying(Hit& hit, const glm::vec3& direction,
     // Material is trivially copyable and destructible: a new copy over the last one.
     Material& m = *new (&scratch.material_) Material(stored);
     const auto lookup = [&](const TextureSlot& s) {
-        return textures_[std::size_t(s.texture)].lookup(s.map(hit.uv));
+        return textures_[std::size_t(s.texture)].lookup(s.map(slot_uv(s, hit)));
     };
     if (m.base_color_texture.bound()) m.base_color *= lookup(m.base_color_texture);
     if (colored) {
@@ -71,6 +83,12 @@ const Material& Scene::shade_varying(Hit& hit, const glm::vec3& direction,
         m.metallic *= mr.z;
     }
     if (m.emission_texture.bound()) m.emission *= lookup(m.emission_texture);
+    // An unlit surface emits its base colour (texture and vertex colour applied above).
+    if (m.unlit) m.emission = m.base_color;
+    // KHR_materials_clearcoat: the factor in the red channel, the roughness in the green.
+    if (m.clearcoat_texture.bound()) m.clearcoat *= lookup(m.clearcoat_texture).x;
+    if (m.clearcoat_roughness_texture.bound())
+        m.clearcoat_roughness *= lookup(m.clearcoat_roughness_texture).y;
     if (m.normal_texture.bound()) {
         const glm::vec4 t = top_.tangent(hit);
         hit.shading_normal = apply_normal_map(lookup(m.normal_texture), m.normal_scale,
@@ -86,7 +104,8 @@ void Scene::anisotropy_at(const Hit& hit, Material& m) const {
     float c = std::cos(m.anisotropy_rotation), s = std::sin(m.anisotropy_rotation);
     if (m.anisotropy_texture.bound()) {
         const TextureSlot& slot = m.anisotropy_texture;
-        const glm::vec3 tex = textures_[std::size_t(slot.texture)].lookup(slot.map(hit.uv));
+        const glm::vec3 tex =
+            textures_[std::size_t(slot.texture)].lookup(slot.map(slot_uv(slot, hit)));
         m.anisotropy *= std::clamp(tex.z, 0.0f, 1.0f);
         const float x = 2.0f * tex.x - 1.0f, y = 2.0f * tex.y - 1.0f;
         const float len = std::sqrt(x * x + y * y);
@@ -128,7 +147,7 @@ float Scene::coverage(const Hit& hit) const {
     float a = m.alpha * std::clamp(top_.color(hit).w, 0.0f, 1.0f);
     if (m.base_color_texture.bound()) {
         const TextureSlot& s = m.base_color_texture;
-        a *= textures_[std::size_t(s.texture)].lookup_alpha(s.map(hit.uv));
+        a *= textures_[std::size_t(s.texture)].lookup_alpha(s.map(slot_uv(s, hit)));
     }
     return a;
 }

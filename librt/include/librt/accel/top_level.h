@@ -169,6 +169,9 @@ public:
     /// The vertex color interpolated at a finished hit on a mesh or instance whose
     /// prototype has colors; (1, 1, 1, 1) otherwise.
     [[nodiscard]] glm::vec4 color(const Hit& hit) const;
+    /// The second uv set (TriangleMesh::uvs1) interpolated at a finished hit on a mesh or
+    /// instance whose prototype has one; (0, 0) otherwise.
+    [[nodiscard]] glm::vec2 uv1(const Hit& hit) const;
 
     /// Number of objects.
     [[nodiscard]] std::size_t object_count() const { return objects_.size(); }

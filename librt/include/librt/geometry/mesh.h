@@ -38,6 +38,9 @@ struct LIBRT_API TriangleMesh {
     std::vector<glm::uvec3> triangles;  ///< three indices into positions per triangle
     std::vector<glm::vec3> normals;     ///< optional, one per position
     std::vector<glm::vec2> uvs;         ///< optional, one per position
+    /// Optional, one per position: a second uv set, read by texture slots whose uv_set is 1
+    /// (glTF's other TEXCOORD_n); kept only by meshes whose material uses it.
+    std::vector<glm::vec2> uvs1;
     /// Optional, one per position: tangent xyz (along increasing u) and w = +-1, the
     /// bitangent's sign: bitangent = w cross(normal, tangent) (glTF TANGENT). For normal maps.
     std::vector<glm::vec4> tangents;

@@ -143,6 +143,21 @@ struct GltfMaterial {
     float anisotropy_rotation = 0.0f;  ///< KHR_materials_anisotropy anisotropyRotation, radians
     /// KHR_materials_anisotropy anisotropyTexture (linear): RG direction, B strength.
     GltfTextureRef anisotropy_texture;
+    bool unlit = false;                          ///< KHR_materials_unlit present
+    float clearcoat_factor = 0.0f;               ///< KHR_materials_clearcoat, [0, 1]
+    GltfTextureRef clearcoat_texture;            ///< KHR_materials_clearcoat, R channel
+    float clearcoat_roughness_factor = 0.0f;     ///< KHR_materials_clearcoat, [0, 1]
+    GltfTextureRef clearcoat_roughness_texture;  ///< KHR_materials_clearcoat, G channel
+    GltfTextureRef clearcoat_normal_texture;     ///< KHR_materials_clearcoat (not applied)
+    glm::vec3 sheen_color_factor{0.0f};          ///< KHR_materials_sheen, linear, [0, 1]
+    GltfTextureRef sheen_color_texture;          ///< KHR_materials_sheen, sRGB RGB
+    float sheen_roughness_factor = 0.0f;         ///< KHR_materials_sheen, [0, 1]
+    GltfTextureRef sheen_roughness_texture;      ///< KHR_materials_sheen, A channel
+    float specular_factor = 1.0f;                ///< KHR_materials_specular, [0, 1]
+    GltfTextureRef specular_texture;             ///< KHR_materials_specular, A channel
+    glm::vec3 specular_color_factor{1.0f};       ///< KHR_materials_specular, linear, >= 0
+    GltfTextureRef specular_color_texture;       ///< KHR_materials_specular, sRGB RGB
+    bool iridescence = false;  ///< KHR_materials_iridescence present (not rendered)
     GltfAlphaMode alpha_mode = GltfAlphaMode::Opaque;  ///< OPAQUE, MASK or BLEND
     float alpha_cutoff = 0.5f;                         ///< MASK: alpha below this is cut out
     bool double_sided = false;                         ///< back faces are seen (else culled)

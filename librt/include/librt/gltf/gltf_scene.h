@@ -17,11 +17,14 @@ namespace librt {
 /// Scene texture ids of a glTF material's textures, -1 for none (scene_from_gltf adds
 /// them: base colour and emissive decoded as sRGB, the others as linear data).
 struct GltfMaterialTextures {
-    std::int32_t base_color = -1;          ///< baseColorTexture (sRGB RGBA)
-    std::int32_t metallic_roughness = -1;  ///< metallicRoughnessTexture (linear; G, B)
-    std::int32_t emissive = -1;            ///< emissiveTexture (sRGB)
-    std::int32_t normal = -1;              ///< normalTexture (linear, tangent space)
-    std::int32_t anisotropy = -1;          ///< anisotropyTexture (linear; RG direction, B)
+    std::int32_t base_color = -1;           ///< baseColorTexture (sRGB RGBA)
+    std::int32_t metallic_roughness = -1;   ///< metallicRoughnessTexture (linear; G, B)
+    std::int32_t emissive = -1;             ///< emissiveTexture (sRGB)
+    std::int32_t normal = -1;               ///< normalTexture (linear, tangent space)
+    std::int32_t anisotropy = -1;           ///< anisotropyTexture (linear; RG direction, B)
+    std::int32_t clearcoat = -1;            ///< clearcoatTexture (linear; R)
+    std::int32_t clearcoat_roughness = -1;  ///< clearcoatRoughnessTexture (linear; G)
+    std::int32_t occlusion = -1;            ///< occlusionTexture (linear; R), albedo AOV only
 };
 
 /// librt's material for a glTF material; the ONE place that mapping lives. Every glTF
@@ -30,13 +33,18 @@ struct GltfMaterialTextures {
 /// extension's reflection-only limit, read as 1.5), KHR_materials_transmission as its
 /// thin-walled transmission; emission = emissive_factor * KHR_materials_emissive_strength;
 /// KHR_materials_anisotropy's strength, rotation and texture as Material::anisotropy,
-/// anisotropy_rotation and anisotropy_texture. The textures in `textures` fill its slots,
-/// each with its KHR_texture_transform and the flip of glTF's downward v (the mesh keeps
-/// glTF's uvs); normalTexture.scale and the base colour alpha are kept. alphaMode MASK
-/// sets alpha_cutoff to alphaCutoff; BLEND is drawn as MASK with cut-off 0.5 (librt has no
-/// partial coverage); OPAQUE has no alpha test. doubleSided false makes the material
-/// one-sided (its back is black), except with transmission, which must be crossed from
-/// both sides. The occlusion texture is not used (a path tracer computes occlusion).
+/// anisotropy_rotation and anisotropy_texture; KHR_materials_clearcoat's factors and
+/// textures, KHR_materials_sheen's and KHR_materials_specular's factors as Material's
+/// clearcoat*, sheen_* and specular* fields; KHR_materials_unlit as an Emissive material
+/// with Material::unlit, emitting its base colour (times its texture). The textures in `textures`
+/// fill its slots, each with its KHR_texture_transform and the flip of glTF's downward v (the mesh
+/// keeps glTF's uvs); normalTexture.scale and the base colour alpha are kept. alphaMode MASK sets
+/// alpha_cutoff to alphaCutoff; BLEND is drawn as MASK with cut-off 0.5 (librt has no partial
+/// coverage); OPAQUE has no alpha test. doubleSided false makes the material one-sided (its back is
+/// black), except with transmission, which must be crossed from both sides. The occlusion texture
+/// (with its strength) goes to the albedo AOV only (a path tracer computes occlusion). Not used:
+/// the sheen and specular textures, the clear coat's normal map or KHR_materials_iridescence
+/// (scene_from_gltf warns).
 [[nodiscard]] LIBRT_API Material material_from_gltf(const GltfMaterial& material,
                                                     const GltfMaterialTextures& textures = {});
 
@@ -47,7 +55,8 @@ struct GltfMaterialTextures {
 /// material_from_gltf; each texture an ImageTexture once
 /// per colour space it is used in, with its sampler's wrap modes (NEAREST magnification
 /// reads texels, anything else is bilinear; no mipmaps). A material's textures share one
-/// uv set (the first texture's; others warned and dropped), which its primitives store
+/// uv set as the mesh's uvs (the first texture's) and, when a texture reads the other
+/// TEXCOORD_n, that one as TriangleMesh::uvs1 (the slot's uv_set 1), which its primitives store
 /// with glTF's v (an anisotropic material without textures: TEXCOORD_0); a normal-mapped or
 /// anisotropic primitive keeps its TANGENTs, or gets generate_tangents'
 /// (geometry/tangents.h). KHR_lights_punctual point lights become PointLights of intensity

@@ -90,6 +90,10 @@ struct LIBRT_API Material {
     /// False: the surface's back (the side its winding's normal points away from)
     /// scatters and emits nothing (glTF doubleSided = false; see docs/materials-and-lights.md).
     bool double_sided = true;
+    /// Emissive only (glTF KHR_materials_unlit): the emission is the base colour (times its
+    /// texture and the vertex colour, per hit), seen by every ray but never light-sampled:
+    /// BSDF sampling finds it (Scene's unsampled emitters).
+    bool unlit = false;
 
     // Anisotropy (KHR_materials_anisotropy; docs/materials-and-lights.md, "Anisotropy").
     /// Anisotropy strength in [0, 1] of the GGX lobes (Conductor, RoughDielectric,
@@ -108,6 +112,37 @@ struct LIBRT_API Material {
     /// project it onto the shading plane (zero: the shading frame's own x axis). A caller
     /// of bsdf.h's functions without a Scene sets it itself.
     glm::vec3 anisotropy_direction{0.0f};
+
+    // The layers and Fresnel controls of the glTF extensions (MetallicRoughness only;
+    // docs/materials-and-lights.md, "glTF material extensions"). At their defaults they
+    // leave the metallic-roughness BSDF as it is, at the cost of one predictable branch.
+    /// KHR_materials_clearcoat clearcoatFactor in [0, 1]: the weight of a GGX dielectric
+    /// coat of IOR 1.5 over the whole material; 0 is no coat.
+    float clearcoat = 0.0f;
+    /// KHR_materials_clearcoat clearcoatRoughnessFactor in [0, 1] (perceptual; GGX alpha
+    /// = its square).
+    float clearcoat_roughness = 0.0f;
+    /// KHR_materials_specular specularFactor in [0, 1]: scales the dielectric's Fresnel
+    /// (its F0 and F90).
+    float specular = 1.0f;
+    /// KHR_materials_specular specularColorFactor, each component >= 0 (finite): tints the
+    /// dielectric's F0 (min(F0 colour, 1)).
+    glm::vec3 specular_color{1.0f};
+    /// KHR_materials_sheen sheenColorFactor in [0, 1] per channel: the colour of a Charlie
+    /// sheen lobe over the material; black is no sheen.
+    glm::vec3 sheen_color{0.0f};
+    /// KHR_materials_sheen sheenRoughnessFactor in [0, 1] (Charlie's alpha = its square).
+    float sheen_roughness = 0.0f;
+    /// Texture (linear) whose R multiplies clearcoat (clearcoatTexture).
+    TextureSlot clearcoat_texture;
+    /// Texture (linear) whose G multiplies clearcoat_roughness (clearcoatRoughnessTexture).
+    TextureSlot clearcoat_roughness_texture;
+    /// Ambient occlusion (glTF occlusionTexture, linear R): applied to the albedo AOV only,
+    /// as 1 + occlusion_strength (R - 1), never to the rendered light (the path tracer
+    /// computes occlusion itself); not a per-hit input of shading.
+    TextureSlot occlusion_texture;
+    /// glTF occlusionTexture.strength in [0, 1].
+    float occlusion_strength = 1.0f;
 
     /// A Lambertian surface of the given reflectance.
     [[nodiscard]] static Material diffuse(const glm::vec3& albedo);
@@ -147,7 +182,8 @@ struct LIBRT_API Material {
     [[nodiscard]] bool varies_per_hit() const {
         return base_color_texture.bound() || metallic_roughness_texture.bound() ||
                emission_texture.bound() || normal_texture.bound() || alpha_cutoff > 0.0f ||
-               !double_sided || anisotropy > 0.0f;
+               !double_sided || anisotropy > 0.0f || clearcoat_texture.bound() ||
+               clearcoat_roughness_texture.bound();
     }
     /// True when the material reads the surface's tangent frame: a normal map or an
     /// anisotropy direction (meshes without tangents get them from their uvs).
@@ -167,7 +203,10 @@ struct LIBRT_API Material {
 /// a base_color component is outside [0, 1], or eta or k has a negative or non-finite
 /// component; a texture slot's id is below -1 or its transform not finite; normal_scale is
 /// not finite; alpha, alpha_cutoff or anisotropy is outside [0, 1]; anisotropy_rotation or
-/// anisotropy_direction is not finite.
+/// anisotropy_direction is not finite; clearcoat, clearcoat_roughness, specular,
+/// sheen_roughness or a sheen_color component is outside [0, 1], specular_color has a
+/// negative or non-finite component, occlusion_strength is outside [0, 1], or unlit is set
+/// on a kind other than Emissive.
 LIBRT_API void validate(const Material& material);
 
 }  // namespace librt

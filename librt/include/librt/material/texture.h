@@ -112,6 +112,9 @@ struct TextureTransform {
 struct TextureSlot {
     std::int32_t texture = -1;    ///< scene texture id (Scene::add_texture); -1: none
     glm::mat3x2 transform{1.0f};  ///< uv -> texture coordinates (make_texture_transform)
+    /// Which of a mesh's uv sets it reads: 0 TriangleMesh::uvs (and a sphere's uv), 1
+    /// TriangleMesh::uvs1 (glTF's other TEXCOORD_n; (0, 0) where a mesh has none).
+    std::uint8_t uv_set = 0;
     /// True when a texture is bound.
     [[nodiscard]] bool bound() const { return texture >= 0; }
     /// The texture coordinates of mesh uv `uv`.

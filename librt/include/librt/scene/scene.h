@@ -212,6 +212,10 @@ public:
     /// The coverage at a hit: the material's alpha times its base colour texture's alpha
     /// at hit.uv and the vertex colour's alpha (1 without any of them).
     [[nodiscard]] float coverage(const Hit& hit) const;
+    /// The ambient occlusion factor of the hit's material at a hit (Material::
+    /// occlusion_texture): 1 + occlusion_strength (R - 1) in every channel, 1 without one.
+    /// For the albedo AOV only; shading never reads it.
+    [[nodiscard]] glm::vec3 occlusion(const Hit& hit) const;
     /// The scene material id of a hit's primitive.
     [[nodiscard]] std::uint32_t material_id(const Hit& hit) const;
     /// The diffuse reflectance at a hit: the material's texture looked up at hit.uv if it
@@ -316,6 +320,8 @@ private:
                                   ShadedMaterial& scratch) const;
     /// Sets m.anisotropy_direction (and scales m.anisotropy by its texture) at a hit.
     void anisotropy_at(const Hit& hit, Material& m) const;
+    /// The uv a texture slot reads at a hit: hit.uv, or the mesh's second set (uv_set 1).
+    [[nodiscard]] glm::vec2 slot_uv(const TextureSlot& slot, const Hit& hit) const;
     /// The closest hit in a scene with cut-outs or panes: past the holes of alpha-tested
     /// surfaces, and, where a pane (a material that may pass light through) lies in the
     /// plane of another surface, that surface instead of the pane (surface_under_pane).
