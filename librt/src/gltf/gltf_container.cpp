@@ -42,7 +42,7 @@ const std::set<std::string, std::less<>>& supported_extensions() {
         "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_transmission",
         "KHR_materials_ior", "KHR_texture_transform", "KHR_mesh_quantization",
         "KHR_materials_anisotropy",
-        // Compressed geometry and textures (gltf_compression.cpp, texture loading).
+        // Compressed geometry and textures (gltf_draco.cpp, gltf_meshopt.cpp, texture loading).
         "KHR_draco_mesh_compression", "EXT_meshopt_compression", "EXT_texture_webp",
         "KHR_texture_basisu",
         // Layers on the metallic-roughness model, and unlit (gltf_material.cpp).
