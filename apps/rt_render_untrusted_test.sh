@@ -59,7 +59,7 @@ cat >"$dir/scene/names.gltf" <<JSON
  "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
  "bufferViews":[{"buffer":0,"byteLength":36}],
  "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],
- "materials":[{"name":"$evil","occlusionTexture":{"index":0}}],
+ "materials":[{"name":"$evil","extensions":{"KHR_materials_iridescence":{}}}],
  "images":[{"uri":"missing.png"}],
  "textures":[{"source":0}],
  "cameras":[{"type":"perspective","name":"$evil","perspective":{"yfov":0.7,"znear":0.1}}],
@@ -90,7 +90,7 @@ grep -qF "camera 'x\\x1b[31m\\x07\\r\\nFORGED' (perspective)" "$dir/out.txt" ||
     fail "names.gltf: the camera's name in the summary: $(cat "$dir/out.txt")"
 grep -qF "lights[0] 'x\\x1b[31m\\x07\\r\\nFORGED' placed by nodes[3]" "$dir/err.txt" ||
     fail "names.gltf: the light's name: $(cat "$dir/err.txt")"
-grep -qF "materials[0] 'x\\x1b[31m\\x07\\r\\nFORGED': occlusion texture ignored" "$dir/err.txt" ||
+grep -qF "materials[0] 'x\\x1b[31m\\x07\\r\\nFORGED': KHR_materials_iridescence is not supported" "$dir/err.txt" ||
     fail "names.gltf: the material's name: $(cat "$dir/err.txt")"
 check_names names.obj "names.mtl:1: MTL material 'red\\x1b[31m\\x07X': cannot load texture"
 echo "rt_render_untrusted_test: passed"

@@ -88,7 +88,7 @@ TEST(RelativeNoise, ProgressReportsItAfterEveryPassButTheFirst) {
     ps.render.progress = [&](const RenderProgress& p) {
         if (p.passes > int(at_pass_end.size())) at_pass_end.push_back(p.noise);
     };
-    ps.pass_done = [&](const Film& f) { films.push_back(f); };
+    ps.pass_done = [&](const Film& f, std::uint32_t /*level*/) { films.push_back(f); };
     Film film;
     (void)render_progressive(scene, camera, pt, film, ps);
     ASSERT_EQ(films.size(), 5u);
