@@ -29,21 +29,6 @@ int component_size(int component_type) {
     }
 }
 
-int type_components(int type) {
-    switch (type) {
-        case TINYGLTF_TYPE_SCALAR:
-            return 1;
-        case TINYGLTF_TYPE_VEC2:
-            return 2;
-        case TINYGLTF_TYPE_VEC3:
-            return 3;
-        case TINYGLTF_TYPE_VEC4:
-            return 4;
-        default:
-            return 0;  // matrices are never vertex attributes librt reads
-    }
-}
-
 /// A checked view of `count` elements, each `components` values of `component_type`,
 /// `stride` bytes apart from `data`.
 struct Span {
@@ -229,6 +214,21 @@ void apply_sparse(const tinygltf::Model& model, const tinygltf::Accessor& a,
 }
 
 }  // namespace
+
+int type_components(int type) {
+    switch (type) {
+        case TINYGLTF_TYPE_SCALAR:
+            return 1;
+        case TINYGLTF_TYPE_VEC2:
+            return 2;
+        case TINYGLTF_TYPE_VEC3:
+            return 3;
+        case TINYGLTF_TYPE_VEC4:
+            return 4;
+        default:
+            return 0;  // matrices are never vertex attributes librt reads
+    }
+}
 
 std::size_t accessor_count(const tinygltf::Model& model, int index) {
     return model.accessors[std::size_t(index)].count;

@@ -83,21 +83,6 @@ std::string_view view_bytes(const tinygltf::Model& model, int view, const std::s
     return buffer.substr(bv.byteOffset, bv.byteLength);
 }
 
-int components_of(int type) {
-    switch (type) {
-        case TINYGLTF_TYPE_SCALAR:
-            return 1;
-        case TINYGLTF_TYPE_VEC2:
-            return 2;
-        case TINYGLTF_TYPE_VEC3:
-            return 3;
-        case TINYGLTF_TYPE_VEC4:
-            return 4;
-        default:
-            return 0;
-    }
-}
-
 /// The divisor that maps a normalised integer of the accessor's componentType to [0, 1]
 /// or [-1, 1] (glTF 2.0, section 3.11), or 0 for floats.
 float normaliser(int component_type) {
@@ -219,7 +204,7 @@ DracoPrimitive decode_draco(const tinygltf::Model& model, const tinygltf::Primit
         if (attribute == nullptr)
             ctx.fail(at,
                      "Draco attribute " + std::to_string(id.Get<int>()) + " is not in the stream");
-        const int components = components_of(accessor.type);
+        const int components = type_components(accessor.type);
         if (components == 0 || attribute->num_components() != components)
             ctx.fail(at, "Draco attribute has " + std::to_string(attribute->num_components()) +
                              " components, the accessor's type " + std::to_string(components));

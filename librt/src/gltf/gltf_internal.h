@@ -258,6 +258,10 @@ void read_materials(const tinygltf::Model& model, const std::vector<ImageSource>
 void decode_images(const tinygltf::Model& model, const std::vector<ImageSource>& sources,
                    const LoadLimits& limits, Context& ctx, GltfScene& scene);
 
+/// The number of components of an accessor type (SCALAR 1 ... VEC4 4); 0 for the matrices,
+/// which are never vertex attributes librt reads.
+[[nodiscard]] int type_components(int type);
+
 /// tinygltf's file-system callbacks: every file is reported missing and no file is read
 /// or written (librt reads buffers and images itself, see JsonFacts).
 [[nodiscard]] tinygltf::FsCallbacks no_file_access();
