@@ -51,4 +51,16 @@ gltf textures --size 512x320 --spp 32
 # The file's sun says 3 lux (Blender's 3 W/m^2 not multiplied by 683): by the spec's units
 # it is 683 times dimmer than the other files' lights; 2^9.4 = 676 makes up for it.
 gltf dragons_instanced --size 960x540 --spp 16 --max-depth 4 --exposure 9.4
+# The denoiser (issue 38): the same 16 samples per pixel, written raw and denoised (the
+# default for PNG), with rt_render's defaults (Sobol', adaptive sampling, roulette).
+if [ -f "$data/gltf/material_spheres.glb" ]; then
+  for kind in noisy denoised; do
+    flag=--denoise
+    [ "$kind" = noisy ] && flag=--no-denoise
+    run "$apps/rt_render" "$data/gltf/material_spheres.glb" --size 400x400 --spp 16 --seed 1 \
+      "$flag" -q -o "$out/denoise_${kind}_16spp.png"
+  done
+else
+  echo "skipped denoise_*_16spp.png: $data/gltf/material_spheres.glb not found"
+fi
 echo "wrote the gallery's images to $(cd "$out" && pwd)"

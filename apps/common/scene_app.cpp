@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <string>
 #include <thread>
 
 namespace librt::apps {
@@ -146,15 +147,21 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
     const bool partial =
         stats.samples_per_pixel < std::uint32_t(o.spp) && !stats.noise_target_reached;
     if (!o.quiet || partial) {
+        // The noise estimate exists with a target only (NoiseEstimate's snapshot).
+        std::string noise_summary;
+        if (o.noise_target > 0.0) {
+            char text[96];
+            std::snprintf(text, sizeof text, ", estimated relative error %.3g%s", stats.noise,
+                          stats.noise_target_reached ? " (the --noise-target)" : "");
+            noise_summary = text;
+        }
         const double rate = stats.seconds > 0.0 ? double(stats.samples) / stats.seconds : 0.0;
         std::printf(
             "%dx%d, %u of %d spp in %d passes, %u threads: render %.2f s (%.2f M "
-            "samples/s), estimated relative error %.3g%s, total %.2f s, peak memory %.0f "
-            "MiB\n",
+            "samples/s)%s, total %.2f s, peak memory %.0f MiB\n",
             camera.width(), camera.height(), stats.samples_per_pixel, o.spp, stats.passes,
             o.threads > 0 ? unsigned(o.threads) : std::max(1u, std::thread::hardware_concurrency()),
-            stats.seconds, rate * 1e-6, stats.noise,
-            stats.noise_target_reached ? " (the --noise-target)" : "",
+            stats.seconds, rate * 1e-6, noise_summary.c_str(),
             std::chrono::duration<double>(std::chrono::steady_clock::now() - o.started).count(),
             peak_rss_mib());
     }
