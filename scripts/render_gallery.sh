@@ -45,7 +45,9 @@ gltf() {  # gltf NAME [rt_render options...]
     echo "skipped gltf_$name.png: $data/gltf/$name.glb not found"
   fi
 }
-gltf cornell_pbr --size 320x320 --spp 64 --max-depth 8
+# Lit by its own panel, as the image below was made (no studio lighting: the file has no
+# punctual light, so rt_render would add it).
+gltf cornell_pbr --size 320x320 --spp 64 --max-depth 8 --no-default-light
 gltf material_spheres --size 400x400 --spp 32 --max-depth 6
 gltf textures --size 512x320 --spp 32
 # The file's sun says 3 lux (Blender's 3 W/m^2 not multiplied by 683): by the spec's units
