@@ -13,6 +13,7 @@
 
 #include <librt/core/error.h>
 #include <librt/core/untrusted_text.h>
+#include <librt/film/framing.h>
 #include <librt/integrator/bdpt.h>
 #include <librt/integrator/integrators.h>
 #include <librt/io/file_digest.h>
@@ -24,6 +25,7 @@
 #include <librt/render/renderer.h>
 
 #include <CLI/CLI.hpp>
+#include <glm/vec3.hpp>
 
 #include <algorithm>
 #include <array>
@@ -115,6 +117,10 @@ struct Options {
     int spp = 16;
     std::string size;  // "WxH"; empty = the camera's aspect, long side 640
     std::string camera;
+    std::string look_from;  // "X,Y,Z"; empty = the camera's
+    std::string look_at;    // "X,Y,Z"; empty = the camera's (with --look-from: the centre)
+    std::optional<float> fov;    // vertical, degrees
+    std::optional<float> orbit;  // degrees about +y, auto framing
     int max_depth = -1;  // -1: the most the integrator allows (1000; bdpt 64)
     Choice<LightChoiceOption> light_choice = choice_of(kLightChoices, LightChoiceOption::Auto);
     Choice<IntegratorKind> integrator = choice_of(kIntegrators, IntegratorKind::Path);
@@ -188,6 +194,10 @@ std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
         {"--spp", std::to_string(o.spp)},
         {"--size", given(o.size)},
         {"--camera", given(o.camera)},
+        {"--look-from", given(o.look_from)},
+        {"--look-at", given(o.look_at)},
+        {"--fov", o.fov ? exact(*o.fov) : "(the camera's)"},
+        {"--orbit", o.orbit ? exact(*o.orbit) : "(none)"},
         {"--max-depth", std::to_string(o.max_depth)},
         {"--light-choice", name_of(kLightChoices, o.light_choice_kind())},
         {"--integrator", name_of(kIntegrators, o.integrator_kind())},
@@ -349,6 +359,47 @@ void check_denoise(const Options& o, bool distributed) {
         bad("--denoise", "on", "is not available under mpirun (use --no-denoise)");
 }
 
+/// A point typed as "X,Y,Z" (three finite numbers).
+glm::vec3 parse_point(const std::string& option, const std::string& text) {
+    glm::vec3 p(0.0f);
+    std::size_t at = 0;
+    for (int i = 0; i < 3; ++i) {
+        const std::size_t end = i < 2 ? text.find(',', at) : text.size();
+        if (end == std::string::npos) bad(option, text, "must be three numbers X,Y,Z");
+        const std::string part = text.substr(at, end - at);
+        std::size_t used = 0;
+        try {
+            p[i] = std::stof(part, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (part.empty() || used != part.size() || !std::isfinite(p[i]))
+            bad(option, text, "must be three finite numbers X,Y,Z");
+        at = end + 1;
+    }
+    return p;
+}
+
+/// --look-from, --look-at, --fov and --orbit as the loader's ViewOptions (film/framing.h);
+/// their ranges checked here, naming the option.
+ViewOptions view_options(const Options& o) {
+    ViewOptions view;
+    if (!o.look_from.empty()) view.look_from = parse_point("--look-from", o.look_from);
+    if (!o.look_at.empty()) view.look_at = parse_point("--look-at", o.look_at);
+    if (o.fov && !(*o.fov > 0.0f && *o.fov < 179.0f))
+        bad("--fov", std::to_string(*o.fov), "must be in (0, 179) (degrees)");
+    view.vertical_fov_degrees = o.fov;
+    if (o.orbit && !(std::abs(*o.orbit) <= 360.0f))
+        bad("--orbit", std::to_string(*o.orbit), "must be in [-360, 360] (degrees)");
+    if (o.orbit && (view.look_from || view.look_at))
+        bad("--orbit", std::to_string(*o.orbit),
+            "turns the auto-framed camera: not with --look-from or --look-at");
+    if (view.look_from && view.look_at && *view.look_from == *view.look_at)
+        bad("--look-from", o.look_from, "must differ from --look-at");
+    view.orbit_degrees = o.orbit;
+    return view;
+}
+
 /// Checks everything the user typed, before the scene is loaded; returns what the scene
 /// file is loaded with.
 SceneFileOptions check_command_line(const Options& o, const apps::MpiJob& job) {
@@ -356,6 +407,7 @@ SceneFileOptions check_command_line(const Options& o, const apps::MpiJob& job) {
     SceneFileOptions file_options;
     file_options.camera = o.camera;
     file_options.allow_outside_files = o.allow_outside_files;
+    file_options.view = view_options(o);
     // --env replaces the default lighting rather than adding to it.
     file_options.default_lighting = !o.no_default_light && o.env.empty();
     if (!o.size.empty()) apps::parse_size(o.size, 0.0f, file_options.width, file_options.height);
@@ -538,6 +590,17 @@ int main(int argc, char** argv) {
                    "The file's camera: index (in node order) or name; default: the first; "
                    "auto: frame the model from the front, above (as a file without cameras "
                    "is)");
+    app.add_option("--look-from", o.look_from,
+                   "Camera position X,Y,Z (scene units), replacing the camera's; it looks at "
+                   "--look-at, or the model's centre");
+    app.add_option("--look-at", o.look_at, "The point X,Y,Z the camera looks at");
+    app.add_option("--fov", o.fov,
+                   "Vertical field of view in degrees (perspective cameras); with the "
+                   "auto-framed camera the model still fills the frame");
+    app.add_option("--orbit", o.orbit,
+                   "Frame the model as --camera auto does, from a direction turned this many "
+                   "degrees about the up axis (+y), counter-clockwise seen from above (90: from "
+                   "+x, 180: from behind)");
     app.add_option("--max-depth", o.max_depth,
                    "Most scattering events per path; -1: the most the integrator allows (1000, "
                    "bdpt 64), paths then ending by Russian roulette (--roulette-depth)")

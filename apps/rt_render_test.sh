@@ -51,7 +51,13 @@ for args in "--integrator bdpt --light-paths 0|--light-paths = 0.000000: must be
             "--light-choice nearest|--light-choice = nearest: must be auto, power or bounded" \
             "--integrator Path|--integrator = Path: must be path, bdpt or brute" \
             "--integrator path --integrator brute --caustic-paths|--caustic-paths = on: caustic light paths are the path tracer's" \
-            "--integrator bdpt --integrator path --light-paths 0.5|--light-paths = 0.500000: needs --integrator bdpt"; do
+            "--integrator bdpt --integrator path --light-paths 0.5|--light-paths = 0.500000: needs --integrator bdpt" \
+            "--look-from 1,2|--look-from = 1,2: must be three numbers X,Y,Z" \
+            "--look-at 1,x,2|--look-at = 1,x,2: must be three finite numbers X,Y,Z" \
+            "--look-from 1,2,3 --look-at 1,2,3|--look-from = 1,2,3: must differ from --look-at" \
+            "--fov 179|--fov = 179.000000: must be in (0, 179) (degrees)" \
+            "--orbit 30 --look-at 0,0,0|--orbit = 30.000000: turns the auto-framed camera" \
+            "--orbit -361|--orbit = -361.000000: must be in [-360, 360] (degrees)"; do
     status=0
     # shellcheck disable=SC2086 # the options are split on purpose
     "$app" "$dir/missing.glb" ${args%%|*} -o "$dir/out/image.png" 2>"$dir/err.txt" >/dev/null ||

@@ -382,3 +382,121 @@ TEST(EnvironmentFile, ExrLoadsAndBadOnesNameTheFile) {
             << e.what();
     }
 }
+
+// --orbit (issue 42 item 6): the framing camera turned about +y. At 90 degrees it stands on
+// the +x side of the box's centre, at the default elevation (15 degrees), and still sees the
+// whole box filling the frame; the key light of the default lighting follows it.
+TEST(ViewOptions, AnOrbitFramesTheBoxFromTheTurnedDirection) {
+    ScratchDir dir;
+    const auto p = dir.path() / "box.glb";
+    lt::write_file(p, box_gltf({-2, 0, -1}, {2, 1.5f, 1}).glb());
+    SceneFileOptions options;
+    options.width = 96;
+    options.height = 64;
+    options.view.orbit_degrees = 90.0f;
+    LoadedScene loaded = load_scene_file(p, options);
+    const glm::vec3 centre(0.0f, 0.75f, 0.0f);
+    const glm::vec3 back = glm::normalize(loaded.camera.position - loaded.camera.look_at);
+    EXPECT_NEAR(back.x, std::cos(glm::radians(15.0f)), 1e-4f);
+    EXPECT_NEAR(back.y, std::sin(glm::radians(15.0f)), 1e-4f);
+    EXPECT_NEAR(back.z, 0.0f, 1e-4f);
+    EXPECT_GT(loaded.camera.position.x, centre.x + 2.0f);  // outside the box, on its +x side
+    loaded.scene.commit();
+    expect_inside_and_filling(covered(loaded.scene, loaded.camera), 96, 64, 0.85, "orbit 90");
+    // The key light comes from behind the new camera: from +x, not from +z.
+    const DirectionalLight key = studio_key_light(loaded.camera);
+    EXPECT_GT(key.to_light.x, 0.0f);
+}
+
+// --look-from alone aims at the bounds' centre; with --look-at, at that point; straight down,
+// the image's up becomes -z. A file's camera keeps its projection and gets the new field of
+// view; the framing camera with a new field of view alone is reframed (same direction, still
+// filling the frame) rather than zoomed.
+TEST(ViewOptions, LookFromLookAtAndFieldOfView) {
+    ScratchDir dir;
+    const auto p = dir.path() / "box.glb";
+    lt::write_file(p, box_gltf({-2, 0, -1}, {2, 1.5f, 1}).glb());
+    SceneFileOptions options;
+    options.width = 64;
+    options.height = 64;
+    options.view.look_from = glm::vec3(0.0f, 10.0f, 10.0f);
+    LoadedScene from = load_scene_file(p, options);
+    EXPECT_EQ(from.camera.position, glm::vec3(0.0f, 10.0f, 10.0f));
+    EXPECT_EQ(from.camera.look_at, glm::vec3(0.0f, 0.75f, 0.0f));
+    EXPECT_EQ(from.camera.up, glm::vec3(0.0f, 1.0f, 0.0f));
+
+    options.view.look_at = glm::vec3(1.0f, 0.0f, 0.0f);
+    options.view.look_from = glm::vec3(1.0f, 10.0f, 0.0f);
+    LoadedScene down = load_scene_file(p, options);
+    EXPECT_EQ(down.camera.look_at, glm::vec3(1.0f, 0.0f, 0.0f));
+    EXPECT_EQ(down.camera.up, glm::vec3(0.0f, 0.0f, -1.0f));
+    down.scene.commit();
+    // The centre pixel's ray goes straight down onto the box's top at x = 1.
+    const Camera camera(down.camera);
+    Sampler sampler(32, 32, 0, 1);
+    const Ray ray = camera.generate_ray(32, 32, sampler);
+    Hit hit;
+    ASSERT_TRUE(down.scene.intersect(ray, hit));
+    EXPECT_NEAR(ray.origin.y + hit.t * ray.direction.y, 1.5f, 1e-3f);
+
+    SceneFileOptions fov;
+    fov.width = 64;
+    fov.height = 64;
+    fov.view.vertical_fov_degrees = 20.0f;
+    LoadedScene narrow = load_scene_file(p, fov);
+    SceneFileOptions plain;
+    plain.width = 64;
+    plain.height = 64;
+    const LoadedScene wide = load_scene_file(p, plain);
+    EXPECT_FLOAT_EQ(narrow.camera.vertical_fov_degrees, 20.0f);
+    // Same direction, farther away: the model still fills the frame.
+    EXPECT_NEAR(glm::dot(glm::normalize(narrow.camera.position - narrow.camera.look_at),
+                         glm::normalize(wide.camera.position - wide.camera.look_at)),
+                1.0f, 1e-5f);
+    EXPECT_GT(glm::length(narrow.camera.position - narrow.camera.look_at),
+              1.5f * glm::length(wide.camera.position - wide.camera.look_at));
+    narrow.scene.commit();
+    expect_inside_and_filling(covered(narrow.scene, narrow.camera), 64, 64, 0.85, "fov 20");
+}
+
+TEST(ViewOptions, BadViewsAreErrorsNamingTheField) {
+    ScratchDir dir;
+    const auto p = dir.path() / "box.glb";
+    lt::write_file(p, box_gltf({-2, 0, -1}, {2, 1.5f, 1}).glb());
+    const auto message = [&](const ViewOptions& view) {
+        SceneFileOptions options;
+        options.view = view;
+        try {
+            (void)load_scene_file(p, options);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    ViewOptions same;
+    same.look_from = same.look_at = glm::vec3(1.0f);
+    EXPECT_NE(message(same).find("view: look_from = 1.000000,1.000000,1.000000, look_at ="),
+              std::string::npos)
+        << message(same);
+    ViewOptions nan;
+    nan.look_at = glm::vec3(0.0f, std::nanf(""), 0.0f);
+    EXPECT_NE(message(nan).find("view: look_at = "), std::string::npos) << message(nan);
+    ViewOptions fov;
+    fov.vertical_fov_degrees = 180.0f;
+    EXPECT_NE(message(fov).find("view: vertical_fov_degrees = 180"), std::string::npos)
+        << message(fov);
+    ViewOptions orbit;
+    orbit.orbit_degrees = 400.0f;
+    EXPECT_NE(message(orbit).find("view: orbit_degrees = 400"), std::string::npos)
+        << message(orbit);
+    orbit.orbit_degrees = 10.0f;
+    orbit.look_at = glm::vec3(0.0f);
+    EXPECT_NE(message(orbit).find("not with look_from or look_at"), std::string::npos)
+        << message(orbit);
+    // An orthographic camera has no field of view.
+    CameraSettings ortho;
+    ortho.projection = Projection::Orthographic;
+    ViewOptions narrow;
+    narrow.vertical_fov_degrees = 30.0f;
+    EXPECT_THROW((void)apply_view(ortho, false, BBox{}, narrow), Error);
+}

@@ -137,4 +137,76 @@ CameraSettings frame_bounds(const BBox& bounds, int width, int height,
     return c;
 }
 
+namespace {
+
+std::string text_of(const glm::vec3& p) {
+    return std::to_string(p.x) + "," + std::to_string(p.y) + "," + std::to_string(p.z);
+}
+
+bool finite3(const glm::vec3& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+}  // namespace
+
+CameraSettings apply_view(const CameraSettings& camera, bool framed, const BBox& bounds,
+                          const ViewOptions& view) {
+    CameraSettings c = camera;
+    if (view.empty()) return c;
+    if (view.look_from && !finite3(*view.look_from))
+        throw Error("look_from = " + text_of(*view.look_from) + ": must be finite");
+    if (view.look_at && !finite3(*view.look_at))
+        throw Error("look_at = " + text_of(*view.look_at) + ": must be finite");
+    if (const std::optional<float> fov = view.vertical_fov_degrees) {
+        if (!(*fov > 0.0f && *fov < 179.0f))
+            throw Error("vertical_fov_degrees = " + std::to_string(*fov) + ": must be in (0, 179)");
+        if (c.projection == Projection::Orthographic)
+            throw Error("vertical_fov_degrees = " + std::to_string(*fov) +
+                        ": the camera is orthographic (it has no field of view)");
+    }
+    if (const std::optional<float> orbit = view.orbit_degrees) {
+        if (!(std::abs(*orbit) <= 360.0f))
+            throw Error("orbit_degrees = " + std::to_string(*orbit) + ": must be in [-360, 360]");
+        if (view.look_from || view.look_at)
+            throw Error("orbit_degrees = " + std::to_string(*orbit) +
+                        ": turns the framing camera; not with look_from or look_at");
+    }
+    // Reframed: an orbit, or a new field of view for a camera that framed the bounds.
+    if (view.orbit_degrees || (framed && view.vertical_fov_degrees && !view.look_from &&
+                               !view.look_at)) {
+        FramingOptions framing;
+        if (view.vertical_fov_degrees) framing.vertical_fov_degrees = *view.vertical_fov_degrees;
+        // Counter-clockwise seen from above (+y): +z turns toward +x.
+        const float turn = glm::radians(view.orbit_degrees.value_or(0.0f));
+        const glm::vec3 d = default_view_direction();
+        framing.view_from = {d.x * std::cos(turn) + d.z * std::sin(turn), d.y,
+                             -d.x * std::sin(turn) + d.z * std::cos(turn)};
+        CameraSettings f = frame_bounds(bounds, c.width, c.height, framing);
+        f.pixel_jitter = c.pixel_jitter;
+        f.pixel_sigma = c.pixel_sigma;
+        f.pixel_filter = c.pixel_filter;
+        return f;
+    }
+    if (view.vertical_fov_degrees) c.vertical_fov_degrees = *view.vertical_fov_degrees;
+    if (!view.look_from && !view.look_at) return c;
+    if (view.look_from) {
+        c.position = *view.look_from;
+        if (!view.look_at) {
+            if (bounds.empty()) throw Error("look_from: the scene has no bounds to look at");
+            c.look_at = 0.5f * (bounds.lo + bounds.hi);
+        }
+    }
+    if (view.look_at) c.look_at = *view.look_at;
+    const glm::vec3 axis = c.look_at - c.position;
+    const float length = glm::length(axis);
+    if (!(length > 0.0f) || !std::isfinite(length))
+        throw Error("look_from = " + text_of(c.position) + ", look_at = " + text_of(c.look_at) +
+                    ": the camera must stand away from the point it looks at");
+    // Straight down or up, +y cannot be the image's up: -z takes its place (frame_bounds').
+    c.up = std::abs(axis.y / length) > 0.999f ? glm::vec3(0.0f, 0.0f, -1.0f)
+                                               : glm::vec3(0.0f, 1.0f, 0.0f);
+    c.focal_distance = length;
+    return c;
+}
+
 }  // namespace librt

@@ -20,6 +20,18 @@
 
 namespace librt {
 
+CameraSettings view_camera(const CameraSettings& camera, bool framed, const BBox& bounds,
+                           const ViewOptions& view, std::string& camera_name) {
+    if (view.empty()) return camera;
+    try {
+        CameraSettings c = apply_view(camera, framed, bounds, view);
+        if (view.orbit_degrees) camera_name = "default";
+        return c;
+    } catch (const Error& e) {
+        throw Error(std::string("view: ") + e.what());
+    }
+}
+
 CameraSettings default_camera(const BBox& bounds, int width, int height) {
     try {
         return frame_bounds(bounds, width, height);
@@ -55,6 +67,7 @@ LoadedScene scene_from_obj(const std::filesystem::path& path, const SceneFileOpt
     out.camera = default_camera(out.bounds, sized ? options.width : side,
                                 sized ? options.height : std::max(1, side * 3 / 4));
     out.camera_name = "default";
+    out.camera = view_camera(out.camera, true, out.bounds, options.view, out.camera_name);
     if (!emits && options.default_lighting)
         out.lighting_note = add_studio_lighting(out.scene, out.camera);
     return out;

@@ -2,6 +2,7 @@
 
 #include <librt/export.h>
 #include <librt/film/camera.h>
+#include <librt/film/framing.h>
 #include <librt/geometry/bbox.h>
 #include <librt/io/file_digest.h>
 #include <librt/scene/scene.h>
@@ -35,6 +36,9 @@ struct SceneFileOptions {
     /// OBJ with no emissive MTL material (MTL has no other light: an emitter is the
     /// author's lighting). false: the file's own lights alone.
     bool default_lighting = true;
+    /// A viewpoint replacing the chosen camera's (film/framing.h, apply_view), applied
+    /// before the default lighting is placed for it; its errors are prefixed "view: ".
+    ViewOptions view;
 };
 
 /// A scene file as librt renders it.
@@ -66,5 +70,12 @@ struct LoadedScene {
 /// front, +z, 15 degrees above the horizon), y up, at the given image size. Throws
 /// librt::Error for an empty or non-finite box.
 [[nodiscard]] LIBRT_API CameraSettings default_camera(const BBox& bounds, int width, int height);
+
+/// `camera` with `view` applied (apply_view, `framed` when it is default_camera's), its
+/// errors prefixed "view: "; an orbit names the camera "default" in `camera_name` (it is the
+/// framing camera). The loaders call it before placing the default lighting.
+[[nodiscard]] LIBRT_API CameraSettings view_camera(const CameraSettings& camera, bool framed,
+                                                   const BBox& bounds, const ViewOptions& view,
+                                                   std::string& camera_name);
 
 }  // namespace librt
