@@ -117,11 +117,11 @@ struct Options {
     int spp = 16;
     std::string size;  // "WxH"; empty = the camera's aspect, long side 640
     std::string camera;
-    std::string look_from;  // "X,Y,Z"; empty = the camera's
-    std::string look_at;    // "X,Y,Z"; empty = the camera's (with --look-from: the centre)
+    std::string look_from;       // "X,Y,Z"; empty = the camera's
+    std::string look_at;         // "X,Y,Z"; empty = the camera's (with --look-from: the centre)
     std::optional<float> fov;    // vertical, degrees
     std::optional<float> orbit;  // degrees about +y, auto framing
-    int max_depth = -1;  // -1: the most the integrator allows (1000; bdpt 64)
+    int max_depth = -1;          // -1: the most the integrator allows (1000; bdpt 64)
     Choice<LightChoiceOption> light_choice = choice_of(kLightChoices, LightChoiceOption::Auto);
     Choice<IntegratorKind> integrator = choice_of(kIntegrators, IntegratorKind::Path);
     bool caustic_paths = false;  // the path tracer's caustics traced from the lights

@@ -172,8 +172,8 @@ CameraSettings apply_view(const CameraSettings& camera, bool framed, const BBox&
                         ": turns the framing camera; not with look_from or look_at");
     }
     // Reframed: an orbit, or a new field of view for a camera that framed the bounds.
-    if (view.orbit_degrees || (framed && view.vertical_fov_degrees && !view.look_from &&
-                               !view.look_at)) {
+    if (view.orbit_degrees ||
+        (framed && view.vertical_fov_degrees && !view.look_from && !view.look_at)) {
         FramingOptions framing;
         if (view.vertical_fov_degrees) framing.vertical_fov_degrees = *view.vertical_fov_degrees;
         // Counter-clockwise seen from above (+y): +z turns toward +x.
@@ -204,7 +204,7 @@ CameraSettings apply_view(const CameraSettings& camera, bool framed, const BBox&
                     ": the camera must stand away from the point it looks at");
     // Straight down or up, +y cannot be the image's up: -z takes its place (frame_bounds').
     c.up = std::abs(axis.y / length) > 0.999f ? glm::vec3(0.0f, 0.0f, -1.0f)
-                                               : glm::vec3(0.0f, 1.0f, 0.0f);
+                                              : glm::vec3(0.0f, 1.0f, 0.0f);
     c.focal_distance = length;
     return c;
 }

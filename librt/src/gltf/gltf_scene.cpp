@@ -331,8 +331,8 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
         out.camera_name = "default";
     }
     if (!options.view.empty()) {
-        out.camera = view_camera(out.camera, camera == nullptr, out.bounds, options.view,
-                                 out.camera_name);
+        out.camera =
+            view_camera(out.camera, camera == nullptr, out.bounds, options.view, out.camera_name);
     }
     // Decided by punctual lights alone: an emissive label or lamp does not light a model,
     // and emissive-only files came out black under the old rule (issue 42).
