@@ -63,6 +63,11 @@ constexpr std::array<Named<IntegratorKind>, 3> kIntegrators{{
     {"brute", IntegratorKind::BruteForce},
 }};
 
+constexpr std::array<Named<ToneCurve>, 2> kToneCurves{{
+    {"clamp", ToneCurve::Clamp},
+    {"aces", ToneCurve::Aces},
+}};
+
 constexpr std::array<Named<LightChoiceOption>, 3> kLightChoices{{
     {"auto", LightChoiceOption::Auto},
     {"power", LightChoiceOption::Power},
@@ -130,9 +135,13 @@ struct Options {
     int threads = 0;
     std::uint64_t seed = 0;
     double time_limit = 0.0;
-    double noise_target = 0.0;  // stop at this estimated relative error; 0 = none
-    float exposure_ev = 0.0f;
-    bool exr_half = false;          // EXR colour channels as half floats (clamped to 65504)
+    double noise_target = 0.0;   // stop at this estimated relative error; 0 = none
+    std::string exposure = "0";  // EV stops, or "auto" (the PNG's, from its image)
+    // PNG: a filmic curve by default (highlights roll off); the report apps keep the clamp.
+    Choice<ToneCurve> tonemap = choice_of(kToneCurves, ToneCurve::Aces);
+    int png_bits = 8;
+    bool transparent_background = false;  // PNG alpha = coverage; the sky lights but is unseen
+    bool exr_half = false;                // EXR colour channels as half floats (clamped to 65504)
     std::string env;                // equirectangular .hdr or .exr lighting the scene; empty = none
     float env_strength = 1.0f;      // scale of the environment's radiance
     float env_rotate = 0.0f;        // degrees about the up axis (+y)
@@ -161,6 +170,10 @@ struct Options {
     }
     /// --integrator, once check_choices has passed.
     [[nodiscard]] IntegratorKind integrator_kind() const { return *integrator.kind; }
+    /// --exposure in stops (0 for auto), once check_output_options has passed.
+    [[nodiscard]] float exposure_ev() const {
+        return exposure == "auto" ? 0.0f : std::stof(exposure);
+    }
     /// --light-choice, once check_choices has passed.
     [[nodiscard]] LightChoiceOption light_choice_kind() const { return *light_choice.kind; }
 };
@@ -207,7 +220,10 @@ std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
         {"--seed", std::to_string(o.seed)},
         {"--time-limit", exact(o.time_limit)},
         {"--noise-target", exact(o.noise_target)},
-        {"--exposure", exact(o.exposure_ev)},
+        {"--exposure", o.exposure},
+        {"--tonemap", to_string(*o.tonemap.kind)},
+        {"--png-bits", std::to_string(o.png_bits)},
+        {"--transparent-background", on(o.transparent_background)},
         {"--env-strength", exact(o.env_strength)},
         {"--env-rotate", exact(o.env_rotate)},
         {"--no-default-light", on(o.no_default_light)},
@@ -328,6 +344,7 @@ void check_memory(const Options& o, const SceneFileOptions& file_options, bool d
     memory.adaptive = o.sampling.adaptive;
     memory.noise_target = o.noise_target > 0.0;
     memory.keeps_training = o.sampling.guiding;
+    memory.aovs = o.transparent_background;  // the coverage
     apps::check_render_memory(
         "--size", o.size, file_options.width, file_options.height,
         apps::progressive_output_bytes_per_pixel(o.output, memory, o.denoise_wanted(distributed)));
@@ -337,8 +354,25 @@ void check_memory(const Options& o, const SceneFileOptions& file_options, bool d
 void check_output_options(const Options& o) {
     if (o.mpi_tile < 1 || o.mpi_tile > 1024)
         bad("--mpi-tile", std::to_string(o.mpi_tile), "must be in [1, 1024]");
-    if (!std::isfinite(o.exposure_ev) || std::abs(o.exposure_ev) > 64.0f)
-        bad("--exposure", std::to_string(o.exposure_ev), "must be in [-64, 64] (EV stops)");
+    if (o.exposure != "auto") {
+        std::size_t used = 0;
+        float ev = NAN;
+        try {
+            ev = std::stof(o.exposure, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used == 0 || used != o.exposure.size() || !std::isfinite(ev) || std::abs(ev) > 64.0f)
+            bad("--exposure", o.exposure, "must be in [-64, 64] (EV stops) or auto");
+    }
+    if (!o.tonemap.kind) bad("--tonemap", o.tonemap.typed, "must be aces or clamp");
+    const bool png = lower_extension(o.output) == ".png";
+    if (o.png_bits != 8 && o.png_bits != 16)
+        bad("--png-bits", std::to_string(o.png_bits), "must be 8 or 16");
+    if (o.png_bits != 8 && !png)
+        bad("--png-bits", std::to_string(o.png_bits), "needs a .png output");
+    if (o.transparent_background && !png)
+        bad("--transparent-background", "on", "needs a .png output (its alpha channel)");
     if (o.exr_half && lower_extension(o.output) != ".exr")
         bad("--exr-half", "on", "needs an .exr output");
     if (!std::isfinite(o.env_strength) || o.env_strength < 0.0f)
@@ -410,6 +444,7 @@ SceneFileOptions check_command_line(const Options& o, const apps::MpiJob& job) {
     file_options.view = view_options(o);
     // --env replaces the default lighting rather than adding to it.
     file_options.default_lighting = !o.no_default_light && o.env.empty();
+    file_options.background_visible = !o.transparent_background;
     if (!o.size.empty()) apps::parse_size(o.size, 0.0f, file_options.width, file_options.height);
     RenderSettings check;
     check.samples_per_pixel = o.spp;
@@ -482,7 +517,13 @@ std::unique_ptr<GuardedIntegrator> make_integrator(const Options& o, std::size_t
 int render_file(const Options& o, const apps::MpiJob& job) {
     const bool root = job.rank() == 0;  // alone, or the rank that writes
     const SceneFileOptions file_options = check_command_line(o, job);
-    const float scale = std::exp2(o.exposure_ev);
+    const float scale = std::exp2(o.exposure_ev());
+    // The PNG's look (also under mpirun, so that ranks write the one-process bytes).
+    apps::OutputLook look = apps::display_look(scale, o.exr_half);
+    look.curve = *o.tonemap.kind;
+    look.auto_exposure = o.exposure == "auto";
+    look.png_bits = o.png_bits;
+    look.alpha = o.transparent_background;
     // Under mpirun: every rank was given the same job, before the long load.
     if (job.distributed()) job.check_same_job(job_items(o));
     // The sky is read before the scene, so a bad file fails before the long load.
@@ -505,7 +546,7 @@ int render_file(const Options& o, const apps::MpiJob& job) {
             std::cerr << "note: " << loaded.lighting_note
                       << " (--no-default-light: none; --env FILE: your own)\n";
     }
-    if (environment) loaded.scene.add_environment_light(*environment);
+    if (environment) loaded.scene.add_environment_light(*environment, !o.transparent_background);
     const auto t1 = std::chrono::steady_clock::now();
     try {
         loaded.scene.commit();
@@ -542,12 +583,11 @@ int render_file(const Options& o, const apps::MpiJob& job) {
         ms.render.sampler = apps::sampler_kind(o.sampling);
         ms.render.adaptive.enabled = o.sampling.adaptive;
         ms.tile_size = o.mpi_tile;
-        ms.aovs = lower_extension(o.output) == ".exr";
-        return apps::render_over_ranks(
-            job, loaded.scene, camera, *integrator, ms, o.quiet, o.output,
-            [&](const Film& film, const Image& image) {
-                apps::write_output(o.output, image, apps::display_look(scale, o.exr_half), &film);
-            });
+        ms.aovs = lower_extension(o.output) == ".exr" || o.transparent_background;
+        return apps::render_over_ranks(job, loaded.scene, camera, *integrator, ms, o.quiet,
+                                       o.output, [&](const Film& film, const Image& image) {
+                                           apps::write_output(o.output, image, look, &film);
+                                       });
     }
     apps::ProgressiveOutput out;
     out.output = o.output;
@@ -559,6 +599,10 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     out.noise_target = o.noise_target;
     out.adaptive = o.sampling.adaptive;
     out.scale = scale;
+    out.curve = look.curve;
+    out.auto_exposure = look.auto_exposure;
+    out.png_bits = look.png_bits;
+    out.alpha = look.alpha;
     out.exr_half = o.exr_half;
     out.quiet = o.quiet;
     out.denoise = o.denoise_wanted(false);
@@ -635,8 +679,19 @@ int main(int argc, char** argv) {
                    "Stop once the image's estimated relative error (the square root of its "
                    "relMSE) is at most this, e.g. 0.02; --spp stays the most taken (0 = none)")
         ->capture_default_str();
-    app.add_option("--exposure", o.exposure_ev, "Exposure in stops: the image is scaled by 2^EV")
+    app.add_option("--exposure", o.exposure,
+                   "Exposure in stops: the image is scaled by 2^EV; auto: the PNG's log-average "
+                   "luminance is put at mid grey 0.18 (linear outputs stay unscaled)")
         ->capture_default_str();
+    add_choice(app, "--tonemap", o.tonemap, kToneCurves,
+               "PNG tone curve after the exposure: aces (filmic: highlights roll off, mid grey "
+               "as clamp shows it) or clamp (values above 1 cut to white)");
+    app.add_option("--png-bits", o.png_bits, "PNG bits per channel: 8 or 16")
+        ->capture_default_str();
+    app.add_flag("--transparent-background", o.transparent_background,
+                 "PNG with an alpha channel: the share of each pixel's samples that hit the "
+                 "model; the sky (--env or the default lighting's) still lights it but is not "
+                 "seen behind it");
     app.add_flag("--exr-half", o.exr_half,
                  "EXR beauty, albedo and normal as 16-bit half floats (smaller file; values "
                  "above 65504 are clamped to it, with a warning); default 32-bit float");

@@ -57,7 +57,10 @@ for args in "--integrator bdpt --light-paths 0|--light-paths = 0.000000: must be
             "--look-from 1,2,3 --look-at 1,2,3|--look-from = 1,2,3: must differ from --look-at" \
             "--fov 179|--fov = 179.000000: must be in (0, 179) (degrees)" \
             "--orbit 30 --look-at 0,0,0|--orbit = 30.000000: turns the auto-framed camera" \
-            "--orbit -361|--orbit = -361.000000: must be in [-360, 360] (degrees)"; do
+            "--orbit -361|--orbit = -361.000000: must be in [-360, 360] (degrees)" \
+            "--tonemap filmic|--tonemap = filmic: must be aces or clamp" \
+            "--png-bits 12|--png-bits = 12: must be 8 or 16" \
+            "--exposure bright|--exposure = bright: must be in [-64, 64] (EV stops) or auto"; do
     status=0
     # shellcheck disable=SC2086 # the options are split on purpose
     "$app" "$dir/missing.glb" ${args%%|*} -o "$dir/out/image.png" 2>"$dir/err.txt" >/dev/null ||
@@ -327,6 +330,47 @@ status=0
 "$app" "$scene" --noise-target 2 -o "$dir/noise.png" 2>"$dir/err.txt" >/dev/null || status=$?
 [ "$status" -eq 1 ] && grep -qF -- "--noise-target = 2.000000: must be in [0, 1] (0 = none)" "$dir/err.txt" ||
     fail "--noise-target 2: $status $(cat "$dir/err.txt")"
+
+# 8. (issue 42 item 6) The PNG's look: the filmic curve by default; --png-bits 16 with
+# --transparent-background writes 16-bit RGBA (IHDR: bit depth 16, colour type 6 at bytes 24
+# and 25) whose alpha is 0 beside the quad (the sky still lights it but is not seen) and
+# 65535 on it (every camera sample hits); a linear output cannot carry them.
+grep -q -- "--tonemap TEXT=aces " "$dir/help.txt" || fail "--tonemap default: $(grep -- --tonemap "$dir/help.txt")"
+"$app" "$scene" --size 40x30 --spp 4 --threads 2 -q --png-bits 16 --transparent-background \
+    --exposure auto -o "$dir/alpha.png" 2>"$dir/err.txt" || fail "--transparent-background: $(cat "$dir/err.txt")"
+complete_png "$dir/alpha.png" || fail "--transparent-background: not a complete PNG"
+[ "$(od -An -tx1 -j24 -N2 "$dir/alpha.png" | tr -d ' \n')" = "1006" ] ||
+    fail "--png-bits 16 --transparent-background: IHDR $(od -An -tx1 -j24 -N2 "$dir/alpha.png")"
+python3 - "$dir/alpha.png" <<'PY' || fail "--transparent-background: alpha"
+import struct, sys, zlib
+data = open(sys.argv[1], "rb").read()
+at, idat = 8, b""
+while at < len(data):
+    n, kind = struct.unpack(">I4s", data[at:at + 8])
+    if kind == b"IDAT":
+        idat += data[at + 8:at + 8 + n]
+    at += 12 + n
+raw, w, h, bpp = zlib.decompress(idat), 40, 30, 8
+stride, rows, prev = w * bpp, [], bytearray(w * bpp)
+for y in range(h):  # PNG's scanline filters (RFC 2083, 6)
+    f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+    for i in range(stride):
+        a = line[i - bpp] if i >= bpp else 0
+        b, c = prev[i], prev[i - bpp] if i >= bpp else 0
+        p = a + b - c
+        pred = [0, a, b, (a + b) // 2,
+                a if abs(p - a) <= abs(p - b) and abs(p - a) <= abs(p - c) else b if abs(p - b) <= abs(p - c) else c][f]
+        line[i] = (line[i] + pred) & 255
+    rows.append(line)
+    prev = line
+alpha = lambda x, y: struct.unpack(">H", bytes(rows[y][x * 8 + 6:x * 8 + 8]))[0]
+assert alpha(1, 15) == 0, alpha(1, 15)
+assert alpha(20, 15) == 65535, alpha(20, 15)
+PY
+status=0
+"$app" "$scene" --transparent-background -o "$dir/alpha.exr" 2>"$dir/err.txt" >/dev/null || status=$?
+[ "$status" -eq 1 ] && grep -qF -- "--transparent-background = on: needs a .png output" "$dir/err.txt" ||
+    fail "--transparent-background .exr: $status $(cat "$dir/err.txt")"
 
 rm -rf "$dir"
 echo "bad extension rejected first; SIGINT and the time limit wrote complete partial images; defaults and --noise-target"

@@ -71,7 +71,7 @@ install(FILES
 file(RELATIVE_PATH LIBRT_PC_PREFIX_FROM_PCDIR "/prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/prefix")
 string(REGEX REPLACE "/$" "" LIBRT_PC_PREFIX_FROM_PCDIR "${LIBRT_PC_PREFIX_FROM_PCDIR}")
 # A static librt needs its private dependencies on the link line; a shared one hides them.
-set(_librt_pc_deps "-ltinyobjloader -lstb -ltinygltf -ltinyexr -lz -ldraco -lmeshoptimizer -lwebp")
+set(_librt_pc_deps "-ltinyobjloader -lstb -ltinygltf -ltinyexr -lz -lpng16 -ldraco -lmeshoptimizer -lwebp")
 if(LIBRT_CONFIG_STATIC)
   set(LIBRT_PC_CFLAGS " -DLIBRT_STATIC_DEFINE")
   set(LIBRT_PC_LIBS " ${_librt_pc_deps}")

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   g++ cmake make pkg-config git
   libglm-dev libtinyobjloader-dev libstb-dev libtinygltf-dev nlohmann-json3-dev libtinyexr-dev
-  zlib1g-dev
+  zlib1g-dev libpng-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libembree-dev
   libopenmpi-dev openmpi-bin

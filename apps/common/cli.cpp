@@ -311,9 +311,11 @@ std::uint64_t writer_bytes_per_pixel(const std::string& path, bool layers) {
         return 4 * planes;
     }
     if (ext == ".png") {
-        // The display copy, its 8-bit RGB, stb's filtered rows, its deflate output and
-        // the encoded bytes.
-        return kLinear + 4 * kRgb8;
+        // The display copy, and the larger of: its 8-bit RGB, stb's filtered rows, its
+        // deflate output and the encoded bytes; or (libpng: 16 bits, alpha) the coverage,
+        // 16-bit RGBA and the encoded bytes.
+        constexpr std::uint64_t kRgba16 = 8;
+        return kLinear + std::max(4 * kRgb8, sizeof(float) + 2 * kRgba16);
     }
     return 2 * kLinear;  // .pfm, .hdr: the scaled copy and the encoded file (at most as large)
 }

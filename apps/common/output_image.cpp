@@ -1,5 +1,7 @@
 #include "output_image.h"
 
+#include <librt/core/error.h>
+#include <librt/core/tone_curve.h>
 #include <librt/core/tone_map.h>
 #include <librt/io/exr.h>
 #include <librt/io/file_extension.h>
@@ -12,16 +14,6 @@
 #include <iostream>
 
 namespace librt::apps {
-
-namespace {
-
-/// IEC 61966-2-1 sRGB encoding of a linear value in [0, 1]: 12.92 c below 0.0031308, else
-/// 1.055 c^(1/2.4) - 0.055.
-float srgb_encode(float c) {
-    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-}
-
-}  // namespace
 
 OutputLook report_look(float exposure) {
     OutputLook look;
@@ -39,15 +31,43 @@ OutputLook display_look(float scale, bool exr_half) {
 }
 
 Image display_image(const Image& linear, float scale) {
-    Image out = linear;
-    for (glm::vec3& p : out.pixels) {
-        for (int c = 0; c < 3; ++c) {
-            const float v = scale * p[c];
-            p[c] = srgb_encode(v > 0.0f ? std::min(v, 1.0f) : 0.0f);
-        }
-    }
-    return out;
+    return display_encode(linear, scale, ToneCurve::Clamp);
 }
+
+std::vector<float> coverage(const Film& film) {
+    if (!film.has_aovs()) throw Error("coverage: the film keeps no AOVs");
+    std::vector<float> alpha(film.pixels.size(), 0.0f);
+    for (std::size_t i = 0; i < alpha.size(); ++i) {
+        const std::uint32_t n = film.pixels[i].samples;
+        if (n > 0) alpha[i] = float(double(film.aovs[i].hits) / double(n));
+    }
+    return alpha;
+}
+
+namespace {
+
+/// The display-convention PNG: `beauty` over the alpha of `film` when asked (the colour made
+/// straight: divided by the coverage), exposed, through the curve, 8 or 16 bits.
+void write_display(const std::string& path, const Image& beauty, const OutputLook& look,
+                   const Film* film) {
+    std::vector<float> alpha;
+    Image colour = beauty;
+    if (look.alpha) {
+        if (film == nullptr) throw Error("cannot write '" + path + "': alpha needs the film");
+        alpha = coverage(*film);
+        for (std::size_t i = 0; i < alpha.size(); ++i)
+            colour.pixels[i] = alpha[i] > 0.0f ? colour.pixels[i] / alpha[i] : glm::vec3(0.0f);
+    }
+    const float scale = look.auto_exposure ? look.scale * auto_exposure_scale(colour) : look.scale;
+    // display_encode in place: one copy of the image, as writer_bytes_per_pixel counts.
+    for (glm::vec3& p : colour.pixels) {
+        const glm::vec3 d = apply_tone_curve(look.curve, scale * p);
+        p = glm::vec3(srgb_encode(d.x), srgb_encode(d.y), srgb_encode(d.z));
+    }
+    write_display_png(path, colour, look.png_bits, look.alpha ? &alpha : nullptr);
+}
+
+}  // namespace
 
 void write_output(const std::string& path, const Image& beauty, const OutputLook& look,
                   const Film* film, const Image* denoised) {
@@ -65,7 +85,13 @@ void write_output(const std::string& path, const Image& beauty, const OutputLook
         for (const std::string& w : write_exr(path, layers, options).warnings)
             std::cerr << "warning: " << w << '\n';
     } else if (ext == ".png" && look.png_gamma == 0.0f) {
-        write_png(path, display_image(beauty, look.scale), ToneMap{1.0f, 1.0f});
+        const bool plain = look.curve == ToneCurve::Clamp && !look.auto_exposure &&
+                           look.png_bits == 8 && !look.alpha;
+        // The plain look keeps stb's encoder (the bytes of every earlier image).
+        if (plain)
+            write_png(path, display_image(beauty, look.scale), ToneMap{1.0f, 1.0f});
+        else
+            write_display(path, beauty, look, film);
     } else {
         // write_image: PNG through the tone map, the linear formats times its exposure.
         write_image(path, beauty, ToneMap{look.scale, ext == ".png" ? look.png_gamma : 1.0f});

@@ -1,9 +1,11 @@
 #pragma once
 
 #include <librt/core/image.h>
+#include <librt/core/tone_curve.h>
 #include <librt/film/film.h>
 
 #include <string>
+#include <vector>
 
 // The one writer of the apps' images: what every app writes goes through write_output, in
 // one of two looks (the report's gamma 0.45, or today's display convention).
@@ -24,6 +26,17 @@ struct OutputLook {
     /// EXR colour channels as half floats (values beyond 65504 clamped and warned about on
     /// stderr); else 32-bit float.
     bool exr_half = false;
+    /// Display convention PNG: the curve after the exposure (core/tone_curve.h).
+    ToneCurve curve = ToneCurve::Clamp;
+    /// Display convention PNG: the exposure is auto_exposure_scale of the image shown (its
+    /// colour, before alpha), times `scale`; the linear formats keep `scale` alone.
+    bool auto_exposure = false;
+    /// Display convention PNG: 8 or 16 bits per channel.
+    int png_bits = 8;
+    /// Display convention PNG: an alpha channel, the film's coverage (the share of each
+    /// pixel's camera samples that hit the scene), the colour divided by it (straight alpha).
+    /// Needs the film, with AOVs.
+    bool alpha = false;
 };
 
 /// The report's look at `exposure` (a multiple of kReportExposure): PNG gamma 0.45, .pfm and
@@ -37,10 +50,16 @@ struct OutputLook {
 /// The display image: exposure `scale`, clamp to [0, 1] (NaN -> 0), sRGB-encoded.
 [[nodiscard]] Image display_image(const Image& linear, float scale);
 
+/// Each pixel's coverage: the share of its camera samples whose ray hit the scene (AovPixel
+/// hits / FilmPixel samples; 0 for a pixel of no samples). Throws librt::Error for a film
+/// without AOVs.
+[[nodiscard]] std::vector<float> coverage(const Film& film);
+
 /// Writes `beauty` to `path` by its extension (case-insensitive), in `look`: .exr with the
 /// other layers of `film` when one is given (albedo, normal, depth, sample count; else the
 /// beauty alone, scaled) and `denoised` as its denoised layer when given (scaled like the
-/// beauty), .png tone-mapped, .pfm and .hdr linear. Throws librt::Error naming the path.
+/// beauty), .png tone-mapped (with an alpha channel from `film` when look.alpha), .pfm and
+/// .hdr linear. Throws librt::Error naming the path.
 void write_output(const std::string& path, const Image& beauty, const OutputLook& look,
                   const Film* film = nullptr, const Image* denoised = nullptr);
 

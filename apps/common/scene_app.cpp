@@ -43,7 +43,7 @@ void parse_size(const std::string& text, float aspect, int& width, int& height) 
 
 std::uint64_t progressive_output_bytes_per_pixel(const std::string& output,
                                                  RenderMemoryOptions memory, bool denoise) {
-    memory.aovs = lower_extension(output) == ".exr" || denoise;
+    memory.aovs = memory.aovs || lower_extension(output) == ".exr" || denoise;
     const std::uint64_t film = sizeof(FilmPixel) + (memory.aovs ? sizeof(AovPixel) : 0) +
                                (memory.splats ? 3 * sizeof(std::int64_t) : 0);
     // The denoiser: the film part way (kept from the half on), then at its peak (the main
@@ -59,6 +59,20 @@ std::uint64_t progressive_output_bytes_per_pixel(const std::string& output,
         std::max(writer_bytes_per_pixel(output, memory.aovs), denoising + sizeof(glm::vec3));
     return std::max(progressive_bytes_per_pixel(memory) + kept, writing);
 }
+
+namespace {
+
+/// The look of o's output (and, in 8 bits, of its preview).
+OutputLook png_look(const ProgressiveOutput& o) {
+    OutputLook look = display_look(o.scale, o.exr_half);
+    look.curve = o.curve;
+    look.auto_exposure = o.auto_exposure;
+    look.png_bits = o.png_bits;
+    look.alpha = o.alpha;
+    return look;
+}
+
+}  // namespace
 
 int render_progressively_and_write(const Scene& scene, const Camera& camera,
                                    GuardedIntegrator& integrator, const ProgressiveOutput& o) {
@@ -76,7 +90,7 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
     ps.time_limit = o.time_limit;
     ps.noise_target = o.noise_target;
     const bool exr = lower_extension(o.output) == ".exr";
-    ps.aovs = exr || o.denoise;
+    ps.aovs = exr || o.denoise || o.alpha;
     ps.render.adaptive.enabled = o.adaptive;
     // The denoiser's first half: the film at spp / 2, or (for a render the time limit may
     // stop) at the last power of two below it, so that a stopped render still has a part
@@ -101,7 +115,7 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
     std::chrono::steady_clock::time_point last_preview{};
     bool previewed = false;
     const auto write_preview = [&](const Film& f) {
-        write_output(o.preview, resolve(f), display_look(o.scale));
+        write_output(o.preview, resolve(f), png_look(o), &f);
         last_preview = std::chrono::steady_clock::now();
         previewed = true;
     };
@@ -140,10 +154,13 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
     }
     const bool have_denoised = !denoised.pixels.empty();
     const Image& shown = have_denoised && !exr ? denoised : image;
-    write_output(o.output, shown, display_look(o.scale, o.exr_half), &film,
-                 have_denoised && exr ? &denoised : nullptr);
+    write_output(o.output, shown, png_look(o), &film, have_denoised && exr ? &denoised : nullptr);
     // The last preview is the image shown (whatever the output's format), tone-mapped.
-    if (!o.preview.empty()) write_output(o.preview, shown, display_look(o.scale));
+    if (!o.preview.empty()) {
+        OutputLook preview = png_look(o);
+        preview.png_bits = 8;  // a quick look
+        write_output(o.preview, shown, preview, &film);
+    }
     const bool partial =
         stats.samples_per_pixel < std::uint32_t(o.spp) && !stats.noise_target_reached;
     if (!o.quiet || partial) {

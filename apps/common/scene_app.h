@@ -1,6 +1,7 @@
 #pragma once
 
 #include <librt/core/image.h>
+#include <librt/core/tone_curve.h>
 #include <librt/film/camera.h>
 #include <librt/film/film.h>
 #include <librt/integrator/integrators.h>
@@ -31,7 +32,13 @@ struct ProgressiveOutput {
     bool adaptive = false;      ///< --adaptive: spp is the mean; passes spread by noise
     float scale = 1.0f;         ///< exposure: the linear image is multiplied by this
     bool exr_half = false;      ///< --exr-half: EXR colour channels as half (clamped to 65504)
-    bool quiet = false;         ///< no progress bar and no summary
+    ToneCurve curve = ToneCurve::Clamp;  ///< --tonemap: the PNG's curve after the exposure
+    bool auto_exposure = false;          ///< --exposure auto: the PNG's exposure from its image
+    int png_bits = 8;                    ///< --png-bits: 8 or 16 bits per PNG channel
+    /// --transparent-background: the PNG gets the film's coverage as alpha (the films keep
+    /// AOVs).
+    bool alpha = false;
+    bool quiet = false;  ///< no progress bar and no summary
     /// --denoise: PNG, .hdr and .pfm get the denoised image, EXR a denoised layer beside its
     /// unbiased beauty (render/denoiser.h). Needs 2 samples per pixel.
     bool denoise = false;

@@ -14,6 +14,7 @@
 #include <iterator>
 #include <limits>
 #include <string>
+#include <vector>
 
 using namespace librt;
 using librt::testing::read_all;
@@ -190,4 +191,49 @@ TEST_F(ImageIoTest, FailedWriteKeepsTheOldFile) {
 TEST_F(ImageIoTest, EmptyImageIsRejected) {
     EXPECT_THROW(write_pfm(dir_ / "i.pfm", Image()), Error);
     EXPECT_EQ(entries(), 0u);
+}
+
+// write_display_png (issue 42 item 6): 16 bits per channel and straight alpha, read back by
+// stb_image: each value is round(v * 65535) (or 255), big-endian in the file as PNG wants;
+// other depths and an alpha of the wrong size are errors naming the file, writing nothing.
+TEST_F(ImageIoTest, DisplayPngHas16BitsAndAlpha) {
+    Image image(3, 1);
+    image.at(0, 0) = {0.0f, 0.5f, 1.0f};
+    image.at(1, 0) = {0.25f, 1.0f / 65535.0f, 2.0f};  // above 1: clamped
+    image.at(2, 0) = {NAN, -1.0f, 0.75f};             // NaN and below 0: 0
+    const std::vector<float> alpha = {1.0f, 0.5f, 0.0f};
+    const fs::path path = dir_ / "deep.png";
+    write_display_png(path, image, 16, &alpha);
+    int w = 0, h = 0, n = 0;
+    stbi_us* data = stbi_load_16(path.string().c_str(), &w, &h, &n, 4);
+    ASSERT_NE(data, nullptr);
+    EXPECT_EQ(w, 3);
+    EXPECT_EQ(h, 1);
+    EXPECT_EQ(n, 4);
+    const std::vector<int> expected = {0,     32768, 65535, 65535,  // pixel 0
+                                       16384, 1,     65535, 32768,  // pixel 1
+                                       0,     0,     49151, 0};     // pixel 2
+    for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(int(data[i]), expected[i]) << i;
+    stbi_image_free(data);
+
+    const fs::path rgb = dir_ / "rgb8.png";
+    write_display_png(rgb, image, 8);
+    unsigned char* bytes = stbi_load(rgb.string().c_str(), &w, &h, &n, 0);
+    ASSERT_NE(bytes, nullptr);
+    EXPECT_EQ(n, 3);
+    EXPECT_EQ(int(bytes[1]), 128);  // round(0.5 * 255)
+    EXPECT_EQ(int(bytes[3]), 64);   // round(0.25 * 255)
+    stbi_image_free(bytes);
+
+    const fs::path bad = dir_ / "bad.png";
+    try {
+        write_display_png(bad, image, 12);
+        FAIL() << "12 bits accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("bad.png"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("bits = 12"), std::string::npos) << e.what();
+    }
+    const std::vector<float> short_alpha = {1.0f};
+    EXPECT_THROW(write_display_png(bad, image, 8, &short_alpha), Error);
+    EXPECT_FALSE(fs::exists(bad));
 }

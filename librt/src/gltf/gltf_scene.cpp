@@ -337,7 +337,7 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
     // Decided by punctual lights alone: an emissive label or lamp does not light a model,
     // and emissive-only files came out black under the old rule (issue 42).
     if (lights == 0 && options.default_lighting)
-        out.lighting_note = add_studio_lighting(scene, out.camera);
+        out.lighting_note = add_studio_lighting(scene, out.camera, options.background_visible);
     // Every name is quoted by named() above; this keeps any other text from the file (and
     // messages of the functions called) to one printable line each.
     for (std::size_t i = gltf.warnings.size(); i < out.warnings.size(); ++i)

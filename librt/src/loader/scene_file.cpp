@@ -69,7 +69,7 @@ LoadedScene scene_from_obj(const std::filesystem::path& path, const SceneFileOpt
     out.camera_name = "default";
     out.camera = view_camera(out.camera, true, out.bounds, options.view, out.camera_name);
     if (!emits && options.default_lighting)
-        out.lighting_note = add_studio_lighting(out.scene, out.camera);
+        out.lighting_note = add_studio_lighting(out.scene, out.camera, options.background_visible);
     return out;
 }
 

@@ -41,9 +41,9 @@ DirectionalLight studio_key_light(const CameraSettings& camera) {
     return key;
 }
 
-std::string add_studio_lighting(Scene& scene, const CameraSettings& camera) {
+std::string add_studio_lighting(Scene& scene, const CameraSettings& camera, bool sky_seen) {
     const DirectionalLight key = studio_key_light(camera);
-    scene.add_environment_light(EnvironmentLight::from_image(studio_sky()));
+    scene.add_environment_light(EnvironmentLight::from_image(studio_sky()), sky_seen);
     scene.add_directional_light(key);
     return "no light in the file: lit by the default studio lighting (a built-in grey sky and a "
            "key light from above left of the camera)";

@@ -5,6 +5,7 @@
 #include <librt/export.h>
 
 #include <filesystem>
+#include <vector>
 
 // Image files. Every writer encodes in memory, writes a temporary file in the target's
 // directory and renames it over the target, so a failed or interrupted write never
@@ -16,6 +17,15 @@ namespace librt {
 /// 8-bit RGB PNG of the image tone-mapped by `tone_map` (stb_image_write).
 LIBRT_API void write_png(const std::filesystem::path& path, const Image& image,
                          const ToneMap& tone_map = {});
+
+/// A PNG of a display image (core/tone_curve.h, display_encode: values in [0, 1], clamped,
+/// NaN as 0) with `bits` 8 or 16 per channel (16 keeps smooth gradients free of banding), RGB,
+/// or RGBA when `alpha` is given: width * height coverage values in [0, 1], straight
+/// (unassociated) alpha as PNG specifies. Through libpng, written atomically. Throws
+/// librt::Error naming the file for other depths, an alpha of the wrong size, or a failed
+/// write.
+LIBRT_API void write_display_png(const std::filesystem::path& path, const Image& display,
+                                 int bits = 8, const std::vector<float>* alpha = nullptr);
 
 /// Linear float RGB PFM (Portable Float Map): "PF", little-endian (scale -1), rows
 /// bottom to top as the format specifies. Values are written bit for bit.

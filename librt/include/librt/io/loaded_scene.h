@@ -36,6 +36,9 @@ struct SceneFileOptions {
     /// OBJ with no emissive MTL material (MTL has no other light: an emitter is the
     /// author's lighting). false: the file's own lights alone.
     bool default_lighting = true;
+    /// Whether camera rays that leave the scene see the default lighting's sky; false keeps
+    /// its light on the model but a black background behind it (a transparent background).
+    bool background_visible = true;
     /// A viewpoint replacing the chosen camera's (film/framing.h, apply_view), applied
     /// before the default lighting is placed for it; its errors are prefixed "view: ".
     ViewOptions view;

@@ -28,8 +28,10 @@ namespace librt {
 /// position equals its look_at or whose up is parallel to the view.
 [[nodiscard]] LIBRT_API DirectionalLight studio_key_light(const CameraSettings& camera);
 
-/// Adds studio_sky() (seen by camera rays too, as a neutral background) and
+/// Adds studio_sky() (seen by camera rays too, as a neutral background, unless `sky_seen` is
+/// false: then camera rays that leave see black, for a transparent background) and
 /// studio_key_light(camera) to `scene`; returns the one-line note an app shows once.
-LIBRT_API std::string add_studio_lighting(Scene& scene, const CameraSettings& camera);
+LIBRT_API std::string add_studio_lighting(Scene& scene, const CameraSettings& camera,
+                                          bool sky_seen = true);
 
 }  // namespace librt
