@@ -5,6 +5,7 @@
 
 #include <librt/core/image.h>
 #include <librt/film/camera.h>
+#include <librt/integrator/integrator.h>
 #include <librt/scene/scene.h>
 
 #include <glm/vec3.hpp>
@@ -44,9 +45,14 @@ py::handle cancelled_type();
 /// A vec3 from any sequence of three numbers; throws librt::Error naming `what` otherwise.
 glm::vec3 to_vec3(const py::handle& value, const char* what);
 
-void bind_scene(py::module_& m);   // scene_bindings.cpp: scenes, materials, lights, cameras
-void bind_render(py::module_& m);  // render_bindings.cpp: load, render
-void bind_images(py::module_& m);  // image_bindings.cpp: read, write, tone map
+void bind_scene(py::module_& m);       // scene_bindings.cpp: scenes, materials, lights, cameras
+void bind_render(py::module_& m);      // render_bindings.cpp: load, render
+void bind_images(py::module_& m);      // image_bindings.cpp: read, write, tone map
+void bind_integrator(py::module_& m);  // integrator_bindings.cpp: Integrator, Ray, Hit, Sampler
+
+/// The C++ integrator calling a librt.Integrator subclass's li (the GIL taken per call).
+std::unique_ptr<Integrator> python_integrator(const py::object& integrator,
+                                              const py::object& scene);
 
 }  // namespace librt::python
 

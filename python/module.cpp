@@ -50,4 +50,5 @@ PYBIND11_MODULE(librt, m) {
     bind_scene(m);
     bind_render(m);
     bind_images(m);
+    bind_integrator(m);
 }

@@ -129,10 +129,10 @@ ProgressCallback progress_hook(ProgressState& state) {
     };
 }
 
-py::object render(PyScene& self, CameraSettings settings, int spp, const py::object& size,
-                  const std::string& integrator_name, const std::string& sampler, bool adaptive,
-                  int threads, std::uint64_t seed, int max_depth, const py::object& filter,
-                  bool aovs, const py::object& progress) {
+py::object render(const py::object& scene_object, CameraSettings settings, int spp,
+                  const py::object& size, const py::object& integrator_arg,
+                  const std::string& sampler, bool adaptive, int threads, std::uint64_t seed,
+                  int max_depth, const py::object& filter, bool aovs, const py::object& progress) {
     if (!size.is_none()) {
         const auto wh = size.cast<std::pair<int, int>>();
         settings.width = wh.first;
@@ -142,6 +142,7 @@ py::object render(PyScene& self, CameraSettings settings, int spp, const py::obj
         settings.pixel_jitter = PixelJitter::Filter;
         settings.pixel_filter = default_filter_settings(filter_of(filter.cast<std::string>()));
     }
+    PyScene& self = scene_object.cast<PyScene&>();
     const Camera camera(settings);
     RenderSettings rs;
     rs.samples_per_pixel = spp;
@@ -151,8 +152,12 @@ py::object render(PyScene& self, CameraSettings settings, int spp, const py::obj
     rs.adaptive.enabled = adaptive;
     validate(rs);
     self.ensure_committed();
+    // A string names one of librt's integrators; anything else is a librt.Integrator.
     const std::unique_ptr<Integrator> integrator =
-        make_integrator(integrator_name, max_depth, self.scene.lights().size());
+        py::isinstance<py::str>(integrator_arg)
+            ? make_integrator(integrator_arg.cast<std::string>(), max_depth,
+                              self.scene.lights().size())
+            : python_integrator(integrator_arg, scene_object);
 
     // Declared before the GIL is released, so that the Python error is destroyed with it held.
     ProgressState state;
@@ -240,7 +245,8 @@ void bind_render(py::module_& m) {
           "albedo, normal, depth, sample_count and (spp >= 2) denoised. progress: a callable "
           "taking a librt.Progress about ten times a second; returning False cancels "
           "(librt.Cancelled), raising stops the render and propagates. Ctrl-C stops it with "
-          "KeyboardInterrupt. The GIL is released while rendering.");
+          "KeyboardInterrupt. The GIL is released while rendering. integrator: 'path', "
+          "'bdpt', 'brute' or a librt.Integrator (Python, slow).");
 }
 
 }  // namespace librt::python
