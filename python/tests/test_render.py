@@ -121,8 +121,11 @@ def test_progress_callback_that_returns_none_lets_the_render_finish(tmp_path):
 
 def test_ctrl_c_cancels_with_keyboard_interrupt(tmp_path):
     scene_path = write_gltf(tmp_path)
+    # The child installs Python's own SIGINT handler: a process started in the background
+    # by a non-interactive shell inherits SIGINT ignored, and Python then keeps it ignored.
     script = textwrap.dedent(f"""
-        import sys, librt
+        import signal, sys, librt
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         scene, camera = librt.load({str(scene_path)!r}, size=(256, 256))
         told = []
         def progress(p):
@@ -139,5 +142,10 @@ def test_ctrl_c_cancels_with_keyboard_interrupt(tmp_path):
                              env=os.environ.copy())
     assert child.stdout.readline().strip() == "rendering"
     child.send_signal(signal.SIGINT)
-    rest, _ = child.communicate()
+    try:
+        rest, _ = child.communicate(timeout=600)  # a guard against a hang, not a measurement
+    except subprocess.TimeoutExpired:
+        child.kill()
+        child.communicate()
+        pytest.fail("SIGINT did not stop the render")
     assert rest.strip() == "interrupted" and child.returncode == 0
