@@ -25,9 +25,26 @@ struct PyScene {
     Scene scene;
     std::vector<std::string> warnings;  ///< the loader's warnings, one line each
     std::string lighting_note;          ///< the studio lighting added, or empty
+    /// Renders and queries running on it with the GIL released (changed with the GIL held).
+    int in_use = 0;
     /// The scene committed (BVHs built) if it is not: what render() and intersect() need.
     /// The BVH build runs without the GIL.
     void ensure_committed();
+    /// The scene itself, to change: throws librt::Error while a render or query reads it
+    /// (from another Python thread, or from a progress callback).
+    Scene& mutable_scene();
+};
+
+/// Marks a scene in use while the GIL is released around a render or query of it.
+class SceneInUse {
+public:
+    explicit SceneInUse(PyScene& s) : s_(s) { ++s_.in_use; }
+    ~SceneInUse() { --s_.in_use; }  // runs with the GIL held again
+    SceneInUse(const SceneInUse&) = delete;
+    SceneInUse& operator=(const SceneInUse&) = delete;
+
+private:
+    PyScene& s_;
 };
 
 /// A float32 H x W x 3 NumPy array viewing `image` without a copy: the array owns the

@@ -170,6 +170,7 @@ py::object render(const py::object& scene_object, CameraSettings settings, int s
     std::uint32_t half_at = 0;
     RenderStats stats;
     {
+        const SceneInUse in_use(self);
         py::gil_scoped_release release;
         if (!aovs) {
             image = render(self.scene, camera, *integrator, rs, &stats);

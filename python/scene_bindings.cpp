@@ -32,8 +32,16 @@ namespace librt::python {
 
 void PyScene::ensure_committed() {
     if (scene.committed()) return;
+    // Another thread may be committing it (its GIL released): one commit at a time.
+    Scene& s = mutable_scene();
+    const SceneInUse guard(*this);
     py::gil_scoped_release release;
-    scene.commit();
+    s.commit();
+}
+
+Scene& PyScene::mutable_scene() {
+    if (in_use > 0) throw Error("scene: cannot be changed while a render or ray query uses it");
+    return scene;
 }
 
 namespace {
@@ -396,6 +404,7 @@ py::dict intersect(PyScene& self, const py::handle& origins, const py::handle& d
     const float* dd = d.data();
     const Scene& scene = self.scene;
     {
+        const SceneInUse in_use(self);
         py::gil_scoped_release release;
         const auto id = [](std::uint32_t v) {
             return v == kInvalidId ? std::int64_t{-1} : std::int64_t{v};
@@ -456,14 +465,15 @@ std::uint32_t add_texture(PyScene& s, const py::array& texels, bool srgb) {
         for (std::size_t p = 0; p < rgba.size() / 4; ++p)
             for (std::size_t ch = 0; ch < channels; ++ch)
                 rgba[4 * p + ch] = a.data()[channels * p + ch];
-        return static_cast<std::uint32_t>(s.scene.add_texture(
+        return static_cast<std::uint32_t>(s.mutable_scene().add_texture(
             ImageTexture::from_rgba8(w, h, rgba, srgb ? ColorSpace::Srgb : ColorSpace::Linear)));
     }
     if (channels != 3) throw Error("texture: a float texture has 3 channels (linear RGB)");
     const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(texels);
     std::vector<glm::vec3> linear(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
     std::memcpy(linear.data(), a.data(), linear.size() * sizeof(glm::vec3));
-    return static_cast<std::uint32_t>(s.scene.add_texture(ImageTexture(w, h, std::move(linear))));
+    return static_cast<std::uint32_t>(
+        s.mutable_scene().add_texture(ImageTexture(w, h, std::move(linear))));
 }
 
 void bind_scene_class(py::module_& m) {
@@ -474,10 +484,11 @@ void bind_scene_class(py::module_& m) {
         "add_material",
         [material_type](PyScene& s, const py::object& material, const py::kwargs& kwargs) {
             if (py::isinstance<py::str>(material))
-                return s.scene.add_material(material_type(material, **kwargs).cast<Material>());
+                return s.mutable_scene().add_material(
+                    material_type(material, **kwargs).cast<Material>());
             if (!kwargs.empty())
                 throw py::type_error("add_material: keywords go with a kind, not a Material");
-            return s.scene.add_material(material.cast<Material>());
+            return s.mutable_scene().add_material(material.cast<Material>());
         },
         py::arg("material"), "Adds a Material, or add_material('kind', **fields); returns its id");
     c.def("add_texture", &add_texture, py::arg("texels"), py::arg("srgb") = true,
@@ -486,14 +497,15 @@ void bind_scene_class(py::module_& m) {
     c.def(
         "add_sphere",
         [](PyScene& s, const glm::vec3& center, double radius, std::uint32_t material) {
-            return s.scene.add_sphere(glm::dvec3(center), radius, material);
+            return s.mutable_scene().add_sphere(glm::dvec3(center), radius, material);
         },
         py::arg("center"), py::arg("radius"), py::arg("material"), "Returns the object id");
     c.def(
         "add_mesh",
         [](PyScene& s, const py::handle& vertices, const py::handle& indices,
            std::uint32_t material, const py::handle& normals, const py::handle& uvs) {
-            return s.scene.add_mesh(mesh_from_arrays(vertices, indices, normals, uvs), material);
+            return s.mutable_scene().add_mesh(mesh_from_arrays(vertices, indices, normals, uvs),
+                                              material);
         },
         py::arg("vertices"), py::arg("indices"), py::arg("material"),
         py::arg("normals") = py::none(), py::arg("uvs") = py::none(),
@@ -503,7 +515,8 @@ void bind_scene_class(py::module_& m) {
         "add_mesh_prototype",
         [](PyScene& s, const py::handle& vertices, const py::handle& indices,
            const py::handle& normals, const py::handle& uvs) {
-            return s.scene.add_mesh_prototype(mesh_from_arrays(vertices, indices, normals, uvs));
+            return s.mutable_scene().add_mesh_prototype(
+                mesh_from_arrays(vertices, indices, normals, uvs));
         },
         py::arg("vertices"), py::arg("indices"), py::arg("normals") = py::none(),
         py::arg("uvs") = py::none(), "A mesh stored once, for add_instance; returns its id");
@@ -511,14 +524,14 @@ void bind_scene_class(py::module_& m) {
         "add_instance",
         [](PyScene& s, std::uint32_t prototype, const py::handle& transform,
            std::uint32_t material) {
-            return s.scene.add_instance(prototype, mat4_from_array(transform), material);
+            return s.mutable_scene().add_instance(prototype, mat4_from_array(transform), material);
         },
         py::arg("prototype"), py::arg("transform"), py::arg("material"),
         "Places a prototype by a 4 x 4 object-to-world matrix; returns the object id");
     c.def(
         "add_point_light",
         [](PyScene& s, const glm::vec3& position, const glm::vec3& intensity) {
-            s.scene.add_point_light(PointLight{position, intensity});
+            s.mutable_scene().add_point_light(PointLight{position, intensity});
         },
         py::arg("position"), py::arg("intensity"), "intensity in W/sr per channel");
     c.def(
@@ -527,14 +540,15 @@ void bind_scene_class(py::module_& m) {
             SphereLight l;
             l.sphere = Sphere{center, radius};
             l.radiance = radiance;
-            return s.scene.add_sphere_light(l);
+            return s.mutable_scene().add_sphere_light(l);
         },
         py::arg("center"), py::arg("radius"), py::arg("radiance"));
     c.def(
         "add_quad_light",
         [](PyScene& s, const glm::vec3& corner, const glm::vec3& edge0, const glm::vec3& edge1,
            const glm::vec3& radiance, bool two_sided) {
-            return s.scene.add_quad_light(QuadLight{corner, edge0, edge1, radiance, two_sided});
+            return s.mutable_scene().add_quad_light(
+                QuadLight{corner, edge0, edge1, radiance, two_sided});
         },
         py::arg("corner"), py::arg("edge0"), py::arg("edge1"), py::arg("radiance"),
         py::arg("two_sided") = false, "Emits along edge0 x edge1");
@@ -542,7 +556,8 @@ void bind_scene_class(py::module_& m) {
         "add_disk_light",
         [](PyScene& s, const glm::vec3& center, const glm::vec3& normal, float radius,
            const glm::vec3& radiance, bool two_sided) {
-            return s.scene.add_disk_light(DiskLight{center, normal, radius, radiance, two_sided});
+            return s.mutable_scene().add_disk_light(
+                DiskLight{center, normal, radius, radiance, two_sided});
         },
         py::arg("center"), py::arg("normal"), py::arg("radius"), py::arg("radiance"),
         py::arg("two_sided") = false);
@@ -556,7 +571,7 @@ void bind_scene_class(py::module_& m) {
             l.intensity = intensity;
             l.inner_angle = inner_angle;
             l.outer_angle = outer_angle;
-            return s.scene.add_spot_light(l);
+            return s.mutable_scene().add_spot_light(l);
         },
         py::arg("position"), py::arg("direction"), py::arg("intensity"),
         py::arg("inner_angle") = 0.0f, py::arg("outer_angle") = 0.7853982f, "Angles in radians");
@@ -568,7 +583,7 @@ void bind_scene_class(py::module_& m) {
             l.to_light = to_light;
             l.irradiance = irradiance;
             l.angular_radius = angular_radius;
-            return s.scene.add_directional_light(l);
+            return s.mutable_scene().add_directional_light(l);
         },
         py::arg("to_light"), py::arg("irradiance"), py::arg("angular_radius") = 0.0f,
         "A sun: to_light points toward it; irradiance in W/m^2");
@@ -579,15 +594,15 @@ void bind_scene_class(py::module_& m) {
             if (!image.is_none()) {
                 const Image img = array_to_image(image, "environment image");
                 EnvironmentImage env{img.width, img.height, img.pixels};
-                return s.scene.add_environment_light(
+                return s.mutable_scene().add_environment_light(
                     EnvironmentLight::from_image(std::move(env), rotation_about_up(rotate),
                                                  strength),
                     camera_visible);
             }
             const glm::vec3 r =
                 radiance.is_none() ? glm::vec3(1.0f) : to_vec3(radiance, "radiance");
-            return s.scene.add_environment_light(EnvironmentLight::constant(r * strength),
-                                                 camera_visible);
+            return s.mutable_scene().add_environment_light(EnvironmentLight::constant(r * strength),
+                                                           camera_visible);
         },
         py::arg("radiance") = py::none(), py::arg("image") = py::none(), py::arg("rotate") = 0.0f,
         py::arg("strength") = 1.0f, py::arg("camera_visible") = true,

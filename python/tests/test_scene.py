@@ -186,3 +186,25 @@ def test_intersect_agrees_with_brute_force_on_the_bunny():
     assert np.allclose(lt[both], bt[both], rtol=1e-5, atol=0)
     same = hits["primitive_id"][sample][both] == bid[both]
     assert same.mean() > 0.98  # a tie on a shared edge may name the neighbour, at the same t
+
+
+def test_a_scene_in_use_cannot_be_changed():
+    scene = librt.Scene()
+    scene.add_sphere((0, 0, 0), 1.0, scene.add_material("diffuse"))
+    scene.add_point_light((0, 3, 3), (10, 10, 10))
+    camera = librt.Camera.perspective((0, 0, 4), (0, 0, 0), size=(64, 64))
+    refused = []
+
+    def progress(p):
+        # Called while the render reads the scene (as another Python thread could be).
+        try:
+            scene.add_sphere((2, 0, 0), 0.5, 0)
+        except librt.Error as e:
+            refused.append(str(e))
+        return False
+
+    with pytest.raises(librt.Cancelled):
+        librt.render(scene, camera, spp=1 << 20, progress=progress)
+    assert refused and "while a render or ray query uses it" in refused[0]
+    scene.add_sphere((2, 0, 0), 0.5, 0)  # free again once the render has returned
+    assert scene.object_count == 2
