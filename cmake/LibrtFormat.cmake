@@ -1,5 +1,5 @@
 # `format` rewrites, and `format-check` checks (clang-format --dry-run --Werror), every C++
-# source under librt/ apps/ tests/ bench/ examples/ against the root .clang-format. The
+# source under librt/ apps/ tests/ bench/ examples/ python/ against the root .clang-format. The
 # file list is globbed when the target runs, so new files are always included. Defined
 # only when clang-format is found (Debian 12: clang-format, version 14).
 find_program(LIBRT_CLANG_FORMAT NAMES clang-format-14 clang-format

@@ -1,7 +1,7 @@
 # Script (cmake -P) behind the format and format-check targets.
 #   CLANG_FORMAT, SOURCE_DIR, MODE = check (dry run, fails on any change) | fix (in place)
 set(globs)
-foreach(dir IN ITEMS librt apps tests bench examples)
+foreach(dir IN ITEMS librt apps tests bench examples python)
   foreach(ext IN ITEMS h hpp cpp cc)
     list(APPEND globs "${SOURCE_DIR}/${dir}/*.${ext}")
   endforeach()
