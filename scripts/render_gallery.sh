@@ -65,4 +65,12 @@ if [ -f "$data/gltf/material_spheres.glb" ]; then
 else
   echo "skipped denoise_*_16spp.png: $data/gltf/material_spheres.glb not found"
 fi
+# A model with no light (and no camera) of its own (issue 42): the studio lighting and the
+# framing camera rt_render gives it, turned 30 degrees, in the default filmic look.
+if [ -f "$data/stanford-bunny.obj" ]; then
+  run "$apps/rt_render" "$data/stanford-bunny.obj" --size 480x360 --spp 32 --orbit 30 -q \
+    -o "$out/default_lighting_bunny.png"
+else
+  echo "skipped default_lighting_bunny.png: $data/stanford-bunny.obj not found"
+fi
 echo "wrote the gallery's images to $(cd "$out" && pwd)"
