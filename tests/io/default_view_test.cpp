@@ -310,8 +310,9 @@ TEST(DefaultLighting, TheKeyLightIsAboveLeftBehindTheCamera) {
         EXPECT_LT(glm::dot(l, forward), -0.4f);
     }
     // The sky: grey, brighter above than below, continuous at the horizon: the rows either
-    // side of it are centred 2.8 degrees (0.049 rad) above and below, where the curves give
-    // 0.35 + 0.25 sin(0.049) = 0.362 and 0.12 + 0.23 exp(-0.049 / 0.15) = 0.286.
+    // side of it are centred half a row (pi / (2 h) rad) above and below, where the curves
+    // give 0.35 + 0.25 sin(e) and 0.12 + 0.23 exp(-e / 0.15), within 0.003 of each other for
+    // rows of a tenth of a degree (no visible step).
     const EnvironmentImage sky = studio_sky();
     ASSERT_EQ(sky.pixels.size(), std::size_t(sky.width * sky.height));
     const glm::vec3 top = sky.pixels.front(), bottom = sky.pixels.back();
@@ -320,8 +321,11 @@ TEST(DefaultLighting, TheKeyLightIsAboveLeftBehindTheCamera) {
     EXPECT_GT(top.x, 2.0f * bottom.x);
     const float above = sky.pixels[std::size_t(sky.height / 2 - 1) * std::size_t(sky.width)].x;
     const float below = sky.pixels[std::size_t(sky.height / 2) * std::size_t(sky.width)].x;
-    EXPECT_NEAR(above, 0.362f, 0.001f);
-    EXPECT_NEAR(below, 0.286f, 0.001f);
+    const double e = 0.5 * 3.14159265358979323846 / sky.height;
+    EXPECT_NEAR(above, 0.35 + 0.25 * std::sin(e), 1e-5);
+    EXPECT_NEAR(below, 0.12 + 0.23 * std::exp(-e / 0.15), 1e-5);
+    EXPECT_LT(above - below, 0.003f);
+    EXPECT_LE(3.14159265358979323846 / sky.height, 0.1 * 3.14159265358979323846 / 180.0);
 }
 
 // An environment whose only bright pixels are one column at the equator, 5 degrees wide

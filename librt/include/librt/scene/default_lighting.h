@@ -15,7 +15,7 @@
 
 namespace librt {
 
-/// The built-in sky: a 64 x 32 grey equirectangular image (EnvironmentImage's layout), y up,
+/// The built-in sky: a 16 x 2048 grey equirectangular image (EnvironmentImage's layout), y up,
 /// constant along each row: radiance 0.35 at the horizon rising to 0.6 at the zenith
 /// (0.35 + 0.25 sin(elevation)), a ground falling from 0.35 at the horizon to 0.12 below.
 /// Grey, so it tints nothing; brighter above, so tops read as tops.
