@@ -172,3 +172,59 @@ TEST(TextureTransformMap, MatchesTheGltfMatrixThenTheVerticalFlip) {
 
 }  // namespace
 }  // namespace librt
+
+namespace librt {
+namespace {
+
+// Issue 42 item 4: 8-bit texels stay 8 bits (4 bytes a texel, not 12 or 16 as floats), and
+// every lookup (bilinear and nearest, each wrap mode, colour and alpha) gives the very bits
+// of the same texture decoded to floats up front, as textures were stored before.
+TEST(TextureMemory, EightBitTexelsStayEightBitAndLookUpTheSameBits) {
+    const int w = 7, h = 5;
+    std::vector<std::uint8_t> rgba;
+    std::uint32_t state = 12345u;
+    for (int i = 0; i < 4 * w * h; ++i) {
+        state = state * 1664525u + 1013904223u;  // a fixed LCG: any bytes will do
+        rgba.push_back(std::uint8_t(state >> 24));
+    }
+    for (ColorSpace space : {ColorSpace::Srgb, ColorSpace::Linear}) {
+        const ImageTexture eight = ImageTexture::from_rgba8(w, h, rgba, space);
+        ASSERT_TRUE(eight.eight_bit());
+        EXPECT_EQ(eight.texel_bytes(), std::size_t(4 * w * h));
+        ASSERT_TRUE(eight.has_alpha());
+        std::vector<glm::vec3> floats;
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) floats.push_back(eight.texel(x, y));
+        }
+        ImageTexture decoded(w, h, floats);
+        EXPECT_EQ(decoded.texel_bytes(), std::size_t(w * h) * sizeof(glm::vec3));
+        for (int x = 0; x < w; ++x) {
+            const double want =
+                space == ColorSpace::Srgb ? srgb_reference(rgba[4 * x]) : rgba[4 * x] / 255.0;
+            EXPECT_NEAR(eight.texel(x, 0).x, want, 1e-6 * (1.0 + want));
+        }
+        for (TextureFilter filter : {TextureFilter::Linear, TextureFilter::Nearest}) {
+            for (TextureWrap wrap :
+                 {TextureWrap::Repeat, TextureWrap::ClampToEdge, TextureWrap::MirroredRepeat}) {
+                ImageTexture a = eight, b = decoded;
+                a.set_sampling({wrap, wrap, filter});
+                b.set_sampling({wrap, wrap, filter});
+                for (int k = 0; k < 200; ++k) {
+                    const glm::vec2 uv(-1.3f + 0.0193f * float(k), 2.1f - 0.0271f * float(k));
+                    ASSERT_EQ(a.lookup(uv), b.lookup(uv)) << k;
+                }
+            }
+        }
+        // Alpha: a/255, filtered as colour is.
+        ImageTexture nearest = eight;
+        nearest.set_sampling({TextureWrap::Repeat, TextureWrap::Repeat, TextureFilter::Nearest});
+        EXPECT_EQ(nearest.lookup_alpha({centre(2, w), 1.0f - centre(0, h)}),
+                  float(rgba[4 * 2 + 3]) / 255.0f);
+    }
+    // Opaque texels: no alpha channel.
+    std::vector<std::uint8_t> opaque(4 * 4, 255);
+    EXPECT_FALSE(ImageTexture::from_rgba8(2, 2, opaque, ColorSpace::Srgb).has_alpha());
+}
+
+}  // namespace
+}  // namespace librt

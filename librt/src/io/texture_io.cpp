@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -87,16 +88,16 @@ ImageTexture load_texture(const std::filesystem::path& path, FileDigest* digest)
         }
     }
     std::unique_ptr<stbi_uc, void (*)(void*)> data(
-        stbi_load_from_memory(encoded, encoded_size, &w, &h, &channels, 3), stbi_image_free);
+        stbi_load_from_memory(encoded, encoded_size, &w, &h, &channels, 4), stbi_image_free);
     if (!data)
         throw Error("cannot load texture " + name + ": " + detail::image_decode_failure(bytes));
-    std::array<float, 256> to_linear{};
-    for (int i = 0; i < 256; ++i) to_linear[std::size_t(i)] = srgb_to_linear(float(i) / 255.0f);
-    std::vector<glm::vec3> texels(std::size_t(w) * std::size_t(h));
-    const stbi_uc* p = data.get();
-    for (std::size_t i = 0; i < texels.size(); ++i, p += 3)
-        texels[i] = {to_linear[p[0]], to_linear[p[1]], to_linear[p[2]]};
-    return ImageTexture(w, h, std::move(texels));
+    // Kept as 8 bits (ImageTexture::from_rgba8), sRGB-decoded at lookup. The file's alpha is
+    // not a map_Kd's: every texel made opaque.
+    const std::size_t bytes_of_texels = std::size_t(w) * std::size_t(h) * 4;
+    stbi_uc* p = data.get();
+    for (std::size_t i = 3; i < bytes_of_texels; i += 4) p[i] = 255;
+    return ImageTexture::from_rgba8(w, h, std::span<const std::uint8_t>(p, bytes_of_texels),
+                                    ColorSpace::Srgb);
 }
 
 }  // namespace librt

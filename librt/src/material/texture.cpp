@@ -53,36 +53,27 @@ ImageTexture::ImageTexture(int width, int height, std::vector<glm::vec3> linear_
 ImageTexture ImageTexture::from_rgba8(int width, int height, std::span<const std::uint8_t> rgba,
                                       ColorSpace space, const TextureSampling& sampling) {
     check_size(width, height, rgba.size(), 4);
-    // Decoding through a table: 256 values instead of a pow per texel channel.
-    std::array<float, 256> to_linear{};
+    ImageTexture t;
+    t.width_ = width;
+    t.height_ = height;
+    // Decoding through a table at lookup: 256 values instead of a pow per texel channel,
+    // and the texels stay 4 bytes (a 4096^2 texture: 64 MiB, not 256 as floats).
     for (int i = 0; i < 256; ++i) {
         const float c = float(i) / 255.0f;
-        to_linear[std::size_t(i)] = space == ColorSpace::Srgb ? srgb_to_linear(c) : c;
+        t.decode_[std::size_t(i)] = space == ColorSpace::Srgb ? srgb_to_linear(c) : c;
     }
-    const std::size_t n = rgba.size() / 4;
-    std::vector<glm::vec3> texels(n);
-    bool translucent = false;
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::uint8_t* p = &rgba[4 * i];
-        texels[i] = {to_linear[p[0]], to_linear[p[1]], to_linear[p[2]]};
-        translucent = translucent || p[3] != 255;
-    }
-    ImageTexture t(width, height, std::move(texels));
-    if (translucent) {
-        t.alpha_.resize(n);
-        for (std::size_t i = 0; i < n; ++i) t.alpha_[i] = float(rgba[4 * i + 3]) / 255.0f;
-    }
+    t.rgba8_.assign(rgba.begin(), rgba.end());
+    for (std::size_t i = 3; i < t.rgba8_.size() && !t.translucent_; i += 4)
+        t.translucent_ = t.rgba8_[i] != 255;
     t.sampling_ = sampling;
     return t;
 }
 
-template <class Texel>
-Texel ImageTexture::filtered(glm::vec2 uv, const std::vector<Texel>& texels,
-                             const Texel& fallback) const {
-    if (texels.empty()) return fallback;
-    if (!finite(uv)) return texels.front();
-    const auto at = [&](int x, int y) -> const Texel& {
-        return texels[std::size_t(y) * std::size_t(width_) + std::size_t(x)];
+template <class Texel, class Fetch>
+Texel ImageTexture::filtered(glm::vec2 uv, const Fetch& fetch) const {
+    if (!finite(uv)) return fetch(0);
+    const auto at = [&](int x, int y) -> Texel {
+        return fetch(std::size_t(y) * std::size_t(width_) + std::size_t(x));
     };
     // c is the coordinate with 0 at the image's first column / row, in texture widths;
     // `repeat_c` its fractional part as the report's lookup computed it (kept to the
@@ -138,12 +129,13 @@ Texel ImageTexture::filtered(glm::vec2 uv, const std::vector<Texel>& texels,
 }
 
 glm::vec3 ImageTexture::lookup(glm::vec2 uv) const {
-    return filtered(uv, texels_, glm::vec3(0.0f));
+    if (empty()) return glm::vec3(0.0f);
+    return filtered<glm::vec3>(uv, [this](std::size_t i) { return texel_at(i); });
 }
 
 float ImageTexture::lookup_alpha(glm::vec2 uv) const {
-    if (alpha_.empty()) return 1.0f;
-    return filtered(uv, alpha_, 1.0f);
+    if (!translucent_) return 1.0f;
+    return filtered<float>(uv, [this](std::size_t i) { return float(rgba8_[4 * i + 3]) / 255.0f; });
 }
 
 glm::mat3x2 make_texture_transform(const TextureTransform& t, bool gltf_uvs) {

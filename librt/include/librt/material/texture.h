@@ -7,6 +7,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -39,8 +41,10 @@ struct TextureSampling {
     TextureFilter filter = TextureFilter::Linear;  ///< between texels
 };
 
-/// An RGB(A) image a material looks up, stored as linear floats (io/texture_io.h
-/// load_texture reads one from a file; from_rgba8 decodes 8-bit texels).
+/// An RGB(A) image a material looks up: linear floats (the constructor, for HDR data), or
+/// 8-bit texels kept as 8 bits, 4 bytes a texel, and decoded through a 256-entry table of
+/// their colour space at lookup (from_rgba8; io/texture_io.h load_texture reads one from a
+/// file): a quarter of the floats' memory, the same values.
 ///
 /// Lookups use OBJ texture coordinates: u runs left to right and v bottom to top (the
 /// image's first row is v = 1); the texel centres sit at (i + 0.5) / width. Outside [0, 1]
@@ -55,8 +59,9 @@ public:
     /// librt::Error if the size is not positive or texels.size() != width * height.
     ImageTexture(int width, int height, std::vector<glm::vec3> linear_texels);
 
-    /// A texture from 8-bit RGBA texels (row-major, top row first, 4 bytes each): RGB
-    /// decoded by `space`, alpha always linear (kept only when some texel is below 255).
+    /// A texture from 8-bit RGBA texels (row-major, top row first, 4 bytes each), kept as
+    /// they are: RGB decoded by `space` at lookup, alpha always linear (a/255; has_alpha()
+    /// only when some texel is below 255).
     /// Throws librt::Error if the size is not positive or rgba.size() != 4 width height.
     [[nodiscard]] static ImageTexture from_rgba8(int width, int height,
                                                  std::span<const std::uint8_t> rgba,
@@ -69,15 +74,22 @@ public:
     /// Filtered alpha at uv, as lookup() filters colour; 1 when the texture has no alpha.
     [[nodiscard]] float lookup_alpha(glm::vec2 uv) const;
 
-    /// The texel in column x, row y (row 0 at the top), without wrapping.
-    [[nodiscard]] const glm::vec3& texel(int x, int y) const {
-        return texels_[std::size_t(y) * std::size_t(width_) + std::size_t(x)];
+    /// The linear RGB of the texel in column x, row y (row 0 at the top), without wrapping.
+    [[nodiscard]] glm::vec3 texel(int x, int y) const {
+        return texel_at(std::size_t(y) * std::size_t(width_) + std::size_t(x));
     }
-    [[nodiscard]] int width() const { return width_; }            ///< texels per row
-    [[nodiscard]] int height() const { return height_; }          ///< number of rows
-    [[nodiscard]] bool empty() const { return texels_.empty(); }  ///< true when default-made
+    [[nodiscard]] int width() const { return width_; }    ///< texels per row
+    [[nodiscard]] int height() const { return height_; }  ///< number of rows
+    /// True when default-made.
+    [[nodiscard]] bool empty() const { return texels_.empty() && rgba8_.empty(); }
     /// True when the texture carries an alpha channel (some texel not opaque).
-    [[nodiscard]] bool has_alpha() const { return !alpha_.empty(); }
+    [[nodiscard]] bool has_alpha() const { return translucent_; }
+    /// True when the texels are kept as 8 bits (from_rgba8).
+    [[nodiscard]] bool eight_bit() const { return !rgba8_.empty(); }
+    /// Bytes the texels take: 12 a texel as floats, 4 as 8 bits.
+    [[nodiscard]] std::size_t texel_bytes() const {
+        return texels_.size() * sizeof(glm::vec3) + rgba8_.size();
+    }
     /// How lookups wrap and filter.
     [[nodiscard]] const TextureSampling& sampling() const { return sampling_; }
     /// Changes how lookups wrap and filter.
@@ -89,13 +101,24 @@ private:
         int i0, i1;
         float w1;
     };
-    template <class Texel>
-    Texel filtered(glm::vec2 uv, const std::vector<Texel>& texels, const Texel& fallback) const;
+    /// Texel `i`'s linear RGB, from the floats or decoded from 8 bits.
+    [[nodiscard]] glm::vec3 texel_at(std::size_t i) const {
+        if (texels_.empty()) {
+            const std::uint8_t* p = &rgba8_[4 * i];
+            return {decode_[p[0]], decode_[p[1]], decode_[p[2]]};
+        }
+        return texels_[i];
+    }
+    /// The sampling's filter over the texels, each read by fetch(index).
+    template <class Texel, class Fetch>
+    Texel filtered(glm::vec2 uv, const Fetch& fetch) const;
 
     int width_ = 0;
     int height_ = 0;
-    std::vector<glm::vec3> texels_;
-    std::vector<float> alpha_;  ///< per texel, linear; empty when every texel is opaque
+    std::vector<glm::vec3> texels_;    ///< linear floats; empty when 8-bit
+    std::vector<std::uint8_t> rgba8_;  ///< 8-bit RGBA, 4 bytes a texel; empty when floats
+    std::array<float, 256> decode_{};  ///< 8-bit RGB value to linear (the colour space's)
+    bool translucent_ = false;         ///< some 8-bit alpha below 255
     TextureSampling sampling_;
 };
 
