@@ -48,6 +48,8 @@ const std::set<std::string, std::less<>>& supported_extensions() {
         // Layers on the metallic-roughness model, and unlit (gltf_material.cpp).
         "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_specular",
         "KHR_materials_unlit",
+        // Instances of a mesh per node (gltf_nodes.cpp).
+        "EXT_mesh_gpu_instancing",
         // Not rendered: kept through parsing so the warning can name each material.
         "KHR_materials_iridescence"};
     return names;
@@ -159,7 +161,8 @@ void check_structure(const Json& root, const Context& ctx) {
 }
 
 /// Integers of the extensions whose members tinygltf stores as int (a larger value would
-/// wrap silently there): EXT_meshopt_compression's and KHR_draco_mesh_compression's.
+/// wrap silently there): EXT_meshopt_compression's and KHR_draco_mesh_compression's, and
+/// the whole of EXT_mesh_gpu_instancing's (accessor indices, nested in objects).
 void check_extension_ints(const Json& doc, const Context& ctx) {
     const auto beyond_int = [](const Json& v) {
         if (!v.is_number_integer()) return false;
@@ -167,6 +170,32 @@ void check_extension_ints(const Json& doc, const Context& ctx) {
                    ? v.get<std::uint64_t>() > std::uint64_t(std::numeric_limits<int>::max())
                    : v.get<std::int64_t>() < std::numeric_limits<int>::min();
     };
+    // Every integer below `root`, at any depth (bounded: check_structure ran first).
+    const auto check_all = [&](const Json& root, const std::string& root_path) {
+        std::vector<std::pair<const Json*, std::string>> stack{{&root, root_path}};
+        while (!stack.empty()) {
+            const auto [value, path] = std::move(stack.back());
+            stack.pop_back();
+            std::size_t i = 0;
+            for (auto it = value->begin(); it != value->end(); ++it, ++i) {
+                const std::string at =
+                    value->is_object() ? path + "." + it.key() : indexed(path, i);
+                if (beyond_int(*it)) ctx.fail(at, it->dump() + " is too large");
+                if (it->is_structured()) stack.emplace_back(&*it, at);
+            }
+        }
+    };
+    const auto extension_tree = [&](const Json& owner, const char* name, const std::string& path) {
+        if (!owner.is_object()) return;
+        const auto ext = owner.find("extensions");
+        if (ext == owner.end() || !ext->is_object()) return;
+        const auto e = ext->find(name);
+        if (e != ext->end() && e->is_structured())
+            check_all(*e, (path.empty() ? "" : path + ".") + "extensions." + name);
+    };
+    if (const auto nodes = doc.find("nodes"); nodes != doc.end() && nodes->is_array())
+        for (std::size_t i = 0; i < nodes->size(); ++i)
+            extension_tree((*nodes)[i], "EXT_mesh_gpu_instancing", indexed("nodes", i));
     // Members, and members of member objects (KHR_draco_mesh_compression.attributes).
     const auto check = [&](const Json& object, const std::string& path) {
         for (auto it = object.begin(); it != object.end(); ++it) {

@@ -46,12 +46,16 @@ struct GltfMesh {
     }
 };
 
-/// One placement of a mesh: a node of the chosen scene that names it.
+/// One placement of a mesh: a node of the chosen scene that names it, or one of the node's
+/// EXT_mesh_gpu_instancing instances.
 struct GltfInstance {
     int mesh = -1;          ///< index into GltfScene::meshes
     int node = -1;          ///< the glTF node index
     glm::mat4 world{1.0f};  ///< mesh space to world, the node's transforms composed
     std::string node_name;  ///< the node's name, may be empty
+    /// EXT_mesh_gpu_instancing: which of the node's instances (world = the node's world
+    /// times the instance's T * R * S); -1 for a node placing its mesh itself.
+    int gpu_instance = -1;
 };
 
 /// A camera placed by a node. glTF cameras look down their local -z with +y up.
@@ -253,7 +257,10 @@ struct GltfLoadOptions {
 ///   KHR_texture_basisu (KTX2) texture uses its fallback source with a warning, and is
 ///   an error without one.
 /// - Nodes: TRS or matrix, composed from the scene's roots down; every node naming a mesh,
-///   camera or KHR_lights_punctual light adds an instance, camera or light.
+///   camera or KHR_lights_punctual light adds an instance, camera or light. A node with
+///   EXT_mesh_gpu_instancing adds an instance per element of its TRANSLATION, ROTATION
+///   (quaternion) and SCALE accessors instead (all of one count; wrong types and counts are
+///   errors naming the attribute's JSON path).
 /// - Errors, thrown as librt::Error before anything is returned, name the file and the
 ///   JSON path: "scene.gltf: meshes[3].primitives[0].indices: index 9123 >= vertex count
 ///   9000". They cover: not glTF, broken JSON, a truncated .glb or a wrong chunk length, a

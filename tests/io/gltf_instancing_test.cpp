@@ -1,0 +1,236 @@
+// Issue 42 item 3, on files the tests write: EXT_mesh_gpu_instancing's per-instance
+// TRANSLATION / ROTATION / SCALE.
+
+#include "io/gltf_test_util.h"
+#include "robustness/robustness_util.h"
+
+#include <librt/gltf/gltf.h>
+#include <librt/gltf/gltf_scene.h>
+#include <librt/loader/scene_file.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+using namespace librt;
+using librt::testing::GltfBuilder;
+using librt::testing::ScratchDir;
+using nlohmann::json;
+namespace fs = std::filesystem;
+namespace lt = librt::testing;
+
+namespace {
+
+constexpr int kGrid = 5;  // 5 x 5 x 5 = 125 instances, as the SimpleInstancing sample
+constexpr int kInstances = kGrid * kGrid * kGrid;
+
+/// Instance i's translation, angle about +y and scale: each different.
+glm::vec3 translation_of(int i) {
+    return {float(i % kGrid) * 3.0f, float(i / kGrid % kGrid) * 3.0f, float(i / 25) * 3.0f};
+}
+float angle_of(int i) { return 0.05f * float(i); }
+glm::vec3 scale_of(int i) { return {1.0f + 0.01f * float(i), 0.5f, 2.0f}; }
+
+/// One triangle (mesh 0) placed by node 0 (translated by (0, 100, 0)) through
+/// EXT_mesh_gpu_instancing with all three attributes, 125 instances.
+GltfBuilder instanced() {
+    GltfBuilder b = lt::one_triangle();
+    std::vector<float> t, r, s;
+    for (int i = 0; i < kInstances; ++i) {
+        const glm::vec3 ti = translation_of(i), si = scale_of(i);
+        t.insert(t.end(), {ti.x, ti.y, ti.z});
+        // A rotation by a about +y: (x, y, z, w) = (0, sin(a/2), 0, cos(a/2)).
+        r.insert(r.end(), {0.0f, std::sin(angle_of(i) / 2), 0.0f, std::cos(angle_of(i) / 2)});
+        s.insert(s.end(), {si.x, si.y, si.z});
+    }
+    const int ta = b.add_accessor(t, lt::kFloat, "VEC3", kInstances);
+    const int ra = b.add_accessor(r, lt::kFloat, "VEC4", kInstances);
+    const int sa = b.add_accessor(s, lt::kFloat, "VEC3", kInstances);
+    b.doc["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+    b.doc["extensionsRequired"] = {"EXT_mesh_gpu_instancing"};
+    b.doc["nodes"][0]["translation"] = {0, 100, 0};
+    b.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = {
+        {"TRANSLATION", ta}, {"ROTATION", ra}, {"SCALE", sa}};
+    return b;
+}
+
+/// The attributes object of node 0's EXT_mesh_gpu_instancing.
+json& attributes(GltfBuilder& b) {
+    return b.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+}
+
+GltfScene load(const ScratchDir& dir, const GltfBuilder& b, const GltfLoadOptions& o = {}) {
+    const fs::path p = dir.path() / "file.gltf";
+    lt::write_file(p, b.gltf());
+    return load_gltf(p, o);
+}
+
+/// The message of the librt::Error loading `b` throws.
+std::string load_error(const GltfBuilder& b, const GltfLoadOptions& o = {}) {
+    ScratchDir dir;
+    return lt::error_of([&] { (void)load(dir, b, o); });
+}
+
+}  // namespace
+
+TEST(GltfGpuInstancing, OneHundredTwentyFiveInstancesWithTheirTransforms) {
+    ScratchDir dir;
+    const GltfScene s = load(dir, instanced());
+    ASSERT_EQ(s.instances.size(), std::size_t(kInstances));
+    EXPECT_EQ(s.meshes.size(), 1u);
+    for (int i = 0; i < kInstances; ++i) {
+        SCOPED_TRACE(i);
+        const GltfInstance& inst = s.instances[std::size_t(i)];
+        EXPECT_EQ(inst.mesh, 0);
+        EXPECT_EQ(inst.node, 0);
+        EXPECT_EQ(inst.gpu_instance, i);
+        // The vertex (1, 0, 0): scaled to (sx, 0, 0), turned by a about +y to
+        // sx (cos a, 0, -sin a), moved by the instance's translation, then by the node's.
+        const glm::vec3 p = glm::vec3(inst.world * glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
+        const float a = angle_of(i), sx = scale_of(i).x;
+        const glm::vec3 want =
+            translation_of(i) + glm::vec3(0, 100, 0) + sx * glm::vec3(std::cos(a), 0, -std::sin(a));
+        EXPECT_NEAR(p.x, want.x, 1e-4f);
+        EXPECT_NEAR(p.y, want.y, 1e-4f);
+        EXPECT_NEAR(p.z, want.z, 1e-4f);
+        // (0, 1, 0) scaled by sy = 0.5, unaffected by the turn about y.
+        const glm::vec3 q = glm::vec3(inst.world * glm::vec4(0.0f, 1.0f, 0.0f, 1.0f));
+        EXPECT_NEAR(q.y, translation_of(i).y + 100.0f + 0.5f, 1e-4f);
+        EXPECT_NEAR(q.x, translation_of(i).x, 1e-4f);
+    }
+    EXPECT_TRUE(s.warnings.empty()) << lt::joined(s.warnings);
+}
+
+TEST(GltfGpuInstancing, TheSceneStoresTheMeshOnceAndPlacesItPerInstance) {
+    ScratchDir dir;
+    const fs::path p = dir.path() / "instanced.glb";
+    lt::write_file(p, instanced().glb());
+    LoadedScene loaded = load_scene_file(p);
+    EXPECT_EQ(loaded.triangles_stored, 1u);
+    EXPECT_EQ(loaded.triangles_placed, std::size_t(kInstances));
+    loaded.scene.commit();
+    // Each instance's triangle where its transform puts it: corners (0, 0, 0), (1, 0, 0) and
+    // (0, 1, 0) scaled, turned by a about +y and moved, predicted by hand. A ray along its
+    // normal, from 1 unit away (the instances are 3 apart), hits its centre at t = 1.
+    for (const int i : {0, 7, 124}) {
+        SCOPED_TRACE(i);
+        const float a = angle_of(i);
+        const glm::vec3 origin = translation_of(i) + glm::vec3(0, 100, 0);
+        const glm::vec3 c0 = origin;
+        const glm::vec3 c1 = origin + scale_of(i).x * glm::vec3(std::cos(a), 0, -std::sin(a));
+        const glm::vec3 c2 = origin + glm::vec3(0, scale_of(i).y, 0);
+        const glm::vec3 n = glm::normalize(glm::cross(c1 - c0, c2 - c0));
+        const glm::vec3 centre = (c0 + c1 + c2) / 3.0f;
+        Hit hit;
+        ASSERT_TRUE(loaded.scene.intersect(Ray(centre + n, -n), hit));
+        EXPECT_NEAR(hit.t, 1.0f, 1e-4f);
+        EXPECT_NEAR(glm::length(hit.point - centre), 0.0f, 1e-4f);
+    }
+}
+
+TEST(GltfGpuInstancing, AnyAttributeAloneAndQuantisedRotations) {
+    ScratchDir dir;
+    // SCALE alone: 3 instances, translated only by the node.
+    {
+        GltfBuilder b = instanced();
+        const int sa =
+            b.add_accessor(std::vector<float>{1, 1, 1, 2, 2, 2, 3, 3, 3}, lt::kFloat, "VEC3", 3);
+        attributes(b) = {{"SCALE", sa}};
+        const GltfScene s = load(dir, b);
+        ASSERT_EQ(s.instances.size(), 3u);
+        const glm::vec3 p = glm::vec3(s.instances[2].world * glm::vec4(1, 1, 1, 1));
+        EXPECT_NEAR(p.x, 3.0f, 1e-6f);
+        EXPECT_NEAR(p.y, 103.0f, 1e-5f);
+    }
+    // ROTATION as normalised shorts (KHR_mesh_quantization): a quarter turn about +z, with
+    // components 23170 / 32767 = 0.7071 (renormalised to a unit quaternion).
+    {
+        GltfBuilder b = instanced();
+        const std::vector<std::int16_t> q = {0, 0, 23170, 23170, 0, 0, 0, 32767};
+        const int ra = b.add_accessor(q, lt::kI16, "VEC4", 2, /*normalized=*/true);
+        attributes(b) = {{"ROTATION", ra}};
+        const GltfScene s = load(dir, b);
+        ASSERT_EQ(s.instances.size(), 2u);
+        // (1, 0, 0) turned a quarter about +z: (0, 1, 0); the identity leaves it.
+        const glm::vec3 p = glm::vec3(s.instances[0].world * glm::vec4(1, 0, 0, 1));
+        EXPECT_NEAR(p.x, 0.0f, 1e-4f);
+        EXPECT_NEAR(p.y, 101.0f, 1e-4f);
+        const glm::vec3 p1 = glm::vec3(s.instances[1].world * glm::vec4(1, 0, 0, 1));
+        EXPECT_NEAR(p1.x, 1.0f, 1e-6f);
+    }
+}
+
+TEST(GltfGpuInstancing, BadAccessorsAreErrorsNamingTheJsonPath) {
+    const std::string where = "nodes[0].extensions.EXT_mesh_gpu_instancing.attributes.";
+    // Wrong type: a VEC4 TRANSLATION.
+    {
+        GltfBuilder b = instanced();
+        attributes(b)["TRANSLATION"] = attributes(b)["ROTATION"];
+        const std::string e = load_error(b);
+        EXPECT_TRUE(lt::has(e, where + "TRANSLATION: accessors[")) << e;
+        EXPECT_TRUE(lt::has(e, ".type: must be VEC3")) << e;
+    }
+    // Wrong component type: a ROTATION of bytes that are not normalised.
+    {
+        GltfBuilder b = instanced();
+        const std::vector<std::int8_t> q = {0, 0, 0, 127};
+        attributes(b)["ROTATION"] = b.add_accessor(q, lt::kI8, "VEC4", 1);
+        const std::string e = load_error(b);
+        EXPECT_TRUE(lt::has(e, where + "ROTATION: accessors[")) << e;
+        EXPECT_TRUE(lt::has(e, ".componentType: 5120: must be FLOAT, or normalized BYTE or SHORT"))
+            << e;
+    }
+    // Count mismatch: 124 scales for 125 translations.
+    {
+        GltfBuilder b = instanced();
+        attributes(b)["SCALE"] =
+            b.add_accessor(std::vector<float>(124 * 3, 1.0f), lt::kFloat, "VEC3", 124);
+        const std::string e = load_error(b);
+        EXPECT_TRUE(lt::has(e, where + "SCALE: accessors[")) << e;
+        EXPECT_TRUE(lt::has(e, "has 124 elements, ROTATION's has 125")) << e;
+    }
+    // An accessor that does not exist.
+    {
+        GltfBuilder b = instanced();
+        attributes(b)["SCALE"] = 99;
+        const std::string e = load_error(b);
+        EXPECT_TRUE(lt::has(e, where + "SCALE: accessor 99 does not exist")) << e;
+    }
+    // An accessor whose elements run past its buffer view.
+    {
+        GltfBuilder b = instanced();
+        const int sa = attributes(b)["SCALE"];
+        b.doc["accessors"][sa]["count"] = 126;
+        b.doc["accessors"][int(attributes(b)["TRANSLATION"])]["count"] = 126;
+        b.doc["accessors"][int(attributes(b)["ROTATION"])]["count"] = 126;
+        const std::string e = load_error(b);
+        EXPECT_TRUE(lt::has(e, where + "TRANSLATION: accessors[")) << e;
+        EXPECT_TRUE(lt::has(e, "do not fit in bufferViews[")) << e;
+    }
+    // An index beyond int (tinygltf would wrap it).
+    {
+        GltfBuilder b = instanced();
+        attributes(b)["SCALE"] = 4294967296ull;
+        const std::string e = load_error(b);
+        EXPECT_TRUE(lt::has(e, where + "SCALE: 4294967296 is too large")) << e;
+    }
+    // A zero quaternion; no attribute at all; no mesh to instance.
+    {
+        GltfBuilder b = instanced();
+        attributes(b)["ROTATION"] = b.add_accessor(std::vector<float>(kInstances * 4, 0.0f),
+                                                   lt::kFloat, "VEC4", kInstances);
+        EXPECT_TRUE(lt::has(load_error(b), where + "ROTATION: element 0 is a zero quaternion"));
+        attributes(b) = {{"_ID", 0}};
+        EXPECT_TRUE(
+            lt::has(load_error(b), "attributes: has none of TRANSLATION, ROTATION and SCALE"));
+        b = instanced();
+        b.doc["nodes"][0].erase("mesh");
+        EXPECT_TRUE(lt::has(load_error(b),
+                            "nodes[0].extensions.EXT_mesh_gpu_instancing: the "
+                            "node places no mesh"));
+    }
+}
