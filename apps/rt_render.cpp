@@ -115,7 +115,9 @@ struct Options {
     int spp = 16;
     std::string size;  // "WxH"; empty = the camera's aspect, long side 640
     std::string camera;
-    int max_depth = -1;  // -1: the most the integrator allows (1000; bdpt 64)
+    int gltf_scene = -1;  // --scene: which of a glTF's scenes; -1 = the file's default
+    std::string variant;  // --variant: a KHR_materials_variants name; empty = none
+    int max_depth = -1;   // -1: the most the integrator allows (1000; bdpt 64)
     Choice<LightChoiceOption> light_choice = choice_of(kLightChoices, LightChoiceOption::Auto);
     Choice<IntegratorKind> integrator = choice_of(kIntegrators, IntegratorKind::Path);
     bool caustic_paths = false;  // the path tracer's caustics traced from the lights
@@ -188,6 +190,8 @@ std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
         {"--spp", std::to_string(o.spp)},
         {"--size", given(o.size)},
         {"--camera", given(o.camera)},
+        {"--scene", std::to_string(o.gltf_scene)},
+        {"--variant", given(o.variant)},
         {"--max-depth", std::to_string(o.max_depth)},
         {"--light-choice", name_of(kLightChoices, o.light_choice_kind())},
         {"--integrator", name_of(kIntegrators, o.integrator_kind())},
@@ -358,6 +362,11 @@ SceneFileOptions check_command_line(const Options& o, const apps::MpiJob& job) {
     file_options.allow_outside_files = o.allow_outside_files;
     // --env replaces the default lighting rather than adding to it.
     file_options.default_lighting = !o.no_default_light && o.env.empty();
+    // What the scene file is read as: the loader checks the scene index and variant name
+    // against the file.
+    if (o.gltf_scene < -1) bad("--scene", std::to_string(o.gltf_scene), "must be >= 0");
+    file_options.scene = o.gltf_scene;
+    file_options.variant = o.variant;
     if (!o.size.empty()) apps::parse_size(o.size, 0.0f, file_options.width, file_options.height);
     RenderSettings check;
     check.samples_per_pixel = o.spp;
@@ -538,6 +547,11 @@ int main(int argc, char** argv) {
                    "The file's camera: index (in node order) or name; default: the first; "
                    "auto: frame the model from the front, above (as a file without cameras "
                    "is)");
+    app.add_option("--scene", o.gltf_scene,
+                   "glTF: which of the file's scenes to render (0, 1, ...); default: the "
+                   "file's own");
+    app.add_option("--variant", o.variant,
+                   "glTF: the KHR_materials_variants variant (its name) whose materials to use");
     app.add_option("--max-depth", o.max_depth,
                    "Most scattering events per path; -1: the most the integrator allows (1000, "
                    "bdpt 64), paths then ending by Russian roulette (--roulette-depth)")

@@ -1,5 +1,6 @@
 // Issue 42 item 3, on files the tests write: EXT_mesh_gpu_instancing's per-instance
-// TRANSLATION / ROTATION / SCALE.
+// TRANSLATION / ROTATION / SCALE, the choice of a scene (GltfLoadOptions::scene,
+// SceneFileOptions::scene) and KHR_materials_variants (variant).
 
 #include "io/gltf_test_util.h"
 #include "robustness/robustness_util.h"
@@ -233,4 +234,190 @@ TEST(GltfGpuInstancing, BadAccessorsAreErrorsNamingTheJsonPath) {
                             "nodes[0].extensions.EXT_mesh_gpu_instancing: the "
                             "node places no mesh"));
     }
+}
+
+namespace {
+
+/// Three scenes over three nodes, each placing the triangle at x = 0, 10 and 20: scene 0
+/// node 0, scene 1 nodes 1 and 2 (the file's default), scene 2 nothing.
+GltfBuilder three_scenes() {
+    GltfBuilder b = lt::one_triangle();
+    b.doc["nodes"] = {{{"mesh", 0}},
+                      {{"mesh", 0}, {"translation", {10, 0, 0}}},
+                      {{"mesh", 0}, {"translation", {20, 0, 0}}}};
+    b.doc["scenes"] = {{{"nodes", {0}}}, {{"nodes", {1, 2}}}, {{"nodes", json::array()}}};
+    b.doc["scene"] = 1;
+    return b;
+}
+
+}  // namespace
+
+TEST(GltfSceneChoice, EachSceneIndexLoadsItsOwnNodes) {
+    ScratchDir dir;
+    GltfLoadOptions o;
+    GltfScene s = load(dir, three_scenes(), o);  // the file's default, scene 1
+    ASSERT_EQ(s.instances.size(), 2u);
+    EXPECT_EQ(s.instances[0].node, 1);
+    EXPECT_EQ(s.instances[1].node, 2);
+    o.scene = 0;
+    s = load(dir, three_scenes(), o);
+    ASSERT_EQ(s.instances.size(), 1u);
+    EXPECT_EQ(s.instances[0].node, 0);
+    o.scene = 2;
+    EXPECT_TRUE(load(dir, three_scenes(), o).instances.empty());
+    // Without "scene", the first.
+    GltfBuilder no_default = three_scenes();
+    no_default.doc.erase("scene");
+    s = load(dir, no_default);
+    ASSERT_EQ(s.instances.size(), 1u);
+    EXPECT_EQ(s.instances[0].node, 0);
+}
+
+TEST(GltfSceneChoice, AnIndexOutOfRangeNamesTheValueAndTheCount) {
+    GltfLoadOptions o;
+    o.scene = 3;
+    std::string e = load_error(three_scenes(), o);
+    EXPECT_TRUE(lt::has(e, "file.gltf: scenes: scene 3 requested, the file has 3 (scenes 0 to 2)"))
+        << e;
+    o.scene = 9;
+    e = load_error(lt::one_triangle(), o);
+    EXPECT_TRUE(lt::has(e, "scene 9 requested, the file has 1 (scene 0)")) << e;
+    GltfBuilder none = lt::one_triangle();
+    none.doc.erase("scenes");
+    none.doc.erase("scene");
+    o.scene = 0;
+    e = load_error(none, o);
+    EXPECT_TRUE(lt::has(e, "scene 0 requested, the file has none")) << e;
+    o.scene = -2;
+    EXPECT_TRUE(lt::has(load_error(none, o), "GltfLoadOptions::scene = -2"));
+}
+
+TEST(GltfSceneChoice, SceneFileOptionsChoosesTheSceneAndAnObjHasOne) {
+    ScratchDir dir;
+    const fs::path p = dir.path() / "scenes.glb";
+    lt::write_file(p, three_scenes().glb());
+    SceneFileOptions o;
+    EXPECT_EQ(load_scene_file(p, o).triangles_placed, 2u);
+    o.scene = 0;
+    const LoadedScene zero = load_scene_file(p, o);
+    EXPECT_EQ(zero.triangles_placed, 1u);
+    EXPECT_NEAR(zero.bounds.hi.x, 1.0f, 1e-6f);  // the triangle at the origin
+    o.scene = 7;
+    const std::string e = lt::error_of([&] { (void)load_scene_file(p, o); });
+    EXPECT_TRUE(lt::has(e, "scene 7 requested, the file has 3 (scenes 0 to 2)")) << e;
+    const fs::path obj = dir.path() / "tri.obj";
+    lt::write_file(obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    o.scene = 0;
+    EXPECT_EQ(load_scene_file(obj, o).triangles_placed, 1u);
+    o.scene = 1;
+    EXPECT_TRUE(lt::has(lt::error_of([&] { (void)load_scene_file(obj, o); }),
+                        "scene 1 requested, an OBJ file has one (scene 0)"));
+}
+
+namespace {
+
+/// Materials 0, 1, 2 and 3; variants 'Midnight', 'Beach', 'Street'. Primitive 0 (material
+/// 0) maps Beach to material 1 and Midnight and Street to material 2; primitive 1
+/// (material 3) has no mappings.
+GltfBuilder with_variants() {
+    GltfBuilder b = lt::one_triangle();
+    const int pos = b.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+    b.doc["materials"] = {
+        {{"name", "own"}}, {{"name", "sand"}}, {{"name", "night"}}, {{"name", "other"}}};
+    b.doc["extensionsUsed"] = {"KHR_materials_variants"};
+    b.doc["extensions"]["KHR_materials_variants"]["variants"] = {
+        {{"name", "Midnight"}}, {{"name", "Beach"}}, {{"name", "Street"}}};
+    b.doc["meshes"][0]["primitives"] = {
+        {{"attributes", {{"POSITION", pos}}},
+         {"material", 0},
+         {"extensions",
+          {{"KHR_materials_variants",
+            {{"mappings",
+              {{{"material", 1}, {"variants", {1}}}, {{"material", 2}, {"variants", {0, 2}}}}}}}}}},
+        {{"attributes", {{"POSITION", pos}}}, {"material", 3}}};
+    return b;
+}
+
+/// The mappings of primitive 0.
+json& mappings(GltfBuilder& b) {
+    return b.doc["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]["mappings"];
+}
+
+}  // namespace
+
+TEST(GltfVariants, EachVariantGivesThePrimitiveItsMappedMaterial) {
+    ScratchDir dir;
+    GltfLoadOptions o;
+    GltfScene s = load(dir, with_variants(), o);
+    EXPECT_EQ(s.variants, (std::vector<std::string>{"Midnight", "Beach", "Street"}));
+    ASSERT_EQ(s.meshes[0].primitives.size(), 2u);
+    EXPECT_EQ(s.meshes[0].primitives[0].material, 0);  // no variant: its own
+    EXPECT_EQ(s.meshes[0].primitives[1].material, 3);
+    for (const auto& [name, material] :
+         std::vector<std::pair<std::string, int>>{{"Midnight", 2}, {"Beach", 1}, {"Street", 2}}) {
+        SCOPED_TRACE(name);
+        o.variant = name;
+        s = load(dir, with_variants(), o);
+        EXPECT_EQ(s.meshes[0].primitives[0].material, material);
+        EXPECT_EQ(s.meshes[0].primitives[1].material, 3);  // no mappings: unchanged
+    }
+    // A variant that a primitive's mappings do not name leaves its own material.
+    GltfBuilder partial = with_variants();
+    mappings(partial) = {{{"material", 1}, {"variants", {1}}}};
+    o.variant = "Street";
+    EXPECT_EQ(load(dir, partial, o).meshes[0].primitives[0].material, 0);
+}
+
+TEST(GltfVariants, AnUnknownNameListsTheKnownOnes) {
+    GltfLoadOptions o;
+    o.variant = "Nope";
+    std::string e = load_error(with_variants(), o);
+    EXPECT_TRUE(lt::has(e,
+                        "file.gltf: extensions.KHR_materials_variants: variant 'Nope' is not "
+                        "in the file (its variants: 'Midnight', 'Beach', 'Street')"))
+        << e;
+    e = load_error(lt::one_triangle(), o);
+    EXPECT_TRUE(lt::has(e, "variant 'Nope' is not in the file (it defines no variants)")) << e;
+    // Through load_scene_file, and an OBJ (no variants at all).
+    ScratchDir dir;
+    SceneFileOptions so;
+    so.variant = "Nope";
+    const fs::path p = dir.path() / "v.gltf";
+    lt::write_file(p, with_variants().gltf());
+    EXPECT_TRUE(lt::has(lt::error_of([&] { (void)load_scene_file(p, so); }), "'Street')"));
+    const fs::path obj = dir.path() / "tri.obj";
+    lt::write_file(obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    EXPECT_TRUE(lt::has(lt::error_of([&] { (void)load_scene_file(obj, so); }),
+                        "variant 'Nope': an OBJ file has no material variants"));
+    so.variant = "Beach";
+    EXPECT_EQ(load_scene_file(p, so).triangles_placed, 2u);
+}
+
+TEST(GltfVariants, BadMappingsAreErrorsNamingTheJsonPath) {
+    const std::string where = "meshes[0].primitives[0].extensions.KHR_materials_variants.";
+    GltfBuilder b = with_variants();
+    mappings(b)[0]["material"] = 9;
+    std::string e = load_error(b);
+    EXPECT_TRUE(lt::has(e, where + "mappings[0].material: material 9 does not exist")) << e;
+    b = with_variants();
+    mappings(b)[1]["variants"] = {5};
+    e = load_error(b);
+    EXPECT_TRUE(lt::has(e, where + "mappings[1].variants[0]: variant 5 does not exist (3 in")) << e;
+    b = with_variants();
+    mappings(b)[1]["variants"] = {0, 1};
+    e = load_error(b);
+    EXPECT_TRUE(lt::has(e, where + "mappings[1].variants[1]: variant 1 is mapped already by "
+                                   "mappings[0]"))
+        << e;
+    b = with_variants();
+    mappings(b)[0].erase("material");
+    EXPECT_TRUE(lt::has(load_error(b), where + "mappings[0].material: missing"));
+    b = with_variants();
+    mappings(b)[0]["material"] = 4294967297ull;
+    EXPECT_TRUE(lt::has(load_error(b), where + "mappings[0].material: 4294967297 is too large"));
+    b = with_variants();
+    b.doc["extensions"]["KHR_materials_variants"]["variants"][1] = {{"label", "x"}};
+    EXPECT_TRUE(lt::has(load_error(b),
+                        "extensions.KHR_materials_variants.variants[1].name: "
+                        "missing or not a string"));
 }

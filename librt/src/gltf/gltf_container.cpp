@@ -48,8 +48,8 @@ const std::set<std::string, std::less<>>& supported_extensions() {
         // Layers on the metallic-roughness model, and unlit (gltf_material.cpp).
         "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_specular",
         "KHR_materials_unlit",
-        // Instances of a mesh per node (gltf_nodes.cpp).
-        "EXT_mesh_gpu_instancing",
+        // Instances of a mesh per node (gltf_nodes.cpp) and material variants (gltf_mesh.cpp).
+        "EXT_mesh_gpu_instancing", "KHR_materials_variants",
         // Not rendered: kept through parsing so the warning can name each material.
         "KHR_materials_iridescence"};
     return names;
@@ -162,7 +162,8 @@ void check_structure(const Json& root, const Context& ctx) {
 
 /// Integers of the extensions whose members tinygltf stores as int (a larger value would
 /// wrap silently there): EXT_meshopt_compression's and KHR_draco_mesh_compression's, and
-/// the whole of EXT_mesh_gpu_instancing's (accessor indices, nested in objects).
+/// the whole of EXT_mesh_gpu_instancing's and KHR_materials_variants' (accessor, material
+/// and variant indices, nested in objects and arrays).
 void check_extension_ints(const Json& doc, const Context& ctx) {
     const auto beyond_int = [](const Json& v) {
         if (!v.is_number_integer()) return false;
@@ -193,6 +194,7 @@ void check_extension_ints(const Json& doc, const Context& ctx) {
         if (e != ext->end() && e->is_structured())
             check_all(*e, (path.empty() ? "" : path + ".") + "extensions." + name);
     };
+    extension_tree(doc, "KHR_materials_variants", "");
     if (const auto nodes = doc.find("nodes"); nodes != doc.end() && nodes->is_array())
         for (std::size_t i = 0; i < nodes->size(); ++i)
             extension_tree((*nodes)[i], "EXT_mesh_gpu_instancing", indexed("nodes", i));
@@ -221,9 +223,11 @@ void check_extension_ints(const Json& doc, const Context& ctx) {
             const Json& mesh = (*meshes)[m];
             const auto prims = mesh.is_object() ? mesh.find("primitives") : mesh.end();
             if (!mesh.is_object() || prims == mesh.end() || !prims->is_array()) continue;
-            for (std::size_t p = 0; p < prims->size(); ++p)
-                extension((*prims)[p], "KHR_draco_mesh_compression",
-                          indexed(indexed("meshes", m) + ".primitives", p));
+            for (std::size_t p = 0; p < prims->size(); ++p) {
+                const std::string path = indexed(indexed("meshes", m) + ".primitives", p);
+                extension((*prims)[p], "KHR_draco_mesh_compression", path);
+                extension_tree((*prims)[p], "KHR_materials_variants", path);
+            }
         }
     }
 }

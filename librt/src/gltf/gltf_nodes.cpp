@@ -357,9 +357,13 @@ void read_nodes(const tinygltf::Model& model, int scene_index, Context& ctx, Glt
     }
     if (scene_index < 0 && !model.scenes.empty()) scene_index = 0;
     if (scene_index >= 0) {
-        if (std::size_t(scene_index) >= model.scenes.size()) {
-            ctx.fail("", "scene " + std::to_string(scene_index) + " requested, the file has " +
-                             std::to_string(model.scenes.size()));
+        if (const std::size_t n = model.scenes.size(); std::size_t(scene_index) >= n) {
+            ctx.fail("scenes",
+                     "scene " + std::to_string(scene_index) + " requested, the file has " +
+                         (n == 0 ? std::string("none")
+                                 : std::to_string(n) +
+                                       (n == 1 ? " (scene 0)"
+                                               : " (scenes 0 to " + std::to_string(n - 1) + ")")));
         }
         roots = model.scenes[std::size_t(scene_index)].nodes;
         roots_path = indexed("scenes", std::size_t(scene_index)) + ".nodes";

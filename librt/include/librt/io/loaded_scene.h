@@ -35,6 +35,14 @@ struct SceneFileOptions {
     /// OBJ with no emissive MTL material (MTL has no other light: an emitter is the
     /// author's lighting). false: the file's own lights alone.
     bool default_lighting = true;
+    /// glTF: which of the file's scenes (its "scenes" array) to load; -1 = the file's default
+    /// ("scene", else 0). An index the file does not have is an error naming the count. An
+    /// OBJ is one scene: only -1 and 0 are accepted.
+    int scene = -1;
+    /// glTF: the KHR_materials_variants variant to show, by name; empty = the primitives' own
+    /// materials. A name the file does not define is an error listing the names it does.
+    /// An OBJ has no variants: any name is an error.
+    std::string variant;
 };
 
 /// A scene file as librt renders it.
