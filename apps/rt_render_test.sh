@@ -52,6 +52,7 @@ for args in "--integrator bdpt --light-paths 0|--light-paths = 0.000000: must be
             "--integrator Path|--integrator = Path: must be path, bdpt or brute" \
             "--integrator path --integrator brute --caustic-paths|--caustic-paths = on: caustic light paths are the path tracer's" \
             "--integrator bdpt --integrator path --light-paths 0.5|--light-paths = 0.500000: needs --integrator bdpt" \
+            "--light-units lux|--light-units = lux: must be watts or photometric" \
             "--scene -2|--scene = -2: must be >= 0"; do
     status=0
     # shellcheck disable=SC2086 # the options are split on purpose
@@ -70,7 +71,7 @@ grep -q "missing.glb" "$dir/err.txt" && ! grep -q -- "--integrator =\|--light-ch
     fail "repeated choices: message: $(cat "$dir/err.txt")"
 [ -z "$(ls -A "$dir/out")" ] || fail "bad integrator options wrote $(ls -A "$dir/out")"
 
-# 1c. glTF's --scene and --variant on a one-scene, one-triangle file written
+# 1c. glTF's --scene, --variant and --light-units on a one-scene, one-triangle file written
 # here: a scene or variant the file lacks is an error naming the value and what the file has.
 tri_bytes='\0\0\0\0\0\0\0\0\0\0\0\0\0\0\200\77\0\0\0\0\0\0\0\0\0\0\0\0\0\0\200\77\0\0\0\0'
 tri_uri="data:application/octet-stream;base64,$(printf "$tri_bytes" | base64 -w0)"
@@ -92,7 +93,7 @@ for args in "--scene 9|tri.gltf: scenes: scene 9 requested, the file has 1 (scen
     grep -qF -- "${args#*|}" "$dir/err.txt" || fail "${args%%|*}: message: $(cat "$dir/err.txt")"
 done
 [ -z "$(ls -A "$dir/out")" ] || fail "--scene / --variant errors wrote $(ls -A "$dir/out")"
-"$app" "$dir/tri.gltf" --scene 0 --size 8x8 --spp 1 -q --threads 1 \
+"$app" "$dir/tri.gltf" --scene 0 --light-units photometric --size 8x8 --spp 1 -q --threads 1 \
     -o "$dir/tri.png" 2>"$dir/err.txt" || fail "--scene 0: $(cat "$dir/err.txt")"
 complete_png "$dir/tri.png" || fail "--scene 0: not a complete PNG"
 

@@ -1,6 +1,7 @@
-// Issue 42 item 3, on files the tests write: EXT_mesh_gpu_instancing's per-instance
+// Issue 42 items 3 and 7, on files the tests write: EXT_mesh_gpu_instancing's per-instance
 // TRANSLATION / ROTATION / SCALE, the choice of a scene (GltfLoadOptions::scene,
-// SceneFileOptions::scene) and KHR_materials_variants (variant).
+// SceneFileOptions::scene), KHR_materials_variants (variant), and the units of punctual
+// lights (SceneFileOptions::light_units).
 
 #include "io/gltf_test_util.h"
 #include "robustness/robustness_util.h"
@@ -420,4 +421,39 @@ TEST(GltfVariants, BadMappingsAreErrorsNamingTheJsonPath) {
     EXPECT_TRUE(lt::has(load_error(b),
                         "extensions.KHR_materials_variants.variants[1].name: "
                         "missing or not a string"));
+}
+
+TEST(GltfLightUnits, WattsDivideBy683PhotometricTakesTheNumbers) {
+    GltfBuilder b = lt::one_triangle();
+    b.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+    // A 3 lux sun, as GlamVelvetSofa's (a file authored for web viewers).
+    b.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
+        {{"type", "point"}, {"intensity", 1366.0}, {"color", {1.0, 0.5, 0.25}}},
+        {{"type", "directional"}, {"intensity", 3.0}},
+        {{"type", "spot"}, {"intensity", 683.0}, {"spot", {{"outerConeAngle", 0.5}}}}};
+    for (int i = 0; i < 3; ++i)
+        b.doc["nodes"].push_back({{"extensions", {{"KHR_lights_punctual", {{"light", i}}}}}});
+    b.doc["scenes"] = {{{"nodes", {0, 1, 2, 3}}}};
+    ScratchDir dir;
+    const fs::path p = dir.path() / "lights.gltf";
+    lt::write_file(p, b.gltf());
+    SceneFileOptions o;
+    EXPECT_EQ(o.light_units, PunctualLightUnits::Watts);  // the default, as before
+    for (const PunctualLightUnits units :
+         {PunctualLightUnits::Watts, PunctualLightUnits::Photometric}) {
+        o.light_units = units;
+        const float per = units == PunctualLightUnits::Watts ? 1.0f / 683.0f : 1.0f;
+        const LoadedScene s = load_scene_file(p, o);
+        ASSERT_EQ(s.scene.lights().size(), 3u);
+        const auto* point = std::get_if<PointLight>(&s.scene.lights()[0].source);
+        const auto* sun = std::get_if<DirectionalLight>(&s.scene.lights()[1].source);
+        const auto* spot = std::get_if<SpotLight>(&s.scene.lights()[2].source);
+        ASSERT_TRUE(point != nullptr && sun != nullptr && spot != nullptr);
+        // Watts: 1366 cd -> 2 W/sr, 3 lux -> 0.0044 W/m^2, 683 cd -> 1 W/sr. Photometric:
+        // 1366 W/sr, 3 W/m^2, 683 W/sr (times the colour).
+        EXPECT_FLOAT_EQ(point->intensity.x, 1366.0f * per);
+        EXPECT_FLOAT_EQ(point->intensity.y, 683.0f * per);
+        EXPECT_FLOAT_EQ(sun->irradiance.x, 3.0f * per);
+        EXPECT_FLOAT_EQ(spot->intensity.z, 683.0f * per);
+    }
 }
