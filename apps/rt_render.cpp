@@ -74,6 +74,11 @@ constexpr std::array<Named<LightChoiceOption>, 3> kLightChoices{{
     {"bounded", LightChoiceOption::Bounded},
 }};
 
+constexpr std::array<Named<PunctualLightUnits>, 2> kLightUnits{{
+    {"watts", PunctualLightUnits::Watts},
+    {"photometric", PunctualLightUnits::Photometric},
+}};
+
 /// An option that names one of a few values: the text as typed and, when it names one, the
 /// value (CLI11 parses it once, through Option::each). An unknown name is not CLI11's error
 /// but check_choices', which names the text as the other rules do.
@@ -127,6 +132,9 @@ struct Options {
     std::optional<float> fov;    // vertical, degrees
     std::optional<float> orbit;  // degrees about +y, auto framing
     int max_depth = -1;          // -1: the most the integrator allows (1000; bdpt 64)
+    int gltf_scene = -1;  // --scene: which of a glTF's scenes; -1 = the file's default
+    std::string variant;  // --variant: a KHR_materials_variants name; empty = none
+    Choice<PunctualLightUnits> light_units = choice_of(kLightUnits, PunctualLightUnits::Watts);
     Choice<LightChoiceOption> light_choice = choice_of(kLightChoices, LightChoiceOption::Auto);
     Choice<IntegratorKind> integrator = choice_of(kIntegrators, IntegratorKind::Path);
     bool caustic_paths = false;  // the path tracer's caustics traced from the lights
@@ -211,6 +219,9 @@ std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
         {"--look-at", given(o.look_at)},
         {"--fov", o.fov ? exact(*o.fov) : "(the camera's)"},
         {"--orbit", o.orbit ? exact(*o.orbit) : "(none)"},
+        {"--scene", std::to_string(o.gltf_scene)},
+        {"--variant", given(o.variant)},
+        {"--light-units", o.light_units.typed},
         {"--max-depth", std::to_string(o.max_depth)},
         {"--light-choice", name_of(kLightChoices, o.light_choice_kind())},
         {"--integrator", name_of(kIntegrators, o.integrator_kind())},
@@ -445,6 +456,14 @@ SceneFileOptions check_command_line(const Options& o, const apps::MpiJob& job) {
     // --env replaces the default lighting rather than adding to it.
     file_options.default_lighting = !o.no_default_light && o.env.empty();
     file_options.background_visible = !o.transparent_background;
+    // What the scene file is read as: the loader checks the scene index and variant name
+    // against the file; the light units' name is checked here.
+    if (o.gltf_scene < -1) bad("--scene", std::to_string(o.gltf_scene), "must be >= 0");
+    if (!o.light_units.kind)
+        bad("--light-units", o.light_units.typed, "must be watts or photometric");
+    file_options.scene = o.gltf_scene;
+    file_options.variant = o.variant;
+    file_options.light_units = *o.light_units.kind;
     if (!o.size.empty()) apps::parse_size(o.size, 0.0f, file_options.width, file_options.height);
     RenderSettings check;
     check.samples_per_pixel = o.spp;
@@ -645,6 +664,14 @@ int main(int argc, char** argv) {
                    "Frame the model as --camera auto does, from a direction turned this many "
                    "degrees about the up axis (+y), counter-clockwise seen from above (90: from "
                    "+x, 180: from behind)");
+    app.add_option("--scene", o.gltf_scene,
+                   "glTF: which of the file's scenes to render (0, 1, ...); default: the "
+                   "file's own");
+    app.add_option("--variant", o.variant,
+                   "glTF: the KHR_materials_variants variant (its name) whose materials to use");
+    add_choice(app, "--light-units", o.light_units, kLightUnits,
+               "glTF punctual lights: watts (the file's candela and lux / 683, as Blender's "
+               "exporter writes them) or photometric (as they are, as web viewers show them)");
     app.add_option("--max-depth", o.max_depth,
                    "Most scattering events per path; -1: the most the integrator allows (1000, "
                    "bdpt 64), paths then ending by Russian roulette (--roulette-depth)")

@@ -60,7 +60,9 @@ for args in "--integrator bdpt --light-paths 0|--light-paths = 0.000000: must be
             "--orbit -361|--orbit = -361.000000: must be in [-360, 360] (degrees)" \
             "--tonemap filmic|--tonemap = filmic: must be aces or clamp" \
             "--png-bits 12|--png-bits = 12: must be 8 or 16" \
-            "--exposure bright|--exposure = bright: must be in [-64, 64] (EV stops) or auto"; do
+            "--exposure bright|--exposure = bright: must be in [-64, 64] (EV stops) or auto" \
+            "--light-units lux|--light-units = lux: must be watts or photometric" \
+            "--scene -2|--scene = -2: must be >= 0"; do
     status=0
     # shellcheck disable=SC2086 # the options are split on purpose
     "$app" "$dir/missing.glb" ${args%%|*} -o "$dir/out/image.png" 2>"$dir/err.txt" >/dev/null ||
@@ -77,6 +79,32 @@ status=0
 grep -q "missing.glb" "$dir/err.txt" && ! grep -q -- "--integrator =\|--light-choice =" "$dir/err.txt" ||
     fail "repeated choices: message: $(cat "$dir/err.txt")"
 [ -z "$(ls -A "$dir/out")" ] || fail "bad integrator options wrote $(ls -A "$dir/out")"
+
+# 1c. glTF's --scene, --variant and --light-units on a one-scene, one-triangle file written
+# here: a scene or variant the file lacks is an error naming the value and what the file has.
+tri_bytes='\0\0\0\0\0\0\0\0\0\0\0\0\0\0\200\77\0\0\0\0\0\0\0\0\0\0\0\0\0\0\200\77\0\0\0\0'
+tri_uri="data:application/octet-stream;base64,$(printf "$tri_bytes" | base64 -w0)"
+cat >"$dir/tri.gltf" <<GLTF
+{"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                "min": [0, 0, 0], "max": [1, 1, 0]}],
+ "bufferViews": [{"buffer": 0, "byteLength": 36}],
+ "buffers": [{"byteLength": 36, "uri": "$tri_uri"}]}
+GLTF
+for args in "--scene 9|tri.gltf: scenes: scene 9 requested, the file has 1 (scene 0)" \
+            "--variant Nope|tri.gltf: extensions.KHR_materials_variants: variant 'Nope' is not in the file (it defines no variants)"; do
+    status=0
+    # shellcheck disable=SC2086 # the options are split on purpose
+    "$app" "$dir/tri.gltf" ${args%%|*} --size 8x8 --spp 1 -q -o "$dir/out/tri.png" \
+        2>"$dir/err.txt" >/dev/null || status=$?
+    [ "$status" -eq 1 ] || fail "${args%%|*}: exit status $status, expected 1"
+    grep -qF -- "${args#*|}" "$dir/err.txt" || fail "${args%%|*}: message: $(cat "$dir/err.txt")"
+done
+[ -z "$(ls -A "$dir/out")" ] || fail "--scene / --variant errors wrote $(ls -A "$dir/out")"
+"$app" "$dir/tri.gltf" --scene 0 --light-units photometric --size 8x8 --spp 1 -q --threads 1 \
+    -o "$dir/tri.png" 2>"$dir/err.txt" || fail "--scene 0: $(cat "$dir/err.txt")"
+complete_png "$dir/tri.png" || fail "--scene 0: not a complete PNG"
 
 # 1b'. A bidirectional render with a quarter of the light paths and early roulette.
 "$app" "$scene" --size 32x20 --spp 8 --integrator bdpt --light-paths 0.25 --roulette-depth 1 \

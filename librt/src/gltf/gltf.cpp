@@ -196,7 +196,8 @@ void load(const std::filesystem::path& path, const GltfLoadOptions& options, Con
     decode_meshopt_views(model, ctx);
     read_materials(model, facts.images, ctx, scene);
     read_nodes(model, options.scene, ctx, scene);
-    read_meshes(model, ctx, scene);
+    const int variant = read_variants(model, options.variant, ctx, scene);
+    read_meshes(model, variant, ctx, scene);
     if (options.decode_images) decode_images(model, facts.images, limits, ctx, scene);
 }
 

@@ -48,6 +48,8 @@ const std::set<std::string, std::less<>>& supported_extensions() {
         // Layers on the metallic-roughness model, and unlit (gltf_material.cpp).
         "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_specular",
         "KHR_materials_unlit",
+        // Instances of a mesh per node (gltf_nodes.cpp) and material variants (gltf_mesh.cpp).
+        "EXT_mesh_gpu_instancing", "KHR_materials_variants",
         // Not rendered: kept through parsing so the warning can name each material.
         "KHR_materials_iridescence"};
     return names;
@@ -159,7 +161,9 @@ void check_structure(const Json& root, const Context& ctx) {
 }
 
 /// Integers of the extensions whose members tinygltf stores as int (a larger value would
-/// wrap silently there): EXT_meshopt_compression's and KHR_draco_mesh_compression's.
+/// wrap silently there): EXT_meshopt_compression's and KHR_draco_mesh_compression's, and
+/// the whole of EXT_mesh_gpu_instancing's and KHR_materials_variants' (accessor, material
+/// and variant indices, nested in objects and arrays).
 void check_extension_ints(const Json& doc, const Context& ctx) {
     const auto beyond_int = [](const Json& v) {
         if (!v.is_number_integer()) return false;
@@ -167,6 +171,33 @@ void check_extension_ints(const Json& doc, const Context& ctx) {
                    ? v.get<std::uint64_t>() > std::uint64_t(std::numeric_limits<int>::max())
                    : v.get<std::int64_t>() < std::numeric_limits<int>::min();
     };
+    // Every integer below `root`, at any depth (bounded: check_structure ran first).
+    const auto check_all = [&](const Json& root, const std::string& root_path) {
+        std::vector<std::pair<const Json*, std::string>> stack{{&root, root_path}};
+        while (!stack.empty()) {
+            const auto [value, path] = std::move(stack.back());
+            stack.pop_back();
+            std::size_t i = 0;
+            for (auto it = value->begin(); it != value->end(); ++it, ++i) {
+                const std::string at =
+                    value->is_object() ? path + "." + it.key() : indexed(path, i);
+                if (beyond_int(*it)) ctx.fail(at, it->dump() + " is too large");
+                if (it->is_structured()) stack.emplace_back(&*it, at);
+            }
+        }
+    };
+    const auto extension_tree = [&](const Json& owner, const char* name, const std::string& path) {
+        if (!owner.is_object()) return;
+        const auto ext = owner.find("extensions");
+        if (ext == owner.end() || !ext->is_object()) return;
+        const auto e = ext->find(name);
+        if (e != ext->end() && e->is_structured())
+            check_all(*e, (path.empty() ? "" : path + ".") + "extensions." + name);
+    };
+    extension_tree(doc, "KHR_materials_variants", "");
+    if (const auto nodes = doc.find("nodes"); nodes != doc.end() && nodes->is_array())
+        for (std::size_t i = 0; i < nodes->size(); ++i)
+            extension_tree((*nodes)[i], "EXT_mesh_gpu_instancing", indexed("nodes", i));
     // Members, and members of member objects (KHR_draco_mesh_compression.attributes).
     const auto check = [&](const Json& object, const std::string& path) {
         for (auto it = object.begin(); it != object.end(); ++it) {
@@ -192,9 +223,11 @@ void check_extension_ints(const Json& doc, const Context& ctx) {
             const Json& mesh = (*meshes)[m];
             const auto prims = mesh.is_object() ? mesh.find("primitives") : mesh.end();
             if (!mesh.is_object() || prims == mesh.end() || !prims->is_array()) continue;
-            for (std::size_t p = 0; p < prims->size(); ++p)
-                extension((*prims)[p], "KHR_draco_mesh_compression",
-                          indexed(indexed("meshes", m) + ".primitives", p));
+            for (std::size_t p = 0; p < prims->size(); ++p) {
+                const std::string path = indexed(indexed("meshes", m) + ".primitives", p);
+                extension((*prims)[p], "KHR_draco_mesh_compression", path);
+                extension_tree((*prims)[p], "KHR_materials_variants", path);
+            }
         }
     }
 }

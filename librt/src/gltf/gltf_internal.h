@@ -240,8 +240,15 @@ struct DracoPrimitive {
                                           const tinygltf::Primitive& prim,
                                           const std::string& prim_path, Context& ctx);
 
-/// Reads every mesh into scene.meshes.
-void read_meshes(const tinygltf::Model& model, Context& ctx, GltfScene& scene);
+/// Reads KHR_materials_variants' names into scene.variants and returns the index of
+/// `wanted` among them (-1 when empty); a name the file does not define fails, listing those
+/// it does.
+int read_variants(const tinygltf::Model& model, const std::string& wanted, const Context& ctx,
+                  GltfScene& scene);
+
+/// Reads every mesh into scene.meshes; a primitive whose KHR_materials_variants mappings
+/// name `variant` (an index into scene.variants, -1: none) takes that mapping's material.
+void read_meshes(const tinygltf::Model& model, int variant, Context& ctx, GltfScene& scene);
 
 /// Walks scene `scene_index` (-1: the default) into instances, cameras and lights,
 /// after checking the node graph is a forest (no cycles, no node with two parents).

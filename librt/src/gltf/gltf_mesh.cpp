@@ -3,6 +3,7 @@
 
 #include "gltf/gltf_internal.h"
 
+#include <librt/core/untrusted_text.h>
 #include <librt/geometry/mesh.h>
 
 #include <algorithm>
@@ -142,9 +143,79 @@ const std::vector<int> kVec3{TINYGLTF_TYPE_VEC3};
 const std::vector<int> kVec4{TINYGLTF_TYPE_VEC4};
 const std::vector<int> kVec34{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4};
 
+/// The material of a primitive with KHR_materials_variants mappings under `variant` (-1:
+/// none chosen): the mapping's that lists the variant, else `material`. Every mapping is
+/// checked, whichever variant is chosen, so a file is refused or not whatever the option.
+int variant_material(const tinygltf::Model& model, const tinygltf::Value& ext,
+                     const std::string& path, int variant, std::size_t variant_count, int material,
+                     const Context& ctx) {
+    const std::string where = path + ".extensions.KHR_materials_variants.mappings";
+    if (!ext.Has("mappings") || !ext.Get("mappings").IsArray())
+        ctx.fail(where, "missing, empty or not an array");
+    const tinygltf::Value& mappings = ext.Get("mappings");
+    std::vector<int> mapped_by(variant_count, -1);  // the mapping naming each variant
+    int chosen = material;
+    for (std::size_t k = 0; k < mappings.ArrayLen(); ++k) {
+        const tinygltf::Value& m = mappings.Get(int(k));
+        const std::string at = indexed(where, k);
+        if (!m.IsObject()) ctx.fail(at, "must be an object");
+        if (!m.Has("material") || !m.Get("material").IsInt())
+            ctx.fail(at + ".material", "missing or not an integer");
+        const int mat = m.Get("material").Get<int>();
+        check_index(ctx, at + ".material", mat, model.materials.size(), "material");
+        if (!m.Has("variants") || !m.Get("variants").IsArray())
+            ctx.fail(at + ".variants", "missing, empty or not an array of variant indices");
+        const tinygltf::Value& variants = m.Get("variants");
+        for (std::size_t j = 0; j < variants.ArrayLen(); ++j) {
+            const std::string vat = indexed(at + ".variants", j);
+            if (!variants.Get(int(j)).IsInt()) ctx.fail(vat, "must be an integer");
+            const int v = variants.Get(int(j)).Get<int>();
+            check_index(ctx, vat, v, variant_count, "variant");
+            // The extension: a variant maps to one material per primitive.
+            if (mapped_by[std::size_t(v)] != -1)
+                ctx.fail(vat, "variant " + std::to_string(v) + " is mapped already by " +
+                                  indexed("mappings", std::size_t(mapped_by[std::size_t(v)])));
+            mapped_by[std::size_t(v)] = int(k);
+            if (v == variant) chosen = mat;
+        }
+    }
+    return chosen;
+}
+
 }  // namespace
 
-void read_meshes(const tinygltf::Model& model, Context& ctx, GltfScene& scene) {
+int read_variants(const tinygltf::Model& model, const std::string& wanted, const Context& ctx,
+                  GltfScene& scene) {
+    const std::string where = "extensions.KHR_materials_variants";
+    if (const auto ext = model.extensions.find("KHR_materials_variants");
+        ext != model.extensions.end()) {
+        const tinygltf::Value& e = ext->second;
+        if (!e.Has("variants") || !e.Get("variants").IsArray())
+            ctx.fail(where + ".variants", "missing, empty or not an array");
+        const tinygltf::Value& list = e.Get("variants");
+        for (std::size_t i = 0; i < list.ArrayLen(); ++i) {
+            const tinygltf::Value& v = list.Get(int(i));
+            if (!v.IsObject() || !v.Has("name") || !v.Get("name").IsString())
+                ctx.fail(indexed(where + ".variants", i) + ".name", "missing or not a string");
+            scene.variants.push_back(v.Get("name").Get<std::string>());
+        }
+    }
+    if (wanted.empty()) return -1;
+    for (std::size_t i = 0; i < scene.variants.size(); ++i)
+        if (scene.variants[i] == wanted) return int(i);
+    // The names the file defines, each quoted (escaped, capped), at most 32 of them.
+    std::string names;
+    for (std::size_t i = 0; i < scene.variants.size() && i < 32; ++i)
+        names += (i == 0 ? "" : ", ") + quote_untrusted(scene.variants[i]);
+    if (scene.variants.size() > 32)
+        names += " and " + std::to_string(scene.variants.size() - 32) + " more";
+    ctx.fail(where, "variant " + quote_untrusted(wanted) + " is not in the file (" +
+                        (names.empty() ? std::string("it defines no variants")
+                                       : "its variants: " + names) +
+                        ")");
+}
+
+void read_meshes(const tinygltf::Model& model, int variant, Context& ctx, GltfScene& scene) {
     scene.meshes.reserve(model.meshes.size());
     for (std::size_t m = 0; m < model.meshes.size(); ++m) {
         const tinygltf::Mesh& mesh = model.meshes[m];
@@ -171,6 +242,10 @@ void read_meshes(const tinygltf::Model& model, Context& ctx, GltfScene& scene) {
             if (!prim.targets.empty()) ctx.warn(path, "morph targets ignored (base shape used)");
             GltfPrimitive g;
             g.material = prim.material;
+            if (const auto v = prim.extensions.find("KHR_materials_variants");
+                v != prim.extensions.end())
+                g.material = variant_material(model, v->second, path, variant,
+                                              scene.variants.size(), prim.material, ctx);
             int components = 0;
             const std::string pos_path = path + ".attributes.POSITION";
             check_index(ctx, pos_path, pos->second, model.accessors.size(), "accessor");

@@ -7,11 +7,13 @@
 #include <librt/core/constants.h>
 #include <librt/core/untrusted_text.h>
 
+#include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -231,6 +233,110 @@ int node_light(const tinygltf::Node& node, const std::string& path, std::size_t 
     return index;
 }
 
+/// The name of an accessor type, for messages.
+const char* type_name(int type) {
+    return type == TINYGLTF_TYPE_VEC3 ? "VEC3" : type == TINYGLTF_TYPE_VEC4 ? "VEC4" : "?";
+}
+
+/// The instances of a node carrying EXT_mesh_gpu_instancing: one GltfInstance per element
+/// of its TRANSLATION / ROTATION / SCALE accessors, world = the node's world * T * R * S
+/// (the extension's rule). The node's mesh is placed by these alone, not by the node.
+void add_gpu_instances(const tinygltf::Model& model, const tinygltf::Node& node, int index,
+                       const glm::mat4& world, const tinygltf::Value& ext, const std::string& path,
+                       Context& ctx, GltfScene& scene) {
+    const std::string where = path + ".extensions.EXT_mesh_gpu_instancing";
+    if (node.mesh == -1)
+        ctx.fail(where, "the node places no mesh (the extension places copies of the node's mesh)");
+    if (!ext.Has("attributes") || !ext.Get("attributes").IsObject())
+        ctx.fail(where + ".attributes", "missing or not an object");
+    const tinygltf::Value& attributes = ext.Get("attributes");
+    struct Attribute {
+        const char* name;
+        int type;
+        std::vector<float> values;  // empty when the attribute is absent
+    };
+    std::array<Attribute, 3> attr{{{"TRANSLATION", TINYGLTF_TYPE_VEC3, {}},
+                                   {"ROTATION", TINYGLTF_TYPE_VEC4, {}},
+                                   {"SCALE", TINYGLTF_TYPE_VEC3, {}}}};
+    for (const std::string& key : attributes.Keys()) {
+        const bool known = std::any_of(attr.begin(), attr.end(),
+                                       [&](const Attribute& a) { return key == a.name; });
+        // Names starting with "_" are the application's own (the extension allows them).
+        if (!known && key.rfind('_', 0) != 0)
+            ctx.warn(where + ".attributes",
+                     quote_untrusted(key) + ": not an attribute of the extension; ignored");
+    }
+    std::size_t count = 0;
+    const char* count_from = nullptr;
+    for (Attribute& a : attr) {
+        if (!attributes.Has(a.name)) continue;
+        const std::string at = where + ".attributes." + a.name;
+        const tinygltf::Value& v = attributes.Get(a.name);
+        if (!v.IsInt()) ctx.fail(at, "must be an accessor index");
+        const int accessor = v.Get<int>();
+        check_index(ctx, at, accessor, model.accessors.size(), "accessor");
+        const tinygltf::Accessor& acc = model.accessors[std::size_t(accessor)];
+        const std::string acc_path = at + ": " + indexed("accessors", std::size_t(accessor));
+        if (acc.type != a.type)
+            ctx.fail(acc_path + ".type", std::string("must be ") + type_name(a.type));
+        // The extension's component types: floats, or (KHR_mesh_quantization) signed bytes
+        // and shorts; a rotation's integers normalised, as a unit quaternion's must be.
+        const int ct = acc.componentType;
+        const bool small_int =
+            ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_SHORT;
+        const bool rotation = a.type == TINYGLTF_TYPE_VEC4;
+        if (ct != TINYGLTF_COMPONENT_TYPE_FLOAT && !(small_int && (!rotation || acc.normalized)))
+            ctx.fail(acc_path + ".componentType",
+                     std::to_string(ct) + (rotation ? ": must be FLOAT, or normalized BYTE or SHORT"
+                                                    : ": must be FLOAT, BYTE or SHORT"));
+        if (count_from != nullptr && acc.count != count) {
+            ctx.fail(at, indexed("accessors", std::size_t(accessor)) + " has " +
+                             std::to_string(acc.count) + " elements, " + count_from + "'s has " +
+                             std::to_string(count) + " (one element per instance in each)");
+        }
+        count = acc.count;
+        count_from = a.name;
+        int components = 0;
+        a.values = read_float_accessor(model, accessor, {a.type}, at, ctx, &components);
+    }
+    if (count_from == nullptr)
+        ctx.fail(where + ".attributes", "has none of TRANSLATION, ROTATION and SCALE");
+    // Each instance keeps the node's name: charged with it, so a long name repeated over
+    // many instances cannot take unbounded memory.
+    const std::uint64_t each = sizeof(GltfInstance) + node.name.size();
+    if (count > std::numeric_limits<std::uint64_t>::max() / each)
+        ctx.fail(where, std::to_string(count) + " instances: too many");
+    ctx.spend(count * each, where);
+    scene.instances.reserve(scene.instances.size() + count);
+    const std::vector<float>& t = attr[0].values;
+    const std::vector<float>& r = attr[1].values;
+    const std::vector<float>& sc = attr[2].values;
+    for (std::size_t i = 0; i < count; ++i) {
+        glm::mat4 m(1.0f);
+        if (!t.empty()) m = glm::translate(m, glm::vec3(t[3 * i], t[3 * i + 1], t[3 * i + 2]));
+        if (!r.empty()) {
+            // (x, y, z, w) as for a node's rotation; renormalised (quantised or rounded).
+            const glm::vec4 q(r[4 * i], r[4 * i + 1], r[4 * i + 2], r[4 * i + 3]);
+            const float len = glm::length(q);
+            if (!(len > 0.0f) || !std::isfinite(len)) {
+                ctx.fail(where + ".attributes.ROTATION",
+                         "element " + std::to_string(i) + " is a zero quaternion");
+            }
+            m = m * glm::mat4_cast(glm::quat(q.w / len, q.x / len, q.y / len, q.z / len));
+        }
+        if (!sc.empty()) m = glm::scale(m, glm::vec3(sc[3 * i], sc[3 * i + 1], sc[3 * i + 2]));
+        const glm::mat4 placed = world * m;
+        const float* w = glm::value_ptr(placed);
+        for (int k = 0; k < 16; ++k)
+            if (!std::isfinite(w[k]))
+                ctx.fail(where,
+                         "instance " + std::to_string(i) + ": its world transform overflows float");
+        GltfInstance inst{node.mesh, index, placed, node.name};
+        inst.gpu_instance = int(i);
+        scene.instances.push_back(std::move(inst));
+    }
+}
+
 }  // namespace
 
 void read_nodes(const tinygltf::Model& model, int scene_index, Context& ctx, GltfScene& scene) {
@@ -251,9 +357,13 @@ void read_nodes(const tinygltf::Model& model, int scene_index, Context& ctx, Glt
     }
     if (scene_index < 0 && !model.scenes.empty()) scene_index = 0;
     if (scene_index >= 0) {
-        if (std::size_t(scene_index) >= model.scenes.size()) {
-            ctx.fail("", "scene " + std::to_string(scene_index) + " requested, the file has " +
-                             std::to_string(model.scenes.size()));
+        if (const std::size_t n = model.scenes.size(); std::size_t(scene_index) >= n) {
+            ctx.fail("scenes",
+                     "scene " + std::to_string(scene_index) + " requested, the file has " +
+                         (n == 0 ? std::string("none")
+                                 : std::to_string(n) +
+                                       (n == 1 ? " (scene 0)"
+                                               : " (scenes 0 to " + std::to_string(n - 1) + ")")));
         }
         roots = model.scenes[std::size_t(scene_index)].nodes;
         roots_path = indexed("scenes", std::size_t(scene_index)) + ".nodes";
@@ -292,10 +402,13 @@ void read_nodes(const tinygltf::Model& model, int scene_index, Context& ctx, Glt
                          "overflows float");
         if (node.skin != -1)
             ctx.warn(path + ".skin", "skinning ignored: the mesh is placed by the node");
-        if (node.mesh != -1) {
+        if (node.mesh != -1)
             check_index(ctx, path + ".mesh", node.mesh, model.meshes.size(), "mesh");
+        if (const auto gpu = node.extensions.find("EXT_mesh_gpu_instancing");
+            gpu != node.extensions.end())
+            add_gpu_instances(model, node, index, world, gpu->second, path, ctx, scene);
+        else if (node.mesh != -1)
             scene.instances.push_back({node.mesh, index, world, node.name});
-        }
         if (node.camera != -1) {
             check_index(ctx, path + ".camera", node.camera, cameras.size(), "camera");
             GltfCamera c = cameras[std::size_t(node.camera)];

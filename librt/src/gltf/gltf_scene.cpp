@@ -24,7 +24,7 @@ namespace librt {
 namespace {
 
 /// Luminous efficacy of 555 nm light, 683 lm/W: candela -> W/sr and lux -> W/m^2 the way
-/// Blender's exporter converts (../shared/data/README.md).
+/// Blender's exporter converts (../shared/data/README.md), for PunctualLightUnits::Watts.
 constexpr float kLumensPerWatt = 683.0f;
 
 bool all_digits(const std::string& s) {
@@ -232,9 +232,12 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
         }
     }
 
-    // Lights (KHR_lights_punctual). Photometric to radiometric by 683 lm/W: candela -> W/sr
-    // for point and spot, lux -> W/m^2 for directional (Blender's export convention, see
-    // docs/render-your-own-scene.md). Spot and sun shine down the node's local -z.
+    // Lights (KHR_lights_punctual). Watts: photometric to radiometric by 683 lm/W, candela ->
+    // W/sr for point and spot, lux -> W/m^2 for directional (Blender's export convention);
+    // Photometric: the numbers as they are, as web viewers show them (see
+    // docs/render-your-own-scene.md, "Light units"). Spot and sun shine down the node's -z.
+    const float divisor =
+        options.light_units == PunctualLightUnits::Photometric ? 1.0f : kLumensPerWatt;
     std::size_t lights = 0;
     for (const GltfLight& l : gltf.lights) {
         const std::string who =
@@ -245,7 +248,7 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
             out.warnings.push_back(who + ": range ignored (infinite)");
         const glm::vec3 position = glm::vec3(l.world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
         const glm::vec3 down_z = glm::vec3(l.world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
-        const glm::vec3 radiometric = l.color * (l.intensity / kLumensPerWatt);
+        const glm::vec3 radiometric = l.color * (l.intensity / divisor);
         try {
             if (l.type == GltfLight::Type::Point) {
                 PointLight p;

@@ -1,4 +1,5 @@
 #include <librt/core/error.h>
+#include <librt/core/untrusted_text.h>
 #include <librt/film/framing.h>
 #include <librt/gltf/gltf.h>
 #include <librt/gltf/gltf_scene.h>
@@ -41,6 +42,13 @@ CameraSettings default_camera(const BBox& bounds, int width, int height) {
 }
 
 LoadedScene scene_from_obj(const std::filesystem::path& path, const SceneFileOptions& options) {
+    // Refused before the file is read, as a glTF with too few scenes or no such variant is.
+    if (options.scene > 0)
+        throw Error(path.string() + ": scene " + std::to_string(options.scene) +
+                    " requested, an OBJ file has one (scene 0)");
+    if (!options.variant.empty())
+        throw Error(path.string() + ": variant " + quote_untrusted(options.variant) +
+                    ": an OBJ file has no material variants (KHR_materials_variants is glTF's)");
     LoadedScene out;
     ObjLoadOptions obj;
     obj.warnings = &out.warnings;
@@ -81,6 +89,8 @@ LoadedScene scene_from_gltf_file(const std::filesystem::path& path,
                                  const SceneFileOptions& options) {
     GltfLoadOptions load_options;
     load_options.allow_outside_files = options.allow_outside_files;
+    load_options.scene = options.scene;
+    load_options.variant = options.variant;
     // Its errors and warnings name the file already.
     GltfScene gltf = load_gltf(path, load_options);
     const std::size_t named = gltf.warnings.size();

@@ -46,12 +46,16 @@ struct GltfMesh {
     }
 };
 
-/// One placement of a mesh: a node of the chosen scene that names it.
+/// One placement of a mesh: a node of the chosen scene that names it, or one of the node's
+/// EXT_mesh_gpu_instancing instances.
 struct GltfInstance {
     int mesh = -1;          ///< index into GltfScene::meshes
     int node = -1;          ///< the glTF node index
     glm::mat4 world{1.0f};  ///< mesh space to world, the node's transforms composed
     std::string node_name;  ///< the node's name, may be empty
+    /// EXT_mesh_gpu_instancing: which of the node's instances (world = the node's world
+    /// times the instance's T * R * S); -1 for a node placing its mesh itself.
+    int gpu_instance = -1;
 };
 
 /// A camera placed by a node. glTF cameras look down their local -z with +y up.
@@ -210,7 +214,10 @@ struct GltfScene {
     std::vector<GltfMaterial> materials;  ///< every material, in file order
     std::vector<GltfTexture> textures;    ///< every texture, in file order
     std::vector<GltfImage> images;        ///< every image (decoded when a texture uses it)
-    std::vector<std::string> warnings;    ///< what was skipped or repaired, "file: path: what"
+    /// KHR_materials_variants: the names of the file's variants, in file order (empty
+    /// without the extension). Primitives carry the chosen variant's material.
+    std::vector<std::string> variants;
+    std::vector<std::string> warnings;  ///< what was skipped or repaired, "file: path: what"
     /// Every file the scene was made from, each once, with the digest of its bytes: the glTF
     /// file (its path as given), then each external buffer, then each image file a texture
     /// uses (canonical paths). An image that could not be read or decoded (a warning; its
@@ -227,6 +234,10 @@ struct GltfLoadOptions {
     /// Scene to load: -1 takes the file's default scene (its "scene", else scene 0; with
     /// no scenes at all, every root node, with a warning).
     int scene = -1;
+    /// KHR_materials_variants: the variant (by name) whose materials primitives take where
+    /// their mappings name it; empty = every primitive's own material. A name the file does
+    /// not define is an error listing the names it does.
+    std::string variant;
     /// Largest file read (the .gltf/.glb, each .bin and each image); larger ones are errors.
     std::uint64_t max_file_bytes = std::uint64_t{1} << 30u;
     /// Decode the images that textures use (false leaves every GltfImage undecoded).
@@ -253,7 +264,12 @@ struct GltfLoadOptions {
 ///   KHR_texture_basisu (KTX2) texture uses its fallback source with a warning, and is
 ///   an error without one.
 /// - Nodes: TRS or matrix, composed from the scene's roots down; every node naming a mesh,
-///   camera or KHR_lights_punctual light adds an instance, camera or light.
+///   camera or KHR_lights_punctual light adds an instance, camera or light. A node with
+///   EXT_mesh_gpu_instancing adds an instance per element of its TRANSLATION, ROTATION
+///   (quaternion) and SCALE accessors instead (all of one count; wrong types and counts are
+///   errors naming the attribute's JSON path).
+/// - KHR_materials_variants: GltfScene::variants lists the names; options.variant gives each
+///   primitive whose mappings name it the mapped material.
 /// - Errors, thrown as librt::Error before anything is returned, name the file and the
 ///   JSON path: "scene.gltf: meshes[3].primitives[0].indices: index 9123 >= vertex count
 ///   9000". They cover: not glTF, broken JSON, a truncated .glb or a wrong chunk length, a

@@ -60,8 +60,9 @@ struct GltfMaterialTextures {
 /// with glTF's v (an anisotropic material without textures: TEXCOORD_0); a normal-mapped or
 /// anisotropic primitive keeps its TANGENTs, or gets generate_tangents'
 /// (geometry/tangents.h). KHR_lights_punctual point lights become PointLights of intensity
-/// candela / 683 W/sr (Blender's convention, see docs/render-your-own-scene.md); spot and
-/// directional lights likewise; COLOR_0 (unless all white) is kept as the mesh's vertex
+/// candela / 683 W/sr (Blender's convention), or candela W/sr with options.light_units
+/// Photometric (PunctualLightUnits; docs/render-your-own-scene.md); spot and directional
+/// lights likewise; COLOR_0 (unless all white) is kept as the mesh's vertex
 /// colours (Scene::shade multiplies them in); orthographic cameras, occlusion and
 /// transmission textures are warned about or ignored. A scene none of whose punctual lights
 /// loads (emissive surfaces or not) gets add_studio_lighting (scene/default_lighting.h) for

@@ -16,6 +16,20 @@
 
 namespace librt {
 
+/// What the numbers of a glTF file's punctual lights (KHR_lights_punctual: candela for point
+/// and spot lights, lux for directional ones) become in librt's radiometric units (W/sr,
+/// W/m^2). docs/render-your-own-scene.md, "Light units", says which exporters need which.
+enum class PunctualLightUnits {
+    /// Divided by 683 lm/W (the luminous efficacy of 555 nm light): the inverse of Blender's
+    /// exporter, which writes a P W point light as P * 683 / (4 pi) cd and a sun of E W/m^2
+    /// as 683 E lux, so that its lights come back as Blender rendered them.
+    Watts,
+    /// Taken as they are, 1 cd as 1 W/sr and 1 lux as 1 W/m^2: the scale of web viewers
+    /// (three.js, the Khronos glTF Sample Viewer) that light with the numbers as they are at
+    /// exposure 1. Files authored for such viewers (a 3 lux sun) need it.
+    Photometric,
+};
+
 /// How a scene file is turned into a Scene and a camera.
 struct SceneFileOptions {
     /// The file's camera to use (perspective or orthographic): empty = the first; all digits = the
@@ -42,6 +56,16 @@ struct SceneFileOptions {
     /// A viewpoint replacing the chosen camera's (film/framing.h, apply_view), applied
     /// before the default lighting is placed for it; its errors are prefixed "view: ".
     ViewOptions view;
+    /// glTF: which of the file's scenes (its "scenes" array) to load; -1 = the file's default
+    /// ("scene", else 0). An index the file does not have is an error naming the count. An
+    /// OBJ is one scene: only -1 and 0 are accepted.
+    int scene = -1;
+    /// glTF: the KHR_materials_variants variant to show, by name; empty = the primitives' own
+    /// materials. A name the file does not define is an error listing the names it does.
+    /// An OBJ has no variants: any name is an error.
+    std::string variant;
+    /// glTF: the units of KHR_lights_punctual intensities (PunctualLightUnits).
+    PunctualLightUnits light_units = PunctualLightUnits::Watts;
 };
 
 /// A scene file as librt renders it.
