@@ -226,6 +226,13 @@ void validate(const Material& material) {
             << ": must be a texture id or -1";
         throw Error(msg.str());
     }
+    if (material.diffuse_model != DiffuseModel::Lambert &&
+        material.diffuse_model != DiffuseModel::Burley) {
+        std::ostringstream msg;
+        msg << "material diffuse_model = " << int(material.diffuse_model)
+            << ": must be Lambert or Burley";
+        throw Error(msg.str());
+    }
 }
 
 }  // namespace librt

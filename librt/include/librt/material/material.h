@@ -29,6 +29,16 @@ enum class Metal : std::uint8_t {
     Aluminium,  ///< Al
 };
 
+/// The diffuse base of MaterialKind::MetallicRoughness (Material::diffuse_model).
+enum class DiffuseModel : std::uint8_t {
+    /// glTF 2.0 Appendix B: Lambert, c / pi, under the specular layer's (1 - F(V.H)).
+    Lambert,
+    /// Burley 2012 ("Physically Based Shading at Disney"), as Blender's Principled BSDF:
+    /// c / pi (1 + (F_D90 - 1)(1 - cos_l)^5)(1 + (F_D90 - 1)(1 - cos_v)^5), F_D90 = 0.5 +
+    /// 2 roughness cos^2(theta_d), without the (1 - F) factor.
+    Burley,
+};
+
 /// A surface description as a tagged struct rather than a virtual BSDF hierarchy:
 /// materials are plain copyable values stored contiguously in the Scene, a hit refers to
 /// one by a 32-bit id instead of a shared_ptr, and the BSDF functions of bsdf.h dispatch
@@ -66,6 +76,8 @@ struct LIBRT_API Material {
     float metallic = 0.0f;
     /// MetallicRoughness: KHR_materials_transmission factor in [0, 1] (thin-walled).
     float transmission = 0.0f;
+    /// MetallicRoughness: the diffuse base's model (glTF's Lambert by default).
+    DiffuseModel diffuse_model = DiffuseModel::Lambert;
 
     // Per-hit inputs (Scene::shade evaluates them where a hit is finished, so the BSDFs
     // receive plain values; a material with none of them costs nothing per hit).
@@ -205,8 +217,8 @@ struct LIBRT_API Material {
 /// not finite; alpha, alpha_cutoff or anisotropy is outside [0, 1]; anisotropy_rotation or
 /// anisotropy_direction is not finite; clearcoat, clearcoat_roughness, specular,
 /// sheen_roughness or a sheen_color component is outside [0, 1], specular_color has a
-/// negative or non-finite component, occlusion_strength is outside [0, 1], or unlit is set
-/// on a kind other than Emissive.
+/// negative or non-finite component, occlusion_strength is outside [0, 1], unlit is set
+/// on a kind other than Emissive, or diffuse_model is not a DiffuseModel.
 LIBRT_API void validate(const Material& material);
 
 }  // namespace librt
