@@ -35,6 +35,14 @@ struct SceneFileOptions {
     /// OBJ with no emissive MTL material (MTL has no other light: an emitter is the
     /// author's lighting). false: the file's own lights alone.
     bool default_lighting = true;
+    /// The diffuse base of every glTF material (MetallicRoughness): glTF's Lambert, or
+    /// Burley's as Blender's Principled BSDF has it (rt_render --diffuse burley).
+    DiffuseModel diffuse_model = DiffuseModel::Lambert;
+    /// A glTF material with KHR_materials_transmission and no KHR_materials_volume is
+    /// thin-walled (the specification's default, with a hint naming it); true: solid glass,
+    /// refracting through closed meshes, as Blender and Cycles show it (rt_render
+    /// --solid-transmission). See material_from_gltf for which materials can be.
+    bool solid_transmission = false;
 };
 
 /// A scene file as librt renders it.
