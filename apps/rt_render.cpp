@@ -79,6 +79,12 @@ constexpr std::array<Named<PunctualLightUnits>, 2> kLightUnits{{
     {"photometric", PunctualLightUnits::Photometric},
 }};
 
+/// --diffuse: the glTF materials' diffuse base (SceneFileOptions::diffuse_model).
+constexpr std::array<Named<DiffuseModel>, 2> kDiffuseModels{{
+    {"lambert", DiffuseModel::Lambert},
+    {"burley", DiffuseModel::Burley},
+}};
+
 /// An option that names one of a few values: the text as typed and, when it names one, the
 /// value (CLI11 parses it once, through Option::each). An unknown name is not CLI11's error
 /// but check_choices', which names the text as the other rules do.
@@ -154,6 +160,8 @@ struct Options {
     float env_strength = 1.0f;      // scale of the environment's radiance
     float env_rotate = 0.0f;        // degrees about the up axis (+y)
     bool no_default_light = false;  // a file without lights stays unlit (its emitters alone)
+    Choice<DiffuseModel> diffuse = choice_of(kDiffuseModels, DiffuseModel::Lambert);
+    bool solid_transmission = false;  // glTF transmission without a volume: solid glass
     bool quiet = false;
     std::string preview;               // a PNG rewritten with the image so far as the passes finish
     bool allow_outside_files = false;  // the scene may read files outside its directory
@@ -238,6 +246,8 @@ std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
         {"--env-strength", exact(o.env_strength)},
         {"--env-rotate", exact(o.env_rotate)},
         {"--no-default-light", on(o.no_default_light)},
+        {"--diffuse", o.diffuse.typed},
+        {"--solid-transmission", on(o.solid_transmission)},
         {"--sampler", s.sampler},
         {"--filter", given(s.filter)},
         {"--filter-radius", s.filter_radius ? exact(*s.filter_radius) : "(the filter's)"},
@@ -289,6 +299,7 @@ void check_choices(const Options& o) {
     if (!o.light_choice.kind)
         bad("--light-choice", o.light_choice.typed, "must be auto, power or bounded");
     if (!o.integrator.kind) bad("--integrator", o.integrator.typed, "must be path, bdpt or brute");
+    if (!o.diffuse.kind) bad("--diffuse", o.diffuse.typed, "must be lambert or burley");
 }
 
 /// The integrator's own options: their ranges, and each only with the integrator it is for.
@@ -464,12 +475,14 @@ SceneFileOptions check_command_line(const Options& o, const apps::MpiJob& job) {
     file_options.scene = o.gltf_scene;
     file_options.variant = o.variant;
     file_options.light_units = *o.light_units.kind;
+    file_options.solid_transmission = o.solid_transmission;
     if (!o.size.empty()) apps::parse_size(o.size, 0.0f, file_options.width, file_options.height);
     RenderSettings check;
     check.samples_per_pixel = o.spp;
     check.threads = o.threads;
     validate(check);
     check_choices(o);
+    file_options.diffuse_model = *o.diffuse.kind;  // named by check_choices
     check_integrator_options(o);
     check_time_limit(o, job.distributed());
     check_preview(o, job.distributed(), job.rank() == 0);
@@ -744,6 +757,13 @@ int main(int argc, char** argv) {
                  "A file without lights of its own (glTF: no punctual light) stays unlit but "
                  "for its emissive surfaces, instead of getting the default studio lighting "
                  "(a grey sky and a key light)");
+    add_choice(app, "--diffuse", o.diffuse, kDiffuseModels,
+               "Diffuse base of glTF materials: lambert (glTF's) or burley (Blender's "
+               "Principled BSDF; brighter rough surfaces at grazing angles)");
+    app.add_flag("--solid-transmission", o.solid_transmission,
+                 "glTF transmission without KHR_materials_volume (thin-walled by the "
+                 "specification) refracts as solid glass through closed meshes, as Blender "
+                 "and Cycles show it");
     app.add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
     app.add_option("--preview", o.preview,
                    "A PNG rewritten with the image so far (tone-mapped as the PNG output) after "

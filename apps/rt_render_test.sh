@@ -49,6 +49,7 @@ for args in "--integrator bdpt --light-paths 0|--light-paths = 0.000000: must be
             "--light-paths 0.5|--light-paths = 0.500000: needs --integrator bdpt" \
             "--roulette-depth -2|--roulette-depth = -2: must be in [0, 64]" \
             "--light-choice nearest|--light-choice = nearest: must be auto, power or bounded" \
+            "--diffuse oren-nayar|--diffuse = oren-nayar: must be lambert or burley" \
             "--integrator Path|--integrator = Path: must be path, bdpt or brute" \
             "--integrator path --integrator brute --caustic-paths|--caustic-paths = on: caustic light paths are the path tracer's" \
             "--integrator bdpt --integrator path --light-paths 0.5|--light-paths = 0.500000: needs --integrator bdpt" \

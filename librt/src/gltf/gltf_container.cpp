@@ -47,7 +47,7 @@ const std::set<std::string, std::less<>>& supported_extensions() {
         "KHR_texture_basisu",
         // Layers on the metallic-roughness model, and unlit (gltf_material.cpp).
         "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_specular",
-        "KHR_materials_unlit",
+        "KHR_materials_unlit", "KHR_materials_volume",
         // Instances of a mesh per node (gltf_nodes.cpp) and material variants (gltf_mesh.cpp).
         "EXT_mesh_gpu_instancing", "KHR_materials_variants",
         // Not rendered: kept through parsing so the warning can name each material.

@@ -173,6 +173,19 @@ void read_layer_extensions(const ExtensionMap& extensions, const std::string& ep
         g.sheen_color_texture = ext_texture(*e, "sheenColorTexture", at, textures, ctx);
         g.sheen_roughness_texture = ext_texture(*e, "sheenRoughnessTexture", at, textures, ctx);
     }
+    if (const Value* e = object("KHR_materials_volume")) {
+        const std::string at = ep + "KHR_materials_volume";
+        if (ext_member(*e, at, "thicknessFactor", &v, ctx)) {
+            if (v < 0) ctx.fail(at + ".thicknessFactor", number_text(v) + ": must be >= 0");
+            g.thickness_factor = finite_float(v, at + ".thicknessFactor", ctx);
+        }
+        g.thickness_texture = ext_texture(*e, "thicknessTexture", at, textures, ctx);
+        if (ext_member(*e, at, "attenuationDistance", &v, ctx)) {
+            if (!(v > 0)) ctx.fail(at + ".attenuationDistance", number_text(v) + ": must be > 0");
+            g.attenuation_distance = finite_float(v, at + ".attenuationDistance", ctx);
+        }
+        ext_color(*e, at, "attenuationColor", 0, 1, g.attenuation_color, ctx);
+    }
     if (const Value* e = object("KHR_materials_specular")) {
         const std::string at = ep + "KHR_materials_specular";
         if (ext_member(*e, at, "specularFactor", &v, ctx))

@@ -143,7 +143,8 @@ LoadedScene scene_from_gltf(GltfScene gltf, const SceneFileOptions& options) {
     Scene& scene = out.scene;
 
     // Materials and their textures, added on first use (gltf_scene_materials.cpp).
-    gltf_detail::MaterialBuilder materials(gltf, scene, out.warnings);
+    gltf_detail::MaterialBuilder materials(gltf, scene, out.warnings,
+                                           {options.diffuse_model, options.solid_transmission});
 
     // One prototype per primitive, added once; its local bounds for framing.
     struct Prototype {

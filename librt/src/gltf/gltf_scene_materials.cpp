@@ -32,7 +32,13 @@ TextureSlot slot(const GltfTextureRef& ref, std::int32_t id) {
 
 }  // namespace
 
-Material material_from_gltf(const GltfMaterial& m, const GltfMaterialTextures& textures) {
+bool gltf_solid_glass(const GltfMaterial& m, const GltfMaterialChoices& choices) {
+    return m.transmission_factor >= 1.0f && m.metallic_factor <= 0.0f &&
+           (m.thickness_factor > 0.0f || choices.solid_transmission);
+}
+
+Material material_from_gltf(const GltfMaterial& m, const GltfMaterialTextures& textures,
+                            const GltfMaterialChoices& choices) {
     const glm::vec3 base = glm::clamp(glm::vec3(m.base_color_factor), 0.0f, 1.0f);
     // KHR_materials_ior allows 0 (a reflection-only limit): librt needs ior > 0, so 0
     // becomes the default 1.5 (scene_from_gltf warns).
@@ -60,6 +66,21 @@ Material material_from_gltf(const GltfMaterial& m, const GltfMaterialTextures& t
     out.sheen_roughness = std::clamp(m.sheen_roughness_factor, 0.0f, 1.0f);
     out.specular = std::clamp(m.specular_factor, 0.0f, 1.0f);
     out.specular_color = glm::max(m.specular_color_factor, glm::vec3(0.0f));
+    out.diffuse_model = choices.diffuse_model;
+    if (gltf_solid_glass(m, choices) && !m.unlit) {
+        // Solid glass: refraction through the closed mesh, at the glTF material's Fresnel
+        // (ior) and roughness, tinted by the base colour; the volume's absorption inside.
+        const Material thin = out;
+        out = Material::rough_dielectric(ior, thin.roughness, base);
+        out.emission = thin.emission;
+        out.emission_texture = thin.emission_texture;
+        out.normal_texture = thin.normal_texture;
+        out.normal_scale = thin.normal_scale;
+        if (m.thickness_factor > 0.0f) {
+            out.attenuation_color = glm::clamp(m.attenuation_color, 1e-4f, 1.0f);
+            out.attenuation_distance = m.attenuation_distance;
+        }
+    }
     if (m.unlit) {
         // KHR_materials_unlit: the base colour as emission, reflecting nothing, never
         // light-sampled (Material::unlit); the layers above do not apply.
@@ -78,7 +99,8 @@ Material material_from_gltf(const GltfMaterial& m, const GltfMaterialTextures& t
         out.alpha_cutoff = kBlendCutoff;
     // A thin transmitting surface must be crossed from both sides (a glass bottle's far
     // wall is seen from inside): transmission makes it double-sided whatever the flag.
-    out.double_sided = m.double_sided || out.transmission > 0.0f;
+    out.double_sided =
+        m.double_sided || out.transmission > 0.0f || out.kind == MaterialKind::RoughDielectric;
     validate(out);
     return out;
 }
@@ -93,12 +115,14 @@ std::string named(std::string_view json_path, std::string_view name) {
 }
 
 MaterialBuilder::MaterialBuilder(const GltfScene& gltf, Scene& scene,
-                                 std::vector<std::string>& warnings)
+                                 std::vector<std::string>& warnings,
+                                 const GltfMaterialChoices& choices)
     : gltf_(gltf),
       scene_(scene),
       warnings_(warnings),
       built_(gltf.materials.size()),
-      done_(gltf.materials.size(), false) {
+      done_(gltf.materials.size(), false),
+      choices_(choices) {
     // glTF's default material: white, metallic 1, roughness 1 (spec 3.9.6) would be a
     // rough metal; librt keeps its grey diffuse default for primitives without one.
     default_.id = scene.add_material(Material::diffuse(glm::vec3(0.8f)));
@@ -191,9 +215,10 @@ const SceneMaterial& MaterialBuilder::material(int index) {
                             "coverage); the same for every BLEND material of the file");
     }
     if (m.ior == 0.0f) warnings_.push_back(who + "KHR_materials_ior 0 read as 1.5");
+    transmission_notes(m, who);
     Material material;
     try {
-        material = material_from_gltf(m, ids);
+        material = material_from_gltf(m, ids, choices_);
         // Slots on the other uv set read the mesh's second one.
         const std::pair<const GltfTextureRef*, TextureSlot*> slots[] = {
             {&m.base_color_texture, &material.base_color_texture},
@@ -219,6 +244,37 @@ const SceneMaterial& MaterialBuilder::material(int index) {
     out.textured = out.uv_set >= 0;
     if (material.anisotropy > 0.0f && out.uv_set < 0) out.uv_set = 0;
     return out;
+}
+
+void MaterialBuilder::transmission_notes(const GltfMaterial& m, const std::string& who) {
+    if (m.thickness_texture.valid())
+        warnings_.push_back(who +
+                            "KHR_materials_volume thickness texture ignored (a closed "
+                            "mesh's own thickness is what light crosses)");
+    if (!(m.transmission_factor > 0.0f) || m.unlit) return;
+    const bool solid = m.thickness_factor > 0.0f || choices_.solid_transmission;
+    if (!solid) {
+        // The hint a Blender user needs: Blender exports solid glass exactly so.
+        warnings_.push_back(who +
+                            "KHR_materials_transmission without KHR_materials_volume is "
+                            "thin-walled (the glTF default; Blender and Cycles show solid "
+                            "glass): rt_render --solid-transmission refracts it as solid");
+    } else if (!gltf_solid_glass(m, choices_)) {
+        warnings_.push_back(who +
+                            "solid transmission needs transmission 1 and metallic 0: "
+                            "drawn thin-walled");
+    } else {
+        const bool dropped = m.base_color_texture.valid() || m.metallic_roughness_texture.valid() ||
+                             m.clearcoat_factor > 0.0f || m.sheen_color_factor != glm::vec3(0.0f) ||
+                             m.specular_factor != 1.0f ||
+                             m.specular_color_factor != glm::vec3(1.0f) ||
+                             m.anisotropy_strength > 0.0f;
+        if (dropped)
+            warnings_.push_back(who +
+                                "drawn as solid glass (ior, roughness, base colour factor): its "
+                                "textures other than normal and emissive, clear coat, sheen, "
+                                "specular and anisotropy are ignored");
+    }
 }
 
 void MaterialBuilder::attributes(const GltfPrimitive& prim, const SceneMaterial& m,

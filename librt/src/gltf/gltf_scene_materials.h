@@ -6,6 +6,7 @@
 // scene_from_gltf's messages give a name from the file. Private to io/.
 
 #include <librt/gltf/gltf.h>
+#include <librt/gltf/gltf_scene.h>
 #include <librt/scene/scene.h>
 
 #include <cstdint>
@@ -35,7 +36,8 @@ struct SceneMaterial {
 /// Adds the materials and textures of a GltfScene to a Scene on first use.
 class MaterialBuilder {
 public:
-    MaterialBuilder(const GltfScene& gltf, Scene& scene, std::vector<std::string>& warnings);
+    MaterialBuilder(const GltfScene& gltf, Scene& scene, std::vector<std::string>& warnings,
+                    const GltfMaterialChoices& choices = {});
     /// The scene material of glTF material `index` (-1 or out of range: the default).
     const SceneMaterial& material(int index);
     /// True when some material built so far emits.
@@ -47,6 +49,9 @@ public:
 
 private:
     std::int32_t texture(const GltfTextureRef& ref, ColorSpace space);
+    /// The hints and warnings about a material's transmission and volume (thin-walled or
+    /// solid, what solid glass leaves out).
+    void transmission_notes(const GltfMaterial& m, const std::string& who);
 
     const GltfScene& gltf_;
     Scene& scene_;
@@ -57,6 +62,7 @@ private:
     std::map<std::pair<int, ColorSpace>, std::int32_t> textures_;
     bool emissive_ = false;
     bool blend_warned_ = false;
+    GltfMaterialChoices choices_;
 };
 
 }  // namespace librt::gltf_detail

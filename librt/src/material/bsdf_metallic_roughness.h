@@ -30,6 +30,13 @@
 // default); base colour is its own field, because a black base colour still reflects the
 // dielectric specular (bsdf.h's albedo contract).
 //
+// Material::diffuse_model = DiffuseModel::Burley replaces Lambert x (1 - Fr) by Burley's diffuse
+// (2012, "Physically Based Shading at Disney", sec. 5.3), Blender's Principled BSDF's:
+//   base = (1 - transmission) c / pi (1 + (F_D90 - 1)(1 - cos_i)^5)(1 + (F_D90 - 1)(1 -
+//   cos_o)^5),  F_D90 = 0.5 + 2 roughness (wi.h)^2
+// (reciprocal; not energy conserving: above roughness 0.25, F_D90 can exceed 1 and a white
+// base reflects more than it receives at grazing angles, as in Cycles).
+//
 // The glTF extensions layered on it (docs/materials-and-lights.md, "glTF material
 // extensions"), each inert at its default:
 //   KHR_materials_specular: Fr = specular (F0' + (1 - F0') (1 - |V.H|)^5), F0' = min(f0
@@ -145,7 +152,9 @@ struct MetallicRoughness {
         const glm::vec3 f0 = dielectric_fresnel(m, 1.0f);
         const float under = 1.0f - max3(f0);
         const glm::vec3& c = m.base_color;
-        const glm::vec3 diffuse = (1.0f - m.metallic) * (1.0f - m.transmission) * under * c;
+        // Burley's diffuse at normal incidence is c (both factors 1), with no (1 - F).
+        const float diffuse_under = m.diffuse_model == DiffuseModel::Burley ? 1.0f : under;
+        const glm::vec3 diffuse = (1.0f - m.metallic) * (1.0f - m.transmission) * diffuse_under * c;
         const glm::vec3 transmitted = (1.0f - m.metallic) * m.transmission * under * c;
         const glm::vec3 specular = (1.0f - m.metallic) * f0 + m.metallic * c;
         glm::vec3 a = diffuse + transmitted + specular;
@@ -187,6 +196,19 @@ struct MetallicRoughness {
     static float f0_dielectric(float ior) {
         const float r = (ior - 1.0f) / (ior + 1.0f);  // glTF KHR_materials_ior
         return r * r;
+    }
+
+    /// Burley's diffuse over Lambert's c / pi for cosines co, ci of wo and wi and cd = wi.h
+    /// (the header's comment): (1 + (F_D90 - 1)(1 - ci)^5)(1 + (F_D90 - 1)(1 - co)^5).
+    static float burley_factor(float roughness, float co, float ci, float cd) {
+        const float fd90 = 0.5f + 2.0f * roughness * cd * cd;
+        const auto schlick_weight = [](float c) {
+            const float x = std::clamp(1.0f - c, 0.0f, 1.0f);
+            const float x2 = x * x;
+            return x2 * x2 * x;
+        };
+        return (1.0f + (fd90 - 1.0f) * schlick_weight(ci)) *
+               (1.0f + (fd90 - 1.0f) * schlick_weight(co));
     }
 
     /// Probabilities of the specular, diffuse, transmission, coat and sheen lobes at wo.
@@ -331,7 +353,10 @@ struct MetallicRoughness {
             // Only the dielectric's base layer transmits: (1 - Fr) transmission c D V.
             f = (1.0f - m.metallic) * under * m.transmission * c * dv;
         } else {
-            const glm::vec3 dielectric = under * (1.0f - m.transmission) * c * kInvPi + fr * dv;
+            const float base = m.diffuse_model == DiffuseModel::Burley
+                                   ? burley_factor(m.roughness, wo.z, wr.z, glm::dot(wr, h))
+                                   : under;
+            const glm::vec3 dielectric = base * (1.0f - m.transmission) * c * kInvPi + fr * dv;
             const glm::vec3 metal = microfacet::schlick(c, vh) * dv;
             f = (1.0f - m.metallic) * dielectric + m.metallic * metal;
         }

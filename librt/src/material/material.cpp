@@ -144,6 +144,14 @@ Material Material::emissive(const glm::vec3& radiance) {
     return m;
 }
 
+glm::vec3 Material::interior_transmittance(float length) const {
+    if (!absorbs_inside() || !(length > 0.0f)) return glm::vec3(1.0f);
+    // c^(L / d) = exp(ln(c) L / d): sigma = -ln(c) / d per unit length (KHR_materials_volume).
+    const float x = length / attenuation_distance;
+    return {std::pow(attenuation_color.x, x), std::pow(attenuation_color.y, x),
+            std::pow(attenuation_color.z, x)};
+}
+
 bool Material::is_specular() const {
     const BsdfLobe l = lobes(*this);
     return l != BsdfLobe::None && !has_non_specular(l);
@@ -224,6 +232,27 @@ void validate(const Material& material) {
         std::ostringstream msg;
         msg << "material albedo_texture = " << material.albedo_texture
             << ": must be a texture id or -1";
+        throw Error(msg.str());
+    }
+    if (material.diffuse_model != DiffuseModel::Lambert &&
+        material.diffuse_model != DiffuseModel::Burley) {
+        std::ostringstream msg;
+        msg << "material diffuse_model = " << int(material.diffuse_model)
+            << ": must be Lambert or Burley";
+        throw Error(msg.str());
+    }
+    // A component of 0 would absorb everything after any distance: log(0) has no rate.
+    const glm::vec3& c = material.attenuation_color;
+    if (!(c.x > 0.0f && c.x <= 1.0f && c.y > 0.0f && c.y <= 1.0f && c.z > 0.0f && c.z <= 1.0f)) {
+        std::ostringstream msg;
+        msg << "material attenuation_color = (" << c.x << ", " << c.y << ", " << c.z
+            << "): each component must be in (0, 1]";
+        throw Error(msg.str());
+    }
+    if (!(material.attenuation_distance > 0.0f)) {
+        std::ostringstream msg;
+        msg << "material attenuation_distance = " << material.attenuation_distance
+            << ": must be > 0 (infinity: no absorption)";
         throw Error(msg.str());
     }
 }

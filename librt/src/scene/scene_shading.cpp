@@ -95,6 +95,11 @@ const Material& Scene::shade_varying(Hit& hit, const glm::vec3& direction,
                                               hit.shading_normal, t, hit.geometric_normal);
     }
     if (m.anisotropy > 0.0f) anisotropy_at(hit, m);
+    // KHR_materials_volume: a ray reaching a closed surface's back ran inside it for hit.t
+    // (from the surface it entered by); whatever the surface then does, reflect back in or
+    // leave, carries that segment's Beer-Lambert transmittance, as its albedo scales every lobe.
+    if (m.absorbs_inside() && glm::dot(direction, hit.geometric_normal) > 0.0f)
+        m.albedo *= m.interior_transmittance(hit.t * glm::length(direction));
     return m;
 }
 

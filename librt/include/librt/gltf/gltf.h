@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -162,6 +163,15 @@ struct GltfMaterial {
     glm::vec3 specular_color_factor{1.0f};       ///< KHR_materials_specular, linear, >= 0
     GltfTextureRef specular_color_texture;       ///< KHR_materials_specular, sRGB RGB
     bool iridescence = false;  ///< KHR_materials_iridescence present (not rendered)
+    /// KHR_materials_volume thicknessFactor (>= 0; 0, the default, and without the
+    /// extension: thin-walled). Above 0 the mesh is a closed volume: solid glass.
+    float thickness_factor = 0.0f;
+    GltfTextureRef thickness_texture;  ///< KHR_materials_volume, G channel (not used)
+    /// KHR_materials_volume attenuationDistance (> 0; infinity: no absorption).
+    float attenuation_distance = std::numeric_limits<float>::infinity();
+    /// KHR_materials_volume attenuationColor, linear, [0, 1]: what remains after
+    /// attenuation_distance inside.
+    glm::vec3 attenuation_color{1.0f};
     GltfAlphaMode alpha_mode = GltfAlphaMode::Opaque;  ///< OPAQUE, MASK or BLEND
     float alpha_cutoff = 0.5f;                         ///< MASK: alpha below this is cut out
     bool double_sided = false;                         ///< back faces are seen (else culled)

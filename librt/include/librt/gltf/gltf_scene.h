@@ -27,6 +27,21 @@ struct GltfMaterialTextures {
     std::int32_t occlusion = -1;            ///< occlusionTexture (linear; R), albedo AOV only
 };
 
+/// Where librt's reading of a glTF material departs from the glTF model, on request
+/// (SceneFileOptions::diffuse_model and solid_transmission).
+struct GltfMaterialChoices {
+    /// Material::diffuse_model of every material.
+    DiffuseModel diffuse_model = DiffuseModel::Lambert;
+    /// Transmission without KHR_materials_volume read as solid glass, not thin-walled.
+    bool solid_transmission = false;
+};
+
+/// True when material_from_gltf makes `material` solid glass (MaterialKind::RoughDielectric)
+/// under `choices`: transmission factor 1, metallic factor 0, and KHR_materials_volume's
+/// thickness above 0 or choices.solid_transmission.
+[[nodiscard]] LIBRT_API bool gltf_solid_glass(const GltfMaterial& material,
+                                              const GltfMaterialChoices& choices = {});
+
 /// librt's material for a glTF material; the ONE place that mapping lives. Every glTF
 /// material becomes MaterialKind::MetallicRoughness (glTF 2.0 Appendix B): base colour,
 /// metallic and roughness factors (clamped to [0, 1]), ior from KHR_materials_ior (0, the
@@ -44,9 +59,16 @@ struct GltfMaterialTextures {
 /// black), except with transmission, which must be crossed from both sides. The occlusion texture
 /// (with its strength) goes to the albedo AOV only (a path tracer computes occlusion). Not used:
 /// the sheen and specular textures, the clear coat's normal map or KHR_materials_iridescence
-/// (scene_from_gltf warns).
+/// (scene_from_gltf warns). choices.diffuse_model sets Material::diffuse_model. A solid glass
+/// (gltf_solid_glass: KHR_materials_volume, or choices.solid_transmission) becomes
+/// Material::rough_dielectric(ior, roughness, base colour) with its emission, normal map and
+/// alpha test, double-sided, and KHR_materials_volume's attenuation colour (components below
+/// 1e-4 raised to it) and distance as Material's (Beer-Lambert inside); its other layers and
+/// textures are not used (scene_from_gltf warns). Transmission below 1 or with metal stays
+/// thin-walled.
 [[nodiscard]] LIBRT_API Material material_from_gltf(const GltfMaterial& material,
-                                                    const GltfMaterialTextures& textures = {});
+                                                    const GltfMaterialTextures& textures = {},
+                                                    const GltfMaterialChoices& choices = {});
 
 /// Builds the Scene of `gltf` (taken by value: its vertex arrays are moved into the
 /// scene). A mesh placed by several nodes becomes a prototype per primitive, placed by an

@@ -66,6 +66,14 @@ struct SceneFileOptions {
     std::string variant;
     /// glTF: the units of KHR_lights_punctual intensities (PunctualLightUnits).
     PunctualLightUnits light_units = PunctualLightUnits::Watts;
+    /// The diffuse base of every glTF material (MetallicRoughness): glTF's Lambert, or
+    /// Burley's as Blender's Principled BSDF has it (rt_render --diffuse burley).
+    DiffuseModel diffuse_model = DiffuseModel::Lambert;
+    /// A glTF material with KHR_materials_transmission and no KHR_materials_volume is
+    /// thin-walled (the specification's default, with a hint naming it); true: solid glass,
+    /// refracting through closed meshes, as Blender and Cycles show it (rt_render
+    /// --solid-transmission). See material_from_gltf for which materials can be.
+    bool solid_transmission = false;
 };
 
 /// A scene file as librt renders it.

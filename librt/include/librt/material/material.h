@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <limits>
 
 namespace librt {
 
@@ -27,6 +28,16 @@ enum class Metal : std::uint8_t {
     Silver,     ///< Ag
     Copper,     ///< Cu
     Aluminium,  ///< Al
+};
+
+/// The diffuse base of MaterialKind::MetallicRoughness (Material::diffuse_model).
+enum class DiffuseModel : std::uint8_t {
+    /// glTF 2.0 Appendix B: Lambert, c / pi, under the specular layer's (1 - F(V.H)).
+    Lambert,
+    /// Burley 2012 ("Physically Based Shading at Disney"), as Blender's Principled BSDF:
+    /// c / pi (1 + (F_D90 - 1)(1 - cos_l)^5)(1 + (F_D90 - 1)(1 - cos_v)^5), F_D90 = 0.5 +
+    /// 2 roughness cos^2(theta_d), without the (1 - F) factor.
+    Burley,
 };
 
 /// A surface description as a tagged struct rather than a virtual BSDF hierarchy:
@@ -66,6 +77,15 @@ struct LIBRT_API Material {
     float metallic = 0.0f;
     /// MetallicRoughness: KHR_materials_transmission factor in [0, 1] (thin-walled).
     float transmission = 0.0f;
+    /// MetallicRoughness: the diffuse base's model (glTF's Lambert by default).
+    DiffuseModel diffuse_model = DiffuseModel::Lambert;
+    /// Beer-Lambert absorption inside a closed surface (KHR_materials_volume): the colour,
+    /// each component in (0, 1], that remains of light after attenuation_distance inside.
+    /// Scene::shade applies c^(t / d) for the segment of length t that reached the surface
+    /// from its back (the inside of a closed mesh, the winding's normal pointing out).
+    glm::vec3 attenuation_color{1.0f};
+    /// Distance (scene units, > 0) after which attenuation_color remains; infinity: none.
+    float attenuation_distance = std::numeric_limits<float>::infinity();
 
     // Per-hit inputs (Scene::shade evaluates them where a hit is finished, so the BSDFs
     // receive plain values; a material with none of them costs nothing per hit).
@@ -183,13 +203,23 @@ struct LIBRT_API Material {
         return base_color_texture.bound() || metallic_roughness_texture.bound() ||
                emission_texture.bound() || normal_texture.bound() || alpha_cutoff > 0.0f ||
                !double_sided || anisotropy > 0.0f || clearcoat_texture.bound() ||
-               clearcoat_roughness_texture.bound();
+               clearcoat_roughness_texture.bound() || absorbs_inside();
+    }
+    /// True when the interior absorbs (attenuation_distance finite, attenuation_color not
+    /// white): Scene::shade then attenuates the segments that reach the surface's back.
+    [[nodiscard]] bool absorbs_inside() const {
+        return attenuation_distance < std::numeric_limits<float>::infinity() &&
+               (attenuation_color.x < 1.0f || attenuation_color.y < 1.0f ||
+                attenuation_color.z < 1.0f);
     }
     /// True when the material reads the surface's tangent frame: a normal map or an
     /// anisotropy direction (meshes without tangents get them from their uvs).
     [[nodiscard]] bool needs_tangent_frame() const {
         return normal_texture.bound() || anisotropy > 0.0f;
     }
+    /// Beer-Lambert transmittance of the interior over a path of `length` (scene units):
+    /// attenuation_color^(length / attenuation_distance) (1 when it does not absorb).
+    [[nodiscard]] glm::vec3 interior_transmittance(float length) const;
     /// True when the material has an alpha test (alpha_cutoff > 0).
     [[nodiscard]] bool cuts_out() const { return alpha_cutoff > 0.0f; }
     /// True when every lobe of the material's BSDF is a delta distribution (no light
@@ -205,8 +235,9 @@ struct LIBRT_API Material {
 /// not finite; alpha, alpha_cutoff or anisotropy is outside [0, 1]; anisotropy_rotation or
 /// anisotropy_direction is not finite; clearcoat, clearcoat_roughness, specular,
 /// sheen_roughness or a sheen_color component is outside [0, 1], specular_color has a
-/// negative or non-finite component, occlusion_strength is outside [0, 1], or unlit is set
-/// on a kind other than Emissive.
+/// negative or non-finite component, occlusion_strength is outside [0, 1], unlit is set
+/// on a kind other than Emissive, diffuse_model is not a DiffuseModel, an attenuation_color
+/// component is outside (0, 1], or attenuation_distance is not positive (or NaN).
 LIBRT_API void validate(const Material& material);
 
 }  // namespace librt
