@@ -56,7 +56,6 @@ private:
     SceneMaterial default_;
     std::map<std::pair<int, ColorSpace>, std::int32_t> textures_;
     bool emissive_ = false;
-    bool blend_warned_ = false;
 };
 
 }  // namespace librt::gltf_detail
