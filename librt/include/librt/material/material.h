@@ -186,8 +186,8 @@ struct LIBRT_API Material {
     /// (albedo_texture, the report's map_Kd, is looked up by Scene::albedo as before.)
     [[nodiscard]] bool varies_per_hit() const {
         return base_color_texture.bound() || metallic_roughness_texture.bound() ||
-               emission_texture.bound() || normal_texture.bound() || cuts_out() ||
-               !double_sided || anisotropy > 0.0f || clearcoat_texture.bound() ||
+               emission_texture.bound() || normal_texture.bound() || cuts_out() || !double_sided ||
+               anisotropy > 0.0f || clearcoat_texture.bound() ||
                clearcoat_roughness_texture.bound();
     }
     /// True when the material reads the surface's tangent frame: a normal map or an
