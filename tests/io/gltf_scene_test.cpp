@@ -386,13 +386,16 @@ TEST(GltfToScene, MaterialMapping) {
     EXPECT_FLOAT_EQ(d.transmission, 1.0f);
     EXPECT_FLOAT_EQ(d.ior, 1.33f);
     EXPECT_TRUE(d.double_sided);
-    // MASK with its cut-off; BLEND drawn as MASK 0.5.
+    // MASK with its cut-off; BLEND as partial coverage (no cut-off).
     m.transmission_factor = 0.0f;
     m.alpha_mode = GltfAlphaMode::Mask;
     m.alpha_cutoff = 0.3f;
     EXPECT_FLOAT_EQ(material_from_gltf(m).alpha_cutoff, 0.3f);
+    EXPECT_FALSE(material_from_gltf(m).alpha_blend);
     m.alpha_mode = GltfAlphaMode::Blend;
-    EXPECT_FLOAT_EQ(material_from_gltf(m).alpha_cutoff, 0.5f);
+    EXPECT_TRUE(material_from_gltf(m).alpha_blend);
+    EXPECT_EQ(material_from_gltf(m).alpha_cutoff, 0.0f);
+    EXPECT_TRUE(material_from_gltf(m).cuts_out());
     m.double_sided = true;
     EXPECT_TRUE(material_from_gltf(m).double_sided);
 }
@@ -422,27 +425,31 @@ TEST(GltfToScene, AlphaModesAndDoubleSidedFromTheFile) {
     m["alphaMode"] = "OPAQUE";
     m["pbrMetallicRoughness"]["baseColorFactor"] = {1, 1, 1, 0.0};
     EXPECT_TRUE(load(m).scene.intersect(down, hit));  // alpha ignored
-    // BLEND: drawn as MASK 0.5, with one warning naming it.
+    // BLEND: partial coverage, no warning (tests/render/surface_rules_test.cpp renders it).
     m["alphaMode"] = "BLEND";
     m["pbrMetallicRoughness"]["baseColorFactor"] = {1, 1, 1, 0.4};
     const LoadedScene blend = load(m);
-    EXPECT_FALSE(blend.scene.intersect(down, hit));
-    std::size_t blend_warnings = 0;
-    for (const std::string& w : blend.warnings)
-        blend_warnings += w.find("BLEND") != std::string::npos;
-    EXPECT_EQ(blend_warnings, 1u);
-    // doubleSided false (glTF's default): the back is black; true: both sides as stated.
+    std::size_t blend_materials = 0;
+    for (std::size_t i = 0; i < blend.scene.material_count(); ++i)
+        blend_materials += blend.scene.material(std::uint32_t(i)).alpha_blend;
+    EXPECT_EQ(blend_materials, 1u);
+    for (const std::string& w : blend.warnings) EXPECT_EQ(w.find("BLEND"), std::string::npos) << w;
+    // doubleSided false (glTF's default): camera rays pass the back (culled), other rays find
+    // it black; true: both sides as stated.
     const json one_sided = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}}}};
     LoadedScene s = load(one_sided);
     ShadedMaterial scratch;
     ASSERT_TRUE(s.scene.intersect(up, hit));
+    EXPECT_TRUE(s.scene.camera_passes(hit, up.direction));
     EXPECT_EQ(lobes(s.scene.shade(hit, up.direction, scratch)), BsdfLobe::None);
     ASSERT_TRUE(s.scene.intersect(down, hit));
+    EXPECT_FALSE(s.scene.camera_passes(hit, down.direction));
     EXPECT_EQ(s.scene.shade(hit, down.direction, scratch).kind, MaterialKind::MetallicRoughness);
     json two_sided = one_sided;
     two_sided["doubleSided"] = true;
     s = load(two_sided);
     ASSERT_TRUE(s.scene.intersect(up, hit));
+    EXPECT_FALSE(s.scene.camera_passes(hit, up.direction));
     EXPECT_EQ(s.scene.shade(hit, up.direction, scratch).kind, MaterialKind::MetallicRoughness);
 }
 

@@ -15,9 +15,6 @@
 namespace librt {
 namespace {
 
-/// Alpha cut-off glTF's BLEND is drawn with (librt has no partial coverage).
-constexpr float kBlendCutoff = 0.5f;
-
 /// The slot of a texture reference: its scene texture and its uv map (glTF uvs, v down,
 /// through KHR_texture_transform, to ImageTexture coordinates).
 TextureSlot slot(const GltfTextureRef& ref, std::int32_t id) {
@@ -96,7 +93,7 @@ Material material_from_gltf(const GltfMaterial& m, const GltfMaterialTextures& t
     if (m.alpha_mode == GltfAlphaMode::Mask)
         out.alpha_cutoff = std::clamp(m.alpha_cutoff, 0.0f, 1.0f);
     else if (m.alpha_mode == GltfAlphaMode::Blend)
-        out.alpha_cutoff = kBlendCutoff;
+        out.alpha_blend = true;  // partial coverage as stochastic opacity (Scene)
     // A thin transmitting surface must be crossed from both sides (a glass bottle's far
     // wall is seen from inside): transmission makes it double-sided whatever the flag.
     out.double_sided =
@@ -208,12 +205,6 @@ const SceneMaterial& MaterialBuilder::material(int index) {
     ids.occlusion = use(m.occlusion_texture, ColorSpace::Linear);
     if (m.transmission_texture.valid())
         warnings_.push_back(who + "transmission texture ignored (factor used)");
-    if (m.alpha_mode == GltfAlphaMode::Blend && !blend_warned_) {
-        blend_warned_ = true;
-        warnings_.push_back(who +
-                            "alphaMode BLEND drawn as MASK with cut-off 0.5 (no partial "
-                            "coverage); the same for every BLEND material of the file");
-    }
     if (m.ior == 0.0f) warnings_.push_back(who + "KHR_materials_ior 0 read as 1.5");
     transmission_notes(m, who);
     Material material;

@@ -61,7 +61,6 @@ private:
     SceneMaterial default_;
     std::map<std::pair<int, ColorSpace>, std::int32_t> textures_;
     bool emissive_ = false;
-    bool blend_warned_ = false;
     GltfMaterialChoices choices_;
 };
 

@@ -123,8 +123,8 @@ glm::vec3 segment(const Scene& scene, const PathVertex& a, const PathVertex& b) 
 
 /// The shadow segment from vertex a to a point on no surface (the lens).
 glm::vec3 segment(const Scene& scene, const PathVertex& a, const glm::vec3& lens) {
-    return shadow_transmittance(
-        scene, spawn_ray_between(a.p, a.ng, a.offset, lens, glm::vec3(0.0f), 0.0f));
+    return lens_transmittance(scene,
+                              spawn_ray_between(a.p, a.ng, a.offset, lens, glm::vec3(0.0f), 0.0f));
 }
 
 /// The density of direction `to` at a surface vertex reached from direction `from` (both
@@ -343,9 +343,9 @@ int random_walk(const Context& c, Ray ray, glm::vec3 beta, float pdf_dir, Transp
             if (escape != nullptr) *escape = {true, ray.direction, beta, n - 1, pdf_dir};
             break;
         }
-        // Camera rays pass objects hidden from the camera, as PathTracer's do.
-        if (mode == Transport::Radiance && n == 1 && c.scene.may_hide_objects() &&
-            !c.scene.camera_visible(hit.object_id)) {
+        // Camera rays pass objects hidden from the camera and culled backs, as PathTracer's do.
+        if (mode == Transport::Radiance && n == 1 && c.scene.camera_may_pass() &&
+            c.scene.camera_passes(hit, ray.direction)) {
             if (++hidden_skips > 64) break;
             detail::respawn(ray, hit.point, hit.geometric_normal, hit.offset, ray.direction);
             continue;

@@ -97,7 +97,7 @@ void splat_caustic_path(const Scene& scene, const SceneSphere& sphere, const Cam
             glm::vec3 contrib =
                 beta * f * (std::fabs(glm::dot(hit.shading_normal, cw.wi)) * cw.weight);
             if (!(max_component(contrib) > 0.0f)) return;
-            contrib *= shadow_transmittance(
+            contrib *= lens_transmittance(
                 scene, spawn_ray_between(hit.point, hit.geometric_normal, hit.offset, cw.view_start,
                                          glm::vec3(0.0f), 0.0f));
             if (!(max_component(contrib) > 0.0f)) return;

@@ -570,13 +570,13 @@ glm::vec3 trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
             add_escaped<S>(scene, ray.direction, bounce, depth, chosen, beta, out);
             break;
         }
-        // may_hide_objects() first: a flag that never changes during a render (depth == 0
-        // alternates per path), and camera_visible() is a lookup no scene without hidden
-        // objects needs.
-        if (scene.may_hide_objects() && depth == 0 && !scene.camera_visible(hit.object_id))
+        // camera_may_pass() first: a flag that never changes during a render (depth == 0
+        // alternates per path), and camera_passes() is a lookup no scene without hidden
+        // objects or one-sided materials needs.
+        if (scene.camera_may_pass() && depth == 0 && scene.camera_passes(hit, ray.direction))
             [[unlikely]] {
-            // Camera rays go on through hidden objects (bounded: a ray grazing a hidden
-            // surface many times must still end).
+            // Camera rays go on through hidden objects and culled backs (bounded: a ray
+            // grazing such a surface many times must still end).
             if (++hidden > 64) break;
             detail::respawn(ray, hit.point, hit.geometric_normal, hit.offset, ray.direction);
             continue;

@@ -9,14 +9,19 @@
 
 namespace librt {
 
-glm::vec3 transmittance(const Scene& scene, Ray ray, std::uint32_t ignored_object) {
+namespace {
+
+// transmittance(); to_lens: the segment is a join to the lens, which crosses what camera
+// rays cross (Scene::camera_passes, the camera looking back along it).
+glm::vec3 segment_through(const Scene& scene, Ray ray, std::uint32_t ignored_object, bool to_lens) {
     glm::vec3 through(1.0f);
     if (!(ray.t_max > 0.0f)) return through;
     ShadedMaterial shaded;
     for (int crossed = 0; crossed <= kMaxShadowCrossings; ++crossed) {
         Hit hit;
         if (!scene.intersect_for_shading(ray, hit)) return through;
-        if (hit.object_id != ignored_object) {
+        if (hit.object_id != ignored_object &&
+            !(to_lens && scene.camera_passes(hit, -ray.direction))) {
             const Material& m = scene.shade(hit, ray.direction, shaded);
             if (!has(bsdfs::lobes_of(m), BsdfLobe::Null)) return glm::vec3(0.0f);
             const glm::vec3 albedo = m.albedo_texture < 0 ? m.albedo : scene.albedo(hit);
@@ -34,6 +39,20 @@ glm::vec3 transmittance(const Scene& scene, Ray ray, std::uint32_t ignored_objec
         ray.t_max = rest;
     }
     return glm::vec3(0.0f);
+}
+
+}  // namespace
+
+glm::vec3 transmittance(const Scene& scene, Ray ray, std::uint32_t ignored_object) {
+    return segment_through(scene, ray, ignored_object, false);
+}
+
+glm::vec3 lens_transmittance(const Scene& scene, const Ray& ray) {
+    if (!scene.camera_may_pass()) return shadow_transmittance(scene, ray);
+    // Most joins are clear: one any-hit query says so (glTF's one-sided default must not
+    // turn every join into a walk of closest hits).
+    if (!scene.has_pass_through_surfaces() && unoccluded(scene, ray)) return glm::vec3(1.0f);
+    return segment_through(scene, ray, kInvalidId, true);
 }
 
 Crossing cross_null(const Scene& scene, const Material& m, const Hit& hit,

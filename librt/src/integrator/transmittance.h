@@ -39,6 +39,12 @@ inline constexpr int kMaxShadowCrossings = 64;
     return unoccluded(scene, ray, ignored_object) ? glm::vec3(1.0f) : glm::vec3(0.0f);
 }
 
+/// What the join `ray` of a light path's vertex to a point on the lens (spawn_ray_between)
+/// lets through: shadow_transmittance(), except that it crosses what camera rays cross
+/// (Scene::camera_passes, as the camera sees along the reversed join: one-sided backs),
+/// so that a light path reaches the camera wherever a camera ray reaches it.
+[[nodiscard]] glm::vec3 lens_transmittance(const Scene& scene, const Ray& ray);
+
 /// Crossing decisions a path may take before it ends: a bound, so that a path grazing a
 /// stack of panes still ends (it also covers the max_depth bounces between panes).
 inline constexpr std::uint32_t kMaxCrossingDecisions = 4096;

@@ -1,5 +1,6 @@
 #include "render/aov.h"
 
+#include <librt/geometry/ray_offset.h>
 #include <librt/material/bsdf.h>
 #include <librt/sampling/rng.h>
 #include <librt/scene/scene.h>
@@ -32,7 +33,17 @@ AovSample sample_aovs(const Scene& scene, const Ray& camera_ray, const glm::vec3
     ShadedMaterial shaded;
     for (int bounce = 0; bounce <= kAovMaxSpecularBounces; ++bounce) {
         Hit hit;
-        if (!scene.intersect_for_shading(ray, hit)) return out;  // escaped: albedo 0
+        bool found = scene.intersect_for_shading(ray, hit);
+        // The camera ray passes what the path tracer's does (hidden objects, culled backs;
+        // bounded as there).
+        for (int passed = 0; found && bounce == 0 && scene.camera_may_pass() &&
+                             scene.camera_passes(hit, ray.direction);
+             ++passed) {
+            if (passed >= 64) return out;
+            ray = spawn_ray(hit, ray.direction);
+            found = scene.intersect_for_shading(ray, hit);
+        }
+        if (!found) return out;  // escaped: albedo 0
         if (bounce == 0) {
             out.hit = true;
             // Planar depth: every camera ray starts on the lens plane (camera.h), so the

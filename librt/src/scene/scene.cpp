@@ -29,8 +29,9 @@ bool light_sampled(const Material& m) { return m.emits() && !m.cuts_out() && !m.
 // Whether no ray passes a sphere of this material: its BSDF transmits nothing (glass,
 // rough glass, glTF transmission do: bsdfs::transmits), no alpha test's holes, and no
 // emission (an emitter is a light of its own, which BSDF sampling must be free to find past
-// the cut). A one-sided back absorbs, so it stays opaque; hiding from the camera lets only
-// camera rays through, and those take no light sample before their first hit.
+// the cut). A one-sided back absorbs all but camera rays, so it stays opaque; hiding from
+// the camera (or culling a back for it) lets only camera rays through, and those take no
+// light sample before their first hit.
 bool opaque(const Material& m) { return !m.emits() && !m.cuts_out() && !bsdfs::transmits(m); }
 
 }  // namespace
@@ -61,6 +62,7 @@ std::uint32_t Scene::add_material(const Material& material) {
     check_texture_ids(material);
     materials_.push_back(material);
     cut_outs_ = cut_outs_ || material.cuts_out();
+    one_sided_ = one_sided_ || !material.double_sided;
     return std::uint32_t(materials_.size() - 1);
 }
 

@@ -11,7 +11,9 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <new>
 
 namespace librt {
@@ -42,6 +44,29 @@ glm::vec3 apply_normal_map(const glm::vec3& texel, float scale, const glm::vec3&
         m /= len;
     }
     return m;
+}
+
+glm::vec3 adapt_shading_normal(const glm::vec3& n, const glm::vec3& g, const glm::vec3& wo) {
+    // On wo's side: the hit gives n and g on the primitive's side, wherever the ray came from.
+    const float side = glm::dot(wo, g) < 0.0f ? -1.0f : 1.0f;
+    const glm::vec3 gs = side * g, ns = side * n;
+    const glm::vec3 r = 2.0f * glm::dot(wo, ns) * ns - wo;
+    const float rg = glm::dot(r, gs);
+    if (rg >= kMinMirrorCosine) return n;
+    // r's part along the surface, then r pulled up to the least cosine in r's azimuth (wo's
+    // own azimuth, mirrored, when r has none: straight back along the surface from wo).
+    glm::vec3 t = r - rg * gs;
+    float len = glm::length(t);
+    if (!(len > 1e-6f)) {
+        t = -(wo - glm::dot(wo, gs) * gs);
+        len = glm::length(t);
+        if (!(len > 1e-6f)) return side * gs;  // wo along g: the geometric normal mirrors it
+    }
+    const float c = kMinMirrorCosine;
+    const glm::vec3 r2 = std::sqrt(1.0f - c * c) * (t / len) + c * gs;
+    // wo and r2 both above the surface, so their sum is not zero.
+    const glm::vec3 h = glm::normalize(wo + r2);
+    return side * h;
 }
 
 glm::vec2 Scene::slot_uv(const TextureSlot& slot, const Hit& hit) const {
@@ -93,6 +118,9 @@ const Material& Scene::shade_varying(Hit& hit, const glm::vec3& direction,
         const glm::vec4 t = top_.tangent(hit);
         hit.shading_normal = apply_normal_map(lookup(m.normal_texture), m.normal_scale,
                                               hit.shading_normal, t, hit.geometric_normal);
+        // No viewer sees the mapped normal turned away from it (docs/robustness.md).
+        hit.shading_normal =
+            adapt_shading_normal(hit.shading_normal, hit.geometric_normal, -direction);
     }
     if (m.anisotropy > 0.0f) anisotropy_at(hit, m);
     // KHR_materials_volume: a ray reaching a closed surface's back ran inside it for hit.t
@@ -157,9 +185,50 @@ float Scene::coverage(const Hit& hit) const {
     return a;
 }
 
-bool Scene::in_cut_out_hole(const Hit& hit) const {
+namespace {
+
+// A 64-bit mix of one more word into h (the multiply-xorshift finalizer of MurmurHash3's
+// fmix64 after a golden-ratio step): every input bit reaches every output bit.
+std::uint64_t mix(std::uint64_t h, std::uint64_t word) {
+    h ^= word + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdull;
+    h ^= h >> 33;
+    h *= 0xc4ceb9fe1a85ec53ull;
+    h ^= h >> 33;
+    return h;
+}
+
+// A number in [0, 1) for the stochastic opacity of `hit` on `ray`: a hash of both, so it
+// is the same each time the ray is asked (a closest-hit query and an any-hit one agree),
+// independent of threads, and independent between surfaces along the ray (t and the
+// primitive differ) and between the rays of different samples.
+float coverage_number(const Ray& ray, const Hit& hit) {
+    const auto bits = [](float f) { return std::uint64_t(std::bit_cast<std::uint32_t>(f)); };
+    std::uint64_t h = 0x5bd1e995u;
+    h = mix(h, bits(ray.origin.x) | bits(ray.origin.y) << 32);
+    h = mix(h, bits(ray.origin.z) | bits(ray.direction.x) << 32);
+    h = mix(h, bits(ray.direction.y) | bits(ray.direction.z) << 32);
+    h = mix(h, std::uint64_t(hit.object_id) | std::uint64_t(hit.primitive_id) << 32);
+    h = mix(h, std::uint64_t(hit.instance_id) | bits(hit.t) << 32);
+    return float(h >> 40) * 0x1p-24f;
+}
+
+}  // namespace
+
+bool Scene::in_cut_out_hole(const Ray& ray, const Hit& hit) const {
     const Material& m = material(hit);
-    return m.cuts_out() && coverage(hit) < m.alpha_cutoff;
+    if (!m.cuts_out()) return false;
+    // Partial coverage a: opaque for a number below a (probability a), a hole otherwise.
+    if (m.alpha_blend) return !(coverage_number(ray, hit) < coverage(hit));
+    return coverage(hit) < m.alpha_cutoff;
+}
+
+bool Scene::camera_passes(const Hit& hit, const glm::vec3& direction) const {
+    if (!camera_visible(hit.object_id)) return true;
+    // Back-face culling: the back of a one-sided surface (as shade_varying tells it).
+    return one_sided_ && !(glm::dot(direction, hit.geometric_normal) < 0.0f) &&
+           !material(hit).double_sided;
 }
 
 bool Scene::intersect_carefully(const Ray& ray, Hit& hit, bool every_sphere_uv) const {
@@ -184,7 +253,7 @@ void Scene::surface_under_pane(const Ray& ray, Hit& pane) const {
     probe.t_max = std::min(ray.t_max, pane.t + slack);
     Hit under;
     if (!top_.intersect_ignoring(probe, under, pane.object_id, true)) return;
-    if (cut_outs_ && in_cut_out_hole(under)) return;
+    if (cut_outs_ && in_cut_out_hole(probe, under)) return;
     pane = under;
 }
 
@@ -195,7 +264,7 @@ bool Scene::intersect_past_cut_outs(const Ray& ray, Hit& hit) const {
     // the loop ends within the number of surfaces along the ray. Every sphere's uv is
     // computed: the alpha test reads it.
     while (top_.intersect(r, h, true)) {
-        if (!in_cut_out_hole(h)) {
+        if (!in_cut_out_hole(r, h)) {
             hit = h;
             return true;
         }
@@ -208,7 +277,7 @@ bool Scene::occluded_past_cut_outs(const Ray& ray, std::uint32_t ignored_object)
     Ray r = ray;
     Hit h;
     while (top_.intersect(r, h, true)) {
-        if (h.object_id != ignored_object && !in_cut_out_hole(h)) return true;
+        if (h.object_id != ignored_object && !in_cut_out_hole(r, h)) return true;
         r.t_min = h.t;
     }
     return false;

@@ -54,9 +54,10 @@ struct GltfMaterialChoices {
 /// with Material::unlit, emitting its base colour (times its texture). The textures in `textures`
 /// fill its slots, each with its KHR_texture_transform and the flip of glTF's downward v (the mesh
 /// keeps glTF's uvs); normalTexture.scale and the base colour alpha are kept. alphaMode MASK sets
-/// alpha_cutoff to alphaCutoff; BLEND is drawn as MASK with cut-off 0.5 (librt has no partial
-/// coverage); OPAQUE has no alpha test. doubleSided false makes the material one-sided (its back is
-/// black), except with transmission, which must be crossed from both sides. The occlusion texture
+/// alpha_cutoff to alphaCutoff; BLEND sets alpha_blend (partial coverage: stochastic opacity);
+/// OPAQUE has no alpha test. doubleSided false makes the material one-sided (camera rays pass its
+/// back; other rays find it black), except with transmission, which must be crossed from both
+/// sides. The occlusion texture
 /// (with its strength) goes to the albedo AOV only (a path tracer computes occlusion). Not used:
 /// the sheen and specular textures, the clear coat's normal map or KHR_materials_iridescence
 /// (scene_from_gltf warns). choices.diffuse_model sets Material::diffuse_model. A solid glass

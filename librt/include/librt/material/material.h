@@ -107,8 +107,13 @@ struct LIBRT_API Material {
     /// Alpha test: where the coverage is below this, rays pass through the surface (glTF
     /// alphaMode MASK's alphaCutoff); 0 = opaque, no test.
     float alpha_cutoff = 0.0f;
-    /// False: the surface's back (the side its winding's normal points away from)
-    /// scatters and emits nothing (glTF doubleSided = false; see docs/materials-and-lights.md).
+    /// Partial coverage (glTF alphaMode BLEND): every ray (camera, bounce, shadow) passes
+    /// the surface with probability 1 - coverage, decided per ray and primitive by a hash
+    /// (stochastic opacity; Scene's class comment). alpha_cutoff is then not used.
+    bool alpha_blend = false;
+    /// False: the surface is one-sided (glTF doubleSided = false): camera rays pass through
+    /// its back (back-face culling), and every other ray that meets the back finds it
+    /// scattering and emitting nothing (see docs/materials-and-lights.md).
     bool double_sided = true;
     /// Emissive only (glTF KHR_materials_unlit): the emission is the base colour (times its
     /// texture and the vertex colour, per hit), seen by every ray but never light-sampled:
@@ -201,8 +206,8 @@ struct LIBRT_API Material {
     /// (albedo_texture, the report's map_Kd, is looked up by Scene::albedo as before.)
     [[nodiscard]] bool varies_per_hit() const {
         return base_color_texture.bound() || metallic_roughness_texture.bound() ||
-               emission_texture.bound() || normal_texture.bound() || alpha_cutoff > 0.0f ||
-               !double_sided || anisotropy > 0.0f || clearcoat_texture.bound() ||
+               emission_texture.bound() || normal_texture.bound() || cuts_out() || !double_sided ||
+               anisotropy > 0.0f || clearcoat_texture.bound() ||
                clearcoat_roughness_texture.bound() || absorbs_inside();
     }
     /// True when the interior absorbs (attenuation_distance finite, attenuation_color not
@@ -220,8 +225,9 @@ struct LIBRT_API Material {
     /// Beer-Lambert transmittance of the interior over a path of `length` (scene units):
     /// attenuation_color^(length / attenuation_distance) (1 when it does not absorb).
     [[nodiscard]] glm::vec3 interior_transmittance(float length) const;
-    /// True when the material has an alpha test (alpha_cutoff > 0).
-    [[nodiscard]] bool cuts_out() const { return alpha_cutoff > 0.0f; }
+    /// True when rays may pass the surface where it is not covered: an alpha test
+    /// (alpha_cutoff > 0) or partial coverage (alpha_blend).
+    [[nodiscard]] bool cuts_out() const { return alpha_cutoff > 0.0f || alpha_blend; }
     /// True when every lobe of the material's BSDF is a delta distribution (no light
     /// sampling there); see lobes() in bsdf.h.
     [[nodiscard]] bool is_specular() const;

@@ -23,4 +23,22 @@ inline constexpr float kMinNormalMapCosine = 0.01f;
                                                    const glm::vec3& n, const glm::vec4& tangent,
                                                    const glm::vec3& geometric);
 
+/// The smallest cosine between the geometric normal and the mirror direction of the viewer
+/// about an adapted shading normal (adapt_shading_normal).
+inline constexpr float kMinMirrorCosine = 0.01f;
+
+/// A shading normal `n` (unit) adapted to the viewer `wo` (unit, toward the viewer) at a
+/// surface of geometric normal `g` (unit; n, g and wo on one side or not, as the hit gives
+/// them): n itself when wo's mirror direction about n, r = 2 (wo.n) n - wo, leaves above
+/// the real surface (r.g' >= kMinMirrorCosine, g' = g turned to wo's side); else the normal
+/// about which wo's mirror direction is r pulled up to that cosine (in the plane of r and g),
+/// i.e. the half vector of wo and it, returned on the side n was given. A normal map bent
+/// away from the viewer then still reflects a smooth metal's light to somewhere instead
+/// of below the surface (the black rims of normal-mapped metals), so nothing is lost:
+/// the local shading normal adaptation of Keller et al. 2017, "The Iray Light Transport
+/// Simulation and Rendering System" (arXiv:1705.01263, its appendix). The normal depends on wo:
+/// a light path (bidirectional tracer) adapts it to its own direction.
+[[nodiscard]] LIBRT_API glm::vec3 adapt_shading_normal(const glm::vec3& n, const glm::vec3& g,
+                                                       const glm::vec3& wo);
+
 }  // namespace librt

@@ -63,6 +63,18 @@ private:
 /// Materials with per-hit inputs (Material::varies_per_hit) are evaluated by shade(); a
 /// material with an alpha test (Material::cuts_out) makes every query skip the hits where
 /// its coverage is below the cut-off (the ray goes on past them), for those materials only.
+/// A material with partial coverage (Material::alpha_blend) makes every query skip a hit
+/// with probability 1 - coverage: stochastic opacity, whose expectation is the blend. The
+/// decision is a hash of the ray (origin, direction) and the hit (object, primitive,
+/// instance, t): the same for the same ray, whatever thread asks, and independent between
+/// the rays of different samples as long as those differ (the renderer jitters every
+/// camera ray) and between the surfaces along one ray.
+///
+/// One-sided materials (Material::double_sided false, glTF's default) are culled for camera
+/// rays only: camera_passes() is true at their backs, and the integrators' camera rays (and
+/// the joins of light paths to the lens) go on through them, as a rasterizer's back-face
+/// culling hides them. Every other ray meets such a back as a black absorber, so a
+/// single-sided wall still casts its shadow (the choice of Cycles' camera culling).
 ///
 /// Any add_* after commit() un-commits the scene; queries then throw until commit() runs
 /// again. A committed scene is immutable and may be queried from many threads at once.
@@ -143,6 +155,15 @@ public:
     /// False when no object was ever hidden from the camera: camera_visible() is then true
     /// for every id, and the path loop skips that lookup at each camera hit.
     [[nodiscard]] bool may_hide_objects() const { return hidden_objects_; }
+    /// False when camera_passes() is false at every hit: no object hidden from the camera
+    /// and no one-sided material. The path loop asks this first at each camera hit.
+    [[nodiscard]] bool camera_may_pass() const { return hidden_objects_ || one_sided_; }
+    /// True when a camera ray along `direction` goes on through `hit`: an object hidden
+    /// from the camera (set_camera_visible), or the back of a one-sided material (not
+    /// double_sided; direction not against the geometric normal): back-face culling.
+    [[nodiscard]] bool camera_passes(const Hit& hit, const glm::vec3& direction) const;
+    /// True when some material is one-sided (Material::double_sided false).
+    [[nodiscard]] bool has_one_sided_surfaces() const { return one_sided_; }
 
     /// Builds the acceleration structures: after the last add_*, before any query; again
     /// without changes, nothing. Out of memory: librt::Error, the scene left uncommitted.
@@ -193,7 +214,9 @@ public:
     /// when it has none (Material::varies_per_hit false: no cost), else `scratch` filled
     /// with it, its textures looked up at hit.uv (base colour, metallic-roughness,
     /// emission), the mesh's vertex colour multiplied in (base colour, else albedo), and
-    /// hit.shading_normal bent by its normal map, and an anisotropic material's
+    /// hit.shading_normal bent by its normal map (then adapted to `direction` by
+    /// adapt_shading_normal, so that its mirror direction stays above the surface), and an
+    /// anisotropic material's
     /// anisotropy_direction set from the surface's tangent frame (a mesh's tangents, which
     /// add_mesh generates from uvs for such a material, or a sphere's dP/du), turned by
     /// anisotropy_rotation and its texture. A one-sided material seen
@@ -330,9 +353,10 @@ private:
     /// through) by the closest surface of another object within a relative 1e-5 of its t,
     /// when there is one.
     void surface_under_pane(const Ray& ray, Hit& pane) const;
-    /// True when `hit` falls in a hole of an alpha-tested surface (coverage below its
-    /// material's alpha_cutoff): rays pass there as if nothing were hit.
-    [[nodiscard]] bool in_cut_out_hole(const Hit& hit) const;
+    /// True when `hit` of `ray` falls in a hole of an alpha-tested surface (coverage below
+    /// its material's alpha_cutoff) or, on a partly covered one (alpha_blend), the ray's
+    /// hash says it passes (probability 1 - coverage): rays pass there as if nothing were hit.
+    [[nodiscard]] bool in_cut_out_hole(const Ray& ray, const Hit& hit) const;
     bool intersect_past_cut_outs(const Ray& ray, Hit& hit) const;
     bool occluded_past_cut_outs(const Ray& ray, std::uint32_t ignored_object) const;
 
@@ -356,6 +380,7 @@ private:
     bool cut_outs_ = false;               ///< some material cuts_out()
     bool careful_queries_ = false;        ///< cut_outs_ or pass_through_surfaces_
     bool hidden_objects_ = false;         ///< see may_hide_objects()
+    bool one_sided_ = false;              ///< see has_one_sided_surfaces()
     bool committed_ = false;
 };
 
