@@ -138,8 +138,8 @@ struct Options {
     std::optional<float> fov;    // vertical, degrees
     std::optional<float> orbit;  // degrees about +y, auto framing
     int max_depth = -1;          // -1: the most the integrator allows (1000; bdpt 64)
-    int gltf_scene = -1;  // --scene: which of a glTF's scenes; -1 = the file's default
-    std::string variant;  // --variant: a KHR_materials_variants name; empty = none
+    int gltf_scene = -1;         // --scene: which of a glTF's scenes; -1 = the file's default
+    std::string variant;         // --variant: a KHR_materials_variants name; empty = none
     Choice<PunctualLightUnits> light_units = choice_of(kLightUnits, PunctualLightUnits::Watts);
     Choice<LightChoiceOption> light_choice = choice_of(kLightChoices, LightChoiceOption::Auto);
     Choice<IntegratorKind> integrator = choice_of(kIntegrators, IntegratorKind::Path);
