@@ -6,6 +6,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -182,6 +184,60 @@ TEST(TopLevel, IntersectIgnoringInAListOfSpheresOnly) {
     EXPECT_EQ(hit.object_id, 2u);
     EXPECT_FLOAT_EQ(hit.t, 10.0f);
     EXPECT_FALSE(top.intersect_ignoring(past, hit, 2));
+}
+
+// One object skips the box test (its own test rejects what the box would): every answer
+// equals the same object's in a two-object list, where the boxes are tested, for a sphere,
+// a mesh and an instance, with rays that miss, start inside, or end short of the object.
+TEST(TopLevel, OneObjectAnswersAsTheBoxedList) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> U(-3.0f, 3.0f);
+    const glm::mat4 m = glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, -0.2f, 0.1f)),
+                                   glm::vec3(1.0f, 0.5f, -1.5f));
+    for (int kind = 0; kind < 3; ++kind) {
+        TopLevel one, two;
+        for (TopLevel* top : {&one, &two}) {
+            if (kind == 0) {
+                top->add_sphere(Sphere{{0.2f, 0.1f, -0.3f}, 1.2f});
+            } else {
+                const std::uint32_t proto = top->add_prototype(make_icosphere({0, 0, 0}, 1.0f, 2));
+                if (kind == 1)
+                    top->add_mesh(proto);
+                else
+                    top->add_instance(proto, m);
+            }
+        }
+        two.add_sphere(Sphere{{1e4f, 1e4f, 1e4f}, 1e-3f});  // far and tiny: never hit
+        one.build();
+        two.build();
+        int hits = 0;
+        for (int r = 0; r < 20000; ++r) {
+            const Ray ray{{U(rng), U(rng), U(rng)},
+                          {U(rng), U(rng), U(rng)},
+                          r % 5 == 0 ? std::fabs(U(rng)) : 0.0f,
+                          r % 7 == 0 ? std::fabs(U(rng)) : std::numeric_limits<float>::infinity()};
+            ObjectHit a, b;
+            const bool found = one.intersect(ray, a);
+            ASSERT_EQ(found, two.intersect(ray, b)) << "kind " << kind << " ray " << r;
+            EXPECT_EQ(one.occluded(ray), found) << "kind " << kind << " ray " << r;
+            EXPECT_FALSE(one.occluded(ray, 0)) << "kind " << kind << " ray " << r;
+            if (!found) continue;
+            ++hits;
+            EXPECT_EQ(a.object_id, b.object_id);
+            EXPECT_EQ(a.primitive.t, b.primitive.t) << "kind " << kind << " ray " << r;
+            EXPECT_EQ(a.primitive.primitive_id, b.primitive.primitive_id);
+            EXPECT_EQ(a.primitive.u, b.primitive.u);
+            EXPECT_EQ(a.primitive.v, b.primitive.v);
+            Hit ignoring;
+            EXPECT_FALSE(one.intersect_ignoring(ray, ignoring, 0));
+        }
+        EXPECT_GT(hits, 800) << "kind " << kind;
+        // A ray that is not traceable (NaN) finds nothing, as in the list.
+        const Ray bad{{std::nanf(""), 0, 0}, {1, 0, 0}};
+        ObjectHit h;
+        EXPECT_FALSE(one.intersect(bad, h));
+        EXPECT_FALSE(one.occluded(bad));
+    }
 }
 
 TEST(TopLevel, InstanceIdsAndBadInput) {

@@ -256,7 +256,12 @@ void TopLevel::build() {
         sphere_lanes_ = std::move(lanes);
     }
     sphere_roots_ = sphere_lanes_ ? detail::sphere_roots_for(simd_path_) : nullptr;
-    query_ = sphere_roots_ != nullptr ? Query::Spheres : Query::Visit;
+    query_ = query_for_list();
+}
+
+TopLevel::Query TopLevel::query_for_list() const {
+    if (sphere_roots_ != nullptr) return Query::Spheres;
+    return flat_.count == 1 ? Query::One : Query::Visit;  // a lone sphere is a list of spheres
 }
 
 void TopLevel::set_simd_path(SimdPath path) {
@@ -265,7 +270,7 @@ void TopLevel::set_simd_path(SimdPath path) {
                     " is not supported here");
     simd_path_ = path;
     sphere_roots_ = sphere_lanes_ ? detail::sphere_roots_for(path) : nullptr;
-    if (built()) query_ = sphere_roots_ != nullptr ? Query::Spheres : Query::Visit;
+    if (built()) query_ = query_for_list();
 }
 
 std::size_t TopLevel::memory_bytes() const {

@@ -246,12 +246,22 @@ private:
         None,     ///< not built: queries throw
         Visit,    ///< visit the boxes of flat_ or top_ nearest first
         Spheres,  ///< every root of sphere_lanes_ at once, ties to Visit
+        One,      ///< one mesh or instance: its own BVH, no box (closest_unvisited)
     };
     [[noreturn]] static void throw_not_built();
     /// The closest hit; with kIgnoring, of any object but `ignored_object` (a compile-time
     /// switch: the renderers' query keeps its code).
     template <bool kIgnoring = false>
     bool closest(const Ray& ray, ObjectHit& hit, std::uint32_t ignored_object = kInvalidId) const;
+    /// closest() for every query_ but Visit (throws for Query::None): closest_sphere, or the
+    /// lone object's own test for Query::One.
+    bool closest_unvisited(const Ray& ray, ObjectHit& hit) const;
+    /// occluded() for every query_ but Visit, as closest_unvisited.
+    bool occluded_unvisited(const Ray& ray, std::uint32_t ignored_object) const;
+    /// How a built list is queried: Spheres, One or Visit.
+    [[nodiscard]] Query query_for_list() const;
+    /// A world ray in an instance's object space.
+    static Ray object_ray(const Instance& inst, const Ray& world);
     /// closest() for Query::Spheres (throws for Query::None): the nearest root of the flat
     /// list of spheres, or the visit when two roots are too close to tell apart by float t.
     bool closest_sphere(const Ray& ray, ObjectHit& hit) const;
