@@ -4,6 +4,10 @@
     PYTHONPATH=build/release/python python3 bench/python/intersect_throughput.py [DATA_DIR]
     ./build/release/bench/librt_bench --benchmark_filter='bunny/librt/incoherent/1t'
 
+With --same-rays, the rays and mesh come from rays.bin and mesh.bin in the current directory,
+as `build/release/bench/librt_query_layers dump` writes them: then the C++ layers
+(`librt_query_layers bvh|top|scene`) and this script trace exactly the same rays.
+
 The rays are librt_bench's "incoherent" set drawn with NumPy: the bunny centred and scaled to
 a diagonal of 100 (as bench/bvh_bench.cpp does), origins uniform on a sphere of 1.5 times
 its half-diagonal, directions toward uniform points of its box (tests/ray_sets.h). One
@@ -31,8 +35,24 @@ def read_obj(path):
     return np.asarray(vertices, np.float32), np.asarray(faces, np.uint32)
 
 
+def same_rays():
+    nv, nt = (int(x) for x in np.fromfile("mesh.bin", np.uint32, 2))
+    vertices = np.fromfile("mesh.bin", np.float32, nv * 3, offset=8).reshape(nv, 3)
+    indices = np.fromfile("mesh.bin", np.uint32, nt * 3, offset=8 + 12 * nv).reshape(nt, 3)
+    rays = np.fromfile("rays.bin", np.float32).reshape(-1, 6)
+    return vertices, indices, np.ascontiguousarray(rays[:, :3]), np.ascontiguousarray(rays[:, 3:])
+
+
 def main():
-    data = sys.argv[1] if len(sys.argv) > 1 else os.environ.get("LIBRT_DATA_DIR", "../shared/data")
+    args = [a for a in sys.argv[1:] if a != "--same-rays"]
+    if len(args) < len(sys.argv) - 1:
+        vertices, indices, origins, directions = same_rays()
+        scene = librt.Scene()
+        scene.add_mesh(vertices, indices, scene.add_material("diffuse"))
+        scene.commit()
+        measure(scene, origins, directions)
+        return
+    data = args[0] if args else os.environ.get("LIBRT_DATA_DIR", "../shared/data")
     vertices, indices = read_obj(os.path.join(data, "stanford-bunny.obj"))
     lo, hi = vertices.min(axis=0), vertices.max(axis=0)
     vertices = ((vertices - (lo + hi) / 2) * (100 / np.linalg.norm(hi - lo))).astype(np.float32)
@@ -50,6 +70,11 @@ def main():
     targets = lo + (hi - lo) * rng.random((n, 3))
     d = targets - origins
     directions = (d / np.linalg.norm(d, axis=1, keepdims=True)).astype(np.float32)
+    measure(scene, origins, directions)
+
+
+def measure(scene, origins, directions):
+    n = len(origins)
     rates = []
     for _ in range(5):
         start = time.process_time()
