@@ -219,6 +219,11 @@ void bind_material(py::module_& m) {
     texture_slot<&Material::anisotropy_texture>(c, "anisotropy_texture");
     texture_slot<&Material::clearcoat_texture>(c, "clearcoat_texture");
     texture_slot<&Material::clearcoat_roughness_texture>(c, "clearcoat_roughness_texture");
+    texture_slot<&Material::sheen_color_texture>(c, "sheen_color_texture");
+    texture_slot<&Material::sheen_roughness_texture>(c, "sheen_roughness_texture");
+    texture_slot<&Material::specular_texture>(c, "specular_texture");
+    texture_slot<&Material::specular_color_texture>(c, "specular_color_texture");
+    texture_slot<&Material::transmission_texture>(c, "transmission_texture");
     texture_slot<&Material::occlusion_texture>(c, "occlusion_texture");
     c.def("__repr__", [](const Material& mat) {
         return std::string("<librt.Material ") + kind_name(mat.kind) + ">";

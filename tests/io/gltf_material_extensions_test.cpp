@@ -141,6 +141,8 @@ TEST(GltfMaterialExtensions, UnappliedTexturesAndIridescenceAreWarnedByMaterial)
     json ext = {{"KHR_materials_sheen",
                  {{"sheenColorFactor", {1, 1, 1}}, {"sheenColorTexture", {{"index", 0}}}}},
                 {"KHR_materials_specular", {{"specularTexture", {{"index", 0}}}}},
+                {"KHR_materials_clearcoat",
+                 {{"clearcoatFactor", 1}, {"clearcoatNormalTexture", {{"index", 0}}}}},
                 {"KHR_materials_iridescence", {{"iridescenceFactor", 1}}}};
     GltfBuilder b = triangle_with(ext);
     b.doc["textures"] = {json::object()};
@@ -148,13 +150,95 @@ TEST(GltfMaterialExtensions, UnappliedTexturesAndIridescenceAreWarnedByMaterial)
     const LoadedScene loaded = load_scene_file(write(dir, "irid.gltf", b));
     const std::string w = lt::joined(loaded.warnings);
     EXPECT_TRUE(has(w, "materials[0] 'paint': KHR_materials_iridescence is not supported")) << w;
-    EXPECT_TRUE(has(w, "materials[0] 'paint': sheen colour texture ignored")) << w;
-    EXPECT_TRUE(has(w, "materials[0] 'paint': specular texture ignored")) << w;
+    EXPECT_TRUE(has(w, "materials[0] 'paint': clearcoat normal texture ignored")) << w;
+    // The sheen and specular textures are applied (the test below), so not warned.
+    EXPECT_FALSE(has(w, "sheen colour texture")) << w;
+    EXPECT_FALSE(has(w, "specular texture")) << w;
     // Required, the file still loads (drawn without it), with the same warning.
     b.doc["extensionsRequired"] = {"KHR_materials_iridescence"};
     const LoadedScene required = load_scene_file(write(dir, "irid_required.gltf", b));
     EXPECT_TRUE(has(lt::joined(required.warnings), "KHR_materials_iridescence is not supported"))
         << lt::joined(required.warnings);
+}
+
+// A 1 x 1 RGBA PNG of one texel.
+std::string one_texel_png(unsigned char r, unsigned char g, unsigned char b, unsigned char a) {
+    const unsigned char px[4] = {r, g, b, a};
+    std::string out;
+    stbi_write_png_to_func(
+        [](void* ctx, void* data, int size) {
+            static_cast<std::string*>(ctx)->append(static_cast<const char*>(data),
+                                                   std::size_t(size));
+        },
+        &out, 1, 1, 4, px, 4);
+    return out;
+}
+
+// The sheen, specular and transmission textures multiply their factors at each hit, each
+// from the channel and colour space the extensions give: sheenColorTexture and
+// specularColorTexture RGB in sRGB, sheenRoughnessTexture and specularTexture alpha, and
+// transmissionTexture red, linear. One texel (128, 128, 128, 64) read by all five.
+TEST(GltfMaterialExtensions, SheenSpecularAndTransmissionTexturesMultiplyTheirFactors) {
+    const json tex = {{"index", 0}};
+    json ext = {{"KHR_materials_sheen",
+                 {{"sheenColorFactor", {0.9, 0.5, 0.25}},
+                  {"sheenColorTexture", tex},
+                  {"sheenRoughnessFactor", 0.8},
+                  {"sheenRoughnessTexture", tex}}},
+                {"KHR_materials_specular",
+                 {{"specularFactor", 0.6},
+                  {"specularTexture", tex},
+                  {"specularColorFactor", {2.0, 1.0, 0.5}},
+                  {"specularColorTexture", tex}}},
+                {"KHR_materials_transmission",
+                 {{"transmissionFactor", 0.7}, {"transmissionTexture", tex}}}};
+    GltfBuilder b = triangle_with(ext);
+    b.doc["textures"] = {{{"source", 0}, {"sampler", 0}}};
+    b.doc["samplers"] = {{{"magFilter", 9728}}};  // NEAREST
+    b.doc["images"] = {
+        {{"uri", "data:image/png;base64," + lt::base64(one_texel_png(128, 128, 128, 64))}}};
+    ScratchDir dir;
+    LoadedScene loaded = load_scene_file(write(dir, "textured_layers.gltf", b));
+    const std::string w = lt::joined(loaded.warnings);
+    EXPECT_FALSE(has(w, "texture ignored")) << w;
+    Scene& scene = loaded.scene;
+    scene.commit();
+    const std::uint32_t mat = [&] {
+        for (std::uint32_t i = 0; i < scene.material_count(); ++i)
+            if (scene.material(i).kind == MaterialKind::MetallicRoughness) return i;
+        return kInvalidId;
+    }();
+    ASSERT_NE(mat, kInvalidId);
+    const Material& stored = scene.material(mat);
+    for (const TextureSlot* slot :
+         {&stored.sheen_color_texture, &stored.sheen_roughness_texture, &stored.specular_texture,
+          &stored.specular_color_texture, &stored.transmission_texture})
+        EXPECT_TRUE(slot->bound());
+    // The image read twice, once per colour space.
+    EXPECT_EQ(stored.sheen_color_texture.texture, stored.specular_color_texture.texture);
+    EXPECT_EQ(stored.specular_texture.texture, stored.transmission_texture.texture);
+    EXPECT_NE(stored.sheen_color_texture.texture, stored.specular_texture.texture);
+
+    // glTF's sRGB transfer function (KHR_texture... / the spec's Appendix), in double.
+    const double c = 128.0 / 255.0;
+    const auto srgb = float(std::pow((c + 0.055) / 1.055, 2.4));
+    const auto linear = float(c), alpha = 64.0f / 255.0f;
+    Hit hit;
+    const Ray ray({0.25f, 0.25f, 1.0f}, {0.0f, 0.0f, -1.0f});
+    ASSERT_TRUE(scene.intersect_for_shading(ray, hit));
+    ShadedMaterial scratch;
+    const Material& m = scene.shade(hit, ray.direction, scratch);
+    const float tol = 1e-6f;
+    EXPECT_NEAR(m.sheen_color.x, 0.9f * srgb, tol);
+    EXPECT_NEAR(m.sheen_color.z, 0.25f * srgb, tol);
+    EXPECT_NEAR(m.sheen_roughness, 0.8f * alpha, tol);
+    EXPECT_NEAR(m.specular, 0.6f * alpha, tol);
+    EXPECT_NEAR(m.specular_color.x, 2.0f * srgb, tol);
+    EXPECT_NEAR(m.specular_color.y, 1.0f * srgb, tol);
+    EXPECT_NEAR(m.transmission, 0.7f * linear, tol);
+    // The stored material keeps its factors.
+    EXPECT_FLOAT_EQ(stored.sheen_roughness, 0.8f);
+    EXPECT_FLOAT_EQ(stored.transmission, 0.7f);
 }
 
 TEST(GltfMaterialExtensions, UnlitIsAnEmitterOfItsBaseColourNotALight) {

@@ -63,6 +63,11 @@ Material material_from_gltf(const GltfMaterial& m, const GltfMaterialTextures& t
     out.sheen_roughness = std::clamp(m.sheen_roughness_factor, 0.0f, 1.0f);
     out.specular = std::clamp(m.specular_factor, 0.0f, 1.0f);
     out.specular_color = glm::max(m.specular_color_factor, glm::vec3(0.0f));
+    out.sheen_color_texture = slot(m.sheen_color_texture, textures.sheen_color);
+    out.sheen_roughness_texture = slot(m.sheen_roughness_texture, textures.sheen_roughness);
+    out.specular_texture = slot(m.specular_texture, textures.specular);
+    out.specular_color_texture = slot(m.specular_color_texture, textures.specular_color);
+    out.transmission_texture = slot(m.transmission_texture, textures.transmission);
     out.diffuse_model = choices.diffuse_model;
     if (gltf_solid_glass(m, choices) && !m.unlit) {
         // Solid glass: refraction through the closed mesh, at the glTF material's Fresnel
@@ -169,6 +174,11 @@ const SceneMaterial& MaterialBuilder::material(int index) {
                                           &m.anisotropy_texture,
                                           &m.clearcoat_texture,
                                           &m.clearcoat_roughness_texture,
+                                          &m.sheen_color_texture,
+                                          &m.sheen_roughness_texture,
+                                          &m.specular_texture,
+                                          &m.specular_color_texture,
+                                          &m.transmission_texture,
                                           &m.occlusion_texture};
     for (const GltfTextureRef* ref : refs) {
         if (!ref->valid()) continue;
@@ -186,16 +196,15 @@ const SceneMaterial& MaterialBuilder::material(int index) {
     ids.anisotropy = use(m.anisotropy_texture, ColorSpace::Linear);
     ids.clearcoat = use(m.clearcoat_texture, ColorSpace::Linear);
     ids.clearcoat_roughness = use(m.clearcoat_roughness_texture, ColorSpace::Linear);
-    const std::pair<const GltfTextureRef*, const char*> factor_only[] = {
-        {&m.clearcoat_normal_texture,
-         "clearcoat normal texture ignored (the coat uses the "
-         "base's normal)"},
-        {&m.sheen_color_texture, "sheen colour texture ignored (factor used)"},
-        {&m.sheen_roughness_texture, "sheen roughness texture ignored (factor used)"},
-        {&m.specular_texture, "specular texture ignored (factor used)"},
-        {&m.specular_color_texture, "specular colour texture ignored (factor used)"}};
-    for (const auto& [ref, text] : factor_only)
-        if (ref->valid()) warnings_.push_back(who + text);
+    ids.sheen_color = use(m.sheen_color_texture, ColorSpace::Srgb);
+    ids.sheen_roughness = use(m.sheen_roughness_texture, ColorSpace::Linear);
+    ids.specular = use(m.specular_texture, ColorSpace::Linear);
+    ids.specular_color = use(m.specular_color_texture, ColorSpace::Srgb);
+    ids.transmission = use(m.transmission_texture, ColorSpace::Linear);
+    if (m.clearcoat_normal_texture.valid())
+        warnings_.push_back(who +
+                            "clearcoat normal texture ignored (the coat uses the "
+                            "base's normal)");
     if (m.iridescence)
         warnings_.push_back(who +
                             "KHR_materials_iridescence is not supported: drawn without "
@@ -203,8 +212,6 @@ const SceneMaterial& MaterialBuilder::material(int index) {
     if (m.unlit && (m.clearcoat_factor > 0.0f || m.sheen_color_factor != glm::vec3(0.0f)))
         warnings_.push_back(who + "KHR_materials_unlit: its other extensions are ignored");
     ids.occlusion = use(m.occlusion_texture, ColorSpace::Linear);
-    if (m.transmission_texture.valid())
-        warnings_.push_back(who + "transmission texture ignored (factor used)");
     if (m.ior == 0.0f) warnings_.push_back(who + "KHR_materials_ior 0 read as 1.5");
     transmission_notes(m, who);
     Material material;
@@ -219,6 +226,11 @@ const SceneMaterial& MaterialBuilder::material(int index) {
             {&m.anisotropy_texture, &material.anisotropy_texture},
             {&m.clearcoat_texture, &material.clearcoat_texture},
             {&m.clearcoat_roughness_texture, &material.clearcoat_roughness_texture},
+            {&m.sheen_color_texture, &material.sheen_color_texture},
+            {&m.sheen_roughness_texture, &material.sheen_roughness_texture},
+            {&m.specular_texture, &material.specular_texture},
+            {&m.specular_color_texture, &material.specular_color_texture},
+            {&m.transmission_texture, &material.transmission_texture},
             {&m.occlusion_texture, &material.occlusion_texture}};
         for (const auto& [ref, s] : slots)
             if (ref->valid() && ref->tex_coord != out.uv_set) s->uv_set = 1;
@@ -256,8 +268,8 @@ void MaterialBuilder::transmission_notes(const GltfMaterial& m, const std::strin
                             "drawn thin-walled");
     } else {
         const bool dropped = m.base_color_texture.valid() || m.metallic_roughness_texture.valid() ||
-                             m.clearcoat_factor > 0.0f || m.sheen_color_factor != glm::vec3(0.0f) ||
-                             m.specular_factor != 1.0f ||
+                             m.transmission_texture.valid() || m.clearcoat_factor > 0.0f ||
+                             m.sheen_color_factor != glm::vec3(0.0f) || m.specular_factor != 1.0f ||
                              m.specular_color_factor != glm::vec3(1.0f) ||
                              m.anisotropy_strength > 0.0f;
         if (dropped)

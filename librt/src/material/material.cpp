@@ -210,6 +210,11 @@ void validate(const Material& material) {
         {"anisotropy_texture", &material.anisotropy_texture},
         {"clearcoat_texture", &material.clearcoat_texture},
         {"clearcoat_roughness_texture", &material.clearcoat_roughness_texture},
+        {"sheen_color_texture", &material.sheen_color_texture},
+        {"sheen_roughness_texture", &material.sheen_roughness_texture},
+        {"specular_texture", &material.specular_texture},
+        {"specular_color_texture", &material.specular_color_texture},
+        {"transmission_texture", &material.transmission_texture},
         {"occlusion_texture", &material.occlusion_texture}};
     for (const auto& [name, slot] : slots) {
         bool finite_map = true;

@@ -46,6 +46,11 @@ void Scene::check_texture_ids(const Material& material) const {
         {"anisotropy_texture", material.anisotropy_texture.texture},
         {"clearcoat_texture", material.clearcoat_texture.texture},
         {"clearcoat_roughness_texture", material.clearcoat_roughness_texture.texture},
+        {"sheen_color_texture", material.sheen_color_texture.texture},
+        {"sheen_roughness_texture", material.sheen_roughness_texture.texture},
+        {"specular_texture", material.specular_texture.texture},
+        {"specular_color_texture", material.specular_color_texture.texture},
+        {"transmission_texture", material.transmission_texture.texture},
         {"occlusion_texture", material.occlusion_texture.texture}};
     for (const auto& [name, id] : ids) {
         if (id >= 0 && std::size_t(id) >= textures_.size()) {

@@ -114,6 +114,17 @@ const Material& Scene::shade_varying(Hit& hit, const glm::vec3& direction,
     if (m.clearcoat_texture.bound()) m.clearcoat *= lookup(m.clearcoat_texture).x;
     if (m.clearcoat_roughness_texture.bound())
         m.clearcoat_roughness *= lookup(m.clearcoat_roughness_texture).y;
+    // KHR_materials_sheen and _specular: colours in RGB (sRGB), the scalars in alpha;
+    // KHR_materials_transmission: the factor in the red channel.
+    const auto lookup_alpha = [&](const TextureSlot& s) {
+        return textures_[std::size_t(s.texture)].lookup_alpha(s.map(slot_uv(s, hit)));
+    };
+    if (m.sheen_color_texture.bound()) m.sheen_color *= lookup(m.sheen_color_texture);
+    if (m.sheen_roughness_texture.bound())
+        m.sheen_roughness *= lookup_alpha(m.sheen_roughness_texture);
+    if (m.specular_texture.bound()) m.specular *= lookup_alpha(m.specular_texture);
+    if (m.specular_color_texture.bound()) m.specular_color *= lookup(m.specular_color_texture);
+    if (m.transmission_texture.bound()) m.transmission *= lookup(m.transmission_texture).x;
     if (m.normal_texture.bound()) {
         const glm::vec4 t = top_.tangent(hit);
         hit.shading_normal = apply_normal_map(lookup(m.normal_texture), m.normal_scale,

@@ -24,6 +24,11 @@ struct GltfMaterialTextures {
     std::int32_t anisotropy = -1;           ///< anisotropyTexture (linear; RG direction, B)
     std::int32_t clearcoat = -1;            ///< clearcoatTexture (linear; R)
     std::int32_t clearcoat_roughness = -1;  ///< clearcoatRoughnessTexture (linear; G)
+    std::int32_t sheen_color = -1;          ///< sheenColorTexture (sRGB; RGB)
+    std::int32_t sheen_roughness = -1;      ///< sheenRoughnessTexture (linear; A)
+    std::int32_t specular = -1;             ///< specularTexture (linear; A)
+    std::int32_t specular_color = -1;       ///< specularColorTexture (sRGB; RGB)
+    std::int32_t transmission = -1;         ///< transmissionTexture (linear; R)
     std::int32_t occlusion = -1;            ///< occlusionTexture (linear; R), albedo AOV only
 };
 

@@ -162,6 +162,16 @@ struct LIBRT_API Material {
     TextureSlot clearcoat_texture;
     /// Texture (linear) whose G multiplies clearcoat_roughness (clearcoatRoughnessTexture).
     TextureSlot clearcoat_roughness_texture;
+    /// Texture (sRGB) whose RGB multiplies sheen_color (sheenColorTexture).
+    TextureSlot sheen_color_texture;
+    /// Texture (linear) whose alpha multiplies sheen_roughness (sheenRoughnessTexture).
+    TextureSlot sheen_roughness_texture;
+    /// Texture (linear) whose alpha multiplies specular (specularTexture).
+    TextureSlot specular_texture;
+    /// Texture (sRGB) whose RGB multiplies specular_color (specularColorTexture).
+    TextureSlot specular_color_texture;
+    /// Texture (linear) whose R multiplies transmission (transmissionTexture).
+    TextureSlot transmission_texture;
     /// Ambient occlusion (glTF occlusionTexture, linear R): applied to the albedo AOV only,
     /// as 1 + occlusion_strength (R - 1), never to the rendered light (the path tracer
     /// computes occlusion itself); not a per-hit input of shading.
@@ -208,7 +218,9 @@ struct LIBRT_API Material {
         return base_color_texture.bound() || metallic_roughness_texture.bound() ||
                emission_texture.bound() || normal_texture.bound() || cuts_out() || !double_sided ||
                anisotropy > 0.0f || clearcoat_texture.bound() ||
-               clearcoat_roughness_texture.bound() || absorbs_inside();
+               clearcoat_roughness_texture.bound() || sheen_color_texture.bound() ||
+               sheen_roughness_texture.bound() || specular_texture.bound() ||
+               specular_color_texture.bound() || transmission_texture.bound() || absorbs_inside();
     }
     /// True when the interior absorbs (attenuation_distance finite, attenuation_color not
     /// white): Scene::shade then attenuates the segments that reach the surface's back.
