@@ -213,8 +213,10 @@ int render_gallery(const Options& o) {
     apps::parse_size(o.size, kAspect, width, height);
     check_image_size(width, height);
     // The render's films, copies and output buffers must fit, before any is allocated.
+    RenderMemoryOptions memory;
+    memory.noise_estimate = !o.quiet;  // the progress bar's noise estimate
     apps::check_render_memory("--size", o.size, width, height,
-                              apps::progressive_output_bytes_per_pixel(o.output, {}));
+                              apps::progressive_output_bytes_per_pixel(o.output, memory));
     RenderSettings check;
     check.samples_per_pixel = o.spp;
     check.threads = o.threads;

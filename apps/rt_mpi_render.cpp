@@ -227,12 +227,12 @@ int main(int argc, char** argv) {
                 const std::uint32_t mid = kept.count() > 0 ? spp / 2 : 0;
                 RenderStats rs =
                     render_block(scene, camera, integrator, film,
-                                 {0, 0, film.width, film.height, 0, mid}, settings.render);
+                                 {0, 0, film.width, film.height, 0, mid}, settings.render.block());
                 Film half = film;
                 if (!rs.cancelled) {
                     rs = render_block(scene, camera, integrator, film,
                                       {0, 0, film.width, film.height, mid, spp - mid},
-                                      settings.render);
+                                      settings.render.block());
                 }
                 stats.cancelled = rs.cancelled;
                 image = kept.combined(half, film);

@@ -364,7 +364,8 @@ void check_memory(const Options& o, const SceneFileOptions& file_options, bool d
     RenderMemoryOptions memory;
     memory.splats = o.integrator_kind() == IntegratorKind::Bidirectional || o.caustic_paths;
     memory.adaptive = o.sampling.adaptive;
-    memory.noise_target = o.noise_target > 0.0;
+    // The noise estimate of the target and of the progress bar (the same number).
+    memory.noise_estimate = o.noise_target > 0.0 || !o.quiet;
     memory.keeps_training = o.sampling.guiding;
     memory.aovs = o.transparent_background;  // the coverage
     apps::check_render_memory(

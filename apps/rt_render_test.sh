@@ -233,17 +233,26 @@ if grep -qaE '__(asan|tsan)_init' "$app" || ldd "$app" 2>/dev/null | grep -qE 'l
     echo "note: $app is sanitized: the --size checks run without an address-space limit"
 fi
 status=0
-(ulimit -v "$address_limit"; "$app" "$dir/missing.glb" --no-adaptive --size 15035x15035 --no-denoise -o "$dir/checks/big.png") \
+# -q: no progress bar, so no noise estimate (its snapshot, 36 bytes a pixel, is counted below).
+(ulimit -v "$address_limit"; "$app" "$dir/missing.glb" -q --no-adaptive --size 15035x15035 --no-denoise -o "$dir/checks/big.png") \
     >/dev/null 2>"$dir/err.txt" || status=$?
 [ "$status" -eq 1 ] || fail "--size 15035x15035: exit status $status: $(cat "$dir/err.txt")"
 grep -qF -- "--size = 15035x15035: the render would need 17179893100 bytes (16 GiB: 15035 x 15035 pixels of 76 bytes" \
     "$dir/err.txt" || fail "--size 15035x15035: message: $(cat "$dir/err.txt")"
 grep -qF -- "more than the 16 GiB limit" "$dir/err.txt" || fail "--size: $(cat "$dir/err.txt")"
 status=0
-(ulimit -v "$address_limit"; "$app" "$dir/missing.glb" --no-adaptive --size 15034x15034 --no-denoise -o "$dir/checks/big.png") \
+(ulimit -v "$address_limit"; "$app" "$dir/missing.glb" -q --no-adaptive --size 15034x15034 --no-denoise -o "$dir/checks/big.png") \
     >/dev/null 2>"$dir/err.txt" || status=$?
 [ "$status" -eq 1 ] || fail "--size 15034x15034: exit status $status: $(cat "$dir/err.txt")"
 grep -q "missing.glb" "$dir/err.txt" || fail "--size 15034x15034: $(cat "$dir/err.txt")"
+# With the progress bar, its noise estimate (the --noise-target's, NoiseEstimate) is counted:
+# 76 + 36 = 112 bytes a pixel, so the same size is refused.
+status=0
+(ulimit -v "$address_limit"; "$app" "$dir/missing.glb" --no-adaptive --size 15034x15034 --no-denoise -o "$dir/checks/big.png") \
+    >/dev/null 2>"$dir/err.txt" || status=$?
+[ "$status" -eq 1 ] || fail "--size 15034x15034 with the bar: exit status $status: $(cat "$dir/err.txt")"
+grep -qF -- "15034 x 15034 pixels of 112 bytes" "$dir/err.txt" ||
+    fail "--size 15034x15034 with the bar: $(cat "$dir/err.txt")"
 # Denoised (the PNG default): AOV films, the film at the half and the denoiser's planes,
 # 612 bytes per pixel.
 status=0

@@ -251,6 +251,7 @@ PathTracerSettings path_tracer_settings(const AppOptions& options) {
     settings.max_depth = options.bounces;
     settings.russian_roulette = options.roulette >= 0;
     if (options.roulette >= 0) settings.russian_roulette_depth = options.roulette;
+    settings.light_choice = LightChoice::Power;  // the report's, whatever the light count
     settings.guiding.enabled = options.guiding;
     settings.guiding.training_passes = options.guiding_passes;
     // Every render entry point can keep the training passes in the image (renderer.h).

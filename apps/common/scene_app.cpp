@@ -83,7 +83,9 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
     ps.render.sampler = o.sampler;
     ps.render.cancel = interrupt_flag();
     ProgressBar progress(!o.quiet);
-    ps.render.progress = [&progress](const RenderProgress& p) { progress.update(p); };
+    // Only when shown: progress reports carry the noise estimate, which costs a snapshot
+    // of the pixels (counted by progressive_output_bytes_per_pixel's caller).
+    if (!o.quiet) ps.render.progress = [&progress](const RenderProgress& p) { progress.update(p); };
     // One sample per pixel per pass: a stop (Ctrl-C, time limit) loses at most one sample's
     // work; each pass costs one copy of the film, small next to rendering it.
     ps.pass_samples = 1;

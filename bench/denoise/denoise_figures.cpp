@@ -53,9 +53,10 @@ struct Halves {
 /// Samples [0, spp / 2) onto a film with AOVs, a copy, then [spp / 2, spp).
 Halves render_halves(const Scene& scene, const Camera& camera, Integrator& integrator, int spp,
                      std::uint64_t seed, int threads) {
-    RenderSettings rs;
+    BlockSettings rs;
     rs.seed = seed;
     rs.threads = threads;
+    rs.sampler = SamplerKind::Independent;  // the figures' (measured before Sobol' was the default)
     Halves h;
     const auto t0 = Clock::now();
     h.full = Film(camera.width(), camera.height(), true);

@@ -116,6 +116,9 @@ int main(int argc, char** argv) {
     rs.threads = threads;
     rs.samples_per_pixel = ref_spp;
     rs.seed = 1234567;
+    // The protocol's figures (docs/sampling.md) predate the Sobol' and adaptive defaults.
+    rs.sampler = SamplerKind::Independent;
+    rs.adaptive.enabled = false;
     PathTracer ref_tracer(base);
     RenderStats ref_stats;
     Image reference;

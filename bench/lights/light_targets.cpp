@@ -256,6 +256,7 @@ int main(int argc, char** argv) {
     const SamplerKind kind =
         argc > 5 && std::string(argv[5]) == "sobol" ? SamplerKind::Sobol : SamplerKind::Independent;
     settings.russian_roulette = argc > 6 ? std::atoi(argv[6]) != 0 : true;
+    settings.light_choice = LightChoice::Power;  // the figures' (measured before Auto)
     const std::string which = argc > 7 ? argv[7] : "both";
     const PathTracer pt(settings);
     const BruteForcePathTracer brute(settings);

@@ -100,7 +100,7 @@ int main(int argc, char** argv) try {
         means.reserve(static_cast<std::size_t>(runs));
         for (int r = 0; r < runs; ++r) {
             librt::Film film(width, height);
-            librt::RenderSettings settings;
+            librt::BlockSettings settings;
             settings.threads = 1;
             settings.seed = seed + static_cast<std::uint64_t>(r);
             settings.sampler =

@@ -130,6 +130,9 @@ int render_command(int argc, char** argv) {
     rs.samples_per_pixel = spp;
     rs.threads = threads;
     rs.seed = seed;
+    rs.adaptive.enabled =
+        false;  // the protocol's uniform samples (its figures predate the default)
+    rs.sampler = SamplerKind::Independent;
     if (sampler == "sobol")
         rs.sampler = SamplerKind::Sobol;
     else if (sampler != "independent")

@@ -38,8 +38,8 @@ int main() try {
     view.width = 320;
     view.height = 240;
     view.pixel_jitter = librt::PixelJitter::Gaussian;  // anti-aliasing
-    librt::PathTracer path_tracer;                     // 5 bounces
-    librt::RenderSettings settings;
+    librt::PathTracer path_tracer;                     // paths ended by roulette
+    librt::RenderSettings settings;                    // Sobol' samples, adaptive sampling
     settings.samples_per_pixel = 16;
     librt::RenderStats stats;
     const librt::Image image =

@@ -75,7 +75,7 @@ TEST(RenderMpi, FilmEqualsTheOneProcessFilmForAnyTileAndThreadCount) {
     constexpr std::uint32_t kSpp = 5;
     Film reference(camera.width(), camera.height(), true);
     integrator.preprocess(scene);
-    RenderSettings one;
+    BlockSettings one;
     one.threads = 2;
     one.seed = 11;
     (void)render_block(scene, camera, integrator, reference,
@@ -84,6 +84,7 @@ TEST(RenderMpi, FilmEqualsTheOneProcessFilmForAnyTileAndThreadCount) {
         for (const int threads : {1, 2}) {
             MpiRenderSettings s;
             s.render.samples_per_pixel = static_cast<int>(kSpp);
+            s.render.adaptive.enabled = false;  // every pixel the block's kSpp samples
             s.render.seed = 11;
             s.render.threads = threads;
             s.render.tile_size = 3;
@@ -119,6 +120,7 @@ TEST(RenderMpi, KeptTrainingPassesGiveRendersImage) {
     pt.guiding.training_passes = 3;
     pt.guiding.spatial_threshold = 300;
     RenderSettings rs;
+    rs.adaptive.enabled = false;  // compared with blocks of every pixel's samples
     rs.samples_per_pixel = 5;
     rs.seed = 23;
     rs.threads = 2;
@@ -131,7 +133,7 @@ TEST(RenderMpi, KeptTrainingPassesGiveRendersImage) {
         block.preprocess(scene);
         (void)train(scene, camera, block, rs);
         (void)render_block(scene, camera, block, expected_film,
-                           {0, 0, camera.width(), camera.height(), 0, 5}, rs);
+                           {0, 0, camera.width(), camera.height(), 0, 5}, rs.block());
         ASSERT_FALSE(same_records(expected_film, Film(camera.width(), camera.height(), true)));
     }
     for (const int tile : {4, 32}) {
@@ -308,6 +310,7 @@ TEST(RenderMpi, SplattingIntegratorGivesRendersImage) {
     const Camera camera = librt::testing::splat_test_camera(19, 13, false);
     librt::testing::RandomSplatter integrator(splatter_options(false));
     RenderSettings rs;
+    rs.adaptive.enabled = false;  // compared with blocks of every pixel's samples
     rs.samples_per_pixel = 4;
     rs.seed = 5;
     rs.threads = 2;
@@ -316,7 +319,7 @@ TEST(RenderMpi, SplattingIntegratorGivesRendersImage) {
     if (world_rank() == 0) {
         expected = render(scene, camera, integrator, rs);
         (void)render_block(scene, camera, integrator, expected_film,
-                           {0, 0, camera.width(), camera.height(), 0, 4}, rs);
+                           {0, 0, camera.width(), camera.height(), 0, 4}, rs.block());
         ASSERT_TRUE(expected_film.splats.has_value());
     }
     for (const int tile : {3, 32}) {
@@ -351,6 +354,7 @@ TEST(RenderMpi, SplattingKeptTrainingPassesGiveRendersImage) {
     const Scene scene = empty_scene();
     const Camera camera = librt::testing::splat_test_camera(17, 11, false);
     RenderSettings rs;
+    rs.adaptive.enabled = false;  // compared with blocks of every pixel's samples
     rs.samples_per_pixel = 5;
     rs.seed = 9;
     rs.threads = 2;
@@ -363,7 +367,7 @@ TEST(RenderMpi, SplattingKeptTrainingPassesGiveRendersImage) {
         block.preprocess(scene);
         (void)train(scene, camera, block, rs);
         (void)render_block(scene, camera, block, expected_film,
-                           {0, 0, camera.width(), camera.height(), 0, 5}, rs);
+                           {0, 0, camera.width(), camera.height(), 0, 5}, rs.block());
         ASSERT_FALSE(same_pixels(expected, resolve(expected_film)));  // the passes show
     }
     for (const int tile : {4, 32}) {

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -284,6 +285,7 @@ TEST(AdaptiveSampling, LowersTheErrorWhereNoiseIsUneven) {
         RenderSettings settings;
         settings.samples_per_pixel = 32;
         settings.seed = 3;
+        settings.sampler = SamplerKind::Independent;  // the uniform render's law below
         settings.adaptive.enabled = adaptive;
         RenderStats stats;
         const Image image = render(scene, camera, integrator, settings, &stats);
@@ -450,8 +452,7 @@ TEST(AdaptiveSampling, TilesRenderedToTheirCountsGiveRendersFilm) {
 
     const std::uint32_t pilot = adaptive_pilot_samples(settings.adaptive, 24);
     ASSERT_EQ(pilot, 4u);
-    RenderSettings blocks = settings;  // the blocks say the samples: no adaptive setting
-    blocks.adaptive.enabled = false;
+    const BlockSettings blocks = settings.block();  // the blocks say the samples
     Film film(40, 24);
     (void)render_block(scene, camera, integrator, film, {0, 0, 40, 24, 0, pilot / 2}, blocks);
     const Film half = film;
@@ -487,48 +488,55 @@ TEST(AdaptiveSampling, TilesRenderedToTheirCountsGiveRendersFilm) {
 }
 
 // render_block cannot honour adaptive sampling (its block says the samples; the counts
-// need the whole image's pilot), so it refuses the setting, naming it, before rendering:
-// it used to ignore it silently, rendering the block's samples in every pixel.
-TEST(AdaptiveSampling, RenderBlockRefusesTheAdaptiveSetting) {
+// need the whole image's pilot). It used to ignore the setting silently, then to refuse it
+// at run time, which made every default RenderSettings unusable with it once adaptive
+// sampling became the default. It now takes BlockSettings, which have no such field, and a
+// RenderSettings (whose samples_per_pixel and adaptive it would drop) does not compile:
+// settings.block() says the drop is meant.
+template <class S>
+concept RenderBlockTakes = requires(const Scene& scene, const Camera& camera,
+                                    const Integrator& integrator, Film& film,
+                                    const RenderBlock& block, const S& settings) {
+    render_block(scene, camera, integrator, film, block, settings);
+};
+template <class S>
+concept RenderBlockWithOriginTakes = requires(const Scene& scene, const Camera& camera,
+                                              const Integrator& integrator, Film& film,
+                                              const RenderBlock& block, const S& settings) {
+    render_block(scene, camera, integrator, film, FilmOrigin{}, block, settings);
+};
+template <class S>
+concept RenderBlockToCountsTakes = requires(const Scene& scene, const Camera& camera,
+                                            const Integrator& integrator, Film& film,
+                                            const RenderBlock& block,
+                                            std::span<const std::uint32_t> ends,
+                                            const S& settings) {
+    render_block_to_counts(scene, camera, integrator, film, FilmOrigin{}, block, ends, settings);
+};
+static_assert(RenderBlockTakes<BlockSettings> && !RenderBlockTakes<RenderSettings>);
+static_assert(RenderBlockWithOriginTakes<BlockSettings> &&
+              !RenderBlockWithOriginTakes<RenderSettings>);
+static_assert(RenderBlockToCountsTakes<BlockSettings> && !RenderBlockToCountsTakes<RenderSettings>);
+
+TEST(AdaptiveSampling, RenderBlockOfDefaultSettingsRendersItsBlocksSamples) {
     const Scene scene = empty_scene();
     const Camera camera = flat_camera(8, 6);
     Bernoulli integrator(0.5f, 0.5f);
-    RenderSettings settings;
+    RenderSettings settings;  // adaptive sampling on, by default
     settings.samples_per_pixel = 16;
-    settings.adaptive.enabled = true;
+    ASSERT_TRUE(settings.adaptive.enabled);
     Film film(8, 6);
-    const auto expect_refusal = [&](const auto& call, const char* what) {
-        try {
-            call();
-            ADD_FAILURE() << what << ": no error for adaptive.enabled";
-        } catch (const Error& e) {
-            EXPECT_NE(std::string(e.what()).find("adaptive.enabled"), std::string::npos)
-                << what << ": " << e.what();
-        }
-        EXPECT_EQ(film.at(3, 2).samples, 0u) << what << " rendered before refusing";
-    };
-    expect_refusal(
-        [&] {
-            (void)render_block(scene, camera, integrator, film, {0, 0, 8, 6, 0, 4}, settings);
-        },
-        "render_block");
-    const std::vector<std::uint32_t> ends(film.pixels.size(), 4);
-    expect_refusal(
-        [&] {
-            (void)render_block_to_counts(scene, camera, integrator, film, {}, {0, 0, 8, 6, 0, 0},
-                                         ends, settings);
-        },
-        "render_block_to_counts");
-    settings.adaptive.enabled = false;  // the same block without it renders
-    (void)render_block(scene, camera, integrator, film, {0, 0, 8, 6, 0, 4}, settings);
-    EXPECT_EQ(film.at(3, 2).samples, 4u);
+    const RenderStats stats =
+        render_block(scene, camera, integrator, film, {0, 0, 8, 6, 0, 4}, settings.block());
+    EXPECT_EQ(stats.samples, 48u * 4u);
+    for (const FilmPixel& p : film.pixels) EXPECT_EQ(p.samples, 4u);
 }
 
 TEST(AdaptiveSampling, RenderBlockToCountsRefusesBadCounts) {
     const Scene scene = empty_scene();
     const Camera camera = flat_camera(8, 6);
     Bernoulli integrator(0.5f, 0.5f);
-    RenderSettings settings;
+    BlockSettings settings;
     Film film(8, 6);
     (void)render_block(scene, camera, integrator, film, {0, 0, 8, 6, 0, 2}, settings);
     const Film before = film;

@@ -51,7 +51,7 @@ ImageLayers render_layers(const Scene& scene) {
     integrator.preprocess(scene);
     Film film(cs.width, cs.height, true);
     (void)render_block(scene, camera, integrator, film, {0, 0, cs.width, cs.height, 0, 2},
-                       RenderSettings{});
+                       BlockSettings{});
     return resolve_layers(film);
 }
 

@@ -93,9 +93,10 @@ TEST(AovFilter, MitchellAlbedoIsTheFilteredMeanAndDepthTheAbsMean) {
     const Camera camera(cs);
     Black integrator;
     Film film(kWidth, kHeight, true);
-    RenderSettings rs;
+    BlockSettings rs;
     rs.seed = 3;
     rs.threads = 2;
+    rs.sampler = SamplerKind::Independent;  // the spread over rows below: independent pixels
     (void)render_block(scene, camera, integrator, film, {0, 0, kWidth, kHeight, 0, kSpp}, rs);
     const ImageLayers layers = resolve_layers(film);
 
@@ -174,7 +175,7 @@ TEST(AovFilter, NonNegativeFiltersKeepThePlainMean) {
     cs.pixel_filter = default_filter_settings(FilterKind::Tent);
     Black integrator;
     Film film(8, 8, true);
-    (void)render_block(scene, Camera(cs), integrator, film, {0, 0, 8, 8, 0, 16}, RenderSettings{});
+    (void)render_block(scene, Camera(cs), integrator, film, {0, 0, 8, 8, 0, 16}, BlockSettings{});
     const ImageLayers layers = resolve_layers(film);
     for (std::size_t i = 0; i < film.aovs.size(); ++i) {
         EXPECT_EQ(film.aovs[i].negative, 0u);

@@ -34,7 +34,7 @@ ImageLayers render_layers(const Scene& scene, const CameraSettings& cs) {
     integrator.preprocess(scene);
     Film film(cs.width, cs.height, true);
     (void)render_block(scene, camera, integrator, film, {0, 0, cs.width, cs.height, 0, kSpp},
-                       RenderSettings{});
+                       BlockSettings{});
     return resolve_layers(film);
 }
 
@@ -128,7 +128,9 @@ TEST(Aov, FresnelGlassMixesReflectionAndRefraction) {
     PathTracer integrator(PathTracerSettings{1, false});
     Film film(1, 1, true);
     const std::uint32_t n = 20000;
-    (void)render_block(scene, camera, integrator, film, {0, 0, 1, 1, 0, n}, RenderSettings{});
+    BlockSettings independent;  // the binomial standard error below
+    independent.sampler = SamplerKind::Independent;
+    (void)render_block(scene, camera, integrator, film, {0, 0, 1, 1, 0, n}, independent);
     const ImageLayers layers = resolve_layers(film);
     const double r0 = 0.04;
     const double p = r0 + (1.0 - r0) * (1.0 - r0) * r0 / (1.0 - r0 * r0);

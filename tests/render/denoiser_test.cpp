@@ -249,8 +249,9 @@ Rendered render_box(const Scene& scene, int spp, std::uint64_t seed) {
     const Camera camera(cs);
     PathTracer pt;
     pt.preprocess(scene);
-    RenderSettings rs;
+    BlockSettings rs;
     rs.seed = seed;
+    rs.sampler = SamplerKind::Independent;  // the halves differ by independent noise
     Rendered r;
     r.full = Film(kSize, kSize, true);
     (void)render_block(scene, camera, pt, r.full, {0, 0, kSize, kSize, 0, std::uint32_t(spp / 2)},
@@ -353,6 +354,7 @@ TEST(DenoiserFilms, PassDoneSeesEveryLevelAndTheHalfFilmDenoises) {
     PathTracer pt;
     ProgressiveSettings ps;
     ps.render.samples_per_pixel = 4;
+    ps.render.adaptive.enabled = false;  // every pixel the pass's level (adaptive: the pilot's)
     ps.aovs = true;
     std::vector<std::uint32_t> levels;
     Film half;

@@ -22,8 +22,8 @@ namespace {
 
 constexpr std::uint32_t kSpp = 6;
 
-RenderSettings settings_of(int threads, int tile) {
-    RenderSettings s;
+BlockSettings settings_of(int threads, int tile) {
+    BlockSettings s;
     s.threads = threads;
     s.tile_size = tile;
     s.seed = 99;

@@ -21,8 +21,8 @@ namespace {
 
 constexpr std::uint32_t kSpp = 10;
 
-RenderSettings quiet_settings(int threads = 2, int tile = 16) {
-    RenderSettings s;
+BlockSettings quiet_settings(int threads = 2, int tile = 16) {
+    BlockSettings s;
     s.threads = threads;
     s.tile_size = tile;
     s.seed = 1234;
@@ -37,7 +37,7 @@ protected:
 
     // Samples [first, first + count) of [x0, x1) x [y0, y1) onto `film`.
     void block(Film& film, int x0, int y0, int x1, int y1, std::uint32_t first, std::uint32_t count,
-               const RenderSettings& settings = quiet_settings()) {
+               const BlockSettings& settings = quiet_settings()) {
         const RenderStats stats = render_block(scene_, camera_, integrator_, film,
                                                {x0, y0, x1, y1, first, count}, settings);
         ASSERT_FALSE(stats.cancelled);
@@ -60,8 +60,10 @@ protected:
 // The one-shot film resolves to exactly what render() returns: render() is built on it.
 TEST_F(FilmTest, OneShotFilmResolvesToTheRenderedImage) {
     const Film film = one_shot(kSpp);
-    RenderSettings settings = quiet_settings();
+    RenderSettings settings;
+    static_cast<BlockSettings&>(settings) = quiet_settings();
     settings.samples_per_pixel = static_cast<int>(kSpp);
+    settings.adaptive.enabled = false;  // every pixel the film's kSpp samples
     RenderStats stats;
     const Image image = render(scene_, camera_, integrator_, settings, &stats);
     EXPECT_TRUE(same_pixels(resolve(film), image));

@@ -76,6 +76,10 @@ TEST(GuidingCombination, InverseVarianceWeightsAreUnbiasedAndOptimal) {
     rs.samples_per_pixel = 16;
     rs.threads = 2;
     rs.seed = 5;
+    // Independent samples, 16 in every pixel: the variances above are theirs (and kept
+    // passes join an image of equal counts only).
+    rs.sampler = SamplerKind::Independent;
+    rs.adaptive.enabled = false;
     NoisyPasses integrator;
     const Image combined = render(scene, camera, integrator, rs);
     double inverse = 16.0 / (NoisyPasses::kSigma[4] * NoisyPasses::kSigma[4]);
@@ -113,6 +117,8 @@ TEST(GuidingCombination, ProgressiveKeepsThePassesAsRenderDoes) {
     ps.render.samples_per_pixel = 16;
     ps.render.threads = 2;
     ps.render.seed = 5;
+    ps.render.sampler = SamplerKind::Independent;  // as the test above
+    ps.render.adaptive.enabled = false;
     ps.pass_samples = 3;
     NoisyPasses integrator;
     Film film;

@@ -266,6 +266,52 @@ TEST(BoundedLightChoice, MoreLightsThanTheBoundedLimitUseTheLightTreeAndStayUnbi
     expect_bounded_mis_equals_brute(scene, 64, 512, "28 emissive triangles");
 }
 
+/// Whether two renders gave the same sums in every pixel (the same samples, bit for bit).
+bool same_sums(const testing::StatImage& a, const testing::StatImage& b) {
+    for (std::size_t i = 0; i < a.pixels.size(); ++i)
+        if (a.pixels[i].sum != b.pixels[i].sum) return false;
+    return a.pixels.size() == b.pixels.size();
+}
+
+// LightChoice::Auto, the default, is the bounded choice (the light tree) above kMaxBounded
+// lights and the power table up to it: its image is the one or the other's bit for bit,
+// and on many lights the two differ (so the comparison tells them apart).
+TEST(BoundedLightChoice, AutoIsBoundedAboveTheLimitAndPowerUpToIt) {
+    const auto renders = [](const Scene& scene) {
+        PathTracerSettings s;
+        s.max_depth = 3;
+        std::vector<testing::StatImage> images;
+        for (const LightChoice choice :
+             {LightChoice::Auto, LightChoice::Bounded, LightChoice::Power}) {
+            s.light_choice = choice;
+            PathTracer tracer(s);
+            images.push_back(render_stats(scene, tracer, testing::side_camera(), 4, 5));
+        }
+        return images;
+    };
+    for (const int lights : {4, 28}) {
+        Scene scene;
+        add_floor_and_ball(scene);
+        TriangleMesh ring;
+        for (int i = 0; i < lights; ++i) {
+            const float a = 2.0f * 3.14159265f * float(i) / float(lights);
+            const glm::vec3 c{1.2f * std::cos(a), 2.0f, 1.2f * std::sin(a)};
+            const auto base = std::uint32_t(ring.positions.size());
+            ring.positions.push_back(c + glm::vec3(-0.15f, 0.0f, -0.15f));
+            ring.positions.push_back(c + glm::vec3(0.15f, 0.0f, -0.15f));
+            ring.positions.push_back(c + glm::vec3(0.0f, 0.0f, 0.2f));
+            ring.triangles.push_back({base, base + 1, base + 2});
+        }
+        scene.add_mesh(ring, scene.add_material(Material::emissive(glm::vec3(6.0f))));
+        scene.commit();
+        ASSERT_EQ(scene.lights().size(), std::size_t(lights));
+        const std::vector<testing::StatImage> images = renders(scene);
+        const bool many = scene.lights().size() > LightSampler::kMaxBounded;
+        EXPECT_TRUE(same_sums(images[0], images[many ? 1 : 2])) << lights << " lights";
+        if (many) EXPECT_FALSE(same_sums(images[1], images[2])) << lights << " lights";
+    }
+}
+
 TEST(BoundedLightChoice, LightTreeOverAreaLightsOfEveryKindEqualsBruteForce) {
     // 24 area lights (the brute-force tracer can only see emitters it hits): a bright far
     // sphere light that takes most of the power table, then one-sided quads and disks

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <map>
 
 using namespace librt;
 
@@ -131,6 +132,62 @@ TEST(NoiseEstimate, TheNoiseTargetStopsTheRenderAtTheFirstLevelWithinIt) {
     EXPECT_EQ(stats.samples_per_pixel, 128u);
     EXPECT_NEAR(stats.noise / at128, 1.0, 0.11);
     EXPECT_EQ(film.at(3, 4).samples, 128u);
+}
+
+// The progress reports show the number a noise target stops on, so a user reads the target
+// to give off the progress display. Without a target, the reports carry NoiseEstimate's
+// estimate: -1 until the level has doubled once (16 samples: passes of 8), then one value
+// per doubling, about the closed form (the bounds of the test above). Given a target equal
+// to the value shown at 128 samples, the render stops exactly there (the values shown at
+// 16, 32 and 64 are above it: each doubling divides the closed form by sqrt(2), where
+// the estimate spreads by 2.2 %) and its RenderStats::noise is that value, bit for bit; its
+// reports are the ones shown without a target.
+TEST(NoiseEstimate, TheProgressShowsWhatTheNoiseTargetStopsOn) {
+    Scene scene;
+    scene.commit();
+    CameraSettings cs;
+    cs.width = 32;
+    cs.height = 32;
+    const Camera camera(cs);
+    UniformNoise integrator;
+    ProgressiveSettings ps;
+    ps.render.samples_per_pixel = 256;
+    ps.render.threads = 2;
+    ps.render.seed = 5;
+    ps.render.sampler = SamplerKind::Independent;  // the closed form is theirs
+    ps.render.adaptive.enabled = false;
+    ps.pass_samples = 8;
+    // The value shown once every pixel holds `samples_per_pixel` samples (the reports of the
+    // next pass repeat it).
+    std::map<std::uint32_t, double> shown;
+    const auto record = [&shown](const RenderProgress& p) { shown[p.samples_per_pixel] = p.noise; };
+    ps.render.progress = record;
+    Film film;
+    const RenderStats free_run = render_progressive(scene, camera, integrator, film, ps);
+    EXPECT_FALSE(free_run.noise_target_reached);
+    EXPECT_EQ(free_run.samples_per_pixel, 256u);
+    EXPECT_EQ(shown[8], -1.0);
+    for (const std::uint32_t level : {16u, 32u, 64u, 128u, 256u}) {
+        EXPECT_NEAR(shown[level] / expected_error(level), 1.0, 0.11) << level;
+    }
+    EXPECT_EQ(shown[24], shown[16]);  // renewed at doublings only
+    EXPECT_EQ(free_run.noise, shown[256]);
+
+    const std::map<std::uint32_t, double> without_target = shown;
+    shown.clear();
+    ps.noise_target = without_target.at(128);
+    film = Film();
+    const RenderStats stopped = render_progressive(scene, camera, integrator, film, ps);
+    EXPECT_TRUE(stopped.noise_target_reached);
+    EXPECT_EQ(stopped.samples_per_pixel, 128u);
+    EXPECT_EQ(stopped.noise, ps.noise_target);
+    EXPECT_EQ(shown.rbegin()->first, 128u);
+    for (const auto& [level, noise] : shown) {
+        // Level 0: reports during the first pass, made by the clock, in one run or both.
+        if (level == 0) continue;
+        ASSERT_TRUE(without_target.count(level)) << level;
+        EXPECT_EQ(noise, without_target.at(level)) << level;
+    }
 }
 
 TEST(NoiseEstimate, ANoiseTargetOutsideItsRangeIsRefused) {

@@ -54,8 +54,8 @@ private:
     bool held_ = false;
 };
 
-RenderSettings seeded(std::uint64_t seed) {
-    RenderSettings s;
+BlockSettings seeded(std::uint64_t seed) {
+    BlockSettings s;
     s.seed = seed;
     return s;
 }
@@ -66,6 +66,7 @@ ProgressiveSettings progressive(int total, int pass) {
     s.render.threads = 2;
     s.render.seed = 99;
     s.render.tile_size = 8;
+    s.render.adaptive.enabled = false;  // every pixel the same samples, as the blocks below
     s.pass_samples = pass;
     return s;
 }
@@ -77,7 +78,7 @@ protected:
     Film one_shot(std::uint32_t spp, bool aovs) {
         integrator_.preprocess(scene_);
         Film film(camera_.width(), camera_.height(), aovs);
-        RenderSettings s;
+        BlockSettings s;
         s.seed = 99;
         (void)render_block(scene_, camera_, integrator_, film,
                            {0, 0, film.width, film.height, 0, spp}, s);

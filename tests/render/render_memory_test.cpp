@@ -34,7 +34,7 @@ TEST(RenderMemory, ProgressiveCountsTheFilmItsCopyAndTheImage) {
     o.keeps_training = true;  // the half film and the weighted sums (and their copy)
     EXPECT_EQ(progressive_bytes_per_pixel(o), 3 * film + 2 * sizeof(glm::dvec3) + image);
     o = {};
-    o.noise_target = true;  // NoiseEstimate's snapshot of the pixels and their variances
+    o.noise_estimate = true;  // NoiseEstimate's snapshot of the pixels and their variances
     EXPECT_EQ(progressive_bytes_per_pixel(o), 3 * film + sizeof(float) + image);  // 112
 }
 

@@ -115,6 +115,9 @@ TEST(Renderer, PixelIsTheMeanOfItsSamples) {
     settings.samples_per_pixel = 6;
     settings.seed = 7;
     settings.progress = nullptr;
+    // Every pixel its 6 samples of Sampler(x, y, s, seed), the independent kind, as below.
+    settings.sampler = SamplerKind::Independent;
+    settings.adaptive.enabled = false;
     const Image image = render(scene, camera, integrator, settings);
     for (int y = 0; y < 3; ++y) {
         for (int x = 0; x < 4; ++x) {
@@ -139,6 +142,9 @@ TEST(Renderer, NonFiniteSamplesAreDroppedAndCounted) {
     settings.samples_per_pixel = 8;
     settings.progress = nullptr;
     settings.threads = 2;
+    // Every pixel its 8 samples of Sampler(x, y, s, 0), the independent kind, as below.
+    settings.sampler = SamplerKind::Independent;
+    settings.adaptive.enabled = false;
     RenderStats stats;
     const Image image = render(scene, camera, integrator, settings, &stats);
     std::uint64_t expected_nonfinite = 0;

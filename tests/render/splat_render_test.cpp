@@ -39,6 +39,7 @@ RenderSettings settings(int spp, int threads = 2, int tile = 16) {
     rs.seed = 31;
     rs.threads = threads;
     rs.tile_size = tile;
+    rs.adaptive.enabled = false;  // render() against blocks of every pixel's samples
     return rs;
 }
 
@@ -69,9 +70,9 @@ TEST(SplatRender, OwnPixelSplatsResolveToOne) {
     // A film split by region and sample range holds the same sums: spp per pixel.
     Film film(camera.width(), camera.height());
     const RenderSettings rs = settings(1, 1, 4);
-    (void)render_block(scene, camera, integrator, film, {0, 0, 13, 4, 0, 3}, rs);
-    (void)render_block(scene, camera, integrator, film, {0, 4, 13, 9, 0, 1}, rs);
-    (void)render_block(scene, camera, integrator, film, {0, 4, 13, 9, 1, 2}, rs);
+    (void)render_block(scene, camera, integrator, film, {0, 0, 13, 4, 0, 3}, rs.block());
+    (void)render_block(scene, camera, integrator, film, {0, 4, 13, 9, 0, 1}, rs.block());
+    (void)render_block(scene, camera, integrator, film, {0, 4, 13, 9, 1, 2}, rs.block());
     ASSERT_TRUE(film.splats.has_value());
     EXPECT_EQ(film.splats->width(), 13);
     EXPECT_EQ(film.splats->height(), 9);
@@ -88,8 +89,8 @@ TEST(SplatRender, StoppedRenderDividesByTheMeanSampleCount) {
     const Camera camera = splat_test_camera(8, 6, true);
     OwnPixelSplatter integrator;
     Film film(camera.width(), camera.height());
-    (void)render_block(scene, camera, integrator, film, {0, 0, 8, 3, 0, 2}, settings(1));
-    (void)render_block(scene, camera, integrator, film, {0, 3, 8, 6, 0, 4}, settings(1));
+    (void)render_block(scene, camera, integrator, film, {0, 0, 8, 3, 0, 2}, settings(1).block());
+    (void)render_block(scene, camera, integrator, film, {0, 3, 8, 6, 0, 4}, settings(1).block());
     EXPECT_EQ(splat_samples_per_pixel(film), 3.0);
     const Image image = resolve(film);
     for (int y = 0; y < 6; ++y) {
@@ -116,7 +117,8 @@ TEST(SplatRender, SplatsAtRandomPositionsTotalTheirCount) {
     RandomSplatter integrator(o);
     constexpr int kSpp = 4;
     Film film(camera.width(), camera.height());
-    (void)render_block(scene, camera, integrator, film, {0, 0, 11, 7, 0, kSpp}, settings(kSpp));
+    (void)render_block(scene, camera, integrator, film, {0, 0, 11, 7, 0, kSpp},
+                       settings(kSpp).block());
     ASSERT_TRUE(film.splats.has_value());
     const std::int64_t n = 11 * 7 * kSpp;
     std::int64_t total[3] = {0, 0, 0};
@@ -150,7 +152,7 @@ TEST(SplatRender, ImageIsIdenticalForAnyThreadCountAndTileSize) {
     const Image reference = render(scene, camera, integrator, settings(5, 1, 16));
     // The splats show: the image is not the pixel means alone.
     Film film(camera.width(), camera.height());
-    (void)render_block(scene, camera, integrator, film, {0, 0, 23, 17, 0, 5}, settings(5));
+    (void)render_block(scene, camera, integrator, film, {0, 0, 23, 17, 0, 5}, settings(5).block());
     Film means = film;
     means.splats.reset();
     EXPECT_FALSE(same_pixels(resolve(means), reference));
@@ -175,21 +177,21 @@ TEST(SplatRender, EveryEntryPointGivesRendersImage) {
     const RenderSettings rs = settings(1, 3, 5);
 
     Film regions(w, h);
-    (void)render_block(scene, camera, integrator, regions, {0, 0, 7, h, 0, kSpp}, rs);
-    (void)render_block(scene, camera, integrator, regions, {7, 0, w, h, 0, kSpp}, rs);
+    (void)render_block(scene, camera, integrator, regions, {0, 0, 7, h, 0, kSpp}, rs.block());
+    (void)render_block(scene, camera, integrator, regions, {7, 0, w, h, 0, kSpp}, rs.block());
     EXPECT_TRUE(same_pixels(resolve(regions), expected));
 
     Film left(w, h), right(w, h);
-    (void)render_block(scene, camera, integrator, left, {0, 0, 7, h, 0, kSpp}, rs);
-    (void)render_block(scene, camera, integrator, right, {7, 0, w, h, 0, kSpp}, rs);
+    (void)render_block(scene, camera, integrator, left, {0, 0, 7, h, 0, kSpp}, rs.block());
+    (void)render_block(scene, camera, integrator, right, {7, 0, w, h, 0, kSpp}, rs.block());
     merge(left, right);
     EXPECT_TRUE(same_records(left, regions));
     EXPECT_TRUE(same_splats(left, regions));
     EXPECT_TRUE(same_pixels(resolve(left), expected));
 
     Film ranges(w, h);
-    (void)render_block(scene, camera, integrator, ranges, {0, 0, w, h, 0, 2}, rs);
-    (void)render_block(scene, camera, integrator, ranges, {0, 0, w, h, 2, kSpp - 2}, rs);
+    (void)render_block(scene, camera, integrator, ranges, {0, 0, w, h, 0, 2}, rs.block());
+    (void)render_block(scene, camera, integrator, ranges, {0, 0, w, h, 2, kSpp - 2}, rs.block());
     EXPECT_TRUE(same_splats(ranges, regions));
     EXPECT_TRUE(same_pixels(resolve(ranges), expected));
 
@@ -234,10 +236,10 @@ TEST(SplatRender, KeptTrainingPassesGiveRendersImage) {
     EXPECT_EQ(kept.count(), 2);
     const int w = camera.width(), h = camera.height();
     Film film(w, h);
-    (void)render_block(scene, camera, integrator, film, {0, 0, w, h, 0, kSpp / 2}, rs);
+    (void)render_block(scene, camera, integrator, film, {0, 0, w, h, 0, kSpp / 2}, rs.block());
     const Film half = film;
     (void)render_block(scene, camera, integrator, film, {0, 0, w, h, kSpp / 2, kSpp - kSpp / 2},
-                       rs);
+                       rs.block());
     const Image image = kept.combined(half, film);
     EXPECT_TRUE(same_pixels(image, expected));
     EXPECT_FALSE(same_pixels(image, resolve(film)));  // the passes changed it
@@ -298,7 +300,7 @@ TEST(SplatRender, NonSplattingIntegratorRendersThroughLi) {
     }
     EXPECT_TRUE(same_pixels(image, expected));
     Film film(9, 7);
-    (void)render_block(scene, camera, integrator, film, {0, 0, 9, 7, 0, 4}, rs);
+    (void)render_block(scene, camera, integrator, film, {0, 0, 9, 7, 0, 4}, rs.block());
     EXPECT_FALSE(film.splats.has_value());
     EXPECT_TRUE(same_pixels(resolve(film), expected));
 }
@@ -312,19 +314,19 @@ TEST(SplatRender, MismatchedSplatFilmsAreRefused) {
     OwnPixelSplatter integrator;
     Film region(4, 3);
     (void)render_block(scene, camera, integrator, region, FilmOrigin{2, 2}, {2, 2, 6, 5, 0, 2},
-                       settings(1));
+                       settings(1).block());
     ASSERT_TRUE(region.splats.has_value());
     EXPECT_EQ(region.splats->width(), 10);
     EXPECT_THROW((void)resolve(region), Error);
 
     Film film(10, 8);
     film.splats.emplace(9, 8);  // not the camera's size
-    EXPECT_THROW(
-        (void)render_block(scene, camera, integrator, film, {0, 0, 10, 8, 0, 1}, settings(1)),
-        Error);
+    EXPECT_THROW((void)render_block(scene, camera, integrator, film, {0, 0, 10, 8, 0, 1},
+                                    settings(1).block()),
+                 Error);
     EXPECT_EQ(film.pixels[0].samples, 0u);
     Film other(10, 8);
-    (void)render_block(scene, camera, integrator, other, {0, 0, 5, 8, 0, 1}, settings(1));
+    (void)render_block(scene, camera, integrator, other, {0, 0, 5, 8, 0, 1}, settings(1).block());
     Film into(10, 8);
     into.splats.emplace(10, 8, FilterSettings{}, 20);
     EXPECT_THROW(merge(into, other), Error);

@@ -705,7 +705,7 @@ DirectLighting::DirectLighting(const DirectLightingSettings& settings) : setting
 glm::vec3 DirectLighting::li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
     TraceSettings s;
     s.max_depth = settings_.max_depth;
-    if (settings_.light_choice == LightChoice::Bounded)
+    if (chooses_by_bound(settings_.light_choice, scene.lights().size()))
         return guard(trace_bounded<Strategy::Direct>(scene, ray, sampler, s));
     return guard(trace<Strategy::Direct, false>(scene, ray, sampler, s));
 }
@@ -716,7 +716,7 @@ PathTracer::PathTracer(const PathTracerSettings& settings) : settings_(settings)
 
 glm::vec3 PathTracer::li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
     if (guide_ == nullptr) [[likely]] {
-        if (settings_.light_choice == LightChoice::Bounded)
+        if (chooses_by_bound(settings_.light_choice, scene.lights().size()))
             return guard(
                 trace_bounded<Strategy::Path>(scene, ray, sampler, trace_settings(settings_)));
         return guard(trace<Strategy::Path, false>(scene, ray, sampler, trace_settings(settings_)));
@@ -734,7 +734,7 @@ glm::vec3 PathTracer::li_splatting(const Scene& scene, const Ray& ray, Sampler& 
     SplitTraceSettings s;
     static_cast<TraceSettings&>(s) = trace_settings(settings_);
     s.caustic_roughness = settings_.caustic_paths.max_roughness;
-    const glm::vec3 l = settings_.light_choice == LightChoice::Bounded
+    const glm::vec3 l = chooses_by_bound(settings_.light_choice, scene.lights().size())
                             ? trace<Strategy::Path, true, false, true>(scene, ray, sampler, s)
                             : trace<Strategy::Path, false, false, true>(scene, ray, sampler, s);
     splat_caustic_path(scene, sphere_, *target.camera, *target.film, sampler, s.max_depth,
@@ -753,7 +753,7 @@ glm::vec3 trace_guided(const Scene& scene, const Ray& ray, Sampler& sampler,
 
 glm::vec3 PathTracer::li_guided(const Scene& scene, const Ray& ray, Sampler& sampler) const {
     GuideContext guide{guide_.get(), nullptr, settings_.guiding.bsdf_fraction};
-    const bool bounded = settings_.light_choice == LightChoice::Bounded;
+    const bool bounded = chooses_by_bound(settings_.light_choice, scene.lights().size());
     if (!recording_)
         return guard(trace_guided(scene, ray, sampler, trace_settings(settings_), guide, bounded));
     guiding::PathRecorder recorder;
@@ -778,7 +778,8 @@ void refuse_path_tracer_only(const PathTracerSettings& s) {
                     "ignore it (leave it at its default)");
     };
     if (!s.mis) refuse("mis = false");
-    if (s.light_choice != LightChoice::Power) refuse("light_choice = Bounded");
+    // Auto is the default (what ignoring gives); Bounded is asked for.
+    if (s.light_choice == LightChoice::Bounded) refuse("light_choice = Bounded");
     if (s.guiding.enabled) refuse("guiding.enabled = true");
     if (s.caustic_paths.enabled) refuse("caustic_paths.enabled = true");
 }

@@ -83,13 +83,11 @@ void wait_for_answer(MPI_Comm comm, MPI_Status& status) {
 }
 
 // The settings of a rank's blocks: no progress (render_mpi reports it itself, on rank 0's
-// calling thread), the rank's cancel flag, and no adaptive sampling (the jobs say each
-// pixel's samples; render_block refuses the setting).
-RenderSettings block_settings(const MpiRenderSettings& s, const std::atomic<bool>* cancel) {
-    RenderSettings r = s.render;
+// calling thread) and the rank's cancel flag; the jobs say each pixel's samples.
+BlockSettings block_settings(const MpiRenderSettings& s, const std::atomic<bool>* cancel) {
+    BlockSettings r = s.render.block();
     r.progress = {};
     r.cancel = cancel;
-    r.adaptive = AdaptiveSampling{};
     return r;
 }
 
@@ -108,7 +106,7 @@ struct Job {
     const Tiling& tiling;
     RenderPlan plan;
     RenderStats render(int job, Film& film, FilmOrigin origin, Film& half,
-                       std::span<const std::uint32_t> ends, const RenderSettings& rs) const {
+                       std::span<const std::uint32_t> ends, const BlockSettings& rs) const {
         const Rect r = tiling.rect(job % tiling.count);
         RenderStats stats;
         PassRunner runner;
@@ -189,8 +187,7 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
         if (plan.in_halves()) half = Film(camera.width(), camera.height());
         // Every rank learns the same guide (training is deterministic), so the tiles
         // merge into the one-process image; rank 0 keeps the passes as render() does.
-        train(scene, camera, integrator, block_settings(s, s.render.cancel),
-              plan.keep ? &kept_passes : nullptr);
+        train(scene, camera, integrator, s.render, plan.keep ? &kept_passes : nullptr);
     } catch (...) {
         failure = "rank 0 failed: " + message_of(std::current_exception());
         stopping = true;
@@ -217,7 +214,7 @@ Film run_root(MPI_Comm comm, int size, const Scene& scene, const Camera& camera,
         local_done = false;
         local = std::thread([&] {
             try {
-                const RenderSettings rs = block_settings(s, &local_cancel);
+                const BlockSettings rs = block_settings(s, &local_cancel);
                 bool cancelled = false;
                 for (int t = next_tile.fetch_add(1); t < count && !local_cancel.load();
                      t = next_tile.fetch_add(1)) {
@@ -449,11 +446,11 @@ Film run_worker(MPI_Comm comm, const Scene& scene, const Camera& camera, Integra
         const std::uint32_t pilot = plan.pilot;
         stats.tiles = pilot > 0 ? 2 * tiling.count : tiling.count;
         integrator.preprocess(scene);
-        const RenderSettings rs = block_settings(s, s.render.cancel);
+        const BlockSettings rs = block_settings(s, s.render.cancel);
         // Not kept here (rank 0 keeps them; no whole-image sums on a worker): a pass
         // rendered in halves teaches PathTracer the same guide, as its records are integer
         // sums that no order or split changes.
-        train(scene, camera, integrator, rs);
+        train(scene, camera, integrator, s.render);
         plan.keep = keeps_training_passes(plan, integrator);
         const bool kept = plan.keep;
         const bool splatting = integrator.splats();

@@ -80,7 +80,7 @@ private:
 
 /// Threads for `tiles` tiles: settings.threads (0: the hardware's), at least 1, at most
 /// one per tile and 1024.
-unsigned worker_count(const RenderSettings& settings, std::size_t tiles) {
+unsigned worker_count(const BlockSettings& settings, std::size_t tiles) {
     const unsigned wanted = settings.threads > 0 ? static_cast<unsigned>(settings.threads)
                                                  : std::thread::hardware_concurrency();
     return std::clamp<unsigned>(wanted, 1u,
@@ -131,7 +131,7 @@ struct TileRenderer {
     const Integrator& integrator;
     Film& film;
     FilmOrigin origin;
-    const RenderSettings& settings;
+    const BlockSettings& settings;
     SplatTarget target;
     std::uint32_t first;        // the block's first sample
     std::uint32_t end;          // one past its last
@@ -278,8 +278,7 @@ void watch_workers(BlockControl& control, std::size_t workers, std::size_t tiles
 
 BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrator& integrator,
                        Film& film, FilmOrigin origin, const RenderBlock& block,
-                       const RenderSettings& settings, const Tick& tick,
-                       const std::uint32_t* ends) {
+                       const BlockSettings& settings, const Tick& tick, const std::uint32_t* ends) {
     BlockOutcome outcome;
     const SplatTarget target = splat_target(camera, integrator, film);
     if (block.x1 <= block.x0 || block.y1 <= block.y0 || block.count == 0) {

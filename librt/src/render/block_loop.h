@@ -37,7 +37,7 @@ using Tick = std::function<bool(double fraction)>;
 /// empty). Rethrows an exception of the integrator or of `tick` once the threads stopped.
 BlockOutcome run_block(const Scene& scene, const Camera& camera, const Integrator& integrator,
                        Film& film, FilmOrigin origin, const RenderBlock& block,
-                       const RenderSettings& settings, const Tick& tick,
+                       const BlockSettings& settings, const Tick& tick,
                        const std::uint32_t* ends = nullptr);
 
 }  // namespace librt

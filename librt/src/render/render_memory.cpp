@@ -48,7 +48,7 @@ std::uint64_t progressive_bytes_per_pixel(const RenderMemoryOptions& o) {
     std::uint64_t extra = 0;
     if (o.adaptive) extra = film + kAdaptive;  // the film at half the pilot
     if (o.keeps_training) extra = extra > kept_bytes(o) ? extra : kept_bytes(o);
-    const std::uint64_t noise = o.noise_target ? kFilm + sizeof(float) : 0;  // NoiseEstimate
+    const std::uint64_t noise = o.noise_estimate ? kFilm + sizeof(float) : 0;  // NoiseEstimate
     return 2 * film + extra + image_bytes(o) + noise;  // the film and the pass's copy of it
 }
 

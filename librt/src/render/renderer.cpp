@@ -35,7 +35,7 @@ double seconds_since(Clock::time_point start) {
 /// CLOCK_PROCESS_CPUTIME_ID: the same on Linux and portable.
 double cpu_now() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
-void validate_threads_and_tiles(const RenderSettings& s) {
+void validate_threads_and_tiles(const BlockSettings& s) {
     if (s.threads < 0 || s.threads > 1024) {
         throw Error("threads = " + std::to_string(s.threads) + ": must be in [0, 1024]");
     }
@@ -57,6 +57,8 @@ void check_film_matches(const Film& film, const Camera& camera) {
 }
 
 }  // namespace
+
+void validate(const BlockSettings& s) { validate_threads_and_tiles(s); }
 
 void validate(const RenderSettings& s) {
     if (s.samples_per_pixel < 1 || s.samples_per_pixel > static_cast<int>(kMaxSamplesPerPixel)) {
@@ -90,7 +92,7 @@ namespace {
 /// samples in the same order per pixel as one run: the film's sums are identical.
 BlockOutcome run_block_in_halves(const Scene& scene, const Camera& camera,
                                  const Integrator& integrator, Film& film, const RenderBlock& block,
-                                 const RenderSettings& settings, const Tick& tick, Film& half) {
+                                 const BlockSettings& settings, const Tick& tick, Film& half) {
     RenderBlock first = block;
     first.count = block.count / 2;
     RenderBlock second = block;
@@ -131,7 +133,7 @@ RenderStats train_passes(const Scene& scene, const Camera& camera, Integrator& i
             std::fill(scratch.pixels.begin(), scratch.pixels.end(), FilmPixel{});
             scratch.splats.reset();  // run_block makes a new one for an integrator that splats
         }
-        RenderSettings rs = settings;
+        BlockSettings rs = settings.block();
         rs.progress = nullptr;
         // A seed of its own per pass (splitmix64 of seed and pass, salted): the image's
         // samples (seed itself) never reuse a training sample's numbers.
@@ -270,7 +272,7 @@ RenderStats render(const Scene& scene, const Camera& camera, Integrator& integra
 }
 
 RenderStats render_block(const Scene& scene, const Camera& camera, const Integrator& integrator,
-                         Film& film, const RenderBlock& block, const RenderSettings& settings) {
+                         Film& film, const RenderBlock& block, const BlockSettings& settings) {
     check_film_matches(film, camera);
     return render_block(scene, camera, integrator, film, FilmOrigin{}, block, settings);
 }
@@ -331,21 +333,10 @@ void check_block(const Camera& camera, const Film& film, FilmOrigin origin,
     }
 }
 
-// render_block's refusal of adaptive sampling, which it cannot honour: the block (or each
-// pixel's end) says the samples, and the counts need the whole image's pilot.
-void check_not_adaptive(const RenderSettings& settings) {
-    if (settings.adaptive.enabled) {
-        throw Error(
-            "adaptive.enabled = true: render_block renders the samples its block says "
-            "(adaptive sampling is render()'s, render_progressive()'s and render_mpi()'s; "
-            "render_block_to_counts takes each pixel's count)");
-    }
-}
-
 RenderStats render_checked_block(const Scene& scene, const Camera& camera,
                                  const Integrator& integrator, Film& film, FilmOrigin origin,
                                  const RenderBlock& block, const std::uint32_t* ends,
-                                 const RenderSettings& settings) {
+                                 const BlockSettings& settings) {
     const Clock::time_point start = Clock::now();
     const double cpu_start = cpu_now();
     Tick tick;
@@ -376,9 +367,8 @@ RenderStats render_checked_block(const Scene& scene, const Camera& camera,
 
 RenderStats render_block(const Scene& scene, const Camera& camera, const Integrator& integrator,
                          Film& film, FilmOrigin origin, const RenderBlock& block,
-                         const RenderSettings& settings) {
+                         const BlockSettings& settings) {
     validate_threads_and_tiles(settings);
-    check_not_adaptive(settings);
     check_block(camera, film, origin, block, nullptr);
     return render_checked_block(scene, camera, integrator, film, origin, block, nullptr, settings);
 }
@@ -386,38 +376,13 @@ RenderStats render_block(const Scene& scene, const Camera& camera, const Integra
 RenderStats render_block_to_counts(const Scene& scene, const Camera& camera,
                                    const Integrator& integrator, Film& film, FilmOrigin origin,
                                    const RenderBlock& block, std::span<const std::uint32_t> ends,
-                                   const RenderSettings& settings) {
+                                   const BlockSettings& settings) {
     validate_threads_and_tiles(settings);
-    check_not_adaptive(settings);
     check_block(camera, film, origin, block, &ends);
     RenderBlock marked = block;
     marked.count = 1;  // run_block skips a block of no samples; with ends it reads no count
     return render_checked_block(scene, camera, integrator, film, origin, marked, ends.data(),
                                 settings);
-}
-
-double relative_noise(const Film& before, const Film& after) {
-    if (before.pixels.size() != after.pixels.size()) return -1.0;
-    const auto luminance = [](const FilmPixel& p) {
-        if (p.finite == 0) return 0.0;
-        const glm::dvec3 mean = p.radiance / double(p.finite);
-        return 0.2126 * mean.x + 0.7152 * mean.y + 0.0722 * mean.z;
-    };
-    double variance = 0.0, brightness = 0.0;
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < after.pixels.size(); ++i) {
-        const FilmPixel& a = after.pixels[i];
-        const FilmPixel& b = before.pixels[i];
-        if (b.finite == 0 || a.finite <= b.finite) continue;
-        const double n = double(a.finite), m = n - double(b.finite);
-        const double d = luminance(a) - luminance(b);
-        variance += (n - m) * d * d / m;
-        brightness += luminance(a);
-        ++count;
-    }
-    if (count == 0 || !(brightness > 0.0)) return -1.0;
-    const double c = double(count);
-    return std::sqrt(variance / c) / (brightness / c);
 }
 
 RenderStats render_progressive(const Scene& scene, const Camera& camera, Integrator& integrator,
@@ -474,11 +439,12 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         stats.cancelled = training.cancelled;
     }
     Film work;  // the pass in progress: a copy of `film` that replaces it once complete
-    // The noise target's estimate: a snapshot of the pixels, 36 bytes each
-    // (render_memory.h), only when a target asks for it.
+    // The film's estimated relative error (NoiseEstimate: a snapshot of the pixels, 36 bytes
+    // each, render_memory.h), for the noise target and the progress reports alike: what a
+    // user reads on the progress display is what a target stops on.
     NoiseEstimate target_noise;
-    const bool estimate_noise = settings.noise_target > 0.0;
-    double noise = -1.0;  // relative_noise of the last complete pass, for progress reports
+    const bool estimate_noise = settings.noise_target > 0.0 || static_cast<bool>(rs.progress);
+    const auto noise = [&] { return target_noise.relative_error().value_or(-1.0); };
     PassRunner runner;
     runner.pass = [&](std::uint32_t n, std::uint32_t count, const std::uint32_t* ends) {
         // A film holding no samples always gets its first pass, whatever the limit.
@@ -500,7 +466,8 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         const Tick tick = [&](double done) {
             if (rs.progress) {
                 const double seconds = elapsed();
-                rs.progress({fraction(n + done * count, seconds), seconds, stats.passes, n, noise});
+                rs.progress(
+                    {fraction(n + done * count, seconds), seconds, stats.passes, n, noise()});
             }
             return limit > 0.0 && n > 0 && elapsed() >= limit;
         };
@@ -514,9 +481,6 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
             return false;
         }
         std::swap(film, work);
-        // `work` now holds the film before the pass: one O(pixels) sweep, small next to
-        // the pass itself, and only when someone shows it.
-        if (rs.progress) noise = relative_noise(work, film);
         return true;
     };
     runner.reached_half = [&] {
@@ -532,7 +496,7 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
         if (settings.pass_done) settings.pass_done(film, n);
         if (rs.progress) {
             const double seconds = elapsed();
-            rs.progress({fraction(n, seconds), seconds, stats.passes, n, noise});
+            rs.progress({fraction(n, seconds), seconds, stats.passes, n, noise()});
         }
     };
     PassSequence sequence(plan, first, pass);

@@ -33,6 +33,10 @@ struct LightChoicePoint {
 enum class LightChoice : std::uint8_t {
     Power,    ///< by power alone, the same table everywhere (LightSampler::sample(u))
     Bounded,  ///< by power times a bound of the contribution at the point (each light's bounds())
+    /// Bounded above LightSampler::kMaxBounded lights (through the light tree: 2.9-3.1x
+    /// lower RMSE at equal time on 800 small lights), Power otherwise (with few lights the
+    /// bound costs more than it saves: docs/benchmarks.md); decided per scene.
+    Auto,
 };
 
 /// One light chosen by a LightSampler, with the probability of that choice.
@@ -126,5 +130,11 @@ private:
     std::shared_ptr<const detail::LightTree> tree_;
     std::vector<std::uint32_t> infinite_;
 };
+
+/// Whether `choice` chooses by bound for a scene of `light_count` lights (Auto resolved).
+[[nodiscard]] inline bool chooses_by_bound(LightChoice choice, std::size_t light_count) {
+    return choice == LightChoice::Bounded ||
+           (choice == LightChoice::Auto && light_count > LightSampler::kMaxBounded);
+}
 
 }  // namespace librt

@@ -29,9 +29,10 @@
 
 namespace librt {
 
-/// How render() spreads samples (RenderSettings::adaptive). Off by default.
+/// How render() spreads samples (RenderSettings::adaptive). On by default: at equal time it
+/// lowered the error on every scene measured (docs/sampling.md, "Adaptive sampling").
 struct AdaptiveSampling {
-    bool enabled = false;  ///< spread samples by noise; samples_per_pixel is then the mean
+    bool enabled = true;  ///< spread samples by noise; samples_per_pixel is then the mean
     /// Samples every pixel gets before the noise is estimated (even, >= 2, below
     /// samples_per_pixel); 0 = the largest power of two <= samples_per_pixel / 4, at least
     /// 2 (a power of two keeps a Sobol' pilot a whole net in each half). It is also the

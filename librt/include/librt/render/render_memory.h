@@ -18,9 +18,9 @@ struct RenderMemoryOptions {
     bool splats = false;          ///< the integrator splats (light tracing, bidirectional)
     bool adaptive = false;        ///< adaptive sampling (RenderSettings::adaptive)
     bool keeps_training = false;  ///< the integrator keeps its training passes (guiding)
-    /// A noise target (ProgressiveSettings::noise_target > 0): NoiseEstimate's snapshot of
-    /// the pixels and their variances.
-    bool noise_target = false;
+    /// A noise target (ProgressiveSettings::noise_target > 0) or progress reports, which
+    /// show the same estimate: NoiseEstimate's snapshot of the pixels and their variances.
+    bool noise_estimate = false;
 };
 
 /// An upper bound of the bytes per pixel render() holds at once: its film (sums and
@@ -31,8 +31,8 @@ struct RenderMemoryOptions {
 
 /// The same for render_progressive with an `image`: the film and the copy each pass renders
 /// onto (memory for two films, AOVs and splats included), the image, and the extras of
-/// adaptive sampling (a third film and the tables) or of kept training passes, and a noise
-/// target's snapshot (36: the pixels' sums and counts, a float variance).
+/// adaptive sampling (a third film and the tables) or of kept training passes, and the noise
+/// estimate's snapshot (36: the pixels' sums and counts, a float variance).
 [[nodiscard]] LIBRT_API std::uint64_t progressive_bytes_per_pixel(
     const RenderMemoryOptions& options);
 

@@ -27,10 +27,10 @@ struct RenderProgress {
     double seconds = 0.0;   ///< since the render began
     int passes = 0;         ///< passes finished so far (a one-shot render is one pass)
     std::uint32_t samples_per_pixel = 0;  ///< samples per pixel of the finished passes
-    /// render_progressive: the image's estimated relative error after the last finished pass
-    /// (relative_noise of the film before and after it), e.g. 0.02 for 2 %; -1 until two
-    /// passes have finished, and from the other render functions. (A noise target stops on
-    /// NoiseEstimate's relMSE-based estimate instead: RenderStats::noise.)
+    /// render_progressive: the image's estimated relative error (NoiseEstimate, renewed as
+    /// the pass level doubles), e.g. 0.02 for 2 %: the very number a noise target
+    /// (ProgressiveSettings::noise_target) stops on, so a target can be read off it. -1
+    /// until the level has doubled once, and from the other render functions.
     double noise = -1.0;
 };
 
@@ -39,24 +39,40 @@ struct RenderProgress {
 /// throws during a pass stops the render and is rethrown by the render function.
 using ProgressCallback = std::function<void(const RenderProgress&)>;
 
-/// How to spread a render over pixels, samples and threads.
-struct RenderSettings {
-    int samples_per_pixel = 1;  ///< samples averaged per pixel, in [1, 2^20]
-    int threads = 0;            ///< worker threads in [0, 1024]; 0 = hardware_concurrency()
-    std::uint64_t seed = 0;     ///< varies every random number of the render
-    /// Where each camera path's random numbers come from. Independent (the default) draws
-    /// exactly what librt always drew; Sobol lowers the noise per sample (docs/sampling.md)
-    /// and, with adaptive sampling, is rt_render's default (the best measured).
-    SamplerKind sampler = SamplerKind::Independent;
-    /// Spread the samples over pixels by their noise, samples_per_pixel becoming the mean
-    /// (adaptive_sampling.h): render(), render_progressive() and render_mpi(); render_block
-    /// and render_block_to_counts refuse it (the block, or the counts, say the samples).
-    AdaptiveSampling adaptive;
+/// How to spread given samples over threads, and which random numbers they use: all a
+/// render of stated samples needs (render_block, whose block says the samples, and
+/// render_block_to_counts, whose counts do). RenderSettings adds how many samples and how
+/// they are spread over the pixels.
+struct BlockSettings {
+    int threads = 0;         ///< worker threads in [0, 1024]; 0 = hardware_concurrency()
+    std::uint64_t seed = 0;  ///< varies every random number of the render
+    /// Where each camera path's random numbers come from: Sobol (the default: less noise
+    /// per sample and at equal time on every scene measured, docs/sampling.md) or
+    /// Independent, the PCG32 streams librt drew before (the report's apps draw them).
+    SamplerKind sampler = SamplerKind::Sobol;
     int tile_size =
         16;  ///< side of the square tiles handed to threads (>= 1; capped at the image size)
     ProgressCallback progress;  ///< progress reports (see ProgressCallback); empty = none
     const std::atomic<bool>* cancel =
         nullptr;  ///< when set and it becomes true, the render stops early
+};
+
+/// How to spread a render over pixels, samples and threads. The defaults are the best
+/// measured (docs/render-your-own-scene.md, "The defaults"): Sobol' samples spread over the
+/// pixels by adaptive sampling.
+struct RenderSettings : BlockSettings {
+    /// Samples averaged per pixel, in [1, 2^20]; with adaptive sampling, their mean.
+    int samples_per_pixel = 1;
+    /// Spread the samples over pixels by their noise, samples_per_pixel becoming the mean
+    /// (adaptive_sampling.h; on by default): render(), render_progressive() and
+    /// render_mpi(). Below 4 samples per pixel every pixel gets the same.
+    AdaptiveSampling adaptive;
+
+    /// The settings a block rendering takes (render_block, render_block_to_counts): these
+    /// without samples_per_pixel and adaptive, which a block does not honour (it says its
+    /// samples itself). Passing a RenderSettings there does not compile, so that dropping
+    /// them is said, not silent.
+    [[nodiscard]] const BlockSettings& block() const { return *this; }
 };
 
 /// What a render did.
@@ -71,8 +87,9 @@ struct RenderStats {
     bool cancelled = false;               ///< true when `cancel` stopped the render before the end
     bool time_limit_reached = false;      ///< render_progressive: stopped by its time limit
     bool noise_target_reached = false;    ///< render_progressive: stopped by its noise target
-    /// render_progressive with a noise target: the film's estimated relative error at the
-    /// end (NoiseEstimate; 0 when the render was too short to estimate it).
+    /// render_progressive with a noise target or progress reports: the film's estimated
+    /// relative error at the end (NoiseEstimate, as RenderProgress::noise; 0 when the render
+    /// was too short to estimate it or estimated nothing).
     double noise = 0.0;
     int passes = 0;  ///< passes finished and kept in the film
     /// samples every pixel holds after a complete pass (adaptive sampling: the level the
@@ -80,6 +97,9 @@ struct RenderStats {
     std::uint32_t samples_per_pixel = 0;
     int training_passes = 0;  ///< learning passes run before the image (train(): path guiding)
 };
+
+/// Throws librt::Error naming the first bad parameter of `settings` and its value.
+LIBRT_API void validate(const BlockSettings& settings);
 
 /// Throws librt::Error naming the first bad parameter of `settings` and its value.
 LIBRT_API void validate(const RenderSettings& settings);
@@ -161,20 +181,23 @@ struct RenderBlock {
 /// hold exactly block.first samples (the film header explains why this makes any split bit-
 /// identical to the one-shot render). `integrator` must have been preprocessed (and, for
 /// path guiding, trained by train(); train() says how kept training passes join a
-/// film rendered this way) for `scene`; settings.samples_per_pixel is not used, and
-/// settings.adaptive must be off (throws librt::Error naming it: the block says the samples).
-/// The film must have the camera's size; with AOVs, its AOV sums are rendered in the same
-/// pass. A splatting integrator's splats are added to film.splats (created at the camera's
-/// size when empty; another size throws), over the whole image whatever the block covers:
-/// blocks rendered onto one film, or onto several merged by merge(), sum their splats
-/// exactly, and resolve() of the complete film is render()'s image. Threads, seeding, progress and
-/// cancellation work as in render(); a cancelled block leaves every pixel holding some number of
-/// samples in [first, first + count], its sums consistent with that count. Throws librt::Error
-/// naming the parameter for an invalid block (outside the film, first + count > 2^20) or a pixel
-/// holding a different number of samples, before rendering anything.
+/// film rendered this way) for `scene`. It takes BlockSettings: the block says the samples
+/// (from a RenderSettings, pass settings.block()). The film must have the camera's size; with AOVs,
+/// its AOV sums are rendered in the same pass. A splatting integrator's splats are added to
+/// film.splats (created at the camera's size when empty; another size throws), over the whole image
+/// whatever the block covers: blocks rendered onto one film, or onto several merged by merge(), sum
+/// their splats exactly, and resolve() of the complete film is render()'s image. Threads, seeding,
+/// progress and cancellation work as in render(); a cancelled block leaves every pixel holding some
+/// number of samples in [first, first + count], its sums consistent with that count. Throws
+/// librt::Error naming the parameter for an invalid block (outside the film, first + count > 2^20)
+/// or a pixel holding a different number of samples, before rendering anything.
 LIBRT_API RenderStats render_block(const Scene& scene, const Camera& camera,
                                    const Integrator& integrator, Film& film,
-                                   const RenderBlock& block, const RenderSettings& settings);
+                                   const RenderBlock& block, const BlockSettings& settings);
+/// Refused at compile time: a block cannot honour samples_per_pixel or adaptive sampling,
+/// and would drop them silently. Pass settings.block() to say that is meant.
+RenderStats render_block(const Scene&, const Camera&, const Integrator&, Film&, const RenderBlock&,
+                         const RenderSettings&) = delete;
 
 /// Where a film smaller than the image lies in it: the film's pixel (0, 0) is image pixel
 /// (x, y), so it covers [x, x + film.width) x [y, y + film.height).
@@ -196,7 +219,10 @@ struct FilmOrigin {
 /// (0, 0) and a film of the camera's size.
 LIBRT_API RenderStats render_block(const Scene& scene, const Camera& camera,
                                    const Integrator& integrator, Film& film, FilmOrigin origin,
-                                   const RenderBlock& block, const RenderSettings& settings);
+                                   const RenderBlock& block, const BlockSettings& settings);
+/// Refused at compile time, as above: pass settings.block().
+RenderStats render_block(const Scene&, const Camera&, const Integrator&, Film&, FilmOrigin,
+                         const RenderBlock&, const RenderSettings&) = delete;
 
 /// render_block with a sample count of its own for each pixel: adaptive sampling split
 /// over processes (render_mpi renders the pilot of every tile, computes the counts with
@@ -211,7 +237,11 @@ LIBRT_API RenderStats render_block_to_counts(const Scene& scene, const Camera& c
                                              const Integrator& integrator, Film& film,
                                              FilmOrigin origin, const RenderBlock& block,
                                              std::span<const std::uint32_t> ends,
-                                             const RenderSettings& settings);
+                                             const BlockSettings& settings);
+/// Refused at compile time, as render_block's: pass settings.block().
+RenderStats render_block_to_counts(const Scene&, const Camera&, const Integrator&, Film&,
+                                   FilmOrigin, const RenderBlock&, std::span<const std::uint32_t>,
+                                   const RenderSettings&) = delete;
 
 /// A render in passes, until a sample count or a time limit is reached.
 struct ProgressiveSettings {
@@ -238,18 +268,6 @@ struct ProgressiveSettings {
 
 /// Throws librt::Error naming the first bad parameter of `settings` and its value.
 LIBRT_API void validate(const ProgressiveSettings& settings);
-
-/// The image's relative error estimated from one pass: `before` and `after` are the same
-/// film before and after a pass added m_p >= 1 samples to pixel p (n_p samples after). For
-/// a pixel's mean luminance Y, the difference d = Y_after - Y_before has variance
-/// sigma^2 m / (n (n - m)), so (n - m) d^2 / m estimates the variance of the pixel's mean
-/// sigma^2 / n without keeping squares. Returns sqrt(the mean of those over the pixels the
-/// pass touched) / (the mean luminance of `after` over them): the RMS standard error of the
-/// pixel means relative to the image's brightness. One pass's difference is a noisy
-/// estimate per pixel, but the mean over many pixels is steady. Splats (bidirectional
-/// light paths) are left out. -1 when no pixel had samples before and gained some, or the
-/// image is black; O(pixels), deterministic (a fixed summation order).
-[[nodiscard]] LIBRT_API double relative_noise(const Film& before, const Film& after);
 
 /// Renders passes of settings.pass_samples samples per pixel over the whole image onto
 /// `film` until every pixel holds settings.render.samples_per_pixel samples, the time

@@ -11,7 +11,8 @@ namespace librt {
 
 /// Where the random numbers of a camera path come from.
 enum class SamplerKind : std::uint8_t {
-    Independent,  ///< a PCG32 stream per (pixel, sample): the default, as librt always was
+    Independent,  ///< a PCG32 stream per (pixel, sample), as librt drew before Sobol' (the report
+                  ///< apps')
     Sobol,        ///< Owen-scrambled Sobol' (camera: one 4D net; then padded 2D pairs)
 };
 
