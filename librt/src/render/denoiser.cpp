@@ -41,9 +41,8 @@ constexpr float kModulationFloor = 0.1f;
 /// Rousselle et al.'s epsilon, relative to the image's mean square (demodulated): the
 /// patch distance's denominator where the noise is 0, so that a noise-free image keeps
 /// every difference (any difference above ~1e-5 of the image's RMS gives a weight of
-/// exp(-1)). Relative, so that the filter does not depend on the units: a scene lit in
-/// radiometric watts by a 3-lux sun has values near 1e-3, where a fixed epsilon would be a
-/// tenth of the noise's variance and would keep noise as if it were detail.
+/// exp(-1)). Relative, so that the filter does not depend on the units (a scene lit in
+/// radiometric watts by a 3-lux sun has values near 1e-3): denoise(c x) = c denoise(x).
 constexpr float kRelativeEpsilon = 1e-12f;
 
 /// The noise estimate (a - b)^2 of one pixel has one degree of freedom: averaged over a
@@ -51,8 +50,8 @@ constexpr float kRelativeEpsilon = 1e-12f;
 constexpr int kVarianceRadius = 2;
 
 /// Rows of the strips threads take: the rows of a strip share the patch-distance buffers
-/// of each neighbour offset (and their apron of 2 x patch radius rows, computed again by
-/// the next strip: 32 rows redo 6 where 16 redid 6, the same bits either way).
+/// of each neighbour offset (and their apron of 2 x patch radius rows, which the next strip
+/// computes again: 6 rows more per 32 rather than per 16; the same bits either way).
 constexpr int kStrip = 32;
 
 /// The albedo's prefilter: a smaller neighbourhood (the albedo's noise is only at edges,
@@ -265,7 +264,7 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserS
     double square = 0.0;
     for (std::size_t i = 0; i < n; ++i)
         square += double(glm::dot(da[i], da[i])) + double(glm::dot(db[i], db[i]));
-    // At least a normal float's square root, so that an all-zero image divides by > 0.
+    // At least 1e-30 (a normal float), so that an all-zero image divides by > 0.
     p.epsilon = std::max(kRelativeEpsilon * float(square / double(6 * std::max<std::size_t>(n, 1))),
                          1e-30f);
     const std::size_t padded = std::size_t(p.stride) * std::size_t(h + 2 * p.pad);
