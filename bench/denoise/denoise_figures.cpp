@@ -4,7 +4,7 @@
 // denoising next to the render's. A plain program, not Google Benchmark: it measures error.
 //
 //   librt_denoise_figures SCENE|synthesis [--size WxH] [--spp 16,64] [--ref-spp N]
-//       [--threads N]
+//       [--threads N] [--light-units watts|photometric]
 //
 // Each image is rendered as rt_render renders it (the path tracer, 5 bounces, Gaussian
 // pixel jitter; the synthesis scene with its lens), in two halves of its samples
@@ -86,28 +86,50 @@ double rel_mse(const Image& x, const Image& ref, const std::vector<glm::vec3>& r
 
 double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
-/// The largest |block mean / reference block mean - 1| over 16 x 16 blocks (luminance;
-/// blocks of the image's edge may be smaller; blocks darker than 1e-3 skipped).
-double worst_block(const Image& x, const Image& ref, int* where = nullptr) {
-    double worst = 0.0;
-    for (int by = 0; by < x.height; by += 16) {
-        for (int bx = 0; bx < x.width; bx += 16) {
-            double a = 0.0, b = 0.0;
-            for (int y = by; y < std::min(by + 16, x.height); ++y)
-                for (int xx = bx; xx < std::min(bx + 16, x.width); ++xx) {
-                    a += luminance(x.at(xx, y));
-                    b += luminance(ref.at(xx, y));
-                }
-            if (b > 1e-3 * 256.0 && std::abs(a / b - 1.0) > worst) {
-                worst = std::abs(a / b - 1.0);
-                if (where != nullptr) {
-                    where[0] = bx;
-                    where[1] = by;
+/// One 16 x 16 block (blocks at the image's edge may be smaller): luminance means of the
+/// noisy, the denoised and the reference image, and the variances of the noisy and the
+/// reference means from their halves (Var of a pixel's mean = s (1 - s) (a - b)^2).
+struct Block {
+    int x = 0, y = 0;
+    double noisy = 0.0, denoised = 0.0, ref = 0.0, var_noisy = 0.0, var_ref = 0.0;
+};
+
+std::vector<Block> blocks(const DenoiserInput& in, const Image& out, const DenoiserInput& ref) {
+    std::vector<Block> v;
+    for (int by = 0; by < out.height; by += 16) {
+        for (int bx = 0; bx < out.width; bx += 16) {
+            Block b{bx, by};
+            int n = 0;
+            for (int y = by; y < std::min(by + 16, out.height); ++y) {
+                for (int x = bx; x < std::min(bx + 16, out.width); ++x) {
+                    const std::size_t i = std::size_t(y) * std::size_t(out.width) + std::size_t(x);
+                    b.noisy += luminance(in.beauty.pixels[i]);
+                    b.denoised += luminance(out.pixels[i]);
+                    b.ref += luminance(ref.beauty.pixels[i]);
+                    const double s = in.share_a[i], sr = ref.share_a[i];
+                    const double d = luminance(in.half_a.pixels[i] - in.half_b.pixels[i]);
+                    const double dr = luminance(ref.half_a.pixels[i] - ref.half_b.pixels[i]);
+                    b.var_noisy += s * (1.0 - s) * d * d;
+                    b.var_ref += sr * (1.0 - sr) * dr * dr;
+                    ++n;
                 }
             }
+            b.noisy /= n;
+            b.denoised /= n;
+            b.ref /= n;
+            b.var_noisy /= double(n) * n;
+            b.var_ref /= double(n) * n;
+            v.push_back(b);
         }
     }
-    return worst;
+    return v;
+}
+
+/// Blocks darker than 1e-3 of the image's brightest block are left out of the figures.
+double dark_floor(const std::vector<Block>& v) {
+    double top = 0.0;
+    for (const Block& b : v) top = std::max(top, b.ref);
+    return 1e-3 * top;
 }
 
 std::vector<int> parse_list(const std::string& text) {
@@ -124,11 +146,12 @@ int main(int argc, char** argv) {
     if (argc < 2) {
         std::fprintf(stderr,
                      "usage: librt_denoise_figures SCENE|synthesis [--size WxH] [--spp 16,64] "
-                     "[--ref-spp N] [--threads N]\n");
+                     "[--ref-spp N] [--threads N] [--light-units watts|photometric]\n");
         return 1;
     }
     const std::string what = argv[1];
     int width = 320, height = 240, ref_spp = 1024, threads = 0;
+    bool photometric = false;
     std::vector<int> spps{16, 64};
     for (int i = 2; i + 1 < argc; i += 2) {
         const std::string a = argv[i];
@@ -138,6 +161,8 @@ int main(int argc, char** argv) {
             spps = parse_list(argv[i + 1]);
         } else if (a == "--ref-spp") {
             ref_spp = std::atoi(argv[i + 1]);
+        } else if (a == "--light-units") {
+            photometric = std::strcmp(argv[i + 1], "photometric") == 0;
         } else if (a == "--threads") {
             threads = std::atoi(argv[i + 1]);
         } else {
@@ -174,6 +199,7 @@ int main(int argc, char** argv) {
             // The files' own lights, as the figures in docs/benchmarks.md were measured
             // (cornell_pbr.glb, lit by its panel alone, would get the studio lighting).
             fo.default_lighting = false;
+            if (photometric) fo.light_units = PunctualLightUnits::Photometric;
             LoadedScene loaded = load_scene_file(what, fo);
             scene = std::move(loaded.scene);
             scene.commit();
@@ -204,19 +230,46 @@ int main(int argc, char** argv) {
             const double denoise_seconds = seconds_since(t0);
             const double noisy = rel_mse(in.beauty, ref_in.beauty, ref_var);
             const double den = rel_mse(out, ref_in.beauty, ref_var);
-            int at[2] = {0, 0};
-            (void)worst_block(out, ref_in.beauty, at);
+            // Block means: the worst |x / ref - 1| of the noisy and the denoised image; the
+            // worst the denoiser moved a block (|denoised - noisy| / ref: what the filter
+            // adds to the render's own error); and how many blocks miss 1 % plus 4 standard
+            // errors of the noisy and the reference block means (the render's noise).
+            const std::vector<Block> bl = blocks(in, out, ref_in);
+            const double floor = dark_floor(bl);
+            double worst_noisy = 0.0, worst_den = 0.0, worst_moved = 0.0;
+            int off = 0, counted = 0;
+            for (const Block& b : bl) {
+                if (b.ref <= floor) continue;
+                ++counted;
+                worst_noisy = std::max(worst_noisy, std::abs(b.noisy / b.ref - 1.0));
+                worst_den = std::max(worst_den, std::abs(b.denoised / b.ref - 1.0));
+                worst_moved = std::max(worst_moved, std::abs(b.denoised - b.noisy) / b.ref);
+                const double allowed = 0.01 * b.ref + 4.0 * std::sqrt(b.var_noisy + b.var_ref);
+                if (std::abs(b.denoised - b.ref) > allowed) {
+                    ++off;
+                    if (std::getenv("DENOISE_BLOCKS") != nullptr) {
+                        std::printf(
+                            "  block (%d, %d) ref %.4g: noisy %+.2f %%, denoised %+.2f "
+                            "%%, moved %+.2f %%, 4 sigma %.2f %% (ref's %.2f %%)\n",
+                            b.x, b.y, b.ref, 100.0 * (b.noisy / b.ref - 1.0),
+                            100.0 * (b.denoised / b.ref - 1.0),
+                            100.0 * (b.denoised - b.noisy) / b.ref,
+                            400.0 * std::sqrt(b.var_noisy + b.var_ref) / b.ref,
+                            400.0 * std::sqrt(b.var_ref) / b.ref);
+                    }
+                }
+            }
             if (std::getenv("DENOISE_DUMP") != nullptr) {
                 const std::string prefix = std::getenv("DENOISE_DUMP") + std::to_string(spp);
                 write_image(prefix + "_noisy.pfm", in.beauty, ToneMap{1.0f, 1.0f});
                 write_image(prefix + "_denoised.pfm", out, ToneMap{1.0f, 1.0f});
                 write_image(prefix + "_ref.pfm", ref_in.beauty, ToneMap{1.0f, 1.0f});
-                std::printf("worst denoised block at (%d, %d)\n", at[0], at[1]);
             }
-            std::printf("| %s | %d | %.4g | %.4g | %.1fx | %.2f %% | %.2f %% | %.2f s | %.2f s |\n",
-                        what.c_str(), spp, noisy, den, noisy / den,
-                        100.0 * worst_block(in.beauty, ref_in.beauty),
-                        100.0 * worst_block(out, ref_in.beauty), h.seconds, denoise_seconds);
+            std::printf(
+                "| %s | %d | %.4g | %.4g | %.1fx | %.2f %% | %.2f %% | %.2f %% | %d / %d "
+                "| %.2f s | %.2f s |\n",
+                what.c_str(), spp, noisy, den, noisy / den, 100.0 * worst_noisy, 100.0 * worst_den,
+                100.0 * worst_moved, off, counted, h.seconds, denoise_seconds);
             std::fflush(stdout);
         }
     } catch (const std::exception& e) {

@@ -8,12 +8,14 @@
 #include <librt/film/film.h>
 #include <librt/integrator/integrators.h>
 #include <librt/io/image_io.h>
+#include <librt/light/sphere_light.h>
 #include <librt/material/texture.h>
 #include <librt/render/denoiser.h>
 #include <librt/sampling/rng.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -132,6 +134,26 @@ TEST(Denoiser, NoisyConstantImageIsSmoothedWithoutBias) {
     // The image's mean: the noise's standard error is 0.21 / sqrt(3 w h) ~ 0.2 %: 1 %
     // is 5 of them.
     EXPECT_NEAR(sum_out / sum_mean, 1.0, 0.01);
+}
+
+TEST(Denoiser, ResultScalesWithTheImage) {
+    // Units must not matter: a scene in radiometric watts under a 3-lux sun has values near
+    // 1e-3 (dragons_instanced.glb), where a fixed epsilon in the patch distance was a tenth
+    // of the noise's variance. denoise(c x) = c denoise(x) to float rounding.
+    const int w = 40, h = 30;
+    Image albedo, normal;
+    textured_features(w, h, albedo, normal);
+    const DenoiserInput in = noisy_halves(albedo, albedo, normal, 0.3f, 11);
+    const float c = 1e-3f;
+    DenoiserInput scaled = in;
+    for (Image* im : {&scaled.beauty, &scaled.half_a, &scaled.half_b})
+        for (glm::vec3& p : im->pixels) p *= c;
+    const Image one = denoise(in);
+    const Image small = denoise(scaled);
+    for (std::size_t i = 0; i < one.pixels.size(); ++i) {
+        for (int k = 0; k < 3; ++k)
+            EXPECT_NEAR(small.pixels[i][k], c * one.pixels[i][k], 1e-4f * c * one.pixels[i][k]);
+    }
 }
 
 TEST(Denoiser, SameBitsForAnyThreadCount) {
@@ -432,6 +454,70 @@ TEST_F(DenoisedBox, CheckerAndThinBarContrastKept) {
     const double bars_ref = contrast(reference_->beauty, 0.0f, 0.035f, 0.72f, 0.74f, 20, 40);
     const double bars_den = contrast(*denoised_, 0.0f, 0.035f, 0.72f, 0.74f, 20, 40);
     EXPECT_NEAR(bars_den, bars_ref, 0.05 * bars_ref);
+}
+
+TEST(DenoisedBrightFeature, BlockMeansKeepTheReference) {
+    // The open box with a small sphere light in view (radius 0.1, about 5 pixels across,
+    // radiance 40: 60 times the walls), lit by the ceiling's quad light as well. Its edge
+    // pixels mix the emitter (albedo 0) with the wall, and their noise (the share of their
+    // samples on the sphere) lets them take in any neighbour: remodulated by an average of
+    // radiance / albedo, the emitter's pixels came back multiplied by the edge's albedo
+    // over 0.02, edge pixels of 150-214, and the blocks around it +37 % and +44 %
+    // (docs/benchmarks.md). Every 16 x 16 block's mean must stay within 1 %
+    // of the reference's plus 4 standard errors of the noisy and the reference block
+    // means, each from its halves: Var(mean of a pixel) = s (1 - s) (a - b)^2.
+    Scene scene;
+    const auto white = scene.add_material(Material::diffuse(glm::vec3(0.73f)));
+    const auto red = scene.add_material(Material::diffuse({0.65f, 0.05f, 0.05f}));
+    const auto green = scene.add_material(Material::diffuse({0.12f, 0.45f, 0.15f}));
+    testing::add_quad(scene, {-1, 0, -1}, {2, 0, 0}, {0, 0, 2}, white);  // floor
+    testing::add_quad(scene, {-1, 2, -1}, {0, 0, 2}, {2, 0, 0}, white);  // ceiling
+    testing::add_quad(scene, {-1, 0, -1}, {0, 2, 0}, {2, 0, 0}, white);  // back
+    testing::add_quad(scene, {-1, 0, -1}, {0, 0, 2}, {0, 2, 0}, red);    // left
+    testing::add_quad(scene, {1, 0, -1}, {0, 2, 0}, {0, 0, 2}, green);   // right
+    (void)scene.add_quad_light(
+        QuadLight{{-0.25f, 1.99f, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}, glm::vec3(10.0f), false});
+    // Near the corner of four blocks (pixel (32, 32) is the image's centre, where the
+    // camera looks: (0, 0.6, 0)), so that light pulled out of its own block lands in the
+    // others'.
+    (void)scene.add_sphere_light(
+        SphereLight{Sphere{{0.12f, 0.52f, -0.3f}, 0.1f}, glm::vec3(40.0f)});
+    scene.commit();
+    const Rendered ref_films = render_box(scene, 2048, 99);
+    const DenoiserInput ref = denoiser_input(ref_films.half, ref_films.full);
+    const Rendered noisy = render_box(scene, 16, 1);
+    const DenoiserInput in = denoiser_input(noisy.half, noisy.full);
+    const Image out = denoise(in);
+    if (const char* dump = std::getenv("DENOISER_TEST_DUMP")) {
+        write_image(std::string(dump) + "_bright_noisy.pfm", in.beauty);
+        write_image(std::string(dump) + "_bright_denoised.pfm", out);
+        write_image(std::string(dump) + "_bright_ref.pfm", ref.beauty);
+    }
+    const auto pixel_var = [](const DenoiserInput& d, std::size_t i) {
+        const double s = d.share_a[i];
+        const double diff = luminance(d.half_a.pixels[i]) - luminance(d.half_b.pixels[i]);
+        return s * (1.0 - s) * diff * diff;
+    };
+    double brightest = 0.0;
+    for (int by = 0; by < kSize; by += 16) {
+        for (int bx = 0; bx < kSize; bx += 16) {
+            double den = 0.0, reference = 0.0, var = 0.0;
+            for (int y = by; y < by + 16; ++y) {
+                for (int x = bx; x < bx + 16; ++x) {
+                    const std::size_t i = std::size_t(y) * kSize + std::size_t(x);
+                    den += luminance(out.pixels[i]);
+                    reference += luminance(ref.beauty.pixels[i]);
+                    var += pixel_var(in, i) + pixel_var(ref, i);
+                    brightest = std::max(brightest, double(luminance(ref.beauty.pixels[i])));
+                }
+            }
+            EXPECT_NEAR(den / 256.0, reference / 256.0,
+                        0.01 * reference / 256.0 + 4.0 * std::sqrt(var) / 256.0)
+                << "block (" << bx << ", " << by << ")";
+        }
+    }
+    // The feature is in the image and is bright: its pixels reach 60 times the walls'.
+    EXPECT_GT(brightest, 20.0);
 }
 
 }  // namespace

@@ -25,23 +25,34 @@ namespace librt {
 
 namespace {
 
-/// Demodulation divides by max(albedo, this), per channel: a miss (albedo 0: the sky, an
-/// emitter seen directly) or a black surface is filtered in units of this instead of
-/// being divided by 0. Such pixels are kept apart from lit surfaces by the features.
+/// The guides (what the patch distances compare) divide the radiance by max(albedo, this),
+/// per channel: a miss (albedo 0: the sky, an emitter seen directly) or a black surface is
+/// compared in units of this instead of being divided by 0. Such pixels are kept apart
+/// from lit surfaces by the features.
 constexpr float kMinAlbedo = 0.02f;
 
-/// Rousselle et al.'s epsilon: the patch distance's denominator where the noise is 0, so
-/// that a noise-free image keeps every difference (any difference above ~1e-5 in
-/// demodulated radiance gives a weight of exp(-1)).
-constexpr float kDistanceEpsilon = 1e-10f;
+/// The albedo below which the output is not demodulated (see PixelTerms): where a pixel
+/// mixes an emitter (albedo 0) with a lit surface, e.g. the edge of a small light, the
+/// emitter's radiance is not albedo x light, and a small albedo in the ratio multiplied it
+/// back up to 5x the emitter's own radiance (DenoisedBrightFeature; docs/benchmarks.md).
+/// 0.05 still did so in that test; 0.1 and 0.2 did not.
+constexpr float kModulationFloor = 0.1f;
+
+/// Rousselle et al.'s epsilon, relative to the image's mean square (demodulated): the
+/// patch distance's denominator where the noise is 0, so that a noise-free image keeps
+/// every difference (any difference above ~1e-5 of the image's RMS gives a weight of
+/// exp(-1)). Relative, so that the filter does not depend on the units (a scene lit in
+/// radiometric watts by a 3-lux sun has values near 1e-3): denoise(c x) = c denoise(x).
+constexpr float kRelativeEpsilon = 1e-12f;
 
 /// The noise estimate (a - b)^2 of one pixel has one degree of freedom: averaged over a
 /// (2 x 2 + 1)^2 box it is usable. Larger boxes blur the estimate across edges.
 constexpr int kVarianceRadius = 2;
 
 /// Rows of the strips threads take: the rows of a strip share the patch-distance buffers
-/// of each neighbour offset (and their apron of 2 x patch radius rows).
-constexpr int kStrip = 16;
+/// of each neighbour offset (and their apron of 2 x patch radius rows, which the next strip
+/// computes again: 6 rows more per 32 rather than per 16; the same bits either way).
+constexpr int kStrip = 32;
 
 /// The albedo's prefilter: a smaller neighbourhood (the albedo's noise is only at edges,
 /// where neighbours along the edge are near) and Rousselle et al. 2013's k = 1 for their
@@ -141,18 +152,23 @@ std::vector<glm::vec3> box_mean(const std::vector<glm::vec3>& v, int width, int 
 /// that the loops over a row vectorise), padded by `pad` pixels on every side with copies
 /// of the nearest edge pixel: a neighbour's patch may reach past the image.
 struct Planes {
-    int width = 0;                  ///< the image's
-    int height = 0;                 ///< the image's
-    int pad = 0;                    ///< radius + patch radius
-    int stride = 0;                 ///< width + 2 pad
-    std::vector<float> a[3];        ///< half_a demodulated
-    std::vector<float> b[3];        ///< half_b demodulated
-    std::vector<float> var_a[3];    ///< noise variance of a (smoothed)
-    std::vector<float> var_b[3];    ///< noise variance of b (smoothed)
-    std::vector<float> albedo[3];   ///< the albedo AOV
-    std::vector<float> normal[3];   ///< the normal AOV
-    std::vector<float> albedo_var;  ///< noise variance of the albedo, summed over channels
-    std::vector<float> normal_var;  ///< noise variance of the normal, summed over components
+    int width = 0;                   ///< the image's
+    int height = 0;                  ///< the image's
+    int pad = 0;                     ///< radius + patch radius
+    int stride = 0;                  ///< width + 2 pad
+    float epsilon = 0.0f;            ///< kRelativeEpsilon x the mean square of a and b
+    std::vector<float> a[3];         ///< half_a demodulated
+    std::vector<float> b[3];         ///< half_b demodulated
+    std::vector<float> value_a[3];   ///< what is averaged of a: its radiance (PixelTerms)
+    std::vector<float> value_b[3];   ///< the same of b
+    std::vector<float> albedo_a[3];  ///< a's albedo (floored), averaged with the same weights
+    std::vector<float> albedo_b[3];  ///< the same of b
+    std::vector<float> var_a[3];     ///< noise variance of a (smoothed)
+    std::vector<float> var_b[3];     ///< noise variance of b (smoothed)
+    std::vector<float> albedo[3];    ///< the albedo AOV
+    std::vector<float> normal[3];    ///< the normal AOV
+    std::vector<float> albedo_var;   ///< noise variance of the albedo, summed over channels
+    std::vector<float> normal_var;   ///< noise variance of the normal, summed over components
     /// sigma^2 plus the albedo's largest squared difference to its 4 neighbours: at an edge
     /// of the albedo (a texture, an object's outline) the feature is not trusted to tell
     /// neighbours apart, and the radiance's patch distance decides (Rousselle, Manzi &
@@ -166,9 +182,16 @@ struct Planes {
     }
 };
 
-/// What the output needs per image pixel: the modulation and the shares.
+/// What the output needs per image pixel: the modulation and the shares. A half's output
+/// at p is m_p x (sum of w_q L_q) / (sum of w_q m_q): the neighbours' radiance, averaged,
+/// over their albedo averaged with the same weights, times p's albedo (a ratio of
+/// averages). Where the albedo is one colour it is the plain average of the radiance; over
+/// a texture under even light (L_q = E m_q) it is E m_p exactly, as an average of the
+/// ratios L_q / m_q would be; but a neighbour of small albedo is not multiplied by m_p /
+/// m_q on its own, so a bright emitter (albedo 0) beside a pixel of some albedo is not
+/// made brighter than it is.
 struct PixelTerms {
-    std::vector<glm::vec3> modulation;  ///< what the filtered radiance is multiplied back by
+    std::vector<glm::vec3> modulation;  ///< m_p: max(the prefiltered albedo, kModulationFloor)
     std::vector<float> share;           ///< share_a per pixel
 };
 
@@ -186,7 +209,7 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserS
     const bool normal_halves = !in.normal_a.pixels.empty();
     std::vector<glm::vec3> da(n), db(n), spread(n), feature_spread(n);
     for (std::size_t i = 0; i < n; ++i) {
-        terms.modulation[i] = glm::max(albedo.pixels[i], glm::vec3(kMinAlbedo));
+        terms.modulation[i] = glm::max(albedo.pixels[i], glm::vec3(kModulationFloor));
         // Each half by its own albedo (DenoiserInput::albedo_a); the result is multiplied
         // back by the albedo of all the samples.
         da[i] = in.half_a.pixels[i] / glm::max(albedo_a.pixels[i], glm::vec3(kMinAlbedo));
@@ -238,6 +261,12 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserS
     p.height = h;
     p.pad = settings.radius + settings.patch_radius;
     p.stride = w + 2 * p.pad;
+    double square = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+        square += double(glm::dot(da[i], da[i])) + double(glm::dot(db[i], db[i]));
+    // At least 1e-30 (a normal float), so that an all-zero image divides by > 0.
+    p.epsilon = std::max(kRelativeEpsilon * float(square / double(6 * std::max<std::size_t>(n, 1))),
+                         1e-30f);
     const std::size_t padded = std::size_t(p.stride) * std::size_t(h + 2 * p.pad);
     const auto fill = [&](std::vector<float>* plane, const std::vector<glm::vec3>& from) {
         for (int c = 0; c < 3; ++c) {
@@ -253,6 +282,15 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserS
     };
     fill(p.a, da);
     fill(p.b, db);
+    fill(p.value_a, in.half_a.pixels);
+    fill(p.value_b, in.half_b.pixels);
+    std::vector<glm::vec3> ma(n), mb(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        ma[i] = glm::max(albedo_a.pixels[i], glm::vec3(kModulationFloor));
+        mb[i] = glm::max(albedo_b.pixels[i], glm::vec3(kModulationFloor));
+    }
+    fill(p.albedo_a, ma);
+    fill(p.albedo_b, mb);
     fill(p.var_a, va);
     fill(p.var_b, vb);
     fill(p.albedo, albedo.pixels);
@@ -284,8 +322,10 @@ public:
             sum_a_[c].resize(strip);
             sum_b_[c].resize(strip);
         }
-        weight_a_.resize(strip);
-        weight_b_.resize(strip);
+        for (int c = 0; c < 3; ++c) {
+            weight_a_[c].resize(strip);
+            weight_b_[c].resize(strip);
+        }
         patch_a_.resize(std::size_t(p_.width));
         patch_b_.resize(std::size_t(p_.width));
         feature_.resize(std::size_t(p_.width));
@@ -300,8 +340,10 @@ public:
             std::fill(sum_a_[c].begin(), sum_a_[c].end(), 0.0f);
             std::fill(sum_b_[c].begin(), sum_b_[c].end(), 0.0f);
         }
-        std::fill(weight_a_.begin(), weight_a_.end(), 0.0f);
-        std::fill(weight_b_.begin(), weight_b_.end(), 0.0f);
+        for (int c = 0; c < 3; ++c) {
+            std::fill(weight_a_[c].begin(), weight_a_[c].end(), 0.0f);
+            std::fill(weight_b_[c].begin(), weight_b_[c].end(), 0.0f);
+        }
         const float k2 = s_.strength * s_.strength;
         const float patch_norm = 1.0f / (3.0f * float((2 * f + 1) * (2 * f + 1)));
         // Neighbour offsets in a fixed order: each output pixel sums its neighbours in this
@@ -314,8 +356,8 @@ public:
                     const std::size_t p0 = p_.at(-f, y), q0 = p_.at(-f + ox, y + oy);
                     float* da = &dist_a_[std::size_t(y - (y0 - f)) * std::size_t(dw)];
                     float* db = &dist_b_[std::size_t(y - (y0 - f)) * std::size_t(dw)];
-                    distances(p_.b, p_.var_b, p0, q0, dw, k2, da);  // filters a
-                    distances(p_.a, p_.var_a, p0, q0, dw, k2, db);  // filters b
+                    distances(p_.b, p_.var_b, p0, q0, dw, k2, p_.epsilon, da);  // filters a
+                    distances(p_.a, p_.var_a, p0, q0, dw, k2, p_.epsilon, db);  // filters b
                 }
                 // 2. Box over x of the patch: direct sums (every pixel the same additions
                 //    wherever its strip lies).
@@ -341,10 +383,10 @@ public:
                 const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
                 // The pixel itself always weighs 1 (its distance to itself is <= 0 and its
                 // features are its own): the weights never sum to 0.
-                const glm::vec3 fa =
-                    glm::vec3(sum_a_[0][t], sum_a_[1][t], sum_a_[2][t]) / weight_a_[t];
-                const glm::vec3 fb =
-                    glm::vec3(sum_b_[0][t], sum_b_[1][t], sum_b_[2][t]) / weight_b_[t];
+                const glm::vec3 fa = glm::vec3(sum_a_[0][t], sum_a_[1][t], sum_a_[2][t]) /
+                                     glm::vec3(weight_a_[0][t], weight_a_[1][t], weight_a_[2][t]);
+                const glm::vec3 fb = glm::vec3(sum_b_[0][t], sum_b_[1][t], sum_b_[2][t]) /
+                                     glm::vec3(weight_b_[0][t], weight_b_[1][t], weight_b_[2][t]);
                 const float sh = terms.share[i];
                 out.pixels[i] = terms.modulation[i] * (sh * fa + (1.0f - sh) * fb);
             }
@@ -355,9 +397,10 @@ private:
     /// Rousselle et al.'s per-pixel distance, summed over the channels, for n pixels from
     /// p0 and q0 = p0 + offset: the squared difference minus what the noise alone would give
     /// on average (Var p + min(Var p, Var q): a noisier neighbour is not favoured), in units
-    /// of k^2 (Var p + Var q).
+    /// of k^2 (Var p + Var q). (Dividing by k^2 (Var p + min(Var p, Var q)) instead was
+    /// measured: material_spheres.glb's relMSE gain at 64 spp fell from 4.3x to 2.6x.)
     static void distances(const std::vector<float>* u, const std::vector<float>* v, std::size_t p0,
-                          std::size_t q0, int n, float k2, float* out) {
+                          std::size_t q0, int n, float k2, float epsilon, float* out) {
         for (int i = 0; i < n; ++i) out[i] = 0.0f;
         for (int c = 0; c < 3; ++c) {
             const float* up = &u[c][p0];
@@ -367,8 +410,7 @@ private:
             for (int i = 0; i < n; ++i) {
                 const float diff = up[i] - uq[i];
                 const float lower = vq[i] < vp[i] ? vq[i] : vp[i];
-                out[i] +=
-                    (diff * diff - (vp[i] + lower)) / (kDistanceEpsilon + k2 * (vp[i] + vq[i]));
+                out[i] += (diff * diff - (vp[i] + lower)) / (epsilon + k2 * (vp[i] + vq[i]));
             }
         }
     }
@@ -448,20 +490,20 @@ private:
             ca[x] = exp_neg((da > 0.0f ? da : 0.0f) + feature[x]);
             cb[x] = exp_neg((db > 0.0f ? db : 0.0f) + feature[x]);
         }
-        float* wa = &weight_a_[row + std::size_t(x0)];
-        float* wb = &weight_b_[row + std::size_t(x0)];
-        for (int x = 0; x < n; ++x) {
-            wa[x] += ca[x];
-            wb[x] += cb[x];
-        }
         for (int c = 0; c < 3; ++c) {
             float* sa = &sum_a_[c][row + std::size_t(x0)];
             float* sb = &sum_b_[c][row + std::size_t(x0)];
-            const float* qa = &p_.a[c][q0];
-            const float* qb = &p_.b[c][q0];
+            float* wa = &weight_a_[c][row + std::size_t(x0)];
+            float* wb = &weight_b_[c][row + std::size_t(x0)];
+            const float* qa = &p_.value_a[c][q0];
+            const float* qb = &p_.value_b[c][q0];
+            const float* ma = &p_.albedo_a[c][q0];
+            const float* mb = &p_.albedo_b[c][q0];
             for (int x = 0; x < n; ++x) {
                 sa[x] += ca[x] * qa[x];
                 sb[x] += cb[x] * qb[x];
+                wa[x] += ca[x] * ma[x];
+                wb[x] += cb[x] * mb[x];
             }
         }
     }
@@ -470,7 +512,7 @@ private:
     const DenoiserSettings& s_;
     std::vector<float> dist_a_, dist_b_, rows_a_, rows_b_;
     std::vector<float> sum_a_[3], sum_b_[3];
-    std::vector<float> weight_a_, weight_b_;
+    std::vector<float> weight_a_[3], weight_b_[3];
     // One row each: accumulate's scratch.
     std::vector<float> patch_a_, patch_b_, feature_, feature_albedo_, feature_normal_;
 };

@@ -16,10 +16,13 @@
 //  - The film keeps sums, not squared sums, so a pixel's noise is estimated from two
 //    disjoint halves of its samples: (a - b)^2 measures it without any assumption about
 //    the image. The denoiser needs no tuning per scene.
-//  - Demodulation: the beauty is divided by the albedo (the first non-specular hit's
-//    reflectance) before filtering and multiplied back after. Textures live in the albedo,
-//    which is nearly noise-free, so they come back sharp; only the illumination is
-//    smoothed, and illumination is smooth where the features are.
+//  - Demodulation: the patches are compared on the beauty divided by the albedo (the first
+//    non-specular hit's reflectance), and a pixel's output is its albedo times the
+//    neighbours' radiance over their albedo, both averaged with its weights (a ratio of
+//    averages, not an average of ratios: a dark-albedo neighbour, such as an emitter's
+//    edge, is not multiplied up on its own). Textures live in the albedo, which is nearly
+//    noise-free, so they come back sharp; only the illumination is smoothed, and
+//    illumination is smooth where the features are.
 //  - Non-local means: a neighbour q counts for pixel p as much as the patch around q looks
 //    like the patch around p, measured in units of their noise (the distance of two noisy
 //    patches minus what their noise alone explains). Where the noise is zero, only
