@@ -8,6 +8,7 @@
 
 #include "wide_bvh.h"
 
+#include <librt/accel/bvh_stats.h>
 #include <librt/accel/bvh_traversal.h>
 #include <librt/geometry/hit.h>
 #include <librt/geometry/ray.h>
@@ -74,9 +75,11 @@ inline void prefetch_child(const WideBvhNode* nodes, const TriangleBlock* blocks
 
 /// Front-to-back traversal: the children a node's test hits are visited nearest first,
 /// the others deferred with their entry distance and skipped when a nearer hit is known.
-/// With AnyHit the walk stops at the first hit. Fills *hit (closest hit only).
-template <WideKernel K, bool AnyHit>
-inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit) {
+/// With AnyHit the walk stops at the first hit. Fills *hit (closest hit only). With Count it
+/// also adds what it did to *counts (a separate instantiation: the others count nothing).
+template <WideKernel K, bool AnyHit, bool Count = false>
+inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit,
+                          [[maybe_unused]] TraversalCounts* counts = nullptr) {
     if (bvh.nodes.empty() || !is_traceable(ray)) return false;
     const typename K::NodeRay node_ray = K::prepare_nodes(ray);
     const typename K::TriRay tri_ray = K::prepare_triangles(ray);
@@ -94,6 +97,7 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit)
     for (;;) {
         if (!WideBvhNode::is_leaf(current)) {
             const WideBvhNode& node = nodes[current];
+            if constexpr (Count) ++counts->nodes;
             alignas(32) float t_enter[kWideBvhWidth];
             std::uint32_t mask = K::intersect_node(node, node_ray, t_min, t_max, t_enter);
             if (mask != 0) {
@@ -109,6 +113,7 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit)
                     const bool swap = t_enter[i1] < t_enter[i0];
                     const std::uint32_t near = swap ? i1 : i0, far = swap ? i0 : i1;
                     prefetch_child(nodes, blocks, node.child[far]);
+                    if constexpr (Count) ++counts->pushes;
                     stack[sp++] = {node.child[far], t_enter[far]};
                     current = node.child[near];
                     continue;
@@ -125,6 +130,7 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit)
                 } while (mask != 0);
                 for (std::uint32_t k = base; k < sp; ++k)
                     prefetch_child(nodes, blocks, stack[k].ref);
+                if constexpr (Count) counts->pushes += sp - base - 1;  // one is taken at once
                 for (std::uint32_t k = base + 1; k < sp; ++k) {
                     const WideStackEntry e = stack[k];
                     std::uint32_t j = k;
@@ -138,7 +144,13 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit)
         } else {
             const std::uint32_t first = WideBvhNode::first_block(current);
             const std::uint32_t end = first + WideBvhNode::block_count(current);
+            if constexpr (Count) ++counts->leaves;
             for (std::uint32_t b = first; b < end; ++b) {
+                if constexpr (Count) {
+                    ++counts->blocks;
+                    for (const std::uint32_t id : blocks[b].id)
+                        counts->triangles += id != kInvalidId;
+                }
                 if constexpr (AnyHit) {
                     if (K::occluded_block(blocks[b], tri_ray, t_min, t_max)) return true;
                 } else if (K::intersect_block(blocks[b], tri_ray, t_min, t_max, hit_lane, hit_u,
@@ -159,6 +171,7 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit)
                 current = e.ref;
                 break;
             }
+            if constexpr (Count) ++counts->culled;
         }
     }
 }
