@@ -8,8 +8,9 @@
 //   - the rays traced through librt and through Embree in two functions of their own,
 //     trace_librt and trace_embree, for callgrind to count instructions and cache misses of
 //     each engine on the same rays:
-//       valgrind --tool=callgrind --cache-sim=yes --toggle-collect='*trace_librt*' \
-//           --toggle-collect='*trace_embree*' build/release/bench/librt_bvh_breakdown dragon anyhit
+//       valgrind --tool=callgrind --cache-sim=yes --collect-atstart=no
+//           --toggle-collect='*trace_librt*' --toggle-collect='*trace_embree*'
+//           build/release/bench/librt_bvh_breakdown dragon anyhit
 //     (valgrind has no AVX-512: under it librt and Embree both run their AVX2 code).
 //
 // Run: librt_bvh_breakdown <bunny|dragon|teapot1m> <incoherent|anyhit|primary> [rays]
