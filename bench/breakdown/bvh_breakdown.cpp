@@ -11,7 +11,9 @@
 //       valgrind --tool=callgrind --cache-sim=yes --collect-atstart=no
 //           --toggle-collect='*trace_librt*' --toggle-collect='*trace_embree*'
 //           build/release/bench/librt_bvh_breakdown dragon anyhit
-//     (valgrind has no AVX-512: under it librt and Embree both run their AVX2 code).
+//     (valgrind has no AVX-512: under it librt and Embree both run their AVX2 code). Each
+//     trace starts after 64 MiB of other data went through the caches; add
+//     --LL=33554432,16,64 for this machine's 32 MiB L3 (valgrind reads a bigger one here).
 //
 // Run: librt_bvh_breakdown <bunny|dragon|teapot1m> <incoherent|anyhit|primary> [rays]
 // (rays: how many of the row's rays, spread evenly over the set; default 65536).
@@ -76,6 +78,15 @@ std::size_t trace(const Engine& engine, const std::vector<Ray>& rays, bool any_h
     return trace(scene, rays, any_hit);
 }
 
+/// Writes and reads 64 MiB, so that neither engine starts its trace with the other's (or its
+/// own build's, or the counting pass's) data in a 32 MiB last-level cache.
+[[gnu::noinline]] void evict_caches() {
+    static std::vector<unsigned char> junk(std::size_t{64} << 20);
+    unsigned sum = 0;
+    for (std::size_t i = 0; i < junk.size(); i += 64) sum += junk[i]++;
+    if (sum == 1) std::puts("");  // keep the loop
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -120,11 +131,13 @@ int main(int argc, char** argv) {
         double(c.nodes) / n, double(c.leaves) / n, double(c.blocks) / n, double(c.triangles) / n,
         double(c.pushes) / n, double(c.culled) / n);
 
+    evict_caches();
     const std::size_t hits_librt = trace_librt(bvh, rays, any_hit);
     std::printf("librt hits: %zu\n", hits_librt);
     if (bench::embree_available()) {
         const bench::EmbreeScene scene(mesh);
         std::printf("embree: %.1f B/tri\n", double(scene.memory_bytes()) / tris);
+        evict_caches();
         std::printf("embree hits: %zu\n", trace_embree(scene, rays, any_hit));
     }
     return 0;
