@@ -74,7 +74,8 @@ inline void prefetch_child(const WideBvhNode* nodes, const TriangleBlock* blocks
 
 /// Front-to-back traversal: the children a node's test hits are visited nearest first,
 /// the others deferred with their entry distance and skipped when a nearer hit is known.
-/// With AnyHit the walk stops at the first hit. Fills *hit (closest hit only). With Count it
+/// With AnyHit the children go in slot order instead and the walk stops at the first hit.
+/// Fills *hit (closest hit only). With Count it
 /// also adds what it did to *counts (a separate instantiation: the others count nothing).
 template <WideKernel K, bool AnyHit, bool Count = false>
 inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit,
@@ -103,6 +104,21 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit,
                 const auto i0 = static_cast<std::uint32_t>(std::countr_zero(mask));
                 mask &= mask - 1;
                 if (mask == 0) {  // one child: go down without touching the stack
+                    current = node.child[i0];
+                    continue;
+                }
+                if constexpr (AnyHit) {
+                    // Any hit: any hit ends the walk and t_max does not shrink before it, so
+                    // the children go in slot order without their distances (as Embree's
+                    // any-hit walk): ~6 % more nodes visited than nearest first, ~6 % fewer
+                    // instructions, 1.03-1.04x the rays per second (docs/benchmarks.md).
+                    do {
+                        const auto i = static_cast<std::uint32_t>(std::countr_zero(mask));
+                        mask &= mask - 1;
+                        prefetch_child(nodes, blocks, node.child[i]);
+                        if constexpr (Count) ++counts->pushes;
+                        stack[sp++] = {node.child[i], t_min};
+                    } while (mask != 0);
                     current = node.child[i0];
                     continue;
                 }
@@ -166,7 +182,7 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit,
                 return found;
             }
             const WideStackEntry& e = stack[--sp];
-            if (e.t_enter <= t_max) {
+            if (AnyHit || e.t_enter <= t_max) {  // (any hit: nothing is nearer yet)
                 current = e.ref;
                 break;
             }
