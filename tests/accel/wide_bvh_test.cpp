@@ -398,6 +398,87 @@ TEST(WideBvh, SingleTriangleAndCopiesWork) {
     EXPECT_TRUE(moved.occluded(r));
 }
 
+/// What the counted traversal must report for a ray that hits nothing: every node whose box
+/// (and all its ancestors' boxes) the ray enters is tested, every such leaf's blocks too.
+void entered_counts(const WideBvh& wide, std::uint32_t node, const Ray& ray,
+                    TraversalCounts& want) {
+    ++want.nodes;
+    for (std::uint32_t i = 0; i < kWideBvhWidth; ++i) {
+        const std::uint32_t ref = wide.nodes[node].child[i];
+        if (ref == WideBvhNode::kEmptyChild) continue;
+        if (!intersect(wide.nodes[node].child_bounds(i), ray).hit()) continue;
+        if (!WideBvhNode::is_leaf(ref)) {
+            entered_counts(wide, ref, ray, want);
+            continue;
+        }
+        ++want.leaves;
+        const std::uint32_t first = WideBvhNode::first_block(ref);
+        for (std::uint32_t b = first; b < first + WideBvhNode::block_count(ref); ++b) {
+            ++want.blocks;
+            for (const std::uint32_t id : wide.blocks[b].id) want.triangles += id != kInvalidId;
+        }
+    }
+}
+
+TEST(WideBvh, CountedTraversalTestsExactlyTheEnteredBoxesOfAMiss) {
+    const auto tris = random_soup(3000, 11);
+    const TriangleBvh accel(tris);
+    const WideBvh& wide = *wide_bvh_of(accel);
+    std::size_t misses = 0, hits = 0;
+    for (const Ray& r : librt::testing::incoherent_rays(accel.bounds(), 2000, 12)) {
+        const bool hit = accel.intersect(r).valid();
+        const TraversalCounts closest = accel.count_traversal(r, false);
+        const TraversalCounts any = accel.count_traversal(r, true);
+        EXPECT_LE(closest.leaves, closest.blocks);
+        EXPECT_LE(closest.triangles, kTriangleBlockSize * closest.blocks);
+        if (!hit) {
+            ++misses;
+            // A miss never shrinks t_max: both queries walk every entered box, cull nothing.
+            TraversalCounts want;
+            entered_counts(wide, 0, r, want);
+            for (const TraversalCounts& got : {closest, any}) {
+                EXPECT_EQ(got.nodes, want.nodes);
+                EXPECT_EQ(got.leaves, want.leaves);
+                EXPECT_EQ(got.blocks, want.blocks);
+                EXPECT_EQ(got.triangles, want.triangles);
+                EXPECT_EQ(got.culled, 0u);
+            }
+        } else {
+            ++hits;
+            // Both walks end with a leaf test (any hit: the one that hit), neither culls
+            // on the way to it except closest hit's pops after its first hit.
+            EXPECT_GE(any.blocks, 1u);
+            EXPECT_GE(closest.blocks, 1u);
+            EXPECT_EQ(any.culled, 0u);
+        }
+    }
+    EXPECT_GT(misses, 100u);
+    EXPECT_GT(hits, 100u);
+}
+
+TEST(BvhStats, SurfaceAreaFiguresOfSmallTrees) {
+    // Binary: a root box [0, 2]^3 over two leaves [0, 1]^3 of three primitives each.
+    Bvh bvh;
+    bvh.nodes.push_back({BBox({0, 0, 0}, {2, 2, 2}), 1, 0});
+    bvh.nodes.push_back({BBox({0, 0, 0}, {1, 1, 1}), 0, 3});
+    bvh.nodes.push_back({BBox({1, 1, 1}, {2, 2, 2}), 3, 3});
+    bvh.prim_indices = {0, 1, 2, 3, 4, 5};
+    bvh.depth = 1;
+    const BvhStats binary = bvh_stats(bvh);
+    EXPECT_DOUBLE_EQ(binary.node_sah, 1.0);
+    EXPECT_DOUBLE_EQ(binary.leaf_sah, 2 * (6.0 / 24.0) * 3);  // area 6 of 24, three each
+    // Wide: one leaf of one block filling the root's box.
+    const std::vector<Triangle> two{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
+                                    {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}}};
+    const BvhStats wide = TriangleBvh(two).stats();
+    EXPECT_DOUBLE_EQ(wide.node_sah, 1.0);
+    EXPECT_DOUBLE_EQ(wide.leaf_sah, 1.0);
+    // Larger trees: the root counts once, and a ray through the root tests some leaf.
+    const BvhStats soup = TriangleBvh(random_soup(2000, 3)).stats();
+    EXPECT_GT(soup.node_sah, 1.0);
+    EXPECT_GT(soup.leaf_sah, 0.0);
+}
+
 TEST(SahBuilder, ParallelBuildDoesNotDependOnThreadCount) {
     const auto tris = random_soup(40000, 6);
     std::vector<BBox> boxes;

@@ -154,6 +154,10 @@ bool TriangleBvh::occluded(const Ray& ray) const {
 
 BvhStats TriangleBvh::stats() const { return tree_ ? detail::wide_bvh_stats(*tree_) : BvhStats{}; }
 
+TraversalCounts TriangleBvh::count_traversal(const Ray& ray, bool any_hit) const {
+    return tree_ ? detail::count_wide_traversal(*tree_, ray, any_hit) : TraversalCounts{};
+}
+
 std::size_t TriangleBvh::memory_bytes() const { return tree_ ? tree_->memory_bytes() : 0; }
 
 TriangleList::TriangleList(const TriangleMesh& mesh) {

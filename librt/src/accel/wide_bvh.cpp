@@ -198,10 +198,22 @@ BvhStats wide_bvh_stats(const WideBvh& wide) {
     s.node_count = wide.nodes.size();
     s.depth = wide.depth;
     s.bytes = wide.memory_bytes();
+    const float root_area = wide.bounds.surface_area();
+    // Area of a child's box relative to the root's (0 for a flat scene, whose SAH is moot).
+    auto relative = [&](const WideBvhNode& node, std::uint32_t i) {
+        return root_area > 0.0f ? double(node.child_bounds(i).surface_area()) / root_area : 0.0;
+    };
+    if (!wide.empty()) s.node_sah = 1.0;  // the root, whose box is the bounds
     for (const WideBvhNode& node : wide.nodes) {
-        for (const std::uint32_t ref : node.child) {
-            if (ref == WideBvhNode::kEmptyChild || !WideBvhNode::is_leaf(ref)) continue;
+        for (std::uint32_t i = 0; i < kWideBvhWidth; ++i) {
+            const std::uint32_t ref = node.child[i];
+            if (ref == WideBvhNode::kEmptyChild) continue;
+            if (!WideBvhNode::is_leaf(ref)) {
+                s.node_sah += relative(node, i);
+                continue;
+            }
             ++s.leaf_count;
+            s.leaf_sah += relative(node, i) * WideBvhNode::block_count(ref);
             std::uint32_t size = 0;
             const std::uint32_t first = WideBvhNode::first_block(ref);
             for (std::uint32_t b = first; b < first + WideBvhNode::block_count(ref); ++b)

@@ -4,6 +4,7 @@
 
 #include "wide_bvh.h"
 
+#include <librt/accel/bvh_stats.h>
 #include <librt/accel/simd.h>
 #include <librt/geometry/hit.h>
 #include <librt/geometry/ray.h>
@@ -15,6 +16,12 @@ struct WideKernels {
     PrimitiveHit (*intersect)(const WideBvh&, const Ray&);  ///< closest hit
     bool (*occluded)(const WideBvh&, const Ray&);           ///< any hit
 };
+
+/// One query through the scalar kernel, counting what the traversal does. Every path makes
+/// the same decisions (their node and leaf tests agree bit for bit), so these are every
+/// path's counts.
+[[nodiscard]] TraversalCounts count_wide_traversal(const WideBvh& bvh, const Ray& ray,
+                                                   bool any_hit);
 
 /// The kernels of `path`; the caller checks simd_path_supported(path) first.
 [[nodiscard]] WideKernels wide_kernels(SimdPath path);

@@ -95,4 +95,15 @@ bool scalar_occluded(const WideBvh& bvh, const Ray& ray) {
 
 WideKernels scalar_wide_kernels() { return {&scalar_intersect, &scalar_occluded}; }
 
+TraversalCounts count_wide_traversal(const WideBvh& bvh, const Ray& ray, bool any_hit) {
+    TraversalCounts counts;
+    if (any_hit) {
+        traverse_wide<ScalarKernel, true, true>(bvh, ray, nullptr, &counts);
+    } else {
+        PrimitiveHit hit;
+        traverse_wide<ScalarKernel, false, true>(bvh, ray, &hit, &counts);
+    }
+    return counts;
+}
+
 }  // namespace librt::detail

@@ -55,6 +55,10 @@ public:
     /// Node, leaf, depth and memory figures of the 8-wide tree (a leaf is a run of blocks of
     /// four triangles; its size counts triangles), by one walk over its nodes.
     [[nodiscard]] BvhStats stats() const;
+    /// What intersect(ray) (any_hit false) or occluded(ray) (true) does: nodes, leaves and
+    /// triangles tested, by a separate counting instantiation of the same traversal (slower;
+    /// the counts are those of every SIMD path, which all make the same decisions).
+    [[nodiscard]] TraversalCounts count_traversal(const Ray& ray, bool any_hit) const;
     /// Bytes of the wide BVH and its triangle blocks (stats().bytes without the walk).
     [[nodiscard]] std::size_t memory_bytes() const;
 
