@@ -4,6 +4,7 @@
 #include <librt/export.h>
 #include <librt/film/camera.h>
 #include <librt/film/film.h>
+#include <librt/film/pixel_region.h>
 #include <librt/integrator/integrator.h>
 #include <librt/render/adaptive_sampling.h>
 #include <librt/render/pass_combination.h>
@@ -54,6 +55,21 @@ struct RenderSettings {
     AdaptiveSampling adaptive;
     int tile_size =
         16;  ///< side of the square tiles handed to threads (>= 1; capped at the image size)
+    /// The pixels to render (film/pixel_region.h; pbrt-v4's pixel bounds, Blender's render
+    /// region); the default is the whole image. render() and render_progressive() keep the
+    /// camera's film and image size and render the region's pixels alone, each exactly as
+    /// the whole-image render does (same samples, same sums, same bits; crop() cuts them
+    /// out). Pixels outside hold no samples, except with adaptive sampling: a pixel's count
+    /// depends on the whole image's pilot (its noise sets the share of the budget), so the
+    /// pilot is rendered over the whole image and the rest over the region. Training passes
+    /// (path guiding) still learn over the whole image, but are not joined to a region's
+    /// image (PassCombination weighs whole images), so an integrator that keeps them gives
+    /// the region its own samples only. A splatting integrator is refused (its light paths
+    /// land on any pixel: a region could not hold the whole render's pixels), as are
+    /// render_block, render_block_to_counts and render_mpi (their blocks and tiles say the
+    /// pixels). Must be whole() or non-empty with x0, y0 >= 0 (validate), and lie within
+    /// the camera's image (checked by the render).
+    PixelRegion region;
     ProgressCallback progress;  ///< progress reports (see ProgressCallback); empty = none
     const std::atomic<bool>* cancel =
         nullptr;  ///< when set and it becomes true, the render stops early
@@ -162,7 +178,8 @@ struct RenderBlock {
 /// identical to the one-shot render). `integrator` must have been preprocessed (and, for
 /// path guiding, trained by train(); train() says how kept training passes join a
 /// film rendered this way) for `scene`; settings.samples_per_pixel is not used, and
-/// settings.adaptive must be off (throws librt::Error naming it: the block says the samples).
+/// settings.adaptive must be off and settings.region whole (throws librt::Error naming them:
+/// the block says the samples and pixels).
 /// The film must have the camera's size; with AOVs, its AOV sums are rendered in the same
 /// pass. A splatting integrator's splats are added to film.splats (created at the camera's
 /// size when empty; another size throws), over the whole image whatever the block covers:
