@@ -14,6 +14,7 @@
 #include <librt/core/error.h>
 #include <librt/core/untrusted_text.h>
 #include <librt/film/framing.h>
+#include <librt/film/pixel_region.h>
 #include <librt/integrator/bdpt.h>
 #include <librt/integrator/integrators.h>
 #include <librt/io/file_digest.h>
@@ -29,6 +30,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -63,9 +65,10 @@ constexpr std::array<Named<IntegratorKind>, 3> kIntegrators{{
     {"brute", IntegratorKind::BruteForce},
 }};
 
-constexpr std::array<Named<ToneCurve>, 2> kToneCurves{{
+constexpr std::array<Named<ToneCurve>, 3> kToneCurves{{
     {"clamp", ToneCurve::Clamp},
     {"aces", ToneCurve::Aces},
+    {"agx", ToneCurve::Agx},
 }};
 
 constexpr std::array<Named<LightChoiceOption>, 3> kLightChoices{{
@@ -131,7 +134,8 @@ struct Options {
     // defaults"): Sobol' samples, adaptive sampling (Options() sets them in `sampling`),
     // paths ended by Russian roulette rather than a low cap.
     int spp = 16;
-    std::string size;  // "WxH"; empty = the camera's aspect, long side 640
+    std::string size;    // "WxH"; empty = the camera's aspect, long side 640
+    std::string region;  // "X,Y,W,H": render and write only these pixels; empty = all
     std::string camera;
     std::string look_from;       // "X,Y,Z"; empty = the camera's
     std::string look_at;         // "X,Y,Z"; empty = the camera's (with --look-from: the centre)
@@ -222,6 +226,7 @@ std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
         {"--output", o.output},
         {"--spp", std::to_string(o.spp)},
         {"--size", given(o.size)},
+        {"--region", given(o.region)},
         {"--camera", given(o.camera)},
         {"--look-from", given(o.look_from)},
         {"--look-at", given(o.look_at)},
@@ -388,7 +393,7 @@ void check_output_options(const Options& o) {
         if (used == 0 || used != o.exposure.size() || !std::isfinite(ev) || std::abs(ev) > 64.0f)
             bad("--exposure", o.exposure, "must be in [-64, 64] (EV stops) or auto");
     }
-    if (!o.tonemap.kind) bad("--tonemap", o.tonemap.typed, "must be aces or clamp");
+    if (!o.tonemap.kind) bad("--tonemap", o.tonemap.typed, "must be aces, agx or clamp");
     const bool png = lower_extension(o.output) == ".png";
     if (o.png_bits != 8 && o.png_bits != 16)
         bad("--png-bits", std::to_string(o.png_bits), "must be 8 or 16");
@@ -414,6 +419,60 @@ void check_output_options(const Options& o) {
 void check_denoise(const Options& o, bool distributed) {
     if (distributed && o.denoise.value_or(false))
         bad("--denoise", "on", "is not available under mpirun (use --no-denoise)");
+}
+
+/// --region's text "X,Y,W,H" as the pixels [X, X + W) x [Y, Y + H): four whole numbers,
+/// X and Y >= 0, W and H >= 1, within the largest image (65536 a side).
+PixelRegion parse_region(const std::string& text) {
+    long long v[4] = {0, 0, 0, 0};
+    std::size_t at = 0;
+    for (int i = 0; i < 4; ++i) {
+        const std::size_t end = i < 3 ? text.find(',', at) : text.size();
+        if (end == std::string::npos)
+            bad("--region", text, "must be X,Y,W,H: four whole numbers (pixels, origin top-left)");
+        const std::string part = text.substr(at, end - at);
+        std::size_t used = 0;
+        try {
+            v[i] = std::stoll(part, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        // std::stoll would also take leading blanks and a '+'.
+        const bool starts_well =
+            !part.empty() && (std::isdigit(static_cast<unsigned char>(part[0])) || part[0] == '-');
+        if (!starts_well || used != part.size())
+            bad("--region", text, "must be X,Y,W,H: four whole numbers (pixels, origin top-left)");
+        at = end + 1;
+    }
+    if (v[0] < 0 || v[1] < 0 || v[2] < 1 || v[3] < 1)
+        bad("--region", text, "X and Y must be >= 0, W and H >= 1");
+    if (v[0] + v[2] > 65536 || v[1] + v[3] > 65536)
+        bad("--region", text, "must lie within the image (at most 65536 pixels a side)");
+    return {int(v[0]), int(v[1]), int(v[0] + v[2]), int(v[1] + v[3])};
+}
+
+/// --region within the width x height image.
+void check_region_fits(const Options& o, const PixelRegion& r, int width, int height) {
+    if (r.x1 > width || r.y1 > height)
+        bad("--region", o.region,
+            ("must lie within the " + std::to_string(width) + "x" + std::to_string(height) +
+             " image (X + W <= " + std::to_string(width) + ", Y + H <= " + std::to_string(height) +
+             ")")
+                .c_str());
+}
+
+/// --region: well formed, within --size when given, and only where a crop can hold the
+/// whole render's pixels: not under mpirun (ranks render whole tiles of the frame), not
+/// with light paths that land on any pixel (bdpt, --caustic-paths).
+void check_region(const Options& o, const SceneFileOptions& file_options, bool distributed) {
+    if (o.region.empty()) return;
+    const PixelRegion r = parse_region(o.region);
+    if (distributed) bad("--region", o.region, "is not available under mpirun");
+    if (o.integrator_kind() == IntegratorKind::Bidirectional || o.caustic_paths)
+        bad("--region", o.region,
+            "needs camera paths alone (--integrator path or brute, no --caustic-paths): light "
+            "paths land on any pixel, so a crop cannot hold the full render's pixels");
+    if (!o.size.empty()) check_region_fits(o, r, file_options.width, file_options.height);
 }
 
 /// A point typed as "X,Y,Z" (three finite numbers).
@@ -485,6 +544,7 @@ SceneFileOptions check_command_line(const Options& o, const apps::MpiJob& job) {
     check_choices(o);
     file_options.diffuse_model = *o.diffuse.kind;  // named by check_choices
     check_integrator_options(o);
+    check_region(o, file_options, job.distributed());
     check_time_limit(o, job.distributed());
     check_preview(o, job.distributed(), job.rank() == 0);
     apps::validate_sampling(o.sampling);
@@ -591,6 +651,12 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     CameraSettings camera_settings = loaded.camera;
     camera_settings.pixel_jitter = PixelJitter::Gaussian;  // anti-aliasing
     const Camera camera(apps::with_filter(camera_settings, o.sampling));
+    // Without --size the image's size is the camera's, known only now.
+    PixelRegion region;
+    if (!o.region.empty()) {
+        region = parse_region(o.region);
+        check_region_fits(o, region, camera.width(), camera.height());
+    }
     job.setup_succeeded();  // under mpirun: every rank's set-up worked (else this throws)
     if (!o.quiet && root) {
         std::printf(
@@ -640,6 +706,7 @@ int render_file(const Options& o, const apps::MpiJob& job) {
     out.quiet = o.quiet;
     out.denoise = o.denoise_wanted(false);
     out.preview = o.preview;
+    out.region = region;
     out.started = t0;
     return apps::render_progressively_and_write(loaded.scene, camera, *integrator, out);
 }
@@ -663,6 +730,10 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--size", o.size,
                    "Image size WIDTHxHEIGHT (default: the camera's aspect ratio, long side 640)");
+    app.add_option("--region", o.region,
+                   "Render only the pixels X,Y,W,H of the --size image (origin top-left): a "
+                   "W x H output whose pixels are the full render's, bit for bit (its "
+                   "denoising, --noise-target and --exposure auto see the crop alone)");
     app.add_option("--camera", o.camera,
                    "The file's camera: index (in node order) or name; default: the first; "
                    "auto: frame the model from the front, above (as a file without cameras "
@@ -726,7 +797,9 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     add_choice(app, "--tonemap", o.tonemap, kToneCurves,
                "PNG tone curve after the exposure: aces (filmic: highlights roll off, mid grey "
-               "as clamp shows it) or clamp (values above 1 cut to white)");
+               "as clamp shows it), agx (Blender 4's default view: bright saturated lights "
+               "pass to white, mid grey as clamp shows it) or clamp (values above 1 cut to "
+               "white)");
     app.add_option("--png-bits", o.png_bits, "PNG bits per channel: 8 or 16")
         ->capture_default_str();
     app.add_flag("--transparent-background", o.transparent_background,

@@ -11,7 +11,7 @@
 #   failures   one rank whose scene file is missing, and one rank killed by SIGKILL while
 #              rendering, each end the job with a non-zero exit, a message naming that rank
 #              and no output file (nor temporary); Ctrl-C (SIGINT to mpirun) stops every
-#              rank and writes nothing; --time-limit is refused under mpirun.
+#              rank and writes nothing; --time-limit and --region are refused under mpirun.
 #   mismatch   ranks given different jobs (MPMD: `mpirun -np 1 app args : -np 1 app other`):
 #              another scene file, --integrator bdpt (whose splats once left the ranks
 #              waiting for each other forever), --spp, --guiding or the output's format on
@@ -257,4 +257,7 @@ echo "Ctrl-C under mpirun: exit $status, 'interrupted: nothing written', nothing
 # A time limit cannot stop ranks at the same pass: refused before anything is loaded.
 expect_failure "--time-limit under mpirun" "time-limit = .* not available under mpirun" "$out" \
   -np 2 "$app" "$scene" --spp 4 --time-limit 5 "${common[@]}"
+# Nor can ranks rendering tiles of the frame render a crop of it: --region is refused.
+expect_failure "--region under mpirun" "region = 0,0,8,8: is not available under mpirun" "$out" \
+  -np 2 "$app" "$scene" --spp 4 --region 0,0,8,8 "${common[@]}"
 rm -rf "$dir"

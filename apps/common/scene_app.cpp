@@ -94,6 +94,7 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
     const bool exr = lower_extension(o.output) == ".exr";
     ps.aovs = exr || o.denoise || o.alpha;
     ps.render.adaptive.enabled = o.adaptive;
+    ps.render.region = o.region;
     // The denoiser's first half: the film at spp / 2, or (for a render the time limit may
     // stop) at the last power of two below it, so that a stopped render still has a part
     // holding at least a quarter of its samples. Adaptive sampling: at half the pilot, the
@@ -117,7 +118,12 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
     std::chrono::steady_clock::time_point last_preview{};
     bool previewed = false;
     const auto write_preview = [&](const Film& f) {
-        write_output(o.preview, resolve(f), png_look(o), &f);
+        if (o.region.whole()) {
+            write_output(o.preview, resolve(f), png_look(o), &f);
+        } else {  // the region's pixels, as a film of its own size
+            const Film shown = crop(f, o.region);
+            write_output(o.preview, resolve(shown), png_look(o), &shown);
+        }
         last_preview = std::chrono::steady_clock::now();
         previewed = true;
     };
@@ -132,6 +138,12 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
     }
     const RenderStats stats = render_progressive(scene, camera, integrator, film, ps, &image);
     progress.finish();
+    // A region: what is written and denoised is its pixels, as films of its own size.
+    if (!o.region.whole()) {
+        film = crop(film, o.region);
+        image = crop(image, o.region);
+        if (half_at != 0) half = crop(half, o.region);
+    }
     const bool interrupted = stats.cancelled || interrupt_flag()->load();
     if (stats.passes == 0) {
         std::cerr << "interrupted before the first pass finished: nothing written\n";
@@ -175,10 +187,18 @@ int render_progressively_and_write(const Scene& scene, const Camera& camera,
             noise_summary = text;
         }
         const double rate = stats.seconds > 0.0 ? double(stats.samples) / stats.seconds : 0.0;
+        std::string region_summary;
+        if (!o.region.whole()) {
+            char text[96];
+            std::snprintf(text, sizeof text, " (region at %d,%d of %dx%d)", o.region.x0,
+                          o.region.y0, camera.width(), camera.height());
+            region_summary = text;
+        }
         std::printf(
-            "%dx%d, %u of %d spp in %d passes, %u threads: render %.2f s (%.2f M "
+            "%dx%d%s, %u of %d spp in %d passes, %u threads: render %.2f s (%.2f M "
             "samples/s)%s, total %.2f s, peak memory %.0f MiB\n",
-            camera.width(), camera.height(), stats.samples_per_pixel, o.spp, stats.passes,
+            film.width, film.height, region_summary.c_str(), stats.samples_per_pixel, o.spp,
+            stats.passes,
             o.threads > 0 ? unsigned(o.threads) : std::max(1u, std::thread::hardware_concurrency()),
             stats.seconds, rate * 1e-6, noise_summary.c_str(),
             std::chrono::duration<double>(std::chrono::steady_clock::now() - o.started).count(),

@@ -4,6 +4,7 @@
 #include <librt/core/tone_curve.h>
 #include <librt/film/camera.h>
 #include <librt/film/film.h>
+#include <librt/film/pixel_region.h>
 #include <librt/integrator/integrators.h>
 #include <librt/render/render_memory.h>
 #include <librt/sampling/sampler.h>
@@ -46,6 +47,10 @@ struct ProgressiveOutput {
     /// after the first pass, then after a pass at most once a second, and at the end; empty =
     /// none.
     std::string preview;
+    /// --region: only these pixels are rendered (RenderSettings::region), and the output, the
+    /// preview and the denoiser see them alone, as an image of the region's size (the
+    /// crop's edges are the denoiser's image edges). The default: the whole image.
+    PixelRegion region;
     /// When the app started its work (the summary's "total" counts from here).
     std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 };

@@ -1,7 +1,9 @@
 // The display transform of rt_render's PNGs (core/tone_curve.h, issue 42 item 6): the clamp
 // curve is the identity on [0, 1]; the filmic ACES curve keeps 0 black, shows mid grey as the
 // clamp does, is monotonic and bounded, keeps greys grey and rolls highlights off below
-// white; auto exposure puts the log-average luminance at mid grey (Reinhard et al. 2002).
+// white; AgX keeps black, shows mid grey as the clamp does with the slope its sigmoid sets,
+// is monotone in each channel, keeps greys grey and saturates to white; auto exposure puts
+// the log-average luminance at mid grey (Reinhard et al. 2002).
 
 #include <librt/core/error.h>
 #include <librt/core/tone_curve.h>
@@ -85,4 +87,98 @@ TEST(ToneCurve, AutoExposurePutsTheLogAverageAtMidGrey) {
     EXPECT_EQ(auto_exposure_scale(nan), 1.0f);
     Image black(1, 1);
     EXPECT_EQ(auto_exposure_scale(black), 1800.0f);
+}
+
+// AgX (tone_curve.h): properties that follow from its construction, not from earlier output.
+TEST(ToneCurve, AgxKeepsBlackAndShowsMidGreyAsClampDoes) {
+    EXPECT_EQ(apply_tone_curve(ToneCurve::Agx, glm::vec3(0.0f)), glm::vec3(0.0f));
+    // At or below the bottom of the log range (10 stops under mid grey) everything is black.
+    EXPECT_EQ(apply_tone_curve(ToneCurve::Agx, glm::vec3(0.18f * std::exp2(-10.5f))),
+              glm::vec3(0.0f));
+    // Mid grey is the sigmoid's pivot, whose display value decodes to 0.18; the outset keeps
+    // a grey grey.
+    const glm::vec3 grey = apply_tone_curve(ToneCurve::Agx, glm::vec3(0.18f));
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(grey[c], 0.18f, 1e-6f);
+    // The slope at mid grey: the sigmoid's 2.4 per unit of the 16.5-stop log range, through
+    // the 2.4 exponent, d/dstops (y^2.4) = 2.4 y^1.4 * 2.4 / 16.5 at y = 0.18^(1/2.4).
+    // A central difference over 0.01 stops either side: the limbs' curvature (which grows as
+    // (s dx)^1.5 from the pivot) and float rounding stay below 1e-4 of the slope there.
+    const float h = 0.01f;
+    const float up = apply_tone_curve(ToneCurve::Agx, glm::vec3(0.18f * std::exp2(h))).y;
+    const float down = apply_tone_curve(ToneCurve::Agx, glm::vec3(0.18f * std::exp2(-h))).y;
+    const double slope = 2.4 * std::pow(0.18, 1.4 / 2.4) * 2.4 / 16.5;
+    EXPECT_NEAR((up - down) / (2.0 * h), slope, 1e-3 * slope);
+}
+
+TEST(ToneCurve, AgxSaturatesToWhiteAndStaysInRange) {
+    const float inf = std::numeric_limits<float>::infinity();
+    // 6.5 stops above mid grey is the top of the range: white (within rounding), never above.
+    for (const glm::vec3 v : {glm::vec3(0.18f * std::exp2(6.5f)), glm::vec3(1e30f), glm::vec3(inf),
+                              glm::vec3(1e9f, 0.0f, 0.0f), glm::vec3(0.0f, inf, 0.0f)}) {
+        const glm::vec3 y = apply_tone_curve(ToneCurve::Agx, v);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_LE(y[c], 1.0f) << v.x << ' ' << v.y << ' ' << v.z;
+            EXPECT_NEAR(y[c], 1.0f, 1e-5f) << v.x << ' ' << v.y << ' ' << v.z;
+        }
+    }
+    // NaN and negative count as 0.
+    EXPECT_EQ(apply_tone_curve(ToneCurve::Agx, glm::vec3(NAN, -5.0f, 0.0f)), glm::vec3(0.0f));
+    const glm::vec3 odd = apply_tone_curve(ToneCurve::Agx, glm::vec3(NAN, -5.0f, 3.0f));
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_GE(odd[c], 0.0f);
+        EXPECT_LE(odd[c], 1.0f);
+    }
+}
+
+TEST(ToneCurve, AgxIsMonotoneInEachChannelAndKeepsGreysGrey) {
+    for (const float other : {0.0f, 0.05f, 1.0f, 20.0f}) {
+        for (int c = 0; c < 3; ++c) {
+            float last = -1.0f;
+            for (float v = 1e-5f; v < 1e5f; v *= 1.05f) {
+                glm::vec3 in(other);
+                in[c] = v;
+                const float y = apply_tone_curve(ToneCurve::Agx, in)[c];
+                EXPECT_GE(y, last) << "channel " << c << " = " << v << ", others " << other;
+                EXPECT_GE(y, 0.0f);
+                EXPECT_LE(y, 1.0f);
+                last = y;
+            }
+        }
+    }
+    // Along the greys: strictly increasing inside the log range, and neutral.
+    float last = -1.0f;
+    for (float v = 0.18f * std::exp2(-9.9f); v < 0.18f * std::exp2(6.4f); v *= 1.05f) {
+        const glm::vec3 y = apply_tone_curve(ToneCurve::Agx, glm::vec3(v));
+        EXPECT_GT(y.y, last) << v;
+        EXPECT_NEAR(y.x, y.y, 1e-6f) << v;
+        EXPECT_NEAR(y.z, y.y, 1e-6f) << v;
+        last = y.y;
+    }
+    // Two equal channels stay equal (the inset and outset pull every channel toward one
+    // grey, and the curve is the same on each): a bright red passes to white through pinks,
+    // not skewed toward yellow, and still brightens.
+    float red_last = 0.0f;
+    for (const float v : {1.0f, 4.0f, 16.0f, 50.0f}) {
+        const glm::vec3 y = apply_tone_curve(ToneCurve::Agx, glm::vec3(v, 0.1f, 0.1f));
+        EXPECT_EQ(y.y, y.z) << v;
+        EXPECT_GT(y.x, y.y) << v;
+        EXPECT_GE(y.y, red_last) << v;
+        red_last = y.y;
+    }
+}
+
+TEST(ToneCurve, AgxIsDeterministicAndNamed) {
+    Image image(3, 2);
+    for (int i = 0; i < 6; ++i) {
+        const float f = float(i);
+        image.pixels[i] = glm::vec3(0.01f * f, 0.7f * f, 3.0f / (f + 1.0f));
+    }
+    const Image a = display_encode(image, 1.5f, ToneCurve::Agx);
+    const Image b = display_encode(image, 1.5f, ToneCurve::Agx);
+    for (int i = 0; i < 6; ++i) {
+        EXPECT_EQ(a.pixels[i], b.pixels[i]);
+        const glm::vec3 d = apply_tone_curve(ToneCurve::Agx, 1.5f * image.pixels[i]);
+        EXPECT_EQ(a.pixels[i], glm::vec3(srgb_encode(d.x), srgb_encode(d.y), srgb_encode(d.z)));
+    }
+    EXPECT_EQ(to_string(ToneCurve::Agx), "agx");
 }

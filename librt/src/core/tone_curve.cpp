@@ -35,6 +35,79 @@ float aces_mid_grey_gain() {
     return float(v / y);
 }
 
+// AgX (Troy Sobotka, 2022; Blender 4.0's default view "AgX", whose OCIO configuration
+// publishes its parameters). Written from that description: inset, log2 encoding, sigmoid,
+// 2.4-exponent decoding, outset.
+
+/// The inset: every channel pulled a fraction a of the way to the grey w . c. Blender's
+/// published sRGB-to-AgX inset matrix is, to 3-4 digits, (1 - a) I + a 1 w^T with these a
+/// and w (its off-diagonal entries are nearly constant per column: a w_j); in this form
+/// the outset, its exact inverse, has the closed form (I - a 1 w^T) / (1 - a) (Sherman-
+/// Morrison, as w sums to 1), and both keep greys grey.
+constexpr double kAgxInset = 0.2;
+constexpr double kAgxGreyWeights[3] = {0.2118, 0.3922, 0.3960};  // sum 1
+
+/// The log2 encoding's range in stops relative to mid grey 0.18: [-10, +6.5].
+constexpr double kAgxStopsBelow = 10.0;
+constexpr double kAgxStopsAbove = 6.5;
+/// The sigmoid's slope at mid grey, and the powers of its toe and shoulder.
+constexpr double kAgxSlope = 2.4;
+constexpr double kAgxToePower = 1.5;
+constexpr double kAgxShoulderPower = 1.5;
+/// The exponent decoding the sigmoid's output to display-linear light.
+constexpr double kAgxDisplayExponent = 2.4;
+
+/// The sigmoid's limb: t / (1 + t^p)^(1/p), rising from 0 with slope 1 toward 1.
+double agx_limb(double t, double p) { return t / std::pow(1.0 + std::pow(t, p), 1.0 / p); }
+
+/// The scale S with S limb(A / S) = B: the limb stretched by S reaches height B where the
+/// pivot's tangent reaches height A (A > B), so S = A / ((A / B)^p - 1)^(1/p).
+double agx_limb_scale(double a, double b, double p) {
+    return a / std::pow(std::pow(a / b, p) - 1.0, 1.0 / p);
+}
+
+/// The sigmoid on the log-encoded x in [0, 1]: through the pivot (mid grey's x, its display
+/// value encoded with the 2.4 exponent) with slope kAgxSlope on both sides (continuous to the
+/// first derivative), a toe down to (0, 0) and a shoulder up to (1, 1).
+struct AgxSigmoid {
+    double x_pivot = kAgxStopsBelow / (kAgxStopsBelow + kAgxStopsAbove);
+    double y_pivot = std::pow(0.18, 1.0 / kAgxDisplayExponent);
+    double toe_scale = agx_limb_scale(kAgxSlope * x_pivot, y_pivot, kAgxToePower);
+    double shoulder_scale =
+        agx_limb_scale(kAgxSlope * (1.0 - x_pivot), 1.0 - y_pivot, kAgxShoulderPower);
+
+    [[nodiscard]] double operator()(double x) const {
+        if (x <= 0.0) return 0.0;  // at or below the range: black, exactly
+        if (x >= 1.0) return 1.0;
+        if (x < x_pivot)
+            return y_pivot -
+                   toe_scale * agx_limb(kAgxSlope * (x_pivot - x) / toe_scale, kAgxToePower);
+        return y_pivot + shoulder_scale * agx_limb(kAgxSlope * (x - x_pivot) / shoulder_scale,
+                                                   kAgxShoulderPower);
+    }
+};
+
+glm::vec3 agx(const glm::vec3& rgb) {
+    static const AgxSigmoid sigmoid;
+    const double* w = kAgxGreyWeights;
+    // Inset (all coefficients >= 0: an infinite channel gives +inf, never inf - inf).
+    const double grey_in = w[0] * rgb.x + w[1] * rgb.y + w[2] * rgb.z;
+    const double lo = std::log2(0.18) - kAgxStopsBelow;
+    double display[3];
+    for (int c = 0; c < 3; ++c) {
+        const double inset = (1.0 - kAgxInset) * double(rgb[c]) + kAgxInset * grey_in;
+        // log2 over [lo, lo + 16.5] mapped to [0, 1] (log2(0) = -inf: black).
+        const double x = (std::log2(inset) - lo) / (kAgxStopsBelow + kAgxStopsAbove);
+        display[c] = std::pow(sigmoid(std::clamp(x, 0.0, 1.0)), kAgxDisplayExponent);
+    }
+    // Outset: the inset's inverse, in display-linear light.
+    const double grey_out = w[0] * display[0] + w[1] * display[1] + w[2] * display[2];
+    glm::vec3 out;
+    for (int c = 0; c < 3; ++c)
+        out[c] = float((display[c] - kAgxInset * grey_out) / (1.0 - kAgxInset));
+    return out;
+}
+
 float finite_or_zero(float x) { return std::isnan(x) || x < 0.0f ? 0.0f : x; }
 
 }  // namespace
@@ -45,6 +118,8 @@ std::string to_string(ToneCurve curve) {
             return "clamp";
         case ToneCurve::Aces:
             return "aces";
+        case ToneCurve::Agx:
+            return "agx";
     }
     return "?";
 }
@@ -59,6 +134,8 @@ glm::vec3 apply_tone_curve(ToneCurve curve, const glm::vec3& rgb) {
         c = kAcesIn * c;
         c = glm::vec3(aces_tone_scale(c.x), aces_tone_scale(c.y), aces_tone_scale(c.z));
         c = kAcesOut * c;
+    } else if (curve == ToneCurve::Agx) {
+        c = agx(c);
     }
     return glm::clamp(c, glm::vec3(0.0f), glm::vec3(1.0f));
 }

@@ -526,6 +526,8 @@ void validate(const MpiRenderSettings& s) {
         throw Error("tile_size = " + std::to_string(s.tile_size) + ": must be in [1, 1024]");
     }
     validate(s.render);
+    if (!s.render.region.whole())
+        throw Error("render.region: render_mpi renders the whole image (its tiles say the pixels)");
 }
 
 Film render_mpi(MPI_Comm comm, const Scene& scene, const Camera& camera, Integrator& integrator,

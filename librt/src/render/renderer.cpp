@@ -56,6 +56,41 @@ void check_film_matches(const Film& film, const Camera& camera) {
     }
 }
 
+/// settings.region in the camera's image (the whole image by default); throws librt::Error
+/// naming it when it leaves the image.
+PixelRegion region_of(const RenderSettings& settings, const Camera& camera) {
+    return region_in(settings.region, camera.width(), camera.height());
+}
+
+/// A region render's refusal of a splatting integrator (asked after preprocess()).
+void check_region_integrator(const RenderSettings& settings, const Integrator& integrator) {
+    if (!settings.region.whole() && integrator.splats()) {
+        throw Error(
+            "region: the integrator splats (light paths land on any pixel, so a region "
+            "cannot hold the whole render's pixels): render the whole image");
+    }
+}
+
+/// The radiance records of `region` alone (for the noise estimate of a region render).
+Film region_records(const Film& film, const PixelRegion& region) {
+    Film out;
+    out.width = region.width();
+    out.height = region.height();
+    out.pixels.reserve(std::size_t(out.width) * std::size_t(out.height));
+    for (int y = region.y0; y < region.y1; ++y) {
+        for (int x = region.x0; x < region.x1; ++x) out.pixels.push_back(film.at(x, y));
+    }
+    return out;
+}
+
+/// The block of pass samples [first, first + count): over `region`, except adaptive
+/// sampling's pilot (the uniform stage of a plan with one), which covers the whole film.
+RenderBlock pass_block(const RenderPlan& plan, const PixelRegion& region, const Film& film,
+                       std::uint32_t first, std::uint32_t count, const std::uint32_t* ends) {
+    if (plan.pilot > 0 && ends == nullptr) return {0, 0, film.width, film.height, first, count};
+    return {region.x0, region.y0, region.x1, region.y1, first, count};
+}
+
 }  // namespace
 
 void validate(const BlockSettings& s) { validate_threads_and_tiles(s); }
@@ -67,6 +102,12 @@ void validate(const RenderSettings& s) {
     }
     validate_threads_and_tiles(s);
     validate(s.adaptive);
+    const PixelRegion& r = s.region;
+    if (!r.whole() && (r.x0 < 0 || r.y0 < 0 || r.x1 <= r.x0 || r.y1 <= r.y0)) {
+        throw Error("region [" + std::to_string(r.x0) + ", " + std::to_string(r.x1) + ") x [" +
+                    std::to_string(r.y0) + ", " + std::to_string(r.y1) +
+                    "): must be non-empty with x0, y0 >= 0 (or all 0: the whole image)");
+    }
 }
 
 void validate(const ProgressiveSettings& s) {
@@ -175,9 +216,12 @@ Image render_onto(const Scene& scene, const Camera& camera, Integrator& integrat
                   const RenderSettings& settings, bool may_keep, RenderStats* stats) {
     const Clock::time_point start = Clock::now();
     const double cpu_start = cpu_now();
+    const PixelRegion region = region_of(settings, camera);
     integrator.preprocess(scene);
+    check_region_integrator(settings, integrator);
     RenderPlan plan = plan_of(settings);
-    plan.keep = may_keep && keeps_training_passes(plan, integrator);
+    // A region's image is not joined to kept passes: their weights are the whole image's.
+    plan.keep = may_keep && settings.region.whole() && keeps_training_passes(plan, integrator);
     PassCombination kept;
     const RenderStats training =
         train(scene, camera, integrator, settings, plan.keep ? &kept : nullptr);
@@ -202,7 +246,7 @@ Image render_onto(const Scene& scene, const Camera& camera, Integrator& integrat
         }
         const BlockOutcome pass =
             run_block(scene, camera, integrator, film, {},
-                      {0, 0, film.width, film.height, first, count}, settings, tick, ends);
+                      pass_block(plan, region, film, first, count, ends), settings, tick, ends);
         outcome.samples += pass.samples;
         outcome.nonfinite += pass.nonfinite;
         outcome.complete = pass.complete;
@@ -248,7 +292,8 @@ Image render_onto(const Scene& scene, const Camera& camera, Integrator& integrat
 Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
              const RenderSettings& settings, RenderStats* stats) {
     validate(settings);
-    check_image_size(camera.width(), camera.height());  // before allocating anything
+    (void)region_of(settings, camera);                  // before allocating anything
+    check_image_size(camera.width(), camera.height());  // likewise
     Film film(camera.width(), camera.height());
     return render_onto(scene, camera, integrator, film, settings, true, stats);
 }
@@ -256,6 +301,7 @@ Image render(const Scene& scene, const Camera& camera, Integrator& integrator,
 RenderStats render(const Scene& scene, const Camera& camera, Integrator& integrator, Film& film,
                    const RenderSettings& settings) {
     validate(settings);
+    (void)region_of(settings, camera);
     if (film.width == 0 && film.height == 0) {
         check_image_size(camera.width(), camera.height());
         film = Film(camera.width(), camera.height());
@@ -394,6 +440,7 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
     const double start = clock();
     const double cpu_start = cpu_now();
     const auto elapsed = [&] { return clock() - start; };
+    const PixelRegion region = region_of(settings.render, camera);
     if (film.width == 0 && film.height == 0) {
         check_image_size(camera.width(), camera.height());
         film = Film(camera.width(), camera.height(), settings.aovs);
@@ -414,6 +461,11 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
                     " samples per pixel: an adaptive progressive render starts from an empty "
                     "film (its pilot decides every pixel's count)");
     }
+    if (!rs.region.whole() && first != 0) {
+        throw Error("film holds " + std::to_string(first) +
+                    " samples per pixel: a progressive render of a region starts from an "
+                    "empty film");
+    }
     RenderStats stats;
     stats.samples_per_pixel = first;
     // Fraction of the work done once every pixel holds `samples` (and, with a time limit,
@@ -431,8 +483,9 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
     Film half;
     if (first < target) {
         integrator.preprocess(scene);
-        plan.keep =
-            image != nullptr && first <= target / 2 && keeps_training_passes(plan, integrator);
+        check_region_integrator(rs, integrator);
+        plan.keep = image != nullptr && first <= target / 2 && rs.region.whole() &&
+                    keeps_training_passes(plan, integrator);
         const RenderStats training =
             train(scene, camera, integrator, rs, plan.keep ? &kept : nullptr);
         stats.training_passes = training.training_passes;
@@ -462,7 +515,7 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
             return false;
         }
         work = film;
-        const RenderBlock block{0, 0, film.width, film.height, n, count};
+        const RenderBlock block = pass_block(plan, region, film, n, count, ends);
         const Tick tick = [&](double done) {
             if (rs.progress) {
                 const double seconds = elapsed();
@@ -492,7 +545,10 @@ RenderStats render_progressive(const Scene& scene, const Camera& camera, Integra
     runner.passed = [&](std::uint32_t n) {
         ++stats.passes;
         stats.samples_per_pixel = n;
-        if (estimate_noise) target_noise.observe(film, n);
+        // A region's noise is its own: the pixels outside gain no samples.
+        if (estimate_noise && rs.region.whole()) target_noise.observe(film, n);
+        if (estimate_noise && !rs.region.whole())
+            target_noise.observe(region_records(film, region), n);
         if (settings.pass_done) settings.pass_done(film, n);
         if (rs.progress) {
             const double seconds = elapsed();

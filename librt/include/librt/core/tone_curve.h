@@ -23,9 +23,18 @@ enum class ToneCurve {
     /// Clamp shows it. Highlights roll off and saturated lights desaturate toward white as
     /// film does, where Clamp cuts them flat.
     Aces,
+    /// Troy Sobotka's AgX, Blender 4's default view, as its published description builds it:
+    /// an inset matrix pulls every channel toward a weighted grey (purity attenuated before
+    /// the curve, so bright saturated lights pass to white without skewing in hue), a log2
+    /// encoding over a fixed range of 16.5 stops around mid grey (10 below, 6.5 above), a
+    /// sigmoid contrast curve per channel (slope 2.4 at mid grey, toe and shoulder of power
+    /// 1.5), decoded with the 2.4 exponent, then the outset matrix (the inset's inverse)
+    /// restores the purity of the mid tones. Mid grey 0.18 is shown as Clamp shows it;
+    /// scene values 10 stops or more below it are black, 6.5 stops or more above it white.
+    Agx,
 };
 
-/// The curve's name as the apps spell it: "clamp", "aces".
+/// The curve's name as the apps spell it: "clamp", "aces", "agx".
 [[nodiscard]] LIBRT_API std::string to_string(ToneCurve curve);
 
 /// Display-linear RGB in [0, 1] of exposed scene-linear `rgb` through `curve`. NaN and

@@ -4,6 +4,7 @@
 #include <librt/export.h>
 #include <librt/film/camera.h>
 #include <librt/film/film.h>
+#include <librt/film/pixel_region.h>
 #include <librt/integrator/integrator.h>
 #include <librt/render/adaptive_sampling.h>
 #include <librt/render/pass_combination.h>
@@ -67,9 +68,24 @@ struct RenderSettings : BlockSettings {
     /// (adaptive_sampling.h; on by default): render(), render_progressive() and
     /// render_mpi(). Below 4 samples per pixel every pixel gets the same.
     AdaptiveSampling adaptive;
+    /// The pixels to render (film/pixel_region.h; pbrt-v4's pixel bounds, Blender's render
+    /// region); the default is the whole image. render() and render_progressive() keep the
+    /// camera's film and image size and render the region's pixels alone, each exactly as
+    /// the whole-image render does (same samples, same sums, same bits; crop() cuts them
+    /// out). Pixels outside hold no samples, except with adaptive sampling: a pixel's count
+    /// depends on the whole image's pilot (its noise sets the share of the budget), so the
+    /// pilot is rendered over the whole image and the rest over the region. Training passes
+    /// (path guiding) still learn over the whole image, but are not joined to a region's
+    /// image (PassCombination weighs whole images), so an integrator that keeps them gives
+    /// the region its own samples only. A splatting integrator is refused (its light paths
+    /// land on any pixel: a region could not hold the whole render's pixels), as is
+    /// render_mpi (its tiles say the pixels); render_block and render_block_to_counts take
+    /// BlockSettings, which has none (their blocks say the pixels). Must be whole() or non-empty
+    /// with x0, y0 >= 0 (validate), and lie within the camera's image (checked by the render).
+    PixelRegion region;
 
     /// The settings a block rendering takes (render_block, render_block_to_counts): these
-    /// without samples_per_pixel and adaptive, which a block does not honour (it says its
+    /// without samples_per_pixel, adaptive and region, which a block does not honour (it says its
     /// samples itself). Passing a RenderSettings there does not compile, so that dropping
     /// them is said, not silent.
     [[nodiscard]] const BlockSettings& block() const { return *this; }
