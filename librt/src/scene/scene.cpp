@@ -357,9 +357,13 @@ void Scene::keep_triangle_lights(std::vector<Light>& candidates) {
         const double w = (double(p.x) + double(p.y) + double(p.z)) / 3.0;
         weight[i] = std::isfinite(w) && w > 0.0 ? w : 0.0;
         if (!(weight[i] > 0.0)) continue;
-        const auto& t = std::get<TriangleLight>(candidates[i].source);
-        const double area = 0.5 * double(glm::length(glm::cross(t.p1 - t.p0, t.p2 - t.p0)));
-        radiance[i] = weight[i] / (kPi * area * (t.two_sided ? 2.0 : 1.0));
+        // The area from the light-level API (the variant stays in light/): a triangle
+        // light's sample_le draws its origin uniformly by area, density 1 / A.
+        const float per_area = pdf_le(candidates[i], SceneSphere{}, glm::vec3(0.0f),
+                                      glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(0.0f, 0.0f, 1.0f))
+                                   .pos;
+        const double sides = candidates[i].one_sided ? 1.0 : 2.0;
+        radiance[i] = double(per_area) * weight[i] / (kPi * sides);
         total += weight[i];
         weighted_radiance += weight[i] * radiance[i];
         ++emitting;
