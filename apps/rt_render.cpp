@@ -148,6 +148,7 @@ struct Options {
     Choice<LightChoiceOption> light_choice = choice_of(kLightChoices, LightChoiceOption::Auto);
     Choice<IntegratorKind> integrator = choice_of(kIntegrators, IntegratorKind::Path);
     bool caustic_paths = false;  // the path tracer's caustics traced from the lights
+    bool all_emitters = false;   // every emissive triangle a light (TriangleLightSettings 0)
     float light_paths = 1.0f;    // bdpt: fraction of samples tracing a light subpath
     int roulette_depth = -1;     // first rouletted bounce; -1 = the integrator's own
     int threads = 0;
@@ -239,6 +240,7 @@ std::vector<std::pair<std::string, std::string>> job_items(const Options& o) {
         {"--light-choice", name_of(kLightChoices, o.light_choice_kind())},
         {"--integrator", name_of(kIntegrators, o.integrator_kind())},
         {"--caustic-paths", on(o.caustic_paths)},
+        {"--all-emitters", on(o.all_emitters)},
         {"--light-paths", exact(o.light_paths)},
         {"--roulette-depth", std::to_string(o.roulette_depth)},
         {"--seed", std::to_string(o.seed)},
@@ -640,6 +642,7 @@ int render_file(const Options& o, const apps::MpiJob& job) {
                       << " (--no-default-light: none; --env FILE: your own)\n";
     }
     if (environment) loaded.scene.add_environment_light(*environment, !o.transparent_background);
+    if (o.all_emitters) loaded.scene.set_triangle_light_settings({0.0f, 0.0f});
     const auto t1 = std::chrono::steady_clock::now();
     try {
         loaded.scene.commit();
@@ -778,6 +781,11 @@ int main(int argc, char** argv) {
                    "Bounces before Russian roulette may end a path (path, brute and bdpt; -1: "
                    "the integrator's default, 3)")
         ->capture_default_str();
+    app.add_flag("--all-emitters", o.all_emitters,
+                 "Light-sample every emissive triangle of positive power; by default the "
+                 "negligible ones (below 1 % of the emitters' mean power, or 100 times dimmer "
+                 "than their typical radiance) are left to BSDF sampling (docs/"
+                 "materials-and-lights.md)");
     add_choice(app, "--light-choice", o.light_choice, kLightChoices,
                "How a shading point chooses the light it samples: power (by power alone), "
                "bounded (by power times a bound of its contribution there; a light tree "

@@ -13,6 +13,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <optional>
 
 namespace librt {
 namespace {
@@ -23,6 +25,15 @@ glm::vec2 uv_at(const TriangleLight& light, glm::vec2 b) {
     return (1.0f - b.x - b.y) * light.uv0 + b.x * light.uv1 + b.y * light.uv2;
 }
 
+bool positive(const glm::vec3& v) { return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f; }
+
+// The most texels emits_nowhere reads to prove a triangle black: a triangle's share of a
+// 2048^2 atlas is far below it; one spanning more is left to the mean's estimate.
+constexpr std::size_t kMaxTexelsScanned = std::size_t{1} << 14;
+// mean_texture_estimate's most strata a side (1024 lookups), beyond which it averages
+// the texels themselves (up to 16 kMaxTexelsScanned of them: a 512^2 footprint).
+constexpr float kMaxMeanStrata = 32.0f;
+
 }  // namespace
 
 glm::vec3 radiance_at(const TriangleLight& light, glm::vec2 b) {
@@ -32,14 +43,63 @@ glm::vec3 radiance_at(const TriangleLight& light, glm::vec2 b) {
 
 glm::vec3 mean_texture_estimate(const TriangleLight& light) {
     if (!light.texture) return glm::vec3(1.0f);
-    constexpr int n = 4;
+    const ImageTexture& tex = *light.texture;
+    // The texels the triangle covers: its uv area times the texture's size.
+    const glm::vec2 d1 = light.uv1 - light.uv0, d2 = light.uv2 - light.uv0;
+    const float cross = d1.x * d2.y - d1.y * d2.x;
+    const float w = float(tex.width()), h = float(tex.height());
+    const float texels = 0.5f * std::fabs(cross) * w * h;
+    if (texels > kMaxMeanStrata * kMaxMeanStrata / 2 && std::isfinite(texels)) {
+        // Many texels: the mean of the texels whose centres lie in the uv triangle. Each
+        // texel's bilinear hat integrates to one texel's area, so that is the integral up to
+        // the texels along the edges (a lamp of a few texels in thousands: exact).
+        const glm::vec2 lo = glm::min(glm::min(light.uv0, light.uv1), light.uv2);
+        const glm::vec2 hi = glm::max(glm::max(light.uv0, light.uv1), light.uv2);
+        // Texel centres at u = (i + 0.5) / w and v = 1 - (j + 0.5) / h (rows run down),
+        // i and j unwrapped (lookup wraps them).
+        const float i0 = std::ceil(lo.x * w - 0.5f), i1 = std::floor(hi.x * w - 0.5f);
+        const float j0 = std::ceil((1.0f - hi.y) * h - 0.5f),
+                    j1 = std::floor((1.0f - lo.y) * h - 0.5f);
+        if ((i1 - i0 + 1.0f) * (j1 - j0 + 1.0f) <= float(kMaxTexelsScanned) * 16.0f) {
+            glm::vec3 sum(0.0f);
+            std::size_t count = 0;
+            for (float j = j0; j <= j1; j += 1.0f)
+                for (float i = i0; i <= i1; i += 1.0f) {
+                    const glm::vec2 q{(i + 0.5f) / w, 1.0f - (j + 0.5f) / h};
+                    // Barycentrics of q in the uv triangle.
+                    const glm::vec2 e = q - light.uv0;
+                    const float b1 = (e.x * d2.y - e.y * d2.x) / cross;
+                    const float b2 = (d1.x * e.y - d1.y * e.x) / cross;
+                    if (b1 < 0.0f || b2 < 0.0f || b1 + b2 > 1.0f) continue;
+                    sum += tex.lookup(q);
+                    ++count;
+                }
+            if (count >= 64) return sum / float(count);
+        }
+    }
+    // Few texels (or too many to visit): lookups at the centres of an n x n stratification
+    // of the triangle, about two a texel (the bilinear texture varies within a texel only
+    // linearly), n from 4 to kMaxMeanStrata. sample_uniform_triangle is area-preserving, so
+    // the strata have equal areas.
+    const float wanted = std::isfinite(texels) ? std::ceil(std::sqrt(2.0f * texels)) : 0.0f;
+    const int n = int(std::clamp(wanted, 4.0f, kMaxMeanStrata));
     glm::vec3 sum(0.0f);
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
-            const glm::vec2 u{(float(i) + 0.5f) / n, (float(j) + 0.5f) / n};
-            sum += light.texture->lookup(uv_at(light, sample_uniform_triangle(u)));
+            const glm::vec2 u{(float(i) + 0.5f) / float(n), (float(j) + 0.5f) / float(n)};
+            sum += tex.lookup(uv_at(light, sample_uniform_triangle(u)));
         }
     return sum / float(n * n);
+}
+
+bool emits_nowhere(const TriangleLight& light) {
+    if (!positive(light.radiance)) return true;
+    if (!light.texture) return false;
+    // A hit's uv is a convex combination of the corners': within their box.
+    const glm::vec2 lo = glm::min(glm::min(light.uv0, light.uv1), light.uv2);
+    const glm::vec2 hi = glm::max(glm::max(light.uv0, light.uv1), light.uv2);
+    const std::optional<glm::vec3> m = light.texture->max_over(lo, hi, kMaxTexelsScanned);
+    return m && !positive(*m * light.radiance);
 }
 
 namespace {

@@ -2,10 +2,13 @@
 #include <librt/core/finite.h>
 #include <librt/material/texture.h>
 
+#include <glm/common.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <sstream>
 
 namespace librt {
@@ -126,6 +129,65 @@ Texel ImageTexture::filtered(glm::vec2 uv, const Fetch& fetch) const {
     const Texel top = (1.0f - ax.w1) * at(ax.i0, ay.i0) + ax.w1 * at(ax.i1, ay.i0);
     const Texel bottom = (1.0f - ax.w1) * at(ax.i0, ay.i1) + ax.w1 * at(ax.i1, ay.i1);
     return (1.0f - ay.w1) * top + ay.w1 * bottom;
+}
+
+namespace {
+
+// The texel indices along one axis (n texels) that lookups at coordinates c in [c0, c1]
+// (0 at the first column / row, in texture widths) may read: first and count of an index
+// run before wrapping, or the whole axis when that run would cover it.
+struct TexelRun {
+    int first = 0;
+    int count = 0;
+};
+TexelRun texel_run(float c0, float c1, int n, TextureWrap mode, TextureFilter filter) {
+    const TexelRun whole{0, n};
+    if (!std::isfinite(c0) || !std::isfinite(c1) || c1 - c0 >= 1.0f) return whole;
+    if (mode == TextureWrap::ClampToEdge) {
+        c0 = std::clamp(c0, -1.0f, 2.0f);
+        c1 = std::clamp(c1, -1.0f, 2.0f);
+    } else {
+        // Shifted by whole periods (1, or 2 when mirrored) so that the indices stay small.
+        const float period = mode == TextureWrap::Repeat ? 1.0f : 2.0f;
+        const float shift = period * std::floor(c0 / period);
+        c0 -= shift;
+        c1 -= shift;
+    }
+    // Bilinear reads floor(c n - 0.5) and the next texel, nearest floor(c n); one texel
+    // more on each side covers the rounding of both.
+    const float half = filter == TextureFilter::Linear ? 0.5f : 0.0f;
+    const int i0 = int(std::floor(c0 * float(n) - half)) - 1;
+    const int i1 =
+        int(std::floor(c1 * float(n) - half)) + (filter == TextureFilter::Linear ? 2 : 1);
+    if (i1 - i0 + 1 >= n) return whole;
+    return {i0, i1 - i0 + 1};
+}
+
+int wrapped(int i, int n, TextureWrap mode) {
+    if (mode == TextureWrap::Repeat) return wrap(i, n);
+    if (mode == TextureWrap::ClampToEdge) return std::clamp(i, 0, n - 1);
+    return mirror(i, n);
+}
+
+}  // namespace
+
+std::optional<glm::vec3> ImageTexture::max_over(glm::vec2 lo, glm::vec2 hi,
+                                                std::size_t budget) const {
+    if (empty()) return glm::vec3(0.0f);
+    // Rows run down: v in [lo.y, hi.y] is c = 1 - v in [1 - hi.y, 1 - lo.y].
+    const TexelRun x = texel_run(lo.x, hi.x, width_, sampling_.wrap_u, sampling_.filter);
+    const TexelRun y =
+        texel_run(1.0f - hi.y, 1.0f - lo.y, height_, sampling_.wrap_v, sampling_.filter);
+    if (std::size_t(x.count) * std::size_t(y.count) > budget) return std::nullopt;
+    // A non-finite uv reads texel (0, 0).
+    const bool finite_box = finite(lo) && finite(hi);
+    glm::vec3 m = finite_box ? glm::vec3(std::numeric_limits<float>::lowest()) : texel_at(0);
+    for (int j = 0; j < y.count; ++j) {
+        const int row = wrapped(y.first + j, height_, sampling_.wrap_v);
+        for (int i = 0; i < x.count; ++i)
+            m = glm::max(m, texel(wrapped(x.first + i, width_, sampling_.wrap_u), row));
+    }
+    return m;
 }
 
 glm::vec3 ImageTexture::lookup(glm::vec2 uv) const {

@@ -1,5 +1,6 @@
 #include "material/bsdf_dispatch.h"
 
+#include <librt/core/constants.h>
 #include <librt/core/error.h>
 #include <librt/material/bsdf.h>
 #include <librt/scene/scene.h>
@@ -7,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -271,6 +273,9 @@ void Scene::make_triangle_lights() {
     // Emission textures are shared by the lights through one copy each: the lights are
     // plain values that outlive any reallocation or copy of the scene's textures.
     std::vector<std::shared_ptr<const ImageTexture>> shared(textures_.size());
+    // Every emissive triangle that may emit, before keep_triangle_lights chooses among
+    // them; triangle_light_ holds indices into it until then.
+    std::vector<Light> candidates;
     for (std::uint32_t id = 0; id < objects_.size(); ++id) {
         const Object& o = objects_[id];
         if (light_of_object(id) != kInvalidId) continue;
@@ -329,13 +334,74 @@ void Scene::make_triangle_lights() {
                 tl.uv0 = m.emission_texture.map(corner(i.x, {0.0f, 0.0f}));
                 tl.uv1 = m.emission_texture.map(corner(i.y, {1.0f, 0.0f}));
                 tl.uv2 = m.emission_texture.map(corner(i.z, {0.0f, 1.0f}));
-                tl.mean_texture = mean_texture_estimate(tl);
             }
-            triangle_light_.push_back(std::uint32_t(lights_.size()));
-            lights_.push_back({std::move(tl), kInvalidId, !m.double_sided});
-            lights_.back().camera_visible = o.camera_visible;
+            // Provably black everywhere (an emission texture black over its whole
+            // footprint): no light, and no emitter for BSDF sampling to find either.
+            if (emits_nowhere(tl)) {
+                triangle_light_.push_back(kInvalidId);
+                continue;
+            }
+            if (tl.texture) tl.mean_texture = mean_texture_estimate(tl);
+            triangle_light_.push_back(std::uint32_t(candidates.size()));
+            candidates.push_back({std::move(tl), kInvalidId, !m.double_sided});
+            candidates.back().camera_visible = o.camera_visible;
         }
     }
+    keep_triangle_lights(candidates);
+}
+
+void Scene::keep_triangle_lights(std::vector<Light>& candidates) {
+    // The power each candidate is chosen by (LightSampler's weight, the mean over channels),
+    // its mean radiance (power / (pi area sides), a Lambertian emitter's), their mean
+    // over the candidates of positive power, and the power-weighted mean radiance.
+    std::vector<double> weight(candidates.size()), radiance(candidates.size(), 0.0);
+    double total = 0.0, weighted_radiance = 0.0;
+    std::size_t emitting = 0;
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+        const glm::vec3 p = power(candidates[i]);
+        const double w = (double(p.x) + double(p.y) + double(p.z)) / 3.0;
+        weight[i] = std::isfinite(w) && w > 0.0 ? w : 0.0;
+        if (!(weight[i] > 0.0)) continue;
+        // The area from the light-level API (the variant stays in light/): a triangle
+        // light's sample_le draws its origin uniformly by area, density 1 / A.
+        const float per_area = pdf_le(candidates[i], SceneSphere{}, glm::vec3(0.0f),
+                                      glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(0.0f, 0.0f, 1.0f))
+                                   .pos;
+        const double sides = candidates[i].one_sided ? 1.0 : 2.0;
+        radiance[i] = double(per_area) * weight[i] / (kPi * sides);
+        total += weight[i];
+        weighted_radiance += weight[i] * radiance[i];
+        ++emitting;
+    }
+    // Below either cut-off a candidate is left to BSDF sampling.
+    const TriangleLightSettings& s = triangle_light_settings_;
+    const double power_cutoff =
+        emitting > 0 ? double(s.negligible_power) * total / double(emitting) : 0.0;
+    const double radiance_cutoff =
+        total > 0.0 ? double(s.negligible_radiance) * weighted_radiance / total : 0.0;
+    std::vector<std::uint32_t> index(candidates.size(), kInvalidId);
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+        if (!(weight[i] > 0.0) || weight[i] < power_cutoff || radiance[i] < radiance_cutoff) {
+            unsampled_emitters_ = true;
+            continue;
+        }
+        index[i] = std::uint32_t(lights_.size());
+        lights_.push_back(std::move(candidates[i]));
+    }
+    for (std::uint32_t& l : triangle_light_)
+        if (l != kInvalidId) l = index[l];
+}
+
+void Scene::set_triangle_light_settings(const TriangleLightSettings& settings) {
+    const auto check = [](float f, const char* name) {
+        if (!(f >= 0.0f && f <= 1.0f))
+            throw Error(std::string("TriangleLightSettings::") + name + " = " + std::to_string(f) +
+                        ": must be in [0, 1]");
+    };
+    check(settings.negligible_power, "negligible_power");
+    check(settings.negligible_radiance, "negligible_radiance");
+    triangle_light_settings_ = settings;
+    committed_ = false;
 }
 
 SceneSphere Scene::bounding_sphere() const {

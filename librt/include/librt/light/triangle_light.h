@@ -83,9 +83,40 @@ struct TriangleLight {
 [[nodiscard]] LIBRT_API glm::vec3 power(const TriangleLight& light);
 /// The radiance emitted at barycentrics (b1, b2) (the point p0 + b1 (p1 - p0) + b2 (p2 - p0)).
 [[nodiscard]] LIBRT_API glm::vec3 radiance_at(const TriangleLight& light, glm::vec2 b);
-/// A cheap estimate of the texture's mean over the triangle (for power only, which steers
-/// the light choice and never biases it): the average of 16 lookups at the centres of a
-/// 4 x 4 stratification of the triangle (1 without a texture).
+/// An estimate of the texture's mean over the triangle (for power only, which steers the
+/// light choice and never biases it); 1 without a texture. Over more than 512 texels (and
+/// a uv box of at most 2^18): the mean of the texels whose centres its uvs cover (exact
+/// but for the texels along its edges); else the average of lookups at the centres of an
+/// n x n stratification of the triangle, n^2 about twice the texels covered (n 4 to 32).
 [[nodiscard]] LIBRT_API glm::vec3 mean_texture_estimate(const TriangleLight& light);
+/// True when the light provably emits nothing anywhere: its radiance factor is 0, or every
+/// texel a lookup within its corners' uv box can read is black (ImageTexture::max_over).
+/// False when that is not known (a box of more than 2^14 texels is not searched).
+[[nodiscard]] LIBRT_API bool emits_nowhere(const TriangleLight& light);
+
+/// Which emissive triangles Scene::commit makes TriangleLights of (the light sampler's
+/// lights). A triangle left out still emits wherever a ray hits it: BSDF sampling finds it,
+/// and since no light strategy can, its emission there gets MIS weight 1 (the estimator
+/// stays unbiased; only its variance there depends on the choice). Left out always: the
+/// triangles that provably emit nothing (emits_nowhere: black over their whole texture
+/// footprint), which are then no emitters at all. Both fractions below are of the scene's
+/// own emissive triangles (scale-free, deterministic), and a mesh of equal triangles loses
+/// none of its triangles to either; 0 turns a rule off. Each in [0, 1].
+struct TriangleLightSettings {
+    /// Left out: a triangle whose power (power(), the mean over channels) is below this
+    /// fraction of the mean power of the emissive triangles of positive power (slivers, the
+    /// bilinear fringe of a lamp's texels). Each emits less than f times the mean, so all
+    /// of them together at most this fraction of the power the triangles emit.
+    float negligible_power = 0.01f;
+    /// Left out: a triangle whose mean radiance (its power over pi, area and sides) is
+    /// below this fraction of the triangles' power-weighted mean radiance (the radiance
+    /// the average emitted watt leaves with): a dim glow beside bright lamps, such as an
+    /// 8-bit emission map's near-black noise (values 1-25 of 255 against white lamps).
+    /// Light sampling gains little over BSDF sampling on such a wide, dim emitter, and its
+    /// many triangles would crowd the light tree. A dim emitter that is the only light of
+    /// its part of the scene (a large panel 100 times dimmer than a lamp elsewhere) is
+    /// left out too: 0 keeps it.
+    float negligible_radiance = 0.01f;
+};
 
 }  // namespace librt

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -74,6 +75,12 @@ public:
     /// Filtered alpha at uv, as lookup() filters colour; 1 when the texture has no alpha.
     [[nodiscard]] float lookup_alpha(glm::vec2 uv) const;
 
+    /// Per channel, the largest texel any lookup() at a uv in the box [lo, hi] reads (the
+    /// sampling's wrap modes and filter, one texel of margin for rounding): an upper bound
+    /// of lookup() there, 0 where the box is black. Empty when more than `budget` texels
+    /// would have to be read.
+    [[nodiscard]] std::optional<glm::vec3> max_over(glm::vec2 lo, glm::vec2 hi,
+                                                    std::size_t budget) const;
     /// The linear RGB of the texel in column x, row y (row 0 at the top), without wrapping.
     [[nodiscard]] glm::vec3 texel(int x, int y) const {
         return texel_at(std::size_t(y) * std::size_t(width_) + std::size_t(x));

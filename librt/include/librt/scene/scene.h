@@ -13,6 +13,7 @@
 #include <librt/geometry/triangle.h>
 #include <librt/light/light.h>
 #include <librt/light/light_sampler.h>
+#include <librt/light/triangle_light.h>
 #include <librt/material/material.h>
 #include <librt/material/texture.h>
 
@@ -165,6 +166,15 @@ public:
     /// True when some material is one-sided (Material::double_sided false).
     [[nodiscard]] bool has_one_sided_surfaces() const { return one_sided_; }
 
+    /// Which emissive triangles commit() makes lights of (see TriangleLightSettings; by
+    /// default the negligible ones are left to BSDF sampling). Un-commits the scene. Throws
+    /// librt::Error for a negligible_power outside [0, 1] (or NaN).
+    void set_triangle_light_settings(const TriangleLightSettings& settings);
+    /// What set_triangle_light_settings set (the defaults until then).
+    [[nodiscard]] const TriangleLightSettings& triangle_light_settings() const {
+        return triangle_light_settings_;
+    }
+
     /// Builds the acceleration structures: after the last add_*, before any query; again
     /// without changes, nothing. Out of memory: librt::Error, the scene left uncommitted.
     void commit();
@@ -270,7 +280,8 @@ public:
     /// TriangleLight per emissive triangle of the mesh and instance objects, object by
     /// object (an instance's triangles mapped to the world by its matrix; one-sided when
     /// the material is not double_sided, textured by its emission texture; cut-out
-    /// emitters are left to BSDF sampling).
+    /// emitters, triangles black over their texture footprint and those of negligible
+    /// power, TriangleLightSettings, are left to BSDF sampling).
     [[nodiscard]] std::span<const Light> lights() const { return lights_; }
     /// Chooses the light a shading point samples; valid after commit().
     [[nodiscard]] const LightSampler& light_sampler() const { return light_sampler_; }
@@ -334,6 +345,9 @@ private:
     std::uint32_t add_light(Light light);
     std::uint32_t add_surface_light(Light light, TriangleMesh surface, const glm::vec3& radiance);
     void make_triangle_lights();
+    /// Appends to lights_ the candidate triangle lights TriangleLightSettings keeps, moving
+    /// them out of `candidates`, and maps triangle_light_ from candidate to light indices.
+    void keep_triangle_lights(std::vector<Light>& candidates);
     /// Lets every light learn what it needs of the scene (preprocess in light/light.h:
     /// the scene's size, the opaque analytic spheres that may bury a sphere light) and
     /// lists the lights at infinity.
@@ -370,9 +384,10 @@ private:
     std::vector<std::uint32_t> light_of_object_;  ///< object id -> light index (kInvalidId)
     /// Object id -> start in triangle_light_ of its triangles' light indices (kInvalidId).
     std::vector<std::uint32_t> triangle_light_base_;
-    std::vector<std::uint32_t> triangle_light_;   ///< per triangle: light index or kInvalidId
-    std::vector<std::uint32_t> infinite_lights_;  ///< see infinite_lights()
-    LightSampler light_sampler_;                  ///< over lights_, built by commit()
+    std::vector<std::uint32_t> triangle_light_;      ///< per triangle: light index or kInvalidId
+    std::vector<std::uint32_t> infinite_lights_;     ///< see infinite_lights()
+    LightSampler light_sampler_;                     ///< over lights_, built by commit()
+    TriangleLightSettings triangle_light_settings_;  ///< see set_triangle_light_settings
 
     TopLevel top_;                        ///< the geometry and its acceleration structure
     bool unsampled_emitters_ = false;     ///< see has_unsampled_emitters()
