@@ -467,16 +467,7 @@ TEST(DenoisedBrightFeature, BlockMeansKeepTheReference) {
     // of the reference's plus 4 standard errors of the noisy and the reference block
     // means, each from its halves: Var(mean of a pixel) = s (1 - s) (a - b)^2.
     Scene scene;
-    const auto white = scene.add_material(Material::diffuse(glm::vec3(0.73f)));
-    const auto red = scene.add_material(Material::diffuse({0.65f, 0.05f, 0.05f}));
-    const auto green = scene.add_material(Material::diffuse({0.12f, 0.45f, 0.15f}));
-    testing::add_quad(scene, {-1, 0, -1}, {2, 0, 0}, {0, 0, 2}, white);  // floor
-    testing::add_quad(scene, {-1, 2, -1}, {0, 0, 2}, {2, 0, 0}, white);  // ceiling
-    testing::add_quad(scene, {-1, 0, -1}, {0, 2, 0}, {2, 0, 0}, white);  // back
-    testing::add_quad(scene, {-1, 0, -1}, {0, 0, 2}, {0, 2, 0}, red);    // left
-    testing::add_quad(scene, {1, 0, -1}, {0, 2, 0}, {0, 0, 2}, green);   // right
-    (void)scene.add_quad_light(
-        QuadLight{{-0.25f, 1.99f, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}, glm::vec3(10.0f), false});
+    testing::build_box(scene, false, false, false);  // the walls and the quad light
     // Near the corner of four blocks (pixel (32, 32) is the image's centre, where the
     // camera looks: (0, 0.6, 0)), so that light pulled out of its own block lands in the
     // others'.

@@ -102,6 +102,28 @@ public:
     }
 };
 
+// The 32 x 32 camera of the render tests below.
+Camera noise_camera() {
+    CameraSettings cs;
+    cs.width = 32;
+    cs.height = 32;
+    return Camera(cs);
+}
+
+// Progressive settings of `spp` samples in passes of 8, two threads, fixed seed, with
+// independent samples and no adaptive sampling: the closed form is theirs (Sobol' samples
+// are stratified and converge faster).
+ProgressiveSettings independent_passes_of_8(int spp) {
+    ProgressiveSettings ps;
+    ps.render.samples_per_pixel = spp;
+    ps.render.threads = 2;
+    ps.render.seed = 5;
+    ps.render.sampler = SamplerKind::Independent;
+    ps.render.adaptive.enabled = false;
+    ps.pass_samples = 8;
+    return ps;
+}
+
 // render_progressive stops at the first renewal (a doubling of the level) whose estimate
 // is within the target. The target is the geometric mean of the closed-form errors at 64
 // and 128 samples: 0.84 x the one, 1.19 x the other. At 32 x 32 pixels the estimate spreads
@@ -111,18 +133,9 @@ public:
 TEST(NoiseEstimate, TheNoiseTargetStopsTheRenderAtTheFirstLevelWithinIt) {
     Scene scene;
     scene.commit();
-    CameraSettings cs;
-    cs.width = 32;
-    cs.height = 32;
-    const Camera camera(cs);
+    const Camera camera = noise_camera();
     UniformNoise integrator;
-    ProgressiveSettings ps;
-    ps.render.samples_per_pixel = 1024;
-    ps.render.threads = 2;
-    ps.render.seed = 5;
-    ps.render.sampler = SamplerKind::Independent;
-    ps.render.adaptive.enabled = false;
-    ps.pass_samples = 8;
+    ProgressiveSettings ps = independent_passes_of_8(1024);
     const double at64 = expected_error(64.0);
     const double at128 = expected_error(128.0);
     ps.noise_target = std::sqrt(at64 * at128);  // 1.19 x at128, 0.84 x at64
@@ -145,18 +158,9 @@ TEST(NoiseEstimate, TheNoiseTargetStopsTheRenderAtTheFirstLevelWithinIt) {
 TEST(NoiseEstimate, TheProgressShowsWhatTheNoiseTargetStopsOn) {
     Scene scene;
     scene.commit();
-    CameraSettings cs;
-    cs.width = 32;
-    cs.height = 32;
-    const Camera camera(cs);
+    const Camera camera = noise_camera();
     UniformNoise integrator;
-    ProgressiveSettings ps;
-    ps.render.samples_per_pixel = 256;
-    ps.render.threads = 2;
-    ps.render.seed = 5;
-    ps.render.sampler = SamplerKind::Independent;  // the closed form is theirs
-    ps.render.adaptive.enabled = false;
-    ps.pass_samples = 8;
+    ProgressiveSettings ps = independent_passes_of_8(256);
     // The value shown once every pixel holds `samples_per_pixel` samples (the reports of the
     // next pass repeat it).
     std::map<std::uint32_t, double> shown;
