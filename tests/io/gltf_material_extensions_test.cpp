@@ -161,19 +161,6 @@ TEST(GltfMaterialExtensions, UnappliedTexturesAndIridescenceAreWarnedByMaterial)
         << lt::joined(required.warnings);
 }
 
-// A 1 x 1 RGBA PNG of one texel.
-std::string one_texel_png(unsigned char r, unsigned char g, unsigned char b, unsigned char a) {
-    const unsigned char px[4] = {r, g, b, a};
-    std::string out;
-    stbi_write_png_to_func(
-        [](void* ctx, void* data, int size) {
-            static_cast<std::string*>(ctx)->append(static_cast<const char*>(data),
-                                                   std::size_t(size));
-        },
-        &out, 1, 1, 4, px, 4);
-    return out;
-}
-
 // The sheen, specular and transmission textures multiply their factors at each hit, each
 // from the channel and colour space the extensions give: sheenColorTexture and
 // specularColorTexture RGB in sRGB, sheenRoughnessTexture and specularTexture alpha, and
@@ -195,8 +182,8 @@ TEST(GltfMaterialExtensions, SheenSpecularAndTransmissionTexturesMultiplyTheirFa
     GltfBuilder b = triangle_with(ext);
     b.doc["textures"] = {{{"source", 0}, {"sampler", 0}}};
     b.doc["samplers"] = {{{"magFilter", 9728}}};  // NEAREST
-    b.doc["images"] = {
-        {{"uri", "data:image/png;base64," + lt::base64(one_texel_png(128, 128, 128, 64))}}};
+    const unsigned char texel[4] = {128, 128, 128, 64};
+    b.doc["images"] = {{{"uri", "data:image/png;base64," + lt::base64(lt::rgba_png(1, 1, texel))}}};
     ScratchDir dir;
     LoadedScene loaded = load_scene_file(write(dir, "textured_layers.gltf", b));
     const std::string w = lt::joined(loaded.warnings);

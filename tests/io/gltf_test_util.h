@@ -157,17 +157,22 @@ inline GltfBuilder one_triangle() {
     return b;
 }
 
-/// A 2 x 1 RGBA PNG: red, then half-transparent blue.
-inline std::string tiny_png() {
-    const unsigned char px[8] = {255, 0, 0, 255, 0, 0, 255, 128};
+/// A w x h RGBA PNG of the given texels (row-major, 4 bytes each).
+inline std::string rgba_png(int w, int h, const unsigned char* rgba) {
     std::string out;
     stbi_write_png_to_func(
         [](void* ctx, void* data, int size) {
             static_cast<std::string*>(ctx)->append(static_cast<const char*>(data),
                                                    std::size_t(size));
         },
-        &out, 2, 1, 4, px, 8);
+        &out, w, h, 4, rgba, 4 * w);
     return out;
+}
+
+/// A 2 x 1 RGBA PNG: red, then half-transparent blue.
+inline std::string tiny_png() {
+    const unsigned char px[8] = {255, 0, 0, 255, 0, 0, 255, 128};
+    return rgba_png(2, 1, px);
 }
 
 /// A w x h baseline JPEG of a colour gradient (quality 90): texture data that a truncated
