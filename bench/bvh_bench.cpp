@@ -9,8 +9,10 @@
 // engines (alternating which goes first), so both see the same machine load, which on a
 // shared machine drifts faster than a benchmark row lasts. Counters: librt_Mrays,
 // embree_Mrays and their ratio (librt / Embree; for builds librt_ms, embree_ms, their ratio,
-// and bytes per triangle). Without Embree the rows are <mesh>/librt/... with librt's
-// counters only. The binary BVHs and the naive scan have rows of their own
+// and bytes per triangle). Rows <mesh>/librt_vs_embree_hq/... are the same with Embree at
+// RTC_BUILD_QUALITY_HIGH (spatial splits) instead of its default quality; their embree_*
+// counters are the high-quality tree's. Without Embree the rows are <mesh>/librt/... with
+// librt's counters only. The binary BVHs and the naive scan have rows of their own
 // (<mesh>/<engine>/incoherent/1t, counter Mrays; <mesh>/<engine>/build).
 //
 // Rays: "incoherent" (closest hit), "anyhit" (the same rays through occluded()) and
@@ -342,8 +344,16 @@ void register_binary_build(const std::shared_ptr<Workload>& w, const char* name,
         ->UseRealTime();
 }
 
-/// librt's build beside Embree's (alternating which goes first), wall time each.
-void register_pair_build(const std::shared_ptr<Workload>& w, const std::string& engines) {
+/// Embree at high build quality, as an engine of its own for Lazy<> and the rows.
+class EmbreeHqScene : public bench::EmbreeScene {
+public:
+    explicit EmbreeHqScene(const TriangleMesh& mesh)
+        : EmbreeScene(mesh, bench::EmbreeQuality::High) {}
+};
+
+/// librt's build beside Embree's at `quality` (alternating which goes first), wall time each.
+void register_pair_build(const std::shared_ptr<Workload>& w, const std::string& engines,
+                         bench::EmbreeQuality quality = bench::EmbreeQuality::Default) {
     const double tris = static_cast<double>(w->mesh.triangle_count());
     benchmark::RegisterBenchmark(
         (w->name + "/" + engines + "/build").c_str(),
@@ -360,7 +370,7 @@ void register_pair_build(const std::shared_ptr<Workload>& w, const std::string& 
                 auto run_b = [&] {
                     if (!bench::embree_available()) return;
                     const double start = wall_seconds();
-                    bytes_b = bench::EmbreeScene(w->mesh).memory_bytes();
+                    bytes_b = bench::EmbreeScene(w->mesh, quality).memory_bytes();
                     wall_b += wall_seconds() - start;
                 };
                 const double start = wall_seconds();
@@ -398,6 +408,7 @@ void register_all(const std::vector<std::shared_ptr<Workload>>& workloads) {
         register_binary_build(w, "median", BvhBuilder::Median);
         register_binary_build(w, "sah", BvhBuilder::Sah);
         register_pair_build(w, engines);
+        if (have_embree) register_pair_build(w, "librt_vs_embree_hq", bench::EmbreeQuality::High);
 
         // The slow engines: incoherent closest hit on one thread, on a prefix of the rays.
         auto single = [&](const char* name, auto engine, std::size_t count) {
@@ -417,6 +428,7 @@ void register_all(const std::vector<std::shared_ptr<Workload>>& workloads) {
 
         auto librt = std::make_shared<Lazy<TriangleBvh>>(mesh, BvhBuilder::Sah);
         auto embree = std::make_shared<Lazy<bench::EmbreeScene>>(mesh);
+        auto embree_hq = std::make_shared<Lazy<EmbreeHqScene>>(mesh);
         const RowKind kinds[] = {
             {"incoherent", Query::Closest, false}, {"incoherent", Query::Closest, true},
             {"anyhit", Query::Any, false},         {"anyhit", Query::Any, true},
@@ -427,14 +439,23 @@ void register_all(const std::vector<std::shared_ptr<Workload>>& workloads) {
             const std::vector<Ray>* rays =
                 std::string(kind.rays) == "primary" ? &w->primary : &w->incoherent;
             const unsigned threads = kind.parallel ? thread_count() : 1u;
-            const std::string name =
-                w->name + "/" + engines + "/" + kind.rays + "/" + std::to_string(threads) + "t";
+            const std::string suffix =
+                std::string("/") + kind.rays + "/" + std::to_string(threads) + "t";
             const Query query = kind.query;
-            benchmark::RegisterBenchmark(name.c_str(),
+            benchmark::RegisterBenchmark((w->name + "/" + engines + suffix).c_str(),
                                          [=](benchmark::State& s) {
                                              const TriangleBvh& a = **librt;
                                              const bench::EmbreeScene* b =
                                                  have_embree ? &**embree : nullptr;
+                                             trace_pair(s, a, b, *rays, query, tris, threads);
+                                         })
+                ->Unit(benchmark::kMillisecond)
+                ->UseManualTime();
+            if (!have_embree) continue;
+            benchmark::RegisterBenchmark((w->name + "/librt_vs_embree_hq" + suffix).c_str(),
+                                         [=](benchmark::State& s) {
+                                             const TriangleBvh& a = **librt;
+                                             const bench::EmbreeScene* b = &**embree_hq;
                                              trace_pair(s, a, b, *rays, query, tris, threads);
                                          })
                 ->Unit(benchmark::kMillisecond)
@@ -483,8 +504,8 @@ public:
             "medians when repeated%s\n",
             mt.c_str(), thread_count(),
             have_embree ? "" : "\n  Embree rows are missing: librt_bench was built without Embree");
-        std::printf("%-12s %-11s %-4s %9s %9s %9s %9s %7s\n", "mesh", "rays", "thr", "median",
-                    "sah", "librt", "embree", "ratio");
+        std::printf("%-12s %-11s %-4s %9s %9s %9s %9s %7s %9s %7s\n", "mesh", "rays", "thr",
+                    "median", "sah", "librt", "embree", "ratio", "embree_hq", "ratio");
         for (const auto& w : workloads)
             for (const char* rays : {"incoherent", "anyhit", "primary"})
                 for (const std::string& threads : {std::string("1t"), mt}) {
@@ -494,25 +515,33 @@ public:
                     auto single = [&](const char* engine) {
                         return get(w->name + "/" + engine + "/" + rays + "/" + threads, "Mrays");
                     };
-                    std::printf("%-12s %-11s %-4s %9s %9s %9s %9s %7s\n", w->name.c_str(), rays,
-                                threads.c_str(), cell(single("median"), "%.3f").c_str(),
+                    const std::string hq = w->name + "/librt_vs_embree_hq/" + rays + "/" + threads;
+                    std::printf("%-12s %-11s %-4s %9s %9s %9s %9s %7s %9s %7s\n", w->name.c_str(),
+                                rays, threads.c_str(), cell(single("median"), "%.3f").c_str(),
                                 cell(single("sah"), "%.3f").c_str(), cell(librt, "%.3f").c_str(),
                                 cell(get(pair, "embree_Mrays"), "%.3f").c_str(),
-                                cell(get(pair, "ratio"), "%.2f").c_str());
+                                cell(get(pair, "ratio"), "%.2f").c_str(),
+                                cell(get(hq, "embree_Mrays"), "%.3f").c_str(),
+                                cell(get(hq, "ratio"), "%.2f").c_str());
                 }
-        std::printf("\n%-12s %10s %10s %7s %11s %12s %7s\n", "mesh", "librt ms", "embree ms",
-                    "ratio", "librt B/tri", "embree B/tri", "ratio");
+        std::printf("\n%-12s %10s %10s %7s %11s %12s %7s %10s %7s %9s\n", "mesh", "librt ms",
+                    "embree ms", "ratio", "librt B/tri", "embree B/tri", "ratio", "HQ ms", "ratio",
+                    "HQ B/tri");
         for (const auto& w : workloads) {
             const std::string build = w->name + "/" + engines + "/build";
             const auto lb = get(build, "librt_B/tri"), eb = get(build, "embree_B/tri");
             if (!get(build, "librt_ms")) continue;
             std::optional<double> rb;
             if (lb && eb) rb = *lb / *eb;
-            std::printf("%-12s %10s %10s %7s %11s %12s %7s\n", w->name.c_str(),
+            const std::string hq = w->name + "/librt_vs_embree_hq/build";
+            std::printf("%-12s %10s %10s %7s %11s %12s %7s %10s %7s %9s\n", w->name.c_str(),
                         cell(get(build, "librt_ms"), "%.1f").c_str(),
                         cell(get(build, "embree_ms"), "%.1f").c_str(),
                         cell(get(build, "ratio"), "%.2f").c_str(), cell(lb, "%.1f").c_str(),
-                        cell(eb, "%.1f").c_str(), cell(rb, "%.2f").c_str());
+                        cell(eb, "%.1f").c_str(), cell(rb, "%.2f").c_str(),
+                        cell(get(hq, "embree_ms"), "%.1f").c_str(),
+                        cell(get(hq, "ratio"), "%.2f").c_str(),
+                        cell(get(hq, "embree_B/tri"), "%.1f").c_str());
         }
         double load[3] = {0, 0, 0};
         if (getloadavg(load, 3) == 3)

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <limits>
 #include <mutex>
+#include <string>
 #include <vector>
 #endif
 
@@ -20,13 +21,24 @@ namespace librt::bench {
 bool embree_available() { return false; }
 
 struct EmbreeScene::Impl {};
-EmbreeScene::EmbreeScene(const TriangleMesh&) {
+EmbreeScene::EmbreeScene(const TriangleMesh&, EmbreeQuality) {
     throw Error("librt_bench was built without Embree");
 }
 EmbreeScene::~EmbreeScene() = default;
 PrimitiveHit EmbreeScene::intersect(const Ray&) const { return {}; }
 bool EmbreeScene::occluded(const Ray&) const { return false; }
 std::size_t EmbreeScene::memory_bytes() const { return 0; }
+
+struct EmbreeInstancedScene::Impl {};
+EmbreeInstancedScene::EmbreeInstancedScene(std::span<const TriangleMesh* const>,
+                                           std::span<const EmbreeInstance>, EmbreeQuality) {
+    throw Error("built without Embree");
+}
+EmbreeInstancedScene::~EmbreeInstancedScene() = default;
+PrimitiveHit EmbreeInstancedScene::intersect(const Ray&) const { return {}; }
+bool EmbreeInstancedScene::occluded(const Ray&) const { return false; }
+std::size_t EmbreeInstancedScene::memory_bytes() const { return 0; }
+std::size_t EmbreeInstancedScene::shared_array_bytes() const { return 0; }
 
 #else
 
@@ -65,47 +77,46 @@ RTCDevice device() {
 /// Serialises builds so one scene's allocations are not counted for another.
 std::mutex g_build_mutex;
 
-}  // namespace
-
-struct EmbreeScene::Impl {
+/// A mesh's positions and triangles in the layout Embree reads, shared with its geometry.
+struct SharedArrays {
     std::vector<float> vertices;  // xyz per vertex plus 4 bytes of padding Embree may read
     std::vector<unsigned> indices;
-    RTCScene scene = nullptr;
-    std::size_t bytes = 0;
+
+    explicit SharedArrays(const TriangleMesh& mesh) {
+        vertices.reserve(3 * mesh.positions.size() + 1);
+        for (const glm::vec3& p : mesh.positions) vertices.insert(vertices.end(), {p.x, p.y, p.z});
+        vertices.push_back(0.0f);
+        indices.reserve(3 * mesh.triangles.size());
+        for (const glm::uvec3& t : mesh.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
+    }
+    [[nodiscard]] std::size_t bytes() const {
+        return vertices.size() * sizeof(float) + indices.size() * sizeof(unsigned);
+    }
 };
 
-EmbreeScene::EmbreeScene(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>()) {
-    RTCDevice dev = device();
-    impl_->vertices.reserve(3 * mesh.positions.size() + 1);
-    for (const glm::vec3& p : mesh.positions)
-        impl_->vertices.insert(impl_->vertices.end(), {p.x, p.y, p.z});
-    impl_->vertices.push_back(0.0f);
-    impl_->indices.reserve(3 * mesh.triangles.size());
-    for (const glm::uvec3& t : mesh.triangles)
-        impl_->indices.insert(impl_->indices.end(), {t.x, t.y, t.z});
+RTCBuildQuality rtc_quality(EmbreeQuality quality) {
+    return quality == EmbreeQuality::High ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM;
+}
 
-    const std::lock_guard lock(g_build_mutex);
-    const long long before = g_device_bytes.load();
-    impl_->scene = rtcNewScene(dev);
+/// A committed scene of one triangle geometry over `arrays` (which must outlive it).
+RTCScene triangle_scene(RTCDevice dev, const SharedArrays& arrays, EmbreeQuality quality) {
+    RTCScene scene = rtcNewScene(dev);
+    rtcSetSceneBuildQuality(scene, rtc_quality(quality));
     RTCGeometry geom = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                               impl_->vertices.data(), 0, 3 * sizeof(float), mesh.positions.size());
+                               arrays.vertices.data(), 0, 3 * sizeof(float),
+                               arrays.vertices.size() / 3);
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                               impl_->indices.data(), 0, 3 * sizeof(unsigned),
-                               mesh.triangles.size());
+                               arrays.indices.data(), 0, 3 * sizeof(unsigned),
+                               arrays.indices.size() / 3);
     rtcCommitGeometry(geom);
-    rtcAttachGeometry(impl_->scene, geom);
+    rtcAttachGeometry(scene, geom);
     rtcReleaseGeometry(geom);
-    rtcCommitScene(impl_->scene);
-    const long long after = g_device_bytes.load();
-    impl_->bytes = after > before ? static_cast<std::size_t>(after - before) : 0;
+    rtcCommitScene(scene);
+    return scene;
 }
 
-EmbreeScene::~EmbreeScene() {
-    if (impl_ && impl_->scene) rtcReleaseScene(impl_->scene);
-}
-
-PrimitiveHit EmbreeScene::intersect(const Ray& ray) const {
+PrimitiveHit intersect_scene(RTCScene scene, const Ray& ray) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh;
@@ -123,12 +134,12 @@ PrimitiveHit EmbreeScene::intersect(const Ray& ray) const {
     rh.ray.flags = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(impl_->scene, &context, &rh);
+    rtcIntersect1(scene, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
     return {rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.primID};
 }
 
-bool EmbreeScene::occluded(const Ray& ray) const {
+bool occluded_scene(RTCScene scene, const Ray& ray) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay r;
@@ -144,11 +155,104 @@ bool EmbreeScene::occluded(const Ray& ray) const {
     r.mask = std::numeric_limits<unsigned>::max();
     r.id = 0;
     r.flags = 0;
-    rtcOccluded1(impl_->scene, &context, &r);
+    rtcOccluded1(scene, &context, &r);
     return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 
+/// The device's bytes still held since `before`.
+std::size_t bytes_since(long long before) {
+    const long long after = g_device_bytes.load();
+    return after > before ? static_cast<std::size_t>(after - before) : 0;
+}
+
+}  // namespace
+
+struct EmbreeScene::Impl {
+    SharedArrays arrays;
+    RTCScene scene = nullptr;
+    std::size_t bytes = 0;
+};
+
+EmbreeScene::EmbreeScene(const TriangleMesh& mesh, EmbreeQuality quality)
+    : impl_(std::make_unique<Impl>(Impl{SharedArrays(mesh)})) {
+    RTCDevice dev = device();
+    const std::lock_guard lock(g_build_mutex);
+    const long long before = g_device_bytes.load();
+    impl_->scene = triangle_scene(dev, impl_->arrays, quality);
+    impl_->bytes = bytes_since(before);
+}
+
+EmbreeScene::~EmbreeScene() {
+    if (impl_ && impl_->scene) rtcReleaseScene(impl_->scene);
+}
+
+PrimitiveHit EmbreeScene::intersect(const Ray& ray) const {
+    return intersect_scene(impl_->scene, ray);
+}
+
+bool EmbreeScene::occluded(const Ray& ray) const { return occluded_scene(impl_->scene, ray); }
+
 std::size_t EmbreeScene::memory_bytes() const { return impl_->bytes; }
+
+struct EmbreeInstancedScene::Impl {
+    std::vector<SharedArrays> arrays;
+    std::vector<RTCScene> prototypes;
+    RTCScene top = nullptr;
+    std::size_t bytes = 0;
+};
+
+EmbreeInstancedScene::EmbreeInstancedScene(std::span<const TriangleMesh* const> prototypes,
+                                           std::span<const EmbreeInstance> instances,
+                                           EmbreeQuality quality)
+    : impl_(std::make_unique<Impl>()) {
+    RTCDevice dev = device();
+    impl_->arrays.reserve(prototypes.size());
+    for (const TriangleMesh* mesh : prototypes) impl_->arrays.emplace_back(*mesh);
+    const std::lock_guard lock(g_build_mutex);
+    const long long before = g_device_bytes.load();
+    for (const SharedArrays& a : impl_->arrays)
+        impl_->prototypes.push_back(triangle_scene(dev, a, quality));
+    impl_->top = rtcNewScene(dev);
+    rtcSetSceneBuildQuality(impl_->top, rtc_quality(quality));
+    for (const EmbreeInstance& inst : instances) {
+        if (inst.prototype >= impl_->prototypes.size())
+            throw Error("EmbreeInstancedScene: instance of prototype " +
+                        std::to_string(inst.prototype) + ", there are " +
+                        std::to_string(impl_->prototypes.size()));
+        RTCGeometry geom = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(geom, impl_->prototypes[inst.prototype]);
+        // glm stores columns contiguously: Embree's column-major 4x4 layout.
+        rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
+                                &inst.object_to_world[0][0]);
+        rtcCommitGeometry(geom);
+        rtcAttachGeometry(impl_->top, geom);
+        rtcReleaseGeometry(geom);
+    }
+    rtcCommitScene(impl_->top);
+    impl_->bytes = bytes_since(before);
+}
+
+EmbreeInstancedScene::~EmbreeInstancedScene() {
+    if (!impl_) return;
+    if (impl_->top) rtcReleaseScene(impl_->top);
+    for (RTCScene s : impl_->prototypes) rtcReleaseScene(s);
+}
+
+PrimitiveHit EmbreeInstancedScene::intersect(const Ray& ray) const {
+    return intersect_scene(impl_->top, ray);
+}
+
+bool EmbreeInstancedScene::occluded(const Ray& ray) const {
+    return occluded_scene(impl_->top, ray);
+}
+
+std::size_t EmbreeInstancedScene::memory_bytes() const { return impl_->bytes; }
+
+std::size_t EmbreeInstancedScene::shared_array_bytes() const {
+    std::size_t bytes = 0;
+    for (const SharedArrays& a : impl_->arrays) bytes += a.bytes();
+    return bytes;
+}
 
 #endif
 

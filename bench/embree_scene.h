@@ -8,20 +8,29 @@
 #include <librt/geometry/mesh.h>
 #include <librt/geometry/ray.h>
 
+#include <glm/mat4x4.hpp>
+
 #include <cstddef>
+#include <cstdint>
 #include <memory>
+#include <span>
 
 namespace librt::bench {
 
 /// True when the benchmark was built against Embree.
 [[nodiscard]] bool embree_available();
 
-/// One Embree scene holding one triangle mesh: default build quality, no scene
-/// flags, on a device shared by all scenes (created on first use).
+/// Embree's build quality (rtcSetSceneBuildQuality): Default is what an application gets
+/// without asking (RTC_BUILD_QUALITY_MEDIUM, binned SAH); High is RTC_BUILD_QUALITY_HIGH
+/// (spatial splits for static scenes), Embree's best tree at a slower build.
+enum class EmbreeQuality { Default, High };
+
+/// One Embree scene holding one triangle mesh: no scene flags, on a device shared by all
+/// scenes (created on first use).
 class EmbreeScene {
 public:
     /// Builds the scene (rtcCommitScene) over the mesh's positions and triangles.
-    explicit EmbreeScene(const TriangleMesh& mesh);
+    explicit EmbreeScene(const TriangleMesh& mesh, EmbreeQuality quality = EmbreeQuality::Default);
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -34,6 +43,40 @@ public:
     /// leaf data), as counted by the device's memory monitor; the mesh's vertex and
     /// index arrays are shared with Embree, so they are not counted.
     [[nodiscard]] std::size_t memory_bytes() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+/// A prototype placed by an affine object-to-world matrix (as TopLevel::add_instance).
+struct EmbreeInstance {
+    std::uint32_t prototype;  ///< index into the prototype meshes
+    glm::mat4 object_to_world;
+};
+
+/// Embree's two-level scene: each prototype mesh in a scene of its own (built once), placed
+/// by RTC_GEOMETRY_TYPE_INSTANCE geometries in a top scene; the same build quality for all.
+class EmbreeInstancedScene {
+public:
+    /// Builds the prototype scenes and the top scene. The meshes must outlive this object
+    /// only during construction (their arrays are copied).
+    EmbreeInstancedScene(std::span<const TriangleMesh* const> prototypes,
+                         std::span<const EmbreeInstance> instances,
+                         EmbreeQuality quality = EmbreeQuality::Default);
+    ~EmbreeInstancedScene();
+    EmbreeInstancedScene(const EmbreeInstancedScene&) = delete;
+    EmbreeInstancedScene& operator=(const EmbreeInstancedScene&) = delete;
+
+    /// Nearest hit (t, u, v and the prototype's triangle index).
+    [[nodiscard]] PrimitiveHit intersect(const Ray& ray) const;
+    /// Any hit.
+    [[nodiscard]] bool occluded(const Ray& ray) const;
+    /// Bytes the device allocated while committing all the scenes and still holds (BVHs,
+    /// leaf data, instance records); the vertex and index arrays are shared, not counted.
+    [[nodiscard]] std::size_t memory_bytes() const;
+    /// Bytes of the shared vertex (12 per vertex) and index (12 per triangle) arrays.
+    [[nodiscard]] std::size_t shared_array_bytes() const;
 
 private:
     struct Impl;
