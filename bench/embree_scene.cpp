@@ -6,6 +6,7 @@
 #include <embree3/rtcore.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -28,6 +29,7 @@ EmbreeScene::~EmbreeScene() = default;
 PrimitiveHit EmbreeScene::intersect(const Ray&) const { return {}; }
 bool EmbreeScene::occluded(const Ray&) const { return false; }
 std::size_t EmbreeScene::memory_bytes() const { return 0; }
+double EmbreeScene::build_seconds() const { return 0.0; }
 
 struct EmbreeInstancedScene::Impl {};
 EmbreeInstancedScene::EmbreeInstancedScene(std::span<const TriangleMesh* const>,
@@ -39,6 +41,7 @@ PrimitiveHit EmbreeInstancedScene::intersect(const Ray&) const { return {}; }
 bool EmbreeInstancedScene::occluded(const Ray&) const { return false; }
 std::size_t EmbreeInstancedScene::memory_bytes() const { return 0; }
 std::size_t EmbreeInstancedScene::shared_array_bytes() const { return 0; }
+double EmbreeInstancedScene::build_seconds() const { return 0.0; }
 
 #else
 
@@ -159,6 +162,10 @@ bool occluded_scene(RTCScene scene, const Ray& ray) {
     return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 /// The device's bytes still held since `before`.
 std::size_t bytes_since(long long before) {
     const long long after = g_device_bytes.load();
@@ -171,6 +178,7 @@ struct EmbreeScene::Impl {
     SharedArrays arrays;
     RTCScene scene = nullptr;
     std::size_t bytes = 0;
+    double seconds = 0.0;
 };
 
 EmbreeScene::EmbreeScene(const TriangleMesh& mesh, EmbreeQuality quality)
@@ -178,7 +186,9 @@ EmbreeScene::EmbreeScene(const TriangleMesh& mesh, EmbreeQuality quality)
     RTCDevice dev = device();
     const std::lock_guard lock(g_build_mutex);
     const long long before = g_device_bytes.load();
+    const auto start = std::chrono::steady_clock::now();
     impl_->scene = triangle_scene(dev, impl_->arrays, quality);
+    impl_->seconds = seconds_since(start);
     impl_->bytes = bytes_since(before);
 }
 
@@ -194,11 +204,14 @@ bool EmbreeScene::occluded(const Ray& ray) const { return occluded_scene(impl_->
 
 std::size_t EmbreeScene::memory_bytes() const { return impl_->bytes; }
 
+double EmbreeScene::build_seconds() const { return impl_->seconds; }
+
 struct EmbreeInstancedScene::Impl {
     std::vector<SharedArrays> arrays;
     std::vector<RTCScene> prototypes;
     RTCScene top = nullptr;
     std::size_t bytes = 0;
+    double seconds = 0.0;
 };
 
 EmbreeInstancedScene::EmbreeInstancedScene(std::span<const TriangleMesh* const> prototypes,
@@ -210,6 +223,7 @@ EmbreeInstancedScene::EmbreeInstancedScene(std::span<const TriangleMesh* const> 
     for (const TriangleMesh* mesh : prototypes) impl_->arrays.emplace_back(*mesh);
     const std::lock_guard lock(g_build_mutex);
     const long long before = g_device_bytes.load();
+    const auto start = std::chrono::steady_clock::now();
     for (const SharedArrays& a : impl_->arrays)
         impl_->prototypes.push_back(triangle_scene(dev, a, quality));
     impl_->top = rtcNewScene(dev);
@@ -229,6 +243,7 @@ EmbreeInstancedScene::EmbreeInstancedScene(std::span<const TriangleMesh* const> 
         rtcReleaseGeometry(geom);
     }
     rtcCommitScene(impl_->top);
+    impl_->seconds = seconds_since(start);
     impl_->bytes = bytes_since(before);
 }
 
@@ -247,6 +262,8 @@ bool EmbreeInstancedScene::occluded(const Ray& ray) const {
 }
 
 std::size_t EmbreeInstancedScene::memory_bytes() const { return impl_->bytes; }
+
+double EmbreeInstancedScene::build_seconds() const { return impl_->seconds; }
 
 std::size_t EmbreeInstancedScene::shared_array_bytes() const {
     std::size_t bytes = 0;

@@ -43,6 +43,9 @@ public:
     /// leaf data), as counted by the device's memory monitor; the mesh's vertex and
     /// index arrays are shared with Embree, so they are not counted.
     [[nodiscard]] std::size_t memory_bytes() const;
+    /// Wall seconds of the build (rtcNewScene to rtcCommitScene), without the copy of the
+    /// mesh's arrays into Embree's layout.
+    [[nodiscard]] double build_seconds() const;
 
 private:
     struct Impl;
@@ -77,6 +80,9 @@ public:
     [[nodiscard]] std::size_t memory_bytes() const;
     /// Bytes of the shared vertex (12 per vertex) and index (12 per triangle) arrays.
     [[nodiscard]] std::size_t shared_array_bytes() const;
+    /// Wall seconds of the builds (the prototypes' scenes and the top scene), without the
+    /// copy of the meshes' arrays.
+    [[nodiscard]] double build_seconds() const;
 
 private:
     struct Impl;
