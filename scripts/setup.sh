@@ -14,6 +14,7 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-pytest
   clang libclang-rt-14-dev clang-format
   doxygen
+  gnuplot-nox time
 )
 
 missing=()
