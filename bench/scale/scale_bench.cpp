@@ -11,6 +11,7 @@
 //     --scaling                librt's build with 1 thread against 2 (paired), and the SAH
 //                              builder alone with 1 and 2 threads; an Amdahl fit for 16
 //     --embree-quality Q       default or high (RTC_BUILD_QUALITY_HIGH)
+//     --build-threads N        librt's builds take N threads (0: all; for callgrind runs)
 //     --dragons N --bunnies N  the forest (110 and 60: 100,022,600 triangles placed)
 //     --teapot N               the teapot's triangles (10,000,000)
 //     --write-gltf DIR         write DIR/forest.gltf and .bin (the same forest) and stop
@@ -38,9 +39,9 @@
 #include <librt/loader/scene_file.h>
 #include <librt/obj/obj.h>
 
+#include <dlfcn.h>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
-#include <dlfcn.h>
 #include <sched.h>
 #include <sys/resource.h>
 #include <unistd.h>
@@ -160,6 +161,8 @@ Options parse(int argc, char** argv) {
         } else if (a == "--write-gltf") {
             o.gltf_dir = value();
             o.scene = "forest";
+        } else if (a == "--build-threads") {
+            g_build_threads = int(std::min<std::uint64_t>(1024, parse_count(a, value())));
         } else if (a == "--check") {
             o.check = true;
         } else {
