@@ -54,4 +54,10 @@ void write_forest_gltf(const std::filesystem::path& dir, const std::string& name
                        std::span<const TriangleMesh> prototypes,
                        std::span<const ForestPlacement> placements);
 
+/// librt_scale_bench --check: a forest of two procedural prototypes written by
+/// write_forest_gltf into a temporary directory and loaded back by load_scene_file must hold
+/// the triangles, instances, prototypes and matrices the layout made. Prints what failed;
+/// returns 0 when all held, else 1.
+int check_forest_gltf();
+
 }  // namespace librt::bench
