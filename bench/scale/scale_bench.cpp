@@ -104,11 +104,12 @@ struct Options {
 };
 
 [[noreturn]] void usage(const std::string& problem) {
-    std::cerr << "librt_scale_bench: " << problem
-              << "\nusage: librt_scale_bench --scene forest|teapot [--engines librt,embree] "
-                 "[--reps N] [--rays N] [--no-trace] [--scaling] [--embree-quality "
-                 "default|high] [--dragons N] [--bunnies N] [--teapot N] [--write-gltf DIR] | "
-                 "--check\n";
+    std::cerr
+        << "librt_scale_bench: " << problem
+        << "\nusage: librt_scale_bench --scene forest|teapot [--engines librt,embree] "
+           "[--reps N] [--rays N] [--no-trace] [--scaling] [--build-threads N] [--embree-quality "
+           "default|high] [--dragons N] [--bunnies N] [--teapot N] [--write-gltf DIR] | "
+           "--check\n";
     std::exit(2);
 }
 
@@ -316,6 +317,12 @@ void print_fit(const char* what, const std::vector<double>& t1, const std::vecto
     std::printf("%-34s 1 thread %8.1f ms  2 threads %8.1f ms  speedup %.2f (%.2f-%.2f)", what,
                 1e3 * spread(t1).median, 1e3 * spread(t2).median, s.median, s.lo, s.hi);
     if (!parallelism.empty()) std::printf("  CPU/wall at 2: %.2f", spread(parallelism).median);
+    if (s.median <= 1.0) {
+        // No speed-up (a busy machine shares its cores between sessions, not threads): a
+        // serial fraction of 1 or more says nothing about the code.
+        std::printf("\n%-34s no speed-up measured: no Amdahl fit (see docs/benchmarks.md)\n", "");
+        return;
+    }
     std::printf(
         "\n%-34s serial fraction (Karp-Flatt) %.3f -> Amdahl: %.2fx on 4, %.2fx on 8, "
         "%.2fx on 16 threads\n",
