@@ -147,6 +147,11 @@ PrimitiveHit TriangleBvh::intersect(const Ray& ray) const {
     return intersect_fn_(*tree_, ray);
 }
 
+PrimitiveHit TriangleBvh::intersect(const Ray& ray, glm::vec3& winding_normal) const {
+    if (!tree_) return {};
+    return detail::wide_kernels(path_).intersect_normal(*tree_, ray, winding_normal);
+}
+
 bool TriangleBvh::occluded(const Ray& ray) const {
     if (!tree_) return false;
     return occluded_fn_(*tree_, ray);
