@@ -186,18 +186,7 @@ template <bool kIgnoring, bool kNormal>
             best = {tf, 0.0f, 0.0f, 0};
         } else {
             PrimitiveHit h;
-            if constexpr (kNormal) {
-                // As below, with the leaf's winding normal.
-                glm::vec3 n;
-                if (o.kind == ObjectKind::Mesh) {
-                    h = prototypes_[o.index].bvh.intersect(current, n);
-                } else {
-                    const Instance& inst = instances_[o.index];
-                    h = prototypes_[inst.prototype].bvh.intersect(object_ray(inst, current), n);
-                }
-                if (!h.valid()) return false;
-                *normal = n;
-            } else if (o.kind == ObjectKind::Mesh) {
+            if (o.kind == ObjectKind::Mesh) {
                 h = prototypes_[o.index].bvh.intersect(current);
             } else {
                 // Object space: the direction is not renormalised, so t carries over.
@@ -214,7 +203,28 @@ template <bool kIgnoring, bool kNormal>
         best_object = id;
         return true;
     };
-    if constexpr (kIgnoring) {
+    if constexpr (kNormal) {
+        // The same test, the BVH's winding normal of each nearer triangle hit kept in
+        // *normal. A lambda of its own: g++ captures what a discarded branch of one lambda
+        // names, which cost the renderers' query above a capture (+1 instruction a query).
+        glm::vec3& winding = *normal;
+        visit_objects<false>(r, [&](std::uint32_t id, Ray& current) {
+            const Object& o = objects_[id];
+            if (o.kind == ObjectKind::Sphere) return test_object(id, current);
+            glm::vec3 n;
+            const PrimitiveHit h =
+                o.kind == ObjectKind::Mesh
+                    ? prototypes_[o.index].bvh.intersect(current, n)
+                    : prototypes_[instances_[o.index].prototype].bvh.intersect(
+                          object_ray(instances_[o.index], current), n);
+            if (!h.valid()) return false;
+            current.t_max = h.t;
+            best = h;
+            best_object = id;
+            winding = n;
+            return true;
+        });
+    } else if constexpr (kIgnoring) {
         // As occluded(): the ignored object's flat box dropped, the test above for top_.
         visit_objects<false>(
             r, test_object,
