@@ -198,7 +198,8 @@ py::array_t<std::uint8_t> tone_map(const py::array& image, float exposure,
         rgb.reserve(display.pixels.size() * 3);
         for (const glm::vec3& p : display.pixels)
             for (int c = 0; c < 3; ++c)
-                rgb.push_back(static_cast<std::uint8_t>(std::clamp(p[c], 0.0f, 1.0f) * 255.0f + 0.5f));
+                rgb.push_back(
+                    static_cast<std::uint8_t>(std::clamp(p[c], 0.0f, 1.0f) * 255.0f + 0.5f));
     }
     py::array_t<std::uint8_t> out(
         {py::ssize_t{img.height}, py::ssize_t{img.width}, py::ssize_t{3}});

@@ -423,8 +423,8 @@ py::array_t<T> hit_array(const py::dict& out, const HitArray& a, py::ssize_t n, 
     shape_text += arr.ndim() == 1 ? ",)" : ")";
     if (!arr.dtype().is(py::dtype::of<T>()) || arr.ndim() != py::ssize_t(shape.size()) ||
         !std::equal(shape.begin(), shape.end(), arr.shape()))
-        throw Error(what + ": expected a " + wanted + ", got " +
-                    std::string(py::str(arr.dtype())) + " of shape " + shape_text);
+        throw Error(what + ": expected a " + wanted + ", got " + std::string(py::str(arr.dtype())) +
+                    " of shape " + shape_text);
     if (!(arr.flags() & py::array::c_style))
         throw Error(what + ": expected a C-contiguous array (np.ascontiguousarray)");
     if (!arr.writeable()) throw Error(what + ": the array is read-only");
@@ -446,9 +446,10 @@ py::dict intersect(PyScene& self, const py::handle& origins, const py::handle& d
     py::dict out;
     if (!out_arg.is_none()) {
         if (!py::isinstance<py::dict>(out_arg))
-            throw Error("out: expected a dict of arrays (t, primitive_id, object_id, "
-                        "instance_id, normal), got a " +
-                        std::string(py::str(out_arg.get_type().attr("__name__"))));
+            throw Error(
+                "out: expected a dict of arrays (t, primitive_id, object_id, "
+                "instance_id, normal), got a " +
+                std::string(py::str(out_arg.get_type().attr("__name__"))));
         out = out_arg.cast<py::dict>();
         for (const auto& [key, value] : out) {
             (void)value;

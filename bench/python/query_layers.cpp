@@ -55,7 +55,9 @@ void report(const char* layer, const std::vector<Ray>& rays, Trace&& trace) {
 }
 
 int usage() {
-    std::fprintf(stderr, "usage: librt_query_layers bvh|bvh_normal|top|geometric|scene|dump [RAYS] [DATA_DIR]\n");
+    std::fprintf(
+        stderr,
+        "usage: librt_query_layers bvh|bvh_normal|top|geometric|scene|dump [RAYS] [DATA_DIR]\n");
     return 2;
 }
 

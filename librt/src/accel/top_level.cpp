@@ -212,11 +212,10 @@ template <bool kIgnoring, bool kNormal>
             const Object& o = objects_[id];
             if (o.kind == ObjectKind::Sphere) return test_object(id, current);
             glm::vec3 n;
-            const PrimitiveHit h =
-                o.kind == ObjectKind::Mesh
-                    ? prototypes_[o.index].bvh.intersect(current, n)
-                    : prototypes_[instances_[o.index].prototype].bvh.intersect(
-                          object_ray(instances_[o.index], current), n);
+            const PrimitiveHit h = o.kind == ObjectKind::Mesh
+                                       ? prototypes_[o.index].bvh.intersect(current, n)
+                                       : prototypes_[instances_[o.index].prototype].bvh.intersect(
+                                             object_ray(instances_[o.index], current), n);
             if (!h.valid()) return false;
             current.t_max = h.t;
             best = h;
@@ -503,7 +502,8 @@ void TopLevel::finish_geometric(const Ray& ray, const ObjectHit& object_hit,
             hit.geometric_normal = unit_or(winding_normal, back);
             break;
         case ObjectKind::Instance:
-            hit.geometric_normal = unit_or(instances_[o.index].normal_matrix * winding_normal, back);
+            hit.geometric_normal =
+                unit_or(instances_[o.index].normal_matrix * winding_normal, back);
             hit.instance_id = o.index;
             break;
     }

@@ -39,7 +39,7 @@ static_assert(WideKernel<SseKernel>);
     return occluded_wide<SseKernel>(bvh, ray);
 }
 [[gnu::flatten]] PrimitiveHit sse_intersect_normal(const WideBvh& bvh, const Ray& ray,
-                                     glm::vec3& normal) {
+                                                   glm::vec3& normal) {
     return intersect_normal_wide<SseKernel>(bvh, ray, normal);
 }
 
