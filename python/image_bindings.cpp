@@ -6,6 +6,7 @@
 #include <librt/core/error.h>
 #include <librt/core/finite.h>
 #include <librt/core/image_layers.h>
+#include <librt/core/tone_curve.h>
 #include <librt/core/tone_map.h>
 #include <librt/io/exr.h>
 #include <librt/io/hdr_image.h>
@@ -80,11 +81,30 @@ std::vector<float> plane_of(const py::handle& value, const Image& beauty, const 
     return {a.data(), a.data() + a.size()};
 }
 
+/// rt_render's --tonemap name as a ToneCurve.
+ToneCurve curve_of(const std::string& name) {
+    for (const ToneCurve c : {ToneCurve::Clamp, ToneCurve::Aces, ToneCurve::Agx})
+        if (name == to_string(c)) return c;
+    throw Error("curve: '" + name + "' is none of clamp, aces, agx");
+}
+
+/// The gamma of the report's look, refused with a display curve (which encodes sRGB).
+float report_gamma(const py::object& gamma, const py::object& curve) {
+    if (curve.is_none()) return gamma.is_none() ? 0.45f : gamma.cast<float>();
+    if (!gamma.is_none())
+        throw Error("gamma: applies to the report's look (curve=None) only; curve='" +
+                    curve.cast<std::string>() + "' encodes sRGB");
+    return 0.0f;
+}
+
 void write(const std::string& path, const py::array& image, const py::object& layers,
-           float exposure, float gamma, bool half) {
+           float exposure, const py::object& gamma_arg, bool half, const py::object& curve) {
+    const float gamma = report_gamma(gamma_arg, curve);
     ImageLayers out;
     out.beauty = array_to_image(image, "image");
     const std::string ext = lower_extension(path);
+    if (!curve.is_none() && ext != ".png")
+        throw Error(path + ": curve applies to .png only (the other formats stay linear)");
     if (!layers.is_none()) {
         if (ext != ".exr") throw Error(path + ": layers need an .exr file");
         for (const auto& [key, value] : layers.cast<py::dict>()) {
@@ -111,6 +131,11 @@ void write(const std::string& path, const py::array& image, const py::object& la
         ExrWriteOptions options;
         options.colour = half ? ExrPixelType::Half : ExrPixelType::Float;
         (void)write_exr(path, out, options);
+    } else if (!curve.is_none() && ext == ".png") {
+        // rt_render's display convention: exposure, the curve, sRGB, 8 bits.
+        write_display_png(path,
+                          display_encode(out.beauty, exposure, curve_of(curve.cast<std::string>())),
+                          8, nullptr);
     } else {
         write_image(path, out.beauty, ToneMap{exposure, gamma});
     }
@@ -160,9 +185,22 @@ py::object read(const std::string& path, bool layers) {
     throw Error(path + ": can read .pfm, .hdr and .exr images");
 }
 
-py::array_t<std::uint8_t> tone_map(const py::array& image, float exposure, float gamma) {
+py::array_t<std::uint8_t> tone_map(const py::array& image, float exposure,
+                                   const py::object& gamma_arg, const py::object& curve) {
+    const float gamma = report_gamma(gamma_arg, curve);
     const Image img = array_to_image(image, "image");
-    std::vector<std::uint8_t> rgb = to_rgb8(img, ToneMap{exposure, gamma});
+    std::vector<std::uint8_t> rgb;
+    if (curve.is_none()) {
+        rgb = to_rgb8(img, ToneMap{exposure, gamma});
+    } else {
+        // As write_display_png quantises: round(255 v) of each display value in [0, 1].
+        const Image display = display_encode(img, exposure, curve_of(curve.cast<std::string>()));
+        rgb.reserve(display.pixels.size() * 3);
+        for (const glm::vec3& p : display.pixels)
+            for (int c = 0; c < 3; ++c)
+                rgb.push_back(
+                    static_cast<std::uint8_t>(std::clamp(p[c], 0.0f, 1.0f) * 255.0f + 0.5f));
+    }
     py::array_t<std::uint8_t> out(
         {py::ssize_t{img.height}, py::ssize_t{img.width}, py::ssize_t{3}});
     std::memcpy(out.mutable_data(), rgb.data(), rgb.size());
@@ -174,8 +212,11 @@ py::array_t<std::uint8_t> tone_map(const py::array& image, float exposure, float
 void bind_images(py::module_& m) {
     m.def(
         "write", &write, py::arg("path"), py::arg("image"), py::arg("layers") = py::none(),
-        py::arg("exposure") = 1.0f, py::arg("gamma") = 0.45f, py::arg("half") = false,
-        "Writes an (H, W, 3) float image by extension: .png tone-mapped (exposure, gamma), "
+        py::arg("exposure") = 1.0f, py::arg("gamma") = py::none(), py::arg("half") = false,
+        py::arg("curve") = py::none(),
+        "Writes an (H, W, 3) float image by extension: .png tone-mapped (exposure, gamma "
+        "0.45: the report's look; or with curve='clamp', 'aces' or 'agx' rt_render's "
+        "--tonemap: exposure, the curve, sRGB), "
         ".pfm, .hdr, .exr linear times exposure; .exr takes layers (a dict of albedo, "
         "normal, denoised (H, W, 3) and depth, sample_count (H, W), as render(aovs=True) "
         "returns) and half=True for 16-bit colour. Atomic: the file appears whole or not at all.");
@@ -183,8 +224,10 @@ void bind_images(py::module_& m) {
           "Reads a .pfm, .hdr or .exr image as a float32 (H, W, 3) array; an .exr with "
           "layers=True as a dict of its layers");
     m.def("tone_map", &tone_map, py::arg("image"), py::arg("exposure") = 1.0f,
-          py::arg("gamma") = 0.45f,
-          "The report's tone map: uint8 (H, W, 3) of 255 * clamp(exposure * L, 0, 1)^gamma");
+          py::arg("gamma") = py::none(), py::arg("curve") = py::none(),
+          "uint8 (H, W, 3): the report's tone map 255 * clamp(exposure * L, 0, 1)^gamma "
+          "(gamma 0.45 by default), or with curve='clamp', 'aces' or 'agx' rt_render's "
+          "--tonemap: exposure * L through the curve, sRGB-encoded, as its PNG holds it");
 }
 
 }  // namespace librt::python

@@ -6,6 +6,7 @@
 #include <librt/core/error.h>
 #include <librt/core/image_layers.h>
 #include <librt/film/film.h>
+#include <librt/film/pixel_region.h>
 #include <librt/integrator/bdpt.h>
 #include <librt/integrator/integrators.h>
 #include <librt/light/light_sampler.h>
@@ -17,9 +18,11 @@
 
 #include <Python.h>
 
+#include <array>
 #include <atomic>
 #include <bit>
 #include <optional>
+#include <tuple>
 #include <utility>
 
 namespace librt::python {
@@ -27,7 +30,7 @@ namespace librt::python {
 namespace {
 
 py::tuple load(const std::string& path, const std::string& camera, const py::object& size,
-               bool default_lighting, bool allow_outside_files) {
+               bool default_lighting, bool allow_outside_files, bool all_emitters) {
     SceneFileOptions options;
     options.camera = camera;
     options.default_lighting = default_lighting;
@@ -43,6 +46,8 @@ py::tuple load(const std::string& path, const std::string& camera, const py::obj
         py::gil_scoped_release release;
         LoadedScene loaded = load_scene_file(path, options);
         scene->scene = std::move(loaded.scene);
+        // rt_render's --all-emitters: every emissive triangle of positive power a light.
+        if (all_emitters) scene->scene.set_triangle_light_settings({0.0f, 0.0f});
         scene->warnings = std::move(loaded.warnings);
         scene->lighting_note = std::move(loaded.lighting_note);
         settings = loaded.camera;
@@ -79,6 +84,26 @@ SamplerKind sampler_of(const std::string& name) {
     if (name == "sobol") return SamplerKind::Sobol;
     if (name == "independent") return SamplerKind::Independent;
     throw Error("sampler: '" + name + "' is neither sobol nor independent");
+}
+
+/// rt_render's --region X,Y,W,H as a (x, y, width, height) tuple; None: the whole image.
+/// Whether it lies within the image, render() checks (librt::Error naming it).
+PixelRegion region_of(const py::object& region) {
+    if (region.is_none()) return {};
+    const std::string bad = "region: " + std::string(py::str(py::repr(region))) +
+                            " must be (x, y, width, height): whole numbers, x and y >= 0, "
+                            "width and height >= 1 (pixels, origin top-left)";
+    std::array<long long, 4> v{};
+    try {
+        const auto t = region.cast<std::tuple<long long, long long, long long, long long>>();
+        v = {std::get<0>(t), std::get<1>(t), std::get<2>(t), std::get<3>(t)};
+    } catch (const py::cast_error&) {
+        throw Error(bad);
+    }
+    constexpr long long kMax = 65536;
+    if (v[0] < 0 || v[1] < 0 || v[2] < 1 || v[3] < 1 || v[0] + v[2] > kMax || v[1] + v[3] > kMax)
+        throw Error(bad);
+    return {int(v[0]), int(v[1]), int(v[0] + v[2]), int(v[1] + v[3])};
 }
 
 FilterKind filter_of(const std::string& name) {
@@ -132,7 +157,8 @@ ProgressCallback progress_hook(ProgressState& state) {
 py::object render(const py::object& scene_object, CameraSettings settings, int spp,
                   const py::object& size, const py::object& integrator_arg,
                   const std::string& sampler, bool adaptive, int threads, std::uint64_t seed,
-                  int max_depth, const py::object& filter, bool aovs, const py::object& progress) {
+                  int max_depth, const py::object& filter, bool aovs, const py::object& progress,
+                  const py::object& region_arg) {
     if (!size.is_none()) {
         const auto wh = size.cast<std::pair<int, int>>();
         settings.width = wh.first;
@@ -150,6 +176,7 @@ py::object render(const py::object& scene_object, CameraSettings settings, int s
     rs.seed = seed;
     rs.sampler = sampler_of(sampler);
     rs.adaptive.enabled = adaptive;
+    rs.region = region_of(region_arg);
     validate(rs);
     self.ensure_committed();
     // A string names one of librt's integrators; anything else is a librt.Integrator.
@@ -199,6 +226,14 @@ py::object render(const py::object& scene_object, CameraSettings settings, int s
         PyErr_SetString(cancelled_type().ptr(), "render cancelled by the progress callback");
         throw py::error_already_set();
     }
+    // A region: its pixels, as images and films of its own size (as rt_render writes them).
+    if (!rs.region.whole()) {
+        image = crop(image, rs.region);
+        if (aovs) {
+            film = crop(film, rs.region);
+            if (half_at > 0) half = crop(half, rs.region);
+        }
+    }
     if (!aovs) return image_to_array(std::move(image));
 
     py::dict out;
@@ -226,9 +261,12 @@ py::object render(const py::object& scene_object, CameraSettings settings, int s
 void bind_render(py::module_& m) {
     m.def("load", &load, py::arg("path"), py::arg("camera") = "", py::arg("size") = py::none(),
           py::arg("default_lighting") = true, py::arg("allow_outside_files") = false,
+          py::arg("all_emitters") = false,
           "Loads a glTF (.gltf, .glb) or OBJ file as rt_render does: returns (scene, camera). "
           "camera: the file's camera by index or name ('' the first, 'auto' framing the "
-          "model); size: (width, height), default the camera's aspect, long side 640. "
+          "model); size: (width, height), default the camera's aspect, long side 640; "
+          "all_emitters: light-sample every emissive triangle of positive power (rt_render's "
+          "--all-emitters; scene.set_triangle_light_settings). "
           "Raises librt.Error naming the file and the JSON path (or line).");
     py::class_<RenderProgress>(m, "Progress",
                                "Where a render is (the progress callback's argument)")
@@ -240,14 +278,16 @@ void bind_render(py::module_& m) {
           py::arg("size") = py::none(), py::arg("integrator") = "path",
           py::arg("sampler") = "sobol", py::arg("adaptive") = true, py::arg("threads") = 0,
           py::arg("seed") = 0, py::arg("max_depth") = -1, py::arg("filter") = py::none(),
-          py::arg("aovs") = false, py::arg("progress") = py::none(),
+          py::arg("aovs") = false, py::arg("progress") = py::none(), py::arg("region") = py::none(),
           "Renders the scene through the camera with rt_render's defaults; returns a float32 "
           "(H, W, 3) array of linear radiance, or with aovs=True a dict of arrays: beauty, "
           "albedo, normal, depth, sample_count and (spp >= 2) denoised. progress: a callable "
           "taking a librt.Progress about ten times a second; returning False cancels "
           "(librt.Cancelled), raising stops the render and propagates. Ctrl-C stops it with "
           "KeyboardInterrupt. The GIL is released while rendering. integrator: 'path', "
-          "'bdpt', 'brute' or a librt.Integrator (Python, slow).");
+          "'bdpt', 'brute' or a librt.Integrator (Python, slow). region: (x, y, width, height) "
+          "renders those pixels alone (rt_render's --region) and returns them as (height, "
+          "width) arrays, each pixel the full render's bit for bit.");
 }
 
 }  // namespace librt::python

@@ -15,6 +15,7 @@
 #include <librt/light/quad_light.h>
 #include <librt/light/sphere_light.h>
 #include <librt/light/spot_light.h>
+#include <librt/light/triangle_light.h>
 #include <librt/material/material.h>
 #include <librt/material/texture.h>
 
@@ -24,9 +25,12 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
 #include <limits>
+#include <string>
 #include <thread>
 #include <utility>
+#include <vector>
 
 namespace librt::python {
 
@@ -384,9 +388,54 @@ void bind_camera(py::module_& m) {
     });
 }
 
-/// Closest hits of N rays, the rays split among threads with the GIL released.
+/// The outputs of intersect(): each name, its dtype's name and its columns (0: shape (N,)).
+struct HitArray {
+    const char* name;
+    const char* dtype;
+    py::ssize_t columns;
+};
+constexpr HitArray kHitArrays[] = {{"t", "float32", 0},
+                                   {"primitive_id", "int64", 0},
+                                   {"object_id", "int64", 0},
+                                   {"instance_id", "int64", 0},
+                                   {"normal", "float32", 3}};
+
+/// An output array of intersect() for n rays: out[name] when the caller gave it (checked to
+/// be a writeable C-contiguous array of the right dtype and shape: it is written in place),
+/// else a new one, which the caller stores in `out` once every given array has passed.
+template <typename T>
+py::array_t<T> hit_array(const py::dict& out, const HitArray& a, py::ssize_t n, bool& fresh) {
+    const std::vector<py::ssize_t> shape =
+        a.columns == 0 ? std::vector<py::ssize_t>{n} : std::vector<py::ssize_t>{n, a.columns};
+    fresh = !out.contains(a.name);
+    if (fresh) return py::array_t<T>(shape);
+    const py::object given = out[a.name];
+    const std::string what = std::string("out['") + a.name + "']";
+    const std::string wanted = std::string(a.dtype) + " array of shape (" + std::to_string(n) +
+                               (a.columns == 0 ? ",)" : ", " + std::to_string(a.columns) + ")");
+    if (!py::isinstance<py::array>(given))
+        throw Error(what + ": expected a " + wanted + ", got a " +
+                    std::string(py::str(given.get_type().attr("__name__"))));
+    const auto arr = given.cast<py::array>();
+    std::string shape_text = "(";
+    for (py::ssize_t d = 0; d < arr.ndim(); ++d)
+        shape_text += (d ? ", " : "") + std::to_string(arr.shape(d));
+    shape_text += arr.ndim() == 1 ? ",)" : ")";
+    if (!arr.dtype().is(py::dtype::of<T>()) || arr.ndim() != py::ssize_t(shape.size()) ||
+        !std::equal(shape.begin(), shape.end(), arr.shape()))
+        throw Error(what + ": expected a " + wanted + ", got " + std::string(py::str(arr.dtype())) +
+                    " of shape " + shape_text);
+    if (!(arr.flags() & py::array::c_style))
+        throw Error(what + ": expected a C-contiguous array (np.ascontiguousarray)");
+    if (!arr.writeable()) throw Error(what + ": the array is read-only");
+    return py::reinterpret_borrow<py::array_t<T>>(arr);
+}
+
+/// Closest hits of N rays (Scene::intersect's GeometricHit: no surface record), the rays
+/// split among threads with the GIL released, written into `out`'s arrays when it gives
+/// them (no allocation) or into new ones.
 py::dict intersect(PyScene& self, const py::handle& origins, const py::handle& directions,
-                   float t_max, int threads) {
+                   float t_max, int threads, const py::object& out_arg) {
     const auto o = rows_of<float>(origins, 3, "origins");
     const auto d = rows_of<float>(directions, 3, "directions");
     if (o.shape(0) != d.shape(0))
@@ -394,12 +443,35 @@ py::dict intersect(PyScene& self, const py::handle& origins, const py::handle& d
                     std::to_string(o.shape(0)) + " and " + std::to_string(d.shape(0)) + ")");
     if (threads < 0 || threads > 1024)
         throw Error("threads: " + std::to_string(threads) + " is not in [0, 1024]");
+    py::dict out;
+    if (!out_arg.is_none()) {
+        if (!py::isinstance<py::dict>(out_arg))
+            throw Error(
+                "out: expected a dict of arrays (t, primitive_id, object_id, "
+                "instance_id, normal), got a " +
+                std::string(py::str(out_arg.get_type().attr("__name__"))));
+        out = out_arg.cast<py::dict>();
+        for (const auto& [key, value] : out) {
+            (void)value;
+            const std::string k = py::str(key);
+            if (std::none_of(std::begin(kHitArrays), std::end(kHitArrays),
+                             [&](const HitArray& a) { return k == a.name; }))
+                throw Error("out: '" + k +
+                            "' is none of t, primitive_id, object_id, instance_id, normal");
+        }
+    }
     self.ensure_committed();
     const auto n = static_cast<std::size_t>(o.shape(0));
     const auto ns = static_cast<py::ssize_t>(n);
-    py::array_t<float> t(ns);
-    py::array_t<std::int64_t> prim(ns), object(ns), instance(ns);
-    py::array_t<float> normal({ns, py::ssize_t{3}});
+    bool fresh[5];
+    auto t = hit_array<float>(out, kHitArrays[0], ns, fresh[0]);
+    auto prim = hit_array<std::int64_t>(out, kHitArrays[1], ns, fresh[1]);
+    auto object = hit_array<std::int64_t>(out, kHitArrays[2], ns, fresh[2]);
+    auto instance = hit_array<std::int64_t>(out, kHitArrays[3], ns, fresh[3]);
+    auto normal = hit_array<float>(out, kHitArrays[4], ns, fresh[4]);
+    const py::array arrays[5] = {t, prim, object, instance, normal};
+    for (int k = 0; k < 5; ++k)
+        if (fresh[k]) out[kHitArrays[k].name] = arrays[k];
     float* tp = t.mutable_data();
     std::int64_t* pp = prim.mutable_data();
     std::int64_t* op = object.mutable_data();
@@ -420,7 +492,7 @@ py::dict intersect(PyScene& self, const py::handle& origins, const py::handle& d
                 ray.origin = {od[3 * i], od[3 * i + 1], od[3 * i + 2]};
                 ray.direction = {dd[3 * i], dd[3 * i + 1], dd[3 * i + 2]};
                 ray.t_max = t_max;
-                Hit hit;
+                GeometricHit hit;
                 if (scene.intersect(ray, hit)) {
                     tp[i] = hit.t;
                     pp[i] = id(hit.primitive_id);
@@ -446,12 +518,6 @@ py::dict intersect(PyScene& self, const py::handle& origins, const py::handle& d
         work(0, std::min(n, chunk));
         for (std::thread& th : pool) th.join();
     }
-    py::dict out;
-    out["t"] = t;
-    out["primitive_id"] = prim;
-    out["object_id"] = object;
-    out["instance_id"] = instance;
-    out["normal"] = normal;
     return out;
 }
 
@@ -613,6 +679,27 @@ void bind_scene_class(py::module_& m) {
         py::arg("strength") = 1.0f, py::arg("camera_visible") = true,
         "A constant sky of `radiance`, or an equirectangular (H, W, 3) image turned by "
         "`rotate` degrees about +y");
+    c.def(
+        "set_triangle_light_settings",
+        [](PyScene& s, float negligible_power, float negligible_radiance) {
+            s.mutable_scene().set_triangle_light_settings({negligible_power, negligible_radiance});
+        },
+        py::arg("negligible_power") = TriangleLightSettings{}.negligible_power,
+        py::arg("negligible_radiance") = TriangleLightSettings{}.negligible_radiance,
+        "Which emissive triangles commit() makes lights of: those below negligible_power of "
+        "the emitters' mean power, or below negligible_radiance of their typical radiance, "
+        "are left to BSDF sampling. Both 0: every emissive triangle of positive power "
+        "(rt_render's --all-emitters). Un-commits the scene.");
+    c.def_property_readonly(
+        "triangle_light_settings",
+        [](const PyScene& s) {
+            const TriangleLightSettings& t = s.scene.triangle_light_settings();
+            py::dict d;
+            d["negligible_power"] = t.negligible_power;
+            d["negligible_radiance"] = t.negligible_radiance;
+            return d;
+        },
+        "What set_triangle_light_settings set, as a dict");
     c.def("commit", &PyScene::ensure_committed, "Builds the BVHs (render and intersect do it)");
     c.def_property_readonly("committed", [](const PyScene& s) { return s.scene.committed(); });
     c.def_property_readonly("material_count",
@@ -635,9 +722,13 @@ void bind_scene_class(py::module_& m) {
         "(min, max) corners of the geometry (commits the scene)");
     c.def("intersect", &intersect, py::arg("origins"), py::arg("directions"),
           py::arg("t_max") = std::numeric_limits<float>::infinity(), py::arg("threads") = 0,
+          py::arg("out") = py::none(),
           "Closest hits of N rays (origins and directions (N, 3)): a dict of arrays t (inf: "
           "miss), primitive_id, object_id, instance_id (-1: none) and normal (N, 3), the "
-          "geometric normal. Threads share the rays; the GIL is released.");
+          "unit geometric normal. out: a dict of such arrays (t and normal float32, the ids "
+          "int64, C-contiguous, N rows) written in place, the ones it lacks added to it, and "
+          "returned: pass the previous call's result to trace again without allocating. "
+          "Threads share the rays; the GIL is released.");
 }
 
 }  // namespace

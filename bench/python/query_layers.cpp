@@ -2,7 +2,10 @@
 // what scene.intersect (Python) pays beyond librt_bench's bare TriangleBvh
 // (docs/benchmarks.md, "The Python module against the C++"):
 //
-//   librt_query_layers bvh|top|scene [RAYS] [DATA_DIR]   Mrays per CPU s (1 thread, median of 5)
+//   librt_query_layers bvh|bvh_normal|top|geometric|scene [RAYS] [DATA_DIR]
+//       Mrays per CPU s (1 thread, median of 5); bvh_normal: TriangleBvh::intersect with the
+//       leaf's winding normal, geometric: Scene::intersect -> GeometricHit (what
+//       scene.intersect calls)
 //   librt_query_layers dump [RAYS] [DATA_DIR]            writes rays.bin and mesh.bin, which
 //       bench/python/intersect_throughput.py --same-rays reads, so Python traces these rays
 //
@@ -52,7 +55,9 @@ void report(const char* layer, const std::vector<Ray>& rays, Trace&& trace) {
 }
 
 int usage() {
-    std::fprintf(stderr, "usage: librt_query_layers bvh|top|scene|dump [RAYS] [DATA_DIR]\n");
+    std::fprintf(
+        stderr,
+        "usage: librt_query_layers bvh|bvh_normal|top|geometric|scene|dump [RAYS] [DATA_DIR]\n");
     return 2;
 }
 
@@ -97,7 +102,19 @@ int main(int argc, char** argv) {
         });
         return 0;
     }
-    if (layer != "top" && layer != "scene") return usage();
+    if (layer == "bvh_normal") {
+        const TriangleBvh bvh(mesh);
+        report("TriangleBvh::intersect + winding normal", rays, [&] {
+            std::size_t hits = 0;
+            for (const Ray& r : rays) {
+                glm::vec3 n;
+                hits += bvh.intersect(r, n).valid();
+            }
+            return hits;
+        });
+        return 0;
+    }
+    if (layer != "top" && layer != "scene" && layer != "geometric") return usage();
     Scene scene;
     scene.add_mesh(std::move(mesh), scene.add_material(Material::diffuse(glm::vec3(0.8f))));
     scene.commit();
@@ -107,6 +124,15 @@ int main(int argc, char** argv) {
             for (const Ray& r : rays) {
                 ObjectHit h;
                 hits += scene.top_level().intersect(r, h);
+            }
+            return hits;
+        });
+    } else if (layer == "geometric") {
+        report("Scene::intersect (GeometricHit)", rays, [&] {
+            std::size_t hits = 0;
+            for (const Ray& r : rays) {
+                GeometricHit h;
+                hits += scene.intersect(r, h);
             }
             return hits;
         });

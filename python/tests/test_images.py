@@ -46,6 +46,46 @@ def test_tone_map_is_the_reports():
     assert out.dtype == np.uint8 and np.array_equal(out, expected)
 
 
+def test_tone_curves_are_rt_renders():
+    grey = np.full((1, 1, 3), 0.18, np.float32)
+    srgb_grey = round(255 * (1.055 * 0.18 ** (1 / 2.4) - 0.055))
+    for curve in ["clamp", "aces", "agx"]:  # each shows mid grey as clamp does
+        assert abs(int(librt.tone_map(grey, curve=curve)[0, 0, 0]) - srgb_grey) <= 1, curve
+    # AgX: white from 6.5 stops above mid grey, black from 10 below; clamp clips at 1 already.
+    values = np.array([[[0.18 * 2 ** -10.5] * 3, [0.18 * 2 ** 3] * 3, [0.18 * 2 ** 6.6] * 3]], np.float32)
+    agx = librt.tone_map(values, curve="agx")
+    assert agx[0, 0].max() == 0 and 0 < agx[0, 1].min() < 255 and agx[0, 2].min() == 255
+    assert librt.tone_map(values, curve="clamp")[0, 1].min() == 255
+    ramp = np.geomspace(1e-3, 50, 64, dtype=np.float32)[None, :, None].repeat(3, axis=2)
+    assert np.all(np.diff(librt.tone_map(ramp, curve="agx")[0, :, 0].astype(int)) >= 0)
+    # Exposure multiplies before the curve.
+    assert np.array_equal(librt.tone_map(values, exposure=4.0, curve="agx"),
+                          librt.tone_map(values * 4, curve="agx"))
+    with pytest.raises(librt.Error, match="curve: 'filmic' is none of clamp, aces, agx"):
+        librt.tone_map(grey, curve="filmic")
+    with pytest.raises(librt.Error, match="gamma"):
+        librt.tone_map(grey, gamma=0.5, curve="agx")
+
+
+def test_agx_png_is_rt_renders(tmp_path):
+    import os
+    import subprocess
+    from conftest import write_gltf
+    rt_render = os.environ.get("LIBRT_RT_RENDER")
+    if not rt_render:
+        pytest.skip("LIBRT_RT_RENDER (the rt_render executable) not set: run through ctest")
+    scene_path = write_gltf(tmp_path)
+    subprocess.run([rt_render, str(scene_path), "-o", str(tmp_path / "cpp.png"), "--spp", "4",
+                    "--size", "48x32", "--seed", "2", "--threads", "2", "--tonemap", "agx",
+                    "--exposure", "1", "--no-denoise", "-q"], check=True)
+    scene, camera = librt.load(str(scene_path), size=(48, 32))
+    image = librt.render(scene, camera, spp=4, seed=2, threads=2)
+    librt.write(str(tmp_path / "py.png"), image, exposure=2.0, curve="agx")
+    assert (tmp_path / "py.png").read_bytes() == (tmp_path / "cpp.png").read_bytes()
+    with pytest.raises(librt.Error, match="curve applies to .png only"):
+        librt.write(str(tmp_path / "py.pfm"), image, curve="agx")
+
+
 def test_png_written(tmp_path):
     img = librt.render(small_scene(), librt.Camera.perspective((0, 0, 5), (0, 0, 0), size=(8, 8)), spp=1)
     librt.write(str(tmp_path / "x.png"), img)

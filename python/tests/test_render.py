@@ -41,6 +41,68 @@ def test_render_is_bit_identical_to_rt_render(tmp_path, sampler, adaptive):
     assert np.array_equal(py, cpp)
 
 
+@pytest.mark.parametrize("adaptive", [True, False])
+def test_region_is_the_full_renders_pixels(tmp_path, adaptive):
+    scene, camera = librt.load(str(write_gltf(tmp_path)), size=(48, 32))
+    full = librt.render(scene, camera, spp=8, seed=5, threads=2, adaptive=adaptive)
+    part = librt.render(scene, camera, spp=8, seed=5, threads=2, adaptive=adaptive,
+                        region=(11, 6, 20, 15))
+    assert part.shape == (15, 20, 3) and part.mean() > 0
+    assert np.array_equal(part, full[6:21, 11:31])
+    layers = librt.render(scene, camera, spp=8, seed=5, adaptive=adaptive, aovs=True,
+                          region=(11, 6, 20, 15))
+    assert all(v.shape[:2] == (15, 20) for v in layers.values())
+    assert np.array_equal(layers["beauty"], part)
+
+
+def test_region_matches_rt_render(tmp_path):
+    scene_path = write_gltf(tmp_path)
+    out = tmp_path / "cpp.pfm"
+    subprocess.run([rt_render(), str(scene_path), "-o", str(out), "--spp", "4", "--size", "48x32",
+                    "--seed", "3", "--threads", "2", "--region", "5,4,30,20", "--no-denoise", "-q"],
+                   check=True)
+    scene, camera = librt.load(str(scene_path), size=(48, 32))
+    py = librt.render(scene, camera, spp=4, seed=3, threads=2, region=(5, 4, 30, 20))
+    assert np.array_equal(py, librt.read(str(out)))
+
+
+def test_bad_regions_are_refused(tmp_path):
+    scene, camera = librt.load(str(write_gltf(tmp_path)), size=(48, 32))
+    for region in [(0, 0, 0, 4), (-1, 0, 4, 4), (0, 0, 4), "0,0,4,4", (0.5, 0, 4, 4)]:
+        with pytest.raises(librt.Error, match=r"region: .* must be \(x, y, width, height\)"):
+            librt.render(scene, camera, spp=1, region=region)
+    with pytest.raises(librt.Error, match="region"):  # beyond the 48 x 32 image
+        librt.render(scene, camera, spp=1, region=(40, 0, 9, 4))
+    with pytest.raises(librt.Error, match="splats"):  # light paths land on any pixel
+        librt.render(scene, camera, spp=1, integrator="bdpt", region=(0, 0, 8, 8))
+
+
+def emitter_scene(scene):
+    """A bright emissive quad and one 1000 times dimmer (a 'negligible' emitter), two triangles
+    each."""
+    quad = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], np.float32)
+    tris = np.array([[0, 1, 2], [0, 2, 3]], np.uint32)
+    scene.add_mesh(quad, tris, scene.add_material("emissive", emission=(10, 10, 10)))
+    scene.add_mesh(quad + np.float32([3, 0, 0]), tris,
+                   scene.add_material("emissive", emission=(0.01, 0.01, 0.01)))
+    return scene
+
+
+def test_all_emitters_lights_every_emissive_triangle(tmp_path):
+    default = emitter_scene(librt.Scene())
+    default.commit()
+    every = emitter_scene(librt.Scene())
+    every.set_triangle_light_settings(negligible_power=0, negligible_radiance=0)
+    every.commit()
+    assert default.light_count == 2 and every.light_count == 4
+    assert every.triangle_light_settings == {"negligible_power": 0, "negligible_radiance": 0}
+    assert default.triangle_light_settings["negligible_power"] == pytest.approx(0.01)
+    with pytest.raises(librt.Error, match="negligible_power"):
+        every.set_triangle_light_settings(negligible_power=2)
+    scene, _ = librt.load(str(write_gltf(tmp_path)), all_emitters=True)
+    assert scene.triangle_light_settings == {"negligible_power": 0, "negligible_radiance": 0}
+
+
 def test_render_returns_a_view_owning_the_film(tmp_path):
     scene, camera = librt.load(str(write_gltf(tmp_path)), size=(16, 8))
     img = librt.render(scene, camera, spp=1)

@@ -186,6 +186,66 @@ def test_intersect_agrees_with_brute_force_on_the_bunny():
     assert np.allclose(lt[both], bt[both], rtol=1e-5, atol=0)
     same = hits["primitive_id"][sample][both] == bid[both]
     assert same.mean() > 0.98  # a tie on a shared edge may name the neighbour, at the same t
+    # The normal: the unit winding normal of the triangle named (float32 against float64).
+    unit = n_tri / np.linalg.norm(n_tri, axis=1, keepdims=True)
+    assert np.abs(hits["normal"][hit] - unit).max() < 1e-5
+    assert np.all(hits["normal"][~hit] == 0)
+
+
+def bunny_rays(n, seed):
+    vertices, indices = read_obj(data_file("stanford-bunny.obj"))
+    scene = librt.Scene()
+    scene.add_mesh(vertices, indices, scene.add_material("diffuse"))
+    lo, hi = vertices.min(axis=0), vertices.max(axis=0)
+    rng = np.random.default_rng(seed)
+    origins = ((lo + hi) / 2 + rng.normal(size=(n, 3)) * float(np.linalg.norm(hi - lo))).astype(np.float32)
+    directions = (lo + rng.random((n, 3)) * (hi - lo) - origins).astype(np.float32)
+    return scene, origins, directions
+
+
+def test_intersect_writes_into_the_arrays_out_gives():
+    scene, origins, directions = bunny_rays(20_000, 3)
+    fresh = scene.intersect(origins, directions)
+    assert 0.2 < np.isfinite(fresh["t"]).mean() < 0.9
+    out = {"t": np.full(20_000, 7.0, np.float32), "normal": np.full((20_000, 3), 7.0, np.float32)}
+    given = dict(out)
+    result = scene.intersect(origins, directions, out=out)
+    assert result is out  # the caller's dict, completed with the arrays it lacked
+    assert result["t"] is given["t"] and result["normal"] is given["normal"]
+    assert set(result) == set(fresh)
+    for key in fresh:
+        assert np.array_equal(result[key], fresh[key]), key
+    # Reused on other rays: every element rewritten, the same arrays.
+    arrays = {k: v for k, v in result.items()}
+    again = scene.intersect(origins[::-1].copy(), directions[::-1].copy(), out=result, threads=1)
+    for key in fresh:
+        assert again[key] is arrays[key]
+        assert np.array_equal(again[key], fresh[key][::-1]), key
+    # The previous call's result is a valid out=.
+    scene.intersect(origins, directions, out=fresh)
+
+
+def test_intersect_refuses_bad_out_arrays():
+    scene, origins, directions = bunny_rays(100, 4)
+    n = len(origins)
+    cases = [
+        ({"t": np.zeros(n, np.float64)}, r"out\['t'\]: expected a float32 array of shape \(100,\), got float64"),
+        ({"t": np.zeros(n + 1, np.float32)}, r"out\['t'\]: .*got float32 of shape \(101,\)"),
+        ({"normal": np.zeros((n, 4), np.float32)}, r"out\['normal'\]: expected a float32 array of shape \(100, 3\)"),
+        ({"primitive_id": np.zeros(n, np.int32)}, r"out\['primitive_id'\]: expected a int64 array"),
+        ({"object_id": np.zeros((n, 2), np.int64)[:, 0]}, r"out\['object_id'\]: expected a C-contiguous"),
+        ({"instance_id": [0] * n}, r"out\['instance_id'\]: expected a int64 array .* got a list"),
+        ({"normals": np.zeros((n, 3), np.float32)}, r"out: 'normals' is none of t, primitive_id"),
+    ]
+    for out, message in cases:
+        with pytest.raises(librt.Error, match=message):
+            scene.intersect(origins, directions, out=out)
+    read_only = np.zeros(n, np.float32)
+    read_only.flags.writeable = False
+    with pytest.raises(librt.Error, match=r"out\['t'\]: the array is read-only"):
+        scene.intersect(origins, directions, out={"t": read_only})
+    with pytest.raises(librt.Error, match="out: expected a dict"):
+        scene.intersect(origins, directions, out=[np.zeros(n, np.float32)])
 
 
 def test_a_scene_in_use_cannot_be_changed():

@@ -162,9 +162,10 @@ template <bool AnyHit, class TestObject>
 // one by one as they are found, and a 16-byte copy of them (ObjectHit by value into
 // finish) is a load no store can forward to, a stall per query on the room's sphere hits
 // (perf on the synthesis; see docs/benchmarks.md). On a miss `hit` is left as it was.
-template <bool kIgnoring>
+template <bool kIgnoring, bool kNormal>
 [[gnu::always_inline]] inline bool TopLevel::closest(const Ray& ray, ObjectHit& hit,
-                                                     std::uint32_t ignored_object) const {
+                                                     std::uint32_t ignored_object,
+                                                     [[maybe_unused]] glm::vec3* normal) const {
     Ray r = detail::copy_by_floats(ray);  // no store-forwarding stall (ray_copy.h)
     const DoubleRay dray(r);
     std::uint32_t best_object = kInvalidId;
@@ -202,7 +203,27 @@ template <bool kIgnoring>
         best_object = id;
         return true;
     };
-    if constexpr (kIgnoring) {
+    if constexpr (kNormal) {
+        // The same test, the BVH's winding normal of each nearer triangle hit kept in
+        // *normal. A lambda of its own: g++ captures what a discarded branch of one lambda
+        // names, which cost the renderers' query above a capture (+1 instruction a query).
+        glm::vec3& winding = *normal;
+        visit_objects<false>(r, [&](std::uint32_t id, Ray& current) {
+            const Object& o = objects_[id];
+            if (o.kind == ObjectKind::Sphere) return test_object(id, current);
+            glm::vec3 n;
+            const PrimitiveHit h = o.kind == ObjectKind::Mesh
+                                       ? prototypes_[o.index].bvh.intersect(current, n)
+                                       : prototypes_[instances_[o.index].prototype].bvh.intersect(
+                                             object_ray(instances_[o.index], current), n);
+            if (!h.valid()) return false;
+            current.t_max = h.t;
+            best = h;
+            best_object = id;
+            winding = n;
+            return true;
+        });
+    } else if constexpr (kIgnoring) {
         // As occluded(): the ignored object's flat box dropped, the test above for top_.
         visit_objects<false>(
             r, test_object,
@@ -343,6 +364,31 @@ bool TopLevel::intersect(const Ray& ray, Hit& hit, bool every_sphere_uv) const {
     return true;
 }
 
+// A lone mesh or instance (Query::One) is tested as closest_unvisited tests it; a flat list
+// of spheres by closest_sphere (its normal comes from the sphere); the rest by the visit.
+bool TopLevel::intersect(const Ray& ray, GeometricHit& hit) const {
+    ObjectHit h;
+    glm::vec3 winding(0.0f);
+    if (query_ == Query::One) {
+        if (!is_traceable(ray)) return false;
+        const std::uint32_t id = flat_.object[0];
+        const Object& o = objects_[id];
+        const PrimitiveHit p = o.kind == ObjectKind::Mesh
+                                   ? prototypes_[o.index].bvh.intersect(ray, winding)
+                                   : prototypes_[instances_[o.index].prototype].bvh.intersect(
+                                         object_ray(instances_[o.index], ray), winding);
+        if (!p.valid()) return false;
+        h.primitive = p;
+        h.object_id = id;
+    } else if (query_ != Query::Visit) {
+        if (!closest_sphere(ray, h)) return false;  // (throws before build())
+    } else if (!closest<false, true>(ray, h, kInvalidId, &winding)) {
+        return false;
+    }
+    finish_geometric(ray, h, winding, hit);
+    return true;
+}
+
 bool TopLevel::intersect_ignoring(const Ray& ray, Hit& hit, std::uint32_t ignored_object,
                                   bool every_sphere_uv) const {
     if (query_ == Query::None) throw_not_built();
@@ -435,6 +481,33 @@ void TopLevel::finish(const Ray& ray, const ObjectHit& object_hit, bool every_sp
     hit.geometric_normal = unit_or(glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0), back);
     complete_mesh_hit(
         tri, prim.primitive_id, [](const glm::vec3& n) -> const glm::vec3& { return n; }, hit);
+}
+
+// finish()'s t, ids and geometric normal, by the same operations on the same values (the
+// leaf's corners are copies of the mesh's), so bit for bit the same.
+void TopLevel::finish_geometric(const Ray& ray, const ObjectHit& object_hit,
+                                const glm::vec3& winding_normal, GeometricHit& hit) const {
+    const Object& o = objects_[object_hit.object_id];
+    const PrimitiveHit& prim = object_hit.primitive;
+    hit.t = prim.t;
+    hit.object_id = object_hit.object_id;
+    hit.instance_id = kInvalidId;
+    const glm::vec3 back = -ray.direction;
+    switch (o.kind) {
+        case ObjectKind::Sphere:
+            hit.geometric_normal = unit_or(ray.at(prim.t) - spheres_[o.index].sphere.center, back);
+            hit.primitive_id = 0;
+            return;
+        case ObjectKind::Mesh:
+            hit.geometric_normal = unit_or(winding_normal, back);
+            break;
+        case ObjectKind::Instance:
+            hit.geometric_normal =
+                unit_or(instances_[o.index].normal_matrix * winding_normal, back);
+            hit.instance_id = o.index;
+            break;
+    }
+    hit.primitive_id = prim.primitive_id;
 }
 
 // Out of line so that the spheres' and meshes' path in finish() stays as lean as it was

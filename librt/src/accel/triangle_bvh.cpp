@@ -6,6 +6,7 @@
 #include <librt/accel/triangle_bvh.h>
 #include <librt/core/error.h>
 
+#include <array>
 #include <memory>
 #include <string>
 #include <thread>
@@ -145,6 +146,20 @@ void TriangleBvh::set_simd_path(SimdPath path) {
 PrimitiveHit TriangleBvh::intersect(const Ray& ray) const {
     if (!tree_) return {};
     return intersect_fn_(*tree_, ray);
+}
+
+PrimitiveHit TriangleBvh::intersect(const Ray& ray, glm::vec3& winding_normal) const {
+    if (!tree_) return {};
+    // Each path's entry point from a table made once: wide_kernels(path_) per query cost 38
+    // instructions a ray (callgrind, librt_query_layers geometric).
+    using Entry = PrimitiveHit (*)(const detail::WideBvh&, const Ray&, glm::vec3&);
+    static_assert(static_cast<int>(SimdPath::Avx512) == 3, "one entry per SimdPath, in order");
+    static const std::array<Entry, 4> kEntries = {
+        detail::wide_kernels(SimdPath::Scalar).intersect_normal,
+        detail::wide_kernels(SimdPath::Sse).intersect_normal,
+        detail::wide_kernels(SimdPath::Avx2).intersect_normal,
+        detail::wide_kernels(SimdPath::Avx512).intersect_normal};
+    return kEntries[static_cast<std::size_t>(path_)](*tree_, ray, winding_normal);
 }
 
 bool TriangleBvh::occluded(const Ray& ray) const {

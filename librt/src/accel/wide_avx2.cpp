@@ -50,10 +50,16 @@ static_assert(WideKernel<Avx2Kernel>);
 [[gnu::flatten]] bool avx2_occluded(const WideBvh& bvh, const Ray& ray) {
     return occluded_wide<Avx2Kernel>(bvh, ray);
 }
+[[gnu::flatten]] PrimitiveHit avx2_intersect_normal(const WideBvh& bvh, const Ray& ray,
+                                                    glm::vec3& normal) {
+    return intersect_normal_wide<Avx2Kernel>(bvh, ray, normal);
+}
 
 }  // namespace
 
-WideKernels avx2_wide_kernels() { return {&avx2_intersect, &avx2_occluded}; }
+WideKernels avx2_wide_kernels() {
+    return {&avx2_intersect, &avx2_occluded, &avx2_intersect_normal};
+}
 
 }  // namespace librt::detail
 

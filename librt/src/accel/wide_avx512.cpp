@@ -46,10 +46,16 @@ static_assert(WideKernel<Avx512Kernel>);
 [[gnu::flatten]] bool avx512_occluded(const WideBvh& bvh, const Ray& ray) {
     return occluded_wide<Avx512Kernel>(bvh, ray);
 }
+[[gnu::flatten]] PrimitiveHit avx512_intersect_normal(const WideBvh& bvh, const Ray& ray,
+                                                      glm::vec3& normal) {
+    return intersect_normal_wide<Avx512Kernel>(bvh, ray, normal);
+}
 
 }  // namespace
 
-WideKernels avx512_wide_kernels() { return {&avx512_intersect, &avx512_occluded}; }
+WideKernels avx512_wide_kernels() {
+    return {&avx512_intersect, &avx512_occluded, &avx512_intersect_normal};
+}
 
 }  // namespace librt::detail
 

@@ -9,12 +9,17 @@
 #include <librt/geometry/hit.h>
 #include <librt/geometry/ray.h>
 
+#include <glm/vec3.hpp>
+
 namespace librt::detail {
 
 /// Closest-hit and any-hit traversal of a WideBvh for one instruction set.
 struct WideKernels {
     PrimitiveHit (*intersect)(const WideBvh&, const Ray&);  ///< closest hit
     bool (*occluded)(const WideBvh&, const Ray&);           ///< any hit
+    /// Closest hit and, on a hit, the triangle's winding normal cross(p1 - p0, p2 - p0)
+    /// from the leaf's corners (intersect_normal_wide).
+    PrimitiveHit (*intersect_normal)(const WideBvh&, const Ray&, glm::vec3&);
 };
 
 /// One query through the scalar kernel, counting what the traversal does. Every path makes

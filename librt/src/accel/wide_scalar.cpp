@@ -90,10 +90,15 @@ PrimitiveHit scalar_intersect(const WideBvh& bvh, const Ray& ray) {
 bool scalar_occluded(const WideBvh& bvh, const Ray& ray) {
     return occluded_wide<ScalarKernel>(bvh, ray);
 }
+PrimitiveHit scalar_intersect_normal(const WideBvh& bvh, const Ray& ray, glm::vec3& normal) {
+    return intersect_normal_wide<ScalarKernel>(bvh, ray, normal);
+}
 
 }  // namespace
 
-WideKernels scalar_wide_kernels() { return {&scalar_intersect, &scalar_occluded}; }
+WideKernels scalar_wide_kernels() {
+    return {&scalar_intersect, &scalar_occluded, &scalar_intersect_normal};
+}
 
 TraversalCounts count_wide_traversal(const WideBvh& bvh, const Ray& ray, bool any_hit) {
     TraversalCounts counts;

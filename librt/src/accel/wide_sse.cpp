@@ -38,10 +38,14 @@ static_assert(WideKernel<SseKernel>);
 [[gnu::flatten]] bool sse_occluded(const WideBvh& bvh, const Ray& ray) {
     return occluded_wide<SseKernel>(bvh, ray);
 }
+[[gnu::flatten]] PrimitiveHit sse_intersect_normal(const WideBvh& bvh, const Ray& ray,
+                                                   glm::vec3& normal) {
+    return intersect_normal_wide<SseKernel>(bvh, ray, normal);
+}
 
 }  // namespace
 
-WideKernels sse_wide_kernels() { return {&sse_intersect, &sse_occluded}; }
+WideKernels sse_wide_kernels() { return {&sse_intersect, &sse_occluded, &sse_intersect_normal}; }
 
 }  // namespace librt::detail
 #endif

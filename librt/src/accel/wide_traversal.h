@@ -13,6 +13,8 @@
 #include <librt/geometry/hit.h>
 #include <librt/geometry/ray.h>
 
+#include <glm/geometric.hpp>
+
 #include <bit>
 #include <concepts>
 #include <cstddef>
@@ -77,9 +79,12 @@ inline void prefetch_child(const WideBvhNode* nodes, const TriangleBlock* blocks
 /// With AnyHit the children go in slot order instead and the walk stops at the first hit.
 /// Fills *hit (closest hit only). With Count it
 /// also adds what it did to *counts (a separate instantiation: the others count nothing).
-template <WideKernel K, bool AnyHit, bool Count = false>
+/// With WindingNormal it also sets *normal on a hit: the hit triangle's cross(p1 - p0,
+/// p2 - p0) from the leaf block's corners, which are in cache (the mesh's arrays are not).
+template <WideKernel K, bool AnyHit, bool Count = false, bool WindingNormal = false>
 inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit,
-                          [[maybe_unused]] TraversalCounts* counts = nullptr) {
+                          [[maybe_unused]] TraversalCounts* counts = nullptr,
+                          [[maybe_unused]] glm::vec3* normal = nullptr) {
     if (bvh.nodes.empty() || !is_traceable(ray)) return false;
     const typename K::NodeRay node_ray = K::prepare_nodes(ray);
     const typename K::TriRay tri_ray = K::prepare_triangles(ray);
@@ -179,6 +184,12 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit,
         for (;;) {
             if (sp == 0) {
                 if (found && hit) *hit = {t_max, hit_u, hit_v, blocks[hit_block].id[hit_lane]};
+                if constexpr (WindingNormal) {
+                    if (found) {
+                        const Triangle tri = blocks[hit_block].triangle(hit_lane);
+                        *normal = glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
+                    }
+                }
                 return found;
             }
             const WideStackEntry& e = stack[--sp];
@@ -196,6 +207,15 @@ template <WideKernel K>
 inline PrimitiveHit intersect_wide(const WideBvh& bvh, const Ray& ray) {
     PrimitiveHit hit;
     traverse_wide<K, false>(bvh, ray, &hit);
+    return hit;
+}
+
+/// Closest hit through kernel K and the hit triangle's winding normal (see traverse_wide):
+/// what every wide_<isa>.cpp's intersect_normal entry returns.
+template <WideKernel K>
+inline PrimitiveHit intersect_normal_wide(const WideBvh& bvh, const Ray& ray, glm::vec3& normal) {
+    PrimitiveHit hit;
+    traverse_wide<K, false, false, true>(bvh, ray, &hit, nullptr, &normal);
     return hit;
 }
 

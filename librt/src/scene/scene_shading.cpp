@@ -251,6 +251,17 @@ bool Scene::intersect_carefully(const Ray& ray, Hit& hit, bool every_sphere_uv) 
     return true;
 }
 
+bool Scene::intersect_geometric_carefully(const Ray& ray, GeometricHit& hit) const {
+    Hit h;
+    if (!intersect_carefully(ray, h, true)) return false;
+    hit.t = h.t;
+    hit.geometric_normal = h.geometric_normal;
+    hit.primitive_id = h.primitive_id;
+    hit.object_id = h.object_id;
+    hit.instance_id = h.instance_id;
+    return true;
+}
+
 // A pane lying on another surface (cornell_pbr.glb's glass cube, its bottom in the floor's
 // plane) meets a ray at the same t as that surface, give or take rounding, and which one
 // the query returns is chance. Crossing the pane then restarts the ray past its plane, so

@@ -140,6 +140,12 @@ public:
     /// computed when `every_sphere_uv` is true or the sphere was added with uv = true; or
     /// false, `hit` left alone. Throws librt::Error before build().
     [[nodiscard]] bool intersect(const Ray& ray, Hit& hit, bool every_sphere_uv = true) const;
+    /// The closest hit of intersect(ray, Hit&) without its surface record: t, ids and the
+    /// unit geometric normal, each bit for bit the finished hit's, the triangle's normal
+    /// from its BVH leaf (TriangleBvh::intersect(ray, normal)) instead of the mesh (for
+    /// incoherent rays, a cache miss or more a hit saved). Fills `hit` and returns true, or
+    /// returns false and leaves `hit` alone. Throws librt::Error before build().
+    [[nodiscard]] bool intersect(const Ray& ray, GeometricHit& hit) const;
     /// intersect(ray, hit, every_sphere_uv) over every object but `ignored_object` (the
     /// surface a pane lies on, found past the pane itself). Throws librt::Error before build().
     [[nodiscard]] bool intersect_ignoring(const Ray& ray, Hit& hit, std::uint32_t ignored_object,
@@ -251,8 +257,11 @@ private:
     [[noreturn]] static void throw_not_built();
     /// The closest hit; with kIgnoring, of any object but `ignored_object` (a compile-time
     /// switch: the renderers' query keeps its code).
-    template <bool kIgnoring = false>
-    bool closest(const Ray& ray, ObjectHit& hit, std::uint32_t ignored_object = kInvalidId) const;
+    /// With kNormal, *normal becomes the hit triangle's winding normal (in its prototype's
+    /// space; untouched for a sphere hit).
+    template <bool kIgnoring = false, bool kNormal = false>
+    bool closest(const Ray& ray, ObjectHit& hit, std::uint32_t ignored_object = kInvalidId,
+                 glm::vec3* normal = nullptr) const;
     /// closest() for every query_ but Visit (throws for Query::None): closest_sphere, or the
     /// lone object's own test for Query::One.
     bool closest_unvisited(const Ray& ray, ObjectHit& hit) const;
@@ -275,6 +284,10 @@ private:
     [[nodiscard]] BBox object_bounds(const Object& o) const;
     void finish_instance(const Ray& ray, const Instance& inst, const PrimitiveHit& prim,
                          Hit& hit) const;
+    /// The GeometricHit of a hit intersect() returned for `ray`; `winding_normal` is the
+    /// triangle's cross(p1 - p0, p2 - p0) in its prototype's space (unused for a sphere).
+    void finish_geometric(const Ray& ray, const ObjectHit& object_hit,
+                          const glm::vec3& winding_normal, GeometricHit& hit) const;
     /// Calls test_object(object id, ray) -> bool for the objects the ray may hit, nearest
     /// box first (AnyHit: a flat list in object order), through flat_ or top_; stops at
     /// the first hit with AnyHit. The flat list's boxes whose bits are in `skip` are not

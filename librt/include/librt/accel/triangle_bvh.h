@@ -10,6 +10,8 @@
 #include <librt/geometry/ray.h>
 #include <librt/geometry/triangle.h>
 
+#include <glm/vec3.hpp>
+
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -43,6 +45,10 @@ public:
 
     /// Nearest hit with t in (ray.t_min, ray.t_max), if any.
     [[nodiscard]] PrimitiveHit intersect(const Ray& ray) const;
+    /// intersect(ray), and on a hit `winding_normal` set to the hit triangle's
+    /// cross(p1 - p0, p2 - p0) (not unit; zero for a degenerate triangle), computed from the
+    /// leaf's copy of its corners: the mesh is not read. On a miss `winding_normal` is left.
+    [[nodiscard]] PrimitiveHit intersect(const Ray& ray, glm::vec3& winding_normal) const;
     /// True when anything lies in (ray.t_min, ray.t_max): for shadow rays.
     [[nodiscard]] bool occluded(const Ray& ray) const;
 
@@ -79,6 +85,8 @@ private:
     SimdPath path_ = SimdPath::Scalar;
     PrimitiveHit (*intersect_fn_)(const detail::WideBvh&, const Ray&) = nullptr;
     bool (*occluded_fn_)(const detail::WideBvh&, const Ray&) = nullptr;
+    // (The normal's entry point is looked up from path_ per query, not stored: one more
+    // pointer here cost the renderers' query 0.03 % more instructions on cornell_pbr.glb.)
 };
 
 /// The naive alternative with the same interface: tests every triangle for every ray.

@@ -40,4 +40,18 @@ struct Hit {
     std::uint32_t instance_id = kInvalidId;
 };
 
+/// What a closest-hit query knows without finishing the surface record (as Embree's
+/// rtcIntersect1 returns Ng, primID, geomID, instID): t, the ids and the geometric normal,
+/// taken from the BVH leaf's own copy of the triangle, so the mesh's index and vertex arrays
+/// are not read. Every field equals the finished Hit's of the same query bit for bit.
+struct GeometricHit {
+    float t = std::numeric_limits<float>::infinity();  ///< ray parameter of the hit; inf if none
+    /// Unit, world space: Hit::geometric_normal (the winding's for triangles, by the inverse
+    /// transpose for instances, outward for spheres).
+    glm::vec3 geometric_normal{0.0f};
+    std::uint32_t primitive_id = kInvalidId;  ///< as Hit::primitive_id
+    std::uint32_t object_id = kInvalidId;     ///< as Hit::object_id
+    std::uint32_t instance_id = kInvalidId;   ///< as Hit::instance_id
+};
+
 }  // namespace librt

@@ -191,6 +191,18 @@ public:
             return intersect_carefully(ray, hit, true);
         return top_.intersect(ray, hit, true);
     }
+    /// intersect(ray, Hit&)'s closest hit without the surface record: t, ids and the unit
+    /// geometric normal, bit for bit the finished hit's (TopLevel::intersect(ray,
+    /// GeometricHit&): the triangle from its BVH leaf, the mesh not read). In a scene with
+    /// cut-outs or panes it goes through the finished query (their tests need the surface).
+    /// Fills `hit` and returns true, or returns false and leaves `hit` alone. Throws
+    /// librt::Error before commit().
+    [[nodiscard]] bool intersect(const Ray& ray, GeometricHit& hit) const {
+        require_committed();
+        if (careful_queries_) [[unlikely]]
+            return intersect_geometric_carefully(ray, hit);
+        return top_.intersect(ray, hit);
+    }
     /// intersect() for renderers: the same hit, except that a sphere's uv (two inverse
     /// trigonometric calls) is computed only when its material has a texture, and is
     /// (0, 0) otherwise, since only texture lookups read it (in a scene with an alpha
@@ -363,6 +375,8 @@ private:
     /// surfaces, and, where a pane (a material that may pass light through) lies in the
     /// plane of another surface, that surface instead of the pane (surface_under_pane).
     bool intersect_carefully(const Ray& ray, Hit& hit, bool every_sphere_uv) const;
+    /// intersect_carefully(ray, hit, true) as a GeometricHit.
+    bool intersect_geometric_carefully(const Ray& ray, GeometricHit& hit) const;
     /// Replaces `pane` (the closest hit of `ray`, on a material that may pass light
     /// through) by the closest surface of another object within a relative 1e-5 of its t,
     /// when there is one.
