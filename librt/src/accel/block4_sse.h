@@ -54,30 +54,23 @@ inline TriRay4 prepare_triangles4(const Ray& ray) {
     return r;
 }
 
-/// Recomputes the edge functions of the lanes in `lanes` in double, as triangle.h does
-/// when one of them is exactly zero in float (a ray through an edge or vertex).
-[[gnu::noinline]] inline void exact_edges4(int lanes, __m128 ax, __m128 ay, __m128 bx, __m128 by,
-                                           __m128 cx, __m128 cy, __m128& e0, __m128& e1,
-                                           __m128& e2) {
-    alignas(16) float AX[4], AY[4], BX[4], BY[4], CX[4], CY[4], E0[4], E1[4], E2[4];
-    _mm_store_ps(AX, ax);
-    _mm_store_ps(AY, ay);
-    _mm_store_ps(BX, bx);
-    _mm_store_ps(BY, by);
-    _mm_store_ps(CX, cx);
-    _mm_store_ps(CY, cy);
-    _mm_store_ps(E0, e0);
-    _mm_store_ps(E1, e1);
-    _mm_store_ps(E2, e2);
-    for (int k = 0; k < 4; ++k) {
-        if (!(lanes & (1 << k))) continue;
-        E0[k] = static_cast<float>(double(CX[k]) * double(BY[k]) - double(CY[k]) * double(BX[k]));
-        E1[k] = static_cast<float>(double(AX[k]) * double(CY[k]) - double(AY[k]) * double(CX[k]));
-        E2[k] = static_cast<float>(double(BX[k]) * double(AY[k]) - double(BY[k]) * double(AX[k]));
-    }
-    e0 = _mm_load_ps(E0);
-    e1 = _mm_load_ps(E1);
-    e2 = _mm_load_ps(E2);
+/// p q - r s per lane with the products and the difference in double, rounded to float:
+/// triangle.h's exact edge function for a ray through an edge or vertex (the products of
+/// two floats are exact in double). Two lanes per SSE2 double vector.
+inline __m128 exact_edge4(__m128 p, __m128 q, __m128 r, __m128 s) {
+    const auto pair = [](__m128 p2, __m128 q2, __m128 r2, __m128 s2) {  // lanes 0 and 1
+        return _mm_cvtpd_ps(_mm_sub_pd(_mm_mul_pd(_mm_cvtps_pd(p2), _mm_cvtps_pd(q2)),
+                                       _mm_mul_pd(_mm_cvtps_pd(r2), _mm_cvtps_pd(s2))));
+    };
+    const __m128 lo = pair(p, q, r, s);
+    const __m128 hi =
+        pair(_mm_movehl_ps(p, p), _mm_movehl_ps(q, q), _mm_movehl_ps(r, r), _mm_movehl_ps(s, s));
+    return _mm_movelh_ps(lo, hi);
+}
+
+/// `exact` in the lanes of `mask`, `e` in the others.
+inline __m128 select4(__m128 mask, __m128 exact, __m128 e) {
+    return _mm_or_ps(_mm_and_ps(mask, exact), _mm_andnot_ps(mask, e));
 }
 
 /// Watertight ray-triangle test (Woop, Benthin and Wald, JCGT 2013) of a block's four
@@ -109,9 +102,15 @@ inline __m128 test_block4(const TriangleBlock& b, const TriRay4& r, __m128 t_min
     __m128 e1 = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
     __m128 e2 = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
     const __m128 zero = _mm_setzero_ps();
-    const int on_edge = _mm_movemask_ps(_mm_or_ps(
-        _mm_or_ps(_mm_cmpeq_ps(e0, zero), _mm_cmpeq_ps(e1, zero)), _mm_cmpeq_ps(e2, zero)));
-    if (on_edge) exact_edges4(on_edge, ax, ay, bx, by, cx, cy, e0, e1, e2);
+    const __m128 on_edge = _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(e0, zero), _mm_cmpeq_ps(e1, zero)),
+                                     _mm_cmpeq_ps(e2, zero));
+    if (_mm_movemask_ps(on_edge) != 0) [[unlikely]] {
+        // Inline and in registers: a call taking the edges by reference kept them in
+        // memory on every block test.
+        e0 = select4(on_edge, exact_edge4(cx, by, cy, bx), e0);
+        e1 = select4(on_edge, exact_edge4(ax, cy, ay, cx), e1);
+        e2 = select4(on_edge, exact_edge4(bx, ay, by, ax), e2);
+    }
 
     // Inside when the three signs agree (either winding).
     const __m128 any_neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)),

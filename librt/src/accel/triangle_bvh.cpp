@@ -128,8 +128,8 @@ void TriangleBvh::build(std::span<const Triangle> triangles, BvhBuilder builder)
     triangle_count_ = n;
     bounds_ = binary.bounds();
     if (n != 0)
-        tree_ =
-            std::make_shared<const detail::WideBvh>(detail::collapse_to_wide(binary, triangles));
+        tree_ = std::make_shared<const detail::WideBvh>(
+            detail::collapse_to_wide(binary, triangles, boxes));
     set_simd_path(default_simd_path());
 }
 

@@ -123,8 +123,12 @@ struct WideBvh {
 /// binary node's children and keeps opening the one with the largest surface area until
 /// it has eight (the usual greedy collapse, as in Embree's and Ylitie et al.'s wide BVHs).
 /// triangles[i] is primitive i of the binary BVH. Leaves larger than kMaxLeafBlocks
-/// blocks (the median builder's degenerate leaves) are split into extra nodes.
-[[nodiscard]] WideBvh collapse_to_wide(const Bvh& bvh, std::span<const Triangle> triangles);
+/// blocks (the median builder's degenerate leaves) are split into extra nodes. Slots a node
+/// still has free then go to its leaves of two blocks, each split into two leaves of one
+/// block (fewer block tests per ray, no more nodes).
+/// boxes[i] is bounds(triangles[i]) (the builder's input, reused to plan those splits).
+[[nodiscard]] WideBvh collapse_to_wide(const Bvh& bvh, std::span<const Triangle> triangles,
+                                       std::span<const BBox> boxes);
 
 /// Node, leaf and depth figures of a wide BVH, by one walk over its nodes.
 [[nodiscard]] BvhStats wide_bvh_stats(const WideBvh& wide);
