@@ -68,7 +68,7 @@ def main():
                     for i in range(w * h)]
         mse = sum(pixel_se) / len(pixel_se)
         rmse = math.sqrt(mse)
-        relative = f"{rmse / mean:.4f}" if mean != 0.0 else "undefined (mean 0)"
+        relative = f"{rmse / mean:.4e}" if mean != 0.0 else "undefined (mean 0)"
         line = f"{path}: RMSE {rmse:.5f}, relative to the mean {relative}, MSE {mse:.4e}"
         if near is not None:
             room = [se for se, n in zip(pixel_se, near) if not n]

@@ -1,49 +1,71 @@
 #!/usr/bin/env bash
 # Equal-time error of rt_render's defaults (Sobol', adaptive sampling, paths ended by
-# roulette) against the defaults before them (independent samples, uniform, 5 bounces) on
-# every shared glTF scene (docs/benchmarks.md, "rt_render's defaults at equal time").
+# roulette, denoised output) against the defaults before them (independent samples,
+# uniform, 5 bounces, no denoiser) on every shared glTF scene (docs/benchmarks.md,
+# "rt_render's defaults at equal time").
 #
-#   bench/sampling/defaults_equal_time.sh [BUILD_DIR] [DATA_DIR] [SIZE] [REF_SPP] [SPP]
+#   bench/sampling/defaults_equal_time.sh [BUILD_DIR] [DATA_DIR] [SIZE] [REF_SPP] [SPP] [RUNS]
 #
 # Per scene: a reference (REF_SPP Sobol' samples, uniform, unbiased depth, seed 99, both
-# threads); the old defaults at SPP (16), one thread, timed (user + system CPU seconds);
-# the new defaults at SPP, timed, then again at the spp that takes the old one's CPU time.
-# PFM output: not denoised (the denoiser's figures are its own section).
-# RMSE against the reference by scripts/pfm_rmse.py (the reference's own noise is not
-# subtracted: it flatters neither side).
+# threads); the old defaults at SPP, one thread, seed 1; the new defaults at SPP without
+# and with the denoiser. CPU time (user + system, the whole process) is the least of RUNS
+# runs of each, alternated (the machine is shared). Then the new defaults again at the
+# spp that takes the old one's CPU time: noisy (PFM, --no-denoise) and as a user gets
+# them (--denoise: the denoised image, its cost counted in the time). Error: RMSE of the
+# linear PFM against the reference divided by the reference's mean (a relative error, so a
+# dark scene is measured like a bright one; the ratios are those of the RMSE), by
+# scripts/pfm_rmse.py; the reference's own noise is not subtracted (it flatters neither
+# side). Columns: the ratio old / new at equal samples (error per sample), at equal time
+# noisy (sampling only), at equal time denoised (what a user gets).
 set -euo pipefail
 build=${1:-build/release}
 data=${2:-../shared/data}
 size=${3:-96x96}
 ref_spp=${4:-2048}
 spp0=${5:-16}
+runs=${6:-3}
 rt=$build/apps/rt_render
 here=$(cd "$(dirname "$0")" && pwd)
-rmse() { python3 "$here/../../scripts/pfm_rmse.py" "$1" "$2" | awk '/RMSE/ {print $0; exit}' | sed -E 's/.*RMSE ([0-9.e+-]+).*/\1/'; }
+relerr() {  # RMSE / reference mean, full precision
+  python3 "$here/../../scripts/pfm_rmse.py" "$1" "$2" |
+    sed -E 's/.*relative to the mean ([0-9.e+-]+).*/\1/'
+}
 cpu() {  # runs the command, prints its user + system CPU seconds
   local t
   t=$(mktemp)
-  /usr/bin/time -o "$t" -f "%U %S" "$@" >/dev/null
-  awk '{printf "%.2f", $1 + $2}' "$t"
+  /usr/bin/time -o "$t" -f "%U %S" "$@" >/dev/null 2>&1
+  awk '{printf "%.3f", $1 + $2}' "$t"
   rm -f "$t"
 }
+least() { printf '%s\n' "$@" | sort -g | head -1; }
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN {printf "%.2f", a / b}'; }
+equal_spp() { awk -v a="$1" -v b="$2" -v n="$spp0" 'BEGIN {s = int(n * a / b + 0.5); if (s < 4) s = 4; print s}'; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-printf '| scene | old RMSE | old CPU s | new spp | new RMSE | new CPU s | RMSE old / new |\n'
-printf '|---|---|---|---|---|---|---|\n'
+printf '| scene | old err | old CPU s | new err, same spp | new CPU s, same spp (noisy / denoised) | equal-time spp (noisy / denoised) | new err, equal time (noisy / denoised) | old / new: same spp | equal time, noisy | equal time, denoised |\n'
+printf '|---|---|---|---|---|---|---|---|---|---|\n'
 for scene in "$data"/gltf/*.glb; do
   name=$(basename "$scene" .glb)
-  common=(--size "$size" -q --no-denoise)
-  "$rt" "$scene" "${common[@]}" --spp "$ref_spp" --sampler sobol --no-adaptive --seed 99 \
-    --threads 2 -o "$work/ref.pfm" >/dev/null
-  old_cpu=$(cpu "$rt" "$scene" "${common[@]}" --threads 1 --seed 1 --spp "$spp0" \
-    --sampler independent --no-adaptive --max-depth 5 -o "$work/old.pfm")
-  new0_cpu=$(cpu "$rt" "$scene" "${common[@]}" --threads 1 --seed 1 --spp "$spp0" -o "$work/new.pfm")
-  spp=$(awk -v a="$old_cpu" -v b="$new0_cpu" -v n="$spp0" 'BEGIN {s = int(n * a / b + 0.5); if (s < 4) s = 4; print s}')
-  new_cpu=$(cpu "$rt" "$scene" "${common[@]}" --threads 1 --seed 1 --spp "$spp" -o "$work/new.pfm")
-  old_rmse=$(rmse "$work/ref.pfm" "$work/old.pfm")
-  new_rmse=$(rmse "$work/ref.pfm" "$work/new.pfm")
-  ratio=$(awk -v a="$old_rmse" -v b="$new_rmse" 'BEGIN {printf "%.2f", a / b}')
-  printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$name" "$old_rmse" "$old_cpu" "$spp" \
-    "$new_rmse" "$new_cpu" "$ratio"
+  common=(--size "$size" -q --threads 1 --seed 1)
+  old=(--sampler independent --no-adaptive --max-depth 5 --no-denoise)
+  "$rt" "$scene" --size "$size" -q --no-denoise --spp "$ref_spp" --sampler sobol --no-adaptive \
+    --seed 99 --threads 2 -o "$work/ref.pfm" >/dev/null 2>&1
+  t_old=() t_new=() t_den=()
+  for _ in $(seq "$runs"); do
+    t_old+=("$(cpu "$rt" "$scene" "${common[@]}" --spp "$spp0" "${old[@]}" -o "$work/old.pfm")")
+    t_new+=("$(cpu "$rt" "$scene" "${common[@]}" --spp "$spp0" --no-denoise -o "$work/new0.pfm")")
+    t_den+=("$(cpu "$rt" "$scene" "${common[@]}" --spp "$spp0" --denoise -o "$work/den0.pfm")")
+  done
+  old_cpu=$(least "${t_old[@]}") new0_cpu=$(least "${t_new[@]}") den0_cpu=$(least "${t_den[@]}")
+  spp_n=$(equal_spp "$old_cpu" "$new0_cpu")
+  spp_d=$(equal_spp "$old_cpu" "$den0_cpu")
+  "$rt" "$scene" "${common[@]}" --spp "$spp_n" --no-denoise -o "$work/new.pfm" >/dev/null 2>&1
+  "$rt" "$scene" "${common[@]}" --spp "$spp_d" --denoise -o "$work/den.pfm" >/dev/null 2>&1
+  e_old=$(relerr "$work/ref.pfm" "$work/old.pfm")
+  e_new0=$(relerr "$work/ref.pfm" "$work/new0.pfm")
+  e_new=$(relerr "$work/ref.pfm" "$work/new.pfm")
+  e_den=$(relerr "$work/ref.pfm" "$work/den.pfm")
+  printf '| %s | %s | %s | %s | %s / %s | %s / %s | %s / %s | %s | %s | %s |\n' "$name" "$e_old" \
+    "$old_cpu" "$e_new0" "$new0_cpu" "$den0_cpu" "$spp_n" "$spp_d" "$e_new" "$e_den" \
+    "$(ratio "$e_old" "$e_new0")" "$(ratio "$e_old" "$e_new")" "$(ratio "$e_old" "$e_den")"
 done

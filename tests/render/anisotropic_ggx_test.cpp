@@ -240,7 +240,7 @@ TEST(AnisotropicGgx, SampledDirectionsFollowPdf) {
                 // rest of pdf() pushed forward.
                 const double p_diffuse =
                     c.material.kind == MaterialKind::MetallicRoughness
-                        ? bsdfs::MetallicRoughness::lobe_probabilities(c.material, wo)[1]
+                        ? bsdfs::MetallicRoughness::lobe_probabilities(c.material, p, wo)[1]
                         : 0.0;
                 for (int i = 0; i < bins.n_cos; ++i) {
                     const double c0 = -1.0 + 2.0 * i / bins.n_cos, c1 = c0 + 2.0 / bins.n_cos;

@@ -1,7 +1,8 @@
 // The lobes the glTF material extensions add to the metallic-roughness BSDF
 // (KHR_materials_clearcoat, KHR_materials_sheen, KHR_materials_specular): sample() agrees
 // with eval() and pdf(); reciprocity; chi-square of sampled directions against pdf();
-// directional albedo <= 1; at their defaults they change nothing; closed forms: with
+// directional albedo <= 1; at their defaults they change nothing; a coat with its own normal
+// (clearcoatNormalTexture) is the coat lobe in that normal's frame; closed forms: with
 // specularFactor 0 a white base is exactly Lambertian (a white furnace returns 1), and a
 // sheen over a black base reflects its tabulated albedo E(cos_o), checked against the
 // test's own double-precision quadrature of Estevez & Kulla's D and Neubelt's V.
@@ -21,6 +22,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -285,6 +287,159 @@ TEST(GltfLayers, CoatOverBlackIsTheCoatLobe) {
     }
 }
 
+/// A coat normal tilted by `degrees` from the shading normal (+z), toward azimuth phi.
+glm::vec3 tilted(double degrees, double phi) {
+    const double t = degrees * std::numbers::pi / 180.0;
+    return glm::vec3(float(std::sin(t) * std::cos(phi)), float(std::sin(t) * std::sin(phi)),
+                     float(std::cos(t)));
+}
+
+/// clearcoatNormalTexture: coats whose own normal is tilted from the base's, over a
+/// coloured base, a half-metal with transmission and sheen, and a black non-specular base.
+std::vector<Case> bent_coat_cases() {
+    Material coat = Material::metallic_roughness({0.7f, 0.1f, 0.1f}, 0.0f, 0.5f);
+    coat.clearcoat = 1.0f;
+    coat.clearcoat_roughness = 0.6f;
+    coat.clearcoat_normal = tilted(25.0, 0.4);
+    Material all = Material::metallic_roughness({0.9f, 0.8f, 0.7f}, 0.3f, 0.8f, 1.5f, 0.4f);
+    all.clearcoat = 0.6f;
+    all.clearcoat_roughness = 0.6f;
+    all.sheen_color = {0.5f, 0.5f, 0.5f};
+    all.sheen_roughness = 0.8f;
+    all.clearcoat_normal = tilted(40.0, 2.0);
+    Material black = Material::metallic_roughness(glm::vec3(0.0f), 0.0f, 0.5f);
+    black.specular = 0.0f;
+    black.clearcoat = 1.0f;
+    black.clearcoat_roughness = 0.7f;
+    black.clearcoat_normal = tilted(30.0, -1.0);
+    // A back hit: the frame (and the coat normal with it) turned to wo's side.
+    Material back = coat;
+    back.clearcoat_normal = -tilted(20.0, 1.0);
+    return {{"bent coat", coat},
+            {"bent coat, all layers", all},
+            {"bent coat over black", black},
+            {"bent coat, back", back, false}};
+}
+
+// The coat's own normal: sample() agrees with eval() and pdf() (weights f cos / pdf), and
+// f and pdf are finite and non-negative everywhere.
+TEST(GltfLayers, BentCoatSampleWeightIsEvalCosOverPdf) {
+    Pcg32 rng(8, 21);
+    for (const Case& c : bent_coat_cases()) {
+        const ShadingPoint p = flat_point(c.front);
+        int valid = 0, coat_side = 0;
+        for (int i = 0; i < 20000; ++i) {
+            const glm::vec3 wo =
+                local_dir(0.01 + 0.99 * rng.next_float(), 6.283 * rng.next_float());
+            const BsdfSample s = sample(c.material, p, wo, rng.next_float(), rng.next_vec2());
+            if (!s.valid()) continue;
+            ++valid;
+            // The coat's normal as the BSDF turns it: to the geometric normal's side (+z).
+            const glm::vec3 nc = c.material.clearcoat_normal.z < 0.0f ? -c.material.clearcoat_normal
+                                                                      : c.material.clearcoat_normal;
+            coat_side += glm::dot(s.wi, nc) > 0.0f;
+            ASSERT_TRUE(testing::sample_agrees_with_eval_pdf(c.material, p, wo, s)) << c.name;
+        }
+        EXPECT_GT(valid, 10000) << c.name;
+        EXPECT_GT(coat_side, 0) << c.name;
+    }
+}
+
+// Chi-square of sampled directions against pdf() with the coat's normal tilted (the
+// failed-sample cell holds the coat's reflections under its own normal or the surface).
+TEST(GltfLayers, BentCoatSampledDirectionsFollowPdf) {
+    const int n = testing::scaled_samples(100'000);
+    for (const Case& c : bent_coat_cases())
+        for (const double co : {0.9, 0.5, 0.2}) {
+            const ShadingPoint p = flat_point(c.front);
+            const glm::vec3 wo = local_dir(co, 0.3);
+            testing::DirectionBins sphere;
+            sphere.frame = Frame::from_normal({0, 0, 1});
+            Pcg32 rng(uint64_t(100 * co) + 17, 9);
+            std::vector<double> observed =
+                testing::sampled_direction_counts(c.material, p, wo, sphere, n, rng);
+            std::vector<double> expected = testing::expected_counts(
+                sphere, [&](const glm::vec3& w) { return double(pdf(c.material, p, wo, w)); }, n);
+            double integral = 0.0;
+            for (const double e : expected) integral += e;
+            EXPECT_LE(integral, n * 1.003) << c.name << " cos_o " << co;
+            expected.push_back(std::max(0.0, n - integral));
+            testing::expect_chi_square_passes(observed, expected,
+                                              c.name + " cos_o " + std::to_string(co));
+        }
+}
+
+// Energy: directional albedo <= 1 (4 standard errors) with the coat's normal tilted, on
+// white bases, down to cos_o 0.7 as DirectionalAlbedoAtMostOne.
+TEST(GltfLayers, BentCoatDirectionalAlbedoAtMostOne) {
+    const int n = testing::scaled_samples(50'000);
+    for (Case c : bent_coat_cases())
+        for (const double co : {1.0, 0.7}) {
+            if (c.material.specular > 0.0f) c.material.base_color = glm::vec3(1.0f);
+            const ShadingPoint p = flat_point(c.front);
+            Pcg32 rng(33, 5);
+            testing::expect_albedo_at_most_one(c.material, p, local_dir(co, 1.0), n, rng,
+                                               c.name + " cos_o " + std::to_string(co));
+        }
+}
+
+// Over a black base the bent coat is exactly the coat lobe of CoatOverBlackIsTheCoatLobe
+// turned into its normal's frame, carrying its own cosine: f (wi.z) = f_c(wo', wi')
+// (wi'.z) with w' = w in the frame of n_c, and f_c is then reciprocal (f_c(wo', wi') =
+// f_c(wi', wo')); zero where wo or wi is under the coat's normal.
+TEST(GltfLayers, BentCoatOverBlackIsTheCoatLobeInItsFrame) {
+    Material m = Material::metallic_roughness(glm::vec3(0.0f), 0.0f, 0.5f);
+    m.specular = 0.0f;
+    m.clearcoat = 1.0f;
+    m.clearcoat_roughness = 0.5f;
+    Material flat = m;
+    m.clearcoat_normal = tilted(35.0, 0.8);
+    const Frame coat = Frame::from_normal(m.clearcoat_normal);
+    const ShadingPoint p = flat_point();
+    Pcg32 rng(6, 6);
+    int checked = 0, zero = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const glm::vec3 wo = local_dir(0.05 + 0.95 * rng.next_float(), 6.283 * rng.next_float());
+        const glm::vec3 wi = local_dir(0.05 + 0.95 * rng.next_float(), 6.283 * rng.next_float());
+        const glm::vec3 wo_c = coat.to_local(wo), wi_c = coat.to_local(wi);
+        const float f = eval(m, p, wo, wi).x;
+        if (wo_c.z <= 0.02f || wi_c.z <= 0.02f) {
+            if (wo_c.z <= 0.0f || wi_c.z <= 0.0f) {
+                ASSERT_EQ(f, 0.0f) << i;
+                ++zero;
+            }
+            continue;
+        }
+        const double expected = double(eval(flat, p, wo_c, wi_c).x) * wi_c.z / wi.z;
+        ASSERT_NEAR(f, expected, 1e-4 * expected + 1e-7) << i;
+        const float f_c = f * wi.z / wi_c.z;
+        const float f_c_reverse = eval(m, p, wi, wo).x * wo.z / wo_c.z;
+        ASSERT_NEAR(f_c, f_c_reverse, 1e-4f * f_c + 1e-7f) << i;
+        ++checked;
+    }
+    EXPECT_GT(checked, 1000);
+    EXPECT_GT(zero, 100);
+}
+
+// Bent to the shading normal itself, the coat normal changes nothing (same bits as unset).
+TEST(GltfLayers, CoatNormalAlongTheShadingNormalChangesNothing) {
+    Material plain = Material::metallic_roughness({0.5f, 0.4f, 0.3f}, 0.2f, 0.4f);
+    plain.clearcoat = 0.8f;
+    plain.clearcoat_roughness = 0.3f;
+    Material along = plain;
+    along.clearcoat_normal = {0.0f, 0.0f, 2.0f};  // not unit: normalised by the BSDF
+    const ShadingPoint p = flat_point();
+    Pcg32 rng(3, 3);
+    for (int i = 0; i < 2000; ++i) {
+        const glm::vec3 wo = local_dir(0.05 + 0.95 * rng.next_float(), 6.283 * rng.next_float());
+        const glm::vec3 wi = local_dir(0.05 + 0.95 * rng.next_float(), 6.283 * rng.next_float());
+        const glm::vec3 a = eval(plain, p, wo, wi), b = eval(along, p, wo, wi);
+        for (int k = 0; k < 3; ++k) ASSERT_NEAR(a[k], b[k], 1e-5f * a[k] + 1e-8f) << i;
+        ASSERT_NEAR(pdf(plain, p, wo, wi), pdf(along, p, wo, wi),
+                    1e-5f * pdf(plain, p, wo, wi) + 1e-8f);
+    }
+}
+
 TEST(GltfLayers, ValidateRefusesOutOfRangeFactors) {
     Material m = Material::metallic_roughness(glm::vec3(0.5f), 0.0f, 0.5f);
     m.clearcoat = 1.5f;
@@ -298,6 +453,12 @@ TEST(GltfLayers, ValidateRefusesOutOfRangeFactors) {
     EXPECT_THROW(validate(m), Error);
     m.sheen_color = glm::vec3(0.5f);
     m.unlit = true;  // only an Emissive material is unlit
+    EXPECT_THROW(validate(m), Error);
+    m.unlit = false;
+    m.clearcoat_normal = glm::vec3(0.0f, std::nanf(""), 1.0f);
+    EXPECT_THROW(validate(m), Error);
+    m.clearcoat_normal = glm::vec3(0.0f);
+    m.clearcoat_normal_scale = std::numeric_limits<float>::infinity();
     EXPECT_THROW(validate(m), Error);
 }
 

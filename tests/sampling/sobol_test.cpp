@@ -153,6 +153,23 @@ TEST(Sobol, ByteTablesAgreeWithTheDirectionNumbers) {
     }
 }
 
+TEST(Sobol, PairTablesAndHalvesReversalAgreeWithTheDirectForm) {
+    // sobol_reversed_pair(reverse(i)) = (reverse(sobol_u32(i, 0)), reverse(sobol_u32(i, 1)))
+    // and reverse_bits_halves reverses each half and exchanges them: the forms the Sobol'
+    // sampler's draws take, against the definitions.
+    Pcg32 rng(7, 8);
+    for (int n = 0; n < 20000; ++n) {
+        const std::uint32_t i = n < 1000 ? static_cast<std::uint32_t>(n) : rng.next_u32();
+        const std::uint64_t pair = sobol_reversed_pair(reverse_bits(i));
+        ASSERT_EQ(static_cast<std::uint32_t>(pair), reverse_bits(sobol_u32(i, 0))) << i;
+        ASSERT_EQ(static_cast<std::uint32_t>(pair >> 32u), reverse_bits(sobol_u32(i, 1))) << i;
+        const std::uint32_t a = rng.next_u32(), b = rng.next_u32();
+        const std::uint64_t v = reverse_bits_halves((std::uint64_t{a} << 32u) | b);
+        ASSERT_EQ(static_cast<std::uint32_t>(v), reverse_bits(a));
+        ASSERT_EQ(static_cast<std::uint32_t>(v >> 32u), reverse_bits(b));
+    }
+}
+
 TEST(Sobol, EveryDimensionIsStratifiedAndTheFirstPairIsA02Sequence) {
     for (int d = 0; d < kSobolDimensions; ++d) {
         std::vector<float> values;

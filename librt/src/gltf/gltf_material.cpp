@@ -95,9 +95,10 @@ GltfTextureRef texture_ref(int index, int tex_coord, double scale, const Extensi
 }
 
 /// The texture info `key` of an extension object (KHR_materials_transmission's
-/// transmissionTexture, KHR_materials_anisotropy's anisotropyTexture), or none.
+/// transmissionTexture, KHR_materials_anisotropy's anisotropyTexture), or none; with
+/// `normal`, a normalTextureInfo whose optional "scale" (default 1) is read too.
 GltfTextureRef ext_texture(const Value& ext, const char* key, const std::string& path,
-                           std::size_t textures, const Context& ctx) {
+                           std::size_t textures, const Context& ctx, bool normal = false) {
     if (!ext.IsObject() || !ext.Has(key)) return {};
     const std::string at = path + "." + key;
     const Value& t = ext.Get(key);
@@ -109,7 +110,12 @@ GltfTextureRef ext_texture(const Value& ext, const char* key, const std::string&
     if (t.Has("extensions") && t.Get("extensions").IsObject())
         for (const std::string& k : t.Get("extensions").Keys())
             nested[k] = t.Get("extensions").Get(k);
-    return texture_ref(t.Get("index").Get<int>(), tc, 1.0, nested, at, textures, ctx);
+    double scale = 1.0;
+    if (normal && t.Has("scale")) {
+        if (!t.Get("scale").IsNumber()) ctx.fail(at + ".scale", "must be a number");
+        scale = t.Get("scale").GetNumberAsDouble();
+    }
+    return texture_ref(t.Get("index").Get<int>(), tc, scale, nested, at, textures, ctx);
 }
 
 /// An optional number member `key` of the extension object at `at`: false when absent,
@@ -163,7 +169,8 @@ void read_layer_extensions(const ExtensionMap& extensions, const std::string& ep
         g.clearcoat_texture = ext_texture(*e, "clearcoatTexture", at, textures, ctx);
         g.clearcoat_roughness_texture =
             ext_texture(*e, "clearcoatRoughnessTexture", at, textures, ctx);
-        g.clearcoat_normal_texture = ext_texture(*e, "clearcoatNormalTexture", at, textures, ctx);
+        g.clearcoat_normal_texture =
+            ext_texture(*e, "clearcoatNormalTexture", at, textures, ctx, true);
     }
     if (const Value* e = object("KHR_materials_sheen")) {
         const std::string at = ep + "KHR_materials_sheen";

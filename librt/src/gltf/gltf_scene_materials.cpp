@@ -59,6 +59,8 @@ Material material_from_gltf(const GltfMaterial& m, const GltfMaterialTextures& t
     out.clearcoat_texture = slot(m.clearcoat_texture, textures.clearcoat);
     out.clearcoat_roughness_texture =
         slot(m.clearcoat_roughness_texture, textures.clearcoat_roughness);
+    out.clearcoat_normal_texture = slot(m.clearcoat_normal_texture, textures.clearcoat_normal);
+    out.clearcoat_normal_scale = m.clearcoat_normal_texture.scale;
     out.sheen_color = glm::clamp(m.sheen_color_factor, 0.0f, 1.0f);
     out.sheen_roughness = std::clamp(m.sheen_roughness_factor, 0.0f, 1.0f);
     out.specular = std::clamp(m.specular_factor, 0.0f, 1.0f);
@@ -174,6 +176,7 @@ const SceneMaterial& MaterialBuilder::material(int index) {
                                           &m.anisotropy_texture,
                                           &m.clearcoat_texture,
                                           &m.clearcoat_roughness_texture,
+                                          &m.clearcoat_normal_texture,
                                           &m.sheen_color_texture,
                                           &m.sheen_roughness_texture,
                                           &m.specular_texture,
@@ -196,15 +199,12 @@ const SceneMaterial& MaterialBuilder::material(int index) {
     ids.anisotropy = use(m.anisotropy_texture, ColorSpace::Linear);
     ids.clearcoat = use(m.clearcoat_texture, ColorSpace::Linear);
     ids.clearcoat_roughness = use(m.clearcoat_roughness_texture, ColorSpace::Linear);
+    ids.clearcoat_normal = use(m.clearcoat_normal_texture, ColorSpace::Linear);
     ids.sheen_color = use(m.sheen_color_texture, ColorSpace::Srgb);
     ids.sheen_roughness = use(m.sheen_roughness_texture, ColorSpace::Linear);
     ids.specular = use(m.specular_texture, ColorSpace::Linear);
     ids.specular_color = use(m.specular_color_texture, ColorSpace::Srgb);
     ids.transmission = use(m.transmission_texture, ColorSpace::Linear);
-    if (m.clearcoat_normal_texture.valid())
-        warnings_.push_back(who +
-                            "clearcoat normal texture ignored (the coat uses the "
-                            "base's normal)");
     if (m.iridescence)
         warnings_.push_back(who +
                             "KHR_materials_iridescence is not supported: drawn without "
@@ -226,6 +226,7 @@ const SceneMaterial& MaterialBuilder::material(int index) {
             {&m.anisotropy_texture, &material.anisotropy_texture},
             {&m.clearcoat_texture, &material.clearcoat_texture},
             {&m.clearcoat_roughness_texture, &material.clearcoat_roughness_texture},
+            {&m.clearcoat_normal_texture, &material.clearcoat_normal_texture},
             {&m.sheen_color_texture, &material.sheen_color_texture},
             {&m.sheen_roughness_texture, &material.sheen_roughness_texture},
             {&m.specular_texture, &material.specular_texture},

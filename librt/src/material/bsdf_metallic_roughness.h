@@ -55,6 +55,14 @@
 // The coat and sheen are sampled as two more lobes of the one-sample mixture (the coat's
 // GGX by visible normals, the sheen by the cosine), chosen with probabilities from their
 // albedo estimates at wo (clearcoat Fc(cos_o); max(sheen_color) E(cos_o)).
+// clearcoatNormalTexture gives the coat a normal n_c of its own (Material::clearcoat_normal):
+// the coat lobe is the same GGX lobe in the frame of n_c, its cosines (in Fc, D, V and Tc)
+// taken against n_c, and it carries its own cosine as every lobe does: what the integrator
+// multiplies by |wi.z| (the base's shading normal) is f_c (wi.n_c) / wi.z, so f cos over
+// wi is f_c (wi.n_c), the coat's reflection about its normal (as Cycles' closures each
+// bring their own N). Like any shading normal this is reciprocal only in the coat's frame
+// (f_c is; the cosine ratio is not), and the coat reflects only where wo and wi are above
+// both n_c and the base's side of the surface.
 
 #include "material/microfacet.h"
 #include "material/microfacet_anisotropic.h"
@@ -89,6 +97,35 @@ struct MetallicRoughness {
                !has_sheen(m) && !(m.clearcoat > 0.0f && m.clearcoat_roughness > max_roughness);
     }
 
+    /// The coat's frame: its own normal (clearcoatNormalTexture) in the shading frame, or
+    /// none (bent = false), when the coat's cosines are the base's own z.
+    struct CoatFrame {
+        bool bent = false;
+        Frame frame;  ///< local shading frame -> the coat's frame (bent only)
+        /// w (local) in the coat's frame.
+        [[nodiscard]] glm::vec3 to_coat(const glm::vec3& w) const {
+            return bent ? frame.to_local(w) : w;
+        }
+        /// The cosine of w (local) against the coat's normal.
+        [[nodiscard]] float cos(const glm::vec3& w) const {
+            return bent ? glm::dot(w, frame.n) : w.z;
+        }
+    };
+    /// m.clearcoat_normal in p's local frame, turned to the side of the geometric normal
+    /// facing wo (as the frame turns the shading normal).
+    static CoatFrame coat_frame(const Material& m, const ShadingPoint& p) {
+        CoatFrame c;
+        if (!(m.clearcoat > 0.0f) || m.clearcoat_normal == glm::vec3(0.0f)) [[likely]]
+            return c;
+        glm::vec3 n = p.frame.to_local(m.clearcoat_normal);
+        if (glm::dot(n, p.frame.geometric) < 0.0f) n = -n;
+        const float len = glm::length(n);
+        if (!(len > 0.0f) || !std::isfinite(len)) return c;
+        c.bent = true;
+        c.frame = Frame::from_normal(n / len);
+        return c;
+    }
+
     /// Colours of the lobes' Fresnel etc. as the extensions' factors set them.
     static float max3(const glm::vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
     static bool has_sheen(const Material& m) { return max3(m.sheen_color) > 0.0f; }
@@ -105,11 +142,13 @@ struct MetallicRoughness {
         return m.specular * microfacet::schlick(f0, cos);
     }
     /// What the coat and the sheen let through to the material under them, for the
-    /// cosines of wo and wi (both >= 0): Tc Ts of the header's comment.
-    static float under_layers(const Material& m, float co, float ci) {
+    /// cosines of wo and wi (both >= 0) against the shading normal and (cco, cci) against
+    /// the coat's: Tc Ts of the header's comment.
+    static float under_layers(const Material& m, float co, float ci, float cco, float cci) {
         float t = 1.0f;
         if (m.clearcoat > 0.0f)
-            t = (1.0f - m.clearcoat * coat_fresnel(co)) * (1.0f - m.clearcoat * coat_fresnel(ci));
+            t = (1.0f - m.clearcoat * coat_fresnel(std::max(cco, 0.0f))) *
+                (1.0f - m.clearcoat * coat_fresnel(std::max(cci, 0.0f)));
         const float s = max3(m.sheen_color);
         if (s > 0.0f) {
             const float eo = microfacet::sheen_albedo(co, m.sheen_roughness);
@@ -119,18 +158,23 @@ struct MetallicRoughness {
         return t;
     }
     /// The layers over f_base (wr above the surface: wi, mirrored when transmitted).
-    static glm::vec3 layered(const Material& m, const glm::vec3& f_base, const glm::vec3& wo,
-                             const glm::vec3& wr, bool transmitted) {
-        glm::vec3 f = under_layers(m, wo.z, wr.z) * f_base;
+    static glm::vec3 layered(const Material& m, const CoatFrame& cf, const glm::vec3& f_base,
+                             const glm::vec3& wo, const glm::vec3& wr, bool transmitted) {
+        const float cco = cf.cos(wo), cci = cf.cos(wr);
+        glm::vec3 f = under_layers(m, wo.z, wr.z, cco, cci) * f_base;
         if (transmitted) return f;  // the coat and the sheen only reflect
         const glm::vec3 h = glm::normalize(wo + wr);
         float tc = 1.0f;
         if (m.clearcoat > 0.0f) {
-            const microfacet::IsotropicGgx coat{microfacet::alpha_of(m.clearcoat_roughness)};
-            const float dv = coat.d(h) * coat.g2(wo, wr) / (4.0f * wo.z * wr.z);
-            f += glm::vec3(m.clearcoat * coat_fresnel(std::fabs(glm::dot(wo, h))) * dv);
-            tc = (1.0f - m.clearcoat * coat_fresnel(wo.z)) *
-                 (1.0f - m.clearcoat * coat_fresnel(wr.z));
+            if (cco > 0.0f && cci > 0.0f) {
+                const microfacet::IsotropicGgx coat{microfacet::alpha_of(m.clearcoat_roughness)};
+                const glm::vec3 wo_c = cf.to_coat(wo), wr_c = cf.to_coat(wr);
+                float dv = coat.d(cf.to_coat(h)) * coat.g2(wo_c, wr_c) / (4.0f * wo_c.z * wr_c.z);
+                if (cf.bent) dv *= wr_c.z / wr.z;  // the coat's cosine, not the base's
+                f += glm::vec3(m.clearcoat * coat_fresnel(std::fabs(glm::dot(wo, h))) * dv);
+            }
+            tc = (1.0f - m.clearcoat * coat_fresnel(std::max(cco, 0.0f))) *
+                 (1.0f - m.clearcoat * coat_fresnel(std::max(cci, 0.0f)));
         }
         if (has_sheen(m)) {
             const float alpha = m.sheen_roughness * m.sheen_roughness;
@@ -160,7 +204,7 @@ struct MetallicRoughness {
         glm::vec3 a = diffuse + transmitted + specular;
         if (has_layers(m)) [[unlikely]] {
             const float tc = (1.0f - m.clearcoat * kCoatF0) * (1.0f - m.clearcoat * kCoatF0);
-            a = under_layers(m, 1.0f, 1.0f) * a + glm::vec3(m.clearcoat * kCoatF0) +
+            a = under_layers(m, 1.0f, 1.0f, 1.0f, 1.0f) * a + glm::vec3(m.clearcoat * kCoatF0) +
                 tc * m.sheen_color * microfacet::sheen_albedo(1.0f, m.sheen_roughness);
         }
         return p.albedo * a;
@@ -190,7 +234,10 @@ struct MetallicRoughness {
         const float under = 1.0f - max3(dielectric_fresnel(m, co));
         const glm::vec3 t =
             p.albedo * ((1.0f - m.metallic) * under * m.transmission) * m.base_color;
-        return has_layers(m) ? under_layers(m, co, co) * t : t;
+        if (!has_layers(m)) return t;
+        const CoatFrame cf = coat_frame(m, p);
+        const float cco = cf.bent ? std::fabs(cf.cos(wo)) : co;
+        return under_layers(m, co, co, cco, cco) * t;
     }
 
     static float f0_dielectric(float ior) {
@@ -212,7 +259,8 @@ struct MetallicRoughness {
     }
 
     /// Probabilities of the specular, diffuse, transmission, coat and sheen lobes at wo.
-    static std::array<float, 5> lobe_probabilities(const Material& m, const glm::vec3& wo) {
+    static std::array<float, 5> lobe_probabilities(const Material& m, const ShadingPoint& p,
+                                                   const glm::vec3& wo) {
         const glm::vec3& c = m.base_color;
         const glm::vec3 fr = dielectric_fresnel(m, wo.z);
         const float fd = (fr.x + fr.y + fr.z) / 3.0f;
@@ -229,10 +277,21 @@ struct MetallicRoughness {
             const float total = w_spec + w_diff + w_trans;
             return {w_spec / total, w_diff / total, w_trans / total, 0.0f, 0.0f};
         }
+        return layered_probabilities(m, p, wo, w_spec, w_diff, w_trans);
+    }
+    /// lobe_probabilities with layers, out of line: the common material without them keeps
+    /// its inlined fast path.
+    [[gnu::noinline]] static std::array<float, 5> layered_probabilities(const Material& m,
+                                                                        const ShadingPoint& p,
+                                                                        const glm::vec3& wo,
+                                                                        float w_spec, float w_diff,
+                                                                        float w_trans) {
         // Layers: the coat's and the sheen's albedo estimates at wo, the base's under them.
-        const float under = under_layers(m, wo.z, wo.z);
+        const float cco = coat_frame(m, p).cos(wo);  // wo's cosine against the coat's normal
+        const float under = under_layers(m, wo.z, wo.z, cco, cco);
         const float base = w_spec + w_diff + w_trans;
-        float w_coat = m.clearcoat * coat_fresnel(wo.z);
+        // No coat sample where wo is below the coat's normal (its lobe is zero there).
+        float w_coat = cco > 0.0f ? m.clearcoat * coat_fresnel(cco) : 0.0f;
         const float tc = 1.0f - w_coat;
         const float w_sheen =
             tc * max3(m.sheen_color) * microfacet::sheen_albedo(wo.z, m.sheen_roughness);
@@ -240,7 +299,7 @@ struct MetallicRoughness {
         w_diff *= under;
         w_trans *= under;
         // The coat's Fresnel at wo.h can exceed its estimate at cos_o, as the base's can.
-        if (m.clearcoat > 0.0f)
+        if (m.clearcoat > 0.0f && cco > 0.0f)
             w_coat = std::max(w_coat, 0.1f * m.clearcoat * (under * base + w_sheen) + 1e-4f);
         const float total = w_spec + w_diff + w_trans + w_coat + w_sheen;
         return {w_spec / total, w_diff / total, w_trans / total, w_coat / total, w_sheen / total};
@@ -289,7 +348,7 @@ struct MetallicRoughness {
     template <class Ggx>
     static BsdfSample sample_with(const Ggx& ggx, const Material& m, const ShadingPoint& p,
                                   const glm::vec3& wo, float uc, glm::vec2 u) {
-        const auto prob = lobe_probabilities(m, wo);
+        const auto prob = lobe_probabilities(m, p, wo);
         // The lobe uc falls in; rounding past the last lobe of nonzero probability gives it.
         int last = 0;
         for (int i = 1; i < 5; ++i)
@@ -316,8 +375,17 @@ struct MetallicRoughness {
                 lobe = BsdfLobe::Glossy | BsdfLobe::Transmission;
                 break;
             case 3: {
+                // In the coat's frame (its probability is 0 unless wo is above its normal).
                 const microfacet::IsotropicGgx coat{microfacet::alpha_of(m.clearcoat_roughness)};
-                wi = reflect(-wo, coat.sample_visible_normal(wo, u));
+                const CoatFrame cf = coat_frame(m, p);
+                const glm::vec3 wo_c = cf.to_coat(wo);
+                wi = reflect(-wo_c, coat.sample_visible_normal(wo_c, u));
+                if (cf.bent) {
+                    // A reflection under the coat's own normal is no sample of the coat
+                    // (its density there is 0), as one under the surface is none below.
+                    if (!(wi.z > 0.0f)) return {};
+                    wi = cf.frame.to_world(wi);
+                }
                 break;
             }
             default:
@@ -361,26 +429,35 @@ struct MetallicRoughness {
             f = (1.0f - m.metallic) * dielectric + m.metallic * metal;
         }
         if (has_layers(m)) [[unlikely]]
-            f = layered(m, f, wo, wr, transmitted);
+            f = layered(m, coat_frame(m, p), f, wo, wr, transmitted);
         return p.albedo * f;
     }
 
     /// pdf() on a valid side, given the GGX lobe.
     template <class Ggx>
-    static float pdf_with(const Ggx& ggx, const Material& m, const ShadingPoint& /*p*/,
+    static float pdf_with(const Ggx& ggx, const Material& m, const ShadingPoint& p,
                           const glm::vec3& wo, const glm::vec3& wi) {
-        const auto prob = lobe_probabilities(m, wo);
+        const auto prob = lobe_probabilities(m, p, wo);
         const glm::vec3 wr(wi.x, wi.y, std::fabs(wi.z));
         const glm::vec3 h = glm::normalize(wo + wr);
         const float glossy = ggx.reflection_pdf(wo, h);
         if (wi.z < 0.0f) return prob[2] * glossy;
         float density = prob[0] * glossy + prob[1] * cosine_hemisphere_pdf(wi.z);
-        if (has_layers(m)) [[unlikely]] {
-            if (prob[3] > 0.0f) {
-                const microfacet::IsotropicGgx coat{microfacet::alpha_of(m.clearcoat_roughness)};
-                density += prob[3] * coat.reflection_pdf(wo, h);
-            }
-            density += prob[4] * cosine_hemisphere_pdf(wi.z);
+        if (has_layers(m)) [[unlikely]]
+            density += layers_pdf(m, p, prob, wo, wr, h);
+        return density;
+    }
+
+    /// The coat's and the sheen's share of pdf_with for a reflection wr (half vector h),
+    /// out of line as layered_probabilities is.
+    [[gnu::noinline]] static float layers_pdf(const Material& m, const ShadingPoint& p,
+                                              const std::array<float, 5>& prob, const glm::vec3& wo,
+                                              const glm::vec3& wr, const glm::vec3& h) {
+        float density = prob[4] * cosine_hemisphere_pdf(wr.z);
+        const CoatFrame cf = coat_frame(m, p);
+        if (prob[3] > 0.0f && cf.cos(wr) > 0.0f) {
+            const microfacet::IsotropicGgx coat{microfacet::alpha_of(m.clearcoat_roughness)};
+            density += prob[3] * coat.reflection_pdf(cf.to_coat(wo), cf.to_coat(h));
         }
         return density;
     }

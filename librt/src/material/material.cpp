@@ -202,6 +202,19 @@ void validate(const Material& material) {
         msg << "material normal_scale = " << material.normal_scale << ": must be finite";
         throw Error(msg.str());
     }
+    if (!std::isfinite(material.clearcoat_normal_scale)) {
+        std::ostringstream msg;
+        msg << "material clearcoat_normal_scale = " << material.clearcoat_normal_scale
+            << ": must be finite";
+        throw Error(msg.str());
+    }
+    const glm::vec3& cn = material.clearcoat_normal;
+    if (!std::isfinite(cn.x) || !std::isfinite(cn.y) || !std::isfinite(cn.z)) {
+        std::ostringstream msg;
+        msg << "material clearcoat_normal = (" << cn.x << ", " << cn.y << ", " << cn.z
+            << "): must be finite";
+        throw Error(msg.str());
+    }
     const std::pair<const char*, const TextureSlot*> slots[] = {
         {"base_color_texture", &material.base_color_texture},
         {"metallic_roughness_texture", &material.metallic_roughness_texture},
@@ -210,6 +223,7 @@ void validate(const Material& material) {
         {"anisotropy_texture", &material.anisotropy_texture},
         {"clearcoat_texture", &material.clearcoat_texture},
         {"clearcoat_roughness_texture", &material.clearcoat_roughness_texture},
+        {"clearcoat_normal_texture", &material.clearcoat_normal_texture},
         {"sheen_color_texture", &material.sheen_color_texture},
         {"sheen_roughness_texture", &material.sheen_roughness_texture},
         {"specular_texture", &material.specular_texture},

@@ -26,9 +26,10 @@ std::uint32_t Sampler::reversed(std::uint32_t index) { return reverse_bits(index
 
 float Sampler::sobol_1d() {
     const std::uint64_t h = dimension_hash(pixel_key_, dimension_++);
-    // Burley's shuffle: this dimension's own permutation of the sample indices.
-    const std::uint32_t index =
-        reverse_bits(laine_karras_permutation(reversed_index_, low_seed(h)));
+    // Burley's shuffle: this dimension's own permutation of the sample indices, reversed
+    // back to the index by the pair tables' low half (four loads, not a bit reversal).
+    const std::uint32_t r = laine_karras_permutation(reversed_index_, low_seed(h));
+    const auto index = static_cast<std::uint32_t>(sobol_reversed_pair(r));
     return u32_to_unit_float(reverse_bits(laine_karras_permutation(index, high_seed(h))));
 }
 
@@ -49,11 +50,17 @@ glm::vec2 Sampler::sobol_2d() {
                     laine_karras_permutation(sobol_reversed_u32(index, 3), high_seed(h2))))};
     }
     dimension_ += 2;
-    const std::uint32_t index =
-        reverse_bits(laine_karras_permutation(reversed_index_, low_seed(h)));
-    return {u32_to_unit_float(reverse_bits(laine_karras_permutation(index, low_seed(h2)))),
-            u32_to_unit_float(reverse_bits(
-                laine_karras_permutation(sobol_reversed_u32(index, 1), high_seed(h2))))};
+    // The shuffled index stays reversed (r): the pair tables give both reversed Sobol'
+    // values from it, and one reverse_bits_halves turns both scrambled values back.
+    const std::uint32_t r = laine_karras_permutation(reversed_index_, low_seed(h));
+    const std::uint64_t pair = sobol_reversed_pair(r);
+    const std::uint32_t x =
+        laine_karras_permutation(static_cast<std::uint32_t>(pair), low_seed(h2));
+    const std::uint32_t y =
+        laine_karras_permutation(static_cast<std::uint32_t>(pair >> 32u), high_seed(h2));
+    const std::uint64_t v = reverse_bits_halves((std::uint64_t{x} << 32u) | y);
+    return {u32_to_unit_float(static_cast<std::uint32_t>(v)),
+            u32_to_unit_float(static_cast<std::uint32_t>(v >> 32u))};
 }
 
 }  // namespace librt

@@ -48,6 +48,7 @@ void Scene::check_texture_ids(const Material& material) const {
         {"anisotropy_texture", material.anisotropy_texture.texture},
         {"clearcoat_texture", material.clearcoat_texture.texture},
         {"clearcoat_roughness_texture", material.clearcoat_roughness_texture.texture},
+        {"clearcoat_normal_texture", material.clearcoat_normal_texture.texture},
         {"sheen_color_texture", material.sheen_color_texture.texture},
         {"sheen_roughness_texture", material.sheen_roughness_texture.texture},
         {"specular_texture", material.specular_texture.texture},

@@ -125,6 +125,15 @@ const Material& Scene::shade_varying(Hit& hit, const glm::vec3& direction,
     if (m.specular_texture.bound()) m.specular *= lookup_alpha(m.specular_texture);
     if (m.specular_color_texture.bound()) m.specular_color *= lookup(m.specular_color_texture);
     if (m.transmission_texture.bound()) m.transmission *= lookup(m.transmission_texture).x;
+    // KHR_materials_clearcoat's clearcoatNormalTexture: the coat's own normal, bent from
+    // the interpolated normal (before normal_texture bends the base's) and adapted to the
+    // viewer as the base's is.
+    if (m.clearcoat_normal_texture.bound() && m.clearcoat > 0.0f) {
+        const glm::vec3 n =
+            apply_normal_map(lookup(m.clearcoat_normal_texture), m.clearcoat_normal_scale,
+                             hit.shading_normal, top_.tangent(hit), hit.geometric_normal);
+        m.clearcoat_normal = adapt_shading_normal(n, hit.geometric_normal, -direction);
+    }
     if (m.normal_texture.bound()) {
         const glm::vec4 t = top_.tangent(hit);
         hit.shading_normal = apply_normal_map(lookup(m.normal_texture), m.normal_scale,

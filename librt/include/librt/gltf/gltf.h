@@ -153,7 +153,7 @@ struct GltfMaterial {
     GltfTextureRef clearcoat_texture;            ///< KHR_materials_clearcoat, R channel
     float clearcoat_roughness_factor = 0.0f;     ///< KHR_materials_clearcoat, [0, 1]
     GltfTextureRef clearcoat_roughness_texture;  ///< KHR_materials_clearcoat, G channel
-    GltfTextureRef clearcoat_normal_texture;     ///< KHR_materials_clearcoat (not applied)
+    GltfTextureRef clearcoat_normal_texture;     ///< KHR_materials_clearcoat; scale in .scale
     glm::vec3 sheen_color_factor{0.0f};          ///< KHR_materials_sheen, linear, [0, 1]
     GltfTextureRef sheen_color_texture;          ///< KHR_materials_sheen, sRGB RGB
     float sheen_roughness_factor = 0.0f;         ///< KHR_materials_sheen, [0, 1]

@@ -24,6 +24,7 @@ struct GltfMaterialTextures {
     std::int32_t anisotropy = -1;           ///< anisotropyTexture (linear; RG direction, B)
     std::int32_t clearcoat = -1;            ///< clearcoatTexture (linear; R)
     std::int32_t clearcoat_roughness = -1;  ///< clearcoatRoughnessTexture (linear; G)
+    std::int32_t clearcoat_normal = -1;     ///< clearcoatNormalTexture (linear, tangent space)
     std::int32_t sheen_color = -1;          ///< sheenColorTexture (sRGB; RGB)
     std::int32_t sheen_roughness = -1;      ///< sheenRoughnessTexture (linear; A)
     std::int32_t specular = -1;             ///< specularTexture (linear; A)

@@ -162,6 +162,16 @@ struct LIBRT_API Material {
     TextureSlot clearcoat_texture;
     /// Texture (linear) whose G multiplies clearcoat_roughness (clearcoatRoughnessTexture).
     TextureSlot clearcoat_roughness_texture;
+    /// Tangent-space normal map of the coat (clearcoatNormalTexture; linear, normal_texture's
+    /// convention): the coat's own shading normal, bent from the interpolated normal, while
+    /// the layers under the coat keep normal_texture's.
+    TextureSlot clearcoat_normal_texture;
+    /// Multiplies the coat's normal map's x and y (clearcoatNormalTexture.scale).
+    float clearcoat_normal_scale = 1.0f;
+    /// Per hit: the coat's shading normal (world, unit; on the side the geometric normal
+    /// faces). Scene::shade sets it from clearcoat_normal_texture; zero: the coat uses the
+    /// shading normal. A caller of bsdf.h's functions without a Scene sets it itself.
+    glm::vec3 clearcoat_normal{0.0f};
     /// Texture (sRGB) whose RGB multiplies sheen_color (sheenColorTexture).
     TextureSlot sheen_color_texture;
     /// Texture (linear) whose alpha multiplies sheen_roughness (sheenRoughnessTexture).
@@ -218,9 +228,10 @@ struct LIBRT_API Material {
         return base_color_texture.bound() || metallic_roughness_texture.bound() ||
                emission_texture.bound() || normal_texture.bound() || cuts_out() || !double_sided ||
                anisotropy > 0.0f || clearcoat_texture.bound() ||
-               clearcoat_roughness_texture.bound() || sheen_color_texture.bound() ||
-               sheen_roughness_texture.bound() || specular_texture.bound() ||
-               specular_color_texture.bound() || transmission_texture.bound() || absorbs_inside();
+               clearcoat_roughness_texture.bound() || clearcoat_normal_texture.bound() ||
+               sheen_color_texture.bound() || sheen_roughness_texture.bound() ||
+               specular_texture.bound() || specular_color_texture.bound() ||
+               transmission_texture.bound() || absorbs_inside();
     }
     /// True when the interior absorbs (attenuation_distance finite, attenuation_color not
     /// white): Scene::shade then attenuates the segments that reach the surface's back.
@@ -229,10 +240,11 @@ struct LIBRT_API Material {
                (attenuation_color.x < 1.0f || attenuation_color.y < 1.0f ||
                 attenuation_color.z < 1.0f);
     }
-    /// True when the material reads the surface's tangent frame: a normal map or an
-    /// anisotropy direction (meshes without tangents get them from their uvs).
+    /// True when the material reads the surface's tangent frame: a normal map (the base's
+    /// or the coat's) or an anisotropy direction (meshes without tangents get them from
+    /// their uvs).
     [[nodiscard]] bool needs_tangent_frame() const {
-        return normal_texture.bound() || anisotropy > 0.0f;
+        return normal_texture.bound() || clearcoat_normal_texture.bound() || anisotropy > 0.0f;
     }
     /// Beer-Lambert transmittance of the interior over a path of `length` (scene units):
     /// attenuation_color^(length / attenuation_distance) (1 when it does not absorb).
@@ -250,12 +262,12 @@ struct LIBRT_API Material {
 /// finite and positive, albedo_texture is below -1, roughness, metallic, transmission or
 /// a base_color component is outside [0, 1], or eta or k has a negative or non-finite
 /// component; a texture slot's id is below -1 or its transform not finite; normal_scale is
-/// not finite; alpha, alpha_cutoff or anisotropy is outside [0, 1]; anisotropy_rotation or
-/// anisotropy_direction is not finite; clearcoat, clearcoat_roughness, specular,
-/// sheen_roughness or a sheen_color component is outside [0, 1], specular_color has a
-/// negative or non-finite component, occlusion_strength is outside [0, 1], unlit is set
-/// on a kind other than Emissive, diffuse_model is not a DiffuseModel, an attenuation_color
-/// component is outside (0, 1], or attenuation_distance is not positive (or NaN).
+/// not finite; alpha, alpha_cutoff or anisotropy is outside [0, 1]; anisotropy_rotation,
+/// anisotropy_direction, clearcoat_normal_scale or clearcoat_normal is not finite; clearcoat,
+/// clearcoat_roughness, specular, sheen_roughness or a sheen_color component is outside [0, 1],
+/// specular_color has a negative or non-finite component, occlusion_strength is outside [0, 1],
+/// unlit is set on a kind other than Emissive, diffuse_model is not a DiffuseModel, an
+/// attenuation_color component is outside (0, 1], or attenuation_distance is not positive (or NaN).
 LIBRT_API void validate(const Material& material);
 
 }  // namespace librt

@@ -108,6 +108,33 @@ constexpr SobolByteTables make_sobol_reversed_byte_tables() {
 /// The bit-reversed byte tables, built at compile time.
 inline constexpr SobolByteTables kSobolReversedByteTables = make_sobol_reversed_byte_tables();
 
+/// The pair (reverse_bits(sobol_u32(i, 0)), reverse_bits(sobol_u32(i, 1))) as a function
+/// of r = reverse_bits(i), packed low and high in 64 bits, per byte of r: both components
+/// are linear over XOR in r, so the XOR of a byte's four entries gives the pair. A padded
+/// 2D draw then reads its two values from the scrambled index r directly: no reversal
+/// of r back to the index, and one lookup per byte for both dimensions (8 KiB).
+using SobolPairTables = std::array<std::array<std::uint64_t, 256>, 4>;
+
+/// Builds SobolPairTables from the reversed byte tables.
+constexpr SobolPairTables make_sobol_pair_tables() {
+    SobolPairTables t{};
+    const SobolByteTables& rev = kSobolReversedByteTables;
+    for (int b = 0; b < 4; ++b) {
+        for (std::uint32_t v = 0; v < 256; ++v) {
+            // i = reverse_bits(v << 8b): r's byte b is i's byte 3 - b with its bits reversed.
+            const std::uint32_t i = reverse_bits(v << (8u * static_cast<unsigned>(b)));
+            std::uint32_t d1 = 0;
+            for (int k = 0; k < 4; ++k)
+                d1 ^= rev[1][k][(i >> (8u * static_cast<unsigned>(k))) & 0xffu];
+            t[b][v] = std::uint64_t{i} | (std::uint64_t{d1} << 32u);  // dim 0 reversed is i
+        }
+    }
+    return t;
+}
+
+/// The pair tables, built at compile time.
+inline constexpr SobolPairTables kSobolPairTables = make_sobol_pair_tables();
+
 }  // namespace detail
 
 /// Component `dimension` (in [0, kSobolDimensions)) of Sobol' point `index`, unscrambled,
@@ -127,6 +154,23 @@ inline constexpr SobolByteTables kSobolReversedByteTables = make_sobol_reversed_
     const auto& t = detail::kSobolReversedByteTables[static_cast<unsigned>(dimension)];
     return t[0][index & 0xffu] ^ t[1][(index >> 8u) & 0xffu] ^ t[2][(index >> 16u) & 0xffu] ^
            t[3][index >> 24u];
+}
+
+/// Sobol' dimensions 0 and 1 of point i, each bit-reversed, from r = reverse_bits(i):
+/// sobol_reversed_u32(i, 0) in the low 32 bits, sobol_reversed_u32(i, 1) in the high 32.
+[[nodiscard]] constexpr std::uint64_t sobol_reversed_pair(std::uint32_t r) {
+    const auto& t = detail::kSobolPairTables;
+    return t[0][r & 0xffu] ^ t[1][(r >> 8u) & 0xffu] ^ t[2][(r >> 16u) & 0xffu] ^ t[3][r >> 24u];
+}
+
+/// reverse_bits of each 32-bit half of x, the halves exchanged: reverse_bits(high) in the
+/// low half, reverse_bits(low) in the high half. Two reversals for about the price of one:
+/// the swaps inside bytes act on both halves at once, and one 64-bit byte swap ends both.
+[[nodiscard]] constexpr std::uint64_t reverse_bits_halves(std::uint64_t x) {
+    x = ((x >> 1u) & 0x5555555555555555ULL) | ((x & 0x5555555555555555ULL) << 1u);
+    x = ((x >> 2u) & 0x3333333333333333ULL) | ((x & 0x3333333333333333ULL) << 2u);
+    x = ((x >> 4u) & 0x0f0f0f0f0f0f0f0fULL) | ((x & 0x0f0f0f0f0f0f0f0fULL) << 4u);
+    return __builtin_bswap64(x);
 }
 
 /// Laine and Karras's permutation with Burley 2020's improved constants (section 4): every
