@@ -64,7 +64,7 @@ constexpr float kPrefilterStrength = 1.0f;
 /// into an integer power (built in the exponent bits) and a fraction (a degree-6
 /// polynomial, relative error below 1e-6, far below what the weights need). 0 beyond
 /// x = 80. The same bits on every machine: plain float arithmetic, no libm.
-inline float exp_neg(float x) {
+[[gnu::always_inline]] inline float exp_neg(float x) {
     x = x > 0.0f ? (x < 80.0f ? x : 80.0f) : 0.0f;
     const float t = x * 1.44269504f;  // -log2 of the result
     // t >= 0: truncation is floor, and SSE2 converts by truncation (std::floor would be a
@@ -307,6 +307,18 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserS
     return p;
 }
 
+/// The filter's loops are plain float arithmetic over rows, which g++ vectorises: with AVX2
+/// (8 lanes) where the CPU has it, else SSE2 (4), chosen when the library loads (an ifunc).
+/// The same bits either way: the build contracts no multiply-add (-ffp-contract=off) and
+/// the AVX2 target enables no FMA, so each lane does the same IEEE operations.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define LIBRT_DENOISE_CLONES __attribute__((target_clones("avx2", "default")))
+#define LIBRT_DENOISE_INLINE [[gnu::always_inline]]
+#else
+#define LIBRT_DENOISE_CLONES
+#define LIBRT_DENOISE_INLINE
+#endif
+
 /// Filters strips of whole rows [y0, y1); each thread has one.
 class StripFilter {
 public:
@@ -333,7 +345,7 @@ public:
         feature_normal_.resize(std::size_t(p_.width));
     }
 
-    void run(int y0, int y1, const PixelTerms& terms, Image& out) {
+    LIBRT_DENOISE_CLONES void run(int y0, int y1, const PixelTerms& terms, Image& out) {
         const int f = s_.patch_radius, r = s_.radius, w = p_.width;
         const int dw = w + 2 * f;  // a distance row: x in [-f, w + f)
         for (int c = 0; c < 3; ++c) {
@@ -399,8 +411,10 @@ private:
     /// on average (Var p + min(Var p, Var q): a noisier neighbour is not favoured), in units
     /// of k^2 (Var p + Var q). (Dividing by k^2 (Var p + min(Var p, Var q)) instead was
     /// measured: material_spheres.glb's relMSE gain at 64 spp fell from 4.3x to 2.6x.)
-    static void distances(const std::vector<float>* u, const std::vector<float>* v, std::size_t p0,
-                          std::size_t q0, int n, float k2, float epsilon, float* out) {
+    LIBRT_DENOISE_INLINE static void distances(const std::vector<float>* u,
+                                               const std::vector<float>* v, std::size_t p0,
+                                               std::size_t q0, int n, float k2, float epsilon,
+                                               float* out) {
         for (int i = 0; i < n; ++i) out[i] = 0.0f;
         for (int c = 0; c < 3; ++c) {
             const float* up = &u[c][p0];
@@ -417,7 +431,7 @@ private:
 
     /// out[x] = sum of in[x .. x + 2f] for x in [0, n): the patch box over a row whose first
     /// value is pixel -f.
-    static void box_row(const float* in, int n, int f, float* out) {
+    LIBRT_DENOISE_INLINE static void box_row(const float* in, int n, int f, float* out) {
         for (int x = 0; x < n; ++x) out[x] = in[x];
         for (int t = 1; t <= 2 * f; ++t) {
             for (int x = 0; x < n; ++x) out[x] += in[x + t];
@@ -427,8 +441,8 @@ private:
     /// Adds the neighbours at this offset to the sums of strip row j (pixels x0 .. x1 of
     /// image row pp, neighbours from qq on). Loops of one operation each over the row, so
     /// that each vectorises.
-    void accumulate(std::size_t j, std::size_t row, std::size_t pp, std::size_t qq, int x0, int x1,
-                    int f, float patch_norm) {
+    LIBRT_DENOISE_INLINE void accumulate(std::size_t j, std::size_t row, std::size_t pp,
+                                         std::size_t qq, int x0, int x1, int f, float patch_norm) {
         const std::size_t w = std::size_t(p_.width);
         const int n = x1 - x0;
         float* ca = patch_a_.data();
