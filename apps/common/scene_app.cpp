@@ -47,13 +47,14 @@ std::uint64_t progressive_output_bytes_per_pixel(const std::string& output,
     const std::uint64_t film = sizeof(FilmPixel) + (memory.aovs ? sizeof(AovPixel) : 0) +
                                (memory.splats ? 3 * sizeof(std::int64_t) : 0);
     // The denoiser: the film part way (kept from the half on), then at its peak (the main
-    // filter, after the albedo's prefilter) its input (9 images and the shares: 112), the
-    // prefiltered albedo (12), the demodulated halves, spreads, variances, feature
-    // tolerances and floored albedos (16 RGB: 192), the modulation and shares (16), its
-    // padded planes (34 floats and a scratch plane: 148, more at the image's edges for a
-    // small image) and its output (12): 39 RGB pixels' worth.
+    // filter, after the albedo's and the emission's own filters) its input (11 images and
+    // the shares: 136), the prefiltered albedo and the filtered emission (24), the halves
+    // less their emission (24), the demodulated halves, spreads, variances, feature
+    // tolerances and floored albedos (16 RGB: 192), the modulation, shares and emission
+    // (28), its padded planes (34 floats and a scratch plane: 148, more at the image's
+    // edges for a small image) and its output (12): 45 RGB pixels' worth (540 bytes).
     const std::uint64_t kept = denoise ? film : 0;
-    const std::uint64_t denoising = denoise ? 39 * sizeof(glm::vec3) : 0;
+    const std::uint64_t denoising = denoise ? 45 * sizeof(glm::vec3) : 0;
     const std::uint64_t writing =
         film + kept + sizeof(glm::vec3) +
         std::max(writer_bytes_per_pixel(output, memory.aovs), denoising + sizeof(glm::vec3));

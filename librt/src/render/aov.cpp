@@ -52,6 +52,12 @@ AovSample sample_aovs(const Scene& scene, const Ray& camera_ray, const glm::vec3
         }
         // Textures, vertex colours and the normal map applied, as the integrators see them.
         const Material& m = scene.shade(hit, ray.direction, shaded);
+        if (bounce == 0 && m.emits()) {
+            const std::uint32_t light = scene.light_of_hit(hit);
+            const bool back = light != kInvalidId && scene.lights()[light].one_sided &&
+                              !(glm::dot(ray.direction, hit.geometric_normal) < 0.0f);
+            if (!back) out.emission = m.emission;
+        }
         const BsdfLobe lobe_flags = lobes(m);
         // The per-hit albedo every lobe is scaled by (bsdf.h), as the path loop takes it.
         const glm::vec3 albedo = m.albedo_texture < 0 ? m.albedo : scene.albedo(hit);

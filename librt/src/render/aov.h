@@ -25,6 +25,9 @@ struct AovSample {
     /// optical axis (not the distance along the ray; valid when `hit`).
     float depth = 0.0f;
     bool hit = false;  ///< the camera ray hit something
+    /// Radiance the camera ray's first hit emits toward the camera (0 from the back of a
+    /// one-sided light), as the path tracer counts it there (fully: no MIS at the camera).
+    glm::vec3 emission{0.0f};
 };
 
 /// Most mirror and glass surfaces followed before the albedo gives up (and is 0).

@@ -198,6 +198,7 @@ private:
                             aov.albedo += glm::dvec3(a.albedo);
                         }
                         aov.normal += glm::dvec3(a.normal);
+                        aov.emission += glm::dvec3(a.emission * camera_ray.weight);
                         if (a.hit) {
                             aov.depth += static_cast<double>(a.depth);
                             ++aov.hits;

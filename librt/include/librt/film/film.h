@@ -52,7 +52,7 @@ struct FilmPixel {
 };
 
 /// The AOV sums of one pixel, accumulated over the same samples as its FilmPixel (all of
-/// them, including those whose radiance was not finite). 64 bytes.
+/// them, including those whose radiance was not finite). 88 bytes.
 ///
 /// The pixel filter: sample positions are drawn from |f| (filter importance sampling),
 /// so every sum below is already |f|-weighted. The albedo also takes the sign of the
@@ -69,6 +69,10 @@ struct AovPixel {
     double depth = 0.0;          ///< sum of the planar camera depths of the first hits
     std::uint32_t hits = 0;      ///< samples whose camera ray hit something (the terms of `depth`)
     std::uint32_t negative = 0;  ///< samples whose filter weight was negative (Mitchell's lobes)
+    /// Sum of the radiance emitted by the camera rays' first hits (0 where it emits nothing),
+    /// times each sample's filter weight as the beauty's: the part of the beauty that is
+    /// not light reflected, which the denoiser keeps out of its albedo demodulation.
+    glm::dvec3 emission{0.0};
 };
 
 /// Per-pixel sums of a render, row-major with the top row first like Image. Plain data:

@@ -23,6 +23,9 @@
 //    edge, is not multiplied up on its own). Textures live in the albedo, which is nearly
 //    noise-free, so they come back sharp; only the illumination is smoothed, and
 //    illumination is smooth where the features are.
+//  - Emission apart: what the first hits emit (the emission AOV) is taken out of the
+//    halves and filtered on its own, then added back; emitted light is not albedo x light
+//    arriving, so demodulated with the rest it moved light across an emitter's edge.
 //  - Non-local means: a neighbour q counts for pixel p as much as the patch around q looks
 //    like the patch around p, measured in units of their noise (the distance of two noisy
 //    patches minus what their noise alone explains). Where the noise is zero, only
@@ -64,6 +67,14 @@ struct DenoiserInput {
     /// normal weight there.
     Image normal_a;
     Image normal_b;  ///< see normal_a
+    /// The radiance the first hits emit (AovPixel::emission), of half_a's samples and of
+    /// half_b's, or both 0x0 (then none). It is taken out of each half before filtering and
+    /// added back after, unfiltered: emitted light is not the albedo times the light
+    /// arriving, so demodulated with the rest it made the pixels on an emitter's edge take
+    /// in the emitter (or the emitter its dark surround) and come back off by the ratio of
+    /// their albedos (cornell_pbr.glb's panel, docs/benchmarks.md).
+    Image emission_a;
+    Image emission_b;  ///< see emission_a
 };
 
 /// The denoiser's parameters. The defaults are what docs/benchmarks.md measures.
@@ -91,9 +102,9 @@ LIBRT_API void validate(const DenoiserSettings& settings);
 /// (every pixel holding fewer samples than in `full`, at least one), `full` the film at
 /// the end, both with AOVs. half_a is resolve(first), half_b the mean of the samples `full`
 /// has beyond it (from the difference of the sums, splats included in proportion), beauty
-/// resolve(full), and the AOVs of each half likewise. Throws librt::Error when the sizes
-/// differ, a film has no AOVs, or a pixel does not hold more samples in `full` than in `first`
-/// (naming the pixel).
+/// resolve(full), and the AOVs (albedo, normal, emission) of each half likewise. Throws
+/// librt::Error when the sizes differ, a film has no AOVs, or a pixel does not hold more samples in
+/// `full` than in `first` (naming the pixel).
 [[nodiscard]] LIBRT_API DenoiserInput denoiser_input(const Film& first, const Film& full);
 
 /// The denoised beauty. Throws librt::Error naming the layer when a layer's size is not
