@@ -47,6 +47,25 @@ inline void expect_chi_square_passes(const std::vector<double>& observed,
     EXPECT_GE(res.p_value, 1e-3) << what << ": " << res.summary();
 }
 
+/// Expects n directions sampled from `material` at wo (numbers from rng) to follow pdf():
+/// the chi-square test of their counts over the whole sphere of directions (frame +z)
+/// against pdf()'s quadrature per cell, plus a cell for failed samples holding n minus
+/// that integral, which must not exceed n by more than the quadrature's 0.3 %.
+inline void expect_sampling_follows_pdf(const Material& material, const ShadingPoint& p,
+                                        const glm::vec3& wo, int n, Pcg32& rng,
+                                        const std::string& what) {
+    DirectionBins sphere;
+    sphere.frame = Frame::from_normal({0, 0, 1});
+    const std::vector<double> observed = sampled_direction_counts(material, p, wo, sphere, n, rng);
+    std::vector<double> expected = expected_counts(
+        sphere, [&](const glm::vec3& w) { return double(pdf(material, p, wo, w)); }, n);
+    double integral = 0.0;
+    for (const double e : expected) integral += e;
+    EXPECT_LE(integral, n * 1.003) << what;
+    expected.push_back(std::max(0.0, n - integral));
+    expect_chi_square_passes(observed, expected, what);
+}
+
 /// Expects the directional albedo at wo, the mean of n sampled weights f cos / pdf (numbers
 /// from rng), to be at most 1 per channel within 4 standard errors.
 inline void expect_albedo_at_most_one(const Material& material, const ShadingPoint& p,

@@ -170,20 +170,9 @@ TEST(BurleyDiffuse, SampledDirectionsFollowPdf) {
                 if (r < 0.5f && co < 0.5) continue;
                 const ShadingPoint p = flat_point(c.front);
                 const glm::vec3 wo = local_dir(co, 0.3);
-                testing::DirectionBins sphere;
-                sphere.frame = Frame::from_normal({0, 0, 1});
                 Pcg32 rng(uint64_t(1000 * r + 10 * co), 11);
-                std::vector<double> observed =
-                    testing::sampled_direction_counts(c.material, p, wo, sphere, n, rng);
-                std::vector<double> expected = testing::expected_counts(
-                    sphere, [&](const glm::vec3& w) { return double(pdf(c.material, p, wo, w)); },
-                    n);
-                double integral = 0.0;
-                for (const double e : expected) integral += e;
-                EXPECT_LE(integral, n * 1.003) << c.name << " cos_o " << co;
-                expected.push_back(std::max(0.0, n - integral));
-                testing::expect_chi_square_passes(observed, expected,
-                                                  c.name + " cos_o " + std::to_string(co));
+                testing::expect_sampling_follows_pdf(c.material, p, wo, n, rng,
+                                                     c.name + " cos_o " + std::to_string(co));
             }
 }
 

@@ -118,20 +118,9 @@ TEST(GltfLayers, SampledDirectionsFollowPdf) {
                     continue;
                 const ShadingPoint p = flat_point(c.front);
                 const glm::vec3 wo = local_dir(co, 0.3);
-                testing::DirectionBins sphere;
-                sphere.frame = Frame::from_normal({0, 0, 1});
                 Pcg32 rng(uint64_t(1000 * r + 10 * co), 7);
-                std::vector<double> observed =
-                    testing::sampled_direction_counts(c.material, p, wo, sphere, n, rng);
-                std::vector<double> expected = testing::expected_counts(
-                    sphere, [&](const glm::vec3& w) { return double(pdf(c.material, p, wo, w)); },
-                    n);
-                double integral = 0.0;
-                for (const double e : expected) integral += e;
-                EXPECT_LE(integral, n * 1.003) << c.name << " cos_o " << co;
-                expected.push_back(std::max(0.0, n - integral));
-                testing::expect_chi_square_passes(observed, expected,
-                                                  c.name + " cos_o " + std::to_string(co));
+                testing::expect_sampling_follows_pdf(c.material, p, wo, n, rng,
+                                                     c.name + " cos_o " + std::to_string(co));
             }
 }
 
@@ -353,19 +342,9 @@ TEST(GltfLayers, BentCoatSampledDirectionsFollowPdf) {
         for (const double co : {0.9, 0.5, 0.2}) {
             const ShadingPoint p = flat_point(c.front);
             const glm::vec3 wo = local_dir(co, 0.3);
-            testing::DirectionBins sphere;
-            sphere.frame = Frame::from_normal({0, 0, 1});
             Pcg32 rng(uint64_t(100 * co) + 17, 9);
-            std::vector<double> observed =
-                testing::sampled_direction_counts(c.material, p, wo, sphere, n, rng);
-            std::vector<double> expected = testing::expected_counts(
-                sphere, [&](const glm::vec3& w) { return double(pdf(c.material, p, wo, w)); }, n);
-            double integral = 0.0;
-            for (const double e : expected) integral += e;
-            EXPECT_LE(integral, n * 1.003) << c.name << " cos_o " << co;
-            expected.push_back(std::max(0.0, n - integral));
-            testing::expect_chi_square_passes(observed, expected,
-                                              c.name + " cos_o " + std::to_string(co));
+            testing::expect_sampling_follows_pdf(c.material, p, wo, n, rng,
+                                                 c.name + " cos_o " + std::to_string(co));
         }
 }
 
