@@ -111,6 +111,56 @@ DenoiserInput noisy_halves(const Image& mean, const Image& albedo, const Image& 
     return in;
 }
 
+// Converged bright pixels (a delta light's highlight: its halves agree) among dim, noisy
+// pixels and fireflies two pixels away (a glossy surface's rare paths; a half far from the
+// other). The fireflies' noise, smoothed over the variance box, lets the plain filter take
+// the highlight in with its dim neighbours; with the bound each converged pixel stays
+// within max_standard_errors of its box's median standard error, the fireflies are still
+// taken down (their own spread frees them), and the dim pixels are still smoothed.
+TEST(Denoiser, ConvergedHighlightsKeepTheirValue) {
+    const int w = 48, h = 48;
+    const Image albedo = filled(w, h, glm::vec3(0.5f));
+    Image normal = filled(w, h, glm::vec3(0.0f, 0.0f, 1.0f));
+    DenoiserInput in = noisy_halves(filled(w, h, glm::vec3(0.5f)), albedo, normal, 0.3f, 11);
+    const int bright[][2] = {{10, 10}, {11, 11}, {12, 12}, {30, 20}, {31, 20}, {20, 35}};
+    for (const auto& b : bright) {
+        const std::size_t i = std::size_t(b[1]) * std::size_t(w) + std::size_t(b[0]);
+        in.half_a.pixels[i] = in.half_b.pixels[i] = in.beauty.pixels[i] = glm::vec3(20.0f);
+    }
+    std::vector<std::size_t> fireflies;
+    for (const auto& b : bright) {
+        const std::size_t i = std::size_t(b[1] + 2) * std::size_t(w) + std::size_t(b[0]);
+        in.half_b.pixels[i] = in.half_a.pixels[i] + glm::vec3(40.0f);
+        in.beauty.pixels[i] = 0.5f * (in.half_a.pixels[i] + in.half_b.pixels[i]);
+        fireflies.push_back(i);
+    }
+    DenoiserSettings unbounded;
+    unbounded.max_standard_errors = 0.0f;
+    const Image plain = denoise(in, unbounded);
+    const Image out = denoise(in);
+    // The dim pixels' standard error of the mean: 0.5 x 0.3 / sqrt(2) = 0.106; 3 of them,
+    // with the box's median a little below the mean, bound the move well under 0.5.
+    float pulled = 0.0f;
+    for (const auto& b : bright) {
+        const std::size_t i = std::size_t(b[1]) * std::size_t(w) + std::size_t(b[0]);
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(out.pixels[i][k], 20.0f, 0.5f);
+        pulled = std::max(pulled, 20.0f - plain.pixels[i].x);
+    }
+    // What the bound is for: the plain filter moves some of them by more.
+    EXPECT_GT(pulled, 0.5f);
+    // A firefly's own halves give it a bound of 3 x 20: it is still taken down.
+    for (const std::size_t i : fireflies) EXPECT_LT(out.pixels[i].x, 10.0f) << "pixel " << i;
+    double err_in = 0.0, err_out = 0.0;
+    // Far from the fireflies (more than the filter's reach, radius 8 plus the patch's 3).
+    for (int y = 0; y < 10; ++y)
+        for (int x = 36; x < 48; ++x) {
+            const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
+            err_in += std::pow(in.beauty.pixels[i].x - 0.5, 2.0);
+            err_out += std::pow(out.pixels[i].x - 0.5, 2.0);
+        }
+    EXPECT_LT(err_out * 4.0, err_in);
+}
+
 TEST(Denoiser, NoisyConstantImageIsSmoothedWithoutBias) {
     const int w = 64, h = 48;
     Image albedo, normal;

@@ -40,6 +40,13 @@
 //  - Cross-filtering: each half is filtered with weights computed from the other half, so
 //    a pixel's weights are independent of the noise they average (no "filtering towards
 //    the noise" bias; NFOR's argument), and the two filtered halves are averaged.
+//  - Bounded by each pixel's own noise: the output stays within max_standard_errors
+//    standard errors of the pixel's noisy value. The standard error is the larger of the
+//    pixel's own (from its halves) and the median of its 5 x 5 box's: the median ignores a
+//    few noisy neighbours, so a converged highlight among them keeps a tight bound (the
+//    plain filter pulled material_spheres.glb's one-pixel highlights from 21 to 6), while
+//    a firefly's own large spread leaves it free to go. A pixel whose halves agree by
+//    chance gets its box's median, so noise is still removed.
 //  - Deterministic and multithreaded: every output pixel is computed by one thread from
 //    the inputs alone, its neighbours visited in a fixed order; the thread count changes
 //    which thread computes a pixel, never its arithmetic.
@@ -92,6 +99,11 @@ struct DenoiserSettings {
     /// Normal difference (distance of unit vectors) at which a neighbour's weight falls to
     /// 1/e, > 0.
     float normal_sigma = 0.3f;
+    /// How far a pixel may move, in standard errors of its own mean, in [0, 100]; 0 = no
+    /// bound. A pixel the noisy image already has right (a converged highlight beside dim,
+    /// noisy pixels) is then not pulled toward its neighbours, and the filter's bias
+    /// vanishes as the samples grow. See denoise().
+    float max_standard_errors = 3.0f;
     int threads = 0;  ///< worker threads in [0, 1024]; 0 = hardware_concurrency()
 };
 
