@@ -255,6 +255,10 @@ TEST(Denoiser, BadInputAndSettingsNameWhatIsWrong) {
     s = {};
     s.normal_sigma = -1.0f;
     EXPECT_NE(message([&] { (void)denoise(in, s); }).find("normal_sigma"), std::string::npos);
+    s = {};
+    s.max_standard_errors = std::nanf("");
+    EXPECT_NE(message([&] { (void)denoise(in, s); }).find("max_standard_errors = nan"),
+              std::string::npos);
     // Films: the full one needs AOVs and more samples than the first in every pixel.
     Film first(4, 4, true), full(4, 4, true);
     for (FilmPixel& p : first.pixels) p.samples = p.finite = 2;
