@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <condition_variable>
 #include <exception>
@@ -53,6 +54,25 @@ struct Box4 {
         return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
     }
     [[nodiscard]] BBox to_bbox() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
+};
+
+/// Three boxes transposed, box a in lane a: lo[k], hi[k] hold coordinate k of each (lane 3
+/// unused), so that growing them and taking their areas are plain SIMD operations.
+struct Box3x {
+    V4 lo[3] = {splat(kInf), splat(kInf), splat(kInf)};
+    V4 hi[3] = {splat(-kInf), splat(-kInf), splat(-kInf)};
+
+    void grow(const Box3x& b) {
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = vmin(lo[k], b.lo[k]);
+            hi[k] = vmax(hi[k], b.hi[k]);
+        }
+    }
+    /// Box4::half_area of each box, by the same operations (+inf for an empty box).
+    [[nodiscard]] V4 half_areas() const {
+        const V4 dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+        return dx * dy + dy * dz + dz * dx;
+    }
 };
 
 /// A primitive as the SAH builder sees it; the array of them is partitioned in place,
@@ -101,6 +121,8 @@ public:
         bin_count_ = std::clamp(config.bin_count, 2u, 256u);
         max_leaf_ = std::max(config.max_leaf_size, 1u);
         block_ = std::max(config.leaf_block_size, 1u);
+        leaf_wins_one_block_ =
+            config.traversal_cost >= config.intersection_cost && config.intersection_cost >= 0.0f;
         threads_ = config.thread_count ? config.thread_count
                                        : std::max(1u, std::thread::hardware_concurrency());
         // B(n) for every n a node can hold is looked up, not divided, in the sweep.
@@ -161,12 +183,36 @@ public:
 
 private:
     static constexpr std::uint32_t kGrain = 4096;
+    /// Nodes of at least this many primitives are partitioned by a threshold on the centre.
+    static constexpr std::uint32_t kThresholdNodeSize = 128;
+
+    /// The least float t in (lo, hi] with bin_of(t) >= bin, for a bin_of that is monotonic
+    /// in its argument with bin_of(lo) < bin <= bin_of(hi): bisection on the floats taken in
+    /// order (their bit patterns, negative ones mirrored, are then ordered integers).
+    template <class BinOf>
+    static float first_of_bin(BinOf bin_of, float lo, float hi, std::int32_t bin) {
+        constexpr std::int64_t kSign = std::numeric_limits<std::int32_t>::min();
+        auto key = [](float f) {
+            const auto i = static_cast<std::int64_t>(std::bit_cast<std::int32_t>(f));
+            return i >= 0 ? i : kSign - i;
+        };
+        auto value = [](std::int64_t k) {
+            return std::bit_cast<float>(static_cast<std::int32_t>(k >= 0 ? k : kSign - k));
+        };
+        std::int64_t below = key(lo), at = key(hi);
+        while (at - below > 1) {
+            const std::int64_t mid = below + (at - below) / 2;
+            (bin_of(value(mid)) >= bin ? at : below) = mid;
+        }
+        return value(at);
+    }
 
     /// Per-worker scratch space.
     struct Scratch {
         std::vector<Box4> bins;             // 3 axes x bin_count_
         std::vector<std::uint32_t> counts;  // 3 axes x bin_count_
-        std::vector<float> right_cost;      // per bin: A_R B(N_R) right of its left plane
+        std::vector<Box3x> axes;     // the bins transposed for the sweep
+        std::vector<V4> right_cost;  // per bin, lane = axis: A_R B(N_R) right of its left plane
         std::vector<SahTask> stack;
     };
 
@@ -186,6 +232,7 @@ private:
         Scratch s;
         s.bins.resize(3 * std::size_t{bin_count_});
         s.counts.resize(3 * std::size_t{bin_count_});
+        s.axes.resize(bin_count_);
         s.right_cost.resize(bin_count_);
         for (;;) {
             SahTask task;
@@ -223,6 +270,68 @@ private:
         }
     }
 
+    /// Evaluates every bin plane (bins and counts from s) and keeps the cheapest
+    /// A_L B(N_L) + A_R B(N_R) in best_*. The three axes go through one SIMD sweep, lane a
+    /// for axis a, on the bins transposed once (s.axes[b]: coordinate k of the three axes'
+    /// bin-b boxes in lo[k], hi[k]), with the same float operations per axis as a scalar
+    /// sweep and the first of equal costs in (axis, bin) order: the choice is the scalar one.
+    /// A plane with nothing on one side needs no test: that side's box is empty (area +inf)
+    /// and B(0) = 0, so its cost is inf * 0 = NaN, which never compares less. An axis whose
+    /// centres coincide has them all in bin 0, so each of its planes is such a plane.
+    void sweep(Scratch& s, std::uint32_t bin_count, float& best_cost, int& best_axis,
+               std::int32_t& best_bin) const {
+        const Box4* bins = s.bins.data();
+        const std::uint32_t* c0 = s.counts.data();
+        const std::uint32_t* c1 = c0 + bin_count;
+        const std::uint32_t* c2 = c0 + 2 * bin_count;
+        const float* blocks = blocks_.data();
+        Box3x* axes = s.axes.data();
+        for (std::uint32_t b = 0; b < bin_count; ++b) {
+            const Box4& x = bins[b];
+            const Box4& y = bins[bin_count + b];
+            const Box4& z = bins[2 * bin_count + b];
+            for (int k = 0; k < 3; ++k) {
+                axes[b].lo[k] = V4{x.lo[k], y.lo[k], z.lo[k], 0.0f};
+                axes[b].hi[k] = V4{x.hi[k], y.hi[k], z.hi[k], 0.0f};
+            }
+        }
+        // Sweep from the right for A_R B(N_R) right of each plane...
+        Box3x acc;
+        std::uint32_t n0 = 0, n1 = 0, n2 = 0;
+        for (std::uint32_t b = bin_count - 1; b > 0; --b) {
+            acc.grow(axes[b]);
+            n0 += c0[b];
+            n1 += c1[b];
+            n2 += c2[b];
+            s.right_cost[b] = acc.half_areas() * V4{blocks[n0], blocks[n1], blocks[n2], 0.0f};
+        }
+        // ...then from the left, evaluating A_L B(N_L) + A_R B(N_R) at each plane; each lane
+        // keeps its first minimum.
+        acc = Box3x{};
+        n0 = n1 = n2 = 0;
+        V4 best = splat(kInf);
+        V4i best_b{}, plane{};
+        for (std::uint32_t b = 0; b + 1 < bin_count; ++b) {
+            acc.grow(axes[b]);
+            n0 += c0[b];
+            n1 += c1[b];
+            n2 += c2[b];
+            plane += 1;
+            const V4 cost = acc.half_areas() * V4{blocks[n0], blocks[n1], blocks[n2], 0.0f} +
+                            s.right_cost[b + 1];
+            const V4i better = cost < best;
+            best = better ? cost : best;
+            best_b = better ? plane : best_b;
+        }
+        for (int a = 0; a < 3; ++a) {
+            if (best[a] < best_cost) {
+                best_cost = best[a];
+                best_axis = a;
+                best_bin = best_b[a];
+            }
+        }
+    }
+
     /// Splits one node, or makes it a leaf (returns false).
     bool split(const SahTask& task, Scratch& s, SahTask children[2]) {
         RawNode& node = nodes_[task.node];
@@ -233,6 +342,11 @@ private:
             return false;
         };
         if (n <= 1 || task.depth >= kMaxBvhDepth) return make_leaf();
+        const float node_area = node.box.half_area();
+        // A node of one block: a split costs T + I (A_L + A_R) / A >= T, the leaf I, so with
+        // T >= I the leaf wins whatever the binning would find (skipping it keeps the tree).
+        if (n <= block_ && n <= max_leaf_ && node_area > 0.0f && leaf_wins_one_block_)
+            return make_leaf();
 
         // Fewer bins for small nodes: binning a few primitives into 32 bins mostly
         // sweeps empty ones.
@@ -264,9 +378,9 @@ private:
             f = f < last ? f : last;
             return __builtin_convertvector(f, V4i);
         };
-        auto bin_on = [&](const BuildRef& r, int a) {
+        auto bin_at = [&](float c, int a) {
             // The same operations as bins_of, one lane: both must put a centre in one bin.
-            float f = (r.c[a] - cb.lo[a]) * scale[a];
+            float f = (c - cb.lo[a]) * scale[a];
             f = f > 0.0f ? f : 0.0f;
             f = f < last_bin ? f : last_bin;
             return static_cast<std::int32_t>(f);
@@ -289,36 +403,9 @@ private:
                     counts[k]++;
                 }
             }
-            for (int a = 0; a < 3; ++a) {
-                if (!usable[a]) continue;
-                const Box4* axis_bins = bins + a * bin_count;
-                const std::uint32_t* axis_counts = counts + a * bin_count;
-                // Sweep from the right for A_R B(N_R) right of each plane...
-                Box4 acc;
-                std::uint32_t acc_count = 0;
-                for (std::uint32_t b = bin_count - 1; b > 0; --b) {
-                    acc.grow(axis_bins[b]);
-                    acc_count += axis_counts[b];
-                    s.right_cost[b] = acc_count ? acc.half_area() * blocks_[acc_count] : kInf;
-                }
-                // ...then from the left, evaluating A_L B(N_L) + A_R B(N_R) at each plane.
-                acc = Box4{};
-                acc_count = 0;
-                for (std::uint32_t b = 0; b + 1 < bin_count; ++b) {
-                    acc.grow(axis_bins[b]);
-                    acc_count += axis_counts[b];
-                    if (acc_count == 0 || acc_count == n) continue;
-                    const float cost = acc.half_area() * blocks_[acc_count] + s.right_cost[b + 1];
-                    if (cost < best_cost) {
-                        best_cost = cost;
-                        best_axis = a;
-                        best_bin = static_cast<std::int32_t>(b + 1);
-                    }
-                }
-            }
+            sweep(s, bin_count, best_cost, best_axis, best_bin);
         }
 
-        const float node_area = node.box.half_area();
         if (best_axis >= 0 && node_area > 0.0f) {
             // Full SAH cost of splitting against the cost of a leaf.
             const float split_cost =
@@ -344,14 +431,25 @@ private:
             const Box4* axis_bins = s.bins.data() + best_axis * bin_count;
             for (std::int32_t b = 0; b < std::int32_t(bin_count); ++b)
                 (b < best_bin ? left_box : right_box).grow(axis_bins[b]);
-            // Two-pointer partition by bin, gathering each side's centroid bounds.
+            // Two-pointer partition by bin, gathering each side's centroid bounds. The bin
+            // is monotonic in the centre, so "bin < best_bin" is "c < t" for the least float
+            // t of bin best_bin (found by bisection, ~32 bin evaluations: for large nodes
+            // only, where it saves more than it costs).
+            const int a = best_axis;
+            const float t = n >= kThresholdNodeSize ? first_of_bin(
+                                                          [&](float c) { return bin_at(c, a); },
+                                                          cb.lo[a], cb.hi[a], best_bin)
+                                                    : 0.0f;
+            auto goes_left = [&](const BuildRef& r) {
+                return n >= kThresholdNodeSize ? r.c[a] < t : bin_at(r.c[a], a) < best_bin;
+            };
             std::uint32_t i = task.begin, j = task.end;
             for (;;) {
-                while (i < j && bin_on(refs_[i], best_axis) < best_bin) {
+                while (i < j && goes_left(refs_[i])) {
                     left_cb.grow(refs_[i].c, refs_[i].c);
                     ++i;
                 }
-                while (i < j && bin_on(refs_[j - 1], best_axis) >= best_bin) {
+                while (i < j && !goes_left(refs_[j - 1])) {
                     --j;
                     right_cb.grow(refs_[j].c, refs_[j].c);
                 }
@@ -408,6 +506,7 @@ private:
     SahConfig config_;
     std::uint32_t bin_count_, max_leaf_, block_;
     unsigned threads_;
+    bool leaf_wins_one_block_ = false;  // T >= I >= 0: a node of one block is always a leaf
     std::vector<float> blocks_;  // B(n) = ceil(n / block_)
 
     detail::LargeBuffer<BuildRef> refs_;
