@@ -31,6 +31,7 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 /// extension: SSE on x86-64, NEON on aarch64); lane 3 is unused padding.
 using V4 = float __attribute__((vector_size(16)));
 using V4i = std::int32_t __attribute__((vector_size(16)));
+using V4u = std::uint32_t __attribute__((vector_size(16)));
 
 inline V4 vmin(V4 a, V4 b) { return a < b ? a : b; }
 inline V4 vmax(V4 a, V4 b) { return a > b ? a : b; }
@@ -74,6 +75,14 @@ struct Box3x {
         return dx * dy + dy * dz + dz * dx;
     }
 };
+
+/// A bin: the box of its primitives and their number, on a cache line of its own (the
+/// binning loop's address arithmetic is then a shift).
+struct alignas(64) Bin {
+    Box4 box;
+    std::uint32_t count = 0;
+};
+static_assert(sizeof(Bin) == 64);
 
 /// A primitive as the SAH builder sees it; the array of them is partitioned in place,
 /// so each level streams contiguous memory:
@@ -209,8 +218,7 @@ private:
 
     /// Per-worker scratch space.
     struct Scratch {
-        std::vector<Box4> bins;             // 3 axes x bin_count_
-        std::vector<std::uint32_t> counts;  // 3 axes x bin_count_
+        std::vector<Bin> bins;  // 3 axes x bin_count_
         std::vector<Box3x> axes;     // the bins transposed for the sweep
         std::vector<V4> right_cost;  // per bin, lane = axis: A_R B(N_R) right of its left plane
         std::vector<SahTask> stack;
@@ -231,7 +239,6 @@ private:
     void take_tasks() {
         Scratch s;
         s.bins.resize(3 * std::size_t{bin_count_});
-        s.counts.resize(3 * std::size_t{bin_count_});
         s.axes.resize(bin_count_);
         s.right_cost.resize(bin_count_);
         for (;;) {
@@ -280,16 +287,15 @@ private:
     /// centres coincide has them all in bin 0, so each of its planes is such a plane.
     void sweep(Scratch& s, std::uint32_t bin_count, float& best_cost, int& best_axis,
                std::int32_t& best_bin) const {
-        const Box4* bins = s.bins.data();
-        const std::uint32_t* c0 = s.counts.data();
-        const std::uint32_t* c1 = c0 + bin_count;
-        const std::uint32_t* c2 = c0 + 2 * bin_count;
+        const Bin* bins0 = s.bins.data();
+        const Bin* bins1 = bins0 + bin_count;
+        const Bin* bins2 = bins0 + 2 * bin_count;
         const float* blocks = blocks_.data();
         Box3x* axes = s.axes.data();
         for (std::uint32_t b = 0; b < bin_count; ++b) {
-            const Box4& x = bins[b];
-            const Box4& y = bins[bin_count + b];
-            const Box4& z = bins[2 * bin_count + b];
+            const Box4& x = bins0[b].box;
+            const Box4& y = bins1[b].box;
+            const Box4& z = bins2[b].box;
             for (int k = 0; k < 3; ++k) {
                 axes[b].lo[k] = V4{x.lo[k], y.lo[k], z.lo[k], 0.0f};
                 axes[b].hi[k] = V4{x.hi[k], y.hi[k], z.hi[k], 0.0f};
@@ -300,9 +306,9 @@ private:
         std::uint32_t n0 = 0, n1 = 0, n2 = 0;
         for (std::uint32_t b = bin_count - 1; b > 0; --b) {
             acc.grow(axes[b]);
-            n0 += c0[b];
-            n1 += c1[b];
-            n2 += c2[b];
+            n0 += bins0[b].count;
+            n1 += bins1[b].count;
+            n2 += bins2[b].count;
             s.right_cost[b] = acc.half_areas() * V4{blocks[n0], blocks[n1], blocks[n2], 0.0f};
         }
         // ...then from the left, evaluating A_L B(N_L) + A_R B(N_R) at each plane; each lane
@@ -313,9 +319,9 @@ private:
         V4i best_b{}, plane{};
         for (std::uint32_t b = 0; b + 1 < bin_count; ++b) {
             acc.grow(axes[b]);
-            n0 += c0[b];
-            n1 += c1[b];
-            n2 += c2[b];
+            n0 += bins0[b].count;
+            n1 += bins1[b].count;
+            n2 += bins2[b].count;
             plane += 1;
             const V4 cost = acc.half_areas() * V4{blocks[n0], blocks[n1], blocks[n2], 0.0f} +
                             s.right_cost[b + 1];
@@ -329,6 +335,27 @@ private:
                 best_axis = a;
                 best_bin = best_b[a];
             }
+        }
+    }
+
+    /// Two-pointer partition of the task's references, those for which goes_left holds
+    /// first, gathering each side's centroid bounds; returns where the right side starts.
+    template <class GoesLeft>
+    std::uint32_t partition(const SahTask& task, GoesLeft goes_left, Box4& left_cb,
+                            Box4& right_cb) {
+        std::uint32_t i = task.begin, j = task.end;
+        for (;;) {
+            while (i < j && goes_left(refs_[i])) {
+                left_cb.grow(refs_[i].c, refs_[i].c);
+                ++i;
+            }
+            while (i < j && !goes_left(refs_[j - 1])) {
+                --j;
+                right_cb.grow(refs_[j].c, refs_[j].c);
+            }
+            if (i >= j) return i;
+            std::swap(refs_[i], refs_[j - 1]);
+            std::swap(ids_[i], ids_[j - 1]);
         }
     }
 
@@ -390,17 +417,21 @@ private:
         int best_axis = -1;
         std::int32_t best_bin = 0;
         if (usable[0] || usable[1] || usable[2]) {
-            Box4* bins = s.bins.data();
-            std::uint32_t* counts = s.counts.data();
-            std::fill(bins, bins + 3 * bin_count, Box4{});
-            std::fill(counts, counts + 3 * bin_count, 0u);
+            Bin* bins = s.bins.data();
+            std::fill(bins, bins + 3 * bin_count, Bin{});
+            // Byte offsets of each axis' bin, computed in SIMD (axis a's bins start at
+            // a * bin_count): the loop then needs no per-axis address arithmetic.
+            const auto stride = static_cast<std::uint32_t>(bin_count);
+            const V4u first = {0, stride, 2 * stride, 0};
+            auto* base = reinterpret_cast<unsigned char*>(bins);
             for (std::uint32_t i = task.begin; i < task.end; ++i) {
                 const BuildRef& r = refs_[i];
-                const V4i b = bins_of(r);
+                const V4u offset = (__builtin_convertvector(bins_of(r), V4u) + first)
+                                   << static_cast<std::uint32_t>(std::countr_zero(sizeof(Bin)));
                 for (int a = 0; a < 3; ++a) {
-                    const std::uint32_t k = a * bin_count + static_cast<std::uint32_t>(b[a]);
-                    bins[k].grow(r.box);
-                    counts[k]++;
+                    Bin& bin = *reinterpret_cast<Bin*>(base + offset[a]);
+                    bin.box.grow(r.box);
+                    ++bin.count;
                 }
             }
             sweep(s, bin_count, best_cost, best_axis, best_bin);
@@ -428,36 +459,24 @@ private:
                 (i < mid ? left_cb : right_cb).grow(r.c, r.c);
             }
         } else {
-            const Box4* axis_bins = s.bins.data() + best_axis * bin_count;
+            const Bin* axis_bins = s.bins.data() + best_axis * bin_count;
             for (std::int32_t b = 0; b < std::int32_t(bin_count); ++b)
-                (b < best_bin ? left_box : right_box).grow(axis_bins[b]);
+                (b < best_bin ? left_box : right_box).grow(axis_bins[b].box);
             // Two-pointer partition by bin, gathering each side's centroid bounds. The bin
             // is monotonic in the centre, so "bin < best_bin" is "c < t" for the least float
             // t of bin best_bin (found by bisection, ~32 bin evaluations: for large nodes
             // only, where it saves more than it costs).
             const int a = best_axis;
-            const float t = n >= kThresholdNodeSize ? first_of_bin(
-                                                          [&](float c) { return bin_at(c, a); },
-                                                          cb.lo[a], cb.hi[a], best_bin)
-                                                    : 0.0f;
-            auto goes_left = [&](const BuildRef& r) {
-                return n >= kThresholdNodeSize ? r.c[a] < t : bin_at(r.c[a], a) < best_bin;
-            };
-            std::uint32_t i = task.begin, j = task.end;
-            for (;;) {
-                while (i < j && goes_left(refs_[i])) {
-                    left_cb.grow(refs_[i].c, refs_[i].c);
-                    ++i;
-                }
-                while (i < j && !goes_left(refs_[j - 1])) {
-                    --j;
-                    right_cb.grow(refs_[j].c, refs_[j].c);
-                }
-                if (i >= j) break;
-                std::swap(refs_[i], refs_[j - 1]);
-                std::swap(ids_[i], ids_[j - 1]);
+            if (n >= kThresholdNodeSize) {
+                const float t = first_of_bin([&](float c) { return bin_at(c, a); }, cb.lo[a],
+                                             cb.hi[a], best_bin);
+                mid = partition(task, [&](const BuildRef& r) { return r.c[a] < t; }, left_cb,
+                                right_cb);
+            } else {
+                mid = partition(
+                    task, [&](const BuildRef& r) { return bin_at(r.c[a], a) < best_bin; },
+                    left_cb, right_cb);
             }
-            mid = i;
         }
 
         const std::uint32_t left = next_node_.fetch_add(2, std::memory_order_relaxed);
