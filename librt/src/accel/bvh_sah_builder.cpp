@@ -149,8 +149,12 @@ public:
         // The references and the root's bounds, in parallel parts merged in part order.
         const unsigned parts = std::min(threads_, detail::threads_for(n));
         std::vector<Box4> part_boxes(parts), part_centroids(parts);
+        // Each part also checks its primitives (check_build_input's test, in SIMD: c - c is
+        // 0 for a finite c, NaN otherwise; x == x fails for NaN) and keeps its first bad one.
+        std::vector<std::size_t> part_bad(parts, n);
         detail::parallel_parts(n, parts, [&](unsigned p, std::size_t begin, std::size_t end) {
             Box4 box, centroids;
+            V4i valid = V4i{} - 1;
             for (std::size_t i = begin; i < end; ++i) {
                 BuildRef& r = refs_[i];
                 r.box = Box4{load3(boxes_[i].lo), load3(boxes_[i].hi)};
@@ -158,10 +162,20 @@ public:
                 ids_[i] = static_cast<std::uint32_t>(i);
                 box.grow(r.box);
                 centroids.grow(r.c, r.c);
+                valid &= (r.c - r.c == 0.0f) & (r.box.lo == r.box.lo) & (r.box.hi == r.box.hi);
             }
             part_boxes[p] = box;
             part_centroids[p] = centroids;
+            if (valid[0] & valid[1] & valid[2]) return;
+            for (std::size_t i = begin; i < end; ++i) {
+                if (!detail::primitive_is_valid(boxes_[i], centers_[i])) {
+                    part_bad[p] = i;
+                    return;
+                }
+            }
         });
+        for (unsigned p = 0; p < parts; ++p)
+            if (part_bad[p] < n) detail::throw_bad_primitive(part_bad[p], centers_[part_bad[p]]);
         SahTask root{0, 0, n, 0, {}};
         Box4 root_box;
         for (unsigned p = 0; p < parts; ++p) {
@@ -544,7 +558,7 @@ private:
 
 Bvh build_sah_bvh(std::span<const BBox> boxes, std::span<const glm::vec3> centers,
                   const SahConfig& config) {
-    detail::check_build_input(boxes, centers);
+    detail::check_build_sizes(boxes, centers);
     SahBuilder builder(boxes, centers, config);
     return builder.run();
 }
