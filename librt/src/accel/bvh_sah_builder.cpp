@@ -357,20 +357,37 @@ private:
     template <class GoesLeft>
     std::uint32_t partition(const SahTask& task, GoesLeft goes_left, Box4& left_cb,
                             Box4& right_cb) {
+        // Locals, not members or references: the swaps' stores could alias those, which
+        // would keep the bounds in memory and reload the arrays' addresses every step.
+        BuildRef* const refs = refs_.get();
+        std::uint32_t* const ids = ids_.get();
+        Box4 left, right;
         std::uint32_t i = task.begin, j = task.end;
         for (;;) {
-            while (i < j && goes_left(refs_[i])) {
-                left_cb.grow(refs_[i].c, refs_[i].c);
+            while (i < j && goes_left(refs[i])) {
+                left.grow(refs[i].c, refs[i].c);
                 ++i;
             }
-            while (i < j && !goes_left(refs_[j - 1])) {
+            while (i < j && !goes_left(refs[j - 1])) {
                 --j;
-                right_cb.grow(refs_[j].c, refs_[j].c);
+                right.grow(refs[j].c, refs[j].c);
             }
-            if (i >= j) return i;
-            std::swap(refs_[i], refs_[j - 1]);
-            std::swap(ids_[i], ids_[j - 1]);
+            if (i >= j) break;
+            std::swap(refs[i], refs[j - 1]);
+            std::swap(ids[i], ids[j - 1]);
         }
+        left_cb = left;
+        right_cb = right;
+        return i;
+    }
+
+    /// The bin of centre coordinate c on an axis whose centroid bounds start at lo: the same
+    /// operations as split()'s bins_of, one lane, so both put a centre in one bin.
+    static std::int32_t bin_index(float c, float lo, float scale, float last_bin) {
+        float f = (c - lo) * scale;
+        f = f > 0.0f ? f : 0.0f;
+        f = f < last_bin ? f : last_bin;
+        return static_cast<std::int32_t>(f);
     }
 
     /// Splits one node, or makes it a leaf (returns false).
@@ -419,13 +436,7 @@ private:
             f = f < last ? f : last;
             return __builtin_convertvector(f, V4i);
         };
-        auto bin_at = [&](float c, int a) {
-            // The same operations as bins_of, one lane: both must put a centre in one bin.
-            float f = (c - cb.lo[a]) * scale[a];
-            f = f > 0.0f ? f : 0.0f;
-            f = f < last_bin ? f : last_bin;
-            return static_cast<std::int32_t>(f);
-        };
+        auto bin_at = [&](float c, int a) { return bin_index(c, cb.lo[a], scale[a], last_bin); };
 
         float best_cost = kInf;
         int best_axis = -1;
@@ -480,15 +491,20 @@ private:
             // is monotonic in the centre, so "bin < best_bin" is "c < t" for the least float
             // t of bin best_bin (found by bisection, ~32 bin evaluations: for large nodes
             // only, where it saves more than it costs).
+            // (The predicates hold copies, which stay in registers through the swaps.)
             const int a = best_axis;
             if (n >= kThresholdNodeSize) {
                 const float t = first_of_bin([&](float c) { return bin_at(c, a); }, cb.lo[a],
                                              cb.hi[a], best_bin);
-                mid = partition(task, [&](const BuildRef& r) { return r.c[a] < t; }, left_cb,
-                                right_cb);
-            } else {
                 mid = partition(
-                    task, [&](const BuildRef& r) { return bin_at(r.c[a], a) < best_bin; },
+                    task, [a, t](const BuildRef& r) { return r.c[a] < t; }, left_cb, right_cb);
+            } else {
+                const float lo = cb.lo[a], axis_scale = scale[a];
+                mid = partition(
+                    task,
+                    [=](const BuildRef& r) {
+                        return bin_index(r.c[a], lo, axis_scale, last_bin) < best_bin;
+                    },
                     left_cb, right_cb);
             }
         }
