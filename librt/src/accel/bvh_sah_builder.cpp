@@ -57,6 +57,18 @@ struct Box4 {
     [[nodiscard]] BBox to_bbox() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
 };
 
+/// out[k] = {x[k], y[k], z[k], 0} for k = 0, 1, 2: a 4 x 4 transpose in six shuffles.
+inline void transpose3(V4 x, V4 y, V4 z, V4 out[3]) {
+    const V4 w = splat(0.0f);
+    const V4 xy01 = __builtin_shufflevector(x, y, 0, 4, 1, 5);  // x0 y0 x1 y1
+    const V4 xy23 = __builtin_shufflevector(x, y, 2, 6, 3, 7);  // x2 y2 x3 y3
+    const V4 zw01 = __builtin_shufflevector(z, w, 0, 4, 1, 5);  // z0 0 z1 0
+    const V4 zw23 = __builtin_shufflevector(z, w, 2, 6, 3, 7);  // z2 0 z3 0
+    out[0] = __builtin_shufflevector(xy01, zw01, 0, 1, 4, 5);
+    out[1] = __builtin_shufflevector(xy01, zw01, 2, 3, 6, 7);
+    out[2] = __builtin_shufflevector(xy23, zw23, 0, 1, 4, 5);
+}
+
 /// Three boxes transposed, box a in lane a: lo[k], hi[k] hold coordinate k of each (lane 3
 /// unused), so that growing them and taking their areas are plain SIMD operations.
 struct Box3x {
@@ -307,13 +319,8 @@ private:
         const float* blocks = blocks_.data();
         Box3x* axes = s.axes.data();
         for (std::uint32_t b = 0; b < bin_count; ++b) {
-            const Box4& x = bins0[b].box;
-            const Box4& y = bins1[b].box;
-            const Box4& z = bins2[b].box;
-            for (int k = 0; k < 3; ++k) {
-                axes[b].lo[k] = V4{x.lo[k], y.lo[k], z.lo[k], 0.0f};
-                axes[b].hi[k] = V4{x.hi[k], y.hi[k], z.hi[k], 0.0f};
-            }
+            transpose3(bins0[b].box.lo, bins1[b].box.lo, bins2[b].box.lo, axes[b].lo);
+            transpose3(bins0[b].box.hi, bins1[b].box.hi, bins2[b].box.hi, axes[b].hi);
         }
         // Sweep from the right for A_R B(N_R) right of each plane...
         Box3x acc;
