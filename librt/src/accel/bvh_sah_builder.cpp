@@ -244,7 +244,7 @@ private:
 
     /// Per-worker scratch space.
     struct Scratch {
-        std::vector<Bin> bins;  // 3 axes x bin_count_
+        std::vector<Bin> bins;       // 3 axes x bin_count_
         std::vector<Box3x> axes;     // the bins transposed for the sweep
         std::vector<V4> right_cost;  // per bin, lane = axis: A_R B(N_R) right of its left plane
         std::vector<SahTask> stack;
@@ -563,7 +563,7 @@ private:
     std::uint32_t bin_count_, max_leaf_, block_;
     unsigned threads_;
     bool leaf_wins_one_block_ = false;  // T >= I >= 0: a node of one block is always a leaf
-    std::vector<float> blocks_;  // B(n) = ceil(n / block_)
+    std::vector<float> blocks_;         // B(n) = ceil(n / block_)
 
     detail::LargeBuffer<BuildRef> refs_;
     detail::LargeBuffer<std::uint32_t> ids_;  // primitive index of each ref
