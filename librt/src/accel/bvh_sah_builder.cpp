@@ -1,6 +1,7 @@
-// build_sah_bvh: the parallel binned SAH builder. Its own file, a little over 400 lines:
-// it is one class (SahBuilder) whose binning, sweep, partition and task queue share its
-// state; the median builder shares only the input check (bvh_build_input.h).
+// build_sah_bvh: the parallel binned SAH builder. Its own file, ~590 lines, over the usual
+// 400: it is one class (SahBuilder) whose binning, SIMD sweep, partition and task queue
+// share its state and its SIMD helpers (V4, Box4, Box3x); the median builder shares only
+// the input check (bvh_build_input.h).
 
 #include "accel/bvh_build_input.h"
 #include "core/parallel.h"
