@@ -16,6 +16,7 @@
 #include <limits>
 #include <random>
 #include <span>
+#include <utility>
 #include <vector>
 
 using namespace librt;
@@ -134,5 +135,32 @@ TEST(BvhBinning, CentroidExtentOverflowingFloatStillSplits) {
     for (int c = 0; c < 2; ++c) {
         const BBox& b = bvh.nodes[root.index + c].bounds;
         EXPECT_EQ(b.lo.x, b.hi.x) << "child " << c << " mixes the two sides";
+    }
+}
+
+TEST(BvhBinning, LargeNodesPartitionByThresholdOnHardCentres) {
+    // Nodes of 128 or more primitives are partitioned by a threshold found by bisection on
+    // the floats (the bin test's least centre of the split bin): it must send each centre
+    // where its bin does, here with 100 centres on each side of a denormal gap and of a gap
+    // whose extent overflows float (the centres differ in x only: the root splits in x).
+    for (const auto& [a, b] : {std::pair{0.0f, 1e-40f}, std::pair{-3e38f, 3e38f}}) {
+        std::vector<BBox> boxes;
+        std::vector<glm::vec3> centres;
+        for (int i = 0; i < 200; ++i) {
+            const float x = i < 100 ? a : b;
+            boxes.push_back({{x, 0, 0}, {x, 1, 1}});
+            centres.push_back({x, 0.5f, 0.5f});
+        }
+        SahConfig config;
+        config.max_leaf_size = 1;
+        const Bvh bvh = build_sah_bvh(boxes, centres, config);
+        expect_permutation(bvh, boxes.size());
+        // Below the root, every node is on one side of the gap.
+        const BvhNode& root = bvh.nodes[0];
+        ASSERT_FALSE(root.is_leaf());
+        for (int c = 0; c < 2; ++c) {
+            const BBox& box = bvh.nodes[root.index + c].bounds;
+            EXPECT_EQ(box.lo.x, box.hi.x) << "gap " << a << ".." << b << ", child " << c;
+        }
     }
 }

@@ -17,23 +17,24 @@ namespace librt {
 
 namespace detail {
 
-void check_build_input(std::span<const BBox> boxes, std::span<const glm::vec3> centers) {
+void check_build_sizes(std::span<const BBox> boxes, std::span<const glm::vec3> centers) {
     if (boxes.size() != centers.size())
         throw Error("BVH build: " + std::to_string(boxes.size()) + " boxes but " +
                     std::to_string(centers.size()) + " centres");
     if (boxes.size() >= std::numeric_limits<std::uint32_t>::max())
         throw Error("BVH build: too many primitives (" + std::to_string(boxes.size()) + ")");
-    // Bins are indexed from centroids: a NaN would become an out-of-range bin.
-    for (std::size_t i = 0; i < centers.size(); ++i) {
-        const glm::vec3& c = centers[i];
-        if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z))
-            throw Error("BVH build: primitive " + std::to_string(i) + " has a non-finite centre");
-        // A NaN corner would poison every box above it (min/max keep NaN or drop it).
-        const BBox& b = boxes[i];
-        if (std::isnan(b.lo.x) || std::isnan(b.lo.y) || std::isnan(b.lo.z) || std::isnan(b.hi.x) ||
-            std::isnan(b.hi.y) || std::isnan(b.hi.z))
-            throw Error("BVH build: primitive " + std::to_string(i) + " has a NaN box");
-    }
+}
+
+void throw_bad_primitive(std::size_t i, const glm::vec3& c) {
+    const bool finite = std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
+    throw Error("BVH build: primitive " + std::to_string(i) +
+                (finite ? " has a NaN box" : " has a non-finite centre"));
+}
+
+void check_build_input(std::span<const BBox> boxes, std::span<const glm::vec3> centers) {
+    check_build_sizes(boxes, centers);
+    for (std::size_t i = 0; i < centers.size(); ++i)
+        if (!primitive_is_valid(boxes[i], centers[i])) throw_bad_primitive(i, centers[i]);
 }
 
 }  // namespace detail
