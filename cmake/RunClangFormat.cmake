@@ -6,14 +6,16 @@ foreach(dir IN ITEMS librt apps tests bench examples python)
     list(APPEND globs "${SOURCE_DIR}/${dir}/*.${ext}")
   endforeach()
 endforeach()
-file(GLOB_RECURSE files ${globs})
+# Paths relative to the sources, so that the filter below sees only what is inside them (a
+# checkout at e.g. /work/build3 would otherwise lose every file to it).
+file(GLOB_RECURSE files RELATIVE "${SOURCE_DIR}" ${globs})
 # Skip build trees that may sit inside the sources (e.g. examples/<name>/build).
-list(FILTER files EXCLUDE REGEX "/build[^/]*/")
+list(FILTER files EXCLUDE REGEX "(^|/)build[^/]*/")
 list(SORT files)
 list(LENGTH files count)
 if(count EQUAL 0)
-  message(STATUS "clang-format: no sources found")
-  return()
+  # Never a silent pass: a check that saw no file checked nothing.
+  message(FATAL_ERROR "clang-format: no sources found under ${SOURCE_DIR}")
 endif()
 
 if(MODE STREQUAL "check")
