@@ -145,9 +145,9 @@ void write_input(const std::string& path, const DenoiserInput& in) {
         std::fwrite(wh, sizeof wh, 1, f);
         std::fwrite(im.pixels.data(), sizeof(glm::vec3), im.pixels.size(), f);
     };
-    for (const Image* im : {&in.beauty, &in.albedo, &in.normal, &in.half_a, &in.half_b,
-                            &in.albedo_a, &in.albedo_b, &in.normal_a, &in.normal_b,
-                            &in.emission_a, &in.emission_b})
+    for (const Image* im :
+         {&in.beauty, &in.albedo, &in.normal, &in.half_a, &in.half_b, &in.albedo_a, &in.albedo_b,
+          &in.normal_a, &in.normal_b, &in.emission_a, &in.emission_b})
         layer(*im);
     std::fwrite(in.share_a.data(), sizeof(float), in.share_a.size(), f);
     std::fclose(f);
@@ -169,8 +169,8 @@ bool read_input(const std::string& path, DenoiserInput& in) {
                       &in.albedo_b, &in.normal_a, &in.normal_b, &in.emission_a, &in.emission_b})
         layer(*im);
     in.share_a.resize(in.beauty.pixels.size());
-    ok = ok && std::fread(in.share_a.data(), sizeof(float), in.share_a.size(), f) ==
-                   in.share_a.size();
+    ok = ok &&
+         std::fread(in.share_a.data(), sizeof(float), in.share_a.size(), f) == in.share_a.size();
     std::fclose(f);
     return ok;
 }
@@ -269,8 +269,8 @@ int main(int argc, char** argv) {
         const Camera camera(cs);
         integrator->preprocess(scene);
         const std::string base = what.substr(what.find_last_of('/') + 1) +
-                                 (photometric ? "_photometric" : "") + "_" +
-                                 std::to_string(width) + "x" + std::to_string(height);
+                                 (photometric ? "_photometric" : "") + "_" + std::to_string(width) +
+                                 "x" + std::to_string(height);
         double ref_seconds = 0.0;
         const DenoiserInput ref_in = cached_input(
             base + "_ref" + std::to_string(ref_spp),
@@ -291,6 +291,14 @@ int main(int argc, char** argv) {
                 render_seconds);
             DenoiserSettings ds;
             ds.threads = threads;
+            // Settings to try without a rebuild (the figures in docs/benchmarks.md use none).
+            if (const char* v = std::getenv("DENOISE_NORMAL_SIGMA")) ds.normal_sigma = std::stof(v);
+            if (const char* v = std::getenv("DENOISE_ALBEDO_SIGMA")) ds.albedo_sigma = std::stof(v);
+            if (const char* v = std::getenv("DENOISE_STRENGTH")) ds.strength = std::stof(v);
+            if (const char* v = std::getenv("DENOISE_RADIUS")) ds.radius = std::stoi(v);
+            if (const char* v = std::getenv("DENOISE_PATCH")) ds.patch_radius = std::stoi(v);
+            if (const char* v = std::getenv("DENOISE_MAX_SE"))
+                ds.max_standard_errors = std::stof(v);
             const auto t0 = Clock::now();
             const Image out = denoise(in, ds);
             const double denoise_seconds = seconds_since(t0);
