@@ -371,16 +371,17 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserS
 /// gradient across the neighbourhood (a ceiling brightening toward a light, seen from one
 /// side at the image's edge) no longer pulls p toward the side with more neighbours. The
 /// normal difference as three more features (light from one direction is linear in the
-/// normal) was measured and not kept: with this ridge the same figures within 1-6 % on
-/// every scene (docs/benchmarks.md), for 2.6 times the sums.
+/// normal) was measured and not kept: with a ridge of 0.1 the same figures within 1-6 %
+/// on every scene (docs/benchmarks.md), for 2.6 times the sums.
 constexpr int kDesign = 3;  ///< 1, dx, dy
 /// The Gram matrix's upper triangle and the right-hand sides (3 channels), per half.
 constexpr int kGram = kDesign * (kDesign + 1) / 2;
 constexpr int kRegressionSums = kGram + 3 * kDesign;
 /// Ridge regularisation, relative to the weights' sum, added to each slope's diagonal
 /// entry: where the neighbours do not span the offsets (one pixel holding all the weight)
-/// the slope goes to 0 and the fit to the weighted mean. 0.1 against 0.01 and 0.001
-/// (docs/benchmarks.md): smaller ridges fit noise into the slope where few neighbours weigh.
+/// the slope goes to 0 and the fit to the weighted mean. Small, because a ridge shrinks
+/// the slope and brings the mean's bias back at an edge (LinearGradientUnderNoise: 0.1 and
+/// 0.01 failed it); the variance a small ridge leaves is select_estimates' to weigh.
 constexpr double kRidge = 0.001;
 /// The box over which select_estimates averages the two estimates' errors: 9 x 9.
 constexpr int kSelectRadius = 4;
@@ -725,7 +726,8 @@ private:
 /// among its filters the same way. Each estimate of a half is compared with the other
 /// half's noisy value, independent of its samples: E[(F_a - y_b)^2] = MSE(F_a) + Var(y_b),
 /// the same Var for both estimates; the squared differences of both halves are summed over
-/// the channels and averaged over the 5 x 5 box (one pixel's are too noisy to choose by).
+/// the channels and averaged over the 9 x 9 box (one pixel's are too noisy to choose by;
+/// 5 x 5 gave the same figures within 4 % and left the gradient test's edge biased).
 void select_estimates(const Planes& planes, const PixelTerms& terms, const Estimates& e,
                       Image& out) {
     const int w = planes.width, h = planes.height;
