@@ -31,6 +31,7 @@
 #include <cstring>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -132,6 +133,62 @@ double dark_floor(const std::vector<Block>& v) {
     return 1e-3 * top;
 }
 
+/// DENOISE_CACHE=DIR: the renders (deterministic for their seeds) are kept in DIR as raw
+/// floats and read back on the next run, so that variants of the denoiser are compared on
+/// the same inputs in seconds rather than minutes. Layers in a fixed order, each its width,
+/// height and pixels.
+void write_input(const std::string& path, const DenoiserInput& in) {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    if (f == nullptr) throw std::runtime_error("cannot write " + path);
+    const auto layer = [&](const Image& im) {
+        const int wh[2] = {im.width, im.height};
+        std::fwrite(wh, sizeof wh, 1, f);
+        std::fwrite(im.pixels.data(), sizeof(glm::vec3), im.pixels.size(), f);
+    };
+    for (const Image* im :
+         {&in.beauty, &in.albedo, &in.normal, &in.half_a, &in.half_b, &in.albedo_a, &in.albedo_b,
+          &in.normal_a, &in.normal_b, &in.emission_a, &in.emission_b})
+        layer(*im);
+    std::fwrite(in.share_a.data(), sizeof(float), in.share_a.size(), f);
+    std::fclose(f);
+}
+
+bool read_input(const std::string& path, DenoiserInput& in) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (f == nullptr) return false;
+    bool ok = true;
+    const auto layer = [&](Image& im) {
+        int wh[2] = {0, 0};
+        ok = ok && std::fread(wh, sizeof wh, 1, f) == 1;
+        if (!ok) return;
+        im = Image(wh[0], wh[1]);
+        ok = std::fread(im.pixels.data(), sizeof(glm::vec3), im.pixels.size(), f) ==
+             im.pixels.size();
+    };
+    for (Image* im : {&in.beauty, &in.albedo, &in.normal, &in.half_a, &in.half_b, &in.albedo_a,
+                      &in.albedo_b, &in.normal_a, &in.normal_b, &in.emission_a, &in.emission_b})
+        layer(*im);
+    in.share_a.resize(in.beauty.pixels.size());
+    ok = ok &&
+         std::fread(in.share_a.data(), sizeof(float), in.share_a.size(), f) == in.share_a.size();
+    std::fclose(f);
+    return ok;
+}
+
+/// The input rendered with `seed` at `spp`, from DENOISE_CACHE when it is there.
+template <class Render>
+DenoiserInput cached_input(const std::string& key, Render render, double& seconds) {
+    const char* dir = std::getenv("DENOISE_CACHE");
+    DenoiserInput in;
+    const std::string path = dir != nullptr ? std::string(dir) + "/" + key + ".bin" : "";
+    if (dir != nullptr && read_input(path, in)) return in;
+    const Halves h = render();
+    seconds = h.seconds;
+    in = denoiser_input(h.half, h.full);
+    if (dir != nullptr) write_input(path, in);
+    return in;
+}
+
 std::vector<int> parse_list(const std::string& text) {
     std::vector<int> v;
     std::stringstream ss(text);
@@ -211,20 +268,37 @@ int main(int argc, char** argv) {
         }
         const Camera camera(cs);
         integrator->preprocess(scene);
-        const Halves ref = render_halves(scene, camera, *integrator, ref_spp, 1000003, threads);
-        const DenoiserInput ref_in = denoiser_input(ref.half, ref.full);
+        const std::string base = what.substr(what.find_last_of('/') + 1) +
+                                 (photometric ? "_photometric" : "") + "_" + std::to_string(width) +
+                                 "x" + std::to_string(height);
+        double ref_seconds = 0.0;
+        const DenoiserInput ref_in = cached_input(
+            base + "_ref" + std::to_string(ref_spp),
+            [&] { return render_halves(scene, camera, *integrator, ref_spp, 1000003, threads); },
+            ref_seconds);
         std::vector<glm::vec3> ref_var(ref_in.beauty.pixels.size());
         for (std::size_t i = 0; i < ref_var.size(); ++i) {
             const glm::vec3 d = ref_in.half_a.pixels[i] - ref_in.half_b.pixels[i];
             ref_var[i] = d * d * 0.25f;
         }
         std::printf("# %s %dx%d, reference %d spp (%.1f s)\n", what.c_str(), camera.width(),
-                    camera.height(), ref_spp, ref.seconds);
+                    camera.height(), ref_spp, ref_seconds);
         for (const int spp : spps) {
-            const Halves h = render_halves(scene, camera, *integrator, spp, 1, threads);
-            const DenoiserInput in = denoiser_input(h.half, h.full);
+            double render_seconds = 0.0;
+            const DenoiserInput in = cached_input(
+                base + "_" + std::to_string(spp),
+                [&] { return render_halves(scene, camera, *integrator, spp, 1, threads); },
+                render_seconds);
             DenoiserSettings ds;
             ds.threads = threads;
+            // Settings to try without a rebuild (the figures in docs/benchmarks.md use none).
+            if (const char* v = std::getenv("DENOISE_NORMAL_SIGMA")) ds.normal_sigma = std::stof(v);
+            if (const char* v = std::getenv("DENOISE_ALBEDO_SIGMA")) ds.albedo_sigma = std::stof(v);
+            if (const char* v = std::getenv("DENOISE_STRENGTH")) ds.strength = std::stof(v);
+            if (const char* v = std::getenv("DENOISE_RADIUS")) ds.radius = std::stoi(v);
+            if (const char* v = std::getenv("DENOISE_PATCH")) ds.patch_radius = std::stoi(v);
+            if (const char* v = std::getenv("DENOISE_MAX_SE"))
+                ds.max_standard_errors = std::stof(v);
             const auto t0 = Clock::now();
             const Image out = denoise(in, ds);
             const double denoise_seconds = seconds_since(t0);
@@ -269,7 +343,7 @@ int main(int argc, char** argv) {
                 "| %s | %d | %.4g | %.4g | %.1fx | %.2f %% | %.2f %% | %.2f %% | %d / %d "
                 "| %.2f s | %.2f s |\n",
                 what.c_str(), spp, noisy, den, noisy / den, 100.0 * worst_noisy, 100.0 * worst_den,
-                100.0 * worst_moved, off, counted, h.seconds, denoise_seconds);
+                100.0 * worst_moved, off, counted, render_seconds, denoise_seconds);
             std::fflush(stdout);
         }
     } catch (const std::exception& e) {

@@ -37,6 +37,16 @@
 //    the tolerance there (Rousselle, Manzi & Zwicker 2013), and the albedo is prefiltered
 //    by this same filter before the radiance is multiplied back by it, else that
 //    coverage noise would come back with it.
+//  - First order (Moon et al. 2014, "Adaptive rendering based on weighted local
+//    regression"; NFOR): with the weights above, each pixel also fits its neighbours'
+//    demodulated radiance as a + b . (q - p), linear in their offset (ridge-regularised),
+//    whose a, the fit at the pixel, has no bias on a slope where the weighted mean is
+//    pulled toward the side with more (or more alike) neighbours, e.g. at the image's
+//    edge. The fit has more variance where few neighbours weigh, so each pixel keeps the
+//    fit or the mean, whichever differs less from the other half's noisy values over its
+//    9 x 9 box (NFOR selects among its filters the same way). The pixel's own weight in
+//    its fit is its most alike neighbour's, not 1 (Buades et al. 2005): a pixel whose half
+//    caught a firefly is like none of its neighbours and kept its value with weight 1.
 //  - Cross-filtering: each half is filtered with weights computed from the other half, so
 //    a pixel's weights are independent of the noise they average (no "filtering towards
 //    the noise" bias; NFOR's argument), and the two filtered halves are averaged.
@@ -104,6 +114,12 @@ struct DenoiserSettings {
     /// noisy pixels) is then not pulled toward its neighbours, and the filter's bias
     /// vanishes as the samples grow. See denoise().
     float max_standard_errors = 3.0f;
+    /// Fit the neighbours' radiance as linear in their offset (a first-order weighted
+    /// regression) where that errs less than averaging it: a gradient (light falling off
+    /// across a wall, an image edge with neighbours on one side) comes back without the
+    /// weighted mean's bias. false: the weighted mean alone, which costs less
+    /// (docs/benchmarks.md).
+    bool first_order = true;
     int threads = 0;  ///< worker threads in [0, 1024]; 0 = hardware_concurrency()
 };
 
