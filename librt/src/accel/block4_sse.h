@@ -26,13 +26,23 @@ namespace librt::detail {
 struct TriRay4 {
     __m128 o_kx, o_ky, o_kz;  ///< origin components along the permuted axes
     __m128 sx, sy, sz;
-    std::uint32_t kx, ky, kz;
+    /// Byte offsets of the rows of axes kx, ky, kz within a corner of a TriangleBlock
+    /// (16 k): a row is one load at block + 48 corner + offset. Axis indices made every leaf
+    /// visit build nine row addresses (shifts and adds, registers spilled for them).
+    std::uint32_t off_x, off_y, off_z;
 };
+
+/// Row `off` (a TriRay4 byte offset) of corner `corner` of a block.
+inline __m128 load_row4(const TriangleBlock& b, std::uint32_t corner, std::uint32_t off) {
+    return _mm_load_ps(
+        reinterpret_cast<const float*>(reinterpret_cast<const char*>(b.p[corner]) + off));
+}
 
 /// triangle.h's prepare_watertight for a traceable ray, with its three divisions
 /// (s_x = d_kx / d_kz, s_y = d_ky / d_kz, s_z = 1 / d_kz) done by one vector division:
 /// IEEE division is exact per lane, so the values are the scalar ones.
 inline TriRay4 prepare_triangles4(const Ray& ray) {
+    constexpr std::uint32_t kRowBytes = sizeof(TriangleBlock::p[0][0]);
     const float* d = &ray.direction.x;
     const float ax = std::fabs(d[0]), ay = std::fabs(d[1]), az = std::fabs(d[2]);
     const std::uint32_t kz = (ax > ay) ? (ax > az ? 0u : 2u) : (ay > az ? 1u : 2u);
@@ -41,9 +51,9 @@ inline TriRay4 prepare_triangles4(const Ray& ray) {
     if (d[kz] < 0.0f) std::swap(kx, ky);  // keep the winding
     const __m128 s = _mm_div_ps(_mm_setr_ps(d[kx], d[ky], 1.0f, 1.0f), _mm_set1_ps(d[kz]));
     TriRay4 r;
-    r.kx = kx;
-    r.ky = ky;
-    r.kz = kz;
+    r.off_x = kx * kRowBytes;
+    r.off_y = ky * kRowBytes;
+    r.off_z = kz * kRowBytes;
     const float* o = &ray.origin.x;
     r.o_kx = _mm_set1_ps(o[kx]);
     r.o_ky = _mm_set1_ps(o[ky]);
@@ -79,22 +89,22 @@ inline __m128 select4(__m128 mask, __m128 exact, __m128 e) {
 inline __m128 test_block4(const TriangleBlock& b, const TriRay4& r, __m128 t_min, __m128 t_max,
                           __m128& t, __m128& u, __m128& v) {
     // Corners relative to the origin; z along the permuted axis kz...
-    const __m128 az = _mm_sub_ps(_mm_load_ps(b.p[0][r.kz]), r.o_kz);
-    const __m128 bz = _mm_sub_ps(_mm_load_ps(b.p[1][r.kz]), r.o_kz);
-    const __m128 cz = _mm_sub_ps(_mm_load_ps(b.p[2][r.kz]), r.o_kz);
+    const __m128 az = _mm_sub_ps(load_row4(b, 0, r.off_z), r.o_kz);
+    const __m128 bz = _mm_sub_ps(load_row4(b, 1, r.off_z), r.o_kz);
+    const __m128 cz = _mm_sub_ps(load_row4(b, 2, r.off_z), r.o_kz);
     // ...and x, y sheared so the ray runs along +z: x' = x - s_x z, y' = y - s_y z.
     const __m128 ax =
-        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[0][r.kx]), r.o_kx), _mm_mul_ps(r.sx, az));
+        _mm_sub_ps(_mm_sub_ps(load_row4(b, 0, r.off_x), r.o_kx), _mm_mul_ps(r.sx, az));
     const __m128 ay =
-        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[0][r.ky]), r.o_ky), _mm_mul_ps(r.sy, az));
+        _mm_sub_ps(_mm_sub_ps(load_row4(b, 0, r.off_y), r.o_ky), _mm_mul_ps(r.sy, az));
     const __m128 bx =
-        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[1][r.kx]), r.o_kx), _mm_mul_ps(r.sx, bz));
+        _mm_sub_ps(_mm_sub_ps(load_row4(b, 1, r.off_x), r.o_kx), _mm_mul_ps(r.sx, bz));
     const __m128 by =
-        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[1][r.ky]), r.o_ky), _mm_mul_ps(r.sy, bz));
+        _mm_sub_ps(_mm_sub_ps(load_row4(b, 1, r.off_y), r.o_ky), _mm_mul_ps(r.sy, bz));
     const __m128 cx =
-        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[2][r.kx]), r.o_kx), _mm_mul_ps(r.sx, cz));
+        _mm_sub_ps(_mm_sub_ps(load_row4(b, 2, r.off_x), r.o_kx), _mm_mul_ps(r.sx, cz));
     const __m128 cy =
-        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[2][r.ky]), r.o_ky), _mm_mul_ps(r.sy, cz));
+        _mm_sub_ps(_mm_sub_ps(load_row4(b, 2, r.off_y), r.o_ky), _mm_mul_ps(r.sy, cz));
 
     // 2D edge functions (scaled barycentrics): e0 = cx by - cy bx, e1 = ax cy - ay cx, e2 = bx ay -
     // by ax.
