@@ -114,31 +114,41 @@ inline __m128 test_block4(const TriangleBlock& b, const TriRay4& r, __m128 t_min
     const __m128 zero = _mm_setzero_ps();
     const __m128 on_edge = _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(e0, zero), _mm_cmpeq_ps(e1, zero)),
                                      _mm_cmpeq_ps(e2, zero));
+    // Lanes rejected before t (all bits set): the three signs disagree, or det = 0.
+    __m128 rejected;
     if (_mm_movemask_ps(on_edge) != 0) [[unlikely]] {
         // Inline and in registers: a call taking the edges by reference kept them in
         // memory on every block test.
         e0 = select4(on_edge, exact_edge4(cx, by, cy, bx), e0);
         e1 = select4(on_edge, exact_edge4(ax, cy, ay, cx), e1);
         e2 = select4(on_edge, exact_edge4(bx, ay, by, ax), e2);
+        // Inside when the three signs agree (either winding), a zero agreeing with both.
+        const __m128 any_neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)),
+                                         _mm_cmplt_ps(e2, zero));
+        const __m128 any_pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)),
+                                         _mm_cmpgt_ps(e2, zero));
+        const __m128 det0 = _mm_cmpeq_ps(_mm_add_ps(_mm_add_ps(e0, e1), e2), zero);
+        rejected = _mm_or_ps(_mm_and_ps(any_neg, any_pos), det0);
+    } else {
+        // No edge is zero, so an edge is negative exactly when its sign bit is set (NaN
+        // lanes aside, which their NaN t rejects below): the signs disagree where the or
+        // of the three sign bits is set and their and is clear. The sum of three nonzero
+        // values of one sign is not zero, so det = 0 needs no test here.
+        const __m128 mixed =
+            _mm_andnot_ps(_mm_and_ps(_mm_and_ps(e0, e1), e2), _mm_or_ps(_mm_or_ps(e0, e1), e2));
+        rejected = _mm_castsi128_ps(_mm_srai_epi32(_mm_castps_si128(mixed), 31));
     }
-
-    // Inside when the three signs agree (either winding).
-    const __m128 any_neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)),
-                                     _mm_cmplt_ps(e2, zero));
-    const __m128 any_pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)),
-                                     _mm_cmpgt_ps(e2, zero));
+    // (No early exit when every lane is rejected: whether any lane is inside is a coin toss,
+    // and the division is cheaper than the mispredicted branch, also for any hit.)
     const __m128 det = _mm_add_ps(_mm_add_ps(e0, e1), e2);
-    // cmpneq is true for NaN: a padding lane is rejected below by its NaN t. (No early exit
-    // here: whether any lane is inside is a coin toss, and the division is cheaper than
-    // the mispredicted branch.)
-    __m128 ok = _mm_andnot_ps(_mm_and_ps(any_neg, any_pos), _mm_cmpneq_ps(det, zero));
 
     // t = s_z (e0 az + e1 bz + e2 cz) / det, barycentrics u = e1 / det, v = e2 / det.
     const __m128 t_scaled = _mm_mul_ps(
         r.sz, _mm_add_ps(_mm_add_ps(_mm_mul_ps(e0, az), _mm_mul_ps(e1, bz)), _mm_mul_ps(e2, cz)));
     const __m128 inv_det = _mm_div_ps(_mm_set1_ps(1.0f), det);
     t = _mm_mul_ps(t_scaled, inv_det);
-    ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpgt_ps(t, t_min), _mm_cmplt_ps(t, t_max)));
+    const __m128 ok =
+        _mm_andnot_ps(rejected, _mm_and_ps(_mm_cmpgt_ps(t, t_min), _mm_cmplt_ps(t, t_max)));
     u = _mm_mul_ps(e1, inv_det);
     v = _mm_mul_ps(e2, inv_det);
     return ok;
