@@ -26,13 +26,23 @@ namespace librt::detail {
 struct TriRay4 {
     __m128 o_kx, o_ky, o_kz;  ///< origin components along the permuted axes
     __m128 sx, sy, sz;
-    std::uint32_t kx, ky, kz;
+    /// Byte offsets of the rows of axes kx, ky, kz within a corner of a TriangleBlock
+    /// (16 k): a row is one load at block + 48 corner + offset. Axis indices made every leaf
+    /// visit build nine row addresses (shifts and adds, registers spilled for them).
+    std::uint32_t off_x, off_y, off_z;
 };
+
+/// Row `off` (a TriRay4 byte offset) of corner `corner` of a block.
+inline __m128 load_row4(const TriangleBlock& b, std::uint32_t corner, std::uint32_t off) {
+    return _mm_load_ps(
+        reinterpret_cast<const float*>(reinterpret_cast<const char*>(b.p[corner]) + off));
+}
 
 /// triangle.h's prepare_watertight for a traceable ray, with its three divisions
 /// (s_x = d_kx / d_kz, s_y = d_ky / d_kz, s_z = 1 / d_kz) done by one vector division:
 /// IEEE division is exact per lane, so the values are the scalar ones.
 inline TriRay4 prepare_triangles4(const Ray& ray) {
+    constexpr std::uint32_t kRowBytes = sizeof(TriangleBlock::p[0][0]);
     const float* d = &ray.direction.x;
     const float ax = std::fabs(d[0]), ay = std::fabs(d[1]), az = std::fabs(d[2]);
     const std::uint32_t kz = (ax > ay) ? (ax > az ? 0u : 2u) : (ay > az ? 1u : 2u);
@@ -41,9 +51,9 @@ inline TriRay4 prepare_triangles4(const Ray& ray) {
     if (d[kz] < 0.0f) std::swap(kx, ky);  // keep the winding
     const __m128 s = _mm_div_ps(_mm_setr_ps(d[kx], d[ky], 1.0f, 1.0f), _mm_set1_ps(d[kz]));
     TriRay4 r;
-    r.kx = kx;
-    r.ky = ky;
-    r.kz = kz;
+    r.off_x = kx * kRowBytes;
+    r.off_y = ky * kRowBytes;
+    r.off_z = kz * kRowBytes;
     const float* o = &ray.origin.x;
     r.o_kx = _mm_set1_ps(o[kx]);
     r.o_ky = _mm_set1_ps(o[ky]);
@@ -79,22 +89,22 @@ inline __m128 select4(__m128 mask, __m128 exact, __m128 e) {
 inline __m128 test_block4(const TriangleBlock& b, const TriRay4& r, __m128 t_min, __m128 t_max,
                           __m128& t, __m128& u, __m128& v) {
     // Corners relative to the origin; z along the permuted axis kz...
-    const __m128 az = _mm_sub_ps(_mm_load_ps(b.p[0][r.kz]), r.o_kz);
-    const __m128 bz = _mm_sub_ps(_mm_load_ps(b.p[1][r.kz]), r.o_kz);
-    const __m128 cz = _mm_sub_ps(_mm_load_ps(b.p[2][r.kz]), r.o_kz);
+    const __m128 az = _mm_sub_ps(load_row4(b, 0, r.off_z), r.o_kz);
+    const __m128 bz = _mm_sub_ps(load_row4(b, 1, r.off_z), r.o_kz);
+    const __m128 cz = _mm_sub_ps(load_row4(b, 2, r.off_z), r.o_kz);
     // ...and x, y sheared so the ray runs along +z: x' = x - s_x z, y' = y - s_y z.
     const __m128 ax =
-        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[0][r.kx]), r.o_kx), _mm_mul_ps(r.sx, az));
+        _mm_sub_ps(_mm_sub_ps(load_row4(b, 0, r.off_x), r.o_kx), _mm_mul_ps(r.sx, az));
     const __m128 ay =
-        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[0][r.ky]), r.o_ky), _mm_mul_ps(r.sy, az));
+        _mm_sub_ps(_mm_sub_ps(load_row4(b, 0, r.off_y), r.o_ky), _mm_mul_ps(r.sy, az));
     const __m128 bx =
-        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[1][r.kx]), r.o_kx), _mm_mul_ps(r.sx, bz));
+        _mm_sub_ps(_mm_sub_ps(load_row4(b, 1, r.off_x), r.o_kx), _mm_mul_ps(r.sx, bz));
     const __m128 by =
-        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[1][r.ky]), r.o_ky), _mm_mul_ps(r.sy, bz));
+        _mm_sub_ps(_mm_sub_ps(load_row4(b, 1, r.off_y), r.o_ky), _mm_mul_ps(r.sy, bz));
     const __m128 cx =
-        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[2][r.kx]), r.o_kx), _mm_mul_ps(r.sx, cz));
+        _mm_sub_ps(_mm_sub_ps(load_row4(b, 2, r.off_x), r.o_kx), _mm_mul_ps(r.sx, cz));
     const __m128 cy =
-        _mm_sub_ps(_mm_sub_ps(_mm_load_ps(b.p[2][r.ky]), r.o_ky), _mm_mul_ps(r.sy, cz));
+        _mm_sub_ps(_mm_sub_ps(load_row4(b, 2, r.off_y), r.o_ky), _mm_mul_ps(r.sy, cz));
 
     // 2D edge functions (scaled barycentrics): e0 = cx by - cy bx, e1 = ax cy - ay cx, e2 = bx ay -
     // by ax.
@@ -104,31 +114,41 @@ inline __m128 test_block4(const TriangleBlock& b, const TriRay4& r, __m128 t_min
     const __m128 zero = _mm_setzero_ps();
     const __m128 on_edge = _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(e0, zero), _mm_cmpeq_ps(e1, zero)),
                                      _mm_cmpeq_ps(e2, zero));
+    // Lanes rejected before t (all bits set): the three signs disagree, or det = 0.
+    __m128 rejected;
     if (_mm_movemask_ps(on_edge) != 0) [[unlikely]] {
         // Inline and in registers: a call taking the edges by reference kept them in
         // memory on every block test.
         e0 = select4(on_edge, exact_edge4(cx, by, cy, bx), e0);
         e1 = select4(on_edge, exact_edge4(ax, cy, ay, cx), e1);
         e2 = select4(on_edge, exact_edge4(bx, ay, by, ax), e2);
+        // Inside when the three signs agree (either winding), a zero agreeing with both.
+        const __m128 any_neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)),
+                                         _mm_cmplt_ps(e2, zero));
+        const __m128 any_pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)),
+                                         _mm_cmpgt_ps(e2, zero));
+        const __m128 det0 = _mm_cmpeq_ps(_mm_add_ps(_mm_add_ps(e0, e1), e2), zero);
+        rejected = _mm_or_ps(_mm_and_ps(any_neg, any_pos), det0);
+    } else {
+        // No edge is zero, so an edge is negative exactly when its sign bit is set (NaN
+        // lanes aside, which their NaN t rejects below): the signs disagree where the or
+        // of the three sign bits is set and their and is clear. The sum of three nonzero
+        // values of one sign is not zero, so det = 0 needs no test here.
+        const __m128 mixed =
+            _mm_andnot_ps(_mm_and_ps(_mm_and_ps(e0, e1), e2), _mm_or_ps(_mm_or_ps(e0, e1), e2));
+        rejected = _mm_castsi128_ps(_mm_srai_epi32(_mm_castps_si128(mixed), 31));
     }
-
-    // Inside when the three signs agree (either winding).
-    const __m128 any_neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)),
-                                     _mm_cmplt_ps(e2, zero));
-    const __m128 any_pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)),
-                                     _mm_cmpgt_ps(e2, zero));
+    // (No early exit when every lane is rejected: whether any lane is inside is a coin toss,
+    // and the division is cheaper than the mispredicted branch, also for any hit.)
     const __m128 det = _mm_add_ps(_mm_add_ps(e0, e1), e2);
-    // cmpneq is true for NaN: a padding lane is rejected below by its NaN t. (No early exit
-    // here: whether any lane is inside is a coin toss, and the division is cheaper than
-    // the mispredicted branch.)
-    __m128 ok = _mm_andnot_ps(_mm_and_ps(any_neg, any_pos), _mm_cmpneq_ps(det, zero));
 
     // t = s_z (e0 az + e1 bz + e2 cz) / det, barycentrics u = e1 / det, v = e2 / det.
     const __m128 t_scaled = _mm_mul_ps(
         r.sz, _mm_add_ps(_mm_add_ps(_mm_mul_ps(e0, az), _mm_mul_ps(e1, bz)), _mm_mul_ps(e2, cz)));
     const __m128 inv_det = _mm_div_ps(_mm_set1_ps(1.0f), det);
     t = _mm_mul_ps(t_scaled, inv_det);
-    ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpgt_ps(t, t_min), _mm_cmplt_ps(t, t_max)));
+    const __m128 ok =
+        _mm_andnot_ps(rejected, _mm_and_ps(_mm_cmpgt_ps(t, t_min), _mm_cmplt_ps(t, t_max)));
     u = _mm_mul_ps(e1, inv_det);
     v = _mm_mul_ps(e2, inv_det);
     return ok;
