@@ -28,12 +28,12 @@ bool simd_path_supported(SimdPath path) {
             return true;  // SSE2 is part of x86-64
         // __builtin_cpu_supports also checks that the OS saves the wider registers.
         case SimdPath::Avx2:
-            return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt") &&
-                   __builtin_cpu_supports("bmi");
+            return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
+                   __builtin_cpu_supports("popcnt") && __builtin_cpu_supports("bmi");
         case SimdPath::Avx512:
             return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-                   __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt") &&
-                   __builtin_cpu_supports("bmi");
+                   __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
+                   __builtin_cpu_supports("popcnt") && __builtin_cpu_supports("bmi");
 #else
         default:
             return false;

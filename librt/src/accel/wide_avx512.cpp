@@ -1,10 +1,10 @@
 // AVX-512 (F+VL) wide-BVH kernel: as the AVX2 one, with the hit mask straight from a compare
-// into a mask register. The eight child boxes of a node in one 8-lane test (slab8_avx.h),
-// four triangles per test (block4_sse.h, VEX-encoded here). Only this file's kernel is
-// compiled for the instruction set (a target pragma around it, not a -m flag on the file,
-// so nothing leaks into baseline code); it runs only when simd_path_supported() says the
-// CPU has it. The entry points are flatten: the baseline traversal template and the
-// block test are inlined into them, so all of it is compiled for AVX-512.
+// into a mask register. The eight child boxes of a node in one 8-lane fused (FMA) test
+// (slab8_avx.h), four triangles per test (block4_sse.h, VEX-encoded here). Only this file's kernel
+// is compiled for the instruction set (a target pragma around it, not a -m flag on the file, so
+// nothing leaks into baseline code); it runs only when simd_path_supported() says the CPU has it.
+// The entry points are flatten: the baseline traversal template and the block test are inlined into
+// them, so all of it is compiled for AVX-512.
 
 #include "wide_kernels.h"
 
@@ -18,11 +18,11 @@
 #include <cstdint>
 
 #if defined(__clang__)
-#pragma clang attribute push(__attribute__((target("avx512f,avx512vl,avx2,popcnt,bmi"))), \
+#pragma clang attribute push(__attribute__((target("avx512f,avx512vl,avx2,fma,popcnt,bmi"))), \
                              apply_to = function)
 #else
 #pragma GCC push_options
-#pragma GCC target("avx512f,avx512vl,avx2,popcnt,bmi")
+#pragma GCC target("avx512f,avx512vl,avx2,fma,popcnt,bmi")
 #endif
 
 namespace librt::detail {
@@ -40,14 +40,21 @@ struct Avx512Kernel : Block4Triangles, Slab8Nodes {
 };
 static_assert(WideKernel<Avx512Kernel>);
 
+// A ray from beyond slab_test8's range (slab8_in_range) takes the SSE kernel: the same hits.
 [[gnu::flatten]] PrimitiveHit avx512_intersect(const WideBvh& bvh, const Ray& ray) {
+    if (!slab8_in_range(ray)) [[unlikely]]
+        return sse_wide_kernels().intersect(bvh, ray);
     return intersect_wide<Avx512Kernel>(bvh, ray);
 }
 [[gnu::flatten]] bool avx512_occluded(const WideBvh& bvh, const Ray& ray) {
+    if (!slab8_in_range(ray)) [[unlikely]]
+        return sse_wide_kernels().occluded(bvh, ray);
     return occluded_wide<Avx512Kernel>(bvh, ray);
 }
 [[gnu::flatten]] PrimitiveHit avx512_intersect_normal(const WideBvh& bvh, const Ray& ray,
                                                       glm::vec3& normal) {
+    if (!slab8_in_range(ray)) [[unlikely]]
+        return sse_wide_kernels().intersect_normal(bvh, ray, normal);
     return intersect_normal_wide<Avx512Kernel>(bvh, ray, normal);
 }
 

@@ -22,9 +22,10 @@ struct WideKernels {
     PrimitiveHit (*intersect_normal)(const WideBvh&, const Ray&, glm::vec3&);
 };
 
-/// One query through the scalar kernel, counting what the traversal does. Every path makes
-/// the same decisions (their node and leaf tests agree bit for bit), so these are every
-/// path's counts.
+/// One query through the scalar kernel, counting what the traversal does. The SSE path makes
+/// the same decisions (its node and leaf tests agree bit for bit); the AVX paths' fused node
+/// test computes entry distances a few ulps apart, so their order and culling of children
+/// can differ on rare near-ties (their hits do not).
 [[nodiscard]] TraversalCounts count_wide_traversal(const WideBvh& bvh, const Ray& ray,
                                                    bool any_hit);
 
