@@ -181,8 +181,8 @@ TEST(RenderMpi, BadSettingsThrowOnEveryRank) {
     expect_error(s, "tile_size = 0");
     s = {};
     s.render.adaptive.enabled = true;
-    s.render.adaptive.radius = 0;
-    expect_error(s, "adaptive.radius = 0");
+    s.render.adaptive.radius = -1;  // 0 is automatic
+    expect_error(s, "adaptive.radius = -1");
 }
 
 // Ranks given different jobs fail on every rank before any tile, naming the rank and what

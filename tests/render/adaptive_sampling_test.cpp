@@ -105,8 +105,19 @@ TEST(AdaptiveSampling, SettingsAreValidated) {
     s.pilot_samples = 3;
     EXPECT_NE(message(s).find("adaptive.pilot_samples = 3"), std::string::npos) << message(s);
     s = {};
-    s.radius = 0;
-    EXPECT_NE(message(s).find("adaptive.radius = 0"), std::string::npos) << message(s);
+    s.radius = -1;
+    EXPECT_NE(message(s).find("adaptive.radius = -1"), std::string::npos) << message(s);
+    s = {};
+    s.radius = 0;  // automatic
+    EXPECT_EQ(message(s), "no error");
+    s = {};
+    s.relative_floor = 0.0;
+    EXPECT_NE(message(s).find("adaptive.relative_floor"), std::string::npos) << message(s);
+    s.relative_floor = std::nan("");
+    EXPECT_NE(message(s).find("adaptive.relative_floor"), std::string::npos) << message(s);
+    s = {};
+    s.metric = static_cast<AdaptiveMetric>(7);
+    EXPECT_NE(message(s).find("adaptive.metric = 7"), std::string::npos) << message(s);
     s = {};
     s.max_factor = std::nan("");
     EXPECT_NE(message(s).find("adaptive.max_factor"), std::string::npos) << message(s);
@@ -127,6 +138,16 @@ TEST(AdaptiveSampling, PilotIsAPowerOfTwoBelowTheMean) {
     EXPECT_EQ(adaptive_pilot_samples(fixed, 16), 0u);  // a pilot of the whole budget
 }
 
+TEST(AdaptiveSampling, RadiusZeroScalesWithTheImage) {
+    AdaptiveSampling s;  // radius 0: the larger side / 40, rounded, in [2, 16]
+    EXPECT_EQ(adaptive_radius(s, 128, 128), 3);
+    EXPECT_EQ(adaptive_radius(s, 300, 512), 13);
+    EXPECT_EQ(adaptive_radius(s, 40, 24), 2);
+    EXPECT_EQ(adaptive_radius(s, 4000, 10), 16);
+    s.radius = 5;
+    EXPECT_EQ(adaptive_radius(s, 128, 128), 5);
+}
+
 TEST(AdaptiveSampling, CountsFollowTheNoiseWithinTheBudget) {
     // Left half: half means differ by 1; right half by 1/4 (a quarter of the noise scale).
     const int w = 64;
@@ -139,6 +160,7 @@ TEST(AdaptiveSampling, CountsFollowTheNoiseWithinTheBudget) {
     pilot_films(w, h, 8, diff, half, all);
     AdaptiveSampling settings;
     settings.radius = 2;
+    settings.metric = AdaptiveMetric::Absolute;  // the noise alone, not its brightness
     const std::uint32_t spp = 32;
     const std::vector<std::uint32_t> counts = adaptive_sample_counts(half, all, spp, settings);
     ASSERT_EQ(counts.size(), diff.size());
@@ -155,6 +177,53 @@ TEST(AdaptiveSampling, CountsFollowTheNoiseWithinTheBudget) {
     const double right = counts[std::size_t(10) * w + 58];
     EXPECT_NEAR(left / right, 4.0, 4.0 / right + 0.01) << left << " " << right;
     EXPECT_EQ(adaptive_sample_counts(half, all, spp, settings), counts);  // deterministic
+}
+
+// The same noise on a bright left half (pilot mean 8) and a dark right half (mean 1): the
+// relative metric gives the dark half sqrt((8 + f M) / (1 + f M)) times the bright half's
+// count (M = 4.5 the image's mean, f = 0.1: 2.414x), the absolute metric equal counts; and
+// the counts do not change when every radiance is scaled (units).
+TEST(AdaptiveSampling, RelativeMetricFavoursTheDarkWhereNoiseIsEqual) {
+    const int w = 64;
+    const int h = 32;
+    const std::uint32_t pilot = 8;
+    const auto films = [&](double scale, Film& half, Film& all) {
+        std::vector<double> first(std::size_t(w) * h);
+        std::vector<double> whole(first.size());
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+                // Half means m - 1/2 and m + 1/2 (a difference of 1), the pilot's mean m.
+                const double m = x < w / 2 ? 8.0 : 1.0;
+                first[std::size_t(y) * w + x] = scale * (m - 0.5);
+                whole[std::size_t(y) * w + x] = scale * m;
+            }
+        }
+        half = film_of(w, h, pilot / 2, first);
+        all = film_of(w, h, pilot, whole);
+    };
+    Film half;
+    Film all;
+    films(1.0, half, all);
+    AdaptiveSampling settings;
+    settings.radius = 2;
+    const std::uint32_t spp = 32;
+    const std::vector<std::uint32_t> counts = adaptive_sample_counts(half, all, spp, settings);
+    const std::uint64_t budget = std::uint64_t{spp} * counts.size();
+    EXPECT_LE(total(counts), budget);
+    EXPECT_GE(total(counts), budget - counts.size());
+    const double bright = counts[std::size_t(10) * w + 5];
+    const double dark = counts[std::size_t(10) * w + 58];
+    const double floor = 0.1 * 4.5;
+    const double expected = std::sqrt((8.0 + floor) / (1.0 + floor));
+    EXPECT_NEAR(dark / bright, expected, expected / bright + 0.01) << dark << " " << bright;
+    // Scaled by a power of two every step scales exactly: the very same counts.
+    Film half4;
+    Film all4;
+    films(4.0, half4, all4);
+    EXPECT_EQ(adaptive_sample_counts(half4, all4, spp, settings), counts);
+    settings.metric = AdaptiveMetric::Absolute;
+    for (const std::uint32_t c : adaptive_sample_counts(half, all, spp, settings))
+        EXPECT_EQ(c, spp);  // equal noise everywhere: the budget evenly
 }
 
 TEST(AdaptiveSampling, APixelsCountIgnoresItsOwnPilot) {
@@ -249,26 +318,31 @@ TEST(AdaptiveSampling, PixelMeansStayUnbiased) {
     constexpr int kSeeds = 8;
     for (const SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
         for (const int radius : {1, 8}) {
-            double sum = 0.0;
-            for (int seed = 0; seed < kSeeds; ++seed) {
-                RenderSettings settings;
-                settings.samples_per_pixel = 32;
-                settings.seed = std::uint64_t(seed);
-                settings.sampler = kind;
-                settings.adaptive.enabled = true;
-                settings.adaptive.radius = radius;
-                const Image image = render(scene, camera, integrator, settings);
-                for (const glm::vec3& p : image.pixels) sum += p.x;
+            for (const AdaptiveMetric metric :
+                 {AdaptiveMetric::Absolute, AdaptiveMetric::Relative}) {
+                double sum = 0.0;
+                for (int seed = 0; seed < kSeeds; ++seed) {
+                    RenderSettings settings;
+                    settings.samples_per_pixel = 32;
+                    settings.seed = std::uint64_t(seed);
+                    settings.sampler = kind;
+                    settings.adaptive.enabled = true;
+                    settings.adaptive.radius = radius;
+                    settings.adaptive.metric = metric;
+                    const Image image = render(scene, camera, integrator, settings);
+                    for (const glm::vec3& p : image.pixels) sum += p.x;
+                }
+                const double pixels = double(w) * h;
+                const double mean = sum / (pixels * kSeeds);
+                // Standard error of the mean, bounded with every pixel at the pilot's 8
+                // samples (the fewest it can hold): Var = sum_p V^2 p (1 - p) / 8 / P^2 / seeds.
+                const double var = Bernoulli::kValue * Bernoulli::kValue * 0.5 *
+                                   (p_left * (1.0 - p_left) + p_right * (1.0 - p_right)) / 8.0 /
+                                   pixels / kSeeds;
+                EXPECT_NEAR(mean, expected, 5.0 * std::sqrt(var))
+                    << "sampler " << int(kind) << ", radius " << radius << ", metric "
+                    << int(metric);
             }
-            const double pixels = double(w) * h;
-            const double mean = sum / (pixels * kSeeds);
-            // Standard error of the mean, bounded with every pixel at the pilot's 8
-            // samples (the fewest it can hold): Var = sum_p V^2 p (1 - p) / 8 / P^2 / seeds.
-            const double var = Bernoulli::kValue * Bernoulli::kValue * 0.5 *
-                               (p_left * (1.0 - p_left) + p_right * (1.0 - p_right)) / 8.0 /
-                               pixels / kSeeds;
-            EXPECT_NEAR(mean, expected, 5.0 * std::sqrt(var))
-                << "sampler " << int(kind) << ", radius " << radius;
         }
     }
 }
@@ -327,8 +401,10 @@ TEST(AdaptiveSampling, ProgressiveRenderEqualsTheOneShotRender) {
     EXPECT_EQ(std::memcmp(image.pixels.data(), expected.pixels.data(),
                           image.pixels.size() * sizeof(glm::vec3)),
               0);
-    // The counts do differ between pixels: the right half is the noisier.
-    EXPECT_GT(film.at(30, 12).samples, film.at(10, 12).samples);
+    // The counts do differ between pixels. The relative metric weighs a sample variance
+    // 64 p (1 - p) by 1 / (8 p + 0.1 M), M = 1.8 the image's mean: 5.24 on the left (p 0.05),
+    // 4.54 on the right (p 0.4), so the left half, whose bright samples are rarer, gets more.
+    EXPECT_GT(film.at(10, 12).samples, film.at(30, 12).samples);
 }
 
 // Stopped by the clock after the pilot, each pixel holds its share of the way from the

@@ -17,7 +17,9 @@ TEST(Defaults, RenderSettingsAreTheBestMeasured) {
     EXPECT_EQ(s.sampler, SamplerKind::Sobol);
     EXPECT_TRUE(s.adaptive.enabled);
     EXPECT_EQ(s.adaptive.pilot_samples, 0);  // the largest power of two <= spp / 4
-    EXPECT_EQ(s.adaptive.radius, 8);
+    EXPECT_EQ(s.adaptive.radius, 0);         // the image's larger side / 40, in [2, 16]
+    EXPECT_EQ(s.adaptive.metric, AdaptiveMetric::Relative);  // the displayed image's error
+    EXPECT_EQ(s.adaptive.relative_floor, 0.1);
     EXPECT_EQ(s.adaptive.max_factor, 8.0);
     EXPECT_EQ(s.block().sampler, SamplerKind::Sobol);  // what render_block is given
     EXPECT_EQ(BlockSettings{}.sampler, SamplerKind::Sobol);
