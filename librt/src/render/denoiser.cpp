@@ -668,12 +668,12 @@ private:
                 const float* qb = &p_.value_b[c][q0];
                 const float* ma = &p_.albedo_a[c][q0];
                 const float* mb = &p_.albedo_b[c][q0];
-                for (int x = 0; x < n; ++x) {
-                    sa[x] += ca[x] * qa[x];
-                    sb[x] += cb[x] * qb[x];
-                    wa[x] += ca[x] * ma[x];
-                    wb[x] += cb[x] * mb[x];
-                }
+                // One sum per loop: g++ did not vectorise the four in one loop (callgrind:
+                // scalar, 16 % of the filter's instructions at 240 x 135).
+                for (int x = 0; x < n; ++x) sa[x] += ca[x] * qa[x];
+                for (int x = 0; x < n; ++x) sb[x] += cb[x] * qb[x];
+                for (int x = 0; x < n; ++x) wa[x] += ca[x] * ma[x];
+                for (int x = 0; x < n; ++x) wb[x] += cb[x] * mb[x];
             }
             return;
         }
