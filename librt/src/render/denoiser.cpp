@@ -411,7 +411,8 @@ public:
         const std::size_t rows = std::size_t(kStrip + 2 * f);
         dist_a_.resize(rows * std::size_t(round_to_lanes(kTileWidth + 2 * f)));
         dist_b_.resize(dist_a_.size());
-        rows_a_.resize(rows * std::size_t(kTileWidth));
+        // kLanes more: accumulate's box over y reads whole vectors past the last row's end.
+        rows_a_.resize(rows * std::size_t(kTileWidth) + std::size_t(kLanes));
         rows_b_.resize(rows_a_.size());
         tile_ = std::size_t(kStrip) * std::size_t(kTileWidth);
         // First order: each half's regression sums, then each half's largest weight.
@@ -425,8 +426,10 @@ public:
                                   Estimates& estimates, Image& out) {
         const int f = s_.patch_radius, r = s_.radius, w = p_.width;
         const int tw = x1t - x0t;
-        // A distance row: x in [x0t - f, x1t + f), and up to kLanes - 1 more, not read.
-        const int dw = round_to_lanes(tw + 2 * f);
+        // A row of the patch boxes over x: tw of them, and up to kLanes - 1 more, not read.
+        const int rw = round_to_lanes(tw);
+        // A distance row: x in [x0t - f, x1t + f), and more, read only by those extra boxes.
+        const int dw = round_to_lanes(rw + 2 * f);
         std::fill(sums_.begin(), sums_.end(), 0.0f);
         const float k2 = s_.strength * s_.strength;
         const float patch_norm = 1.0f / (3.0f * float((2 * f + 1) * (2 * f + 1)));
@@ -446,10 +449,10 @@ public:
                 // 2. Box over x of the patch: direct sums (every pixel the same additions
                 //    wherever its tile lies).
                 for (int j = 0; j < y1 - y0 + 2 * f; ++j) {
-                    box_row(&dist_a_[std::size_t(j) * std::size_t(dw)], tw, f,
-                            &rows_a_[std::size_t(j) * std::size_t(tw)]);
-                    box_row(&dist_b_[std::size_t(j) * std::size_t(dw)], tw, f,
-                            &rows_b_[std::size_t(j) * std::size_t(tw)]);
+                    box_row(&dist_a_[std::size_t(j) * std::size_t(dw)], rw, f,
+                            &rows_a_[std::size_t(j) * std::size_t(rw)]);
+                    box_row(&dist_b_[std::size_t(j) * std::size_t(dw)], rw, f,
+                            &rows_b_[std::size_t(j) * std::size_t(rw)]);
                 }
                 // 3. Box over y, weights and accumulation, for neighbours in the image.
                 // The first-order fit takes the pixel itself last (add_centre).
@@ -459,7 +462,7 @@ public:
                 for (int y = y0; y < y1; ++y) {
                     if (y + oy < 0 || y + oy >= p_.height) continue;
                     const std::size_t pp = p_.at(0, y), qq = p_.at(ox, y + oy);
-                    accumulate(std::size_t(y - y0), tw, x0t, pp, qq, x0, x1, f, patch_norm,
+                    accumulate(std::size_t(y - y0), tw, rw, x0t, pp, qq, x0, x1, f, patch_norm,
                                float(ox) / float(r), float(oy) / float(r));
                 }
             }
@@ -591,8 +594,26 @@ private:
         }
     }
 
-    /// out[x] = sum of in[x .. x + 2f] for x in [0, n): the patch box over a row whose first
-    /// value is pixel -f.
+    /// out[x] = in[x] + in[x + step] + ... + in[x + (terms - 1) step], added in that order,
+    /// for x in [0, n), n a multiple of kLanes: a vector of kLanes sums is kept in registers
+    /// over all the terms instead of a pass over the row per term (loads, stores and loop
+    /// overhead). For rows far apart (the box over y): with step 1 g++ gathered the terms
+    /// lane by lane, costlier than box_row's passes.
+    LIBRT_DENOISE_INLINE static void box_sum(const float* in, std::size_t step, int terms, int n,
+                                             float* out) {
+        for (int x0 = 0; x0 < n; x0 += kLanes) {
+            float s[kLanes];
+            for (int i = 0; i < kLanes; ++i) s[i] = in[x0 + i];
+            for (int t = 1; t < terms; ++t) {
+                const float* row = in + std::size_t(t) * step + std::size_t(x0);
+                for (int i = 0; i < kLanes; ++i) s[i] += row[i];
+            }
+            for (int i = 0; i < kLanes; ++i) out[x0 + i] = s[i];
+        }
+    }
+
+    /// out[x] = sum of in[x .. x + 2f] for x in [0, n), n a multiple of kLanes: the patch box
+    /// over a row whose first value is pixel -f.
     LIBRT_DENOISE_INLINE static void box_row(const float* in, int n, int f, float* out) {
         for (int x = 0; x < n; ++x) out[x] = in[x];
         for (int t = 1; t <= 2 * f; ++t) {
@@ -602,8 +623,9 @@ private:
 
     /// Adds the neighbours at offset (ox, oy) (scaled: dx, dy) to the sums of tile row j
     /// (image pixels x0 .. x1 of row pp, neighbours from qq on; the tile starts at x0t and
-    /// is tw wide). Loops of few operations each over the row, so that each vectorises.
-    LIBRT_DENOISE_INLINE void accumulate(std::size_t j, int tw, int x0t, std::size_t pp,
+    /// is tw wide; the rows of patch boxes over x are rw apart). Loops of few operations
+    /// each over the row, so that each vectorises.
+    LIBRT_DENOISE_INLINE void accumulate(std::size_t j, int tw, int rw, int x0t, std::size_t pp,
                                          std::size_t qq, int x0, int x1, int f, float patch_norm,
                                          float dx, float dy) {
         const auto w = std::size_t(tw);
@@ -611,20 +633,13 @@ private:
         float* ca = patch_a_.data();
         float* cb = patch_b_.data();
         float* feature = feature_.data();
-        const float* ra = &rows_a_[j * w + std::size_t(x0 - x0t)];
-        const float* rb = &rows_b_[j * w + std::size_t(x0 - x0t)];
-        for (int x = 0; x < n; ++x) {
-            ca[x] = ra[x];
-            cb[x] = rb[x];
-        }
-        for (int t = 1; t <= 2 * f; ++t) {
-            const float* ta = ra + std::size_t(t) * w;
-            const float* tb = rb + std::size_t(t) * w;
-            for (int x = 0; x < n; ++x) {
-                ca[x] += ta[x];
-                cb[x] += tb[x];
-            }
-        }
+        // The box over y, to whole vectors: n <= tw, so at most kLanes - 1 values past
+        // tile row j + 2f's are read (rows_a_ has that slack) and written past ca[n).
+        const auto box_y = std::size_t(rw);
+        const float* ra = &rows_a_[j * box_y + std::size_t(x0 - x0t)];
+        const float* rb = &rows_b_[j * box_y + std::size_t(x0 - x0t)];
+        box_sum(ra, box_y, 2 * f + 1, round_to_lanes(n), ca);
+        box_sum(rb, box_y, 2 * f + 1, round_to_lanes(n), cb);
         // Feature distances: the squared difference, less what the features' own noise
         // explains, over sigma^2 widened by that noise (where a pixel's albedo or normal
         // is itself a noisy mix, an edge inside it, the features cannot tell it apart and
