@@ -646,23 +646,21 @@ private:
         // the radiance's patch distance decides).
         float* fa = feature_albedo_.data();
         float* fn = feature_normal_.data();
-        for (int x = 0; x < n; ++x) {
-            fa[x] = 0.0f;
-            fn[x] = 0.0f;
-        }
         const std::size_t p0 = pp + std::size_t(x0), q0 = qq + std::size_t(x0);
-        for (int c = 0; c < 3; ++c) {
-            const float* ap = &p_.albedo[c][p0];
-            const float* aq = &p_.albedo[c][q0];
-            const float* np = &p_.normal[c][p0];
-            const float* nq = &p_.normal[c][q0];
+        // The three channels in one pass per feature, added in the same order from 0.
+        const auto squares = [n, p0, q0](const std::vector<float>* plane, float* to) {
+            const float *p0c = &plane[0][p0], *p1c = &plane[1][p0], *p2c = &plane[2][p0];
+            const float *q0c = &plane[0][q0], *q1c = &plane[1][q0], *q2c = &plane[2][q0];
             for (int x = 0; x < n; ++x) {
-                const float da = ap[x] - aq[x];
-                const float dn = np[x] - nq[x];
-                fa[x] += da * da;
-                fn[x] += dn * dn;
+                const float d0 = p0c[x] - q0c[x], d1 = p1c[x] - q1c[x], d2 = p2c[x] - q2c[x];
+                float s = 0.0f + d0 * d0;
+                s += d1 * d1;
+                s += d2 * d2;
+                to[x] = s;
             }
-        }
+        };
+        squares(p_.albedo, fa);
+        squares(p_.normal, fn);
         const float* vap = &p_.albedo_var[p0];
         const float* vaq = &p_.albedo_var[q0];
         const float* vnp = &p_.normal_var[p0];
