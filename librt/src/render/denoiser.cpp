@@ -317,10 +317,11 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserS
             plane[c].resize(padded + std::size_t(kLanes));  // kLanes: distances' extra lanes
             for (int y = -p.pad; y < h + p.pad; ++y) {
                 const int cy = std::min(std::max(y, 0), h - 1);
-                for (int x = -p.pad; x < w + p.pad; ++x) {
-                    const int cx = std::min(std::max(x, 0), w - 1);
-                    plane[c][p.at(x, y)] = from[std::size_t(cy) * std::size_t(w) + cx][c];
-                }
+                const glm::vec3* src = &from[std::size_t(cy) * std::size_t(w)];
+                float* row = &plane[c][p.at(0, y)];  // row[x], x in [-pad, w + pad)
+                for (int x = -p.pad; x < 0; ++x) row[x] = src[0][c];
+                for (int x = 0; x < w; ++x) row[x] = src[x][c];
+                for (int x = w; x < w + p.pad; ++x) row[x] = src[w - 1][c];
             }
         }
     };
@@ -713,7 +714,9 @@ private:
         for (int x = 0; x < n; ++x) top[x] = top[x] > weight[x] ? top[x] : weight[x];
         // The upper triangle row by row: (1, 1) (1, dx) (1, dy) (dx, dx) (dx, dy) (dy, dy).
         const float design[kGram] = {1.0f, dx, dy, dx * dx, dx * dy, dy * dy};
-        for (int k = 0; k < kGram; ++k) {
+        float* g0 = sum(base) + row;
+        for (int x = 0; x < n; ++x) g0[x] += weight[x];  // x 1: the same bits
+        for (int k = 1; k < kGram; ++k) {
             float* g = sum(base + k) + row;
             const float d = design[k];
             for (int x = 0; x < n; ++x) g[x] += weight[x] * d;
