@@ -30,6 +30,21 @@ inline std::vector<Triangle> random_soup(std::size_t count, std::uint32_t seed) 
     return tris;
 }
 
+/// An n x n grid of unit squares at z = 0, two triangles each (a, b, c and a, c, d): shared
+/// edges and vertices on integer coordinates, where rays along the lattice test
+/// watertightness.
+inline std::vector<Triangle> unit_grid(int n) {
+    std::vector<Triangle> tris;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const glm::vec3 a{float(i), float(j), 0}, b{float(i + 1), float(j), 0},
+                c{float(i + 1), float(j + 1), 0}, d{float(i), float(j + 1), 0};
+            tris.push_back({a, b, c});
+            tris.push_back({a, c, d});
+        }
+    return tris;
+}
+
 /// A mesh's triangles as a flat list.
 inline std::vector<Triangle> triangles_of(const TriangleMesh& mesh) {
     std::vector<Triangle> tris(mesh.triangle_count());

@@ -145,15 +145,8 @@ TEST(BvhTraversal, AxisParallelRaysThroughAGridHaveNoHoles) {
     // A flat grid of quads at z = 0 with rays exactly along -z through every inner grid
     // line: box faces coincide with the rays, which must still find a triangle. (On the
     // grid's outer rim a ray lying in the root box's face counts as outside, see bbox.h.)
-    std::vector<Triangle> tris;
     const int n = 16;
-    for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-            const glm::vec3 a{float(i), float(j), 0}, b{float(i + 1), float(j), 0},
-                c{float(i + 1), float(j + 1), 0}, d{float(i), float(j + 1), 0};
-            tris.push_back({a, b, c});
-            tris.push_back({a, c, d});
-        }
+    const std::vector<Triangle> tris = librt::testing::unit_grid(n);
     for (const BvhBuilder builder : {BvhBuilder::Median, BvhBuilder::Sah}) {
         const TriangleBvh accel(tris, builder);
         int holes = 0;

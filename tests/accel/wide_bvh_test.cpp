@@ -290,15 +290,8 @@ TEST(WideBvh, EveryPathAgreesWithTheScalarOneFromOriginsBeyondTheFusedTestsRange
 }
 
 TEST(WideBvh, EveryPathHasNoHolesForAxisParallelRaysThroughAGrid) {
-    std::vector<Triangle> tris;
     const int n = 16;
-    for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-            const glm::vec3 a{float(i), float(j), 0}, b{float(i + 1), float(j), 0},
-                c{float(i + 1), float(j + 1), 0}, d{float(i), float(j + 1), 0};
-            tris.push_back({a, b, c});
-            tris.push_back({a, c, d});
-        }
+    const std::vector<Triangle> tris = librt::testing::unit_grid(n);
     for (const BvhBuilder builder : {BvhBuilder::Median, BvhBuilder::Sah}) {
         TriangleBvh accel(tris, builder);
         for (const SimdPath path : supported_simd_paths()) {
@@ -323,15 +316,8 @@ TEST(WideBvh, EveryPathAgreesWithLinearScanOnRaysThroughSharedEdgesAndVertices) 
     // Rays through the grid's lattice of edges and vertices, straight down and oblique with
     // dyadic shears, so that edge functions come out exactly 0 (the leaf tests' double
     // fallback) or tiny of either sign beside them; some pass beside the grid and miss.
-    std::vector<Triangle> tris;
     const int n = 8;
-    for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-            const glm::vec3 a{float(i), float(j), 0}, b{float(i + 1), float(j), 0},
-                c{float(i + 1), float(j + 1), 0}, d{float(i), float(j + 1), 0};
-            tris.push_back({a, b, c});
-            tris.push_back({a, c, d});
-        }
+    const std::vector<Triangle> tris = librt::testing::unit_grid(n);
     // Left out: the rays along the grid's outer faces x = n and y = n. Every path misses
     // those going +z (each lies in a box's face plane with a zero direction component there,
     // which the slab test loses), while the scan hits the boundary edge: a node-side matter.

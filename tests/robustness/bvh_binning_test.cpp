@@ -115,13 +115,15 @@ TEST(BvhBinning, GeometryShrinkingByPowersOfTwoIntoTheDenormals) {
     expect_same_hits(tris, {0.5f, 0.25f, 0.25f}, 5.0f);
 }
 
-TEST(BvhBinning, CentroidExtentOverflowingFloatStillSplits) {
-    // Centres at -3e38 and +3e38: hi - lo overflows to inf in float (the scale was then 0
-    // and (c - lo) * 0 NaN); the split must still separate them.
-    const float big = 3e38f;
+namespace {
+
+/// Builds per_side unit boxes at x = a and per_side at x = b (the centres differ in x only,
+/// so the root splits in x) and expects the root's two children to hold one side each.
+void expect_root_separates(float a, float b, int per_side) {
     std::vector<BBox> boxes;
     std::vector<glm::vec3> centres;
-    for (const float x : {-big, -big, big, big}) {
+    for (int i = 0; i < 2 * per_side; ++i) {
+        const float x = i < per_side ? a : b;
         boxes.push_back({{x, 0, 0}, {x, 1, 1}});
         centres.push_back({x, 0.5f, 0.5f});
     }
@@ -131,36 +133,26 @@ TEST(BvhBinning, CentroidExtentOverflowingFloatStillSplits) {
     expect_permutation(bvh, boxes.size());
     const BvhNode& root = bvh.nodes[0];
     ASSERT_FALSE(root.is_leaf());
-    // The root's children each hold one side.
     for (int c = 0; c < 2; ++c) {
-        const BBox& b = bvh.nodes[root.index + c].bounds;
-        EXPECT_EQ(b.lo.x, b.hi.x) << "child " << c << " mixes the two sides";
+        const BBox& box = bvh.nodes[root.index + c].bounds;
+        EXPECT_EQ(box.lo.x, box.hi.x)
+            << "gap " << a << ".." << b << ", child " << c << " mixes the two sides";
     }
+}
+
+}  // namespace
+
+TEST(BvhBinning, CentroidExtentOverflowingFloatStillSplits) {
+    // Centres at -3e38 and +3e38: hi - lo overflows to inf in float (the scale was then 0
+    // and (c - lo) * 0 NaN); the split must still separate them.
+    expect_root_separates(-3e38f, 3e38f, 2);
 }
 
 TEST(BvhBinning, LargeNodesPartitionByThresholdOnHardCentres) {
     // Nodes of 128 or more primitives are partitioned by a threshold found by bisection on
     // the floats (the bin test's least centre of the split bin): it must send each centre
     // where its bin does, here with 100 centres on each side of a denormal gap and of a gap
-    // whose extent overflows float (the centres differ in x only: the root splits in x).
-    for (const auto& [a, b] : {std::pair{0.0f, 1e-40f}, std::pair{-3e38f, 3e38f}}) {
-        std::vector<BBox> boxes;
-        std::vector<glm::vec3> centres;
-        for (int i = 0; i < 200; ++i) {
-            const float x = i < 100 ? a : b;
-            boxes.push_back({{x, 0, 0}, {x, 1, 1}});
-            centres.push_back({x, 0.5f, 0.5f});
-        }
-        SahConfig config;
-        config.max_leaf_size = 1;
-        const Bvh bvh = build_sah_bvh(boxes, centres, config);
-        expect_permutation(bvh, boxes.size());
-        // Below the root, every node is on one side of the gap.
-        const BvhNode& root = bvh.nodes[0];
-        ASSERT_FALSE(root.is_leaf());
-        for (int c = 0; c < 2; ++c) {
-            const BBox& box = bvh.nodes[root.index + c].bounds;
-            EXPECT_EQ(box.lo.x, box.hi.x) << "gap " << a << ".." << b << ", child " << c;
-        }
-    }
+    // whose extent overflows float.
+    expect_root_separates(0.0f, 1e-40f, 100);
+    expect_root_separates(-3e38f, 3e38f, 100);
 }
