@@ -15,8 +15,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <exception>
 #include <mutex>
 #include <string>
@@ -141,12 +139,11 @@ void check_input(const DenoiserInput& in) {
 }
 
 /// Mean of `v` over the (2r + 1)^2 box around each pixel, clipped to the image.
-template <typename T>
-std::vector<T> box_mean(const std::vector<T>& v, int width, int height, int r) {
-    std::vector<T> rows(v.size()), out(v.size());
+std::vector<glm::vec3> box_mean(const std::vector<glm::vec3>& v, int width, int height, int r) {
+    std::vector<glm::vec3> rows(v.size()), out(v.size());
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
-            T s(0.0f);
+            glm::vec3 s(0.0f);
             const int x0 = std::max(0, x - r), x1 = std::min(width - 1, x + r);
             for (int i = x0; i <= x1; ++i) s += v[std::size_t(y) * std::size_t(width) + i];
             rows[std::size_t(y) * std::size_t(width) + x] = s / float(x1 - x0 + 1);
@@ -155,7 +152,7 @@ std::vector<T> box_mean(const std::vector<T>& v, int width, int height, int r) {
     for (int y = 0; y < height; ++y) {
         const int y0 = std::max(0, y - r), y1 = std::min(height - 1, y + r);
         for (int x = 0; x < width; ++x) {
-            T s(0.0f);
+            glm::vec3 s(0.0f);
             for (int j = y0; j <= y1; ++j) s += rows[std::size_t(j) * std::size_t(width) + x];
             out[std::size_t(y) * std::size_t(width) + x] = s / float(y1 - y0 + 1);
         }
@@ -227,12 +224,10 @@ struct PixelTerms {
     std::vector<glm::vec3> emission;
 };
 
-/// The first-order filter's estimates of each pixel's demodulated radiance, one per option
-/// (a candidate's fit or its weighted mean; select_estimates keeps one): the halves'
-/// estimates combined by the pixel's share, and their cross-half squared error.
+/// The first-order filter's two estimates of each half's demodulated radiance per pixel:
+/// the weighted mean and the fit's intercept; select_estimates keeps one.
 struct Estimates {
-    std::vector<std::vector<glm::vec3>> value;
-    std::vector<std::vector<float>> error;
+    std::vector<glm::vec3> mean_a, mean_b, fit_a, fit_b;
 };
 
 /// The planes of `in`, with `albedo` in place of in.albedo (the prefiltered albedo) as the
@@ -385,51 +380,10 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserS
 /// normal difference as three more features (light from one direction is linear in the
 /// normal) was measured and not kept: with a ridge of 0.1 the same figures within 1-6 %
 /// on every scene (docs/benchmarks.md), for 2.6 times the sums.
-/// The largest design: 1, dx, dy, dx^2, dx dy, dy^2 (Candidate::design).
-constexpr int kMaxDesign = 6;
-/// The Gram matrix's upper triangle of a design of d terms.
-constexpr int gram_size(int d) { return d * (d + 1) / 2; }
-
-/// One of the first-order filter's candidates (select_estimates chooses among them per
-/// pixel, as NFOR, Bitterli et al. 2016, chooses among its filters): its weights are
-/// exp(-(patch x the patch distance + feature x the feature distance)), its design
-/// (1, dx, dy) or, design 6, also (dx^2, dx dy, dy^2). patch 0: the weights do not depend
-/// on the radiance, so both halves share them (one Gram matrix).
-struct Candidate {
-    float patch = 1.0f;
-    float feature = 1.0f;
-    int design = 3;
-    bool mean = true;  ///< its weighted mean is an option too
-};
-
-/// TEMPORARY (dnsel experiments): LIBRT_DNSEL_CANDS="patch,feature,design,mean;..."
-std::vector<Candidate> first_order_candidates() {
-    std::vector<Candidate> out;
-    const char* env = std::getenv("LIBRT_DNSEL_CANDS");
-    std::string spec = env != nullptr ? env : "1,1,3,1";
-    std::size_t pos = 0;
-    while (pos < spec.size()) {
-        std::size_t end = spec.find(';', pos);
-        if (end == std::string::npos) end = spec.size();
-        const std::string item = spec.substr(pos, end - pos);
-        Candidate c;
-        float pa = 1, fe = 1;
-        int de = 3, me = 1;
-        if (std::sscanf(item.c_str(), "%f,%f,%d,%d", &pa, &fe, &de, &me) >= 3) {
-            c.patch = pa;
-            c.feature = fe;
-            c.design = de;
-            c.mean = me != 0;
-            out.push_back(c);
-        }
-        pos = end + 1;
-    }
-    return out;
-}
-double ridge2() {
-    const char* env = std::getenv("LIBRT_DNSEL_RIDGE2");
-    return env != nullptr ? std::atof(env) : 0.001;
-}
+constexpr int kDesign = 3;  ///< 1, dx, dy
+/// The Gram matrix's upper triangle and the right-hand sides (3 channels), per half.
+constexpr int kGram = kDesign * (kDesign + 1) / 2;
+constexpr int kRegressionSums = kGram + 3 * kDesign;
 /// Ridge regularisation, relative to the weights' sum, added to each slope's diagonal
 /// entry: where the neighbours do not span the offsets (one pixel holding all the weight)
 /// the slope goes to 0 and the fit to the weighted mean. Small, because a ridge shrinks
@@ -452,9 +406,8 @@ constexpr int round_to_lanes(int n) { return (n + kLanes - 1) / kLanes * kLanes;
 /// Filters tiles [x0, x1) x [y0, y1); each thread has one.
 class StripFilter {
 public:
-    StripFilter(const Planes& planes, const DenoiserSettings& s,
-                const std::vector<Candidate>& candidates)
-        : p_(planes), s_(s), cands_(candidates), first_order_(!candidates.empty()) {
+    StripFilter(const Planes& planes, const DenoiserSettings& s, bool first_order)
+        : p_(planes), s_(s), first_order_(first_order) {
         const int f = s.patch_radius;
         const std::size_t rows = std::size_t(kStrip + 2 * f);
         dist_a_.resize(rows * std::size_t(round_to_lanes(kTileWidth + 2 * f)));
@@ -463,35 +416,11 @@ public:
         rows_a_.resize(rows * std::size_t(kTileWidth) + std::size_t(kLanes));
         rows_b_.resize(rows_a_.size());
         tile_ = std::size_t(kStrip) * std::size_t(kTileWidth);
-        // First order, per candidate: each half's Gram matrix (one if shared) and
-        // right-hand sides, then each half's largest weight (one if shared).
-        int planes_count = 12;
-        if (first_order_) {
-            planes_count = 0;
-            for (const Candidate& c : cands_) {
-                const int g = gram_size(c.design), r = 3 * c.design;
-                Layout l;
-                l.gram[0] = planes_count;
-                l.rhs[0] = planes_count + g;
-                if (c.patch == 0.0f) {
-                    l.gram[1] = l.gram[0];
-                    l.rhs[1] = l.rhs[0] + r;
-                    l.top[0] = l.top[1] = l.rhs[1] + r;
-                    planes_count = l.top[0] + 1;
-                } else {
-                    l.gram[1] = l.rhs[0] + r;
-                    l.rhs[1] = l.gram[1] + g;
-                    l.top[0] = l.rhs[1] + r;
-                    l.top[1] = l.top[0] + 1;
-                    planes_count = l.top[1] + 1;
-                }
-                layout_.push_back(l);
-            }
-        }
-        sums_.resize(tile_ * std::size_t(planes_count));
-        for (std::vector<float>* v : {&patch_a_, &patch_b_, &feature_, &feature_albedo_,
-                                      &feature_normal_, &weight_a_, &weight_b_})
-            v->resize(std::size_t(kTileWidth + kLanes));
+        // First order: each half's regression sums, then each half's largest weight.
+        sums_.resize(tile_ * std::size_t(first_order ? 2 * kRegressionSums + 2 : 12));
+        for (std::vector<float>* v :
+             {&patch_a_, &patch_b_, &feature_, &feature_albedo_, &feature_normal_})
+            v->resize(std::size_t(kTileWidth));
     }
 
     LIBRT_DENOISE_CLONES void run(int x0t, int x1t, int y0, int y1, const PixelTerms& terms,
@@ -545,26 +474,8 @@ public:
                 const std::size_t t = std::size_t(y - y0) * std::size_t(tw) + std::size_t(x - x0t);
                 const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
                 if (first_order_) {
-                    const glm::vec3 ya(p_.ratio_a[0][p_.at(x, y)], p_.ratio_a[1][p_.at(x, y)],
-                                       p_.ratio_a[2][p_.at(x, y)]);
-                    const glm::vec3 yb(p_.ratio_b[0][p_.at(x, y)], p_.ratio_b[1][p_.at(x, y)],
-                                       p_.ratio_b[2][p_.at(x, y)]);
-                    const float sh = terms.share[i];
-                    std::size_t o = 0;
-                    const auto option = [&](const glm::vec3& fa, const glm::vec3& fb) {
-                        // Each half's estimate against the other half's noisy value.
-                        const glm::vec3 da = fa - yb, db = fb - ya;
-                        estimates.error[o][i] = glm::dot(da, da) + glm::dot(db, db);
-                        estimates.value[o][i] = sh * fa + (1.0f - sh) * fb;
-                        ++o;
-                    };
-                    for (std::size_t c = 0; c < cands_.size(); ++c) {
-                        glm::vec3 mean_a, mean_b;
-                        const glm::vec3 fit_a = solve(c, 0, t, mean_a);
-                        const glm::vec3 fit_b = solve(c, 1, t, mean_b);
-                        option(fit_a, fit_b);
-                        if (cands_[c].mean) option(mean_a, mean_b);
-                    }
+                    estimates.fit_a[i] = solve(0, t, estimates.mean_a[i]);
+                    estimates.fit_b[i] = solve(1, t, estimates.mean_b[i]);
                     continue;
                 }
                 const glm::vec3 fa = ratio(0, t);
@@ -585,21 +496,18 @@ private:
     /// neighbour is alike (a noise-free image's unique detail) the pixel is its own.
     void add_centre(int x0t, int x1t, int y0, int y1) {
         const int tw = x1t - x0t;
-        for (std::size_t cand = 0; cand < cands_.size(); ++cand) {
-            const Layout& l = layout_[cand];
-            for (int h = 0; h < 2; ++h) {
-                const float* top = sum(l.top[h]);
-                const bool gram = h == 0 || l.gram[1] != l.gram[0];
-                for (int y = y0; y < y1; ++y) {
-                    const std::size_t row = std::size_t(y - y0) * std::size_t(tw);
-                    const std::size_t q0 = p_.at(x0t, y);
-                    for (int x = 0; x < tw; ++x) {
-                        const float c = std::max(top[row + std::size_t(x)], kMinCentreWeight);
-                        if (gram) sum(l.gram[h])[row + std::size_t(x)] += c;
-                        for (int ch = 0; ch < 3; ++ch)
-                            sum(l.rhs[h] + ch)[row + std::size_t(x)] +=
-                                c * (h == 0 ? p_.ratio_a : p_.ratio_b)[ch][q0 + std::size_t(x)];
-                    }
+        for (int h = 0; h < 2; ++h) {
+            const int base = h * kRegressionSums;
+            const float* top = sum(2 * kRegressionSums + h);
+            for (int y = y0; y < y1; ++y) {
+                const std::size_t row = std::size_t(y - y0) * std::size_t(tw);
+                const std::size_t q0 = p_.at(x0t, y);
+                for (int x = 0; x < tw; ++x) {
+                    const float c = std::max(top[row + std::size_t(x)], kMinCentreWeight);
+                    sum(base)[row + std::size_t(x)] += c;
+                    for (int ch = 0; ch < 3; ++ch)
+                        sum(base + kGram + ch)[row + std::size_t(x)] +=
+                            c * (h == 0 ? p_.ratio_a : p_.ratio_b)[ch][q0 + std::size_t(x)];
                 }
             }
         }
@@ -622,19 +530,18 @@ private:
     /// The first-order output of half h at tile pixel t: the intercept of the weighted,
     /// ridge-regularised least squares fit (kDesign), by Cholesky in double precision, and
     /// in `mean` the weighted mean. The weighted mean where the fit is degenerate.
-    [[nodiscard]] glm::vec3 solve(std::size_t cand, int h, std::size_t t, glm::vec3& mean) {
-        const int kDesign = cands_[cand].design;
-        const Layout& l = layout_[cand];
-        double g[kMaxDesign][kMaxDesign];
+    [[nodiscard]] glm::vec3 solve(int h, std::size_t t, glm::vec3& mean) {
+        const int base = h * kRegressionSums;
+        double g[kDesign][kDesign];
         int k = 0;
         for (int i = 0; i < kDesign; ++i)
-            for (int j = i; j < kDesign; ++j) g[i][j] = g[j][i] = double(sum(l.gram[h] + k++)[t]);
-        double rhs[3][kMaxDesign];
+            for (int j = i; j < kDesign; ++j) g[i][j] = g[j][i] = double(sum(base + k++)[t]);
+        double rhs[3][kDesign];
         for (int c = 0; c < 3; ++c)
-            for (int i = 0; i < kDesign; ++i) rhs[c][i] = double(sum(l.rhs[h] + 3 * i + c)[t]);
+            for (int i = 0; i < kDesign; ++i) rhs[c][i] = double(sum(base + kGram + 3 * i + c)[t]);
         const double w = g[0][0];
         mean = glm::vec3(float(rhs[0][0] / w), float(rhs[1][0] / w), float(rhs[2][0] / w));
-        for (int i = 1; i < kDesign; ++i) g[i][i] += (i < 3 ? kRidge : ridge2_) * w;
+        for (int i = 1; i < kDesign; ++i) g[i][i] += kRidge * w;
         // Cholesky G = L L^T in place (lower triangle).
         for (int j = 0; j < kDesign; ++j) {
             double d = g[j][j];
@@ -649,7 +556,7 @@ private:
         }
         glm::vec3 v;
         for (int c = 0; c < 3; ++c) {
-            double z[kMaxDesign] = {};
+            double z[kDesign];
             for (int i = 0; i < kDesign; ++i) {
                 double e = rhs[c][i];
                 for (int m = 0; m < i; ++m) e -= g[i][m] * z[m];
@@ -769,46 +676,13 @@ private:
             feature[x] = (ea > 0.0f ? ea : 0.0f) / (tap[x] + vap[x] + vaq[x]) +
                          (en > 0.0f ? en : 0.0f) / (tnp[x] + vnp[x] + vnq[x]);
         }
-        const std::size_t row = j * w + std::size_t(x0 - x0t);
-        if (first_order_) {
-            float* wa = weight_a_.data();
-            float* wb = weight_b_.data();
-            for (std::size_t c = 0; c < cands_.size(); ++c) {
-                const Candidate& cand = cands_[c];
-                const bool shared = cand.patch == 0.0f;
-                if (cand.patch == 1.0f && cand.feature == 1.0f) {
-                    for (int x = 0; x < n; ++x) {
-                        const float da = ca[x] * patch_norm, db = cb[x] * patch_norm;
-                        wa[x] = exp_neg((da > 0.0f ? da : 0.0f) + feature[x]);
-                        wb[x] = exp_neg((db > 0.0f ? db : 0.0f) + feature[x]);
-                    }
-                } else if (shared) {
-                    const float fe = cand.feature;
-                    for (int x = 0; x < n; ++x) wa[x] = exp_neg(fe * feature[x]);
-                } else {
-                    const float pa = cand.patch * patch_norm, fe = cand.feature;
-                    for (int x = 0; x < n; ++x) {
-                        const float da = ca[x] * pa, db = cb[x] * pa;
-                        wa[x] = exp_neg((da > 0.0f ? da : 0.0f) + fe * feature[x]);
-                        wb[x] = exp_neg((db > 0.0f ? db : 0.0f) + fe * feature[x]);
-                    }
-                }
-                if (cand.design == 3) {
-                    regress<3>(c, 0, wa, p_.ratio_a, q0, row, n, dx, dy);
-                    regress<3>(c, 1, shared ? wa : wb, p_.ratio_b, q0, row, n, dx, dy);
-                } else {
-                    regress<6>(c, 0, wa, p_.ratio_a, q0, row, n, dx, dy);
-                    regress<6>(c, 1, shared ? wa : wb, p_.ratio_b, q0, row, n, dx, dy);
-                }
-            }
-            return;
-        }
         for (int x = 0; x < n; ++x) {
             const float da = ca[x] * patch_norm, db = cb[x] * patch_norm;
             ca[x] = exp_neg((da > 0.0f ? da : 0.0f) + feature[x]);
             cb[x] = exp_neg((db > 0.0f ? db : 0.0f) + feature[x]);
         }
-        {
+        const std::size_t row = j * w + std::size_t(x0 - x0t);
+        if (!first_order_) {
             for (int c = 0; c < 3; ++c) {
                 float* sa = sum(c) + row;
                 float* sb = sum(6 + c) + row;
@@ -825,65 +699,50 @@ private:
                 for (int x = 0; x < n; ++x) wa[x] += ca[x] * ma[x];
                 for (int x = 0; x < n; ++x) wb[x] += cb[x] * mb[x];
             }
+            return;
         }
+        regress(0, ca, p_.ratio_a, q0, row, n, dx, dy);
+        regress(1, cb, p_.ratio_b, q0, row, n, dx, dy);
     }
 
     /// Half h's regression sums at this offset: the Gram matrix of the design (1, dx, dy),
     /// constant over the row, and its products with the demodulated radiance.
-    template <int D>
-    LIBRT_DENOISE_INLINE void regress(std::size_t cand, int h, const float* weight,
-                                      const std::vector<float>* y, std::size_t q0,
-                                      std::size_t row, int n, float dx, float dy) {
-        const Layout& l = layout_[cand];
-        const bool gram = h == 0 || l.gram[1] != l.gram[0];
-        const float design[kMaxDesign] = {1.0f, dx, dy, dx * dx, dx * dy, dy * dy};
-        if (gram) {
-            float* top = sum(l.top[h]) + row;
-            for (int x = 0; x < n; ++x) top[x] = top[x] > weight[x] ? top[x] : weight[x];
-            // The upper triangle row by row: (1, 1) (1, dx) (1, dy) (dx, dx) ...
-            float* g0 = sum(l.gram[h]) + row;
-            for (int x = 0; x < n; ++x) g0[x] += weight[x];  // x 1: the same bits
-            int k = 1;
-            for (int i = 0; i < D; ++i) {
-                for (int jj = i; jj < D; ++jj) {
-                    if (i == 0 && jj == 0) continue;
-                    float* g = sum(l.gram[h] + k++) + row;
-                    const float d = design[i] * design[jj];
-                    for (int x = 0; x < n; ++x) g[x] += weight[x] * d;
-                }
-            }
+    LIBRT_DENOISE_INLINE void regress(int h, const float* weight, const std::vector<float>* y,
+                                      std::size_t q0, std::size_t row, int n, float dx, float dy) {
+        const int base = h * kRegressionSums;
+        float* top = sum(2 * kRegressionSums + h) + row;
+        for (int x = 0; x < n; ++x) top[x] = top[x] > weight[x] ? top[x] : weight[x];
+        // The upper triangle row by row: (1, 1) (1, dx) (1, dy) (dx, dx) (dx, dy) (dy, dy).
+        const float design[kGram] = {1.0f, dx, dy, dx * dx, dx * dy, dy * dy};
+        float* g0 = sum(base) + row;
+        for (int x = 0; x < n; ++x) g0[x] += weight[x];  // x 1: the same bits
+        for (int k = 1; k < kGram; ++k) {
+            float* g = sum(base + k) + row;
+            const float d = design[k];
+            for (int x = 0; x < n; ++x) g[x] += weight[x] * d;
         }
         for (int c = 0; c < 3; ++c) {
-            float* r[D];
-            for (int i = 0; i < D; ++i) r[i] = sum(l.rhs[h] + 3 * i + c) + row;
+            float* r0 = sum(base + kGram + c) + row;
+            float* r1 = sum(base + kGram + 3 + c) + row;
+            float* r2 = sum(base + kGram + 6 + c) + row;
             const float* yq = &y[c][q0];
             for (int x = 0; x < n; ++x) {
                 const float v = weight[x] * yq[x];
-                r[0][x] += v;
-                for (int i = 1; i < D; ++i) r[i][x] += v * design[i];
+                r0[x] += v;
+                r1[x] += v * dx;
+                r2[x] += v * dy;
             }
         }
     }
 
-    /// A candidate's planes of sums (StripFilter's constructor).
-    struct Layout {
-        int gram[2] = {0, 0};
-        int rhs[2] = {0, 0};
-        int top[2] = {0, 0};
-    };
-
     const Planes& p_;
     const DenoiserSettings& s_;
-    std::vector<Candidate> cands_;
-    std::vector<Layout> layout_;
-    double ridge2_ = ridge2();
     bool first_order_ = false;
     std::size_t tile_ = 0;  ///< pixels of a tile's plane of sums
     std::vector<float> dist_a_, dist_b_, rows_a_, rows_b_;
     std::vector<float> sums_;
     // One row each: accumulate's scratch.
     std::vector<float> patch_a_, patch_b_, feature_, feature_albedo_, feature_normal_;
-    std::vector<float> weight_a_, weight_b_;
 };
 
 /// Per pixel, the first-order fit or the weighted mean, whichever errs less, and the
@@ -899,43 +758,27 @@ void select_estimates(const Planes& planes, const PixelTerms& terms, const Estim
                       Image& out) {
     const int w = planes.width, h = planes.height;
     const std::size_t n = out.pixels.size();
-    std::vector<std::vector<float>> smooth;
-    for (const std::vector<float>& err : e.error) smooth.push_back(box_mean(err, w, h, kSelectRadius));
-    std::vector<std::size_t> chosen(e.error.size(), 0);
-    std::vector<glm::vec3> oracle;
-    if (const char* path = std::getenv("LIBRT_DNSEL_ORACLE")) {  // TEMPORARY experiment
-        std::FILE* f = std::fopen(path, "rb");
-        int wh[2] = {0, 0};
-        if (f != nullptr && std::fread(wh, sizeof wh, 1, f) == 1 && wh[0] == w && wh[1] == h) {
-            oracle.resize(n);
-            if (std::fread(oracle.data(), sizeof(glm::vec3), n, f) != n) oracle.clear();
+    std::vector<glm::vec3> err(n);  // x: the mean's squared difference, y: the fit's
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
+            const std::size_t k = planes.at(x, y);
+            const glm::vec3 ya(planes.ratio_a[0][k], planes.ratio_a[1][k], planes.ratio_a[2][k]);
+            const glm::vec3 yb(planes.ratio_b[0][k], planes.ratio_b[1][k], planes.ratio_b[2][k]);
+            const glm::vec3 dm_a = e.mean_a[i] - yb, dm_b = e.mean_b[i] - ya;
+            const glm::vec3 df_a = e.fit_a[i] - yb, df_b = e.fit_b[i] - ya;
+            err[i] = glm::vec3(glm::dot(dm_a, dm_a) + glm::dot(dm_b, dm_b),
+                               glm::dot(df_a, df_a) + glm::dot(df_b, df_b), 0.0f);
         }
-        if (f != nullptr) std::fclose(f);
     }
+    const std::vector<glm::vec3> smooth = box_mean(err, w, h, kSelectRadius);
     for (std::size_t i = 0; i < n; ++i) {
-        std::size_t best = 0;  // the first of equals
-        if (!oracle.empty()) {
-            float be = 1e30f;
-            for (std::size_t o = 0; o < smooth.size(); ++o) {
-                glm::vec3 v = terms.modulation[i] * e.value[o][i];
-                if (!terms.emission.empty()) v += terms.emission[i];
-                const glm::vec3 d = v - oracle[i];
-                if (glm::dot(d, d) < be) {
-                    be = glm::dot(d, d);
-                    best = o;
-                }
-            }
-        } else
-            for (std::size_t o = 1; o < smooth.size(); ++o)
-                if (smooth[o][i] < smooth[best][i]) best = o;
-        ++chosen[best];
-        out.pixels[i] = terms.modulation[i] * e.value[best][i];
+        const bool fit = smooth[i].y <= smooth[i].x;
+        const glm::vec3 fa = fit ? e.fit_a[i] : e.mean_a[i];
+        const glm::vec3 fb = fit ? e.fit_b[i] : e.mean_b[i];
+        const float sh = terms.share[i];
+        out.pixels[i] = terms.modulation[i] * (sh * fa + (1.0f - sh) * fb);
         if (!terms.emission.empty()) out.pixels[i] += terms.emission[i];
-    }
-    if (std::getenv("LIBRT_DNSEL_STATS") != nullptr) {
-        std::fprintf(stderr, "dnsel chosen:");
-        for (std::size_t c : chosen) std::fprintf(stderr, " %.3f", double(c) / double(n));
-        std::fprintf(stderr, "\n");
     }
 }
 
@@ -943,18 +786,17 @@ void select_estimates(const Planes& planes, const PixelTerms& terms, const Estim
 /// weights (a first-order regression or, `first_order` false, a weighted mean), multiplied
 /// back by `albedo`, plus `emission` (0x0: none).
 Image filter_halves(const DenoiserInput& input, const Image& albedo,
-                    const DenoiserSettings& settings, const Image& emission,
-                    const std::vector<Candidate>& candidates) {
-    const bool first_order = !candidates.empty();
+                    const DenoiserSettings& settings, const Image& emission, bool first_order) {
     PixelTerms terms;
     const Planes planes = make_planes(input, albedo, settings, terms);
     terms.emission = emission.pixels;
     Image out(planes.width, planes.height);
     Estimates estimates;
-    std::size_t options = 0;
-    for (const Candidate& c : candidates) options += c.mean ? 2 : 1;
-    estimates.value.assign(options, std::vector<glm::vec3>(out.pixels.size()));
-    estimates.error.assign(options, std::vector<float>(out.pixels.size()));
+    if (first_order) {
+        for (std::vector<glm::vec3>* v :
+             {&estimates.mean_a, &estimates.mean_b, &estimates.fit_a, &estimates.fit_b})
+            v->resize(out.pixels.size());
+    }
     const int strips = (planes.height + kStrip - 1) / kStrip;
     const int columns = (planes.width + kTileWidth - 1) / kTileWidth;
     const int tiles = strips * columns;
@@ -967,7 +809,7 @@ Image filter_halves(const DenoiserInput& input, const Image& albedo,
     std::mutex failure_mutex;
     const auto work = [&] {
         try {
-            StripFilter filter(planes, settings, candidates);
+            StripFilter filter(planes, settings, first_order);
             for (int t = next.fetch_add(1); t < tiles; t = next.fetch_add(1)) {
                 const int y0 = (t / columns) * kStrip, y1 = std::min(y0 + kStrip, planes.height);
                 const int x0 = (t % columns) * kTileWidth;
@@ -981,9 +823,9 @@ Image filter_halves(const DenoiserInput& input, const Image& albedo,
                                 std::size_t(y) * std::size_t(planes.width) + std::size_t(x);
                             out.pixels[i] =
                                 terms.emission.empty() ? glm::vec3(0.0f) : terms.emission[i];
-                            for (std::size_t o = 0; o < options; ++o) {  // 0 either way
-                                estimates.value[o][i] = glm::vec3(0.0f);
-                                estimates.error[o][i] = 0.0f;
+                            if (first_order) {  // select_estimates: 0 either way
+                                estimates.mean_a[i] = estimates.mean_b[i] = glm::vec3(0.0f);
+                                estimates.fit_a[i] = estimates.fit_b[i] = glm::vec3(0.0f);
                             }
                         }
                     continue;
@@ -1170,7 +1012,7 @@ Image denoise(const DenoiserInput& input, const DenoiserSettings& settings) {
         alone.share_a = input.share_a;
         alone.albedo = ones;
         alone.normal = Image(w, h);
-        return filter_halves(alone, ones, with, Image(), {});
+        return filter_halves(alone, ones, with, Image(), false);
     };
     // The albedo is prefiltered first, as Rousselle et al. 2013 and NFOR prefilter their
     // features: where a texture or an outline crosses a pixel, its albedo is the share of
@@ -1196,9 +1038,7 @@ Image denoise(const DenoiserInput& input, const DenoiserSettings& settings) {
         if (emits(input.emission_a) || emits(input.emission_b))
             emission = filter_alone(input.emission_a, input.emission_b, settings);
     }
-    Image out = filter_halves(input, albedo, settings, emission,
-                               settings.first_order ? first_order_candidates()
-                                                    : std::vector<Candidate>{});
+    Image out = filter_halves(input, albedo, settings, emission, settings.first_order);
     if (settings.max_standard_errors > 0.0f) bound_by_own_noise(input, settings, out);
     return out;
 }
