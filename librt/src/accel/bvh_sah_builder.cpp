@@ -19,10 +19,8 @@
 #include <memory>
 #include <mutex>
 #include <numeric>
-#include <optional>
 #include <string>
 #include <thread>
-#include <type_traits>
 #include <vector>
 
 namespace librt {
@@ -99,53 +97,17 @@ struct alignas(64) Bin {
 };
 static_assert(sizeof(Bin) == 64);
 
-/// A primitive as the SAH builder sees it; the array of them is partitioned in place, so
-/// each level streams contiguous memory. Two layouts, both with the primitive's index in the
-/// bits of lo's lane 3 (the other builder lanes ignore lane 3: boxes' areas and the sweep use
-/// lanes 0-2 only):
-///
-/// CompactRef, 32 bytes (as Embree's PrimRef), when every centre is its box's centre, as
-/// TriangleBvh's are:
-///   bytes  0..15  box lo.xyz, primitive index
-///   bytes 16..31  box hi.xyz, padding
-/// The centre is recomputed by BBox::center's operation, 0.5 (lo + hi), which run() checks
-/// gives the caller's centre bit for bit, so the tree is the one WideRef would give. At 10M
-/// triangles each level then streams 320 MB instead of 480 MB of references and 40 MB of
-/// indices, twice (binning, partitioning).
-struct CompactRef {
-    V4 lo, hi;
-    /// The centre, lane 3 zero (hi's lane 3 is minus lo's: see kRefIndexBias).
-    [[nodiscard]] V4 centre() const { return 0.5f * (lo + hi); }
-    [[nodiscard]] float centre(int a) const { return 0.5f * (lo[a] + hi[a]); }
-};
-static_assert(sizeof(CompactRef) == 32, "CompactRef must stay 32 bytes");
-
-/// WideRef, 48 bytes, for any other centres:
-///   bytes  0..15  box lo.xyz, primitive index
+/// A primitive as the SAH builder sees it; the array of them is partitioned in place,
+/// so each level streams contiguous memory:
+///   bytes  0..15  box lo.xyz, padding
 ///   bytes 16..31  box hi.xyz, padding
 ///   bytes 32..47  centre.xyz (what is binned), padding
-struct WideRef {
-    V4 lo, hi, c;
-    [[nodiscard]] V4 centre() const { return c; }
-    [[nodiscard]] float centre(int a) const { return c[a]; }
+/// (the primitive index lives in a parallel array, swapped along).
+struct BuildRef {
+    Box4 box;
+    V4 c;
 };
-static_assert(sizeof(WideRef) == 48, "WideRef must stay 48 bytes");
-
-/// The primitive index in lo's lane 3 is stored as the float whose bits are index + 2^23
-/// (mod 2^32): a positive normal float for indices below 2^31 - 2^24, with its negative in
-/// hi's lane 3, so that lo + hi is 0 there. Lane 3 goes through the boxes' min, max and
-/// subtractions and the centre's sum (results unused), and a denormal there, as the raw bits
-/// of an index below 2^23 are, or made there (0.5 x a tiny index) sends them down a slow
-/// microcode path: the build ran 1.2-3x slower so.
-constexpr std::uint32_t kRefIndexBias = 1u << 23;
-
-inline float ref_lane(std::uint32_t index) { return std::bit_cast<float>(index + kRefIndexBias); }
-
-/// The primitive index a reference carries.
-template <class Ref>
-std::uint32_t ref_id(const Ref& r) {
-    return std::bit_cast<std::uint32_t>(r.lo[3]) - kRefIndexBias;
-}
+static_assert(sizeof(BuildRef) == 48, "BuildRef must stay 48 bytes");
 
 /// A node under construction (trivially default-constructible, so the buffer of them is
 /// allocated untouched):
@@ -172,9 +134,7 @@ struct SahTask {
 /// Parallel binned SAH builder. Workers take subtrees from a shared queue; a subtree
 /// of at least kGrain primitives is offered back to the queue, smaller ones are built
 /// on the worker's own stack. Node slots come from an atomic counter and are renumbered
-/// depth first at the end, so the result does not depend on scheduling. Ref is CompactRef or
-/// WideRef.
-template <class Ref>
+/// depth first at the end, so the result does not depend on scheduling.
 class SahBuilder {
 public:
     SahBuilder(std::span<const BBox> boxes, std::span<const glm::vec3> centers,
@@ -193,45 +153,32 @@ public:
             blocks_[k] = static_cast<float>((k + block_ - 1) / block_);
     }
 
-    /// The tree, or nothing when Ref is CompactRef and a centre is not its box's centre (the
-    /// caller then builds with WideRef).
-    std::optional<Bvh> run() {
+    Bvh run() {
         const auto n = static_cast<std::uint32_t>(boxes_.size());
-        if (n == 0) return Bvh{};
-        refs_ = detail::make_large_buffer<Ref>(n);
+        if (n == 0) return {};
+        refs_ = detail::make_large_buffer<BuildRef>(n);
+        ids_ = detail::make_large_buffer<std::uint32_t>(n);
         nodes_ = detail::make_large_buffer<RawNode>(2 * std::size_t{n} - 1);
         // The references and the root's bounds, in parallel parts merged in part order.
         const unsigned parts = std::min(threads_, detail::threads_for(n));
         std::vector<Box4> part_boxes(parts), part_centroids(parts);
         // Each part also checks its primitives (check_build_input's test, in SIMD: c - c is
-        // 0 for a finite c, NaN otherwise; x == x fails for NaN) and keeps its first bad one;
-        // for CompactRef, also whether each centre is 0.5 (lo + hi) bit for bit.
+        // 0 for a finite c, NaN otherwise; x == x fails for NaN) and keeps its first bad one.
         std::vector<std::size_t> part_bad(parts, n);
-        std::vector<char> part_centred(parts, 1);
         detail::parallel_parts(n, parts, [&](unsigned p, std::size_t begin, std::size_t end) {
             Box4 box, centroids;
-            V4i valid = V4i{} - 1, centred = V4i{} - 1;
+            V4i valid = V4i{} - 1;
             for (std::size_t i = begin; i < end; ++i) {
-                Ref& r = refs_[i];
-                const V4 lo = load3(boxes_[i].lo), hi = load3(boxes_[i].hi);
-                const V4 c = load3(centers_[i]);
-                r.lo = lo;
-                r.lo[3] = ref_lane(static_cast<std::uint32_t>(i));
-                r.hi = hi;
-                r.hi[3] = -r.lo[3];
-                if constexpr (std::is_same_v<Ref, WideRef>) {
-                    r.c = c;
-                } else {
-                    centred &= std::bit_cast<V4i>(c) ==
-                               std::bit_cast<V4i>(r.centre());
-                }
-                box.grow(lo, hi);
-                centroids.grow(c, c);
-                valid &= (c - c == 0.0f) & (lo == lo) & (hi == hi);
+                BuildRef& r = refs_[i];
+                r.box = Box4{load3(boxes_[i].lo), load3(boxes_[i].hi)};
+                r.c = load3(centers_[i]);
+                ids_[i] = static_cast<std::uint32_t>(i);
+                box.grow(r.box);
+                centroids.grow(r.c, r.c);
+                valid &= (r.c - r.c == 0.0f) & (r.box.lo == r.box.lo) & (r.box.hi == r.box.hi);
             }
             part_boxes[p] = box;
             part_centroids[p] = centroids;
-            part_centred[p] = centred[0] & centred[1] & centred[2] ? 1 : 0;
             if (valid[0] & valid[1] & valid[2]) return;
             for (std::size_t i = begin; i < end; ++i) {
                 if (!detail::primitive_is_valid(boxes_[i], centers_[i])) {
@@ -242,8 +189,6 @@ public:
         });
         for (unsigned p = 0; p < parts; ++p)
             if (part_bad[p] < n) detail::throw_bad_primitive(part_bad[p], centers_[part_bad[p]]);
-        for (unsigned p = 0; p < parts; ++p)
-            if (!part_centred[p]) return std::nullopt;
         SahTask root{0, 0, n, 0, {}};
         Box4 root_box;
         for (unsigned p = 0; p < parts; ++p) {
@@ -422,22 +367,22 @@ private:
                             Box4& right_cb) {
         // Locals, not members or references: the swaps' stores could alias those, which
         // would keep the bounds in memory and reload the arrays' addresses every step.
-        Ref* const refs = refs_.get();
+        BuildRef* const refs = refs_.get();
+        std::uint32_t* const ids = ids_.get();
         Box4 left, right;
         std::uint32_t i = task.begin, j = task.end;
         for (;;) {
             while (i < j && goes_left(refs[i])) {
-                const V4 c = refs[i].centre();
-                left.grow(c, c);
+                left.grow(refs[i].c, refs[i].c);
                 ++i;
             }
             while (i < j && !goes_left(refs[j - 1])) {
                 --j;
-                const V4 c = refs[j].centre();
-                right.grow(c, c);
+                right.grow(refs[j].c, refs[j].c);
             }
             if (i >= j) break;
             std::swap(refs[i], refs[j - 1]);
+            std::swap(ids[i], ids[j - 1]);
         }
         left_cb = left;
         right_cb = right;
@@ -493,8 +438,8 @@ private:
         }
         const float last_bin = static_cast<float>(bin_count - 1);
         const V4 zero = splat(0.0f), last = splat(last_bin);
-        auto bins_of = [&](const Ref& r) {
-            V4 f = (r.centre() - cb.lo) * scale;
+        auto bins_of = [&](const BuildRef& r) {
+            V4 f = (r.c - cb.lo) * scale;
             f = f > zero ? f : zero;  // NaN fails the comparison: bin 0
             f = f < last ? f : last;
             return __builtin_convertvector(f, V4i);
@@ -513,12 +458,12 @@ private:
             const V4u first = {0, stride, 2 * stride, 0};
             auto* base = reinterpret_cast<unsigned char*>(bins);
             for (std::uint32_t i = task.begin; i < task.end; ++i) {
-                const Ref& r = refs_[i];
+                const BuildRef& r = refs_[i];
                 const V4u offset = (__builtin_convertvector(bins_of(r), V4u) + first)
                                    << static_cast<std::uint32_t>(std::countr_zero(sizeof(Bin)));
                 for (int a = 0; a < 3; ++a) {
                     Bin& bin = *reinterpret_cast<Bin*>(base + offset[a]);
-                    bin.box.grow(r.lo, r.hi);
+                    bin.box.grow(r.box);
                     ++bin.count;
                 }
             }
@@ -542,10 +487,9 @@ private:
             // All centroids coincide: split the range in half so leaves stay small.
             mid = task.begin + n / 2;
             for (std::uint32_t i = task.begin; i < task.end; ++i) {
-                const Ref& r = refs_[i];
-                const V4 c = r.centre();
-                (i < mid ? left_box : right_box).grow(r.lo, r.hi);
-                (i < mid ? left_cb : right_cb).grow(c, c);
+                const BuildRef& r = refs_[i];
+                (i < mid ? left_box : right_box).grow(r.box);
+                (i < mid ? left_cb : right_cb).grow(r.c, r.c);
             }
         } else {
             const Bin* axis_bins = s.bins.data() + best_axis * bin_count;
@@ -561,13 +505,13 @@ private:
                 const float t = first_of_bin([&](float c) { return bin_at(c, a); }, cb.lo[a],
                                              cb.hi[a], best_bin);
                 mid = partition(
-                    task, [a, t](const Ref& r) { return r.centre(a) < t; }, left_cb, right_cb);
+                    task, [a, t](const BuildRef& r) { return r.c[a] < t; }, left_cb, right_cb);
             } else {
                 const float lo = cb.lo[a], axis_scale = scale[a];
                 mid = partition(
                     task,
-                    [=](const Ref& r) {
-                        return bin_index(r.centre(a), lo, axis_scale, last_bin) < best_bin;
+                    [=](const BuildRef& r) {
+                        return bin_index(r.c[a], lo, axis_scale, last_bin) < best_bin;
                     },
                     left_cb, right_cb);
             }
@@ -587,8 +531,7 @@ private:
     Bvh finish(std::uint32_t n) {
         Bvh bvh;
         bvh.nodes.resize(next_node_.load());
-        bvh.prim_indices.resize(n);
-        for (std::uint32_t i = 0; i < n; ++i) bvh.prim_indices[i] = ref_id(refs_[i]);
+        bvh.prim_indices.assign(ids_.get(), ids_.get() + n);
         struct Item {
             std::uint32_t raw, out, depth;
         };
@@ -623,7 +566,8 @@ private:
     bool leaf_wins_one_block_ = false;  // T >= I >= 0: a node of one block is always a leaf
     std::vector<float> blocks_;         // B(n) = ceil(n / block_)
 
-    detail::LargeBuffer<Ref> refs_;
+    detail::LargeBuffer<BuildRef> refs_;
+    detail::LargeBuffer<std::uint32_t> ids_;  // primitive index of each ref
     detail::LargeBuffer<RawNode> nodes_;
     std::atomic<std::uint32_t> next_node_{0};
 
@@ -639,12 +583,8 @@ private:
 Bvh build_sah_bvh(std::span<const BBox> boxes, std::span<const glm::vec3> centers,
                   const SahConfig& config) {
     detail::check_build_sizes(boxes, centers);
-    {
-        SahBuilder<CompactRef> compact(boxes, centers, config);
-        if (std::optional<Bvh> bvh = compact.run()) return std::move(*bvh);
-    }
-    SahBuilder<WideRef> wide(boxes, centers, config);
-    return std::move(*wide.run());
+    SahBuilder builder(boxes, centers, config);
+    return builder.run();
 }
 
 }  // namespace librt
