@@ -390,6 +390,9 @@ constexpr int kDesign = 3;  ///< 1, dx, dy
 /// The Gram matrix's upper triangle and the right-hand sides (3 channels), per half.
 constexpr int kGram = kDesign * (kDesign + 1) / 2;
 constexpr int kRegressionSums = kGram + 3 * kDesign;
+/// The sums of one row of offsets (one dy) that the regression sums are made of
+/// (StripFilter::regress): w, w dx, w dx^2, and w y, w y dx per channel.
+constexpr int kPartialSums = 3 + 2 * 3;
 /// Ridge regularisation, relative to the weights' sum, added to each slope's diagonal
 /// entry: where the neighbours do not span the offsets (one pixel holding all the weight)
 /// the slope goes to 0 and the fit to the weighted mean. Small, because a ridge shrinks
@@ -454,8 +457,10 @@ public:
         column_a_.resize(width + std::size_t(kLanes));
         column_b_.resize(column_a_.size());
         quantum_ = Quantum(s);
-        // First order: each half's regression sums, then each half's largest weight.
-        sums_.resize(kTilePixels * std::size_t(first_order ? 2 * kRegressionSums + 2 : 12));
+        // First order: each half's regression sums, each half's largest weight, each half's
+        // partial sums (regress).
+        sums_.resize(kTilePixels *
+                     std::size_t(first_order ? 2 * kRegressionSums + 2 + 2 * kPartialSums : 12));
         for (std::vector<float>* v : {&patch_a_, &patch_b_}) v->resize(std::size_t(kTileWidth));
     }
 
@@ -478,12 +483,15 @@ public:
                 if (x1 <= x0) continue;
                 // 1. Per-pixel distances d(p, p + o) over the tile and its apron, for the
                 //    guide of each half: the other half (cross-filtering), as integers.
-                for (int y = y0 - f; y < y1 + f; ++y) {
-                    const std::size_t p0 = p_.at(x0t - f, y), q0 = p_.at(x0t - f + ox, y + oy);
-                    std::int32_t* da = &dist_a_[std::size_t(y - (y0 - f)) * std::size_t(dw)];
-                    std::int32_t* db = &dist_b_[std::size_t(y - (y0 - f)) * std::size_t(dw)];
-                    distances(p_.b, p_.var_b, p0, q0, dw, k2, p_.epsilon, quantum_, da);  // a
-                    distances(p_.a, p_.var_a, p0, q0, dw, k2, p_.epsilon, quantum_, db);  // b
+                {
+                    const std::size_t p0 = p_.at(x0t - f, y0 - f);
+                    const std::size_t q0 = p_.at(x0t - f + ox, y0 - f + oy);
+                    const int rows = y1 - y0 + 2 * f;
+                    const auto stride = std::size_t(p_.stride);
+                    distances(p_.b, p_.var_b, p0, q0, rows, stride, dw, k2, p_.epsilon, quantum_,
+                              dist_a_.data());  // filters a
+                    distances(p_.a, p_.var_a, p0, q0, rows, stride, dw, k2, p_.epsilon, quantum_,
+                              dist_b_.data());  // filters b
                 }
                 // 2. The patch box: over y a running sum per column (one row in, one out),
                 //    over x direct sums of those (accumulate); exact in integers, so every
@@ -507,10 +515,11 @@ public:
                     const int y = y0 + j;
                     if (y + oy < 0 || y + oy >= p_.height) continue;
                     const std::size_t pp = p_.at(0, y), qq = p_.at(ox, y + oy);
-                    accumulate(std::size_t(j), tw, x0t, pp, qq, x0, x1, f, float(ox) / float(r),
-                               float(oy) / float(r));
+                    accumulate(std::size_t(j), tw, x0t, pp, qq, x0, x1, f, float(ox) / float(r));
                 }
             }
+            if (first_order_)
+                fold_partial_sums(std::size_t(y1 - y0) * std::size_t(tw), float(oy) / float(r));
         }
         if (first_order_) add_centre(x0t, x1t, y0, y1);
         for (int y = y0; y < y1; ++y) {
@@ -616,21 +625,23 @@ private:
         return v;
     }
 
-    /// Rousselle et al.'s per-pixel distance, summed over the channels, for n pixels from
-    /// p0 and q0 = p0 + offset (n a multiple of kLanes): the squared difference minus what
-    /// the noise alone would give on average (Var p + min(Var p, Var q): a noisier
-    /// neighbour is not favoured), in units of k^2 (Var p + Var q), as an integer
-    /// (Quantum). (Dividing by k^2 (Var p + min(Var p, Var q)) instead was measured:
-    /// material_spheres.glb's relMSE gain at 64 spp fell from 4.3x to 2.6x.) The three
-    /// channels in one pass, a vector of kLanes sums in registers.
+    /// Rousselle et al.'s per-pixel distance, summed over the channels, for `rows` rows of n
+    /// pixels (n a multiple of kLanes) from p0 and q0 = p0 + offset, the rows `stride`
+    /// apart in the planes and n apart in `out`: the squared difference minus what the
+    /// noise alone would give on average (Var p + min(Var p, Var q): a noisier neighbour is
+    /// not favoured), in units of k^2 (Var p + Var q), as an integer (Quantum). (Dividing
+    /// by k^2 (Var p + min(Var p, Var q)) instead was measured: material_spheres.glb's
+    /// relMSE gain at 64 spp fell from 4.3x to 2.6x.) The three channels in one pass; q's
+    /// values are read at p's index plus one offset, so that the loop keeps its pointers
+    /// in registers.
     LIBRT_DENOISE_INLINE static void distances(const std::vector<float>* u,
                                                const std::vector<float>* v, std::size_t p0,
-                                               std::size_t q0, int n, float k2, float epsilon,
-                                               const Quantum& quantum, std::int32_t* out) {
-        const float* up[3] = {&u[0][p0], &u[1][p0], &u[2][p0]};
-        const float* uq[3] = {&u[0][q0], &u[1][q0], &u[2][q0]};
-        const float* vp[3] = {&v[0][p0], &v[1][p0], &v[2][p0]};
-        const float* vq[3] = {&v[0][q0], &v[1][q0], &v[2][q0]};
+                                               std::size_t q0, int rows, std::size_t stride, int n,
+                                               float k2, float epsilon, const Quantum& quantum,
+                                               std::int32_t* out) {
+        const float *u0 = &u[0][p0], *u1 = &u[1][p0], *u2 = &u[2][p0];
+        const float *v0 = &v[0][p0], *v1 = &v[1][p0], *v2 = &v[2][p0];
+        const auto dq = std::ptrdiff_t(q0) - std::ptrdiff_t(p0);
         const float low = quantum.low, high = quantum.high, scale = quantum.scale;
         // One channel's term (spelled out per channel below: a loop over the channels
         // stopped g++'s vectoriser).
@@ -639,18 +650,19 @@ private:
             const float lower = vb < va ? vb : va;
             return (diff * diff - (va + lower)) / (epsilon + k2 * (va + vb));
         };
-        for (int x0 = 0; x0 < n; x0 += kLanes) {
-            float s[kLanes];
-            for (int i = 0; i < kLanes; ++i) {
-                const int x = x0 + i;
-                float d = 0.0f + term(up[0][x], uq[0][x], vp[0][x], vq[0][x]);
-                d += term(up[1][x], uq[1][x], vp[1][x], vq[1][x]);
-                d += term(up[2][x], uq[2][x], vp[2][x], vq[2][x]);
+        for (int r = 0; r < rows; ++r) {
+            const auto o = std::ptrdiff_t(r) * std::ptrdiff_t(stride);
+            std::int32_t* row = out + std::ptrdiff_t(r) * std::ptrdiff_t(n);
+            LIBRT_DENOISE_NO_ALIAS
+            for (std::ptrdiff_t x = o; x < o + n; ++x) {
+                const std::ptrdiff_t y = x + dq;
+                float d = term(u0[x], u0[y], v0[x], v0[y]);
+                d += term(u1[x], u1[y], v1[x], v1[y]);
+                d += term(u2[x], u2[y], v2[x], v2[y]);
                 // Two steps, each one min or max (nested, g++ compiled 9 instructions).
                 const float capped = d < high ? d : high;
-                s[i] = capped > low ? capped : low;
+                row[x - o] = static_cast<std::int32_t>((capped > low ? capped : low) * scale);
             }
-            for (int i = 0; i < kLanes; ++i) out[x0 + i] = static_cast<std::int32_t>(s[i] * scale);
         }
     }
 
@@ -673,8 +685,9 @@ private:
     LIBRT_DENOISE_INLINE static void box_x(const std::int32_t* column, int n, float unit,
                                            float* out) {
         for (int x = 0; x < n; ++x) {
-            std::int32_t s = column[x];
-            for (int t = 1; t <= 2 * F; ++t) s += column[x + t];
+            const std::int32_t* c = column + x;  // one pointer: the terms at fixed displacements
+            std::int32_t s = c[0];
+            for (int t = 1; t <= 2 * F; ++t) s += c[t];
             out[x] = float(s) * unit;
         }
     }
@@ -683,15 +696,33 @@ private:
     LIBRT_DENOISE_INLINE static void box_x(int f, const std::int32_t* column, int n, float unit,
                                            float* out) {
         switch (f) {
-            case 0: box_x<0>(column, n, unit, out); break;
-            case 1: box_x<1>(column, n, unit, out); break;
-            case 2: box_x<2>(column, n, unit, out); break;
-            case 3: box_x<3>(column, n, unit, out); break;
-            case 4: box_x<4>(column, n, unit, out); break;
-            case 5: box_x<5>(column, n, unit, out); break;
-            case 6: box_x<6>(column, n, unit, out); break;
-            case 7: box_x<7>(column, n, unit, out); break;
-            default: box_x<8>(column, n, unit, out); break;
+            case 0:
+                box_x<0>(column, n, unit, out);
+                break;
+            case 1:
+                box_x<1>(column, n, unit, out);
+                break;
+            case 2:
+                box_x<2>(column, n, unit, out);
+                break;
+            case 3:
+                box_x<3>(column, n, unit, out);
+                break;
+            case 4:
+                box_x<4>(column, n, unit, out);
+                break;
+            case 5:
+                box_x<5>(column, n, unit, out);
+                break;
+            case 6:
+                box_x<6>(column, n, unit, out);
+                break;
+            case 7:
+                box_x<7>(column, n, unit, out);
+                break;
+            default:
+                box_x<8>(column, n, unit, out);
+                break;
         }
     }
 
@@ -703,12 +734,11 @@ private:
         for (int x = 0; x < n; ++x) column[x] += entering[x] - leaving[x];
     }
 
-    /// Adds the neighbours at offset (ox, oy) (scaled: dx, dy) to the sums of tile row j
+    /// Adds the neighbours at offset (ox, oy) (dx: ox scaled) to the sums of tile row j
     /// (image pixels x0 .. x1 of row pp, neighbours from qq on; the tile starts at x0t and
     /// is tw wide), from the column sums of the patch distances (column_a_, column_b_).
     LIBRT_DENOISE_INLINE void accumulate(std::size_t j, int tw, int x0t, std::size_t pp,
-                                         std::size_t qq, int x0, int x1, int f, float dx,
-                                         float dy) {
+                                         std::size_t qq, int x0, int x1, int f, float dx) {
         const auto w = std::size_t(tw);
         const int n = x1 - x0;
         float* ca = patch_a_.data();
@@ -716,14 +746,12 @@ private:
         const std::int32_t* col_a = column_a_.data() + (x0 - x0t);
         const std::int32_t* col_b = column_b_.data() + (x0 - x0t);
         const std::size_t p0 = pp + std::size_t(x0), q0 = qq + std::size_t(x0);
-        const float *ap0 = &p_.albedo[0][p0], *ap1 = &p_.albedo[1][p0], *ap2 = &p_.albedo[2][p0];
-        const float *aq0 = &p_.albedo[0][q0], *aq1 = &p_.albedo[1][q0], *aq2 = &p_.albedo[2][q0];
-        const float *np0 = &p_.normal[0][p0], *np1 = &p_.normal[1][p0], *np2 = &p_.normal[2][p0];
-        const float *nq0 = &p_.normal[0][q0], *nq1 = &p_.normal[1][q0], *nq2 = &p_.normal[2][q0];
+        // q's values at p's index plus one offset: the loop keeps its pointers in registers.
+        const auto dq = std::ptrdiff_t(q0) - std::ptrdiff_t(p0);
+        const float *a0p = &p_.albedo[0][p0], *a1p = &p_.albedo[1][p0], *a2p = &p_.albedo[2][p0];
+        const float *n0p = &p_.normal[0][p0], *n1p = &p_.normal[1][p0], *n2p = &p_.normal[2][p0];
         const float* vap = &p_.albedo_var[p0];
-        const float* vaq = &p_.albedo_var[q0];
         const float* vnp = &p_.normal_var[p0];
-        const float* vnq = &p_.normal_var[q0];
         const float* tap = &p_.albedo_tol[p0];
         const float* tnp = &p_.normal_tol[p0];
         // In whole vectors: up to kLanes - 1 weights past ca[n) are computed (the planes and
@@ -736,17 +764,18 @@ private:
         // itself a noisy mix, an edge inside it, the features cannot tell it apart and the
         // radiance's patch distance decides); with the patch distances, the weights.
         LIBRT_DENOISE_NO_ALIAS
-        for (int x = 0; x < nv; ++x) {
-            const float a0 = ap0[x] - aq0[x], a1 = ap1[x] - aq1[x], a2 = ap2[x] - aq2[x];
-            const float n0 = np0[x] - nq0[x], n1 = np1[x] - nq1[x], n2 = np2[x] - nq2[x];
+        for (std::ptrdiff_t x = 0; x < nv; ++x) {
+            const std::ptrdiff_t q = x + dq;
+            const float a0 = a0p[x] - a0p[q], a1 = a1p[x] - a1p[q], a2 = a2p[x] - a2p[q];
+            const float n0 = n0p[x] - n0p[q], n1 = n1p[x] - n1p[q], n2 = n2p[x] - n2p[q];
             const float fa = a0 * a0 + a1 * a1 + a2 * a2;
             const float fn = n0 * n0 + n1 * n1 + n2 * n2;
-            const float la = vaq[x] < vap[x] ? vaq[x] : vap[x];
-            const float ln = vnq[x] < vnp[x] ? vnq[x] : vnp[x];
+            const float la = vap[q] < vap[x] ? vap[q] : vap[x];
+            const float ln = vnp[q] < vnp[x] ? vnp[q] : vnp[x];
             const float ea = fa - (vap[x] + la);
             const float en = fn - (vnp[x] + ln);
-            const float feature = (ea > 0.0f ? ea : 0.0f) / (tap[x] + vap[x] + vaq[x]) +
-                                  (en > 0.0f ? en : 0.0f) / (tnp[x] + vnp[x] + vnq[x]);
+            const float feature = (ea > 0.0f ? ea : 0.0f) / (tap[x] + vap[x] + vap[q]) +
+                                  (en > 0.0f ? en : 0.0f) / (tnp[x] + vnp[x] + vnp[q]);
             // exp_neg's argument is >= 0: the feature term is, and so is max(patch, 0).
             ca[x] = exp_neg((ca[x] > 0.0f ? ca[x] : 0.0f) + feature);
             cb[x] = exp_neg((cb[x] > 0.0f ? cb[x] : 0.0f) + feature);
@@ -786,43 +815,71 @@ private:
             }
             return;
         }
-        regress(0, ca, p_.ratio_a, q0, row, n, dx, dy);
-        regress(1, cb, p_.ratio_b, q0, row, n, dx, dy);
+        regress(0, ca, p_.ratio_a, q0, row, n, dx);
+        regress(1, cb, p_.ratio_b, q0, row, n, dx);
     }
 
-    /// Half h's regression sums at this offset: the Gram matrix of the design (1, dx, dy),
-    /// constant over the row, and its products with the demodulated radiance; all in one
+    /// Half h's partial sums at this offset (w, w dx, w dx^2, w y, w y dx), from which
+    /// fold_partial_sums makes the regression sums (the Gram matrix of the design
+    /// (1, dx, dy) and its products with the demodulated radiance) once per row of
+    /// offsets: dy is constant along the row, so w dy, w dx dy, w dy^2 and w y dy are dy
+    /// and dy^2 times those sums (9 sums per offset and half instead of 15). All in one
     /// loop (the planes kTilePixels apart: one pointer).
     LIBRT_DENOISE_INLINE void regress(int h, const float* weight, const std::vector<float>* y,
-                                      std::size_t q0, std::size_t row, int n, float dx, float dy) {
+                                      std::size_t q0, std::size_t row, int n, float dx) {
         float* top = sum(2 * kRegressionSums + h) + row;
-        float* sums = sum(h * kRegressionSums) + row;
+        float* sums = sum(2 * kRegressionSums + 2 + h * kPartialSums) + row;
         const auto at = [sums](int k, int x) -> float& {
             return sums[std::size_t(k) * kTilePixels + std::size_t(x)];
         };
-        // The upper triangle row by row: (1, 1) (1, dx) (1, dy) (dx, dx) (dx, dy) (dy, dy).
-        const float dxx = dx * dx, dxy = dx * dy, dyy = dy * dy;
+        const float dxx = dx * dx;
         const float *y0 = &y[0][q0], *y1 = &y[1][q0], *y2 = &y[2][q0];
         LIBRT_DENOISE_NO_ALIAS
         for (int x = 0; x < n; ++x) {
             const float wx = weight[x];
             top[x] = top[x] > wx ? top[x] : wx;
-            at(0, x) += wx;  // x 1: the same bits
+            at(0, x) += wx;
             at(1, x) += wx * dx;
-            at(2, x) += wx * dy;
-            at(3, x) += wx * dxx;
-            at(4, x) += wx * dxy;
-            at(5, x) += wx * dyy;
+            at(2, x) += wx * dxx;
             const float v0 = wx * y0[x], v1 = wx * y1[x], v2 = wx * y2[x];
-            at(kGram + 0, x) += v0;
-            at(kGram + 1, x) += v1;
-            at(kGram + 2, x) += v2;
-            at(kGram + 3, x) += v0 * dx;
-            at(kGram + 4, x) += v1 * dx;
-            at(kGram + 5, x) += v2 * dx;
-            at(kGram + 6, x) += v0 * dy;
-            at(kGram + 7, x) += v1 * dy;
-            at(kGram + 8, x) += v2 * dy;
+            at(3, x) += v0;
+            at(4, x) += v1;
+            at(5, x) += v2;
+            at(6, x) += v0 * dx;
+            at(7, x) += v1 * dx;
+            at(8, x) += v2 * dx;
+        }
+    }
+
+    /// Adds the partial sums of a row of offsets (regress) to the regression sums of the
+    /// first `pixels` tile pixels, dy the row's offset, and clears them.
+    void fold_partial_sums(std::size_t pixels, float dy) {
+        const float dyy = dy * dy;
+        for (int h = 0; h < 2; ++h) {
+            float* g = sum(h * kRegressionSums);
+            float* part = sum(2 * kRegressionSums + 2 + h * kPartialSums);
+            const auto at = [](float* plane, int k, std::size_t t) -> float& {
+                return plane[std::size_t(k) * kTilePixels + t];
+            };
+            LIBRT_DENOISE_NO_ALIAS
+            for (std::size_t t = 0; t < pixels; ++t) {
+                // The Gram matrix's upper triangle row by row: (1, 1) (1, dx) (1, dy)
+                // (dx, dx) (dx, dy) (dy, dy); then per channel y, y dx, y dy.
+                const float w = at(part, 0, t), wdx = at(part, 1, t);
+                at(g, 0, t) += w;
+                at(g, 1, t) += wdx;
+                at(g, 2, t) += w * dy;
+                at(g, 3, t) += at(part, 2, t);
+                at(g, 4, t) += wdx * dy;
+                at(g, 5, t) += w * dyy;
+                for (int c = 0; c < 3; ++c) {
+                    const float v = at(part, 3 + c, t);
+                    at(g, kGram + c, t) += v;
+                    at(g, kGram + 3 + c, t) += at(part, 6 + c, t);
+                    at(g, kGram + 6 + c, t) += v * dy;
+                }
+                for (int k = 0; k < kPartialSums; ++k) at(part, k, t) = 0.0f;
+            }
         }
     }
 
