@@ -56,7 +56,8 @@ constexpr int kBoundRadius = 2;
 
 /// Rows of the strips threads take: the rows of a strip share the patch-distance buffers
 /// of each neighbour offset (and their apron of 2 x patch radius rows, which the next strip
-/// computes again: 6 rows more per 32 rather than per 16; the same bits either way).
+/// computes again: 6 rows more per 32 rather than per 16; the same bits either way: the
+/// patch sums are exact, Quantum).
 constexpr int kStrip = 32;
 
 /// The albedo's prefilter: a smaller neighbourhood (the albedo's noise is only at edges,
@@ -405,8 +406,8 @@ constexpr int kSelectRadius = 4;
 constexpr float kMinCentreWeight = 1e-6f;
 
 /// Columns of the tiles threads take (with kStrip rows): the sums of a tile (up to
-/// 2 x kRegressionSums planes) stay in the core's cache while every neighbour offset is
-/// added to them.
+/// 2 (kRegressionSums + kPartialSums) + 2 planes, 400 KB) stay in the core's cache while
+/// every neighbour offset is added to them.
 constexpr int kTileWidth = 64;
 /// Pixels of a tile's plane of sums.
 constexpr std::size_t kTilePixels = std::size_t(kStrip) * std::size_t(kTileWidth);
