@@ -56,7 +56,8 @@ constexpr int kBoundRadius = 2;
 
 /// Rows of the strips threads take: the rows of a strip share the patch-distance buffers
 /// of each neighbour offset (and their apron of 2 x patch radius rows, which the next strip
-/// computes again: 6 rows more per 32 rather than per 16; the same bits either way).
+/// computes again: 6 rows more per 32 rather than per 16; the same bits either way: the
+/// patch sums are exact, Quantum).
 constexpr int kStrip = 32;
 
 /// The albedo's prefilter: a smaller neighbourhood (the albedo's noise is only at edges,
@@ -71,24 +72,26 @@ constexpr float kPrefilterStrength = 1.0f;
 /// carry this many floats more, which those extra lanes may read past the last row.
 constexpr int kLanes = 8;
 
-/// exp(-x) for x >= 0, branch-free so the loops over a row vectorise: 2^(-x log2 e) split
-/// into an integer power (built in the exponent bits) and a fraction (a degree-6
-/// polynomial, relative error below 1e-6, far below what the weights need). 0 beyond
-/// x = 80. The same bits on every machine: plain float arithmetic, no libm.
+/// exp(-x) for x >= 0 (the callers' x is a sum of terms >= 0; NaN gives 0), branch-free so
+/// the loops over a row vectorise: 2^(-x log2 e) split into an integer power (built in the
+/// exponent bits) and a fraction (a degree-4 polynomial, relative error below 4e-6, far
+/// below what the weights need). 0 beyond x = 80. The same bits on every machine: plain
+/// float arithmetic, no libm.
 [[gnu::always_inline]] inline float exp_neg(float x) {
-    x = x > 0.0f ? (x < 80.0f ? x : 80.0f) : 0.0f;
+    // One min (minps returns its second operand for a NaN); a test for x < 0 as well cost
+    // 9 instructions per vector the way g++ compiled the two together.
+    x = x < 80.0f ? x : 80.0f;
     const float t = x * 1.44269504f;  // -log2 of the result
     // t >= 0: truncation is floor, and SSE2 converts by truncation (std::floor would be a
     // library call without SSE4.1, which stops the loop's vectorisation).
     const float whole = static_cast<float>(static_cast<std::int32_t>(t));
     const float f = whole - t;  // in (-1, 0]: the result is 2^f x 2^-whole
-    // 2^f on [-1, 0] (Taylor series of e^(f ln 2) to degree 6).
-    const float l = 0.69314718f * f;
+    // 2^f on [-1, 0]: the polynomial through its values at the 5 Chebyshev nodes of the
+    // interval (near-minimax; the degree-6 Taylor series of e^(f ln 2) used before erred
+    // by up to 2.8e-5 at f = -1, with 3 more multiplications).
     const float p =
-        1.0f +
-        l * (1.0f +
-             l * (0.5f + l * (1.0f / 6.0f +
-                              l * (1.0f / 24.0f + l * (1.0f / 120.0f + l * (1.0f / 720.0f))))));
+        0.99999804f +
+        f * (0.693048934f + f * (0.239430604f + f * (0.0532131178f + f * 0.00683515473f)));
     const auto exponent = static_cast<std::int32_t>(127.0f - whole);  // >= 11: a normal float
     return p * std::bit_cast<float>(exponent << 23);
 }
@@ -366,9 +369,13 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserS
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define LIBRT_DENOISE_CLONES __attribute__((target_clones("avx2", "default")))
 #define LIBRT_DENOISE_INLINE [[gnu::always_inline]]
+/// Before a loop whose stores overlap none of its loads: g++ checks the pointers at run time
+/// for at most 10 pairs and leaves a loop with more (the weights' loop reads 16 planes) scalar.
+#define LIBRT_DENOISE_NO_ALIAS _Pragma("GCC ivdep")
 #else
 #define LIBRT_DENOISE_CLONES
 #define LIBRT_DENOISE_INLINE
+#define LIBRT_DENOISE_NO_ALIAS
 #endif
 
 /// The first-order regression's design (Moon et al. 2014, "Adaptive rendering based on
@@ -384,6 +391,9 @@ constexpr int kDesign = 3;  ///< 1, dx, dy
 /// The Gram matrix's upper triangle and the right-hand sides (3 channels), per half.
 constexpr int kGram = kDesign * (kDesign + 1) / 2;
 constexpr int kRegressionSums = kGram + 3 * kDesign;
+/// The sums of one row of offsets (one dy) that the regression sums are made of
+/// (StripFilter::regress): w, w dx, w dx^2, and w y, w y dx per channel.
+constexpr int kPartialSums = 3 + 2 * 3;
 /// Ridge regularisation, relative to the weights' sum, added to each slope's diagonal
 /// entry: where the neighbours do not span the offsets (one pixel holding all the weight)
 /// the slope goes to 0 and the fit to the weighted mean. Small, because a ridge shrinks
@@ -396,12 +406,42 @@ constexpr int kSelectRadius = 4;
 constexpr float kMinCentreWeight = 1e-6f;
 
 /// Columns of the tiles threads take (with kStrip rows): the sums of a tile (up to
-/// 2 x kRegressionSums planes) stay in the core's cache while every neighbour offset is
-/// added to them.
+/// 2 (kRegressionSums + kPartialSums) + 2 planes, 400 KB) stay in the core's cache while
+/// every neighbour offset is added to them.
 constexpr int kTileWidth = 64;
+/// Pixels of a tile's plane of sums.
+constexpr std::size_t kTilePixels = std::size_t(kStrip) * std::size_t(kTileWidth);
 
 /// n rounded up to a multiple of kLanes.
 constexpr int round_to_lanes(int n) { return (n + kLanes - 1) / kLanes * kLanes; }
+
+/// The per-pixel patch distances as integers, so that the patch box can be a running sum
+/// (over y: one row in, one out per row) that is exact in any order: a float running sum
+/// would carry the rounding of every distance that passed through it, and a far neighbour's
+/// distance is many orders above a near one's. Each distance is clamped to [low, high] and
+/// multiplied by `scale` (truncated): low = -3 / k^2 is the least a distance can be (per
+/// channel -(Var p + min) / (k^2 (Var p + Var q)) >= -1 / k^2), and high is where one pixel
+/// alone, the others at low, puts the patch beyond exp_neg's 80, so the clamp changes no
+/// weight. scale is the largest with n x high x scale <= 2^30 (n pixels in a patch): no
+/// sum overflows. The truncation moves a patch's exponent by less than n / (3 n scale)
+/// = 1 / (3 scale): below 2e-4 at the default settings (scale ~1757).
+struct Quantum {
+    float low = 0.0f;
+    float high = 0.0f;
+    float scale = 1.0f;
+    float unit = 1.0f;  ///< patch sum -> exponent: 1 / (scale x 3 n)
+    Quantum() = default;
+    explicit Quantum(const DenoiserSettings& s) {
+        const int side = 2 * s.patch_radius + 1;
+        const double n = double(side) * double(side);
+        const double k2 = double(s.strength) * double(s.strength);
+        low = float(-3.0 / k2);
+        const double top = 240.0 * n + (n - 1.0) * 3.0 / k2;  // 80 x 3n + (n - 1) |low|
+        high = float(top);
+        scale = float(double(1 << 30) / (n * top));
+        unit = float(1.0 / (double(scale) * 3.0 * n));
+    }
+};
 
 /// Filters tiles [x0, x1) x [y0, y1); each thread has one.
 class StripFilter {
@@ -410,63 +450,77 @@ public:
         : p_(planes), s_(s), first_order_(first_order) {
         const int f = s.patch_radius;
         const std::size_t rows = std::size_t(kStrip + 2 * f);
-        dist_a_.resize(rows * std::size_t(round_to_lanes(kTileWidth + 2 * f)));
+        const std::size_t width = std::size_t(round_to_lanes(kTileWidth + 2 * f));
+        dist_a_.resize(rows * width);
         dist_b_.resize(dist_a_.size());
-        // kLanes more: accumulate's box over y reads whole vectors past the last row's end.
-        rows_a_.resize(rows * std::size_t(kTileWidth) + std::size_t(kLanes));
-        rows_b_.resize(rows_a_.size());
-        tile_ = std::size_t(kStrip) * std::size_t(kTileWidth);
-        // First order: each half's regression sums, then each half's largest weight.
-        sums_.resize(tile_ * std::size_t(first_order ? 2 * kRegressionSums + 2 : 12));
-        for (std::vector<float>* v :
-             {&patch_a_, &patch_b_, &feature_, &feature_albedo_, &feature_normal_})
-            v->resize(std::size_t(kTileWidth));
+        // kLanes more, kept 0: the box over x of the last vector reads up to kLanes - 1
+        // values past a row's end.
+        column_a_.resize(width + std::size_t(kLanes));
+        column_b_.resize(column_a_.size());
+        quantum_ = Quantum(s);
+        // First order: each half's regression sums, each half's largest weight, each half's
+        // partial sums (regress).
+        sums_.resize(kTilePixels *
+                     std::size_t(first_order ? 2 * kRegressionSums + 2 + 2 * kPartialSums : 12));
+        for (std::vector<float>* v : {&patch_a_, &patch_b_}) v->resize(std::size_t(kTileWidth));
     }
 
     LIBRT_DENOISE_CLONES void run(int x0t, int x1t, int y0, int y1, const PixelTerms& terms,
                                   Estimates& estimates, Image& out) {
         const int f = s_.patch_radius, r = s_.radius, w = p_.width;
         const int tw = x1t - x0t;
-        // A row of the patch boxes over x: tw of them, and up to kLanes - 1 more, not read.
-        const int rw = round_to_lanes(tw);
-        // A distance row: x in [x0t - f, x1t + f), and more, read only by those extra boxes.
-        const int dw = round_to_lanes(rw + 2 * f);
+        // A distance row: x in [x0t - f, x1t + f), and more, read only by the boxes of
+        // lanes past the tile.
+        const int dw = round_to_lanes(round_to_lanes(tw) + 2 * f);
         std::fill(sums_.begin(), sums_.end(), 0.0f);
         const float k2 = s_.strength * s_.strength;
-        const float patch_norm = 1.0f / (3.0f * float((2 * f + 1) * (2 * f + 1)));
         // Neighbour offsets in a fixed order: each output pixel sums its neighbours in this
         // order whatever thread or tile computes it.
         for (int oy = -r; oy <= r; ++oy) {
             for (int ox = -r; ox <= r; ++ox) {
-                // 1. Per-pixel distances d(p, p + o) over the tile and its apron, for the
-                //    guide of each half: the other half (cross-filtering).
-                for (int y = y0 - f; y < y1 + f; ++y) {
-                    const std::size_t p0 = p_.at(x0t - f, y), q0 = p_.at(x0t - f + ox, y + oy);
-                    float* da = &dist_a_[std::size_t(y - (y0 - f)) * std::size_t(dw)];
-                    float* db = &dist_b_[std::size_t(y - (y0 - f)) * std::size_t(dw)];
-                    distances(p_.b, p_.var_b, p0, q0, dw, k2, p_.epsilon, da);  // filters a
-                    distances(p_.a, p_.var_a, p0, q0, dw, k2, p_.epsilon, db);  // filters b
-                }
-                // 2. Box over x of the patch: direct sums (every pixel the same additions
-                //    wherever its tile lies).
-                for (int j = 0; j < y1 - y0 + 2 * f; ++j) {
-                    box_row(&dist_a_[std::size_t(j) * std::size_t(dw)], rw, f,
-                            &rows_a_[std::size_t(j) * std::size_t(rw)]);
-                    box_row(&dist_b_[std::size_t(j) * std::size_t(dw)], rw, f,
-                            &rows_b_[std::size_t(j) * std::size_t(rw)]);
-                }
-                // 3. Box over y, weights and accumulation, for neighbours in the image.
                 // The first-order fit takes the pixel itself last (add_centre).
                 if (first_order_ && ox == 0 && oy == 0) continue;
                 const int x0 = std::max(x0t, -ox), x1 = std::min(x1t, w - ox);
                 if (x1 <= x0) continue;
-                for (int y = y0; y < y1; ++y) {
+                // 1. Per-pixel distances d(p, p + o) over the tile and its apron, for the
+                //    guide of each half: the other half (cross-filtering), as integers.
+                {
+                    const std::size_t p0 = p_.at(x0t - f, y0 - f);
+                    const std::size_t q0 = p_.at(x0t - f + ox, y0 - f + oy);
+                    const int rows = y1 - y0 + 2 * f;
+                    const auto stride = std::size_t(p_.stride);
+                    distances(p_.b, p_.var_b, p0, q0, rows, stride, dw, k2, p_.epsilon, quantum_,
+                              dist_a_.data());  // filters a
+                    distances(p_.a, p_.var_a, p0, q0, rows, stride, dw, k2, p_.epsilon, quantum_,
+                              dist_b_.data());  // filters b
+                }
+                // 2. The patch box: over y a running sum per column (one row in, one out),
+                //    over x direct sums of those (accumulate); exact in integers, so every
+                //    pixel gets the same sums wherever its tile lies. 3. Weights and
+                //    accumulation, for neighbours in the image.
+                for (int j = 0; j < y1 - y0; ++j) {
+                    const auto row = [&](const std::vector<std::int32_t>& d, int k) {
+                        return &d[std::size_t(k) * std::size_t(dw)];
+                    };
+                    if (j == 0) {
+                        column_start(row(dist_a_, 0), std::size_t(dw), 2 * f + 1, dw,
+                                     column_a_.data());
+                        column_start(row(dist_b_, 0), std::size_t(dw), 2 * f + 1, dw,
+                                     column_b_.data());
+                    } else {
+                        column_step(row(dist_a_, j + 2 * f), row(dist_a_, j - 1), dw,
+                                    column_a_.data());
+                        column_step(row(dist_b_, j + 2 * f), row(dist_b_, j - 1), dw,
+                                    column_b_.data());
+                    }
+                    const int y = y0 + j;
                     if (y + oy < 0 || y + oy >= p_.height) continue;
                     const std::size_t pp = p_.at(0, y), qq = p_.at(ox, y + oy);
-                    accumulate(std::size_t(y - y0), tw, rw, x0t, pp, qq, x0, x1, f, patch_norm,
-                               float(ox) / float(r), float(oy) / float(r));
+                    accumulate(std::size_t(j), tw, x0t, pp, qq, x0, x1, f, float(ox) / float(r));
                 }
             }
+            if (first_order_)
+                fold_partial_sums(std::size_t(y1 - y0) * std::size_t(tw), float(oy) / float(r));
         }
         if (first_order_) add_centre(x0t, x1t, y0, y1);
         for (int y = y0; y < y1; ++y) {
@@ -515,7 +569,7 @@ private:
 
     /// Plane k of the sums (zero order: half h's sums of w L in 6 h + c, of w m in
     /// 6 h + 3 + c; first order: half h's regression sums from h kRegressionSums).
-    [[nodiscard]] float* sum(int k) { return &sums_[std::size_t(k) * tile_]; }
+    [[nodiscard]] float* sum(int k) { return &sums_[std::size_t(k) * kTilePixels]; }
 
     /// The zero-order output of half h at tile pixel t: the neighbours' radiance over
     /// their albedo, both averaged with the weights (PixelTerms). The pixel itself always
@@ -572,165 +626,260 @@ private:
         return v;
     }
 
-    /// Rousselle et al.'s per-pixel distance, summed over the channels, for n pixels from
-    /// p0 and q0 = p0 + offset: the squared difference minus what the noise alone would give
-    /// on average (Var p + min(Var p, Var q): a noisier neighbour is not favoured), in units
-    /// of k^2 (Var p + Var q). (Dividing by k^2 (Var p + min(Var p, Var q)) instead was
-    /// measured: material_spheres.glb's relMSE gain at 64 spp fell from 4.3x to 2.6x.)
+    /// Rousselle et al.'s per-pixel distance, summed over the channels, for `rows` rows of n
+    /// pixels (n a multiple of kLanes) from p0 and q0 = p0 + offset, the rows `stride`
+    /// apart in the planes and n apart in `out`: the squared difference minus what the
+    /// noise alone would give on average (Var p + min(Var p, Var q): a noisier neighbour is
+    /// not favoured), in units of k^2 (Var p + Var q), as an integer (Quantum). (Dividing
+    /// by k^2 (Var p + min(Var p, Var q)) instead was measured: material_spheres.glb's
+    /// relMSE gain at 64 spp fell from 4.3x to 2.6x.) The three channels in one pass; q's
+    /// values are read at p's index plus one offset, so that the loop keeps its pointers
+    /// in registers.
     LIBRT_DENOISE_INLINE static void distances(const std::vector<float>* u,
                                                const std::vector<float>* v, std::size_t p0,
-                                               std::size_t q0, int n, float k2, float epsilon,
-                                               float* out) {
-        for (int i = 0; i < n; ++i) out[i] = 0.0f;
-        for (int c = 0; c < 3; ++c) {
-            const float* up = &u[c][p0];
-            const float* uq = &u[c][q0];
-            const float* vp = &v[c][p0];
-            const float* vq = &v[c][q0];
-            for (int i = 0; i < n; ++i) {
-                const float diff = up[i] - uq[i];
-                const float lower = vq[i] < vp[i] ? vq[i] : vp[i];
-                out[i] += (diff * diff - (vp[i] + lower)) / (epsilon + k2 * (vp[i] + vq[i]));
+                                               std::size_t q0, int rows, std::size_t stride, int n,
+                                               float k2, float epsilon, const Quantum& quantum,
+                                               std::int32_t* out) {
+        const float *u0 = &u[0][p0], *u1 = &u[1][p0], *u2 = &u[2][p0];
+        const float *v0 = &v[0][p0], *v1 = &v[1][p0], *v2 = &v[2][p0];
+        const auto dq = std::ptrdiff_t(q0) - std::ptrdiff_t(p0);
+        const float low = quantum.low, high = quantum.high, scale = quantum.scale;
+        // One channel's term (spelled out per channel below: a loop over the channels
+        // stopped g++'s vectoriser).
+        const auto term = [k2, epsilon](float a, float b, float va, float vb) {
+            const float diff = a - b;
+            const float lower = vb < va ? vb : va;
+            return (diff * diff - (va + lower)) / (epsilon + k2 * (va + vb));
+        };
+        for (int r = 0; r < rows; ++r) {
+            const auto o = std::ptrdiff_t(r) * std::ptrdiff_t(stride);
+            std::int32_t* row = out + std::ptrdiff_t(r) * std::ptrdiff_t(n);
+            LIBRT_DENOISE_NO_ALIAS
+            for (std::ptrdiff_t x = o; x < o + n; ++x) {
+                const std::ptrdiff_t y = x + dq;
+                float d = term(u0[x], u0[y], v0[x], v0[y]);
+                d += term(u1[x], u1[y], v1[x], v1[y]);
+                d += term(u2[x], u2[y], v2[x], v2[y]);
+                // Two steps, each one min or max (nested, g++ compiled 9 instructions).
+                const float capped = d < high ? d : high;
+                row[x - o] = static_cast<std::int32_t>((capped > low ? capped : low) * scale);
             }
         }
     }
 
-    /// out[x] = in[x] + in[x + step] + ... + in[x + (terms - 1) step], added in that order,
-    /// for x in [0, n), n a multiple of kLanes: a vector of kLanes sums is kept in registers
-    /// over all the terms instead of a pass over the row per term (loads, stores and loop
-    /// overhead). For rows far apart (the box over y): with step 1 g++ gathered the terms
-    /// lane by lane, costlier than box_row's passes.
-    LIBRT_DENOISE_INLINE static void box_sum(const float* in, std::size_t step, int terms, int n,
-                                             float* out) {
-        for (int x0 = 0; x0 < n; x0 += kLanes) {
-            float s[kLanes];
-            for (int i = 0; i < kLanes; ++i) s[i] = in[x0 + i];
-            for (int t = 1; t < terms; ++t) {
-                const float* row = in + std::size_t(t) * step + std::size_t(x0);
-                for (int i = 0; i < kLanes; ++i) s[i] += row[i];
-            }
-            for (int i = 0; i < kLanes; ++i) out[x0 + i] = s[i];
+    /// column[x] = sum of the first `terms` rows (`step` apart) of `in` at x, for x in
+    /// [0, n): the box over y of a tile's first row.
+    LIBRT_DENOISE_INLINE static void column_start(const std::int32_t* in, std::size_t step,
+                                                  int terms, int n, std::int32_t* column) {
+        for (int x = 0; x < n; ++x) column[x] = in[x];
+        for (int t = 1; t < terms; ++t) {
+            const std::int32_t* row = in + std::size_t(t) * step;
+            for (int x = 0; x < n; ++x) column[x] += row[x];
         }
     }
 
-    /// out[x] = sum of in[x .. x + 2f] for x in [0, n), n a multiple of kLanes: the patch box
-    /// over a row whose first value is pixel -f.
-    LIBRT_DENOISE_INLINE static void box_row(const float* in, int n, int f, float* out) {
-        for (int x = 0; x < n; ++x) out[x] = in[x];
-        for (int t = 1; t <= 2 * f; ++t) {
-            for (int x = 0; x < n; ++x) out[x] += in[x + t];
+    /// out[x] = (column[x] + ... + column[x + 2F]) x unit for x in [0, n): the box over x of
+    /// the column sums, the patch distance in the exponent's units. F a constant, so that
+    /// the terms unroll and the loop over x vectorises (a loop over the terms inside did
+    /// not, nor one kLanes-wide block per step).
+    template <int F>
+    LIBRT_DENOISE_INLINE static void box_x(const std::int32_t* column, int n, float unit,
+                                           float* out) {
+        for (int x = 0; x < n; ++x) {
+            const std::int32_t* c = column + x;  // one pointer: the terms at fixed displacements
+            std::int32_t s = c[0];
+            for (int t = 1; t <= 2 * F; ++t) s += c[t];
+            out[x] = float(s) * unit;
         }
     }
 
-    /// Adds the neighbours at offset (ox, oy) (scaled: dx, dy) to the sums of tile row j
+    /// box_x for patch radius f in [0, 8] (validate).
+    LIBRT_DENOISE_INLINE static void box_x(int f, const std::int32_t* column, int n, float unit,
+                                           float* out) {
+        switch (f) {
+            case 0:
+                box_x<0>(column, n, unit, out);
+                break;
+            case 1:
+                box_x<1>(column, n, unit, out);
+                break;
+            case 2:
+                box_x<2>(column, n, unit, out);
+                break;
+            case 3:
+                box_x<3>(column, n, unit, out);
+                break;
+            case 4:
+                box_x<4>(column, n, unit, out);
+                break;
+            case 5:
+                box_x<5>(column, n, unit, out);
+                break;
+            case 6:
+                box_x<6>(column, n, unit, out);
+                break;
+            case 7:
+                box_x<7>(column, n, unit, out);
+                break;
+            default:
+                box_x<8>(column, n, unit, out);
+                break;
+        }
+    }
+
+    /// The box over y moved down one row: the row entering added, the one leaving taken
+    /// out (exact: integers).
+    LIBRT_DENOISE_INLINE static void column_step(const std::int32_t* entering,
+                                                 const std::int32_t* leaving, int n,
+                                                 std::int32_t* column) {
+        for (int x = 0; x < n; ++x) column[x] += entering[x] - leaving[x];
+    }
+
+    /// Adds the neighbours at offset (ox, oy) (dx: ox scaled) to the sums of tile row j
     /// (image pixels x0 .. x1 of row pp, neighbours from qq on; the tile starts at x0t and
-    /// is tw wide; the rows of patch boxes over x are rw apart). Loops of few operations
-    /// each over the row, so that each vectorises.
-    LIBRT_DENOISE_INLINE void accumulate(std::size_t j, int tw, int rw, int x0t, std::size_t pp,
-                                         std::size_t qq, int x0, int x1, int f, float patch_norm,
-                                         float dx, float dy) {
+    /// is tw wide), from the column sums of the patch distances (column_a_, column_b_).
+    LIBRT_DENOISE_INLINE void accumulate(std::size_t j, int tw, int x0t, std::size_t pp,
+                                         std::size_t qq, int x0, int x1, int f, float dx) {
         const auto w = std::size_t(tw);
         const int n = x1 - x0;
         float* ca = patch_a_.data();
         float* cb = patch_b_.data();
-        float* feature = feature_.data();
-        // The box over y, to whole vectors: n <= tw, so at most kLanes - 1 values past
-        // tile row j + 2f's are read (rows_a_ has that slack) and written past ca[n).
-        const auto box_y = std::size_t(rw);
-        const float* ra = &rows_a_[j * box_y + std::size_t(x0 - x0t)];
-        const float* rb = &rows_b_[j * box_y + std::size_t(x0 - x0t)];
-        box_sum(ra, box_y, 2 * f + 1, round_to_lanes(n), ca);
-        box_sum(rb, box_y, 2 * f + 1, round_to_lanes(n), cb);
-        // Feature distances: the squared difference, less what the features' own noise
-        // explains, over sigma^2 widened by that noise (where a pixel's albedo or normal
-        // is itself a noisy mix, an edge inside it, the features cannot tell it apart and
-        // the radiance's patch distance decides).
-        float* fa = feature_albedo_.data();
-        float* fn = feature_normal_.data();
+        const std::int32_t* col_a = column_a_.data() + (x0 - x0t);
+        const std::int32_t* col_b = column_b_.data() + (x0 - x0t);
         const std::size_t p0 = pp + std::size_t(x0), q0 = qq + std::size_t(x0);
-        // The three channels in one pass per feature, added in the same order from 0.
-        const auto squares = [n, p0, q0](const std::vector<float>* plane, float* to) {
-            const float *p0c = &plane[0][p0], *p1c = &plane[1][p0], *p2c = &plane[2][p0];
-            const float *q0c = &plane[0][q0], *q1c = &plane[1][q0], *q2c = &plane[2][q0];
-            for (int x = 0; x < n; ++x) {
-                const float d0 = p0c[x] - q0c[x], d1 = p1c[x] - q1c[x], d2 = p2c[x] - q2c[x];
-                float s = 0.0f + d0 * d0;
-                s += d1 * d1;
-                s += d2 * d2;
-                to[x] = s;
-            }
-        };
-        squares(p_.albedo, fa);
-        squares(p_.normal, fn);
+        // q's values at p's index plus one offset: the loop keeps its pointers in registers.
+        const auto dq = std::ptrdiff_t(q0) - std::ptrdiff_t(p0);
+        const float *a0p = &p_.albedo[0][p0], *a1p = &p_.albedo[1][p0], *a2p = &p_.albedo[2][p0];
+        const float *n0p = &p_.normal[0][p0], *n1p = &p_.normal[1][p0], *n2p = &p_.normal[2][p0];
         const float* vap = &p_.albedo_var[p0];
-        const float* vaq = &p_.albedo_var[q0];
         const float* vnp = &p_.normal_var[p0];
-        const float* vnq = &p_.normal_var[q0];
         const float* tap = &p_.albedo_tol[p0];
         const float* tnp = &p_.normal_tol[p0];
-        for (int x = 0; x < n; ++x) {
-            const float la = vaq[x] < vap[x] ? vaq[x] : vap[x];
-            const float ln = vnq[x] < vnp[x] ? vnq[x] : vnp[x];
-            const float ea = fa[x] - (vap[x] + la);
-            const float en = fn[x] - (vnp[x] + ln);
-            feature[x] = (ea > 0.0f ? ea : 0.0f) / (tap[x] + vap[x] + vaq[x]) +
-                         (en > 0.0f ? en : 0.0f) / (tnp[x] + vnp[x] + vnq[x]);
-        }
-        for (int x = 0; x < n; ++x) {
-            const float da = ca[x] * patch_norm, db = cb[x] * patch_norm;
-            ca[x] = exp_neg((da > 0.0f ? da : 0.0f) + feature[x]);
-            cb[x] = exp_neg((db > 0.0f ? db : 0.0f) + feature[x]);
+        // In whole vectors: up to kLanes - 1 weights past ca[n) are computed (the planes and
+        // the columns have that slack) and not read.
+        const int nv = round_to_lanes(n);
+        box_x(f, col_a, nv, quantum_.unit, ca);
+        box_x(f, col_b, nv, quantum_.unit, cb);
+        // Feature distances: the squared difference, less what the features' own noise
+        // explains, over sigma^2 widened by that noise (where a pixel's albedo or normal is
+        // itself a noisy mix, an edge inside it, the features cannot tell it apart and the
+        // radiance's patch distance decides); with the patch distances, the weights.
+        LIBRT_DENOISE_NO_ALIAS
+        for (std::ptrdiff_t x = 0; x < nv; ++x) {
+            const std::ptrdiff_t q = x + dq;
+            const float a0 = a0p[x] - a0p[q], a1 = a1p[x] - a1p[q], a2 = a2p[x] - a2p[q];
+            const float n0 = n0p[x] - n0p[q], n1 = n1p[x] - n1p[q], n2 = n2p[x] - n2p[q];
+            const float fa = a0 * a0 + a1 * a1 + a2 * a2;
+            const float fn = n0 * n0 + n1 * n1 + n2 * n2;
+            const float la = vap[q] < vap[x] ? vap[q] : vap[x];
+            const float ln = vnp[q] < vnp[x] ? vnp[q] : vnp[x];
+            const float ea = fa - (vap[x] + la);
+            const float en = fn - (vnp[x] + ln);
+            const float feature = (ea > 0.0f ? ea : 0.0f) / (tap[x] + vap[x] + vap[q]) +
+                                  (en > 0.0f ? en : 0.0f) / (tnp[x] + vnp[x] + vnp[q]);
+            // exp_neg's argument is >= 0: the feature term is, and so is max(patch, 0).
+            ca[x] = exp_neg((ca[x] > 0.0f ? ca[x] : 0.0f) + feature);
+            cb[x] = exp_neg((cb[x] > 0.0f ? cb[x] : 0.0f) + feature);
         }
         const std::size_t row = j * w + std::size_t(x0 - x0t);
         if (!first_order_) {
-            for (int c = 0; c < 3; ++c) {
-                float* sa = sum(c) + row;
-                float* sb = sum(6 + c) + row;
-                float* wa = sum(3 + c) + row;
-                float* wb = sum(9 + c) + row;
-                const float* qa = &p_.value_a[c][q0];
-                const float* qb = &p_.value_b[c][q0];
-                const float* ma = &p_.albedo_a[c][q0];
-                const float* mb = &p_.albedo_b[c][q0];
-                // One sum per loop: g++ did not vectorise the four in one loop (callgrind:
-                // scalar, 16 % of the filter's instructions at 240 x 135).
-                for (int x = 0; x < n; ++x) sa[x] += ca[x] * qa[x];
-                for (int x = 0; x < n; ++x) sb[x] += cb[x] * qb[x];
-                for (int x = 0; x < n; ++x) wa[x] += ca[x] * ma[x];
-                for (int x = 0; x < n; ++x) wb[x] += cb[x] * mb[x];
+            // All twelve sums in one loop (planes kTilePixels apart: one pointer). g++ left
+            // it scalar when it checked the pointers for overlap (callgrind: 16 % of the
+            // filter's instructions at 240 x 135), and one loop per sum cost a loop's setup
+            // per sum and row.
+            float* sums = sum(0) + row;
+            const float *qa0 = &p_.value_a[0][q0], *qa1 = &p_.value_a[1][q0],
+                        *qa2 = &p_.value_a[2][q0];
+            const float *qb0 = &p_.value_b[0][q0], *qb1 = &p_.value_b[1][q0],
+                        *qb2 = &p_.value_b[2][q0];
+            const float *ma0 = &p_.albedo_a[0][q0], *ma1 = &p_.albedo_a[1][q0],
+                        *ma2 = &p_.albedo_a[2][q0];
+            const float *mb0 = &p_.albedo_b[0][q0], *mb1 = &p_.albedo_b[1][q0],
+                        *mb2 = &p_.albedo_b[2][q0];
+            const auto at = [sums](int k, int x) -> float& {
+                return sums[std::size_t(k) * kTilePixels + std::size_t(x)];
+            };
+            LIBRT_DENOISE_NO_ALIAS
+            for (int x = 0; x < n; ++x) {
+                at(0, x) += ca[x] * qa0[x];
+                at(1, x) += ca[x] * qa1[x];
+                at(2, x) += ca[x] * qa2[x];
+                at(3, x) += ca[x] * ma0[x];
+                at(4, x) += ca[x] * ma1[x];
+                at(5, x) += ca[x] * ma2[x];
+                at(6, x) += cb[x] * qb0[x];
+                at(7, x) += cb[x] * qb1[x];
+                at(8, x) += cb[x] * qb2[x];
+                at(9, x) += cb[x] * mb0[x];
+                at(10, x) += cb[x] * mb1[x];
+                at(11, x) += cb[x] * mb2[x];
             }
             return;
         }
-        regress(0, ca, p_.ratio_a, q0, row, n, dx, dy);
-        regress(1, cb, p_.ratio_b, q0, row, n, dx, dy);
+        regress(0, ca, p_.ratio_a, q0, row, n, dx);
+        regress(1, cb, p_.ratio_b, q0, row, n, dx);
     }
 
-    /// Half h's regression sums at this offset: the Gram matrix of the design (1, dx, dy),
-    /// constant over the row, and its products with the demodulated radiance.
+    /// Half h's partial sums at this offset (w, w dx, w dx^2, w y, w y dx), from which
+    /// fold_partial_sums makes the regression sums (the Gram matrix of the design
+    /// (1, dx, dy) and its products with the demodulated radiance) once per row of
+    /// offsets: dy is constant along the row, so w dy, w dx dy, w dy^2 and w y dy are dy
+    /// and dy^2 times those sums (9 sums per offset and half instead of 15). All in one
+    /// loop (the planes kTilePixels apart: one pointer).
     LIBRT_DENOISE_INLINE void regress(int h, const float* weight, const std::vector<float>* y,
-                                      std::size_t q0, std::size_t row, int n, float dx, float dy) {
-        const int base = h * kRegressionSums;
+                                      std::size_t q0, std::size_t row, int n, float dx) {
         float* top = sum(2 * kRegressionSums + h) + row;
-        for (int x = 0; x < n; ++x) top[x] = top[x] > weight[x] ? top[x] : weight[x];
-        // The upper triangle row by row: (1, 1) (1, dx) (1, dy) (dx, dx) (dx, dy) (dy, dy).
-        const float design[kGram] = {1.0f, dx, dy, dx * dx, dx * dy, dy * dy};
-        float* g0 = sum(base) + row;
-        for (int x = 0; x < n; ++x) g0[x] += weight[x];  // x 1: the same bits
-        for (int k = 1; k < kGram; ++k) {
-            float* g = sum(base + k) + row;
-            const float d = design[k];
-            for (int x = 0; x < n; ++x) g[x] += weight[x] * d;
+        float* sums = sum(2 * kRegressionSums + 2 + h * kPartialSums) + row;
+        const auto at = [sums](int k, int x) -> float& {
+            return sums[std::size_t(k) * kTilePixels + std::size_t(x)];
+        };
+        const float dxx = dx * dx;
+        const float *y0 = &y[0][q0], *y1 = &y[1][q0], *y2 = &y[2][q0];
+        LIBRT_DENOISE_NO_ALIAS
+        for (int x = 0; x < n; ++x) {
+            const float wx = weight[x];
+            top[x] = top[x] > wx ? top[x] : wx;
+            at(0, x) += wx;
+            at(1, x) += wx * dx;
+            at(2, x) += wx * dxx;
+            const float v0 = wx * y0[x], v1 = wx * y1[x], v2 = wx * y2[x];
+            at(3, x) += v0;
+            at(4, x) += v1;
+            at(5, x) += v2;
+            at(6, x) += v0 * dx;
+            at(7, x) += v1 * dx;
+            at(8, x) += v2 * dx;
         }
-        for (int c = 0; c < 3; ++c) {
-            float* r0 = sum(base + kGram + c) + row;
-            float* r1 = sum(base + kGram + 3 + c) + row;
-            float* r2 = sum(base + kGram + 6 + c) + row;
-            const float* yq = &y[c][q0];
-            for (int x = 0; x < n; ++x) {
-                const float v = weight[x] * yq[x];
-                r0[x] += v;
-                r1[x] += v * dx;
-                r2[x] += v * dy;
+    }
+
+    /// Adds the partial sums of a row of offsets (regress) to the regression sums of the
+    /// first `pixels` tile pixels, dy the row's offset, and clears them.
+    void fold_partial_sums(std::size_t pixels, float dy) {
+        const float dyy = dy * dy;
+        for (int h = 0; h < 2; ++h) {
+            float* g = sum(h * kRegressionSums);
+            float* part = sum(2 * kRegressionSums + 2 + h * kPartialSums);
+            const auto at = [](float* plane, int k, std::size_t t) -> float& {
+                return plane[std::size_t(k) * kTilePixels + t];
+            };
+            LIBRT_DENOISE_NO_ALIAS
+            for (std::size_t t = 0; t < pixels; ++t) {
+                // The Gram matrix's upper triangle row by row: (1, 1) (1, dx) (1, dy)
+                // (dx, dx) (dx, dy) (dy, dy); then per channel y, y dx, y dy.
+                const float w = at(part, 0, t), wdx = at(part, 1, t);
+                at(g, 0, t) += w;
+                at(g, 1, t) += wdx;
+                at(g, 2, t) += w * dy;
+                at(g, 3, t) += at(part, 2, t);
+                at(g, 4, t) += wdx * dy;
+                at(g, 5, t) += w * dyy;
+                for (int c = 0; c < 3; ++c) {
+                    const float v = at(part, 3 + c, t);
+                    at(g, kGram + c, t) += v;
+                    at(g, kGram + 3 + c, t) += at(part, 6 + c, t);
+                    at(g, kGram + 6 + c, t) += v * dy;
+                }
+                for (int k = 0; k < kPartialSums; ++k) at(part, k, t) = 0.0f;
             }
         }
     }
@@ -738,11 +887,11 @@ private:
     const Planes& p_;
     const DenoiserSettings& s_;
     bool first_order_ = false;
-    std::size_t tile_ = 0;  ///< pixels of a tile's plane of sums
-    std::vector<float> dist_a_, dist_b_, rows_a_, rows_b_;
+    Quantum quantum_;
+    std::vector<std::int32_t> dist_a_, dist_b_;      ///< per-pixel distances, tile + apron
+    std::vector<std::int32_t> column_a_, column_b_;  ///< their box over y, one row
     std::vector<float> sums_;
-    // One row each: accumulate's scratch.
-    std::vector<float> patch_a_, patch_b_, feature_, feature_albedo_, feature_normal_;
+    std::vector<float> patch_a_, patch_b_;  ///< one row each: accumulate's weights
 };
 
 /// Per pixel, the first-order fit or the weighted mean, whichever errs less, and the
