@@ -19,6 +19,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 namespace librt::detail {
 
@@ -47,22 +48,11 @@ inline __m128 load_row4(const TriangleBlock& b, std::uint32_t corner, std::uint3
 inline TriRay4 prepare_triangles4(const Ray& ray) {
     constexpr std::uint32_t kRowBytes = sizeof(TriangleBlock::p[0][0]);
     const float* d = &ray.direction.x;
-    // triangle.h's axes without a branch (incoherent rays mispredict its two branches, ~1 in
-    // 2): bits 0..2 of `gt` are |d.x| > |d.y|, |d.y| > |d.z|, |d.x| > |d.z|, and
-    // kz = gt.0 ? (gt.2 ? 0 : 2) : (gt.1 ? 1 : 2) is read from a table of eight 2-bit
-    // entries packed in a constant. (kx, ky) = (kz + 1, kz + 2) mod 3, swapped when
-    // d[kz] < 0 to keep the winding, from a table of six 4-bit entries indexed by 2 kz + swap.
-    const __m128 dv = _mm_setr_ps(d[0], d[1], d[2], 0.0f);
-    const __m128 av = _mm_andnot_ps(_mm_set1_ps(-0.0f), dv);
-    const auto gt = static_cast<std::uint32_t>(
-        _mm_movemask_ps(_mm_cmpgt_ps(_mm_shuffle_ps(av, av, _MM_SHUFFLE(3, 0, 1, 0)),
-                                     _mm_shuffle_ps(av, av, _MM_SHUFFLE(3, 2, 2, 1)))));
-    const std::uint32_t kz = (0x129Au >> (2 * gt)) & 3u;
-    const std::uint32_t swap =
-        (static_cast<std::uint32_t>(_mm_movemask_ps(_mm_cmplt_ps(dv, _mm_setzero_ps()))) >> kz) &
-        1u;
-    const std::uint32_t axes = (0x148269u >> (4 * (2 * kz + swap))) & 15u;
-    const std::uint32_t kx = axes & 3u, ky = axes >> 2;
+    const float ax = std::fabs(d[0]), ay = std::fabs(d[1]), az = std::fabs(d[2]);
+    const std::uint32_t kz = (ax > ay) ? (ax > az ? 0u : 2u) : (ay > az ? 1u : 2u);
+    std::uint32_t kx = kz == 2 ? 0u : kz + 1;
+    std::uint32_t ky = kx == 2 ? 0u : kx + 1;
+    if (d[kz] < 0.0f) std::swap(kx, ky);  // keep the winding
     const __m128 s = _mm_div_ps(_mm_setr_ps(d[kx], d[ky], 1.0f, 1.0f), _mm_set1_ps(d[kz]));
     TriRay4 r;
     r.off_x = kx * kRowBytes;
