@@ -21,11 +21,11 @@
 // "primary" (1024x1024 pinhole), see tests/ray_sets.h; "miss" (closest hit, 1t) are the
 // incoherent rays' directions from origins outside the mesh's box, pointing away from it:
 // every ray leaves at the root node, so the row times the per-ray setup and one node test.
-// Every mesh has the incoherent and any-hit 1t rows (the small teapots' trees stay in
-// the caches); the headline meshes (teapot 1M, bunny, dragon) have all of them. "1t" rows trace on the calling
-// thread and count rays / thread CPU time; "<N>t" rows split the chunks over N std::threads
-// (N = hardware threads) and count rays / (summed thread CPU time / N): the rate of N
-// dedicated cores. Builds count wall time (both builders use all cores).
+// Every mesh has the incoherent and any-hit 1t rows (the small teapots' trees stay in the
+// caches); the headline meshes (teapot 1M, bunny, dragon) have all of them. "1t" rows trace
+// on the calling thread and count rays / thread CPU time; "<N>t" rows split the chunks over N
+// std::threads (N = hardware threads) and count rays / (summed thread CPU time / N): the rate
+// of N dedicated cores. Builds count wall time (both builders use all cores).
 //
 // After the run a summary table prints librt beside Embree with the ratio (medians when
 // --benchmark_repetitions is given).
@@ -479,11 +479,11 @@ void register_all(const std::vector<std::shared_ptr<Workload>>& workloads) {
             // The same librt rays beside another Embree scene: high build quality (not on the
             // miss rays, which never reach below the root), and robust mode (1t rows).
             auto pair_row = [&](const std::string& engines_name, auto scene) {
-                benchmark::RegisterBenchmark(
-                    (w->name + "/" + engines_name + suffix).c_str(),
-                    [=](benchmark::State& s) {
-                        trace_pair(s, **librt, &**scene, *rays, query, tris, threads);
-                    })
+                benchmark::RegisterBenchmark((w->name + "/" + engines_name + suffix).c_str(),
+                                             [=](benchmark::State& s) {
+                                                 trace_pair(s, **librt, &**scene, *rays, query,
+                                                            tris, threads);
+                                             })
                     ->Unit(benchmark::kMillisecond)
                     ->UseManualTime();
             };
@@ -533,9 +533,9 @@ public:
             "medians when repeated%s\n",
             mt.c_str(), thread_count(),
             have_embree ? "" : "\n  Embree rows are missing: librt_bench was built without Embree");
-        std::printf("%-12s %-11s %-4s %9s %9s %9s %9s %7s %9s %7s %9s %7s\n", "mesh", "rays",
-                    "thr", "median", "sah", "librt", "embree", "ratio", "embree_hq", "ratio",
-                    "robust", "ratio");
+        std::printf("%-12s %-11s %-4s %9s %9s %9s %9s %7s %9s %7s %9s %7s\n", "mesh", "rays", "thr",
+                    "median", "sah", "librt", "embree", "ratio", "embree_hq", "ratio", "robust",
+                    "ratio");
         for (const auto& w : workloads)
             for (const char* rays : {"incoherent", "anyhit", "primary", "miss"})
                 for (const std::string& threads : {std::string("1t"), mt}) {
@@ -549,8 +549,8 @@ public:
                     const std::string rb =
                         w->name + "/librt_vs_embree_robust/" + rays + "/" + threads;
                     std::printf("%-12s %-11s %-4s %9s %9s %9s %9s %7s %9s %7s %9s %7s\n",
-                                w->name.c_str(),
-                                rays, threads.c_str(), cell(single("median"), "%.3f").c_str(),
+                                w->name.c_str(), rays, threads.c_str(),
+                                cell(single("median"), "%.3f").c_str(),
                                 cell(single("sah"), "%.3f").c_str(), cell(librt, "%.3f").c_str(),
                                 cell(get(pair, "embree_Mrays"), "%.3f").c_str(),
                                 cell(get(pair, "ratio"), "%.2f").c_str(),

@@ -28,8 +28,8 @@ namespace librt::bench {
 /// watertight test.
 enum class EmbreeQuality { Default, High, Robust };
 
-/// One Embree scene holding one triangle mesh: no scene flags (but for Robust), on a device shared by all
-/// scenes (created on first use).
+/// One Embree scene holding one triangle mesh: no scene flags (but for Robust), on a device shared
+/// by all scenes (created on first use).
 class EmbreeScene {
 public:
     /// Builds the scene (rtcCommitScene) over the mesh's positions and triangles.

@@ -113,8 +113,8 @@ inline __m128 test_block4(const TriangleBlock& b, const TriRay4& r, __m128 t_min
     const __m128 qx = _mm_sub_ps(_mm_mul_ps(r.dy, e2z), _mm_mul_ps(r.dz, e2y));
     const __m128 qy = _mm_sub_ps(_mm_mul_ps(r.dz, e2x), _mm_mul_ps(r.dx, e2z));
     const __m128 qz = _mm_sub_ps(_mm_mul_ps(r.dx, e2y), _mm_mul_ps(r.dy, e2x));
-    const __m128 det = _mm_add_ps(_mm_add_ps(_mm_mul_ps(e1x, qx), _mm_mul_ps(e1y, qy)),
-                                  _mm_mul_ps(e1z, qz));
+    const __m128 det =
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(e1x, qx), _mm_mul_ps(e1y, qy)), _mm_mul_ps(e1z, qz));
     const __m128 sign = _mm_and_ps(det, _mm_set1_ps(-0.0f));
     const __m128 abs_det = _mm_xor_ps(det, sign);
     // s = o - p0; u det = s . q; w = s x e1; v det = d . w; t det = e2 . w
@@ -130,9 +130,9 @@ inline __m128 test_block4(const TriangleBlock& b, const TriRay4& r, __m128 t_min
         _mm_add_ps(_mm_add_ps(_mm_mul_ps(r.dx, wx), _mm_mul_ps(r.dy, wy)), _mm_mul_ps(r.dz, wz)),
         sign);
     const __m128 zero = _mm_setzero_ps();
-    __m128 ok = _mm_and_ps(_mm_and_ps(_mm_cmpneq_ps(det, zero), _mm_cmpge_ps(us, zero)),
-                           _mm_and_ps(_mm_cmpge_ps(vs, zero),
-                                      _mm_cmple_ps(_mm_add_ps(us, vs), abs_det)));
+    __m128 ok =
+        _mm_and_ps(_mm_and_ps(_mm_cmpneq_ps(det, zero), _mm_cmpge_ps(us, zero)),
+                   _mm_and_ps(_mm_cmpge_ps(vs, zero), _mm_cmple_ps(_mm_add_ps(us, vs), abs_det)));
     if (_mm_movemask_ps(ok) == 0) return ok;
     const __m128 ts = _mm_xor_ps(
         _mm_add_ps(_mm_add_ps(_mm_mul_ps(e2x, wx), _mm_mul_ps(e2y, wy)), _mm_mul_ps(e2z, wz)),
