@@ -11,15 +11,21 @@
 // embree_Mrays and their ratio (librt / Embree; for builds librt_ms, embree_ms, their ratio,
 // and bytes per triangle). Rows <mesh>/librt_vs_embree_hq/... are the same with Embree at
 // RTC_BUILD_QUALITY_HIGH (spatial splits) instead of its default quality; their embree_*
-// counters are the high-quality tree's. Without Embree the rows are <mesh>/librt/... with
+// counters are the high-quality tree's; rows <mesh>/librt_vs_embree_robust/<rays>/1t have
+// Embree with RTC_SCENE_FLAG_ROBUST (its Pluecker test on the vertices, as watertight as
+// librt's test; default build quality). Without Embree the rows are <mesh>/librt/... with
 // librt's counters only. The binary BVHs and the naive scan have rows of their own
 // (<mesh>/<engine>/incoherent/1t, counter Mrays; <mesh>/<engine>/build).
 //
 // Rays: "incoherent" (closest hit), "anyhit" (the same rays through occluded()) and
-// "primary" (1024x1024 pinhole), see tests/ray_sets.h. "1t" rows trace on the calling
-// thread and count rays / thread CPU time; "<N>t" rows split the chunks over N std::threads
-// (N = hardware threads) and count rays / (summed thread CPU time / N): the rate of N
-// dedicated cores. Builds count wall time (both builders use all cores).
+// "primary" (1024x1024 pinhole), see tests/ray_sets.h; "miss" (closest hit, 1t) are the
+// incoherent rays' directions from origins outside the mesh's box, pointing away from it:
+// every ray leaves at the root node, so the row times the per-ray setup and one node test.
+// Every mesh has the incoherent and any-hit 1t rows (the small teapots' trees stay in the
+// caches); the headline meshes (teapot 1M, bunny, dragon) have all of them. "1t" rows trace
+// on the calling thread and count rays / thread CPU time; "<N>t" rows split the chunks over N
+// std::threads (N = hardware threads) and count rays / (summed thread CPU time / N): the rate
+// of N dedicated cores. Builds count wall time (both builders use all cores).
 //
 // After the run a summary table prints librt beside Embree with the ratio (medians when
 // --benchmark_repetitions is given).
@@ -91,6 +97,7 @@ struct Workload {
     TriangleMesh mesh;
     std::vector<Ray> incoherent;
     std::vector<Ray> primary;
+    std::vector<Ray> miss;  ///< the incoherent directions from outside the box, pointing away
     bool headline = false;  ///< gets the full matrix (any-hit, primary, all cores)
 };
 
@@ -104,6 +111,12 @@ std::vector<std::shared_ptr<Workload>> make_workloads() {
         normalise(w->mesh);
         const BBox box = w->mesh.bounds();
         w->incoherent = librt::testing::incoherent_rays(box, kIncoherentRays, 42);
+        // Origins two box diagonals from the centre along the direction: the ray points away
+        // from a box it starts outside, so it misses every child of the root.
+        w->miss.reserve(w->incoherent.size());
+        const float reach = 2.0f * glm::length(box.diagonal());
+        for (const Ray& r : w->incoherent)
+            w->miss.push_back({box.center() + reach * glm::normalize(r.direction), r.direction});
         if (headline)
             w->primary =
                 librt::testing::primary_rays(box, kPrimaryResolution, kPrimaryResolution, 40.0f);
@@ -351,6 +364,13 @@ public:
         : EmbreeScene(mesh, bench::EmbreeQuality::High) {}
 };
 
+/// Embree with RTC_SCENE_FLAG_ROBUST (default build quality), as an engine of its own.
+class EmbreeRobustScene : public bench::EmbreeScene {
+public:
+    explicit EmbreeRobustScene(const TriangleMesh& mesh)
+        : EmbreeScene(mesh, bench::EmbreeQuality::Robust) {}
+};
+
 /// librt's build beside Embree's at `quality` (alternating which goes first), wall time each.
 void register_pair_build(const std::shared_ptr<Workload>& w, const std::string& engines,
                          bench::EmbreeQuality quality = bench::EmbreeQuality::Default) {
@@ -429,15 +449,19 @@ void register_all(const std::vector<std::shared_ptr<Workload>>& workloads) {
         auto librt = std::make_shared<Lazy<TriangleBvh>>(mesh, BvhBuilder::Sah);
         auto embree = std::make_shared<Lazy<bench::EmbreeScene>>(mesh);
         auto embree_hq = std::make_shared<Lazy<EmbreeHqScene>>(mesh);
+        auto embree_robust = std::make_shared<Lazy<EmbreeRobustScene>>(mesh);
         const RowKind kinds[] = {
             {"incoherent", Query::Closest, false}, {"incoherent", Query::Closest, true},
             {"anyhit", Query::Any, false},         {"anyhit", Query::Any, true},
-            {"primary", Query::Closest, false},    {"primary", Query::Closest, true}};
+            {"primary", Query::Closest, false},    {"primary", Query::Closest, true},
+            {"miss", Query::Closest, false}};
         for (const RowKind& kind : kinds) {
-            if (&kind != &kinds[0] && !w->headline) break;
+            const std::string ray_kind = kind.rays;
+            if (!w->headline && (kind.parallel || ray_kind == "primary")) continue;
             if (kind.parallel && thread_count() == 1) continue;
-            const std::vector<Ray>* rays =
-                std::string(kind.rays) == "primary" ? &w->primary : &w->incoherent;
+            const std::vector<Ray>* rays = ray_kind == "primary" ? &w->primary
+                                           : ray_kind == "miss"  ? &w->miss
+                                                                 : &w->incoherent;
             const unsigned threads = kind.parallel ? thread_count() : 1u;
             const std::string suffix =
                 std::string("/") + kind.rays + "/" + std::to_string(threads) + "t";
@@ -452,14 +476,19 @@ void register_all(const std::vector<std::shared_ptr<Workload>>& workloads) {
                 ->Unit(benchmark::kMillisecond)
                 ->UseManualTime();
             if (!have_embree) continue;
-            benchmark::RegisterBenchmark((w->name + "/librt_vs_embree_hq" + suffix).c_str(),
-                                         [=](benchmark::State& s) {
-                                             const TriangleBvh& a = **librt;
-                                             const bench::EmbreeScene* b = &**embree_hq;
-                                             trace_pair(s, a, b, *rays, query, tris, threads);
-                                         })
-                ->Unit(benchmark::kMillisecond)
-                ->UseManualTime();
+            // The same librt rays beside another Embree scene: high build quality (not on the
+            // miss rays, which never reach below the root), and robust mode (1t rows).
+            auto pair_row = [&](const std::string& engines_name, auto scene) {
+                benchmark::RegisterBenchmark((w->name + "/" + engines_name + suffix).c_str(),
+                                             [=](benchmark::State& s) {
+                                                 trace_pair(s, **librt, &**scene, *rays, query,
+                                                            tris, threads);
+                                             })
+                    ->Unit(benchmark::kMillisecond)
+                    ->UseManualTime();
+            };
+            if (ray_kind != "miss") pair_row("librt_vs_embree_hq", embree_hq);
+            if (!kind.parallel) pair_row("librt_vs_embree_robust", embree_robust);
         }
     }
 }
@@ -504,10 +533,11 @@ public:
             "medians when repeated%s\n",
             mt.c_str(), thread_count(),
             have_embree ? "" : "\n  Embree rows are missing: librt_bench was built without Embree");
-        std::printf("%-12s %-11s %-4s %9s %9s %9s %9s %7s %9s %7s\n", "mesh", "rays", "thr",
-                    "median", "sah", "librt", "embree", "ratio", "embree_hq", "ratio");
+        std::printf("%-12s %-11s %-4s %9s %9s %9s %9s %7s %9s %7s %9s %7s\n", "mesh", "rays", "thr",
+                    "median", "sah", "librt", "embree", "ratio", "embree_hq", "ratio", "robust",
+                    "ratio");
         for (const auto& w : workloads)
-            for (const char* rays : {"incoherent", "anyhit", "primary"})
+            for (const char* rays : {"incoherent", "anyhit", "primary", "miss"})
                 for (const std::string& threads : {std::string("1t"), mt}) {
                     const std::string pair = w->name + "/" + engines + "/" + rays + "/" + threads;
                     const auto librt = get(pair, "librt_Mrays");
@@ -516,13 +546,18 @@ public:
                         return get(w->name + "/" + engine + "/" + rays + "/" + threads, "Mrays");
                     };
                     const std::string hq = w->name + "/librt_vs_embree_hq/" + rays + "/" + threads;
-                    std::printf("%-12s %-11s %-4s %9s %9s %9s %9s %7s %9s %7s\n", w->name.c_str(),
-                                rays, threads.c_str(), cell(single("median"), "%.3f").c_str(),
+                    const std::string rb =
+                        w->name + "/librt_vs_embree_robust/" + rays + "/" + threads;
+                    std::printf("%-12s %-11s %-4s %9s %9s %9s %9s %7s %9s %7s %9s %7s\n",
+                                w->name.c_str(), rays, threads.c_str(),
+                                cell(single("median"), "%.3f").c_str(),
                                 cell(single("sah"), "%.3f").c_str(), cell(librt, "%.3f").c_str(),
                                 cell(get(pair, "embree_Mrays"), "%.3f").c_str(),
                                 cell(get(pair, "ratio"), "%.2f").c_str(),
                                 cell(get(hq, "embree_Mrays"), "%.3f").c_str(),
-                                cell(get(hq, "ratio"), "%.2f").c_str());
+                                cell(get(hq, "ratio"), "%.2f").c_str(),
+                                cell(get(rb, "embree_Mrays"), "%.3f").c_str(),
+                                cell(get(rb, "ratio"), "%.2f").c_str());
                 }
         std::printf("\n%-12s %10s %10s %7s %11s %12s %7s %10s %7s %9s\n", "mesh", "librt ms",
                     "embree ms", "ratio", "librt B/tri", "embree B/tri", "ratio", "HQ ms", "ratio",

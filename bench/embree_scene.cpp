@@ -105,6 +105,7 @@ RTCBuildQuality rtc_quality(EmbreeQuality quality) {
 RTCScene triangle_scene(RTCDevice dev, const SharedArrays& arrays, EmbreeQuality quality) {
     RTCScene scene = rtcNewScene(dev);
     rtcSetSceneBuildQuality(scene, rtc_quality(quality));
+    if (quality == EmbreeQuality::Robust) rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
     RTCGeometry geom = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                arrays.vertices.data(), 0, 3 * sizeof(float),

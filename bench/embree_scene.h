@@ -22,11 +22,14 @@ namespace librt::bench {
 
 /// Embree's build quality (rtcSetSceneBuildQuality): Default is what an application gets
 /// without asking (RTC_BUILD_QUALITY_MEDIUM, binned SAH); High is RTC_BUILD_QUALITY_HIGH
-/// (spatial splits for static scenes), Embree's best tree at a slower build.
-enum class EmbreeQuality { Default, High };
+/// (spatial splits for static scenes), Embree's best tree at a slower build. Robust is the
+/// default quality with RTC_SCENE_FLAG_ROBUST: Embree's robust traversal and its Pluecker
+/// triangle test on the vertices (no hole along shared edges), the robustness of librt's
+/// watertight test.
+enum class EmbreeQuality { Default, High, Robust };
 
-/// One Embree scene holding one triangle mesh: no scene flags, on a device shared by all
-/// scenes (created on first use).
+/// One Embree scene holding one triangle mesh: no scene flags (but for Robust), on a device shared
+/// by all scenes (created on first use).
 class EmbreeScene {
 public:
     /// Builds the scene (rtcCommitScene) over the mesh's positions and triangles.

@@ -8,6 +8,7 @@
 // order (the library is built with -ffp-contract=off, so no product is fused into an
 // FMA behind our back): the t, u and v it returns are bit-identical to the scalar test's.
 
+#include "ablation.h"
 #include "wide_bvh.h"
 
 #include <librt/geometry/ray.h>
@@ -30,6 +31,9 @@ struct TriRay4 {
     /// (16 k): a row is one load at block + 48 corner + offset. Axis indices made every leaf
     /// visit build nine row addresses (shifts and adds, registers spilled for them).
     std::uint32_t off_x, off_y, off_z;
+#if LIBRT_ABLATION == 1
+    __m128 ox, oy, oz, dx, dy, dz;  ///< measurement build: origin and direction, broadcast
+#endif
 };
 
 /// Row `off` (a TriRay4 byte offset) of corner `corner` of a block.
@@ -61,6 +65,18 @@ inline TriRay4 prepare_triangles4(const Ray& ray) {
     r.sx = _mm_shuffle_ps(s, s, _MM_SHUFFLE(0, 0, 0, 0));
     r.sy = _mm_shuffle_ps(s, s, _MM_SHUFFLE(1, 1, 1, 1));
     r.sz = _mm_shuffle_ps(s, s, _MM_SHUFFLE(2, 2, 2, 2));
+#if LIBRT_ABLATION == 1
+    // Measurement build: the watertight constants stay computed (an empty asm takes them),
+    // so that only the leaf test differs.
+    asm volatile("" ::"x"(r.o_kx), "x"(r.o_ky), "x"(r.o_kz), "x"(r.sx), "x"(r.sy), "x"(r.sz),
+                 "r"(r.off_x), "r"(r.off_y), "r"(r.off_z));
+    r.ox = _mm_set1_ps(o[0]);
+    r.oy = _mm_set1_ps(o[1]);
+    r.oz = _mm_set1_ps(o[2]);
+    r.dx = _mm_set1_ps(d[0]);
+    r.dy = _mm_set1_ps(d[1]);
+    r.dz = _mm_set1_ps(d[2]);
+#endif
     return r;
 }
 
@@ -83,6 +99,54 @@ inline __m128 select4(__m128 mask, __m128 exact, __m128 e) {
     return _mm_or_ps(_mm_and_ps(mask, exact), _mm_andnot_ps(mask, e));
 }
 
+#if LIBRT_ABLATION == 1
+/// Measurement build: Moller-Trumbore (JGT 1997) on the precomputed edges e1 = p1 - p0,
+/// e2 = p2 - p0 in a block's corners 1 and 2, in the division-free form (compares scaled by
+/// |det|, one division only when a lane is hit); not watertight.
+inline __m128 test_block4(const TriangleBlock& b, const TriRay4& r, __m128 t_min, __m128 t_max,
+                          __m128& t, __m128& u, __m128& v) {
+    const __m128 e1x = _mm_load_ps(b.p[1][0]), e1y = _mm_load_ps(b.p[1][1]),
+                 e1z = _mm_load_ps(b.p[1][2]);
+    const __m128 e2x = _mm_load_ps(b.p[2][0]), e2y = _mm_load_ps(b.p[2][1]),
+                 e2z = _mm_load_ps(b.p[2][2]);
+    // q = d x e2, det = e1 . q
+    const __m128 qx = _mm_sub_ps(_mm_mul_ps(r.dy, e2z), _mm_mul_ps(r.dz, e2y));
+    const __m128 qy = _mm_sub_ps(_mm_mul_ps(r.dz, e2x), _mm_mul_ps(r.dx, e2z));
+    const __m128 qz = _mm_sub_ps(_mm_mul_ps(r.dx, e2y), _mm_mul_ps(r.dy, e2x));
+    const __m128 det =
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(e1x, qx), _mm_mul_ps(e1y, qy)), _mm_mul_ps(e1z, qz));
+    const __m128 sign = _mm_and_ps(det, _mm_set1_ps(-0.0f));
+    const __m128 abs_det = _mm_xor_ps(det, sign);
+    // s = o - p0; u det = s . q; w = s x e1; v det = d . w; t det = e2 . w
+    const __m128 sx = _mm_sub_ps(r.ox, _mm_load_ps(b.p[0][0]));
+    const __m128 sy = _mm_sub_ps(r.oy, _mm_load_ps(b.p[0][1]));
+    const __m128 sz = _mm_sub_ps(r.oz, _mm_load_ps(b.p[0][2]));
+    const __m128 us = _mm_xor_ps(
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(sx, qx), _mm_mul_ps(sy, qy)), _mm_mul_ps(sz, qz)), sign);
+    const __m128 wx = _mm_sub_ps(_mm_mul_ps(sy, e1z), _mm_mul_ps(sz, e1y));
+    const __m128 wy = _mm_sub_ps(_mm_mul_ps(sz, e1x), _mm_mul_ps(sx, e1z));
+    const __m128 wz = _mm_sub_ps(_mm_mul_ps(sx, e1y), _mm_mul_ps(sy, e1x));
+    const __m128 vs = _mm_xor_ps(
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(r.dx, wx), _mm_mul_ps(r.dy, wy)), _mm_mul_ps(r.dz, wz)),
+        sign);
+    const __m128 zero = _mm_setzero_ps();
+    __m128 ok =
+        _mm_and_ps(_mm_and_ps(_mm_cmpneq_ps(det, zero), _mm_cmpge_ps(us, zero)),
+                   _mm_and_ps(_mm_cmpge_ps(vs, zero), _mm_cmple_ps(_mm_add_ps(us, vs), abs_det)));
+    if (_mm_movemask_ps(ok) == 0) return ok;
+    const __m128 ts = _mm_xor_ps(
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(e2x, wx), _mm_mul_ps(e2y, wy)), _mm_mul_ps(e2z, wz)),
+        sign);
+    ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpgt_ps(ts, _mm_mul_ps(abs_det, t_min)),
+                                   _mm_cmplt_ps(ts, _mm_mul_ps(abs_det, t_max))));
+    if (_mm_movemask_ps(ok) == 0) return ok;
+    const __m128 inv_det = _mm_div_ps(_mm_set1_ps(1.0f), abs_det);
+    t = _mm_mul_ps(ts, inv_det);
+    u = _mm_mul_ps(us, inv_det);
+    v = _mm_mul_ps(vs, inv_det);
+    return ok;
+}
+#else
 /// Watertight ray-triangle test (Woop, Benthin and Wald, JCGT 2013) of a block's four
 /// triangles. Returns the lanes hit with t in (t_min, t_max) (all bits set in those lanes),
 /// and their t, u, v.
@@ -153,6 +217,7 @@ inline __m128 test_block4(const TriangleBlock& b, const TriRay4& r, __m128 t_min
     v = _mm_mul_ps(e2, inv_det);
     return ok;
 }
+#endif
 
 /// The triangle half of a WideKernel policy (see wide_traversal.h): four triangles a test.
 struct Block4Triangles {

@@ -1,5 +1,7 @@
 #include "wide_bvh.h"
 
+#include "ablation.h"
+
 #include <librt/core/error.h>
 
 #include <algorithm>
@@ -297,6 +299,11 @@ private:
                     {t.p0.x, t.p0.y, t.p0.z}, {t.p1.x, t.p1.y, t.p1.z}, {t.p2.x, t.p2.y, t.p2.z}};
                 for (int c = 0; c < 3; ++c)
                     for (int a = 0; a < 3; ++a) block.p[c][a][lane] = corners[c][a];
+#if LIBRT_ABLATION == 1
+                // Measurement build: the edges v1 - v0 and v2 - v0 in corners 1 and 2.
+                for (int c = 1; c < 3; ++c)
+                    for (int a = 0; a < 3; ++a) block.p[c][a][lane] -= corners[0][a];
+#endif
                 block.id[lane] = real ? bvh_.prim_indices[slot] : kInvalidId;
             }
         }

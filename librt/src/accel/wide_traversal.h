@@ -6,6 +6,7 @@
 // set and marked flatten, so the traversal and the policy's node and leaf tests are inlined
 // there with that instruction set's encoding.
 
+#include "ablation.h"
 #include "wide_bvh.h"
 
 #include <librt/accel/bvh_stats.h>
@@ -167,7 +168,12 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit,
             const std::uint32_t first = WideBvhNode::first_block(current);
             const std::uint32_t end = first + WideBvhNode::block_count(current);
             if constexpr (Count) ++counts->leaves;
+#if LIBRT_ABLATION == 2
+            // Measurement build: no leaf test (the node test and the walk alone).
+            for (std::uint32_t b = end; b < end; ++b) {
+#else
             for (std::uint32_t b = first; b < end; ++b) {
+#endif
                 if constexpr (Count) {
                     ++counts->blocks;
                     for (const std::uint32_t id : blocks[b].id)
