@@ -913,14 +913,13 @@ void bound_by_own_noise(const DenoiserInput& in, const DenoiserSettings& setting
                              xx <= std::min(w - 1, x + kFootprintRadius); ++xx) {
                             if (xx == x && yy == y) continue;
                             const float v =
-                                in.beauty.pixels[std::size_t(yy) * std::size_t(w) + std::size_t(xx)]
-                                                [c];
+                                in.beauty
+                                    .pixels[std::size_t(yy) * std::size_t(w) + std::size_t(xx)][c];
                             lo = std::min(lo, v);
                             hi = std::max(hi, v);
                         }
                     const float a = in.half_a.pixels[i][c], hb = in.half_b.pixels[i][c];
-                    const bool within =
-                        few && a >= lo && a <= hi && hb >= lo && hb <= hi;
+                    const bool within = few && a >= lo && a <= hi && hb >= lo && hb <= hi;
                     const float variance = within ? *mid : std::max(*mid, spread[i][c]);
                     const float bound = k * std::sqrt(variance);
                     const float b = in.beauty.pixels[i][c];
