@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <string>
 #include <system_error>
@@ -53,6 +54,23 @@ constexpr int kVarianceRadius = 2;
 /// measured against 3 x 3 (the same figures within 1 %) on cornell_pbr.glb and
 /// material_spheres.glb.
 constexpr int kBoundRadius = 2;
+/// The neighbours whose noisy values a pixel's halves are compared with in
+/// bound_by_own_noise: 3 x 3, the reach of rt_render's pixel filter (a Gaussian of sigma
+/// 0.5 cut at 1.5 pixels). A half within their range may differ from the other by where
+/// in the pixel its samples fell (a highlight's edge crossing the pixel), not by noise:
+/// the halves' spread then measures that part too, which the pixel's other samples
+/// average out (Sobol' points stratify the pixel: textures.glb's highlight at 31 spp was
+/// within 0.5 % of its reference while its own standard error said 8 %), so the pixel
+/// gets its box's median. A half beyond that range (a firefly, a caustic speck) is noise
+/// no neighbour shows, and the pixel's own spread frees it.
+constexpr int kFootprintRadius = 1;
+/// ... only where one half holds at most this share of the pixel's samples (adaptive
+/// sampling's first part: 1/8 of a pixel's samples or less where the sampler sent more).
+/// A part of a few samples cannot stratify the pixel, so where in it they fell dominates
+/// its difference at an edge; halves of equal size are each stratified, and their
+/// difference is noise: with the rule for them too, librt_denoise_figures' renders (equal
+/// halves) lost 10-15 % of their gain, the synthesis at 64 spp 60.5x -> 5.8x.
+constexpr float kFewSamplesShare = 0.25f;
 
 /// Rows of the strips threads take: the rows of a strip share the patch-distance buffers
 /// of each neighbour offset (and their apron of 2 x patch radius rows, which the next strip
@@ -1005,8 +1023,10 @@ Image filter_halves(const DenoiserInput& input, const Image& albedo,
 /// Moves each pixel of `out` back to within settings.max_standard_errors standard errors of
 /// the noisy beauty (denoiser.h). Per channel, the variance of a pixel's mean is
 /// s (1 - s) (a - b)^2 from its halves (as in make_planes), and the bound uses the larger
-/// of the pixel's own and the median of its box's. Rows are split among threads; each
-/// pixel is computed from the inputs alone, so the bits do not depend on the count.
+/// of the pixel's own and the median of its box's, or the median alone where one half is
+/// a few samples and both lie within the range of the 8 neighbours' values
+/// (kFootprintRadius). Rows are split among threads;
+/// each pixel is computed from the inputs alone, so the bits do not depend on the count.
 void bound_by_own_noise(const DenoiserInput& in, const DenoiserSettings& settings, Image& out) {
     const int w = in.beauty.width, h = in.beauty.height;
     const std::size_t n = in.beauty.pixels.size();
@@ -1022,6 +1042,8 @@ void bound_by_own_noise(const DenoiserInput& in, const DenoiserSettings& setting
         for (int y = y0; y < y1; ++y)
             for (int x = 0; x < w; ++x) {
                 const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
+                const float share = in.share_a.empty() ? 0.5f : in.share_a[i];
+                const bool few = std::min(share, 1.0f - share) <= kFewSamplesShare;
                 for (int c = 0; c < 3; ++c) {
                     std::size_t count = 0;
                     for (int yy = std::max(0, y - kBoundRadius);
@@ -1032,7 +1054,23 @@ void bound_by_own_noise(const DenoiserInput& in, const DenoiserSettings& setting
                                 spread[std::size_t(yy) * std::size_t(w) + std::size_t(xx)][c];
                     const auto mid = box.begin() + std::ptrdiff_t(count / 2);
                     std::nth_element(box.begin(), mid, box.begin() + std::ptrdiff_t(count));
-                    const float bound = k * std::sqrt(std::max(*mid, spread[i][c]));
+                    // The range of the neighbours' noisy values (not the pixel's own).
+                    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+                    for (int yy = std::max(0, y - kFootprintRadius);
+                         yy <= std::min(h - 1, y + kFootprintRadius); ++yy)
+                        for (int xx = std::max(0, x - kFootprintRadius);
+                             xx <= std::min(w - 1, x + kFootprintRadius); ++xx) {
+                            if (xx == x && yy == y) continue;
+                            const float v =
+                                in.beauty
+                                    .pixels[std::size_t(yy) * std::size_t(w) + std::size_t(xx)][c];
+                            lo = std::min(lo, v);
+                            hi = std::max(hi, v);
+                        }
+                    const float a = in.half_a.pixels[i][c], hb = in.half_b.pixels[i][c];
+                    const bool within = few && a >= lo && a <= hi && hb >= lo && hb <= hi;
+                    const float variance = within ? *mid : std::max(*mid, spread[i][c]);
+                    const float bound = k * std::sqrt(variance);
                     const float b = in.beauty.pixels[i][c];
                     out.pixels[i][c] = std::min(std::max(out.pixels[i][c], b - bound), b + bound);
                 }

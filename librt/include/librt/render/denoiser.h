@@ -56,7 +56,11 @@
 //    few noisy neighbours, so a converged highlight among them keeps a tight bound (the
 //    plain filter pulled material_spheres.glb's one-pixel highlights from 21 to 6), while
 //    a firefly's own large spread leaves it free to go. A pixel whose halves agree by
-//    chance gets its box's median, so noise is still removed.
+//    chance gets its box's median, so noise is still removed. Where one half is a few
+//    samples (adaptive sampling's first part) and both halves lie within the range of the
+//    pixel's 8 neighbours, their difference may be where in the pixel those few samples
+//    fell, which the rest average out: the pixel gets its box's median alone (a converged
+//    highlight's edge was pulled 10.7 -> 9.1 by its own spread; docs/benchmarks.md).
 //  - Deterministic and multithreaded: every output pixel is computed by one thread from
 //    the inputs alone, its neighbours visited in a fixed order; the thread count changes
 //    which thread computes a pixel, never its arithmetic.
