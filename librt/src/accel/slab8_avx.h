@@ -113,47 +113,10 @@ inline void slab_test8(const WideBvhNode& node, const SlabRay8& r, float t_min, 
     _mm256_store_ps(t_enter, enter);
 }
 
-#if defined(LIBRT_QUANTIZED_NODES)
-/// Row `row` of a quantized node's planes, decoded to floats: fma(q, scale, origin), the same
-/// single rounding as the builder's check (QuantizedWideNode).
-inline __m256 decode_row8(const QuantizedWideNode& node, std::uint32_t row, __m256 scale,
-                          __m256 origin) {
-    const __m128i bytes = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(node.q[row]));
-    return _mm256_fmadd_ps(_mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(bytes)), scale, origin);
-}
-
-/// slab_test8 on a quantized node's decoded planes, which hold the exact boxes, so the test
-/// stays conservative for the same reasons. Unused slots are not masked here (their decoded
-/// box is inverted, but the kernels mask them out by node.valid).
-inline void slab_test8(const QuantizedWideNode& node, const SlabRay8& r, float t_min, float t_max,
-                       float* t_enter, __m256& enter, __m256& exit) {
-    __m256 n[3], f[3];
-    for (std::uint32_t a = 0; a < 3; ++a) {
-        const __m256 scale = _mm256_set1_ps(node.scale[a]);
-        const __m256 origin = _mm256_set1_ps(node.origin[a]);
-        n[a] = _mm256_fmsub_ps(decode_row8(node, r.near[a], scale, origin), r.inv[a], r.near_oi[a]);
-        f[a] = _mm256_fmsub_ps(decode_row8(node, r.far[a], scale, origin), r.inv[a], r.far_oi[a]);
-    }
-    const __m256 n01 = _mm256_max_ps(n[0], n[1]);
-    const __m256 n2t = _mm256_max_ps(n[2], _mm256_set1_ps(t_min));
-    enter = _mm256_max_ps(n01, n2t);
-    const __m256 f01 = _mm256_min_ps(f[0], f[1]);
-    const __m256 f2 = _mm256_min_ps(f01, f[2]);
-    exit = _mm256_min_ps(_mm256_mul_ps(f2, _mm256_set1_ps(1.0f + kSlabExitSlack)),
-                         _mm256_set1_ps(t_max));
-    _mm256_store_ps(t_enter, enter);
-}
-#endif
-
 /// The node half of the AVX2 and AVX-512 WideKernel policies (see wide_traversal.h) that
 /// both share: the per-ray constants. Each kernel adds its own intersect_node, the one
 /// place they differ (how slab_test8's lanes become a bit mask).
 struct Slab8Nodes {
-#if defined(LIBRT_QUANTIZED_NODES)
-    using Node = QuantizedWideNode;
-#else
-    using Node = WideBvhNode;
-#endif
     using NodeRay = SlabRay8;
 
     static NodeRay prepare_nodes(const Ray& ray) { return prepare_slab8(ray); }

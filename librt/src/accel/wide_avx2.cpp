@@ -33,17 +33,12 @@ namespace {
 /// The WideKernel policy of the AVX2 path.
 struct Avx2Kernel : Block4Triangles, Slab8Nodes {
     /// slab_test8, its hit lanes gathered by movemask.
-    static std::uint32_t intersect_node(const Node& node, const NodeRay& r, float t_min,
+    static std::uint32_t intersect_node(const WideBvhNode& node, const NodeRay& r, float t_min,
                                         float t_max, float* t_enter) {
         __m256 enter, exit;
         slab_test8(node, r, t_min, t_max, t_enter, enter, exit);
-        const auto mask =
-            static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(enter, exit, _CMP_LE_OQ)));
-#if defined(LIBRT_QUANTIZED_NODES)
-        return mask & node.valid;
-#else
-        return mask;
-#endif
+        return static_cast<std::uint32_t>(
+            _mm256_movemask_ps(_mm256_cmp_ps(enter, exit, _CMP_LE_OQ)));
     }
 };
 static_assert(WideKernel<Avx2Kernel>);

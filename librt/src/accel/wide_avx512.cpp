@@ -31,16 +31,11 @@ namespace {
 /// The WideKernel policy of the AVX-512 path.
 struct Avx512Kernel : Block4Triangles, Slab8Nodes {
     /// slab_test8, its hit lanes straight from a compare into a mask register.
-    static std::uint32_t intersect_node(const Node& node, const NodeRay& r, float t_min,
+    static std::uint32_t intersect_node(const WideBvhNode& node, const NodeRay& r, float t_min,
                                         float t_max, float* t_enter) {
         __m256 enter, exit;
         slab_test8(node, r, t_min, t_max, t_enter, enter, exit);
-#if defined(LIBRT_QUANTIZED_NODES)
-        return static_cast<std::uint32_t>(
-            _mm256_mask_cmp_ps_mask(static_cast<__mmask8>(node.valid), enter, exit, _CMP_LE_OQ));
-#else
         return static_cast<std::uint32_t>(_mm256_cmp_ps_mask(enter, exit, _CMP_LE_OQ));
-#endif
     }
 };
 static_assert(WideKernel<Avx512Kernel>);

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
@@ -335,76 +334,6 @@ private:
 
 }  // namespace
 
-#if defined(LIBRT_QUANTIZED_NODES)
-namespace {
-
-/// A plane's value on a node's grid: q x scale is exact (scale is a power of two), so this is
-/// one rounding of an exact value, the same in the kernels' vector fma.
-float decode_plane(std::uint32_t q, float scale, float origin) {
-    return std::fma(static_cast<float>(q), scale, origin);
-}
-
-/// nodes[i] on its own grid (see QuantizedWideNode): per axis the origin at the children's
-/// lowest lo and the finest power-of-two step whose 255th line reaches their highest hi; each
-/// child's lo the highest line at or below it, its hi the lowest at or above it, checked by
-/// decoding as the kernels do.
-QuantizedWideNode quantize_node(const WideBvhNode& node) {
-    QuantizedWideNode out{};
-    std::uint32_t count = 0;
-    while (count < kWideBvhWidth && node.child[count] != WideBvhNode::kEmptyChild) ++count;
-    out.valid = (1u << count) - 1;
-    for (std::uint32_t i = 0; i < kWideBvhWidth; ++i) out.child[i] = node.child[i];
-    for (std::uint32_t a = 0; a < 3; ++a) {
-        float lo = count == 0 ? 0.0f : kInf, hi = count == 0 ? 0.0f : -kInf;
-        for (std::uint32_t i = 0; i < count; ++i) {
-            lo = std::min(lo, node.bounds[2 * a][i]);
-            hi = std::max(hi, node.bounds[2 * a + 1][i]);
-        }
-        // frexp: extent / 255 = m 2^k with m in [0.5, 1), so 2^k is the first guess; the
-        // loops settle it by decoding.
-        int e = -126;
-        const double extent = static_cast<double>(hi) - static_cast<double>(lo);
-        if (extent > 0.0) {
-            int k = 0;
-            std::frexp(extent / 255.0, &k);
-            e = std::clamp(k, -126, 127);
-        }
-        while (e < 127 && decode_plane(255, std::ldexp(1.0f, e), lo) < hi) ++e;
-        while (e > -126 && decode_plane(255, std::ldexp(1.0f, e - 1), lo) >= hi) --e;
-        const float scale = std::ldexp(1.0f, e);
-        out.origin[a] = lo;
-        out.scale[a] = scale;
-        for (std::uint32_t i = 0; i < kWideBvhWidth; ++i) {
-            if (i >= count) {  // an inverted box; the kernels also mask the slot out by `valid`
-                out.q[2 * a][i] = 255;
-                out.q[2 * a + 1][i] = 0;
-                continue;
-            }
-            const float clo = node.bounds[2 * a][i], chi = node.bounds[2 * a + 1][i];
-            const double guess_lo = std::floor((static_cast<double>(clo) - lo) / scale);
-            const double guess_hi = std::ceil((static_cast<double>(chi) - lo) / scale);
-            auto qlo = static_cast<std::uint32_t>(std::clamp(guess_lo, 0.0, 255.0));
-            auto qhi = static_cast<std::uint32_t>(std::clamp(guess_hi, 0.0, 255.0));
-            while (qlo > 0 && decode_plane(qlo, scale, lo) > clo) --qlo;
-            while (qlo < 255 && decode_plane(qlo + 1, scale, lo) <= clo) ++qlo;
-            while (qhi < 255 && decode_plane(qhi, scale, lo) < chi) ++qhi;
-            while (qhi > 0 && decode_plane(qhi - 1, scale, lo) >= chi) --qhi;
-            if (decode_plane(qlo, scale, lo) > clo || decode_plane(qhi, scale, lo) < chi)
-                throw Error("wide BVH: a quantized child box does not hold the child");
-            out.q[2 * a][i] = static_cast<std::uint8_t>(qlo);
-            out.q[2 * a + 1][i] = static_cast<std::uint8_t>(qhi);
-        }
-    }
-    return out;
-}
-
-}  // namespace
-
-float QuantizedWideNode::plane(std::uint32_t row, std::uint32_t i) const {
-    return decode_plane(q[row][i], scale[row / 2], origin[row / 2]);
-}
-#endif
-
 WideBvh collapse_to_wide(const Bvh& bvh, std::span<const Triangle> triangles,
                          std::span<const BBox> boxes) {
     if (boxes.size() != triangles.size())
@@ -419,10 +348,6 @@ WideBvh collapse_to_wide(const Bvh& bvh, std::span<const Triangle> triangles,
                         std::to_string(triangles.size()) + " triangles");
     out.bounds = bvh.bounds();
     Collapser(bvh, triangles, boxes, out).run();
-#if defined(LIBRT_QUANTIZED_NODES)
-    out.qnodes.reserve(out.nodes.size());
-    for (const WideBvhNode& node : out.nodes) out.qnodes.push_back(quantize_node(node));
-#endif
     return out;
 }
 

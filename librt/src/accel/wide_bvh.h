@@ -79,39 +79,6 @@ struct alignas(32) WideBvhNode {
 };
 static_assert(sizeof(WideBvhNode) == 224, "WideBvhNode must stay 224 bytes");
 
-#if defined(LIBRT_QUANTIZED_NODES)
-/// Experiment (issue 40, branch bvhq; CMake option LIBRT_QUANTIZED_NODES): a WideBvhNode with
-/// its children's boxes quantized to 8 bits per plane on a per-node grid (Ylitie, Karras and
-/// Laine 2017, "Efficient incoherent ray traversal on GPUs through compressed wide BVHs"),
-/// 128 bytes (two cache lines) instead of 224, traversed by the AVX2 and AVX-512 kernels:
-///   bytes   0..11   origin[axis]: the grid's origin, the lowest lo of the node's children
-///   bytes  12..23   scale[axis]: the grid's step, a power of two
-///   bytes  24..27   valid: bit i set when slot i holds a child
-///   bytes  32..63   child[8] references, as WideBvhNode::child
-///   bytes  64..111  q[plane][child] grid coordinates, planes as WideBvhNode::bounds
-/// A plane decodes to fma(q, scale, origin) (one rounding of an exact value, so the builder's
-/// std::fma and the kernel's vector fma agree bit for bit), and the builder checks that every
-/// decoded lo is <= the child's lo and every decoded hi >= its hi: the decoded box holds the
-/// exact one, so the conservative slab test on it enters every box the exact ray enters.
-struct alignas(64) QuantizedWideNode {
-    float origin[3];
-    float scale[3];
-    std::uint32_t valid;
-    std::uint32_t unused0;
-    std::uint32_t child[kWideBvhWidth];
-    std::uint8_t q[6][kWideBvhWidth];
-    std::uint8_t unused1[16];
-
-    /// The value plane row `plane` of child i decodes to.
-    [[nodiscard]] float plane(std::uint32_t row, std::uint32_t i) const;
-    /// Child i's decoded box (holds the exact one).
-    [[nodiscard]] BBox child_bounds(std::uint32_t i) const {
-        return {{plane(0, i), plane(2, i), plane(4, i)}, {plane(1, i), plane(3, i), plane(5, i)}};
-    }
-};
-static_assert(sizeof(QuantizedWideNode) == 128, "QuantizedWideNode must stay 128 bytes");
-#endif
-
 /// Four triangles as structure of arrays, 160 bytes, tested together:
 ///   bytes   0..143  p[corner][axis][lane] floats: corners p0, p1, p2; axes x, y, z; 4 lanes
 ///   bytes 144..159  id[lane]: the caller's triangle index, kInvalidId for padding
@@ -140,10 +107,6 @@ struct WideBvh {
     std::vector<WideBvhNode, LargePageAllocator<WideBvhNode>> nodes;
     /// The leaves' triangle blocks; a leaf reference names a run of consecutive blocks.
     std::vector<TriangleBlock, LargePageAllocator<TriangleBlock>> blocks;
-#if defined(LIBRT_QUANTIZED_NODES)
-    /// qnodes[i]: nodes[i] quantized (what the AVX2 and AVX-512 kernels traverse).
-    std::vector<QuantizedWideNode, LargePageAllocator<QuantizedWideNode>> qnodes;
-#endif
     BBox bounds;                     ///< of all triangles
     std::size_t triangle_count = 0;  ///< triangles held (padding lanes aside)
     std::uint32_t depth = 0;         ///< wide levels below the root, at most kMaxWideBvhDepth
@@ -152,12 +115,7 @@ struct WideBvh {
     [[nodiscard]] bool empty() const { return nodes.empty(); }
     /// Bytes held by nodes and blocks.
     [[nodiscard]] std::size_t memory_bytes() const {
-#if defined(LIBRT_QUANTIZED_NODES)
-        // As if the quantized nodes replaced the float ones (the experiment keeps both).
-        return nodes.size() * sizeof(QuantizedWideNode) + blocks.size() * sizeof(TriangleBlock);
-#else
         return nodes.size() * sizeof(WideBvhNode) + blocks.size() * sizeof(TriangleBlock);
-#endif
     }
 };
 

@@ -16,7 +16,6 @@ namespace {
 
 /// The WideKernel policy of the scalar path.
 struct ScalarKernel {
-    using Node = WideBvhNode;
     /// Per-ray constants of the slab test: origin, safe inverse direction, and for each
     /// axis the bounds rows the ray enters and leaves through (lo first when the inverse is
     /// positive).

@@ -16,7 +16,6 @@ namespace {
 
 /// The WideKernel policy of the SSE path.
 struct SseKernel : Block4Triangles {
-    using Node = WideBvhNode;
     using NodeRay = SlabRay4;
 
     static NodeRay prepare_nodes(const Ray& ray) { return prepare_slab4(ray); }

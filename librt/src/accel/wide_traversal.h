@@ -23,8 +23,6 @@
 namespace librt::detail {
 
 /// What traverse_wide requires of a kernel policy K (static members only):
-///   - K::Node: the node layout it tests (WideBvhNode, or QuantizedWideNode in the
-///     LIBRT_QUANTIZED_NODES experiment), found in the tree by node_array;
 ///   - K::NodeRay prepare_nodes(ray): per-ray constants of the node test;
 ///   - intersect_node(node, node_ray, t_min, t_max, t_enter): bit i set when child i's box is
 ///     entered within [t_min, t_max] (bbox.h's slab_test), t_enter[i] its entry distance;
@@ -33,8 +31,8 @@ namespace librt::detail {
 ///     (t_min, t_max); t_max, lane, u and v then become those of the nearest such lane;
 ///   - occluded_block(block, tri_ray, t_min, t_max): true when any lane is hit.
 template <class K>
-concept WideKernel = requires(const Ray& ray, const typename K::Node& node,
-                              const TriangleBlock& block, const typename K::NodeRay& node_ray,
+concept WideKernel = requires(const Ray& ray, const WideBvhNode& node, const TriangleBlock& block,
+                              const typename K::NodeRay& node_ray,
                               const typename K::TriRay& tri_ray, float t, float& t_max,
                               std::uint32_t& lane, float* t_enter) {
     { K::prepare_nodes(ray) } -> std::same_as<typename K::NodeRay>;
@@ -43,16 +41,6 @@ concept WideKernel = requires(const Ray& ray, const typename K::Node& node,
     { K::intersect_block(block, tri_ray, t, t_max, lane, t_max, t_max) } -> std::same_as<bool>;
     { K::occluded_block(block, tri_ray, t, t) } -> std::same_as<bool>;
 };
-
-/// The tree's nodes in the layout Node (the second argument only picks the overload).
-inline const WideBvhNode* node_array(const WideBvh& bvh, const WideBvhNode*) {
-    return bvh.nodes.data();
-}
-#if defined(LIBRT_QUANTIZED_NODES)
-inline const QuantizedWideNode* node_array(const WideBvh& bvh, const QuantizedWideNode*) {
-    return bvh.qnodes.data();
-}
-#endif
 
 /// A deferred child: its reference and the distance at which the ray enters its box.
 ///   bytes 0..3  child reference (as in WideBvhNode::child)
@@ -75,8 +63,8 @@ inline constexpr std::uint32_t kWideStackSize =
 /// two blocks needs and a sibling leaf (a node's leaves are adjacent) often does. A fixed
 /// count without a branch on the size: the loop over a child's exact lines cost ~90
 /// instructions per incoherent ray (callgrind).
-template <class Node>
-inline void prefetch_child(const Node* nodes, const TriangleBlock* blocks, std::uint32_t ref) {
+inline void prefetch_child(const WideBvhNode* nodes, const TriangleBlock* blocks,
+                           std::uint32_t ref) {
     const char* p = WideBvhNode::is_leaf(ref)
                         ? reinterpret_cast<const char*>(blocks + WideBvhNode::first_block(ref))
                         : reinterpret_cast<const char*>(nodes + ref);
@@ -102,8 +90,7 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit,
     const typename K::TriRay tri_ray = K::prepare_triangles(ray);
     const float t_min = ray.t_min;
     float t_max = ray.t_max;
-    using Node = typename K::Node;
-    const Node* nodes = node_array(bvh, static_cast<const Node*>(nullptr));
+    const WideBvhNode* nodes = bvh.nodes.data();
     const TriangleBlock* blocks = bvh.blocks.data();
 
     WideStackEntry stack[kWideStackSize];
@@ -114,7 +101,7 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit,
     bool found = false;
     for (;;) {
         if (!WideBvhNode::is_leaf(current)) {
-            const Node& node = nodes[current];
+            const WideBvhNode& node = nodes[current];
             if constexpr (Count) ++counts->nodes;
             alignas(32) float t_enter[kWideBvhWidth];
             std::uint32_t mask = K::intersect_node(node, node_ray, t_min, t_max, t_enter);
