@@ -88,10 +88,7 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit,
                           [[maybe_unused]] glm::vec3* normal = nullptr) {
     if (bvh.nodes.empty() || !is_traceable(ray)) return false;
     const typename K::NodeRay node_ray = K::prepare_nodes(ray);
-    // Experiment: the leaf test's constants at the first leaf, so that a ray which leaves
-    // after node tests alone never pays for them (nor mispredicts their axis branches).
-    typename K::TriRay tri_ray;
-    bool tri_ready = false;
+    const typename K::TriRay tri_ray = K::prepare_triangles(ray);
     const float t_min = ray.t_min;
     float t_max = ray.t_max;
     const WideBvhNode* nodes = bvh.nodes.data();
@@ -171,10 +168,6 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit,
             const std::uint32_t first = WideBvhNode::first_block(current);
             const std::uint32_t end = first + WideBvhNode::block_count(current);
             if constexpr (Count) ++counts->leaves;
-            if (!tri_ready) {
-                tri_ray = K::prepare_triangles(ray);
-                tri_ready = true;
-            }
 #if LIBRT_ABLATION == 2
             // Measurement build: no leaf test (the node test and the walk alone).
             for (std::uint32_t b = end; b < end; ++b) {
