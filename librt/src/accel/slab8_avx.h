@@ -95,8 +95,8 @@ inline SlabRay8 prepare_slab8(const Ray& ray) {
 /// distances to t_enter (32-byte aligned) and the entry and exit vectors, a child being hit
 /// where enter <= exit; each kernel turns that into a bit mask its own way. An empty child
 /// (lo = +inf, hi = -inf) gets distances of +-inf, as in bbox.h's form, and is never hit.
-inline void slab_test8_regs(const WideBvhNode& node, const SlabRay8& r, float t_min, float t_max,
-                            __m256& enter, __m256& exit) {
+inline void slab_test8(const WideBvhNode& node, const SlabRay8& r, float t_min, float t_max,
+                       float* t_enter, __m256& enter, __m256& exit) {
     __m256 n[3], f[3];
     for (std::uint32_t a = 0; a < 3; ++a) {
         n[a] = _mm256_fmsub_ps(_mm256_load_ps(node.bounds[r.near[a]]), r.inv[a], r.near_oi[a]);
@@ -110,12 +110,6 @@ inline void slab_test8_regs(const WideBvhNode& node, const SlabRay8& r, float t_
     const __m256 f2 = _mm256_min_ps(f01, f[2]);
     exit = _mm256_min_ps(_mm256_mul_ps(f2, _mm256_set1_ps(1.0f + kSlabExitSlack)),
                          _mm256_set1_ps(t_max));
-}
-
-/// slab_test8_regs, the entry distances also stored to t_enter (32-byte aligned).
-inline void slab_test8(const WideBvhNode& node, const SlabRay8& r, float t_min, float t_max,
-                       float* t_enter, __m256& enter, __m256& exit) {
-    slab_test8_regs(node, r, t_min, t_max, enter, exit);
     _mm256_store_ps(t_enter, enter);
 }
 

@@ -14,7 +14,6 @@
 #if defined(LIBRT_HAVE_X86_KERNELS)
 #include "block4_sse.h"
 #include "slab8_avx.h"
-#include "slab8_order.h"
 #include "wide_traversal.h"
 
 #include <immintrin.h>
@@ -40,18 +39,6 @@ struct Avx2Kernel : Block4Triangles, Slab8Nodes {
         slab_test8(node, r, t_min, t_max, t_enter, enter, exit);
         return static_cast<std::uint32_t>(
             _mm256_movemask_ps(_mm256_cmp_ps(enter, exit, _CMP_LE_OQ)));
-    }
-
-    /// Experiment (closest hit): see order_children8 (slab8_order.h).
-    static bool visit_closest(const WideBvhNode& node, const NodeRay& r, float t_min,
-                              float t_max, const WideBvhNode* nodes,
-                              const TriangleBlock* blocks, WideStackEntry* stack,
-                              std::uint32_t& sp, std::uint32_t& current) {
-        __m256 enter, exit;
-        slab_test8_regs(node, r, t_min, t_max, enter, exit);
-        const auto mask = static_cast<std::uint32_t>(
-            _mm256_movemask_ps(_mm256_cmp_ps(enter, exit, _CMP_LE_OQ)));
-        return order_children8(node, enter, mask, nodes, blocks, stack, sp, current);
     }
 };
 static_assert(WideKernel<Avx2Kernel>);

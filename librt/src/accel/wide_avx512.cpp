@@ -11,12 +11,10 @@
 #if defined(LIBRT_HAVE_X86_KERNELS)
 #include "block4_sse.h"
 #include "slab8_avx.h"
-#include "slab8_order.h"
 #include "wide_traversal.h"
 
 #include <immintrin.h>
 
-#include <bit>
 #include <cstdint>
 
 #if defined(__clang__)
@@ -38,18 +36,6 @@ struct Avx512Kernel : Block4Triangles, Slab8Nodes {
         __m256 enter, exit;
         slab_test8(node, r, t_min, t_max, t_enter, enter, exit);
         return static_cast<std::uint32_t>(_mm256_cmp_ps_mask(enter, exit, _CMP_LE_OQ));
-    }
-
-    /// Experiment (closest hit): see order_children8 (slab8_order.h).
-    static bool visit_closest(const WideBvhNode& node, const NodeRay& r, float t_min,
-                              float t_max, const WideBvhNode* nodes,
-                              const TriangleBlock* blocks, WideStackEntry* stack,
-                              std::uint32_t& sp, std::uint32_t& current) {
-        __m256 enter, exit;
-        slab_test8_regs(node, r, t_min, t_max, enter, exit);
-        const auto mask =
-            static_cast<std::uint32_t>(_mm256_cmp_ps_mask(enter, exit, _CMP_LE_OQ));
-        return order_children8(node, enter, mask, nodes, blocks, stack, sp, current);
     }
 };
 static_assert(WideKernel<Avx512Kernel>);

@@ -104,18 +104,6 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit,
         if (!WideBvhNode::is_leaf(current)) {
             const WideBvhNode& node = nodes[current];
             if constexpr (Count) ++counts->nodes;
-            // Experiment: a kernel may visit a closest-hit node itself (hit children ordered
-            // in registers); it returns false when no child is entered.
-            if constexpr (!AnyHit && !Count &&
-                          requires(std::uint32_t& u) {
-                              K::visit_closest(node, node_ray, t_min, t_max, nodes, blocks,
-                                               stack, u, u);
-                          }) {
-                if (K::visit_closest(node, node_ray, t_min, t_max, nodes, blocks, stack, sp,
-                                     current))
-                    continue;
-                goto pop;
-            }
             alignas(32) float t_enter[kWideBvhWidth];
             std::uint32_t mask = K::intersect_node(node, node_ray, t_min, t_max, t_enter);
             if (mask != 0) {
@@ -201,7 +189,6 @@ inline bool traverse_wide(const WideBvh& bvh, const Ray& ray, PrimitiveHit* hit,
             }
         }
         // Take the next deferred child the ray enters before the nearest hit so far.
-    pop:
         for (;;) {
             if (sp == 0) {
                 if (found && hit) *hit = {t_max, hit_u, hit_v, blocks[hit_block].id[hit_lane]};
