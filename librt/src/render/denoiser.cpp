@@ -212,13 +212,16 @@ struct Planes {
     std::vector<float> albedo_tol;
     std::vector<float> normal_tol;  ///< the same for the normal
 
-    /// Whether what is averaged (value_a, value_b) is 0 in padded rows [y0, y1): then so is
-    /// the filter's output of the rows whose neighbourhoods lie within (sum of w x 0).
-    [[nodiscard]] bool zero_rows(int y0, int y1) const {
-        const std::size_t from = at(-pad, y0), to = at(-pad, y1);
+    /// Whether what is averaged (value_a, value_b) is 0 in padded pixels [x0, x1) x [y0, y1):
+    /// then so is the filter's output of the pixels whose neighbourhoods lie within (sum of
+    /// w x 0).
+    [[nodiscard]] bool zero_block(int x0, int x1, int y0, int y1) const {
         for (int c = 0; c < 3; ++c) {
-            for (std::size_t i = from; i < to; ++i)
-                if (value_a[c][i] != 0.0f || value_b[c][i] != 0.0f) return false;
+            for (int y = y0; y < y1; ++y) {
+                const std::size_t from = at(x0, y), to = at(x1, y);
+                for (std::size_t i = from; i < to; ++i)
+                    if (value_a[c][i] != 0.0f || value_b[c][i] != 0.0f) return false;
+            }
         }
         return true;
     }
@@ -981,9 +984,11 @@ Image filter_halves(const DenoiserInput& input, const Image& albedo,
                 const int y0 = (t / columns) * kStrip, y1 = std::min(y0 + kStrip, planes.height);
                 const int x0 = (t % columns) * kTileWidth;
                 const int x1 = std::min(x0 + kTileWidth, planes.width);
-                // A strip far from anything to average (the emission away from any
+                // A tile far from anything to average (the emission away from any
                 // emitter) is 0 plus the emission: the same bits, without the filter.
-                if (planes.zero_rows(y0 - planes.pad, y1 + planes.pad)) {
+                // Per tile, not per strip: an emitter fills few of its strip's tiles.
+                if (planes.zero_block(x0 - planes.pad, x1 + planes.pad, y0 - planes.pad,
+                                      y1 + planes.pad)) {
                     for (int y = y0; y < y1; ++y)
                         for (int x = x0; x < x1; ++x) {
                             const std::size_t i =
