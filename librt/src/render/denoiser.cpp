@@ -255,9 +255,12 @@ struct Estimates {
 };
 
 /// The planes of `in`, with `albedo` in place of in.albedo (the prefiltered albedo) as the
-/// feature and what the result is multiplied back by.
+/// feature and what the result is multiplied back by. `alone` (a layer filtered on its own
+/// halves: albedo 1, normal 0, see denoise): without the feature planes, whose term is 0
+/// for every pair of pixels, and the albedo halves' planes, which are 1. The ratio planes
+/// for the first-order filter only.
 Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserSettings& settings,
-                   PixelTerms& terms) {
+                   bool first_order, bool alone, PixelTerms& terms) {
     const int w = in.beauty.width, h = in.beauty.height;
     const std::size_t n = in.beauty.pixels.size();
     terms.modulation.resize(n);
@@ -295,18 +298,22 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserS
     // With a share s of the samples in a: Var(a) = sigma^2 / (s n), Var(b) = sigma^2 /
     // ((1 - s) n), and E[(a - b)^2] = Var(a) + Var(b); so Var(a) = (1 - s) E[(a - b)^2].
     const std::vector<glm::vec3> smooth = box_mean(spread, w, h, kVarianceRadius);
-    const std::vector<glm::vec3> feature_var = box_mean(feature_spread, w, h, kVarianceRadius);
-    std::vector<glm::vec3> va(n), vb(n), fv_albedo(n), fv_normal(n);
+    std::vector<glm::vec3> va(n), vb(n);
     for (std::size_t i = 0; i < n; ++i) {
         va[i] = smooth[i] * (1.0f - terms.share[i]);
         vb[i] = smooth[i] * terms.share[i];
+    }
+    const std::vector<glm::vec3> feature_var =
+        alone ? std::vector<glm::vec3>() : box_mean(feature_spread, w, h, kVarianceRadius);
+    std::vector<glm::vec3> fv_albedo(feature_var.size()), fv_normal(feature_var.size());
+    for (std::size_t i = 0; i < feature_var.size(); ++i) {
         fv_albedo[i] = glm::vec3(feature_var[i].x);
         fv_normal[i] = glm::vec3(feature_var[i].y);
     }
     std::vector<glm::vec3> tol_albedo(n), tol_normal(n);
     const float sa2 = settings.albedo_sigma * settings.albedo_sigma;
     const float sn2 = settings.normal_sigma * settings.normal_sigma;
-    for (int y = 0; y < h; ++y) {
+    for (int y = 0; y < (alone ? 0 : h); ++y) {
         for (int x = 0; x < w; ++x) {
             const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
             float ga = 0.0f, gn = 0.0f;
@@ -358,17 +365,20 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserS
         ma[i] = glm::max(albedo_a.pixels[i], glm::vec3(kModulationFloor));
         mb[i] = glm::max(albedo_b.pixels[i], glm::vec3(kModulationFloor));
     }
-    fill(p.albedo_a, ma);
-    fill(p.albedo_b, mb);
-    std::vector<glm::vec3> ya(n), yb(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        ya[i] = ra[i] / ma[i];
-        yb[i] = rb[i] / mb[i];
-    }
-    fill(p.ratio_a, ya);
-    fill(p.ratio_b, yb);
     fill(p.var_a, va);
     fill(p.var_b, vb);
+    if (first_order) {
+        std::vector<glm::vec3> ya(n), yb(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            ya[i] = ra[i] / ma[i];
+            yb[i] = rb[i] / mb[i];
+        }
+        fill(p.ratio_a, ya);
+        fill(p.ratio_b, yb);
+    }
+    if (alone) return p;
+    fill(p.albedo_a, ma);
+    fill(p.albedo_b, mb);
     fill(p.albedo, albedo.pixels);
     fill(p.normal, in.normal.pixels);
     std::vector<float> one[3];
@@ -467,8 +477,8 @@ struct Quantum {
 /// Filters tiles [x0, x1) x [y0, y1); each thread has one.
 class StripFilter {
 public:
-    StripFilter(const Planes& planes, const DenoiserSettings& s, bool first_order)
-        : p_(planes), s_(s), first_order_(first_order) {
+    StripFilter(const Planes& planes, const DenoiserSettings& s, bool first_order, bool alone)
+        : p_(planes), s_(s), first_order_(first_order), alone_(alone) {
         const int f = s.patch_radius;
         const std::size_t rows = std::size_t(kStrip + 2 * f);
         const std::size_t width = std::size_t(round_to_lanes(kTileWidth + 2 * f));
@@ -589,7 +599,8 @@ private:
     }
 
     /// Plane k of the sums (zero order: half h's sums of w L in 6 h + c, of w m in
-    /// 6 h + 3 + c; first order: half h's regression sums from h kRegressionSums).
+    /// 6 h + 3 + c, alone_ of w in 6 h + 3; first order: half h's regression sums from
+    /// h kRegressionSums).
     [[nodiscard]] float* sum(int k) { return &sums_[std::size_t(k) * kTilePixels]; }
 
     /// The zero-order output of half h at tile pixel t: the neighbours' radiance over
@@ -598,7 +609,7 @@ private:
     /// weights never sum to 0.
     [[nodiscard]] glm::vec3 ratio(int h, std::size_t t) {
         glm::vec3 v;
-        for (int c = 0; c < 3; ++c) v[c] = sum(6 * h + c)[t] / sum(6 * h + 3 + c)[t];
+        for (int c = 0; c < 3; ++c) v[c] = sum(6 * h + c)[t] / sum(6 * h + 3 + (alone_ ? 0 : c))[t];
         return v;
     }
 
@@ -781,6 +792,11 @@ private:
         const int nv = round_to_lanes(n);
         box_x(f, col_a, nv, quantum_.unit, ca);
         box_x(f, col_b, nv, quantum_.unit, cb);
+        const std::size_t row = j * w + std::size_t(x0 - x0t);
+        if (alone_) {
+            accumulate_alone(ca, cb, sum(0) + row, q0, n, nv);
+            return;
+        }
         // Feature distances: the squared difference, less what the features' own noise
         // explains, over sigma^2 widened by that noise (where a pixel's albedo or normal is
         // itself a noisy mix, an edge inside it, the features cannot tell it apart and the
@@ -802,7 +818,6 @@ private:
             ca[x] = exp_neg((ca[x] > 0.0f ? ca[x] : 0.0f) + feature);
             cb[x] = exp_neg((cb[x] > 0.0f ? cb[x] : 0.0f) + feature);
         }
-        const std::size_t row = j * w + std::size_t(x0 - x0t);
         if (!first_order_) {
             // All twelve sums in one loop (planes kTilePixels apart: one pointer). g++ left
             // it scalar when it checked the pointers for overlap (callgrind: 16 % of the
@@ -839,6 +854,38 @@ private:
         }
         regress(0, ca, p_.ratio_a, q0, row, n, dx);
         regress(1, cb, p_.ratio_b, q0, row, n, dx);
+    }
+
+    /// accumulate's weights and zero-order sums for a layer filtered alone (alone_): its
+    /// feature term is 0 for every pair (albedo 1, normal 0: each feature difference and
+    /// noise is 0), so the weight is exp_neg of the patch distance alone, the same bits;
+    /// and its albedo is 1, so the sums of w m are the one sum of w (w x 1 = w exactly):
+    /// 8 sums instead of 12.
+    LIBRT_DENOISE_INLINE void accumulate_alone(float* ca, float* cb, float* sums, std::size_t q0,
+                                               int n, int nv) {
+        LIBRT_DENOISE_NO_ALIAS
+        for (int x = 0; x < nv; ++x) {
+            ca[x] = exp_neg(ca[x] > 0.0f ? ca[x] : 0.0f);
+            cb[x] = exp_neg(cb[x] > 0.0f ? cb[x] : 0.0f);
+        }
+        const float *qa0 = &p_.value_a[0][q0], *qa1 = &p_.value_a[1][q0],
+                    *qa2 = &p_.value_a[2][q0];
+        const float *qb0 = &p_.value_b[0][q0], *qb1 = &p_.value_b[1][q0],
+                    *qb2 = &p_.value_b[2][q0];
+        const auto at = [sums](int k, int x) -> float& {
+            return sums[std::size_t(k) * kTilePixels + std::size_t(x)];
+        };
+        LIBRT_DENOISE_NO_ALIAS
+        for (int x = 0; x < n; ++x) {
+            at(0, x) += ca[x] * qa0[x];
+            at(1, x) += ca[x] * qa1[x];
+            at(2, x) += ca[x] * qa2[x];
+            at(3, x) += ca[x];
+            at(6, x) += cb[x] * qb0[x];
+            at(7, x) += cb[x] * qb1[x];
+            at(8, x) += cb[x] * qb2[x];
+            at(9, x) += cb[x];
+        }
     }
 
     /// Half h's partial sums at this offset (w, w dx, w dx^2, w y, w y dx), from which
@@ -908,6 +955,7 @@ private:
     const Planes& p_;
     const DenoiserSettings& s_;
     bool first_order_ = false;
+    bool alone_ = false;  ///< a layer filtered on its own halves (make_planes)
     Quantum quantum_;
     std::vector<std::int32_t> dist_a_, dist_b_;      ///< per-pixel distances, tile + apron
     std::vector<std::int32_t> column_a_, column_b_;  ///< their box over y, one row
@@ -954,11 +1002,13 @@ void select_estimates(const Planes& planes, const PixelTerms& terms, const Estim
 
 /// The filter: `in`'s halves demodulated by their albedos, filtered with each other's
 /// weights (a first-order regression or, `first_order` false, a weighted mean), multiplied
-/// back by `albedo`, plus `emission` (0x0: none).
+/// back by `albedo`, plus `emission` (0x0: none). `alone`: a layer filtered on its own halves
+/// (albedo 1, normal 0, zero order; make_planes).
 Image filter_halves(const DenoiserInput& input, const Image& albedo,
-                    const DenoiserSettings& settings, const Image& emission, bool first_order) {
+                    const DenoiserSettings& settings, const Image& emission, bool first_order,
+                    bool alone) {
     PixelTerms terms;
-    const Planes planes = make_planes(input, albedo, settings, terms);
+    const Planes planes = make_planes(input, albedo, settings, first_order, alone, terms);
     terms.emission = emission.pixels;
     Image out(planes.width, planes.height);
     Estimates estimates;
@@ -979,7 +1029,7 @@ Image filter_halves(const DenoiserInput& input, const Image& albedo,
     std::mutex failure_mutex;
     const auto work = [&] {
         try {
-            StripFilter filter(planes, settings, first_order);
+            StripFilter filter(planes, settings, first_order, alone);
             for (int t = next.fetch_add(1); t < tiles; t = next.fetch_add(1)) {
                 const int y0 = (t / columns) * kStrip, y1 = std::min(y0 + kStrip, planes.height);
                 const int x0 = (t % columns) * kTileWidth;
@@ -1204,7 +1254,7 @@ Image denoise(const DenoiserInput& input, const DenoiserSettings& settings) {
         alone.share_a = input.share_a;
         alone.albedo = ones;
         alone.normal = Image(w, h);
-        return filter_halves(alone, ones, with, Image(), false);
+        return filter_halves(alone, ones, with, Image(), false, true);
     };
     // The albedo is prefiltered first, as Rousselle et al. 2013 and NFOR prefilter their
     // features: where a texture or an outline crosses a pixel, its albedo is the share of
@@ -1230,7 +1280,7 @@ Image denoise(const DenoiserInput& input, const DenoiserSettings& settings) {
         if (emits(input.emission_a) || emits(input.emission_b))
             emission = filter_alone(input.emission_a, input.emission_b, settings);
     }
-    Image out = filter_halves(input, albedo, settings, emission, settings.first_order);
+    Image out = filter_halves(input, albedo, settings, emission, settings.first_order, false);
     if (settings.max_standard_errors > 0.0f) bound_by_own_noise(input, settings, out);
     return out;
 }
