@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <exception>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <system_error>
@@ -77,6 +78,10 @@ constexpr float kFewSamplesShare = 0.25f;
 /// computes again: 6 rows more per 32 rather than per 16; the same bits either way: the
 /// patch sums are exact, Quantum).
 constexpr int kStrip = 32;
+/// The same for a layer filtered alone (the albedo's prefilter, the emission): its 8 planes
+/// of sums are a fifth of the first-order filter's 50, so its tiles can be 4 times as tall
+/// in the same cache (8 x 64 x 128 floats, 256 KB), and the apron is 6 rows per 128.
+constexpr int kAloneStrip = 128;
 
 /// The albedo's prefilter: a smaller neighbourhood (the albedo's noise is only at edges,
 /// where neighbours along the edge are near) and Rousselle et al. 2013's k = 1 for their
@@ -440,8 +445,6 @@ constexpr float kMinCentreWeight = 1e-6f;
 /// 2 (kRegressionSums + kPartialSums) + 2 planes, 400 KB) stay in the core's cache while
 /// every neighbour offset is added to them.
 constexpr int kTileWidth = 64;
-/// Pixels of a tile's plane of sums.
-constexpr std::size_t kTilePixels = std::size_t(kStrip) * std::size_t(kTileWidth);
 
 /// n rounded up to a multiple of kLanes.
 constexpr int round_to_lanes(int n) { return (n + kLanes - 1) / kLanes * kLanes; }
@@ -474,13 +477,19 @@ struct Quantum {
     }
 };
 
-/// Filters tiles [x0, x1) x [y0, y1); each thread has one.
+/// Filters tiles [x0, x1) x [y0, y1) of up to Strip rows; each thread has one. Strip a
+/// constant, so that the planes of sums are a constant apart (the loops address them from
+/// one pointer).
+template <int Strip>
 class StripFilter {
 public:
+    /// Pixels of a tile's plane of sums.
+    static constexpr std::size_t kTilePixels = std::size_t(Strip) * std::size_t(kTileWidth);
+
     StripFilter(const Planes& planes, const DenoiserSettings& s, bool first_order, bool alone)
         : p_(planes), s_(s), first_order_(first_order), alone_(alone) {
         const int f = s.patch_radius;
-        const std::size_t rows = std::size_t(kStrip + 2 * f);
+        const std::size_t rows = std::size_t(Strip + 2 * f);
         const std::size_t width = std::size_t(round_to_lanes(kTileWidth + 2 * f));
         dist_a_.resize(rows * width);
         dist_b_.resize(dist_a_.size());
@@ -490,9 +499,11 @@ public:
         column_b_.resize(column_a_.size());
         quantum_ = Quantum(s);
         // First order: each half's regression sums, each half's largest weight, each half's
-        // partial sums (regress).
-        sums_.resize(kTilePixels *
-                     std::size_t(first_order ? 2 * kRegressionSums + 2 + 2 * kPartialSums : 12));
+        // partial sums (regress); alone: per half 3 sums of w L and one of w.
+        sums_.resize(kTilePixels * std::size_t(first_order ? 2 * kRegressionSums + 2 +
+                                                                 2 * kPartialSums
+                                                           : alone ? 8
+                                                                   : 12));
         for (std::vector<float>* v : {&patch_a_, &patch_b_}) v->resize(std::size_t(kTileWidth));
     }
 
@@ -599,8 +610,8 @@ private:
     }
 
     /// Plane k of the sums (zero order: half h's sums of w L in 6 h + c, of w m in
-    /// 6 h + 3 + c, alone_ of w in 6 h + 3; first order: half h's regression sums from
-    /// h kRegressionSums).
+    /// 6 h + 3 + c; alone_: of w L in 4 h + c, of w in 4 h + 3; first order: half h's
+    /// regression sums from h kRegressionSums).
     [[nodiscard]] float* sum(int k) { return &sums_[std::size_t(k) * kTilePixels]; }
 
     /// The zero-order output of half h at tile pixel t: the neighbours' radiance over
@@ -609,7 +620,10 @@ private:
     /// weights never sum to 0.
     [[nodiscard]] glm::vec3 ratio(int h, std::size_t t) {
         glm::vec3 v;
-        for (int c = 0; c < 3; ++c) v[c] = sum(6 * h + c)[t] / sum(6 * h + 3 + (alone_ ? 0 : c))[t];
+        for (int c = 0; c < 3; ++c) {
+            v[c] = alone_ ? sum(4 * h + c)[t] / sum(4 * h + 3)[t]
+                          : sum(6 * h + c)[t] / sum(6 * h + 3 + c)[t];
+        }
         return v;
     }
 
@@ -881,10 +895,10 @@ private:
             at(1, x) += ca[x] * qa1[x];
             at(2, x) += ca[x] * qa2[x];
             at(3, x) += ca[x];
-            at(6, x) += cb[x] * qb0[x];
-            at(7, x) += cb[x] * qb1[x];
-            at(8, x) += cb[x] * qb2[x];
-            at(9, x) += cb[x];
+            at(4, x) += cb[x] * qb0[x];
+            at(5, x) += cb[x] * qb1[x];
+            at(6, x) += cb[x] * qb2[x];
+            at(7, x) += cb[x];
         }
     }
 
@@ -1017,7 +1031,8 @@ Image filter_halves(const DenoiserInput& input, const Image& albedo,
              {&estimates.mean_a, &estimates.mean_b, &estimates.fit_a, &estimates.fit_b})
             v->resize(out.pixels.size());
     }
-    const int strips = (planes.height + kStrip - 1) / kStrip;
+    const int strip = alone ? kAloneStrip : kStrip;
+    const int strips = (planes.height + strip - 1) / strip;
     const int columns = (planes.width + kTileWidth - 1) / kTileWidth;
     const int tiles = strips * columns;
     if (tiles == 0) return out;
@@ -1027,11 +1042,10 @@ Image filter_halves(const DenoiserInput& input, const Image& albedo,
     std::atomic<int> next{0};
     std::exception_ptr failure;
     std::mutex failure_mutex;
-    const auto work = [&] {
+    const auto work_on = [&](auto filter) {
         try {
-            StripFilter filter(planes, settings, first_order, alone);
             for (int t = next.fetch_add(1); t < tiles; t = next.fetch_add(1)) {
-                const int y0 = (t / columns) * kStrip, y1 = std::min(y0 + kStrip, planes.height);
+                const int y0 = (t / columns) * strip, y1 = std::min(y0 + strip, planes.height);
                 const int x0 = (t % columns) * kTileWidth;
                 const int x1 = std::min(x0 + kTileWidth, planes.width);
                 // A tile far from anything to average (the emission away from any
@@ -1052,7 +1066,22 @@ Image filter_halves(const DenoiserInput& input, const Image& albedo,
                         }
                     continue;
                 }
-                filter.run(x0, x1, y0, y1, terms, estimates, out);
+                filter->run(x0, x1, y0, y1, terms, estimates, out);
+            }
+        } catch (...) {  // bad_alloc: rethrown on the caller's thread
+            const std::lock_guard<std::mutex> lock(failure_mutex);
+            if (!failure) failure = std::current_exception();
+            next.store(tiles);
+        }
+    };
+    const auto work = [&] {
+        try {
+            if (alone) {
+                work_on(std::make_unique<StripFilter<kAloneStrip>>(planes, settings, first_order,
+                                                                   alone));
+            } else {
+                work_on(
+                    std::make_unique<StripFilter<kStrip>>(planes, settings, first_order, alone));
             }
         } catch (...) {  // bad_alloc: rethrown on the caller's thread
             const std::lock_guard<std::mutex> lock(failure_mutex);
