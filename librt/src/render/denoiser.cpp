@@ -78,10 +78,12 @@ constexpr float kFewSamplesShare = 0.25f;
 /// computes again: 6 rows more per 32 rather than per 16; the same bits either way: the
 /// patch sums are exact, Quantum).
 constexpr int kStrip = 32;
-/// The same for a layer filtered alone (the albedo's prefilter, the emission): its 8 planes
-/// of sums are a fifth of the first-order filter's 50, so its tiles can be 4 times as tall
-/// in the same cache (8 x 64 x 128 floats, 256 KB), and the apron is 6 rows per 128.
-constexpr int kAloneStrip = 128;
+/// The same for the albedo's prefilter (a layer filtered alone): its 8 planes of sums are a
+/// sixth of the first-order filter's 50, so its tiles can be 4 times as tall in the same
+/// cache (8 x 64 x 128 floats, 256 KB), and the apron is 6 rows per 128. Not the emission's:
+/// it is 0 but near emitters, and its tiles with nothing to average are skipped (callgrind:
+/// with 128 rows for it too, cornell_pbr.glb's emission filtered 3 times the pixels).
+constexpr int kTallStrip = 128;
 
 /// The albedo's prefilter: a smaller neighbourhood (the albedo's noise is only at edges,
 /// where neighbours along the edge are near) and Rousselle et al. 2013's k = 1 for their
@@ -1026,10 +1028,10 @@ void select_estimates(const Planes& planes, const PixelTerms& terms, const Estim
 /// The filter: `in`'s halves demodulated by their albedos, filtered with each other's
 /// weights (a first-order regression or, `first_order` false, a weighted mean), multiplied
 /// back by `albedo`, plus `emission` (0x0: none). `alone`: a layer filtered on its own halves
-/// (albedo 1, normal 0, zero order; make_planes).
+/// (albedo 1, normal 0, zero order; make_planes); `tall`: in tiles of kTallStrip rows.
 Image filter_halves(const DenoiserInput& input, const Image& albedo,
                     const DenoiserSettings& settings, const Image& emission, bool first_order,
-                    bool alone) {
+                    bool alone, bool tall) {
     PixelTerms terms;
     const Planes planes = make_planes(input, albedo, settings, first_order, alone, terms);
     terms.emission = emission.pixels;
@@ -1040,7 +1042,7 @@ Image filter_halves(const DenoiserInput& input, const Image& albedo,
              {&estimates.mean_a, &estimates.mean_b, &estimates.fit_a, &estimates.fit_b})
             v->resize(out.pixels.size());
     }
-    const int strip = alone ? kAloneStrip : kStrip;
+    const int strip = tall ? kTallStrip : kStrip;
     const int strips = (planes.height + strip - 1) / strip;
     const int columns = (planes.width + kTileWidth - 1) / kTileWidth;
     const int tiles = strips * columns;
@@ -1085,9 +1087,9 @@ Image filter_halves(const DenoiserInput& input, const Image& albedo,
     };
     const auto work = [&] {
         try {
-            if (alone) {
-                work_on(std::make_unique<StripFilter<kAloneStrip>>(planes, settings, first_order,
-                                                                   alone));
+            if (tall) {
+                work_on(std::make_unique<StripFilter<kTallStrip>>(planes, settings, first_order,
+                                                                  alone));
             } else {
                 work_on(
                     std::make_unique<StripFilter<kStrip>>(planes, settings, first_order, alone));
@@ -1284,7 +1286,7 @@ Image denoise(const DenoiserInput& input, const DenoiserSettings& settings) {
     // A layer filtered on its own two halves alone (no features, nothing to demodulate).
     // Equal halves come back unchanged.
     const auto filter_alone = [&](const Image& half_a, const Image& half_b,
-                                  const DenoiserSettings& with) {
+                                  const DenoiserSettings& with, bool tall) {
         DenoiserInput alone;
         alone.beauty = half_a;  // its size; the filter reads the halves
         alone.half_a = half_a;
@@ -1292,7 +1294,7 @@ Image denoise(const DenoiserInput& input, const DenoiserSettings& settings) {
         alone.share_a = input.share_a;
         alone.albedo = ones;
         alone.normal = Image(w, h);
-        return filter_halves(alone, ones, with, Image(), false, true);
+        return filter_halves(alone, ones, with, Image(), false, true, tall);
     };
     // The albedo is prefiltered first, as Rousselle et al. 2013 and NFOR prefilter their
     // features: where a texture or an outline crosses a pixel, its albedo is the share of
@@ -1303,7 +1305,7 @@ Image denoise(const DenoiserInput& input, const DenoiserSettings& settings) {
     prefilter.strength = kPrefilterStrength;
     const Image albedo = input.albedo_a.pixels.empty()
                              ? input.albedo
-                             : filter_alone(input.albedo_a, input.albedo_b, prefilter);
+                             : filter_alone(input.albedo_a, input.albedo_b, prefilter, true);
     // The emission is filtered apart from the light reflected (DenoiserInput::emission_a):
     // an emitter's pixels average only emission, whose noise is its edges' coverage, and
     // give none of it to their neighbours' reflected light. With the radiance's settings:
@@ -1316,9 +1318,10 @@ Image denoise(const DenoiserInput& input, const DenoiserSettings& settings) {
                                [](const glm::vec3& v) { return v != glm::vec3(0.0f); });
         };
         if (emits(input.emission_a) || emits(input.emission_b))
-            emission = filter_alone(input.emission_a, input.emission_b, settings);
+            emission = filter_alone(input.emission_a, input.emission_b, settings, false);
     }
-    Image out = filter_halves(input, albedo, settings, emission, settings.first_order, false);
+    Image out =
+        filter_halves(input, albedo, settings, emission, settings.first_order, false, false);
     if (settings.max_standard_errors > 0.0f) bound_by_own_noise(input, settings, out);
     return out;
 }
