@@ -109,8 +109,7 @@ constexpr int kLanes = 8;
     const float t = x * 1.44269504f;  // -log2 of the result
     // t >= 0: truncation is floor, and SSE2 converts by truncation (std::floor would be a
     // library call without SSE4.1, which stops the loop's vectorisation).
-    const std::int32_t power = static_cast<std::int32_t>(t);
-    const float whole = static_cast<float>(power);
+    const float whole = static_cast<float>(static_cast<std::int32_t>(t));
     const float f = whole - t;  // in (-1, 0]: the result is 2^f x 2^-whole
     // 2^f on [-1, 0]: the polynomial through its values at the 5 Chebyshev nodes of the
     // interval (near-minimax; the degree-6 Taylor series of e^(f ln 2) used before erred
@@ -118,9 +117,8 @@ constexpr int kLanes = 8;
     const float p =
         0.99999804f +
         f * (0.693048934f + f * (0.239430604f + f * (0.0532131178f + f * 0.00683515473f)));
-    // 127 - power >= 11: a normal float. In integers (a float subtraction and a conversion
-    // before): the same value, whole being power exactly.
-    return p * std::bit_cast<float>((127 - power) << 23);
+    const auto exponent = static_cast<std::int32_t>(127.0f - whole);  // >= 11: a normal float
+    return p * std::bit_cast<float>(exponent << 23);
 }
 
 void check_layer(const Image& layer, const Image& beauty, const char* name) {
@@ -218,8 +216,6 @@ struct Planes {
     /// of the albedo (a texture, an object's outline) the feature is not trusted to tell
     /// neighbours apart, and the radiance's patch distance decides (Rousselle, Manzi &
     /// Zwicker 2013 bound the feature distance by the feature's gradient the same way).
-    /// Stored plus albedo_var: p's part of the feature distance's denominator, tol + Var p
-    /// + Var q, summed in that order (the same bits as adding Var p per offset).
     std::vector<float> albedo_tol;
     std::vector<float> normal_tol;  ///< the same for the normal
 
@@ -400,10 +396,6 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserS
     p.albedo_var = std::move(one[0]);
     fill(one, fv_normal);
     p.normal_var = std::move(one[0]);
-    for (std::size_t i = 0; i < n; ++i) {  // Planes::albedo_tol
-        tol_albedo[i] += fv_albedo[i];
-        tol_normal[i] += fv_normal[i];
-    }
     fill(one, tol_albedo);
     p.albedo_tol = std::move(one[0]);
     fill(one, tol_normal);
@@ -845,9 +837,8 @@ private:
             const float ln = vnp[q] < vnp[x] ? vnp[q] : vnp[x];
             const float ea = fa - (vap[x] + la);
             const float en = fn - (vnp[x] + ln);
-            // tap[x] is tol + Var p (Planes::albedo_tol).
-            const float feature = (ea > 0.0f ? ea : 0.0f) / (tap[x] + vap[q]) +
-                                  (en > 0.0f ? en : 0.0f) / (tnp[x] + vnp[q]);
+            const float feature = (ea > 0.0f ? ea : 0.0f) / (tap[x] + vap[x] + vap[q]) +
+                                  (en > 0.0f ? en : 0.0f) / (tnp[x] + vnp[x] + vnp[q]);
             // exp_neg's argument is >= 0: the feature term is, and so is max(patch, 0).
             ca[x] = exp_neg((ca[x] > 0.0f ? ca[x] : 0.0f) + feature);
             cb[x] = exp_neg((cb[x] > 0.0f ? cb[x] : 0.0f) + feature);
