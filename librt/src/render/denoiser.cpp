@@ -528,10 +528,9 @@ public:
         quantum_ = Quantum(s);
         // First order: each half's regression sums, each half's largest weight, each half's
         // partial sums (regress); alone: per half 3 sums of w L and one of w.
-        sums_.resize(kTilePixels * std::size_t(first_order ? 2 * kRegressionSums + 2 +
-                                                                 2 * kPartialSums
-                                                           : alone ? 8
-                                                                   : 12));
+        int sum_planes = alone ? 8 : 12;
+        if (first_order) sum_planes = 2 * kRegressionSums + 2 + 2 * kPartialSums;
+        sums_.resize(kTilePixels * std::size_t(sum_planes));
         for (std::vector<float>* v : {&patch_a_, &patch_b_}) v->resize(std::size_t(kTileWidth));
     }
 
@@ -916,10 +915,8 @@ private:
             ca[x] = exp_neg(ca[x] > 0.0f ? ca[x] : 0.0f);
             cb[x] = exp_neg(cb[x] > 0.0f ? cb[x] : 0.0f);
         }
-        const float *qa0 = &p_.value_a[0][q0], *qa1 = &p_.value_a[1][q0],
-                    *qa2 = &p_.value_a[2][q0];
-        const float *qb0 = &p_.value_b[0][q0], *qb1 = &p_.value_b[1][q0],
-                    *qb2 = &p_.value_b[2][q0];
+        const float *qa0 = &p_.value_a[0][q0], *qa1 = &p_.value_a[1][q0], *qa2 = &p_.value_a[2][q0];
+        const float *qb0 = &p_.value_b[0][q0], *qb1 = &p_.value_b[1][q0], *qb2 = &p_.value_b[2][q0];
         const auto at = [sums](int k, int x) -> float& {
             return sums[std::size_t(k) * kTilePixels + std::size_t(x)];
         };
