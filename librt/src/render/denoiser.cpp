@@ -82,7 +82,7 @@ constexpr int kStrip = 32;
 /// sixth of the first-order filter's 50, so its tiles can be 4 times as tall in the same
 /// cache (8 x 64 x 128 floats, 256 KB), and the apron is 6 rows per 128. Not the emission's:
 /// it is 0 but near emitters, and its tiles with nothing to average are skipped (callgrind:
-/// with 128 rows for it too, cornell_pbr.glb's emission filtered 3 times the pixels).
+/// with 128 rows for it too, cornell_pbr.glb's emission filter took 4 times the instructions).
 constexpr int kTallStrip = 128;
 
 /// The albedo's prefilter: a smaller neighbourhood (the albedo's noise is only at edges,
