@@ -335,6 +335,46 @@ TEST(Denoiser, SameBitsForAnyThreadCount) {
     }
 }
 
+TEST(Denoiser, SameBitsForAnyThreadCountWithAlbedoHalvesAndEmission) {
+    // The albedo's prefilter and the emission's filter run in tiles of their own (the
+    // prefilter's 128 rows tall, the emission's skipped far from the emitter): an image of
+    // several such strips and tile columns, noisy albedo halves and a small noisy emitter,
+    // must give the same bits whichever thread takes which tile.
+    const int w = 100, h = 280;
+    Image albedo, normal;
+    textured_features(w, h, albedo, normal);
+    DenoiserInput in = noisy_halves(albedo, albedo, normal, 0.5f, 5);
+    Pcg32 rng(9, 1);
+    in.albedo_a = in.albedo_b = albedo;
+    in.emission_a = in.emission_b = Image(w, h);
+    for (std::size_t i = 0; i < albedo.pixels.size(); ++i) {
+        in.albedo_a.pixels[i] *= 0.8f + 0.4f * rng.next_float();
+        in.albedo_b.pixels[i] *= 0.8f + 0.4f * rng.next_float();
+    }
+    for (int y = 200; y < 206; ++y) {
+        for (int x = 20; x < 26; ++x) {
+            const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
+            in.emission_a.pixels[i] = glm::vec3(4.0f + rng.next_float());
+            in.emission_b.pixels[i] = glm::vec3(4.0f + rng.next_float());
+            in.half_a.pixels[i] += in.emission_a.pixels[i];
+            in.half_b.pixels[i] += in.emission_b.pixels[i];
+            in.beauty.pixels[i] = 0.5f * (in.half_a.pixels[i] + in.half_b.pixels[i]);
+        }
+    }
+    DenoiserSettings s;
+    s.threads = 1;
+    const Image one = denoise(in, s);
+    for (const int threads : {2, 3}) {
+        s.threads = threads;
+        const Image many = denoise(in, s);
+        ASSERT_EQ(many.pixels.size(), one.pixels.size());
+        EXPECT_EQ(std::memcmp(many.pixels.data(), one.pixels.data(),
+                              one.pixels.size() * sizeof(glm::vec3)),
+                  0)
+            << threads << " threads";
+    }
+}
+
 TEST(Denoiser, BadInputAndSettingsNameWhatIsWrong) {
     Image albedo, normal;
     textured_features(8, 6, albedo, normal);

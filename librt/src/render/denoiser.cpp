@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <exception>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <system_error>
@@ -77,6 +78,12 @@ constexpr float kFewSamplesShare = 0.25f;
 /// computes again: 6 rows more per 32 rather than per 16; the same bits either way: the
 /// patch sums are exact, Quantum).
 constexpr int kStrip = 32;
+/// The same for the albedo's prefilter (a layer filtered alone): its 8 planes of sums are a
+/// sixth of the first-order filter's 50, so its tiles can be 4 times as tall in the same
+/// cache (8 x 64 x 128 floats, 256 KB), and the apron is 6 rows per 128. Not the emission's:
+/// it is 0 but near emitters, and its tiles with nothing to average are skipped (callgrind:
+/// with 128 rows for it too, cornell_pbr.glb's emission filter took 4 times the instructions).
+constexpr int kTallStrip = 128;
 
 /// The albedo's prefilter: a smaller neighbourhood (the albedo's noise is only at edges,
 /// where neighbours along the edge are near) and Rousselle et al. 2013's k = 1 for their
@@ -159,24 +166,47 @@ void check_input(const DenoiserInput& in) {
     }
 }
 
-/// Mean of `v` over the (2r + 1)^2 box around each pixel, clipped to the image.
-std::vector<glm::vec3> box_mean(const std::vector<glm::vec3>& v, int width, int height, int r) {
+/// Mean of `v` over the (2R + 1)^2 box around each pixel, clipped to the image. Each
+/// pixel's sum runs over the box's columns from the left (its row sums: from the top), from
+/// 0, and is divided by its count. The pixels at least R from the left and right edges in
+/// one loop over the row's floats, R a constant so that the loop vectorises (glm's vec3 per
+/// pixel was scalar: callgrind, 1.5 % of the denoiser's instructions at 240 x 135); each
+/// float is the same sum in the same order, so the same bits.
+template <int R>
+std::vector<glm::vec3> box_mean(const std::vector<glm::vec3>& v, int width, int height) {
+    static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
     std::vector<glm::vec3> rows(v.size()), out(v.size());
+    const std::size_t floats = 3 * std::size_t(width);
     for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
+        const std::size_t first = std::size_t(y) * std::size_t(width);
+        const auto clipped = [&](int x) {  // a pixel within R of an edge
             glm::vec3 s(0.0f);
-            const int x0 = std::max(0, x - r), x1 = std::min(width - 1, x + r);
-            for (int i = x0; i <= x1; ++i) s += v[std::size_t(y) * std::size_t(width) + i];
-            rows[std::size_t(y) * std::size_t(width) + x] = s / float(x1 - x0 + 1);
+            const int x0 = std::max(0, x - R), x1 = std::min(width - 1, x + R);
+            for (int i = x0; i <= x1; ++i) s += v[first + std::size_t(i)];
+            rows[first + std::size_t(x)] = s / float(x1 - x0 + 1);
+        };
+        const int inner0 = std::min(R, width), inner1 = std::max(inner0, width - R);
+        for (int x = 0; x < inner0; ++x) clipped(x);
+        const float* in = &v[first].x;
+        float* o = &rows[first].x;
+        for (std::size_t k = 3 * std::size_t(inner0); k < 3 * std::size_t(inner1); ++k) {
+            float s = 0.0f;
+            for (int t = -R; t <= R; ++t) s += in[std::ptrdiff_t(k) + 3 * t];
+            o[k] = s / float(2 * R + 1);
         }
+        for (int x = inner1; x < width; ++x) clipped(x);
     }
+    std::vector<float> sum(floats);
     for (int y = 0; y < height; ++y) {
-        const int y0 = std::max(0, y - r), y1 = std::min(height - 1, y + r);
-        for (int x = 0; x < width; ++x) {
-            glm::vec3 s(0.0f);
-            for (int j = y0; j <= y1; ++j) s += rows[std::size_t(j) * std::size_t(width) + x];
-            out[std::size_t(y) * std::size_t(width) + x] = s / float(y1 - y0 + 1);
+        const int y0 = std::max(0, y - R), y1 = std::min(height - 1, y + R);
+        std::fill(sum.begin(), sum.end(), 0.0f);
+        for (int j = y0; j <= y1; ++j) {
+            const float* row = &rows[std::size_t(j) * std::size_t(width)].x;
+            for (std::size_t k = 0; k < floats; ++k) sum[k] += row[k];
         }
+        float* o = &out[std::size_t(y) * std::size_t(width)].x;
+        const float count = float(y1 - y0 + 1);
+        for (std::size_t k = 0; k < floats; ++k) o[k] = sum[k] / count;
     }
     return out;
 }
@@ -212,13 +242,16 @@ struct Planes {
     std::vector<float> albedo_tol;
     std::vector<float> normal_tol;  ///< the same for the normal
 
-    /// Whether what is averaged (value_a, value_b) is 0 in padded rows [y0, y1): then so is
-    /// the filter's output of the rows whose neighbourhoods lie within (sum of w x 0).
-    [[nodiscard]] bool zero_rows(int y0, int y1) const {
-        const std::size_t from = at(-pad, y0), to = at(-pad, y1);
+    /// Whether what is averaged (value_a, value_b) is 0 in padded pixels [x0, x1) x [y0, y1):
+    /// then so is the filter's output of the pixels whose neighbourhoods lie within (sum of
+    /// w x 0).
+    [[nodiscard]] bool zero_block(int x0, int x1, int y0, int y1) const {
         for (int c = 0; c < 3; ++c) {
-            for (std::size_t i = from; i < to; ++i)
-                if (value_a[c][i] != 0.0f || value_b[c][i] != 0.0f) return false;
+            for (int y = y0; y < y1; ++y) {
+                const std::size_t from = at(x0, y), to = at(x1, y);
+                for (std::size_t i = from; i < to; ++i)
+                    if (value_a[c][i] != 0.0f || value_b[c][i] != 0.0f) return false;
+            }
         }
         return true;
     }
@@ -252,9 +285,12 @@ struct Estimates {
 };
 
 /// The planes of `in`, with `albedo` in place of in.albedo (the prefiltered albedo) as the
-/// feature and what the result is multiplied back by.
+/// feature and what the result is multiplied back by. `alone` (a layer filtered on its own
+/// halves: albedo 1, normal 0, see denoise): without the feature planes, whose term is 0
+/// for every pair of pixels, and the albedo halves' planes, which are 1. The ratio planes
+/// for the first-order filter only.
 Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserSettings& settings,
-                   PixelTerms& terms) {
+                   bool first_order, bool alone, PixelTerms& terms) {
     const int w = in.beauty.width, h = in.beauty.height;
     const std::size_t n = in.beauty.pixels.size();
     terms.modulation.resize(n);
@@ -291,19 +327,23 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserS
     }
     // With a share s of the samples in a: Var(a) = sigma^2 / (s n), Var(b) = sigma^2 /
     // ((1 - s) n), and E[(a - b)^2] = Var(a) + Var(b); so Var(a) = (1 - s) E[(a - b)^2].
-    const std::vector<glm::vec3> smooth = box_mean(spread, w, h, kVarianceRadius);
-    const std::vector<glm::vec3> feature_var = box_mean(feature_spread, w, h, kVarianceRadius);
-    std::vector<glm::vec3> va(n), vb(n), fv_albedo(n), fv_normal(n);
+    const std::vector<glm::vec3> smooth = box_mean<kVarianceRadius>(spread, w, h);
+    std::vector<glm::vec3> va(n), vb(n);
     for (std::size_t i = 0; i < n; ++i) {
         va[i] = smooth[i] * (1.0f - terms.share[i]);
         vb[i] = smooth[i] * terms.share[i];
+    }
+    const std::vector<glm::vec3> feature_var =
+        alone ? std::vector<glm::vec3>() : box_mean<kVarianceRadius>(feature_spread, w, h);
+    std::vector<glm::vec3> fv_albedo(feature_var.size()), fv_normal(feature_var.size());
+    for (std::size_t i = 0; i < feature_var.size(); ++i) {
         fv_albedo[i] = glm::vec3(feature_var[i].x);
         fv_normal[i] = glm::vec3(feature_var[i].y);
     }
     std::vector<glm::vec3> tol_albedo(n), tol_normal(n);
     const float sa2 = settings.albedo_sigma * settings.albedo_sigma;
     const float sn2 = settings.normal_sigma * settings.normal_sigma;
-    for (int y = 0; y < h; ++y) {
+    for (int y = 0; y < (alone ? 0 : h); ++y) {
         for (int x = 0; x < w; ++x) {
             const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
             float ga = 0.0f, gn = 0.0f;
@@ -338,11 +378,14 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserS
             plane[c].resize(padded + std::size_t(kLanes));  // kLanes: distances' extra lanes
             for (int y = -p.pad; y < h + p.pad; ++y) {
                 const int cy = std::min(std::max(y, 0), h - 1);
-                const glm::vec3* src = &from[std::size_t(cy) * std::size_t(w)];
+                // Channel c of pixel x at src[3 x]: glm's operator[] is a switch on c per
+                // value (callgrind: 16 instructions per value filled).
+                static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+                const float* src = &from[std::size_t(cy) * std::size_t(w)][c];
                 float* row = &plane[c][p.at(0, y)];  // row[x], x in [-pad, w + pad)
-                for (int x = -p.pad; x < 0; ++x) row[x] = src[0][c];
-                for (int x = 0; x < w; ++x) row[x] = src[x][c];
-                for (int x = w; x < w + p.pad; ++x) row[x] = src[w - 1][c];
+                for (int x = -p.pad; x < 0; ++x) row[x] = src[0];
+                for (int x = 0; x < w; ++x) row[x] = src[3 * std::size_t(x)];
+                for (int x = w; x < w + p.pad; ++x) row[x] = src[3 * std::size_t(w - 1)];
             }
         }
     };
@@ -355,17 +398,20 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserS
         ma[i] = glm::max(albedo_a.pixels[i], glm::vec3(kModulationFloor));
         mb[i] = glm::max(albedo_b.pixels[i], glm::vec3(kModulationFloor));
     }
-    fill(p.albedo_a, ma);
-    fill(p.albedo_b, mb);
-    std::vector<glm::vec3> ya(n), yb(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        ya[i] = ra[i] / ma[i];
-        yb[i] = rb[i] / mb[i];
-    }
-    fill(p.ratio_a, ya);
-    fill(p.ratio_b, yb);
     fill(p.var_a, va);
     fill(p.var_b, vb);
+    if (first_order) {
+        std::vector<glm::vec3> ya(n), yb(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            ya[i] = ra[i] / ma[i];
+            yb[i] = rb[i] / mb[i];
+        }
+        fill(p.ratio_a, ya);
+        fill(p.ratio_b, yb);
+    }
+    if (alone) return p;
+    fill(p.albedo_a, ma);
+    fill(p.albedo_b, mb);
     fill(p.albedo, albedo.pixels);
     fill(p.normal, in.normal.pixels);
     std::vector<float> one[3];
@@ -427,8 +473,6 @@ constexpr float kMinCentreWeight = 1e-6f;
 /// 2 (kRegressionSums + kPartialSums) + 2 planes, 400 KB) stay in the core's cache while
 /// every neighbour offset is added to them.
 constexpr int kTileWidth = 64;
-/// Pixels of a tile's plane of sums.
-constexpr std::size_t kTilePixels = std::size_t(kStrip) * std::size_t(kTileWidth);
 
 /// n rounded up to a multiple of kLanes.
 constexpr int round_to_lanes(int n) { return (n + kLanes - 1) / kLanes * kLanes; }
@@ -461,13 +505,19 @@ struct Quantum {
     }
 };
 
-/// Filters tiles [x0, x1) x [y0, y1); each thread has one.
+/// Filters tiles [x0, x1) x [y0, y1) of up to Strip rows; each thread has one. Strip a
+/// constant, so that the planes of sums are a constant apart (the loops address them from
+/// one pointer).
+template <int Strip>
 class StripFilter {
 public:
-    StripFilter(const Planes& planes, const DenoiserSettings& s, bool first_order)
-        : p_(planes), s_(s), first_order_(first_order) {
+    /// Pixels of a tile's plane of sums.
+    static constexpr std::size_t kTilePixels = std::size_t(Strip) * std::size_t(kTileWidth);
+
+    StripFilter(const Planes& planes, const DenoiserSettings& s, bool first_order, bool alone)
+        : p_(planes), s_(s), first_order_(first_order), alone_(alone) {
         const int f = s.patch_radius;
-        const std::size_t rows = std::size_t(kStrip + 2 * f);
+        const std::size_t rows = std::size_t(Strip + 2 * f);
         const std::size_t width = std::size_t(round_to_lanes(kTileWidth + 2 * f));
         dist_a_.resize(rows * width);
         dist_b_.resize(dist_a_.size());
@@ -477,9 +527,10 @@ public:
         column_b_.resize(column_a_.size());
         quantum_ = Quantum(s);
         // First order: each half's regression sums, each half's largest weight, each half's
-        // partial sums (regress).
-        sums_.resize(kTilePixels *
-                     std::size_t(first_order ? 2 * kRegressionSums + 2 + 2 * kPartialSums : 12));
+        // partial sums (regress); alone: per half 3 sums of w L and one of w.
+        int sum_planes = alone ? 8 : 12;
+        if (first_order) sum_planes = 2 * kRegressionSums + 2 + 2 * kPartialSums;
+        sums_.resize(kTilePixels * std::size_t(sum_planes));
         for (std::vector<float>* v : {&patch_a_, &patch_b_}) v->resize(std::size_t(kTileWidth));
     }
 
@@ -526,10 +577,9 @@ public:
                         column_start(row(dist_b_, 0), std::size_t(dw), 2 * f + 1, dw,
                                      column_b_.data());
                     } else {
-                        column_step(row(dist_a_, j + 2 * f), row(dist_a_, j - 1), dw,
-                                    column_a_.data());
-                        column_step(row(dist_b_, j + 2 * f), row(dist_b_, j - 1), dw,
-                                    column_b_.data());
+                        column_step(row(dist_a_, j + 2 * f), row(dist_a_, j - 1),
+                                    row(dist_b_, j + 2 * f), row(dist_b_, j - 1), dw,
+                                    column_a_.data(), column_b_.data());
                     }
                     const int y = y0 + j;
                     if (y + oy < 0 || y + oy >= p_.height) continue;
@@ -586,7 +636,8 @@ private:
     }
 
     /// Plane k of the sums (zero order: half h's sums of w L in 6 h + c, of w m in
-    /// 6 h + 3 + c; first order: half h's regression sums from h kRegressionSums).
+    /// 6 h + 3 + c; alone_: of w L in 4 h + c, of w in 4 h + 3; first order: half h's
+    /// regression sums from h kRegressionSums).
     [[nodiscard]] float* sum(int k) { return &sums_[std::size_t(k) * kTilePixels]; }
 
     /// The zero-order output of half h at tile pixel t: the neighbours' radiance over
@@ -595,7 +646,10 @@ private:
     /// weights never sum to 0.
     [[nodiscard]] glm::vec3 ratio(int h, std::size_t t) {
         glm::vec3 v;
-        for (int c = 0; c < 3; ++c) v[c] = sum(6 * h + c)[t] / sum(6 * h + 3 + c)[t];
+        for (int c = 0; c < 3; ++c) {
+            v[c] = alone_ ? sum(4 * h + c)[t] / sum(4 * h + 3)[t]
+                          : sum(6 * h + c)[t] / sum(6 * h + 3 + c)[t];
+        }
         return v;
     }
 
@@ -745,12 +799,19 @@ private:
         }
     }
 
-    /// The box over y moved down one row: the row entering added, the one leaving taken
-    /// out (exact: integers).
-    LIBRT_DENOISE_INLINE static void column_step(const std::int32_t* entering,
-                                                 const std::int32_t* leaving, int n,
-                                                 std::int32_t* column) {
-        for (int x = 0; x < n; ++x) column[x] += entering[x] - leaving[x];
+    /// The boxes over y of both halves moved down one row: the row entering added, the one
+    /// leaving taken out (exact: integers). Both in one loop without run-time overlap checks
+    /// (the columns overlap no distance row).
+    LIBRT_DENOISE_INLINE static void column_step(const std::int32_t* entering_a,
+                                                 const std::int32_t* leaving_a,
+                                                 const std::int32_t* entering_b,
+                                                 const std::int32_t* leaving_b, int n,
+                                                 std::int32_t* column_a, std::int32_t* column_b) {
+        LIBRT_DENOISE_NO_ALIAS
+        for (int x = 0; x < n; ++x) {
+            column_a[x] += entering_a[x] - leaving_a[x];
+            column_b[x] += entering_b[x] - leaving_b[x];
+        }
     }
 
     /// Adds the neighbours at offset (ox, oy) (dx: ox scaled) to the sums of tile row j
@@ -778,6 +839,11 @@ private:
         const int nv = round_to_lanes(n);
         box_x(f, col_a, nv, quantum_.unit, ca);
         box_x(f, col_b, nv, quantum_.unit, cb);
+        const std::size_t row = j * w + std::size_t(x0 - x0t);
+        if (alone_) {
+            accumulate_alone(ca, cb, sum(0) + row, q0, n, nv);
+            return;
+        }
         // Feature distances: the squared difference, less what the features' own noise
         // explains, over sigma^2 widened by that noise (where a pixel's albedo or normal is
         // itself a noisy mix, an edge inside it, the features cannot tell it apart and the
@@ -799,7 +865,6 @@ private:
             ca[x] = exp_neg((ca[x] > 0.0f ? ca[x] : 0.0f) + feature);
             cb[x] = exp_neg((cb[x] > 0.0f ? cb[x] : 0.0f) + feature);
         }
-        const std::size_t row = j * w + std::size_t(x0 - x0t);
         if (!first_order_) {
             // All twelve sums in one loop (planes kTilePixels apart: one pointer). g++ left
             // it scalar when it checked the pointers for overlap (callgrind: 16 % of the
@@ -836,6 +901,36 @@ private:
         }
         regress(0, ca, p_.ratio_a, q0, row, n, dx);
         regress(1, cb, p_.ratio_b, q0, row, n, dx);
+    }
+
+    /// accumulate's weights and zero-order sums for a layer filtered alone (alone_): its
+    /// feature term is 0 for every pair (albedo 1, normal 0: each feature difference and
+    /// noise is 0), so the weight is exp_neg of the patch distance alone, the same bits;
+    /// and its albedo is 1, so the sums of w m are the one sum of w (w x 1 = w exactly):
+    /// 8 sums instead of 12.
+    LIBRT_DENOISE_INLINE void accumulate_alone(float* ca, float* cb, float* sums, std::size_t q0,
+                                               int n, int nv) {
+        LIBRT_DENOISE_NO_ALIAS
+        for (int x = 0; x < nv; ++x) {
+            ca[x] = exp_neg(ca[x] > 0.0f ? ca[x] : 0.0f);
+            cb[x] = exp_neg(cb[x] > 0.0f ? cb[x] : 0.0f);
+        }
+        const float *qa0 = &p_.value_a[0][q0], *qa1 = &p_.value_a[1][q0], *qa2 = &p_.value_a[2][q0];
+        const float *qb0 = &p_.value_b[0][q0], *qb1 = &p_.value_b[1][q0], *qb2 = &p_.value_b[2][q0];
+        const auto at = [sums](int k, int x) -> float& {
+            return sums[std::size_t(k) * kTilePixels + std::size_t(x)];
+        };
+        LIBRT_DENOISE_NO_ALIAS
+        for (int x = 0; x < n; ++x) {
+            at(0, x) += ca[x] * qa0[x];
+            at(1, x) += ca[x] * qa1[x];
+            at(2, x) += ca[x] * qa2[x];
+            at(3, x) += ca[x];
+            at(4, x) += cb[x] * qb0[x];
+            at(5, x) += cb[x] * qb1[x];
+            at(6, x) += cb[x] * qb2[x];
+            at(7, x) += cb[x];
+        }
     }
 
     /// Half h's partial sums at this offset (w, w dx, w dx^2, w y, w y dx), from which
@@ -905,6 +1000,7 @@ private:
     const Planes& p_;
     const DenoiserSettings& s_;
     bool first_order_ = false;
+    bool alone_ = false;  ///< a layer filtered on its own halves (make_planes)
     Quantum quantum_;
     std::vector<std::int32_t> dist_a_, dist_b_;      ///< per-pixel distances, tile + apron
     std::vector<std::int32_t> column_a_, column_b_;  ///< their box over y, one row
@@ -938,7 +1034,7 @@ void select_estimates(const Planes& planes, const PixelTerms& terms, const Estim
                                glm::dot(df_a, df_a) + glm::dot(df_b, df_b), 0.0f);
         }
     }
-    const std::vector<glm::vec3> smooth = box_mean(err, w, h, kSelectRadius);
+    const std::vector<glm::vec3> smooth = box_mean<kSelectRadius>(err, w, h);
     for (std::size_t i = 0; i < n; ++i) {
         const bool fit = smooth[i].y <= smooth[i].x;
         const glm::vec3 fa = fit ? e.fit_a[i] : e.mean_a[i];
@@ -951,11 +1047,13 @@ void select_estimates(const Planes& planes, const PixelTerms& terms, const Estim
 
 /// The filter: `in`'s halves demodulated by their albedos, filtered with each other's
 /// weights (a first-order regression or, `first_order` false, a weighted mean), multiplied
-/// back by `albedo`, plus `emission` (0x0: none).
+/// back by `albedo`, plus `emission` (0x0: none). `alone`: a layer filtered on its own halves
+/// (albedo 1, normal 0, zero order; make_planes); `tall`: in tiles of kTallStrip rows.
 Image filter_halves(const DenoiserInput& input, const Image& albedo,
-                    const DenoiserSettings& settings, const Image& emission, bool first_order) {
+                    const DenoiserSettings& settings, const Image& emission, bool first_order,
+                    bool alone, bool tall) {
     PixelTerms terms;
-    const Planes planes = make_planes(input, albedo, settings, terms);
+    const Planes planes = make_planes(input, albedo, settings, first_order, alone, terms);
     terms.emission = emission.pixels;
     Image out(planes.width, planes.height);
     Estimates estimates;
@@ -964,7 +1062,8 @@ Image filter_halves(const DenoiserInput& input, const Image& albedo,
              {&estimates.mean_a, &estimates.mean_b, &estimates.fit_a, &estimates.fit_b})
             v->resize(out.pixels.size());
     }
-    const int strips = (planes.height + kStrip - 1) / kStrip;
+    const int strip = tall ? kTallStrip : kStrip;
+    const int strips = (planes.height + strip - 1) / strip;
     const int columns = (planes.width + kTileWidth - 1) / kTileWidth;
     const int tiles = strips * columns;
     if (tiles == 0) return out;
@@ -974,16 +1073,17 @@ Image filter_halves(const DenoiserInput& input, const Image& albedo,
     std::atomic<int> next{0};
     std::exception_ptr failure;
     std::mutex failure_mutex;
-    const auto work = [&] {
+    const auto work_on = [&](auto filter) {
         try {
-            StripFilter filter(planes, settings, first_order);
             for (int t = next.fetch_add(1); t < tiles; t = next.fetch_add(1)) {
-                const int y0 = (t / columns) * kStrip, y1 = std::min(y0 + kStrip, planes.height);
+                const int y0 = (t / columns) * strip, y1 = std::min(y0 + strip, planes.height);
                 const int x0 = (t % columns) * kTileWidth;
                 const int x1 = std::min(x0 + kTileWidth, planes.width);
-                // A strip far from anything to average (the emission away from any
+                // A tile far from anything to average (the emission away from any
                 // emitter) is 0 plus the emission: the same bits, without the filter.
-                if (planes.zero_rows(y0 - planes.pad, y1 + planes.pad)) {
+                // Per tile, not per strip: an emitter fills few of its strip's tiles.
+                if (planes.zero_block(x0 - planes.pad, x1 + planes.pad, y0 - planes.pad,
+                                      y1 + planes.pad)) {
                     for (int y = y0; y < y1; ++y)
                         for (int x = x0; x < x1; ++x) {
                             const std::size_t i =
@@ -997,7 +1097,22 @@ Image filter_halves(const DenoiserInput& input, const Image& albedo,
                         }
                     continue;
                 }
-                filter.run(x0, x1, y0, y1, terms, estimates, out);
+                filter->run(x0, x1, y0, y1, terms, estimates, out);
+            }
+        } catch (...) {  // bad_alloc: rethrown on the caller's thread
+            const std::lock_guard<std::mutex> lock(failure_mutex);
+            if (!failure) failure = std::current_exception();
+            next.store(tiles);
+        }
+    };
+    const auto work = [&] {
+        try {
+            if (tall) {
+                work_on(std::make_unique<StripFilter<kTallStrip>>(planes, settings, first_order,
+                                                                  alone));
+            } else {
+                work_on(
+                    std::make_unique<StripFilter<kStrip>>(planes, settings, first_order, alone));
             }
         } catch (...) {  // bad_alloc: rethrown on the caller's thread
             const std::lock_guard<std::mutex> lock(failure_mutex);
@@ -1191,7 +1306,7 @@ Image denoise(const DenoiserInput& input, const DenoiserSettings& settings) {
     // A layer filtered on its own two halves alone (no features, nothing to demodulate).
     // Equal halves come back unchanged.
     const auto filter_alone = [&](const Image& half_a, const Image& half_b,
-                                  const DenoiserSettings& with) {
+                                  const DenoiserSettings& with, bool tall) {
         DenoiserInput alone;
         alone.beauty = half_a;  // its size; the filter reads the halves
         alone.half_a = half_a;
@@ -1199,7 +1314,7 @@ Image denoise(const DenoiserInput& input, const DenoiserSettings& settings) {
         alone.share_a = input.share_a;
         alone.albedo = ones;
         alone.normal = Image(w, h);
-        return filter_halves(alone, ones, with, Image(), false);
+        return filter_halves(alone, ones, with, Image(), false, true, tall);
     };
     // The albedo is prefiltered first, as Rousselle et al. 2013 and NFOR prefilter their
     // features: where a texture or an outline crosses a pixel, its albedo is the share of
@@ -1210,7 +1325,7 @@ Image denoise(const DenoiserInput& input, const DenoiserSettings& settings) {
     prefilter.strength = kPrefilterStrength;
     const Image albedo = input.albedo_a.pixels.empty()
                              ? input.albedo
-                             : filter_alone(input.albedo_a, input.albedo_b, prefilter);
+                             : filter_alone(input.albedo_a, input.albedo_b, prefilter, true);
     // The emission is filtered apart from the light reflected (DenoiserInput::emission_a):
     // an emitter's pixels average only emission, whose noise is its edges' coverage, and
     // give none of it to their neighbours' reflected light. With the radiance's settings:
@@ -1223,9 +1338,10 @@ Image denoise(const DenoiserInput& input, const DenoiserSettings& settings) {
                                [](const glm::vec3& v) { return v != glm::vec3(0.0f); });
         };
         if (emits(input.emission_a) || emits(input.emission_b))
-            emission = filter_alone(input.emission_a, input.emission_b, settings);
+            emission = filter_alone(input.emission_a, input.emission_b, settings, false);
     }
-    Image out = filter_halves(input, albedo, settings, emission, settings.first_order);
+    Image out =
+        filter_halves(input, albedo, settings, emission, settings.first_order, false, false);
     if (settings.max_standard_errors > 0.0f) bound_by_own_noise(input, settings, out);
     return out;
 }
