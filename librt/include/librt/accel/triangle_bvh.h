@@ -52,6 +52,19 @@ public:
     /// True when anything lies in (ray.t_min, ray.t_max): for shadow rays.
     [[nodiscard]] bool occluded(const Ray& ray) const;
 
+    /// A stream of rays: hits[i] = intersect(rays[i]) for every i, bit for bit (t, u, v and
+    /// primitive id; a ray that is not traceable, e.g. with a NaN t_max or t_min > t_max,
+    /// misses as it does alone). Faster than a loop over intersect(ray) for incoherent rays:
+    /// the rays are walked a few at a time, their node visits interleaved so that the core
+    /// overlaps their memory and dependency latencies (docs/benchmarks.md, "Ray streams").
+    /// Any number of rays, none included. Throws librt::Error naming both sizes when
+    /// hits.size() != rays.size(). The spans must not overlap.
+    void intersect(std::span<const Ray> rays, std::span<PrimitiveHit> hits) const;
+    /// A stream of shadow rays: blocked[i] = occluded(rays[i]) ? 1 : 0 for every i, as
+    /// intersect(rays, hits) is for closest hits. Throws librt::Error naming both sizes when
+    /// blocked.size() != rays.size().
+    void occluded(std::span<const Ray> rays, std::span<std::uint8_t> blocked) const;
+
     /// True for a BVH over no triangles, which nothing hits.
     [[nodiscard]] bool empty() const { return tree_ == nullptr; }
     /// Box around all triangles (empty for an empty BVH).
