@@ -6,12 +6,10 @@
 #include <librt/accel/triangle_bvh.h>
 #include <librt/core/error.h>
 
-#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <memory>
 #include <string>
 #include <thread>
@@ -217,63 +215,6 @@ bool interleave_stream(const detail::WideBvh& tree, std::span<const Ray> rays) {
            !looks_coherent(rays);
 }
 
-/// EXPERIMENT (reverted next): the stream reordered before the interleaved walk, by the
-/// octant of the direction (3 bits) and then a Morton code of the origin (9 bits an axis,
-/// in the box of the stream's origins), so that consecutive rays start near each other and
-/// walk similar paths; the answers are written back in the caller's order.
-std::uint32_t spread3(std::uint32_t x) {
-    x &= 0x3ffu;
-    x = (x | (x << 16)) & 0x030000ffu;
-    x = (x | (x << 8)) & 0x0300f00fu;
-    x = (x | (x << 4)) & 0x030c30c3u;
-    x = (x | (x << 2)) & 0x09249249u;
-    return x;
-}
-
-struct StreamScratch {
-    std::vector<std::uint64_t> keys, tmp;
-    std::vector<Ray> rays;
-    std::vector<PrimitiveHit> hits;
-    std::vector<std::uint8_t> blocked;
-};
-
-thread_local StreamScratch t_scratch;
-
-/// s.keys = (key << 32 | index) of every ray, sorted by key (LSD radix sort, 11 bits a pass).
-void order_stream(std::span<const Ray> rays, StreamScratch& s) {
-    const std::size_t n = rays.size();
-    s.keys.resize(n);
-    s.tmp.resize(n);
-    glm::vec3 lo(INFINITY), hi(-INFINITY);
-    for (const Ray& r : rays) {
-        lo = glm::min(lo, r.origin);
-        hi = glm::max(hi, r.origin);
-    }
-    const glm::vec3 ext = hi - lo;
-    const glm::vec3 scale(ext.x > 0 ? 1023.0f / ext.x : 0.0f, ext.y > 0 ? 1023.0f / ext.y : 0.0f,
-                          ext.z > 0 ? 1023.0f / ext.z : 0.0f);
-    for (std::size_t i = 0; i < n; ++i) {
-        const Ray& r = rays[i];
-        const std::uint32_t oct = (r.direction.x < 0 ? 1u : 0u) | (r.direction.y < 0 ? 2u : 0u) |
-                                  (r.direction.z < 0 ? 4u : 0u);
-        glm::vec3 q = glm::clamp((r.origin - lo) * scale, glm::vec3(0.0f), glm::vec3(1023.0f));
-        if (!(q.x == q.x && q.y == q.y && q.z == q.z)) q = glm::vec3(0.0f);
-        const std::uint32_t m = spread3(static_cast<std::uint32_t>(q.x)) |
-                                (spread3(static_cast<std::uint32_t>(q.y)) << 1) |
-                                (spread3(static_cast<std::uint32_t>(q.z)) << 2);
-        const std::uint32_t key = (oct << 29) | (m >> 1);
-        s.keys[i] = (std::uint64_t{key} << 32) | i;
-    }
-    for (int pass = 0; pass < 3; ++pass) {
-        const int shift = 32 + 11 * pass;
-        std::size_t count[2049] = {};
-        for (const std::uint64_t k : s.keys) ++count[((k >> shift) & 2047u) + 1];
-        for (int b = 0; b < 2048; ++b) count[b + 1] += count[b];
-        for (const std::uint64_t k : s.keys) s.tmp[count[(k >> shift) & 2047u]++] = k;
-        s.keys.swap(s.tmp);
-    }
-}
-
 }  // namespace
 
 void TriangleBvh::intersect(std::span<const Ray> rays, std::span<PrimitiveHit> hits) const {
@@ -283,14 +224,7 @@ void TriangleBvh::intersect(std::span<const Ray> rays, std::span<PrimitiveHit> h
         return;
     }
     if (interleave_stream(*tree_, rays)) {
-        StreamScratch& s = t_scratch;
-        order_stream(rays, s);
-        const std::size_t n = rays.size();
-        s.rays.resize(n);
-        s.hits.resize(n);
-        for (std::size_t i = 0; i < n; ++i) s.rays[i] = rays[s.keys[i] & 0xffffffffu];
-        detail::wide_kernels(path_).intersect_stream(*tree_, s.rays.data(), s.hits.data(), n);
-        for (std::size_t i = 0; i < n; ++i) hits[s.keys[i] & 0xffffffffu] = s.hits[i];
+        detail::wide_kernels(path_).intersect_stream(*tree_, rays.data(), hits.data(), rays.size());
         return;
     }
     for (std::size_t i = 0; i < rays.size(); ++i) hits[i] = intersect_fn_(*tree_, rays[i]);
@@ -303,14 +237,8 @@ void TriangleBvh::occluded(std::span<const Ray> rays, std::span<std::uint8_t> bl
         return;
     }
     if (interleave_stream(*tree_, rays)) {
-        StreamScratch& s = t_scratch;
-        order_stream(rays, s);
-        const std::size_t n = rays.size();
-        s.rays.resize(n);
-        s.blocked.resize(n);
-        for (std::size_t i = 0; i < n; ++i) s.rays[i] = rays[s.keys[i] & 0xffffffffu];
-        detail::wide_kernels(path_).occluded_stream(*tree_, s.rays.data(), s.blocked.data(), n);
-        for (std::size_t i = 0; i < n; ++i) blocked[s.keys[i] & 0xffffffffu] = s.blocked[i];
+        detail::wide_kernels(path_).occluded_stream(*tree_, rays.data(), blocked.data(),
+                                                    rays.size());
         return;
     }
     for (std::size_t i = 0; i < rays.size(); ++i)
