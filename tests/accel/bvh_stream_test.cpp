@@ -71,7 +71,9 @@ std::size_t expect_streams_match_single_rays(TriangleBvh& accel, const std::vect
         }
         EXPECT_EQ(closest_wrong, 0u);
         EXPECT_EQ(any_wrong, 0u);
-        if (path != supported_simd_paths().front()) EXPECT_EQ(hits_here, hit_count);
+        if (path != supported_simd_paths().front()) {
+            EXPECT_EQ(hits_here, hit_count);
+        }
         hit_count = hits_here;
     }
     return hit_count;
@@ -125,7 +127,9 @@ void expect_short_and_odd_streams_match(TriangleBvh& accel, const BBox& box) {
         std::vector<PrimitiveHit> hits(odd.size());
         accel.intersect(odd, hits);
         for (std::size_t i = 0; i < odd.size(); ++i)
-            if (i % 8 >= 1 && i % 8 <= 5) EXPECT_FALSE(hits[i].valid()) << i;
+            if (i % 8 >= 1 && i % 8 <= 5) {
+                EXPECT_FALSE(hits[i].valid()) << i;
+            }
     }
 }
 
