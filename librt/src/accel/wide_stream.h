@@ -17,10 +17,10 @@
 
 namespace librt::detail {
 
-/// Rays walked at once by the stream traversal: 8 against 4 and 2 gained 1-3 % more on the
-/// dragon and the 1M-triangle teapot, whose trees are beyond the caches (docs/benchmarks.md,
-/// "Ray streams"). Each lane's stack takes ~4.5 KB, so the walk takes ~37 KB of the caller's
-/// stack.
+/// Rays walked at once by the stream traversal: 8 gained 13-18 % over single rays on the
+/// dragon and the 1M-triangle teapot (trees beyond the caches), 4 lanes 12-16 %, 2 lanes
+/// 7-10 % (docs/benchmarks.md, "Ray streams"). Each lane's stack takes ~4.5 KB, so the walk
+/// takes ~37 KB of the caller's stack.
 inline constexpr std::uint32_t kStreamLanes = 8;
 
 /// One ray's walk in progress: what traverse_wide keeps in locals.
