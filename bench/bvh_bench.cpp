@@ -27,6 +27,11 @@
 // std::threads (N = hardware threads) and count rays / (summed thread CPU time / N): the rate
 // of N dedicated cores. Builds count wall time (both builders use all cores).
 //
+// Rows <mesh>/librt_stream_vs_embree/<incoherent|anyhit|primary>/1t time TriangleBvh's ray
+// streams (intersect(rays, hits), occluded(rays, blocked)) beside Embree's stream API
+// (rtcIntersect1M / rtcOccluded1M) and both engines' single rays, four engines on the same
+// chunks (see trace_stream_row).
+//
 // After the run a summary table prints librt beside Embree with the ratio (medians when
 // --benchmark_repetitions is given).
 //
@@ -54,6 +59,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -63,6 +69,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <thread>
 #include <type_traits>
@@ -203,9 +210,10 @@ std::size_t trace_range(const Engine& engine, const Ray* rays, std::size_t count
 
 /// Every counter any row has: the CSV reporter wants one set of columns for the run, so
 /// a row gets 0 for those that do not apply to it.
-constexpr const char* kCounters[] = {"Mrays",    "librt_Mrays", "embree_Mrays", "ratio",
-                                     "librt_ms", "embree_ms",   "librt_B/tri",  "embree_B/tri",
-                                     "hit%",     "tris",        "threads"};
+constexpr const char* kCounters[] = {
+    "Mrays",         "librt_Mrays",   "embree_Mrays", "ratio",       "librt_ms", "embree_ms",
+    "librt_B/tri",   "embree_B/tri",  "hit%",         "tris",        "threads",  "librt1_Mrays",
+    "embree1_Mrays", "ratio_embree1", "ratio_librt1", "ratio_single"};
 
 void complete_counters(benchmark::State& state) {
     for (const char* key : kCounters)
@@ -301,6 +309,115 @@ void trace_pair(benchmark::State& state, const A& a, const B* b, const std::vect
     state.counters["threads"] = threads;
     complete_counters(state);
     state.counters.erase("embree_hit%");  // keep the CSV's columns fixed
+}
+
+/// The stream rows (<mesh>/librt_stream_vs_embree/<rays>/1t): four engines on the same chunks
+/// of rays, on the calling thread, the order rotated from chunk to chunk: librt's stream
+/// (TriangleBvh::intersect(rays, hits) / occluded(rays, blocked)), librt's single rays,
+/// Embree's stream (rtcIntersect1M / rtcOccluded1M, the context flagged coherent for primary
+/// rays, else incoherent) and Embree's single rays. Counters: librt_Mrays and embree_Mrays
+/// are the streams, librt1_Mrays and embree1_Mrays the single rays; ratio = librt stream /
+/// Embree stream, ratio_embree1 = librt stream / Embree single, ratio_librt1 = librt stream /
+/// librt single, ratio_single = librt single / Embree single (the librt_vs_embree row's
+/// ratio, here in the same minutes). The row fails if librt's stream and single rays disagree
+/// on a hit.
+void trace_stream_row(benchmark::State& state, const TriangleBvh& librt,
+                      const bench::EmbreeScene& embree, const std::vector<Ray>& rays, Query query,
+                      bool coherent, double tris) {
+    constexpr std::size_t kChunk = 1u << 15;
+    const std::size_t chunks = (rays.size() + kChunk - 1) / kChunk;
+    // Each engine's answers kept apart, compared after the chunk (untimed).
+    std::vector<PrimitiveHit> hits(kChunk), single_hits(kChunk), embree_hits(kChunk);
+    std::vector<std::uint8_t> blocked(kChunk), single_blocked(kChunk), embree_blocked(kChunk);
+    double cpu[4] = {0, 0, 0, 0};
+    std::size_t hit_count[4] = {0, 0, 0, 0};
+    bool mismatch = false;
+    std::size_t rotation = 0;
+    for (auto _ : state) {
+        double iteration = 0.0;
+        for (std::size_t k = 0; k < chunks; ++k) {
+            const Ray* first = rays.data() + k * kChunk;
+            const std::size_t n = std::min(kChunk, rays.size() - k * kChunk);
+            const std::span<const Ray> chunk(first, n);
+            auto run = [&](int engine) {
+                const double start = thread_cpu_seconds();
+                std::size_t h = 0;
+                switch (engine) {
+                    case 0:
+                        if (query == Query::Any) {
+                            librt.occluded(chunk, std::span(blocked.data(), n));
+                            for (std::size_t i = 0; i < n; ++i) h += blocked[i];
+                        } else {
+                            librt.intersect(chunk, std::span(hits.data(), n));
+                            for (std::size_t i = 0; i < n; ++i) h += hits[i].valid();
+                        }
+                        break;
+                    case 1:
+                        if (query == Query::Any) {
+                            for (std::size_t i = 0; i < n; ++i)
+                                h += single_blocked[i] = librt.occluded(first[i]) ? 1 : 0;
+                        } else {
+                            for (std::size_t i = 0; i < n; ++i)
+                                h += (single_hits[i] = librt.intersect(first[i])).valid();
+                        }
+                        break;
+                    case 2:
+                        h = query == Query::Any
+                                ? embree.occluded_stream(chunk, std::span(embree_blocked.data(), n),
+                                                         coherent)
+                                : embree.intersect_stream(chunk, std::span(embree_hits.data(), n),
+                                                          coherent);
+                        break;
+                    default:
+                        h = trace_range(embree, first, n, query);
+                }
+                const double seconds = thread_cpu_seconds() - start;
+                cpu[engine] += seconds;
+                iteration += seconds;
+                hit_count[engine] += h;
+            };
+            const int first_engine = static_cast<int>(rotation++ % 4);
+            for (int e = 0; e < 4; ++e) run((first_engine + e) % 4);
+            // librt's stream against its single rays, ray by ray, bit for bit.
+            for (std::size_t i = 0; i < n; ++i) {
+                if (query == Query::Any) {
+                    mismatch |= blocked[i] != single_blocked[i];
+                } else {
+                    const PrimitiveHit& a = hits[i];
+                    const PrimitiveHit& b = single_hits[i];
+                    mismatch |=
+                        std::bit_cast<std::uint32_t>(a.t) != std::bit_cast<std::uint32_t>(b.t) ||
+                        std::bit_cast<std::uint32_t>(a.u) != std::bit_cast<std::uint32_t>(b.u) ||
+                        std::bit_cast<std::uint32_t>(a.v) != std::bit_cast<std::uint32_t>(b.v) ||
+                        a.primitive_id != b.primitive_id;
+                }
+            }
+        }
+        state.SetIterationTime(iteration);
+    }
+    if (mismatch) {
+        state.SkipWithError("librt's stream and single rays disagree");
+        return;
+    }
+    const double rays_total =
+        static_cast<double>(rays.size()) * static_cast<double>(state.iterations());
+    auto rate = [&](int engine) { return rays_total / cpu[engine] * 1e-6; };
+    state.counters["librt_Mrays"] = rate(0);
+    state.counters["librt1_Mrays"] = rate(1);
+    state.counters["embree_Mrays"] = rate(2);
+    state.counters["embree1_Mrays"] = rate(3);
+    state.counters["ratio"] = rate(0) / rate(2);
+    state.counters["ratio_embree1"] = rate(0) / rate(3);
+    state.counters["ratio_librt1"] = rate(0) / rate(1);
+    state.counters["ratio_single"] = rate(1) / rate(3);
+    state.counters["hit%"] = 100.0 * static_cast<double>(hit_count[0]) / rays_total;
+    if (hit_count[0] != hit_count[1]) {
+        state.SkipWithError("librt's stream and single rays hit different counts");
+        return;
+    }
+    state.counters["tris"] = tris;
+    state.counters["threads"] = 1;
+    complete_counters(state);
 }
 
 double wall_seconds() {
@@ -489,6 +606,16 @@ void register_all(const std::vector<std::shared_ptr<Workload>>& workloads) {
             };
             if (ray_kind != "miss") pair_row("librt_vs_embree_hq", embree_hq);
             if (!kind.parallel) pair_row("librt_vs_embree_robust", embree_robust);
+            if (!kind.parallel && ray_kind != "miss") {
+                const bool coherent = ray_kind == "primary";
+                benchmark::RegisterBenchmark((w->name + "/librt_stream_vs_embree" + suffix).c_str(),
+                                             [=](benchmark::State& s) {
+                                                 trace_stream_row(s, **librt, **embree, *rays,
+                                                                  query, coherent, tris);
+                                             })
+                    ->Unit(benchmark::kMillisecond)
+                    ->UseManualTime();
+            }
         }
     }
 }
@@ -559,6 +686,27 @@ public:
                                 cell(get(rb, "embree_Mrays"), "%.3f").c_str(),
                                 cell(get(rb, "ratio"), "%.2f").c_str());
                 }
+        if (have_embree) {
+            std::printf(
+                "\nRay streams (1t, Mrays/s; librt's stream over Embree's stream, Embree's "
+                "single rays and librt's single rays)\n");
+            std::printf("%-12s %-11s %9s %9s %9s %9s %8s %8s %8s\n", "mesh", "rays", "librt_str",
+                        "librt_1", "embr_str", "embree_1", "/e_str", "/e_1", "/l_1");
+            for (const auto& w : workloads)
+                for (const char* rays : {"incoherent", "anyhit", "primary"}) {
+                    const std::string row =
+                        w->name + "/librt_stream_vs_embree/" + std::string(rays) + "/1t";
+                    if (!get(row, "librt_Mrays")) continue;
+                    std::printf("%-12s %-11s %9s %9s %9s %9s %8s %8s %8s\n", w->name.c_str(), rays,
+                                cell(get(row, "librt_Mrays"), "%.3f").c_str(),
+                                cell(get(row, "librt1_Mrays"), "%.3f").c_str(),
+                                cell(get(row, "embree_Mrays"), "%.3f").c_str(),
+                                cell(get(row, "embree1_Mrays"), "%.3f").c_str(),
+                                cell(get(row, "ratio"), "%.2f").c_str(),
+                                cell(get(row, "ratio_embree1"), "%.2f").c_str(),
+                                cell(get(row, "ratio_librt1"), "%.2f").c_str());
+                }
+        }
         std::printf("\n%-12s %10s %10s %7s %11s %12s %7s %10s %7s %9s\n", "mesh", "librt ms",
                     "embree ms", "ratio", "librt B/tri", "embree B/tri", "ratio", "HQ ms", "ratio",
                     "HQ B/tri");

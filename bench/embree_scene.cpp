@@ -28,6 +28,14 @@ EmbreeScene::EmbreeScene(const TriangleMesh&, EmbreeQuality) {
 EmbreeScene::~EmbreeScene() = default;
 PrimitiveHit EmbreeScene::intersect(const Ray&) const { return {}; }
 bool EmbreeScene::occluded(const Ray&) const { return false; }
+std::size_t EmbreeScene::intersect_stream(std::span<const Ray>, std::span<PrimitiveHit>,
+                                          bool) const {
+    return 0;
+}
+std::size_t EmbreeScene::occluded_stream(std::span<const Ray>, std::span<std::uint8_t>,
+                                         bool) const {
+    return 0;
+}
 std::size_t EmbreeScene::memory_bytes() const { return 0; }
 double EmbreeScene::build_seconds() const { return 0.0; }
 
@@ -120,33 +128,8 @@ RTCScene triangle_scene(RTCDevice dev, const SharedArrays& arrays, EmbreeQuality
     return scene;
 }
 
-PrimitiveHit intersect_scene(RTCScene scene, const Ray& ray) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit rh;
-    rh.ray.org_x = ray.origin.x;
-    rh.ray.org_y = ray.origin.y;
-    rh.ray.org_z = ray.origin.z;
-    rh.ray.tnear = ray.t_min;
-    rh.ray.dir_x = ray.direction.x;
-    rh.ray.dir_y = ray.direction.y;
-    rh.ray.dir_z = ray.direction.z;
-    rh.ray.time = 0.0f;
-    rh.ray.tfar = ray.t_max;
-    rh.ray.mask = std::numeric_limits<unsigned>::max();
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene, &context, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
-    return {rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.primID};
-}
-
-bool occluded_scene(RTCScene scene, const Ray& ray) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRay r;
+/// librt's ray as Embree's.
+void fill_ray(RTCRay& r, const Ray& ray) {
     r.org_x = ray.origin.x;
     r.org_y = ray.origin.y;
     r.org_z = ray.origin.z;
@@ -159,8 +142,50 @@ bool occluded_scene(RTCScene scene, const Ray& ray) {
     r.mask = std::numeric_limits<unsigned>::max();
     r.id = 0;
     r.flags = 0;
+}
+
+/// librt's ray as Embree's closest-hit record, no hit yet.
+void fill_ray_hit(RTCRayHit& rh, const Ray& ray) {
+    fill_ray(rh.ray, ray);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
+/// Embree's closest-hit answer as librt's.
+PrimitiveHit primitive_hit(const RTCRayHit& rh) {
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
+    return {rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.primID};
+}
+
+PrimitiveHit intersect_scene(RTCScene scene, const Ray& ray) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    fill_ray_hit(rh, ray);
+    rtcIntersect1(scene, &context, &rh);
+    return primitive_hit(rh);
+}
+
+bool occluded_scene(RTCScene scene, const Ray& ray) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r;
+    fill_ray(r, ray);
     rtcOccluded1(scene, &context, &r);
     return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+/// A stream's records, kept per thread so that a call allocates only when its stream is the
+/// longest yet.
+thread_local std::vector<RTCRayHit> t_ray_hits;
+thread_local std::vector<RTCRay> t_rays;
+
+RTCIntersectContext stream_context(bool coherent) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags =
+        coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    return context;
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -202,6 +227,38 @@ PrimitiveHit EmbreeScene::intersect(const Ray& ray) const {
 }
 
 bool EmbreeScene::occluded(const Ray& ray) const { return occluded_scene(impl_->scene, ray); }
+
+std::size_t EmbreeScene::intersect_stream(std::span<const Ray> rays, std::span<PrimitiveHit> hits,
+                                          bool coherent) const {
+    if (hits.size() != rays.size()) throw Error("EmbreeScene::intersect_stream: sizes differ");
+    if (t_ray_hits.size() < rays.size()) t_ray_hits.resize(rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i) fill_ray_hit(t_ray_hits[i], rays[i]);
+    RTCIntersectContext context = stream_context(coherent);
+    rtcIntersect1M(impl_->scene, &context, t_ray_hits.data(), static_cast<unsigned>(rays.size()),
+                   sizeof(RTCRayHit));
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        hits[i] = primitive_hit(t_ray_hits[i]);
+        count += hits[i].valid();
+    }
+    return count;
+}
+
+std::size_t EmbreeScene::occluded_stream(std::span<const Ray> rays, std::span<std::uint8_t> blocked,
+                                         bool coherent) const {
+    if (blocked.size() != rays.size()) throw Error("EmbreeScene::occluded_stream: sizes differ");
+    if (t_rays.size() < rays.size()) t_rays.resize(rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i) fill_ray(t_rays[i], rays[i]);
+    RTCIntersectContext context = stream_context(coherent);
+    rtcOccluded1M(impl_->scene, &context, t_rays.data(), static_cast<unsigned>(rays.size()),
+                  sizeof(RTCRay));
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        blocked[i] = t_rays[i].tfar < 0.0f ? 1 : 0;  // Embree sets tfar to -inf on a hit
+        count += blocked[i];
+    }
+    return count;
+}
 
 std::size_t EmbreeScene::memory_bytes() const { return impl_->bytes; }
 

@@ -42,6 +42,17 @@ public:
     [[nodiscard]] PrimitiveHit intersect(const Ray& ray) const;
     /// Any hit through rtcOccluded1.
     [[nodiscard]] bool occluded(const Ray& ray) const;
+    /// Closest hits of a stream through rtcIntersect1M (one call for all the rays, their
+    /// RTCRayHit records in an array; the copy from and back to librt's types is part of
+    /// the call, as it is of intersect(ray)), the context's flags
+    /// RTC_INTERSECT_CONTEXT_FLAG_COHERENT when `coherent`, else _INCOHERENT. Returns the
+    /// number of hits; hits.size() must equal rays.size().
+    std::size_t intersect_stream(std::span<const Ray> rays, std::span<PrimitiveHit> hits,
+                                 bool coherent) const;
+    /// Any hits of a stream through rtcOccluded1M (as intersect_stream): blocked[i] is 1 when
+    /// rays[i] is occluded. Returns the number occluded.
+    std::size_t occluded_stream(std::span<const Ray> rays, std::span<std::uint8_t> blocked,
+                                bool coherent) const;
     /// Bytes Embree allocated while committing the scene and still holds (its BVH and
     /// leaf data), as counted by the device's memory monitor; the mesh's vertex and
     /// index arrays are shared with Embree, so they are not counted.

@@ -10,12 +10,18 @@ quotient of its ratio over the first build's in the same round; the script print
 the median ratio of each build and the median (min-max) quotient over the rounds. OUT.json
 keeps every round's counters (ratio, librt_Mrays, embree_Mrays, hit%) per build, written
 after each round. LIBRT_DATA_DIR defaults to /work/shared/data.
+
+The stream rows (<mesh>/librt_stream_vs_embree/...) pair four engines in the row; for them a
+second table prints, per build, the median (min-max) over the rounds of each of their ratios:
+librt stream / Embree stream, / Embree single rays, / librt single rays, and librt single /
+Embree single.
 """
 import json, os, subprocess, sys, statistics
 flt, rounds, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 bins = [a.split('=', 1) for a in sys.argv[4:]]
 env = dict(os.environ)
 env.setdefault('LIBRT_DATA_DIR', '/work/shared/data')
+STREAM_KEYS = ('ratio', 'ratio_embree1', 'ratio_librt1', 'ratio_single')
 res = {name: [] for name, _ in bins}  # name -> list of {row: counters}
 for r in range(rounds):
     order = bins[r % len(bins):] + bins[:r % len(bins)]
@@ -26,7 +32,8 @@ for r in range(rounds):
                        capture_output=True, text=True, check=True)
         j = json.load(open(tmp))
         rows = {b['name'].replace('/manual_time', ''): {k: b.get(k, 0) for k in
-                ('ratio', 'librt_Mrays', 'embree_Mrays', 'hit%')} for b in j['benchmarks']}
+                STREAM_KEYS + ('librt_Mrays', 'embree_Mrays', 'librt1_Mrays', 'embree1_Mrays',
+                               'hit%')} for b in j['benchmarks']}
         res[name].append(rows)
     print(f'round {r+1} done, load {os.getloadavg()}', file=sys.stderr, flush=True)
     json.dump(res, open(out, 'w'), indent=1)
@@ -43,3 +50,16 @@ for row in rows:
         q = [res[n][i][row]['ratio'] / res[base][i][row]['ratio'] for i in range(rounds)]
         line += f'   {statistics.median(q):.3f} ({min(q):.3f}-{max(q):.3f})'
     print(line)
+
+stream_rows = [r for r in rows if res[base][0][r].get('ratio_librt1')]
+if stream_rows:
+    def mm(v):
+        return f'{statistics.median(v):.3f} ({min(v):.3f}-{max(v):.3f})'
+    print()
+    print(f"{'stream row':44s} {'build':>8s}" + ''.join(
+        f'{k:>22s}' for k in ('stream/embree_stream', 'stream/embree_single', 'stream/librt_single',
+                              'librt1/embree1')))
+    for row in stream_rows:
+        for n, _ in bins:
+            print(f'{row:44s} {n:>8s}' + ''.join(
+                f"{mm([x[row][k] for x in res[n]]):>22s}" for k in STREAM_KEYS))

@@ -16,7 +16,9 @@
 //   rays' origins, at most the scene's diagonal away, stay in the representable range
 //   +-kMaxMeshCoordinate of docs/robustness.md) and oblique rays, TriangleBvh (median and
 //   SAH) and a walk of each binary tree find a hit exactly when the linear scan does, never
-//   nearer than the scan's, and any-hit agrees.
+//   nearer than the scan's, and any-hit agrees;
+// - TriangleBvh's ray streams (all the rays above, in any range, in one span) give each
+//   ray's single-ray answer bit for bit.
 
 #include <librt/accel/bvh_builder.h>
 #include <librt/accel/bvh_traversal.h>
@@ -147,6 +149,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         targets.push_back(centroid(tris[i]));
     }
     const float reach = glm::length(scene.diagonal());
+    std::vector<Ray> stream;  // every ray traced below, for the stream queries at the end
     for (const glm::vec3& target : targets) {
         // Oblique directions are compared with the linear scan; axis-parallel ones only run.
         // (An axis-parallel ray's zero component is replaced by 1e-30 in the slab test, so it
@@ -160,6 +163,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             ray.direction = dir;
             ray.origin = target - dir * (std::isfinite(reach) ? reach + 1.0f : 1e30f);
             if (!finite(ray.origin)) continue;
+            stream.push_back(ray);
             const float truth = closest(tris, nullptr, ray, false);
             const bool truth_any = closest(tris, nullptr, ray, true) >= 0.0f;
             const bool oblique = dir.x != 0.0f && dir.y != 0.0f && dir.z != 0.0f;
@@ -192,6 +196,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 }
                 if (bvh->occluded(ray) != scan.valid()) __builtin_trap();
             }
+        }
+    }
+    for (const TriangleBvh* bvh : {&wide_median, &wide_sah}) {
+        std::vector<PrimitiveHit> hits(stream.size());
+        std::vector<std::uint8_t> blocked(stream.size());
+        bvh->intersect(stream, hits);
+        bvh->occluded(stream, blocked);
+        for (std::size_t i = 0; i < stream.size(); ++i) {
+            const PrimitiveHit one = bvh->intersect(stream[i]);
+            if (std::memcmp(&one, &hits[i], sizeof one) != 0) __builtin_trap();
+            if (blocked[i] != (bvh->occluded(stream[i]) ? 1 : 0)) __builtin_trap();
         }
     }
     return 0;

@@ -6,6 +6,9 @@
 #include <librt/accel/triangle_bvh.h>
 #include <librt/core/error.h>
 
+#include <glm/geometric.hpp>
+
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <string>
@@ -165,6 +168,81 @@ PrimitiveHit TriangleBvh::intersect(const Ray& ray, glm::vec3& winding_normal) c
 bool TriangleBvh::occluded(const Ray& ray) const {
     if (!tree_) return false;
     return occluded_fn_(*tree_, ray);
+}
+
+namespace {
+
+/// Refuses a stream whose output span does not match its rays.
+void check_stream_sizes(const char* query, std::size_t rays, const char* out_name,
+                        std::size_t out) {
+    if (rays != out)
+        throw Error(std::string("TriangleBvh::") + query + ": " + std::to_string(rays) +
+                    " rays but " + std::to_string(out) + " " + out_name);
+}
+
+/// Trees of fewer bytes than this answer a stream ray by ray: the interleaved walk
+/// (wide_stream.h) pays off only when its rays wait on memory. Measured (docs/benchmarks.md,
+/// "Ray streams"), librt's stream over its single rays: 0.92 / 0.90 (incoherent / any hit)
+/// on the 10k teapot (0.6 MB tree), 1.04 / 0.99 on the bunny (3.9 MB) and the 100k teapot
+/// (5.6 MB), 1.17-1.18 / 1.14-1.16 on the dragon (48 MB) and the 1M teapot (56 MB).
+constexpr std::size_t kStreamInterleaveBytes = std::size_t{8} << 20;
+
+/// Rays of the stream compared with their neighbour by looks_coherent.
+constexpr std::size_t kCoherenceSample = 16;
+
+/// True when the stream's first rays each point within about a degree of the one before (a
+/// camera's primary rays): those walk the same nodes one after the other, whose branches
+/// then predict and whose nodes are in cache, so the interleaved walk only adds its
+/// bookkeeping (docs/benchmarks.md, "Ray streams").
+bool looks_coherent(std::span<const Ray> rays) {
+    const std::size_t n = std::min(rays.size(), kCoherenceSample + 1);
+    if (n < 2) return false;
+    // cos(1 degree)^2: dot(a, b)^2 >= c |a|^2 |b|^2 with dot(a, b) > 0.
+    constexpr float kCos2 = 0.99969541f;
+    for (std::size_t i = 1; i < n; ++i) {
+        const glm::vec3& a = rays[i - 1].direction;
+        const glm::vec3& b = rays[i].direction;
+        const float d = glm::dot(a, b);
+        if (!(d > 0.0f && d * d >= kCos2 * glm::dot(a, a) * glm::dot(b, b))) return false;
+    }
+    return true;
+}
+
+/// Whether a stream takes the interleaved walk (wide_stream.h) rather than a loop of
+/// single-ray queries: a tree beyond the caches and rays that are not coherent.
+bool interleave_stream(const detail::WideBvh& tree, std::span<const Ray> rays) {
+    return tree.memory_bytes() >= kStreamInterleaveBytes && rays.size() >= 2 &&
+           !looks_coherent(rays);
+}
+
+}  // namespace
+
+void TriangleBvh::intersect(std::span<const Ray> rays, std::span<PrimitiveHit> hits) const {
+    check_stream_sizes("intersect", rays.size(), "hits", hits.size());
+    if (!tree_) {
+        std::fill(hits.begin(), hits.end(), PrimitiveHit{});
+        return;
+    }
+    if (interleave_stream(*tree_, rays)) {
+        detail::wide_kernels(path_).intersect_stream(*tree_, rays.data(), hits.data(), rays.size());
+        return;
+    }
+    for (std::size_t i = 0; i < rays.size(); ++i) hits[i] = intersect_fn_(*tree_, rays[i]);
+}
+
+void TriangleBvh::occluded(std::span<const Ray> rays, std::span<std::uint8_t> blocked) const {
+    check_stream_sizes("occluded", rays.size(), "blocked flags", blocked.size());
+    if (!tree_) {
+        std::fill(blocked.begin(), blocked.end(), std::uint8_t{0});
+        return;
+    }
+    if (interleave_stream(*tree_, rays)) {
+        detail::wide_kernels(path_).occluded_stream(*tree_, rays.data(), blocked.data(),
+                                                    rays.size());
+        return;
+    }
+    for (std::size_t i = 0; i < rays.size(); ++i)
+        blocked[i] = occluded_fn_(*tree_, rays[i]) ? 1 : 0;
 }
 
 BvhStats TriangleBvh::stats() const { return tree_ ? detail::wide_bvh_stats(*tree_) : BvhStats{}; }

@@ -14,6 +14,7 @@
 #if defined(LIBRT_HAVE_X86_KERNELS)
 #include "block4_sse.h"
 #include "slab8_avx.h"
+#include "wide_stream.h"
 #include "wide_traversal.h"
 
 #include <immintrin.h>
@@ -61,10 +62,27 @@ static_assert(WideKernel<Avx2Kernel>);
     return intersect_normal_wide<Avx2Kernel>(bvh, ray, normal);
 }
 
+// The stream: rays beyond slab_test8's range go one by one through the SSE kernel.
+[[gnu::flatten]] void avx2_intersect_stream(const WideBvh& bvh, const Ray* rays, PrimitiveHit* hits,
+                                            std::size_t count) {
+    traverse_wide_stream<Avx2Kernel, false>(
+        bvh, rays, hits, count, [](const Ray& ray) { return slab8_in_range(ray); },
+        [&](const Ray& ray) { return sse_wide_kernels().intersect(bvh, ray); });
+}
+[[gnu::flatten]] void avx2_occluded_stream(const WideBvh& bvh, const Ray* rays,
+                                           std::uint8_t* blocked, std::size_t count) {
+    traverse_wide_stream<Avx2Kernel, true>(
+        bvh, rays, blocked, count, [](const Ray& ray) { return slab8_in_range(ray); },
+        [&](const Ray& ray) {
+            return static_cast<std::uint8_t>(sse_wide_kernels().occluded(bvh, ray) ? 1 : 0);
+        });
+}
+
 }  // namespace
 
 WideKernels avx2_wide_kernels() {
-    return {&avx2_intersect, &avx2_occluded, &avx2_intersect_normal};
+    return {&avx2_intersect, &avx2_occluded, &avx2_intersect_normal, &avx2_intersect_stream,
+            &avx2_occluded_stream};
 }
 
 }  // namespace librt::detail

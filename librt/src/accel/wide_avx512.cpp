@@ -11,6 +11,7 @@
 #if defined(LIBRT_HAVE_X86_KERNELS)
 #include "block4_sse.h"
 #include "slab8_avx.h"
+#include "wide_stream.h"
 #include "wide_traversal.h"
 
 #include <immintrin.h>
@@ -58,10 +59,27 @@ static_assert(WideKernel<Avx512Kernel>);
     return intersect_normal_wide<Avx512Kernel>(bvh, ray, normal);
 }
 
+// The stream: rays beyond slab_test8's range go one by one through the SSE kernel.
+[[gnu::flatten]] void avx512_intersect_stream(const WideBvh& bvh, const Ray* rays,
+                                              PrimitiveHit* hits, std::size_t count) {
+    traverse_wide_stream<Avx512Kernel, false>(
+        bvh, rays, hits, count, [](const Ray& ray) { return slab8_in_range(ray); },
+        [&](const Ray& ray) { return sse_wide_kernels().intersect(bvh, ray); });
+}
+[[gnu::flatten]] void avx512_occluded_stream(const WideBvh& bvh, const Ray* rays,
+                                             std::uint8_t* blocked, std::size_t count) {
+    traverse_wide_stream<Avx512Kernel, true>(
+        bvh, rays, blocked, count, [](const Ray& ray) { return slab8_in_range(ray); },
+        [&](const Ray& ray) {
+            return static_cast<std::uint8_t>(sse_wide_kernels().occluded(bvh, ray) ? 1 : 0);
+        });
+}
+
 }  // namespace
 
 WideKernels avx512_wide_kernels() {
-    return {&avx512_intersect, &avx512_occluded, &avx512_intersect_normal};
+    return {&avx512_intersect, &avx512_occluded, &avx512_intersect_normal, &avx512_intersect_stream,
+            &avx512_occluded_stream};
 }
 
 }  // namespace librt::detail

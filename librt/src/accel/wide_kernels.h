@@ -11,6 +11,9 @@
 
 #include <glm/vec3.hpp>
 
+#include <cstddef>
+#include <cstdint>
+
 namespace librt::detail {
 
 /// Closest-hit and any-hit traversal of a WideBvh for one instruction set.
@@ -20,6 +23,12 @@ struct WideKernels {
     /// Closest hit and, on a hit, the triangle's winding normal cross(p1 - p0, p2 - p0)
     /// from the leaf's corners (intersect_normal_wide).
     PrimitiveHit (*intersect_normal)(const WideBvh&, const Ray&, glm::vec3&);
+    /// Closest hits of a stream of rays (wide_stream.h): hits[i] = intersect(rays[i]).
+    void (*intersect_stream)(const WideBvh&, const Ray* rays, PrimitiveHit* hits,
+                             std::size_t count);
+    /// Any hits of a stream: blocked[i] = occluded(rays[i]) ? 1 : 0.
+    void (*occluded_stream)(const WideBvh&, const Ray* rays, std::uint8_t* blocked,
+                            std::size_t count);
 };
 
 /// One query through the scalar kernel, counting what the traversal does. The SSE path makes

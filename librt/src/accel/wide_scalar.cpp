@@ -3,6 +3,7 @@
 // instruction set must agree with it.
 
 #include "wide_kernels.h"
+#include "wide_stream.h"
 #include "wide_traversal.h"
 
 #include <librt/geometry/bbox.h>
@@ -94,10 +95,24 @@ PrimitiveHit scalar_intersect_normal(const WideBvh& bvh, const Ray& ray, glm::ve
     return intersect_normal_wide<ScalarKernel>(bvh, ray, normal);
 }
 
+void scalar_intersect_stream(const WideBvh& bvh, const Ray* rays, PrimitiveHit* hits,
+                             std::size_t count) {
+    traverse_wide_stream<ScalarKernel, false>(
+        bvh, rays, hits, count, [](const Ray&) { return true; },
+        [](const Ray&) { return PrimitiveHit{}; });
+}
+void scalar_occluded_stream(const WideBvh& bvh, const Ray* rays, std::uint8_t* blocked,
+                            std::size_t count) {
+    traverse_wide_stream<ScalarKernel, true>(
+        bvh, rays, blocked, count, [](const Ray&) { return true; },
+        [](const Ray&) { return std::uint8_t{0}; });
+}
+
 }  // namespace
 
 WideKernels scalar_wide_kernels() {
-    return {&scalar_intersect, &scalar_occluded, &scalar_intersect_normal};
+    return {&scalar_intersect, &scalar_occluded, &scalar_intersect_normal, &scalar_intersect_stream,
+            &scalar_occluded_stream};
 }
 
 TraversalCounts count_wide_traversal(const WideBvh& bvh, const Ray& ray, bool any_hit) {

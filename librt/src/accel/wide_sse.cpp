@@ -7,6 +7,7 @@
 #if defined(LIBRT_HAVE_X86_KERNELS)
 #include "block4_sse.h"
 #include "slab4.h"
+#include "wide_stream.h"
 #include "wide_traversal.h"
 
 #include <cstdint>
@@ -43,9 +44,25 @@ static_assert(WideKernel<SseKernel>);
     return intersect_normal_wide<SseKernel>(bvh, ray, normal);
 }
 
+[[gnu::flatten]] void sse_intersect_stream(const WideBvh& bvh, const Ray* rays, PrimitiveHit* hits,
+                                           std::size_t count) {
+    traverse_wide_stream<SseKernel, false>(
+        bvh, rays, hits, count, [](const Ray&) { return true; },
+        [](const Ray&) { return PrimitiveHit{}; });
+}
+[[gnu::flatten]] void sse_occluded_stream(const WideBvh& bvh, const Ray* rays,
+                                          std::uint8_t* blocked, std::size_t count) {
+    traverse_wide_stream<SseKernel, true>(
+        bvh, rays, blocked, count, [](const Ray&) { return true; },
+        [](const Ray&) { return std::uint8_t{0}; });
+}
+
 }  // namespace
 
-WideKernels sse_wide_kernels() { return {&sse_intersect, &sse_occluded, &sse_intersect_normal}; }
+WideKernels sse_wide_kernels() {
+    return {&sse_intersect, &sse_occluded, &sse_intersect_normal, &sse_intersect_stream,
+            &sse_occluded_stream};
+}
 
 }  // namespace librt::detail
 #endif

@@ -52,6 +52,23 @@ public:
     /// True when anything lies in (ray.t_min, ray.t_max): for shadow rays.
     [[nodiscard]] bool occluded(const Ray& ray) const;
 
+    /// A stream of rays: hits[i] = intersect(rays[i]) for every i, bit for bit (t, u, v and
+    /// primitive id; a ray that is not traceable, e.g. with a NaN t_max or t_min > t_max,
+    /// misses as it does alone). Over a tree of 8 MiB or more (memory_bytes()), a stream
+    /// whose first rays are not coherent (not each within a degree of the one before) is
+    /// walked eight rays at a time, their node visits interleaved so that the core overlaps
+    /// their memory and dependency latencies: 1.1-1.2x the single rays' rate on incoherent
+    /// and shadow rays over the 0.9M-triangle dragon and a 1M-triangle teapot. Otherwise
+    /// (smaller trees, coherent rays: there the interleaving measured slower) it is a loop
+    /// over the single-ray query. docs/benchmarks.md, "Ray streams", has the figures. Any
+    /// number of rays, none included. Throws librt::Error naming both sizes when
+    /// hits.size() != rays.size(). The spans must not overlap.
+    void intersect(std::span<const Ray> rays, std::span<PrimitiveHit> hits) const;
+    /// A stream of shadow rays: blocked[i] = occluded(rays[i]) ? 1 : 0 for every i, as
+    /// intersect(rays, hits) is for closest hits. Throws librt::Error naming both sizes when
+    /// blocked.size() != rays.size().
+    void occluded(std::span<const Ray> rays, std::span<std::uint8_t> blocked) const;
+
     /// True for a BVH over no triangles, which nothing hits.
     [[nodiscard]] bool empty() const { return tree_ == nullptr; }
     /// Box around all triangles (empty for an empty BVH).
