@@ -725,7 +725,7 @@ int main(int argc, char** argv) {
     app.add_option("scene", o.scene, "Scene file: .gltf, .glb or .obj")->required();
     app.add_option("-o,--output", o.output,
                    "Output image: .png (exposure, clamp, sRGB), .hdr, .pfm (linear) or .exr "
-                   "(linear, with albedo, normal, depth, visibility and sample-count layers)")
+                   "(linear, with albedo, normal, depth and sample-count layers)")
         ->capture_default_str();
     app.add_option("--spp", o.spp,
                    "Samples per pixel: with adaptive sampling (the default) their mean over the "

@@ -120,12 +120,9 @@ void write(const std::string& path, const py::array& image, const py::object& la
                 out.depth = plane_of(value, out.beauty, "depth");
             else if (k == "sample_count")
                 out.sample_count = plane_of(value, out.beauty, "sample_count");
-            else if (k == "visibility")
-                out.visibility = plane_of(value, out.beauty, "visibility");
             else if (k != "beauty")
                 throw Error("layers: '" + k +
-                            "' is none of albedo, normal, depth, visibility, sample_count, "
-                            "denoised");
+                            "' is none of albedo, normal, depth, sample_count, denoised");
         }
     }
     py::gil_scoped_release release;
@@ -181,8 +178,6 @@ py::object read(const std::string& path, bool layers) {
         if (!l.normal.pixels.empty()) out["normal"] = image_to_array(std::move(l.normal));
         if (!l.denoised.pixels.empty()) out["denoised"] = image_to_array(std::move(l.denoised));
         if (!l.depth.empty()) out["depth"] = plane_to_array(std::move(l.depth), w, h);
-        if (!l.visibility.empty())
-            out["visibility"] = plane_to_array(std::move(l.visibility), w, h);
         if (!l.sample_count.empty())
             out["sample_count"] = plane_to_array(std::move(l.sample_count), w, h);
         return out;

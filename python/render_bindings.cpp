@@ -250,7 +250,6 @@ py::object render(const py::object& scene_object, CameraSettings settings, int s
     out["albedo"] = image_to_array(std::move(layers.albedo));
     out["normal"] = image_to_array(std::move(layers.normal));
     out["depth"] = plane_to_array(std::move(layers.depth), w, h);
-    out["visibility"] = plane_to_array(std::move(layers.visibility), w, h);
     out["sample_count"] = plane_to_array(std::move(layers.sample_count), w, h);
     if (!layers.denoised.pixels.empty())
         out["denoised"] = image_to_array(std::move(layers.denoised));

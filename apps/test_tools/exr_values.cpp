@@ -100,9 +100,6 @@ int crop_of(const char* full_path, const char* crop_path, int x, int y) {
     same = same_values("depth", full.depth.data(), full.depth.size(), fw, crop.depth.data(),
                        crop.depth.size(), cw, 1, x, y) &&
            same;
-    same = same_values("visibility", full.visibility.data(), full.visibility.size(), fw,
-                       crop.visibility.data(), crop.visibility.size(), cw, 1, x, y) &&
-           same;
     same = same_values("sample_count", full.sample_count.data(), full.sample_count.size(), fw,
                        crop.sample_count.data(), crop.sample_count.size(), cw, 1, x, y) &&
            same;
@@ -131,7 +128,6 @@ int main(int argc, char** argv) {
         report("albedo", flat(layers.albedo));
         report("normal", flat(layers.normal));
         report("depth", layers.depth);
-        report("visibility", layers.visibility);
         report("sample_count", layers.sample_count);
     } catch (const librt::Error& e) {
         std::fprintf(stderr, "exr_values: %s\n", e.what());

@@ -145,9 +145,9 @@ void write_input(const std::string& path, const DenoiserInput& in) {
         std::fwrite(wh, sizeof wh, 1, f);
         std::fwrite(im.pixels.data(), sizeof(glm::vec3), im.pixels.size(), f);
     };
-    for (const Image* im : {&in.beauty, &in.albedo, &in.normal, &in.half_a, &in.half_b,
-                            &in.albedo_a, &in.albedo_b, &in.normal_a, &in.normal_b, &in.emission_a,
-                            &in.emission_b, &in.visibility_a, &in.visibility_b})
+    for (const Image* im :
+         {&in.beauty, &in.albedo, &in.normal, &in.half_a, &in.half_b, &in.albedo_a, &in.albedo_b,
+          &in.normal_a, &in.normal_b, &in.emission_a, &in.emission_b})
         layer(*im);
     std::fwrite(in.share_a.data(), sizeof(float), in.share_a.size(), f);
     std::fclose(f);
@@ -166,8 +166,7 @@ bool read_input(const std::string& path, DenoiserInput& in) {
              im.pixels.size();
     };
     for (Image* im : {&in.beauty, &in.albedo, &in.normal, &in.half_a, &in.half_b, &in.albedo_a,
-                      &in.albedo_b, &in.normal_a, &in.normal_b, &in.emission_a, &in.emission_b,
-                      &in.visibility_a, &in.visibility_b})
+                      &in.albedo_b, &in.normal_a, &in.normal_b, &in.emission_a, &in.emission_b})
         layer(*im);
     in.share_a.resize(in.beauty.pixels.size());
     ok = ok &&
@@ -296,10 +295,6 @@ int main(int argc, char** argv) {
             if (const char* v = std::getenv("DENOISE_NORMAL_SIGMA")) ds.normal_sigma = std::stof(v);
             if (const char* v = std::getenv("DENOISE_ALBEDO_SIGMA")) ds.albedo_sigma = std::stof(v);
             if (const char* v = std::getenv("DENOISE_STRENGTH")) ds.strength = std::stof(v);
-            if (const char* v = std::getenv("DENOISE_VISIBILITY_SIGMA"))
-                ds.visibility_sigma = std::stof(v);
-            if (const char* v = std::getenv("DENOISE_VISIBILITY_REGRESSION"))
-                ds.visibility_regression = std::stoi(v) != 0;
             if (const char* v = std::getenv("DENOISE_RADIUS")) ds.radius = std::stoi(v);
             if (const char* v = std::getenv("DENOISE_PATCH")) ds.patch_radius = std::stoi(v);
             if (const char* v = std::getenv("DENOISE_MAX_SE"))

@@ -20,7 +20,6 @@ def test_pfm_and_exr_round_trip_bit_for_bit(tmp_path):
     assert np.array_equal(librt.read(str(tmp_path / "a.pfm")), image)
     layers = {"albedo": rng.random((9, 13, 3), dtype=np.float32),
               "depth": rng.random((9, 13), dtype=np.float32),
-              "visibility": rng.random((9, 13), dtype=np.float32),
               "sample_count": np.full((9, 13), 4, np.float32)}
     librt.write(str(tmp_path / "a.exr"), image, layers=layers)
     back = librt.read(str(tmp_path / "a.exr"), layers=True)

@@ -114,8 +114,7 @@ def test_aovs_hold_every_layer(tmp_path):
     scene, camera = librt.load(str(write_gltf(tmp_path)), size=(24, 16))
     plain = librt.render(scene, camera, spp=4, seed=1)
     layers = librt.render(scene, camera, spp=4, seed=1, aovs=True)
-    assert set(layers) == {"beauty", "albedo", "normal", "depth", "visibility", "sample_count",
-                           "denoised"}
+    assert set(layers) == {"beauty", "albedo", "normal", "depth", "sample_count", "denoised"}
     assert np.array_equal(layers["beauty"], plain)  # the same samples, the same bits
     assert layers["depth"].shape == (16, 24) and layers["sample_count"].shape == (16, 24)
     assert abs(layers["sample_count"].mean() - 4.0) < 1e-3  # adaptive: 4 on average
@@ -124,10 +123,6 @@ def test_aovs_hold_every_layer(tmp_path):
     norms = np.linalg.norm(layers["normal"], axis=2)
     assert np.all(norms <= 1 + 1e-5) and (np.abs(norms - 1) < 1e-5).mean() > 0.2
     assert np.isinf(layers["depth"][norms == 0]).all()
-    # The share of light samples unshadowed: in [0, 1], and 1 where every sample missed.
-    vis = layers["visibility"]
-    assert vis.shape == (16, 24) and np.all((vis >= 0) & (vis <= 1))
-    assert np.all(vis[norms == 0] == 1)
 
 
 def test_errors_name_the_file_and_json_path(tmp_path):

@@ -19,11 +19,11 @@ TEST(RenderMemory, ProgressiveCountsTheFilmItsCopyAndTheImage) {
     constexpr std::uint64_t splat = 3 * sizeof(std::int64_t);
     constexpr std::uint64_t image = sizeof(glm::vec3);
     EXPECT_EQ(film, 32u);  // the figures of docs/robustness.md
-    EXPECT_EQ(aov, 96u);
+    EXPECT_EQ(aov, 88u);
     RenderMemoryOptions o;
     EXPECT_EQ(progressive_bytes_per_pixel(o), 2 * film + image);  // 76
     o.aovs = true;
-    EXPECT_EQ(progressive_bytes_per_pixel(o), 2 * (film + aov) + image);  // 268
+    EXPECT_EQ(progressive_bytes_per_pixel(o), 2 * (film + aov) + image);  // 252
     o.splats = true;  // the splat sums travel with both films; their image joins the means
     EXPECT_EQ(progressive_bytes_per_pixel(o), 2 * (film + aov + splat) + 2 * image);
     o = {};

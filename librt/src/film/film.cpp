@@ -117,7 +117,6 @@ ImageLayers resolve_layers(const Film& film) {
     layers.albedo = Image(film.width, film.height);
     layers.normal = Image(film.width, film.height);
     layers.depth.resize(film.pixels.size());
-    layers.visibility.resize(film.pixels.size());
     for (std::size_t i = 0; i < film.pixels.size(); ++i) {
         const AovPixel& a = film.aovs[i];
         const std::uint32_t n = film.pixels[i].samples;
@@ -128,8 +127,6 @@ ImageLayers resolve_layers(const Film& film) {
         const double signs = double(n) - 2.0 * double(a.negative);
         layers.albedo.pixels[i] = signs != 0.0 ? glm::vec3(a.albedo / signs) : glm::vec3(0.0f);
         layers.normal.pixels[i] = n > 0 ? glm::vec3(a.normal / double(n)) : glm::vec3(0.0f);
-        // The visibility filtered as the albedo; 1 (nothing shadowed) without samples.
-        layers.visibility[i] = signs != 0.0 ? static_cast<float>(a.visibility / signs) : 1.0f;
         layers.depth[i] = a.hits > 0 ? static_cast<float>(a.depth / double(a.hits))
                                      : std::numeric_limits<float>::infinity();
     }

@@ -181,14 +181,10 @@ ExrWriteResult write_exr(const fs::path& path, const ImageLayers& layers,
         add_rgb(channels, layers.denoised, "denoised.", "RGB", colour);
         if (half) clamp_to_half(channels, path, "denoised", result.warnings);
     }
-    // Depth, the visibility and the sample count stay 32-bit whatever options.colour says (exr.h).
+    // Depth and the sample count stay 32-bit whatever options.colour says (exr.h).
     if (!layers.depth.empty()) {
         check_layer_size(path, "depth", layers.depth.size(), pixel_count);
         channels.push_back({"Z", TINYEXR_PIXELTYPE_FLOAT, layers.depth});
-    }
-    if (!layers.visibility.empty()) {
-        check_layer_size(path, "visibility", layers.visibility.size(), pixel_count);
-        channels.push_back({"visibility.Y", TINYEXR_PIXELTYPE_FLOAT, layers.visibility});
     }
     if (!layers.sample_count.empty()) {
         check_layer_size(path, "sample_count", layers.sample_count.size(), pixel_count);
@@ -312,7 +308,6 @@ ImageLayers read_exr(const fs::path& path) {
     layers.normal = rgb("normal.", "XYZ");
     layers.denoised = rgb("denoised.", "RGB");
     layers.depth = plane("Z");
-    layers.visibility = plane("visibility.Y");
     layers.sample_count = plane("sample_count");
     return layers;
 }

@@ -1,10 +1,6 @@
 #include "render/aov.h"
 
-#include "geometry/spawn_ray.h"
-#include "integrator/transmittance.h"
-
 #include <librt/geometry/ray_offset.h>
-#include <librt/light/light.h>
 #include <librt/material/bsdf.h>
 #include <librt/sampling/rng.h>
 #include <librt/scene/scene.h>
@@ -19,33 +15,6 @@ namespace {
 
 /// Mixed into the seed so the AOV stream of a sample differs from its integrator stream.
 constexpr std::uint64_t kAovStream = 0x41f0'5eed'a0c5'1a7eULL;
-
-/// AovSample::visibility at `hit`, reached along unit direction `incoming`: one light
-/// chosen by power and a point on it, as the path tracer's next-event estimation draws
-/// them (integrators.cpp, sample_direct), but from the AOV's own stream; its shadow ray
-/// ends on the light as the path tracer's does (the light's own surface skipped).
-// Out of line: callgrind then counts its cost apart (the one extra ray the AOVs trace).
-[[gnu::noinline]] float light_visibility(const Scene& scene, const Hit& hit,
-                                         const glm::vec3& incoming, Pcg32& rng) {
-    const LightSampler& lights = scene.light_sampler();
-    const float u_light = rng.next_float();
-    const glm::vec2 u(rng.next_float(), rng.next_float());
-    const SampledLight chosen = lights.sample(u_light);
-    if (!chosen.valid()) return 1.0f;  // no lights: nothing to shadow
-    const Light& light = scene.lights()[chosen.light];
-    const LightLiSample s = sample_li(light, hit.point, u);
-    if (!s.valid()) return 1.0f;
-    // The light behind the surface, on the side the camera does not see: it lights
-    // nothing here (what a shadow does), whatever lies between.
-    const glm::vec3 facing = glm::dot(incoming, hit.geometric_normal) < 0.0f
-                                 ? hit.geometric_normal
-                                 : -hit.geometric_normal;
-    if (!(glm::dot(s.wi, facing) > 0.0f)) return 0.0f;
-    const Ray shadow =
-        spawn_ray_to(hit.point, hit.geometric_normal, hit.offset, s.wi, s.distance, s.end_slope);
-    const glm::vec3 t = shadow_transmittance(scene, shadow, light.object);
-    return (t.x + t.y + t.z) / 3.0f;
-}
 
 }  // namespace
 
@@ -101,9 +70,6 @@ AovSample sample_aovs(const Scene& scene, const Ray& camera_ray, const glm::vec3
             // only this guide sees: the beauty's occlusion is the path tracer's own.
             out.albedo = tint * denoising_albedo(m, sp) * scene.occlusion(hit);
             out.normal = hit.shading_normal;
-            // An emitter seen first keeps 1: its pixels are its emission, not shadowed.
-            if (!(bounce == 0 && m.emits()))
-                out.visibility = light_visibility(scene, hit, ray.direction, rng);
             return out;
         }
         // Through a mirror or glass, as the path tracer goes: by the BSDF seam's sample.

@@ -28,16 +28,6 @@ struct AovSample {
     /// Radiance the camera ray's first hit emits toward the camera (0 from the back of a
     /// one-sided light), as the path tracer counts it there (fully: no MIS at the camera).
     glm::vec3 emission{0.0f};
-    /// Whether one light sample reaches the first non-specular hit (NFOR's direct-light
-    /// visibility feature, Bitterli et al. 2016): a light chosen by the scene's light
-    /// sampler (by power), a point on it drawn, and its shadow ray traced. 1 unblocked,
-    /// 0 blocked or the light behind the surface on the side the ray arrives from (it
-    /// lights nothing seen there); the transmitted fraction (mean of RGB) through
-    /// pass-through surfaces. 1 where there is nothing to shadow: a miss, a first hit that
-    /// emits, a scene without lights, a light sample that finds no direction, too many
-    /// specular bounces. What it predicts and the albedo and normal cannot: shadows and
-    /// occlusion of the direct light on surfaces alike in both.
-    float visibility = 1.0f;
 };
 
 /// Most mirror and glass surfaces followed before the albedo gives up (and is 0).
@@ -50,8 +40,7 @@ inline constexpr int kAovMaxSpecularBounces = 16;
 /// whose material is shaded as the integrators shade it (Scene::shade: textures, vertex
 /// colours, normal map, one-sided backs). Its random numbers come from their own stream
 /// (seeded from the same pixel, sample and seed, but never from the integrator's sampler),
-/// so computing AOVs leaves the beauty image unchanged; that stream also draws the
-/// visibility's light sample, whose shadow ray is the one extra ray the AOVs trace.
+/// so computing AOVs leaves the beauty image unchanged.
 [[nodiscard]] AovSample sample_aovs(const Scene& scene, const Ray& ray, const glm::vec3& forward,
                                     std::uint32_t x, std::uint32_t y, std::uint32_t sample,
                                     std::uint64_t seed);

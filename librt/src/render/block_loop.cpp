@@ -193,11 +193,9 @@ private:
                         // (its size is one per filter; resolve_layers divides it out).
                         if (camera_ray.weight < 0.0f) {
                             aov.albedo -= glm::dvec3(a.albedo);
-                            aov.visibility -= static_cast<double>(a.visibility);
                             ++aov.negative;
                         } else {
                             aov.albedo += glm::dvec3(a.albedo);
-                            aov.visibility += static_cast<double>(a.visibility);
                         }
                         aov.normal += glm::dvec3(a.normal);
                         aov.emission += glm::dvec3(a.emission * camera_ray.weight);

@@ -15,7 +15,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
 #include <exception>
 #include <limits>
 #include <mutex>
@@ -145,7 +144,6 @@ void check_input(const DenoiserInput& in) {
     optional_pair(in.albedo_a, in.albedo_b, "albedo_a", "albedo_b");
     optional_pair(in.normal_a, in.normal_b, "normal_a", "normal_b");
     optional_pair(in.emission_a, in.emission_b, "emission_a", "emission_b");
-    optional_pair(in.visibility_a, in.visibility_b, "visibility_a", "visibility_b");
     if (!in.share_a.empty()) {
         if (in.share_a.size() != in.beauty.pixels.size()) {
             throw Error("denoise: share_a has " + std::to_string(in.share_a.size()) +
@@ -213,21 +211,6 @@ struct Planes {
     /// Zwicker 2013 bound the feature distance by the feature's gradient the same way).
     std::vector<float> albedo_tol;
     std::vector<float> normal_tol;  ///< the same for the normal
-    /// The direct-light visibility (DenoiserInput::visibility_a), prefiltered as the
-    /// albedo; with its noise variance and tolerance as the albedo's. Empty when unused.
-    std::vector<float> visibility;
-    std::vector<float> visibility_var;  ///< see visibility
-    std::vector<float> visibility_tol;  ///< see visibility
-    /// Each half's own visibility (DenoiserInput::visibility_a, _b), unfiltered: the
-    /// covariate of that half's fit. Its own, so that the fit of a half stays independent
-    /// of the other half, which select_estimates compares it with (the prefiltered
-    /// visibility carries both halves' samples, and a fit on it was chosen where it only
-    /// followed the other half's noise: material_spheres.glb 7.0x -> 6.8x at 64 spp).
-    std::vector<float> visibility_half[2];
-    /// The visibility as a feature weight (DenoiserSettings::visibility_sigma > 0).
-    bool visibility_weight = false;
-    /// The visibility as a covariate of the first-order fit (visibility_regression).
-    bool visibility_covariate = false;
 
     /// Whether what is averaged (value_a, value_b) is 0 in padded rows [y0, y1): then so is
     /// the filter's output of the rows whose neighbourhoods lie within (sum of w x 0).
@@ -266,16 +249,12 @@ struct PixelTerms {
 /// the weighted mean and the fit's intercept; select_estimates keeps one.
 struct Estimates {
     std::vector<glm::vec3> mean_a, mean_b, fit_a, fit_b;
-    /// The fit with the visibility as a covariate (DenoiserSettings::visibility_regression),
-    /// a third estimate; empty without.
-    std::vector<glm::vec3> cov_a, cov_b;
 };
 
 /// The planes of `in`, with `albedo` in place of in.albedo (the prefiltered albedo) as the
-/// feature and what the result is multiplied back by, and `visibility` (prefiltered, 0x0:
-/// none) as the visibility feature.
-Planes make_planes(const DenoiserInput& in, const Image& albedo, const Image& visibility,
-                   const DenoiserSettings& settings, PixelTerms& terms) {
+/// feature and what the result is multiplied back by.
+Planes make_planes(const DenoiserInput& in, const Image& albedo, const DenoiserSettings& settings,
+                   PixelTerms& terms) {
     const int w = in.beauty.width, h = in.beauty.height;
     const std::size_t n = in.beauty.pixels.size();
     terms.modulation.resize(n);
@@ -285,7 +264,6 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const Image& vi
     const Image& albedo_b = albedo_halves ? in.albedo_b : albedo;
     const bool normal_halves = !in.normal_a.pixels.empty();
     const bool emission = !in.emission_a.pixels.empty();
-    const bool vis = !visibility.pixels.empty() && !in.visibility_a.pixels.empty();
     // The light reflected: each half less what its first hits emit (DenoiserInput::emission_a).
     std::vector<glm::vec3> ra = in.half_a.pixels, rb = in.half_b.pixels;
     if (emission) {
@@ -308,31 +286,27 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const Image& vi
         const glm::vec3 fa = albedo_a.pixels[i] - albedo_b.pixels[i];
         const glm::vec3 fn =
             normal_halves ? in.normal_a.pixels[i] - in.normal_b.pixels[i] : glm::vec3(0.0f);
-        const float fv = vis ? in.visibility_a.pixels[i].x - in.visibility_b.pixels[i].x : 0.0f;
         const float s = terms.share[i];
-        feature_spread[i] =
-            glm::vec3(glm::dot(fa, fa), glm::dot(fn, fn), fv * fv) * (s * (1.0f - s));
+        feature_spread[i] = glm::vec3(glm::dot(fa, fa), glm::dot(fn, fn), 0.0f) * (s * (1.0f - s));
     }
     // With a share s of the samples in a: Var(a) = sigma^2 / (s n), Var(b) = sigma^2 /
     // ((1 - s) n), and E[(a - b)^2] = Var(a) + Var(b); so Var(a) = (1 - s) E[(a - b)^2].
     const std::vector<glm::vec3> smooth = box_mean(spread, w, h, kVarianceRadius);
     const std::vector<glm::vec3> feature_var = box_mean(feature_spread, w, h, kVarianceRadius);
-    std::vector<glm::vec3> va(n), vb(n), fv_albedo(n), fv_normal(n), fv_vis(n);
+    std::vector<glm::vec3> va(n), vb(n), fv_albedo(n), fv_normal(n);
     for (std::size_t i = 0; i < n; ++i) {
         va[i] = smooth[i] * (1.0f - terms.share[i]);
         vb[i] = smooth[i] * terms.share[i];
         fv_albedo[i] = glm::vec3(feature_var[i].x);
         fv_normal[i] = glm::vec3(feature_var[i].y);
-        fv_vis[i] = glm::vec3(feature_var[i].z);
     }
-    std::vector<glm::vec3> tol_albedo(n), tol_normal(n), tol_vis(vis ? n : 0);
+    std::vector<glm::vec3> tol_albedo(n), tol_normal(n);
     const float sa2 = settings.albedo_sigma * settings.albedo_sigma;
     const float sn2 = settings.normal_sigma * settings.normal_sigma;
-    const float sv2 = settings.visibility_sigma * settings.visibility_sigma;
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
-            float ga = 0.0f, gn = 0.0f, gv = 0.0f;
+            float ga = 0.0f, gn = 0.0f;
             const int nx[4] = {x - 1, x + 1, x, x};
             const int ny[4] = {y, y, y - 1, y + 1};
             for (int k = 0; k < 4; ++k) {
@@ -342,14 +316,9 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const Image& vi
                 const glm::vec3 en = in.normal.pixels[i] - in.normal.pixels[j];
                 ga = std::max(ga, glm::dot(ea, ea));
                 gn = std::max(gn, glm::dot(en, en));
-                if (vis) {
-                    const float ev = visibility.pixels[i].x - visibility.pixels[j].x;
-                    gv = std::max(gv, ev * ev);
-                }
             }
             tol_albedo[i] = glm::vec3(sa2 + ga);
             tol_normal[i] = glm::vec3(sn2 + gn);
-            if (vis) tol_vis[i] = glm::vec3(sv2 + gv);
         }
     }
     Planes p;
@@ -408,25 +377,6 @@ Planes make_planes(const DenoiserInput& in, const Image& albedo, const Image& vi
     p.albedo_tol = std::move(one[0]);
     fill(one, tol_normal);
     p.normal_tol = std::move(one[0]);
-    p.visibility_weight = vis && settings.visibility_sigma > 0.0f;
-    p.visibility_covariate = vis && settings.visibility_regression;
-    if (vis) {
-        fill(one, visibility.pixels);
-        p.visibility = std::move(one[0]);
-        fill(one, fv_vis);
-        p.visibility_var = std::move(one[0]);
-        fill(one, tol_vis);
-        p.visibility_tol = std::move(one[0]);
-        if (p.visibility_covariate) {
-            // Experiment switch (LIBRT_DNVIS_COV_FULL=1): both halves' fits on the
-            // prefiltered visibility of all the samples instead of their own.
-            const bool full = std::getenv("LIBRT_DNVIS_COV_FULL") != nullptr;
-            fill(one, full ? visibility.pixels : in.visibility_a.pixels);
-            p.visibility_half[0] = std::move(one[0]);
-            fill(one, full ? visibility.pixels : in.visibility_b.pixels);
-            p.visibility_half[1] = std::move(one[0]);
-        }
-    }
     return p;
 }
 
@@ -462,17 +412,6 @@ constexpr int kRegressionSums = kGram + 3 * kDesign;
 /// The sums of one row of offsets (one dy) that the regression sums are made of
 /// (StripFilter::regress): w, w dx, w dx^2, and w y, w y dx per channel.
 constexpr int kPartialSums = 3 + 2 * 3;
-/// With the visibility as a covariate (DenoiserSettings::visibility_regression), the design
-/// is (1, dx, dy, dv), dv = v_q - v_p the neighbour's visibility less the pixel's: half h's
-/// 7 more regression sums (the Gram matrix's last column (1, dv) (dx, dv) (dy, dv)
-/// (dv, dv) and y dv per channel) follow all the planes above, from kCovariateBase + 7 h,
-/// and its 6 more partial sums (w dv, w dv dx, w dv^2, w y dv per channel) from
-/// kCovariateBase + 14 + 6 h.
-constexpr int kCovariateBase = 2 * kRegressionSums + 2 + 2 * kPartialSums;
-constexpr int kCovariateSums = 7;
-constexpr int kCovariatePartials = 6;
-/// The design's terms at most.
-constexpr int kMaxDesign = kDesign + 1;
 /// Ridge regularisation, relative to the weights' sum, added to each slope's diagonal
 /// entry: where the neighbours do not span the offsets (one pixel holding all the weight)
 /// the slope goes to 0 and the fit to the weighted mean. Small, because a ridge shrinks
@@ -540,11 +479,7 @@ public:
         // First order: each half's regression sums, each half's largest weight, each half's
         // partial sums (regress).
         sums_.resize(kTilePixels *
-                     std::size_t(first_order ? kCovariateBase +
-                                                   (p_.visibility_covariate
-                                                        ? 2 * (kCovariateSums + kCovariatePartials)
-                                                        : 0)
-                                             : 12));
+                     std::size_t(first_order ? 2 * kRegressionSums + 2 + 2 * kPartialSums : 12));
         for (std::vector<float>* v : {&patch_a_, &patch_b_}) v->resize(std::size_t(kTileWidth));
     }
 
@@ -599,12 +534,7 @@ public:
                     const int y = y0 + j;
                     if (y + oy < 0 || y + oy >= p_.height) continue;
                     const std::size_t pp = p_.at(0, y), qq = p_.at(ox, y + oy);
-                    if (p_.visibility_weight)
-                        accumulate<true>(std::size_t(j), tw, x0t, pp, qq, x0, x1, f,
-                                         float(ox) / float(r));
-                    else
-                        accumulate<false>(std::size_t(j), tw, x0t, pp, qq, x0, x1, f,
-                                          float(ox) / float(r));
+                    accumulate(std::size_t(j), tw, x0t, pp, qq, x0, x1, f, float(ox) / float(r));
                 }
             }
             if (first_order_)
@@ -616,11 +546,8 @@ public:
                 const std::size_t t = std::size_t(y - y0) * std::size_t(tw) + std::size_t(x - x0t);
                 const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
                 if (first_order_) {
-                    const bool cov = p_.visibility_covariate;
-                    estimates.fit_a[i] =
-                        solve(0, t, estimates.mean_a[i], cov ? &estimates.cov_a[i] : nullptr);
-                    estimates.fit_b[i] =
-                        solve(1, t, estimates.mean_b[i], cov ? &estimates.cov_b[i] : nullptr);
+                    estimates.fit_a[i] = solve(0, t, estimates.mean_a[i]);
+                    estimates.fit_b[i] = solve(1, t, estimates.mean_b[i]);
                     continue;
                 }
                 const glm::vec3 fa = ratio(0, t);
@@ -674,67 +601,47 @@ private:
 
     /// The first-order output of half h at tile pixel t: the intercept of the weighted,
     /// ridge-regularised least squares fit (kDesign), by Cholesky in double precision, and
-    /// in `mean` the weighted mean. The weighted mean where the fit is degenerate. With the
-    /// visibility as a covariate, also that fit's intercept in `with_visibility` (the fit
-    /// on (1, dx, dy) where the larger one is degenerate): the leading block of the
-    /// Cholesky factor is the smaller design's factor, so both come from one factorisation.
-    [[nodiscard]] glm::vec3 solve(int h, std::size_t t, glm::vec3& mean,
-                                  glm::vec3* with_visibility) {
+    /// in `mean` the weighted mean. The weighted mean where the fit is degenerate.
+    [[nodiscard]] glm::vec3 solve(int h, std::size_t t, glm::vec3& mean) {
         const int base = h * kRegressionSums;
-        double g[kMaxDesign][kMaxDesign];
+        double g[kDesign][kDesign];
         int k = 0;
         for (int i = 0; i < kDesign; ++i)
             for (int j = i; j < kDesign; ++j) g[i][j] = g[j][i] = double(sum(base + k++)[t]);
-        double rhs[3][kMaxDesign];
+        double rhs[3][kDesign];
         for (int c = 0; c < 3; ++c)
             for (int i = 0; i < kDesign; ++i) rhs[c][i] = double(sum(base + kGram + 3 * i + c)[t]);
-        const int nd = p_.visibility_covariate ? kMaxDesign : kDesign;
-        if (p_.visibility_covariate) {
-            const int extra = kCovariateBase + h * kCovariateSums;
-            for (int i = 0; i < kMaxDesign; ++i)
-                g[i][kDesign] = g[kDesign][i] = double(sum(extra + i)[t]);
-            for (int c = 0; c < 3; ++c) rhs[c][kDesign] = double(sum(extra + kMaxDesign + c)[t]);
-        }
         const double w = g[0][0];
         mean = glm::vec3(float(rhs[0][0] / w), float(rhs[1][0] / w), float(rhs[2][0] / w));
-        for (int i = 1; i < nd; ++i) g[i][i] += kRidge * w;
-        // Cholesky G = L L^T in place (lower triangle), up to the first degenerate column.
-        int factored = 0;
-        for (int j = 0; j < nd; ++j) {
+        for (int i = 1; i < kDesign; ++i) g[i][i] += kRidge * w;
+        // Cholesky G = L L^T in place (lower triangle).
+        for (int j = 0; j < kDesign; ++j) {
             double d = g[j][j];
             for (int m = 0; m < j; ++m) d -= g[j][m] * g[j][m];
-            if (!(d > 1e-12 * w)) break;
-            factored = j + 1;
+            if (!(d > 1e-12 * w)) return mean;
             g[j][j] = std::sqrt(d);
-            for (int i = j + 1; i < nd; ++i) {
+            for (int i = j + 1; i < kDesign; ++i) {
                 double e = g[i][j];
                 for (int m = 0; m < j; ++m) e -= g[i][m] * g[j][m];
                 g[i][j] = e / g[j][j];
             }
         }
-        // The intercept of the fit on the first n terms, by forward and back substitution.
-        const auto intercept = [&](int n) {
-            glm::vec3 v;
-            for (int c = 0; c < 3; ++c) {
-                double z[kMaxDesign];
-                for (int i = 0; i < n; ++i) {
-                    double e = rhs[c][i];
-                    for (int m = 0; m < i; ++m) e -= g[i][m] * z[m];
-                    z[i] = e / g[i][i];
-                }
-                for (int i = n - 1; i >= 0; --i) {
-                    double e = z[i];
-                    for (int m = i + 1; m < n; ++m) e -= g[m][i] * z[m];
-                    z[i] = e / g[i][i];
-                }
-                v[c] = float(z[0]);
+        glm::vec3 v;
+        for (int c = 0; c < 3; ++c) {
+            double z[kDesign];
+            for (int i = 0; i < kDesign; ++i) {
+                double e = rhs[c][i];
+                for (int m = 0; m < i; ++m) e -= g[i][m] * z[m];
+                z[i] = e / g[i][i];
             }
-            return v;
-        };
-        const glm::vec3 fit = factored >= kDesign ? intercept(kDesign) : mean;
-        if (with_visibility != nullptr)
-            *with_visibility = factored >= kMaxDesign ? intercept(kMaxDesign) : fit;
-        return fit;
+            for (int i = kDesign - 1; i >= 0; --i) {
+                double e = z[i];
+                for (int m = i + 1; m < kDesign; ++m) e -= g[m][i] * z[m];
+                z[i] = e / g[i][i];
+            }
+            v[c] = float(z[0]);
+        }
+        return v;
     }
 
     /// Rousselle et al.'s per-pixel distance, summed over the channels, for `rows` rows of n
@@ -849,8 +756,6 @@ private:
     /// Adds the neighbours at offset (ox, oy) (dx: ox scaled) to the sums of tile row j
     /// (image pixels x0 .. x1 of row pp, neighbours from qq on; the tile starts at x0t and
     /// is tw wide), from the column sums of the patch distances (column_a_, column_b_).
-    /// kVisibility: the visibility's feature distance joins the albedo's and the normal's.
-    template <bool kVisibility>
     LIBRT_DENOISE_INLINE void accumulate(std::size_t j, int tw, int x0t, std::size_t pp,
                                          std::size_t qq, int x0, int x1, int f, float dx) {
         const auto w = std::size_t(tw);
@@ -868,9 +773,6 @@ private:
         const float* vnp = &p_.normal_var[p0];
         const float* tap = &p_.albedo_tol[p0];
         const float* tnp = &p_.normal_tol[p0];
-        const float* vvp = kVisibility ? &p_.visibility[p0] : nullptr;
-        const float* vvv = kVisibility ? &p_.visibility_var[p0] : nullptr;
-        const float* vvt = kVisibility ? &p_.visibility_tol[p0] : nullptr;
         // In whole vectors: up to kLanes - 1 weights past ca[n) are computed (the planes and
         // the columns have that slack) and not read.
         const int nv = round_to_lanes(n);
@@ -891,15 +793,8 @@ private:
             const float ln = vnp[q] < vnp[x] ? vnp[q] : vnp[x];
             const float ea = fa - (vap[x] + la);
             const float en = fn - (vnp[x] + ln);
-            float feature = (ea > 0.0f ? ea : 0.0f) / (tap[x] + vap[x] + vap[q]) +
-                            (en > 0.0f ? en : 0.0f) / (tnp[x] + vnp[x] + vnp[q]);
-            if constexpr (kVisibility) {
-                // The visibility's distance, as the albedo's.
-                const float dv = vvp[x] - vvp[q];
-                const float lv = vvv[q] < vvv[x] ? vvv[q] : vvv[x];
-                const float ev = dv * dv - (vvv[x] + lv);
-                feature += (ev > 0.0f ? ev : 0.0f) / (vvt[x] + vvv[x] + vvv[q]);
-            }
+            const float feature = (ea > 0.0f ? ea : 0.0f) / (tap[x] + vap[x] + vap[q]) +
+                                  (en > 0.0f ? en : 0.0f) / (tnp[x] + vnp[x] + vnp[q]);
             // exp_neg's argument is >= 0: the feature term is, and so is max(patch, 0).
             ca[x] = exp_neg((ca[x] > 0.0f ? ca[x] : 0.0f) + feature);
             cb[x] = exp_neg((cb[x] > 0.0f ? cb[x] : 0.0f) + feature);
@@ -939,13 +834,8 @@ private:
             }
             return;
         }
-        if (p_.visibility_covariate) {
-            regress<true>(0, ca, p_.ratio_a, p0, q0, row, n, dx);
-            regress<true>(1, cb, p_.ratio_b, p0, q0, row, n, dx);
-        } else {
-            regress<false>(0, ca, p_.ratio_a, p0, q0, row, n, dx);
-            regress<false>(1, cb, p_.ratio_b, p0, q0, row, n, dx);
-        }
+        regress(0, ca, p_.ratio_a, q0, row, n, dx);
+        regress(1, cb, p_.ratio_b, q0, row, n, dx);
     }
 
     /// Half h's partial sums at this offset (w, w dx, w dx^2, w y, w y dx), from which
@@ -953,12 +843,9 @@ private:
     /// (1, dx, dy) and its products with the demodulated radiance) once per row of
     /// offsets: dy is constant along the row, so w dy, w dx dy, w dy^2 and w y dy are dy
     /// and dy^2 times those sums (9 sums per offset and half instead of 15). All in one
-    /// loop (the planes kTilePixels apart: one pointer). kCovariate: also the visibility's
-    /// (kCovariateBase), p0 the pixels' index in the planes.
-    template <bool kCovariate>
+    /// loop (the planes kTilePixels apart: one pointer).
     LIBRT_DENOISE_INLINE void regress(int h, const float* weight, const std::vector<float>* y,
-                                      std::size_t p0, std::size_t q0, std::size_t row, int n,
-                                      float dx) {
+                                      std::size_t q0, std::size_t row, int n, float dx) {
         float* top = sum(2 * kRegressionSums + h) + row;
         float* sums = sum(2 * kRegressionSums + 2 + h * kPartialSums) + row;
         const auto at = [sums](int k, int x) -> float& {
@@ -966,11 +853,6 @@ private:
         };
         const float dxx = dx * dx;
         const float *y0 = &y[0][q0], *y1 = &y[1][q0], *y2 = &y[2][q0];
-        const float* vp = kCovariate ? &p_.visibility_half[h][p0] : nullptr;
-        const float* vq = kCovariate ? &p_.visibility_half[h][q0] : nullptr;
-        float* cov = kCovariate
-                         ? sum(kCovariateBase + 2 * kCovariateSums + h * kCovariatePartials) + row
-                         : nullptr;
         LIBRT_DENOISE_NO_ALIAS
         for (int x = 0; x < n; ++x) {
             const float wx = weight[x];
@@ -985,17 +867,6 @@ private:
             at(6, x) += v0 * dx;
             at(7, x) += v1 * dx;
             at(8, x) += v2 * dx;
-            if constexpr (kCovariate) {
-                const float dv = vq[x] - vp[x];
-                const float wdv = wx * dv;
-                float* c = cov + x;
-                c[0] += wdv;
-                c[kTilePixels] += wdv * dx;
-                c[2 * kTilePixels] += wdv * dv;
-                c[3 * kTilePixels] += v0 * dv;
-                c[4 * kTilePixels] += v1 * dv;
-                c[5 * kTilePixels] += v2 * dv;
-            }
         }
     }
 
@@ -1028,20 +899,6 @@ private:
                 }
                 for (int k = 0; k < kPartialSums; ++k) at(part, k, t) = 0.0f;
             }
-            if (!p_.visibility_covariate) continue;
-            // The design's last column (1, dv) (dx, dv) (dy, dv) (dv, dv), then y dv.
-            float* e = sum(kCovariateBase + h * kCovariateSums);
-            float* cp = sum(kCovariateBase + 2 * kCovariateSums + h * kCovariatePartials);
-            LIBRT_DENOISE_NO_ALIAS
-            for (std::size_t t = 0; t < pixels; ++t) {
-                const float wdv = at(cp, 0, t);
-                at(e, 0, t) += wdv;
-                at(e, 1, t) += at(cp, 1, t);
-                at(e, 2, t) += wdv * dy;
-                at(e, 3, t) += at(cp, 2, t);
-                for (int c = 0; c < 3; ++c) at(e, 4 + c, t) += at(cp, 3 + c, t);
-                for (int k = 0; k < kCovariatePartials; ++k) at(cp, k, t) = 0.0f;
-            }
         }
     }
 
@@ -1068,9 +925,7 @@ void select_estimates(const Planes& planes, const PixelTerms& terms, const Estim
                       Image& out) {
     const int w = planes.width, h = planes.height;
     const std::size_t n = out.pixels.size();
-    // x: the mean's squared difference, y: the fit's, z: the visibility fit's (if any).
-    const bool cov = !e.cov_a.empty();
-    std::vector<glm::vec3> err(n);
+    std::vector<glm::vec3> err(n);  // x: the mean's squared difference, y: the fit's
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
@@ -1079,25 +934,15 @@ void select_estimates(const Planes& planes, const PixelTerms& terms, const Estim
             const glm::vec3 yb(planes.ratio_b[0][k], planes.ratio_b[1][k], planes.ratio_b[2][k]);
             const glm::vec3 dm_a = e.mean_a[i] - yb, dm_b = e.mean_b[i] - ya;
             const glm::vec3 df_a = e.fit_a[i] - yb, df_b = e.fit_b[i] - ya;
-            float ev = 0.0f;
-            if (cov) {
-                const glm::vec3 dv_a = e.cov_a[i] - yb, dv_b = e.cov_b[i] - ya;
-                ev = glm::dot(dv_a, dv_a) + glm::dot(dv_b, dv_b);
-            }
             err[i] = glm::vec3(glm::dot(dm_a, dm_a) + glm::dot(dm_b, dm_b),
-                               glm::dot(df_a, df_a) + glm::dot(df_b, df_b), ev);
+                               glm::dot(df_a, df_a) + glm::dot(df_b, df_b), 0.0f);
         }
     }
     const std::vector<glm::vec3> smooth = box_mean(err, w, h, kSelectRadius);
     for (std::size_t i = 0; i < n; ++i) {
         const bool fit = smooth[i].y <= smooth[i].x;
-        glm::vec3 fa = fit ? e.fit_a[i] : e.mean_a[i];
-        glm::vec3 fb = fit ? e.fit_b[i] : e.mean_b[i];
-        // The visibility's fit where it errs less than both.
-        if (cov && smooth[i].z < std::min(smooth[i].x, smooth[i].y)) {
-            fa = e.cov_a[i];
-            fb = e.cov_b[i];
-        }
+        const glm::vec3 fa = fit ? e.fit_a[i] : e.mean_a[i];
+        const glm::vec3 fb = fit ? e.fit_b[i] : e.mean_b[i];
         const float sh = terms.share[i];
         out.pixels[i] = terms.modulation[i] * (sh * fa + (1.0f - sh) * fb);
         if (!terms.emission.empty()) out.pixels[i] += terms.emission[i];
@@ -1106,12 +951,11 @@ void select_estimates(const Planes& planes, const PixelTerms& terms, const Estim
 
 /// The filter: `in`'s halves demodulated by their albedos, filtered with each other's
 /// weights (a first-order regression or, `first_order` false, a weighted mean), multiplied
-/// back by `albedo`, plus `emission` (0x0: none); `visibility` (0x0: none) the
-/// prefiltered visibility feature.
-Image filter_halves(const DenoiserInput& input, const Image& albedo, const Image& visibility,
+/// back by `albedo`, plus `emission` (0x0: none).
+Image filter_halves(const DenoiserInput& input, const Image& albedo,
                     const DenoiserSettings& settings, const Image& emission, bool first_order) {
     PixelTerms terms;
-    const Planes planes = make_planes(input, albedo, visibility, settings, terms);
+    const Planes planes = make_planes(input, albedo, settings, terms);
     terms.emission = emission.pixels;
     Image out(planes.width, planes.height);
     Estimates estimates;
@@ -1119,10 +963,6 @@ Image filter_halves(const DenoiserInput& input, const Image& albedo, const Image
         for (std::vector<glm::vec3>* v :
              {&estimates.mean_a, &estimates.mean_b, &estimates.fit_a, &estimates.fit_b})
             v->resize(out.pixels.size());
-        if (planes.visibility_covariate) {
-            estimates.cov_a.resize(out.pixels.size());
-            estimates.cov_b.resize(out.pixels.size());
-        }
     }
     const int strips = (planes.height + kStrip - 1) / kStrip;
     const int columns = (planes.width + kTileWidth - 1) / kTileWidth;
@@ -1153,8 +993,6 @@ Image filter_halves(const DenoiserInput& input, const Image& albedo, const Image
                             if (first_order) {  // select_estimates: 0 either way
                                 estimates.mean_a[i] = estimates.mean_b[i] = glm::vec3(0.0f);
                                 estimates.fit_a[i] = estimates.fit_b[i] = glm::vec3(0.0f);
-                                if (!estimates.cov_a.empty())
-                                    estimates.cov_a[i] = estimates.cov_b[i] = glm::vec3(0.0f);
                             }
                         }
                     continue;
@@ -1271,8 +1109,6 @@ void validate(const DenoiserSettings& s) {
         bad("normal_sigma", std::to_string(s.normal_sigma), "must be finite and > 0");
     if (!(s.max_standard_errors >= 0.0f && s.max_standard_errors <= 100.0f))
         bad("max_standard_errors", std::to_string(s.max_standard_errors), "must be in [0, 100]");
-    if (!(s.visibility_sigma >= 0.0f && std::isfinite(s.visibility_sigma)))
-        bad("visibility_sigma", std::to_string(s.visibility_sigma), "must be finite and >= 0");
     if (s.threads < 0 || s.threads > 1024)
         bad("threads", std::to_string(s.threads), "must be in [0, 1024]");
 }
@@ -1299,8 +1135,6 @@ DenoiserInput denoiser_input(const Film& first, const Film& full) {
     in.normal_b = Image(full.width, full.height);
     in.emission_a = Image(full.width, full.height);
     in.emission_b = Image(full.width, full.height);
-    in.visibility_a = Image(full.width, full.height);
-    in.visibility_b = Image(full.width, full.height);
     in.share_a.resize(full.pixels.size());
     // The splats' part of each half: resolve() divides them by the mean sample count, so
     // the second part's splats are (full's x N - first's x N1) / (N - N1).
@@ -1344,12 +1178,6 @@ DenoiserInput denoiser_input(const Film& first, const Film& full) {
         in.emission_a.pixels[i] = glm::vec3(aa.emission / double(a.samples));
         in.emission_b.pixels[i] =
             glm::vec3((af.emission - aa.emission) / double(f.samples - a.samples));
-        // Visibility: over the sum of the weights' signs, as the albedo (1 where it is 0).
-        const double signs_a = double(a.samples) - 2.0 * double(aa.negative);
-        in.visibility_a.pixels[i] =
-            glm::vec3(signs_a != 0.0 ? float(aa.visibility / signs_a) : 1.0f);
-        in.visibility_b.pixels[i] =
-            glm::vec3(signs != 0.0 ? float((af.visibility - aa.visibility) / signs) : 1.0f);
     }
     return in;
 }
@@ -1371,7 +1199,7 @@ Image denoise(const DenoiserInput& input, const DenoiserSettings& settings) {
         alone.share_a = input.share_a;
         alone.albedo = ones;
         alone.normal = Image(w, h);
-        return filter_halves(alone, ones, Image(), with, Image(), false);
+        return filter_halves(alone, ones, with, Image(), false);
     };
     // The albedo is prefiltered first, as Rousselle et al. 2013 and NFOR prefilter their
     // features: where a texture or an outline crosses a pixel, its albedo is the share of
@@ -1397,15 +1225,7 @@ Image denoise(const DenoiserInput& input, const DenoiserSettings& settings) {
         if (emits(input.emission_a) || emits(input.emission_b))
             emission = filter_alone(input.emission_a, input.emission_b, settings);
     }
-    // The visibility, prefiltered as the albedo: where a shadow's edge crosses a pixel it is
-    // the share of its samples on each side, as noisy as the radiance (and, from an area
-    // light, noisy everywhere its light is partly seen).
-    const bool visibility_used = !input.visibility_a.pixels.empty() &&
-                                 (settings.visibility_sigma > 0.0f ||
-                                  (settings.visibility_regression && settings.first_order));
-    const Image visibility =
-        visibility_used ? filter_alone(input.visibility_a, input.visibility_b, prefilter) : Image();
-    Image out = filter_halves(input, albedo, visibility, settings, emission, settings.first_order);
+    Image out = filter_halves(input, albedo, settings, emission, settings.first_order);
     if (settings.max_standard_errors > 0.0f) bound_by_own_noise(input, settings, out);
     return out;
 }

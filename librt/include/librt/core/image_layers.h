@@ -21,10 +21,6 @@ struct ImageLayers {
     /// width * height planar depths of the first hit (distance from the camera's lens plane
     /// along its optical axis, what compositors read as Z; not the ray's length), or empty.
     std::vector<float> depth;
-    /// width * height direct-light visibilities of the first non-specular hit (the share of
-    /// the pixel's light samples that reach it unshadowed: film.h, AovPixel::visibility;
-    /// 1 where nothing is shadowed, a miss), or empty.
-    std::vector<float> visibility;
     std::vector<float> sample_count;  ///< width * height samples per pixel, or empty
     /// The beauty denoised (render/denoiser.h), or 0x0. The beauty itself stays the
     /// unbiased estimate.

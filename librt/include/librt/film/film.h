@@ -52,15 +52,15 @@ struct FilmPixel {
 };
 
 /// The AOV sums of one pixel, accumulated over the same samples as its FilmPixel (all of
-/// them, including those whose radiance was not finite). 96 bytes.
+/// them, including those whose radiance was not finite). 88 bytes.
 ///
 /// The pixel filter: sample positions are drawn from |f| (filter importance sampling),
-/// so every sum below is already |f|-weighted. The albedo and the visibility also take the sign of
-/// the sample's filter weight (negative only in a Mitchell filter's lobes; the weight's size is the
-/// same for every sample of a filter), and resolve_layers divides it by the sum of the signs: the
-/// filtered mean sum(w a) / sum(w), like a colour pass of pbrt-v4's film, exact on a constant
-/// albedo. Normal and depth stay |f|-weighted means: a signed mean of geometry can leave the range
-/// the pixel sees (a negative depth, a normal longer than 1).
+/// so every sum below is already |f|-weighted. The albedo also takes the sign of the
+/// sample's filter weight (negative only in a Mitchell filter's lobes; the weight's size is
+/// the same for every sample of a filter), and resolve_layers divides it by the sum of the
+/// signs: the filtered mean sum(w a) / sum(w), like a colour pass of pbrt-v4's film, exact
+/// on a constant albedo. Normal and depth stay |f|-weighted means: a signed mean of
+/// geometry can leave the range the pixel sees (a negative depth, a normal longer than 1).
 struct AovPixel {
     /// Sum of the albedos (bsdf.h, denoising_albedo) of the first non-specular hits (0 for
     /// a miss), each with the sign of its sample's filter weight.
@@ -73,10 +73,6 @@ struct AovPixel {
     /// times each sample's filter weight as the beauty's: the part of the beauty that is
     /// not light reflected, which the denoiser keeps out of its albedo demodulation.
     glm::dvec3 emission{0.0};
-    /// Sum of the samples' direct-light visibilities (AovSample::visibility in
-    /// render/aov.h: 1 where one light sample reaches the first non-specular hit, 0 where
-    /// it is shadowed; 1 for a miss), each with the sign of its filter weight, as the albedo.
-    double visibility = 0.0;
 };
 
 /// Per-pixel sums of a render, row-major with the top row first like Image. Plain data:
@@ -141,9 +137,8 @@ LIBRT_API void merge(Film& into, const Film& from);
 /// film has AOVs, albedo (the filter-weighted mean over all samples of the pixel, a miss
 /// counting as 0: the albedo sum divided by samples - 2 negative, the sum of the weights'
 /// signs; 0 when that is 0), normal (world space, mean over all samples, a miss counting as
-/// 0), depth (mean planar depth, the distance from the camera's lens plane along its
-/// optical axis, over the samples that hit; +infinity when none did) and visibility (the
-/// filter-weighted mean as the albedo's; 1 when the signs sum to 0).
+/// 0) and depth (mean planar depth, the distance from the camera's lens plane along its
+/// optical axis, over the samples that hit; +infinity when none did).
 [[nodiscard]] LIBRT_API ImageLayers resolve_layers(const Film& film);
 
 /// The number of samples every pixel of the film holds; throws librt::Error naming a

@@ -25,9 +25,9 @@ struct ExrWriteOptions {
     /// Storage of the beauty, albedo, normal and denoised channels. Float (the default) writes
     /// every value bit for bit. Half makes a smaller file, but a half holds at most 65504: larger
     /// magnitudes (a bright emitter seen directly, a high exposure) would become infinite,
-    /// so they are clamped to +-65504 and reported in ExrWriteResult::warnings. Depth, the
-    /// visibility and the sample count are always 32-bit float (half would round a depth of 1000 to
-    /// a multiple of 0.5 and a count above 2048 to an even number).
+    /// so they are clamped to +-65504 and reported in ExrWriteResult::warnings. Depth and
+    /// the sample count are always 32-bit float (half would round a depth of 1000 to a
+    /// multiple of 0.5 and a count above 2048 to an even number).
     ExrPixelType colour = ExrPixelType::Float;
 };
 
@@ -41,8 +41,7 @@ struct ExrWriteResult {
 /// Writes `layers` as a single-part scan-line OpenEXR file (tinyexr, ZIP compression).
 /// Channel names: beauty R, G, B; albedo.R/G/B; normal.X/Y/Z (world space); denoised.R/G/B (the
 /// denoised beauty); depth Z (the OpenEXR name for depth: planar camera depth, as Blender and Nuke
-/// read it, not the ray's length); visibility.Y (the direct-light visibility, 0 to 1);
-/// sample_count. Depth is +infinity where no sample hit anything
+/// read it, not the ray's length); sample_count. Depth is +infinity where no sample hit anything
 /// (as resolve_layers gives it); every other channel of a rendered film is finite. Throws
 /// librt::Error naming the file and the layer when a layer's size does not match the beauty's, a
 /// value is NaN, or the file cannot be written; the target is then left untouched (no partial file,

@@ -96,13 +96,6 @@ struct DenoiserInput {
     /// their albedos (cornell_pbr.glb's panel, docs/benchmarks.md).
     Image emission_a;
     Image emission_b;  ///< see emission_a
-    /// The direct-light visibility (ImageLayers::visibility: the share of the samples'
-    /// light samples that reach the first non-specular hit unshadowed; grey, the same value
-    /// in every channel) of half_a's samples and of half_b's, or both 0x0 (then none).
-    /// A feature that predicts shadows and occlusion on surfaces alike in albedo and
-    /// normal (NFOR, Bitterli et al. 2016).
-    Image visibility_a;
-    Image visibility_b;  ///< see visibility_a
 };
 
 /// The denoiser's parameters. The defaults are what docs/benchmarks.md measures.
@@ -131,12 +124,6 @@ struct DenoiserSettings {
     /// weighted mean's bias. false: the weighted mean alone, which costs less
     /// (docs/benchmarks.md).
     bool first_order = true;
-    /// Visibility difference at which a neighbour's weight falls to 1/e (a feature like
-    /// albedo_sigma, on DenoiserInput::visibility_a/b), >= 0; 0 = not a feature weight.
-    float visibility_sigma = 0.1f;
-    /// With first_order, fit the neighbours' radiance as linear in their visibility too:
-    /// a + b . offset + c (v_q - v_p) (NFOR's regression on its features).
-    bool visibility_regression = false;
     int threads = 0;  ///< worker threads in [0, 1024]; 0 = hardware_concurrency()
 };
 
