@@ -37,6 +37,10 @@
 //    the tolerance there (Rousselle, Manzi & Zwicker 2013), and the albedo is prefiltered
 //    by this same filter before the radiance is multiplied back by it, else that
 //    coverage noise would come back with it.
+//    A direct-light visibility feature (NFOR's: one light sample's shadow ray per camera
+//    sample), as a feature weight or as a covariate of the first-order fit, was measured
+//    and not kept: dragons_instanced.glb 1.8x -> 1.9x at 64 spp, nothing elsewhere
+//    (docs/benchmarks.md, "A direct-light visibility feature").
 //  - First order (Moon et al. 2014, "Adaptive rendering based on weighted local
 //    regression"; NFOR): with the weights above, each pixel also fits its neighbours'
 //    demodulated radiance as a + b . (q - p), linear in their offset (ridge-regularised),
